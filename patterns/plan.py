@@ -1,0 +1,234 @@
+"""The immutable stitch plan: needle points in sewing order, with what each one is.
+
+Frame: millimetres, x to the right, **y up** (the machine frame of DST). The
+pyembroidery frame (0.1 mm, y down) is the export layer's business.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.patterns.plan import Command, Role, StitchPlan
+>>> plan = StitchPlan.from_records(
+...     [(0.0, 0.0, Command.STITCH, Role.TIE_IN), (0.0, 3.5, Command.STITCH, Role.LEG),
+...      (0.0, 3.5, Command.END, Role.CONTROL)], actuators=(), name="demo")
+>>> len(plan), plan.stitch_count
+(3, 2)
+>>> plan.xy_mm.flags.writeable
+False
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import TYPE_CHECKING, Iterable
+
+import numpy as np
+
+from .params import CrossParams, PatternParams, StitchOptions, Tube
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .centerline import Centerline
+
+__all__ = ["Command", "Role", "Realised", "ActuatorPlan", "StitchPlan"]
+
+
+class Command(IntEnum):
+    """What the machine does at a record."""
+
+    STITCH = 0
+    JUMP = 1
+    TRIM = 2
+    STOP = 3
+    END = 4
+
+
+class Role(IntEnum):
+    """What a record is for in the actuator."""
+
+    TIE_IN = 0
+    LEG = 1
+    EDGE = 2
+    TIE_OFF = 3
+    TRAVEL = 4
+    CONTROL = 5
+
+
+@dataclass(frozen=True, slots=True)
+class Realised:
+    """Pattern parameters measured on the generated stitches.
+
+    Attributes
+    ----------
+    width_mm : float
+        Mean rail spacing of the needle points [mm].
+    interval_mm : float
+        Mean spacing of neighbouring needle points / parallel legs along the path [mm].
+    angle_deg : float
+        Mean leg angle from the local perpendicular [deg] (zigzag: its small lean).
+    length_mm : float
+        Embroidered length along the centerline, first to last leg [mm].
+    passes : int
+        Number of passes over the path (1 for zigzag).
+    """
+
+    width_mm: float
+    interval_mm: float
+    angle_deg: float
+    length_mm: float
+    passes: int = 1
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, copy=True)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, slots=True)
+class ActuatorPlan:
+    """One actuator's share of a plan: what was asked, what was built, on which path.
+
+    Attributes
+    ----------
+    name : str
+        Actuator name (thread list / colour table entry).
+    params : ZigzagParams | CrossParams
+        The requested pattern parameters.
+    tube : Tube
+        The tube it is sewn over.
+    centerline : Centerline
+        The tube path, mm, plan frame.
+    realised : Realised
+        Parameters measured on the generated stitches.
+    adjustments : tuple of str
+        Human-readable notes where the generator had to change a request.
+    options : StitchOptions
+        Lock-stitch settings used.
+    """
+
+    name: str
+    params: PatternParams
+    tube: Tube
+    centerline: "Centerline"
+    realised: Realised
+    adjustments: tuple[str, ...] = ()
+    options: StitchOptions = field(default_factory=StitchOptions)
+
+    @property
+    def pattern(self) -> str:
+        """``"zigzag"`` or ``"cross"``."""
+        return self.params.pattern
+
+    @property
+    def requested_angle_deg(self) -> float:
+        """alpha0 asked for (0 for zigzag) [deg]."""
+        return self.params.angle_deg if isinstance(self.params, CrossParams) else 0.0
+
+    def rails(self):
+        """The two rails at +-w/2 (realised width) as shapely LineStrings (left, right)."""
+        return self.centerline.offset_curves(self.realised.width_mm / 2.0)
+
+    def corridor(self):
+        """Shapely polygon where no needle may land: centerline buffered by r_f + clearance."""
+        return self.centerline.as_linestring().buffer(self.tube.corridor_radius_mm, cap_style="flat")
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class StitchPlan:
+    """Needle points in sewing order with command, role and owning actuator.
+
+    Attributes
+    ----------
+    xy_mm : ndarray, shape (n, 2)
+        Positions [mm], plan frame (y up); read-only.
+    commands : ndarray of int8, shape (n,)
+        :class:`Command` per record.
+    roles : ndarray of int8, shape (n,)
+        :class:`Role` per record.
+    actuator : ndarray of int16, shape (n,)
+        Index into ``actuators`` per record, -1 for design-level records (END).
+    actuators : tuple of ActuatorPlan
+    name : str
+    """
+
+    xy_mm: np.ndarray
+    commands: np.ndarray
+    roles: np.ndarray
+    actuator: np.ndarray
+    actuators: tuple[ActuatorPlan, ...] = ()
+    name: str = "embroact"
+
+    def __post_init__(self) -> None:
+        xy = np.asarray(self.xy_mm, dtype=np.float64).reshape(-1, 2)
+        n = len(xy)
+        for attr, dtype in (("commands", np.int8), ("roles", np.int8), ("actuator", np.int16)):
+            arr = np.asarray(getattr(self, attr), dtype=dtype).reshape(-1)
+            if len(arr) != n:
+                raise ValueError(f"{attr} has {len(arr)} entries, xy_mm has {n}")
+            object.__setattr__(self, attr, _frozen(arr))
+        object.__setattr__(self, "xy_mm", _frozen(xy))
+
+    @classmethod
+    def from_records(
+        cls,
+        records: Iterable[tuple[float, float, int, int] | tuple[float, float, int, int, int]],
+        *,
+        actuators: tuple[ActuatorPlan, ...] = (),
+        name: str = "embroact",
+    ) -> "StitchPlan":
+        """Build from ``(x_mm, y_mm, command, role[, actuator])`` tuples."""
+        rows = [tuple(r) + ((0,) if len(r) == 4 else ()) for r in records]
+        if not rows:
+            return cls(np.zeros((0, 2)), [], [], [], actuators, name)
+        arr = np.array(rows, dtype=np.float64)
+        return cls(arr[:, :2], arr[:, 2], arr[:, 3], arr[:, 4], actuators, name)
+
+    def __len__(self) -> int:
+        return len(self.xy_mm)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, StitchPlan):
+            return NotImplemented
+        return (
+            self.name == other.name
+            and self.actuators == other.actuators
+            and all(
+                np.array_equal(getattr(self, a), getattr(other, a))
+                for a in ("xy_mm", "commands", "roles", "actuator")
+            )
+        )
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def isclose(self, other: "StitchPlan", *, atol_mm: float = 1e-9) -> bool:
+        """Same records with positions equal within ``atol_mm``."""
+        return (
+            len(self) == len(other)
+            and np.array_equal(self.commands, other.commands)
+            and np.array_equal(self.roles, other.roles)
+            and bool(np.all(np.abs(self.xy_mm - other.xy_mm) <= atol_mm))
+        )
+
+    @property
+    def stitch_count(self) -> int:
+        """Number of STITCH records."""
+        return int(np.count_nonzero(self.commands == Command.STITCH))
+
+    def count(self, command: Command) -> int:
+        """Number of records with the given command."""
+        return int(np.count_nonzero(self.commands == command))
+
+    def needle_mask(self) -> np.ndarray:
+        """Boolean mask of records where the needle goes through the fabric (STITCH)."""
+        return self.commands == Command.STITCH
+
+    def bounds_mm(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) over all records [mm]."""
+        if len(self) == 0:
+            return (0.0, 0.0, 0.0, 0.0)
+        lo, hi = self.xy_mm.min(axis=0), self.xy_mm.max(axis=0)
+        return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+    def select(self, index: int) -> "StitchPlan":
+        """Records of one actuator only (its STOP/TRIM included)."""
+        m = self.actuator == index
+        return StitchPlan(self.xy_mm[m], self.commands[m], self.roles[m], self.actuator[m], self.actuators, self.name)

@@ -1,0 +1,156 @@
+"""Sleeve geometry derived from the generated stitches: r0, beta0, gamma and P0.
+
+The numbers come from what the generator realised (rail spacing and leg angle
+measured on the stitches), not from the request; both are kept for reports.
+
+Examples
+--------
+>>> from embroact.patterns.params import Tube
+>>> from embroact.predict.derived import derive_from_values
+>>> g = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0,
+...                        length_mm=100.0, tube=Tube())
+>>> round(g.r0_mm, 4), round(g.p0_kpa, 1)
+(2.5814, 84.5)
+>>> c = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=45.0,
+...                        length_mm=100.0, tube=Tube())
+>>> round(c.beta0_deg, 3), c.bends_positive
+(37.208, False)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..patterns.errors import ParameterError, check_range
+from ..patterns.params import Tube
+from ..patterns.plan import ActuatorPlan
+from ..patterns.sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg
+from .inflation import transition_pressure_kpa
+
+__all__ = ["DerivedGeometry", "derive", "derive_from_values"]
+
+
+@dataclass(frozen=True, slots=True)
+class DerivedGeometry:
+    """Realised pattern parameters and the sleeve they make (MODEL.md sections 2-3).
+
+    Attributes
+    ----------
+    name, pattern : str
+    length_mm : float
+        l0, embroidered (fabric-side) length [mm].
+    width_mm, interval_mm, angle_deg : float
+        Realised rail spacing, stitch interval, leg angle alpha0 (0 for zigzag) [mm, mm, deg].
+    requested_width_mm, requested_interval_mm, requested_angle_deg : float
+        What the user asked for.
+    r0_mm : float
+        Sleeve radius [mm].
+    beta0_deg : float
+        Thread angle to the circumferential direction at r0 [deg] (0 for zigzag).
+    gamma : float
+        2 r0 / (l0 cos beta0) [1/rad].
+    p0_kpa : float
+        Transition pressure from the tube law (paper's law) [kPa]; 0 if r0 <= r_f.
+    neutral_angle_deg : float
+        alpha0 with tan(beta0) = 1/2 for this width and tube [deg].
+    tube : Tube
+    """
+
+    name: str
+    pattern: str
+    length_mm: float
+    width_mm: float
+    interval_mm: float
+    angle_deg: float
+    requested_width_mm: float
+    requested_interval_mm: float
+    requested_angle_deg: float
+    r0_mm: float
+    beta0_deg: float
+    gamma: float
+    p0_kpa: float
+    neutral_angle_deg: float
+    tube: Tube
+
+    @property
+    def has_sleeve(self) -> bool:
+        """True when r0 > r_f, i.e. an inflation phase exists."""
+        return self.r0_mm > self.tube.outer_radius_mm
+
+    @property
+    def bends_positive(self) -> bool:
+        """Initial bending direction: dV/dl > 0 at theta = 0 (zigzag always; cross if tan beta0 < 1/2)."""
+        return self.pattern == "zigzag" or np.tan(np.radians(self.beta0_deg)) < 0.5
+
+    def as_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys (for JSON and reports)."""
+        keys = [k for k in self.__slots__ if k != "tube"]
+        d = {k: getattr(self, k) for k in keys}
+        d["min_sleeve_width_mm"] = float(min_sleeve_width_mm(self.tube.outer_radius_mm))
+        d["has_sleeve"] = self.has_sleeve
+        d["bends_positive"] = bool(self.bends_positive)
+        return d
+
+
+def derive_from_values(
+    pattern: str,
+    *,
+    width_mm: float,
+    interval_mm: float,
+    angle_deg: float,
+    length_mm: float,
+    tube: Tube,
+    name: str = "actuator",
+    requested: tuple[float, float, float] | None = None,
+) -> DerivedGeometry:
+    """Derived geometry from realised values (used directly by quick commands).
+
+    ``requested`` is (width_mm, interval_mm, angle_deg); defaults to the realised values.
+    """
+    if pattern not in ("zigzag", "cross"):
+        raise ParameterError(f"pattern must be one of 'zigzag', 'cross', got {pattern!r}")
+    w = check_range("width_mm", width_mm, low=0.0)
+    s = check_range("interval_mm", interval_mm, low=0.0)
+    l0 = check_range("length_mm", length_mm, low=0.0)
+    if pattern == "cross":
+        a = check_range("angle_deg", angle_deg, low=0.0, high=90.0)
+        beta0 = float(thread_angle_deg(w, a, tube.outer_radius_mm))
+    else:
+        a = float(angle_deg)
+        beta0 = 0.0
+    r0 = float(sleeve_radius_mm(w, tube.outer_radius_mm))
+    req = requested if requested is not None else (w, s, a)
+    return DerivedGeometry(
+        name=name,
+        pattern=pattern,
+        length_mm=l0,
+        width_mm=w,
+        interval_mm=s,
+        angle_deg=a,
+        requested_width_mm=float(req[0]),
+        requested_interval_mm=float(req[1]),
+        requested_angle_deg=float(req[2]),
+        r0_mm=r0,
+        beta0_deg=beta0,
+        gamma=float(gamma(r0, beta0, l0)),
+        p0_kpa=float(transition_pressure_kpa(r0, tube.outer_radius_mm, tube.g_e_mpa)),
+        neutral_angle_deg=float(neutral_angle_deg(w, tube.outer_radius_mm)),
+        tube=tube,
+    )
+
+
+def derive(actuator: ActuatorPlan) -> DerivedGeometry:
+    """Derived geometry of one generated actuator, from its realised parameters."""
+    r = actuator.realised
+    p = actuator.params
+    return derive_from_values(
+        actuator.pattern,
+        width_mm=r.width_mm,
+        interval_mm=r.interval_mm,
+        angle_deg=r.angle_deg if actuator.pattern == "cross" else 0.0,
+        length_mm=r.length_mm,
+        tube=actuator.tube,
+        name=actuator.name,
+        requested=(p.width_mm, p.interval_mm, actuator.requested_angle_deg),
+    )

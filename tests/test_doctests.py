@@ -1,0 +1,24 @@
+"""Every module's numpydoc Examples run as doctests (house style)."""
+import doctest
+import importlib
+import pkgutil
+
+import pytest
+
+PACKAGES = ["embroact.patterns", "embroact.predict", "embroact.export"]
+
+
+def _modules():
+    for pkg_name in PACKAGES:
+        pkg = importlib.import_module(pkg_name)
+        yield pkg_name
+        for info in pkgutil.iter_modules(pkg.__path__):
+            if info.name != "__main__":
+                yield f"{pkg_name}.{info.name}"
+
+
+@pytest.mark.parametrize("name", sorted(_modules()))
+def test_module_doctests(name):
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.failed == 0, f"{result.failed} doctest(s) failed in {name}"
