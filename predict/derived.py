@@ -81,7 +81,7 @@ class DerivedGeometry:
     @property
     def bends_positive(self) -> bool:
         """Initial bending direction: dV/dl > 0 at theta = 0 (zigzag always; cross if tan beta0 < 1/2)."""
-        return self.pattern == "zigzag" or np.tan(np.radians(self.beta0_deg)) < 0.5
+        return self.pattern == "zigzag" or bool(np.tan(np.radians(self.beta0_deg)) < 0.5)
 
     def as_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (for JSON and reports)."""
