@@ -1,0 +1,471 @@
+"""Calibration sets: fitted (G, P0) per design, and their lookup for a new design.
+
+The deformation model has one free modulus, the effective shear modulus ``G`` of
+tube + sleeve, and usually a fitted transition pressure ``P0``; both depend on the
+materials (tube, thread, fabric) and on the design.  A :class:`CalibrationSet`
+stores fitted points for one combination of materials; :func:`lookup` turns it into
+the parameters for any zigzag width or cross angle.
+
+The built-in set ``"paper-2025"`` holds the paper's fitted parameters (MODEL.md
+section 5: natural rubber tube, polyester thread, cotton fabric).  Users add their
+own sets from :func:`embroact.predict.fit.fit_design` results, either globally with
+:func:`register` or per call with ``lookup(..., sets=[...])``; TOML files are read and
+written by :mod:`embroact.export.calibfile`.
+
+Lookup scheme
+-------------
+* Zigzag points are interpolated over ``width_mm``; cross points over ``angle_deg``
+  (among the cross points of the width closest to the requested one; a different
+  width is reported in ``notes``).
+* Interpolation is piecewise linear in the parameter, separately for ``G`` and ``P0``
+  (and ``G_e`` when every point has one).  Several points at the same coordinate are
+  averaged.
+* Outside the calibrated range, ``extrapolation="clamp"`` (default) holds the end
+  value, ``extrapolation="linear"`` extends the end segment; either way the result
+  says ``extrapolated=True`` so that a design rule can warn.  A linear extrapolation
+  that drives ``G`` or ``P0`` out of range is refused (:class:`ModelDomainError`).
+* Branches: ``branch="loading"`` uses points fitted to the loading branch or to both
+  branches (``"both"``); an exact branch match wins over ``"both"`` at one coordinate.
+
+Examples
+--------
+>>> from embroact.predict.calibration import lookup
+>>> c = lookup("zigzag", width_mm=7.0)
+>>> c.g_mpa, c.p0_kpa, c.interpolated, c.extrapolated
+(2.7, 85.0, False, False)
+>>> c = lookup("zigzag", width_mm=8.0)
+>>> round(c.g_mpa, 3), round(c.p0_kpa, 1), c.interpolated
+(3.05, 132.5, True)
+>>> c = lookup("cross", width_mm=7.0, angle_deg=70.0)
+>>> c.g_mpa, c.p0_kpa, c.extrapolated, (c.range_low, c.range_high)
+(2.9, 200.0, True, (15.0, 60.0))
+>>> c.label
+'paper-2025 (cross, angle_deg=70, clamped to [15, 60])'
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Iterable, Mapping
+
+from ..patterns.errors import ModelDomainError, ParameterError, check_range
+from ..patterns.tolerances import DEFAULT_TOLERANCES
+
+__all__ = [
+    "PATTERNS",
+    "BRANCHES",
+    "EXTRAPOLATIONS",
+    "CalibrationPoint",
+    "CalibrationSet",
+    "Calibration",
+    "PAPER_2025",
+    "lookup",
+    "register",
+    "unregister",
+    "get_set",
+    "set_names",
+]
+
+PATTERNS = ("zigzag", "cross")
+BRANCHES = ("loading", "unloading", "both")
+EXTRAPOLATIONS = ("clamp", "linear")
+
+_G_MAX_MPA = 1e5
+_P_MAX_KPA = 1e5
+_NAME_CHARS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.")
+
+
+def _choice(name: str, value: object, valid: tuple[str, ...]) -> str:
+    if value not in valid:
+        raise ParameterError(f"{name} must be one of {', '.join(map(repr, valid))}, got {value!r}")
+    return str(value)
+
+
+def _optional(name: str, value: float | None, **bounds) -> float | None:
+    return None if value is None else check_range(name, value, **bounds)
+
+
+@dataclass(frozen=True, slots=True)
+class CalibrationPoint:
+    """Fitted parameters of one design (one branch of its pressure loop).
+
+    Parameters
+    ----------
+    pattern : str
+        ``"zigzag"`` or ``"cross"``.
+    width_mm : float
+        Embroidery width w [mm], > 0.
+    g_mpa : float
+        Effective shear modulus G of tube + sleeve [MPa], > 0.
+    p0_kpa : float
+        Transition pressure P0 [kPa], >= 0.
+    angle_deg : float
+        Cross embroidery angle alpha0 [deg] in (0, 90); 0 for zigzag.
+    interval_mm : float, optional
+        Stitch interval s [mm] of the fitted sample (documentation only).
+    branch : str
+        ``"loading"``, ``"unloading"`` or ``"both"`` (fitted to the whole loop).
+    g_e_mpa : float, optional
+        Fitted tube modulus G_e [MPa], when it was fitted.
+    g_mpa_se, p0_kpa_se, g_e_mpa_se : float, optional
+        Standard errors of the fit [MPa, kPa, MPa].
+    rmse_deg : float, optional
+        Root-mean-square residual of the fit [deg].
+    n_points : int, optional
+        Number of measured points the fit used.
+    """
+
+    pattern: str
+    width_mm: float
+    g_mpa: float
+    p0_kpa: float
+    angle_deg: float = 0.0
+    interval_mm: float | None = None
+    branch: str = "both"
+    g_e_mpa: float | None = None
+    g_mpa_se: float | None = None
+    p0_kpa_se: float | None = None
+    g_e_mpa_se: float | None = None
+    rmse_deg: float | None = None
+    n_points: int | None = None
+
+    def __post_init__(self) -> None:
+        _choice("pattern", self.pattern, PATTERNS)
+        _choice("branch", self.branch, BRANCHES)
+        check_range("width_mm", self.width_mm, low=0.0, high=200.0)
+        check_range("g_mpa", self.g_mpa, low=0.0, high=_G_MAX_MPA)
+        check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=_P_MAX_KPA)
+        if self.pattern == "cross":
+            check_range("angle_deg", self.angle_deg, low=0.0, high=90.0)
+        else:
+            check_range("angle_deg", self.angle_deg, low=-90.0, high=90.0)
+        _optional("interval_mm", self.interval_mm, low=0.0, high=100.0)
+        _optional("g_e_mpa", self.g_e_mpa, low=0.0, high=_G_MAX_MPA)
+        for name in ("g_mpa_se", "p0_kpa_se", "g_e_mpa_se", "rmse_deg"):
+            _optional(name, getattr(self, name), low=0.0, low_inclusive=True)
+        n = self.n_points
+        if n is not None and (isinstance(n, bool) or not isinstance(n, int) or n < 1):
+            raise ParameterError(f"n_points must be a positive integer, got {n!r}")
+
+    @property
+    def coordinate(self) -> float:
+        """The interpolation coordinate: width for zigzag, angle for cross."""
+        return self.angle_deg if self.pattern == "cross" else self.width_mm
+
+    def same_design(self, other: "CalibrationPoint") -> bool:
+        """True when ``other`` is for the same pattern, width, angle and branch."""
+        return (self.pattern, self.width_mm, self.angle_deg, self.branch) == (
+            other.pattern,
+            other.width_mm,
+            other.angle_deg,
+            other.branch,
+        )
+
+    def as_dict(self) -> dict:
+        """Plain dict of the set fields (``None`` fields left out)."""
+        return {k: getattr(self, k) for k in self.__slots__ if getattr(self, k) is not None}
+
+
+@dataclass(frozen=True, slots=True)
+class CalibrationSet:
+    """A named collection of calibration points for one combination of materials.
+
+    Parameters
+    ----------
+    name : str
+        Identifier: letters, digits, ``-``, ``_``, ``.``.
+    points : tuple of CalibrationPoint
+        At least one point.
+    description : str
+        Free text (where the data came from).
+    materials : mapping or tuple of (key, value) pairs
+        e.g. ``{"tube": "natural rubber", "thread": "polyester", "fabric": "cotton"}``;
+        stored as a tuple of string pairs.
+    """
+
+    name: str
+    points: tuple[CalibrationPoint, ...]
+    description: str = ""
+    materials: tuple[tuple[str, str], ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name or not set(self.name) <= _NAME_CHARS:
+            raise ParameterError(
+                f"calibration name must be a non-empty string of letters, digits, '-', '_', '.', got {self.name!r}"
+            )
+        points = tuple(self.points)
+        if not points or not all(isinstance(p, CalibrationPoint) for p in points):
+            raise ParameterError(f"calibration set {self.name!r} needs at least one CalibrationPoint")
+        mats = self.materials.items() if isinstance(self.materials, Mapping) else self.materials
+        object.__setattr__(self, "points", points)
+        object.__setattr__(self, "materials", tuple((str(k), str(v)) for k, v in mats))
+        object.__setattr__(self, "description", str(self.description))
+
+    def with_points(self, points: Iterable[CalibrationPoint]) -> "CalibrationSet":
+        """A copy whose points are merged with ``points`` (a new point replaces an old one of the same design)."""
+        new = tuple(points)
+        kept = tuple(p for p in self.points if not any(p.same_design(q) for q in new))
+        return CalibrationSet(self.name, kept + new, self.description, self.materials)
+
+
+@dataclass(frozen=True, slots=True)
+class Calibration:
+    """Parameters a calibration set gives for one design, and how they were obtained.
+
+    Attributes
+    ----------
+    name : str
+        Name of the calibration set.
+    pattern, branch : str
+    g_mpa, p0_kpa : float
+        Effective shear modulus [MPa] and transition pressure [kPa].
+    g_e_mpa : float or None
+        Tube modulus [MPa] when every point used carries one.
+    parameter : str
+        ``"width_mm"`` (zigzag) or ``"angle_deg"`` (cross): the interpolation coordinate.
+    value : float
+        The requested coordinate.
+    range_low, range_high : float
+        Calibrated range of the coordinate.
+    interpolated : bool
+        True when the value lies strictly between two calibrated points.
+    extrapolated : bool
+        True when the value lies outside the calibrated range.
+    extrapolation : str
+        ``"clamp"`` or ``"linear"``: what was done outside the range.
+    notes : tuple of str
+        Other mismatches (e.g. a cross width different from the calibrated one).
+    """
+
+    name: str
+    pattern: str
+    branch: str
+    g_mpa: float
+    p0_kpa: float
+    g_e_mpa: float | None
+    parameter: str
+    value: float
+    range_low: float
+    range_high: float
+    interpolated: bool
+    extrapolated: bool
+    extrapolation: str
+    notes: tuple[str, ...] = ()
+
+    @property
+    def label(self) -> str:
+        """Short provenance string, e.g. for ``ActuatorModel.calibration``."""
+        lo, hi = f"{self.range_low:g}", f"{self.range_high:g}"
+        if self.extrapolated:
+            how = "clamped to" if self.extrapolation == "clamp" else "extrapolated beyond"
+            how = f", {how} [{lo}, {hi}]"
+        elif self.interpolated:
+            how = f", interpolated in [{lo}, {hi}]"
+        else:
+            how = ""
+        return f"{self.name} ({self.pattern}, {self.parameter}={self.value:g}{how})"
+
+    def as_dict(self) -> dict:
+        """Plain dict with unit-suffixed keys, plus ``label``."""
+        d = {k: getattr(self, k) for k in self.__slots__}
+        d["notes"] = list(self.notes)
+        d["label"] = self.label
+        return d
+
+
+def _paper_2025() -> CalibrationSet:
+    zig = [(5.0, 0.8, 50.0), (7.0, 2.7, 85.0), (9.0, 3.4, 180.0)]
+    cross = [(15.0, 2.9, 150.0), (30.0, 12.0, 160.0), (45.0, 1.3, 170.0), (60.0, 2.9, 200.0)]
+    points = [CalibrationPoint("zigzag", w, g, p0, interval_mm=1.0) for w, g, p0 in zig]
+    points += [CalibrationPoint("cross", 7.0, g, p0, angle_deg=a, interval_mm=1.4) for a, g, p0 in cross]
+    return CalibrationSet(
+        "paper-2025",
+        tuple(points),
+        "Ota & Funabora 2025 (arXiv 2510.23188), fitted parameters of the seven prototypes",
+        {"tube": "natural rubber (Hagitec T-2 02-089-01-02)", "thread": "polyester", "fabric": "cotton"},
+    )
+
+
+PAPER_2025 = _paper_2025()
+"""The paper's fitted parameters (MODEL.md section 5)."""
+
+_REGISTRY: dict[str, CalibrationSet] = {PAPER_2025.name: PAPER_2025}
+
+
+def register(cset: CalibrationSet, *, replace: bool = False) -> None:
+    """Make ``cset`` available to :func:`lookup` by its name.
+
+    Raises
+    ------
+    ParameterError
+        If a set of that name exists and ``replace`` is false, or if it is the built-in set.
+    """
+    if not isinstance(cset, CalibrationSet):
+        raise ParameterError(f"register expects a CalibrationSet, got {type(cset).__name__}")
+    if cset.name == PAPER_2025.name or (cset.name in _REGISTRY and not replace):
+        raise ParameterError(f"calibration set {cset.name!r} is already registered (pass replace=True)")
+    _REGISTRY[cset.name] = cset
+
+
+def unregister(name: str) -> None:
+    """Remove a user set registered with :func:`register` (the built-in set stays)."""
+    if name == PAPER_2025.name or name not in _REGISTRY:
+        raise ParameterError(f"no user calibration set {name!r}; registered: {', '.join(set_names())}")
+    del _REGISTRY[name]
+
+
+def set_names() -> tuple[str, ...]:
+    """Names of the registered calibration sets, built-in first."""
+    return tuple(_REGISTRY)
+
+
+def get_set(name: str, sets: Iterable[CalibrationSet] | None = None) -> CalibrationSet:
+    """The set called ``name``: from ``sets`` first, then the registry."""
+    extra = {s.name: s for s in (sets or ())}
+    found = extra.get(name) or _REGISTRY.get(name)
+    if found is None:
+        valid = sorted(set(extra) | set(_REGISTRY))
+        raise ParameterError(f"calibration must be one of {', '.join(map(repr, valid))}, got {name!r}")
+    return found
+
+
+def _coordinate_tolerance(pattern: str) -> float:
+    return DEFAULT_TOLERANCES.angle_deg if pattern == "cross" else DEFAULT_TOLERANCES.spacing_rel
+
+
+def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[list, list[str]]:
+    pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")]
+    if not pts:
+        raise ModelDomainError(
+            f"calibration set {cset.name!r} has no {pattern} points for the {branch} branch"
+        )
+    notes: list[str] = []
+    if pattern == "cross":
+        nearest = min(pts, key=lambda p: abs(p.width_mm - width)).width_mm
+        pts = [p for p in pts if p.width_mm == nearest]
+        if abs(nearest - width) > DEFAULT_TOLERANCES.spacing_rel * width:
+            notes.append(f"width_mm {width:g} differs from the calibrated cross width {nearest:g}")
+    # one point per coordinate: an exact branch match wins over "both"; equals are averaged
+    by_coord: dict[float, list[CalibrationPoint]] = {}
+    for p in pts:
+        by_coord.setdefault(p.coordinate, []).append(p)
+    merged = []
+    for x in sorted(by_coord):
+        group = by_coord[x]
+        exact = [p for p in group if p.branch == branch]
+        merged.append((x, exact or group))
+    return merged, notes
+
+
+def _mean(values: list[float]) -> float:
+    return math.fsum(values) / len(values)
+
+
+def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str) -> float:
+    """Piecewise-linear y(x); outside the range clamp or extend the end segment."""
+    if len(xs) == 1:
+        return ys[0]
+    if x <= xs[0] and extrapolation == "clamp":
+        return ys[0]
+    if x >= xs[-1] and extrapolation == "clamp":
+        return ys[-1]
+    k = 1
+    while k < len(xs) - 1 and x > xs[k]:
+        k += 1
+    x0, x1, y0, y1 = xs[k - 1], xs[k], ys[k - 1], ys[k]
+    return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+
+
+def lookup(
+    pattern: str,
+    *,
+    width_mm: float,
+    angle_deg: float | None = None,
+    name: str = "paper-2025",
+    sets: Iterable[CalibrationSet] | None = None,
+    branch: str = "loading",
+    extrapolation: str = "clamp",
+) -> Calibration:
+    """Parameters (G, P0) of the calibration set ``name`` for one design.
+
+    Parameters
+    ----------
+    pattern : str
+        ``"zigzag"`` or ``"cross"``.
+    width_mm : float
+        Embroidery width [mm].
+    angle_deg : float, optional
+        Cross embroidery angle alpha0 [deg]; required for cross.
+    name : str
+        Calibration set name (``"paper-2025"`` built in).
+    sets : iterable of CalibrationSet, optional
+        Extra sets searched before the registry.
+    branch : str
+        ``"loading"``, ``"unloading"`` or ``"both"``.
+    extrapolation : str
+        ``"clamp"`` or ``"linear"`` outside the calibrated range (see module docstring).
+
+    Returns
+    -------
+    Calibration
+        Values plus provenance: interpolated / extrapolated flags, range, notes.
+
+    Raises
+    ------
+    ParameterError
+        Unknown set, pattern, branch or extrapolation; bad width or angle.
+    ModelDomainError
+        The set has no points for the pattern/branch, or a linear extrapolation leaves
+        the valid range of G or P0.
+    """
+    _choice("pattern", pattern, PATTERNS)
+    _choice("branch", branch, BRANCHES)
+    _choice("extrapolation", extrapolation, EXTRAPOLATIONS)
+    w = check_range("width_mm", width_mm, low=0.0, high=200.0)
+    if pattern == "cross":
+        if angle_deg is None:
+            raise ParameterError("angle_deg is required for a cross design, got None")
+        value = check_range("angle_deg", angle_deg, low=0.0, high=90.0)
+    else:
+        value = w
+    cset = get_set(name, sets)
+    merged, notes = _candidates(cset, pattern, branch, w)
+    xs = [x for x, _ in merged]
+    g = [_mean([p.g_mpa for p in group]) for _, group in merged]
+    p0 = [_mean([p.p0_kpa for p in group]) for _, group in merged]
+    ge_all = [[p.g_e_mpa for p in group] for _, group in merged]
+    has_ge = all(v is not None for group in ge_all for v in group)
+    ge = [_mean(group) for group in ge_all] if has_ge else None
+
+    tol = _coordinate_tolerance(pattern) * (1.0 if pattern == "cross" else value)
+    hit = [i for i, x in enumerate(xs) if abs(x - value) <= tol]
+    extrapolated = value < xs[0] - tol or value > xs[-1] + tol
+    if hit:
+        i = hit[0]
+        g_v, p0_v, ge_v = g[i], p0[i], (ge[i] if ge else None)
+    else:
+        g_v = _interpolate(xs, g, value, extrapolation)
+        p0_v = _interpolate(xs, p0, value, extrapolation)
+        ge_v = _interpolate(xs, ge, value, extrapolation) if ge else None
+    label = f"calibration {name!r} extrapolated linearly to {pattern} {'angle_deg' if pattern == 'cross' else 'width_mm'}={value:g}"
+    if not 0.0 < g_v <= _G_MAX_MPA or not 0.0 <= p0_v <= _P_MAX_KPA or (ge_v is not None and ge_v <= 0.0):
+        raise ModelDomainError(
+            f"{label} gives g_mpa={g_v:.4g}, p0_kpa={p0_v:.4g} outside (0, {_G_MAX_MPA:g}] / [0, {_P_MAX_KPA:g}]; "
+            f"calibrated range is [{xs[0]:g}, {xs[-1]:g}], use extrapolation='clamp'"
+        )
+    return Calibration(
+        name=cset.name,
+        pattern=pattern,
+        branch=branch,
+        g_mpa=float(g_v),
+        p0_kpa=float(p0_v),
+        g_e_mpa=None if ge_v is None else float(ge_v),
+        parameter="angle_deg" if pattern == "cross" else "width_mm",
+        value=value,
+        range_low=float(xs[0]),
+        range_high=float(xs[-1]),
+        interpolated=not hit and not extrapolated,
+        extrapolated=bool(extrapolated),
+        extrapolation=extrapolation,
+        notes=tuple(notes),
+    )
