@@ -45,9 +45,11 @@ Examples
 ...     (0.0, 3.5, Command.STOP, Role.CONTROL), (0.0, 3.5, Command.STITCH, Role.TIE_IN),
 ...     (1.0, -3.5, Command.STITCH, Role.LEG), (1.0, -3.5, Command.TRIM, Role.CONTROL),
 ...     (1.0, -3.5, Command.END, Role.CONTROL, -1)])
->>> mp = to_pattern(plan, machine_format("dst"))
->>> [s[:2] for s in mp.pattern.stitches]
-[[0, -35], [0, -35], [10, 35], [10, 35], [10, 35]]
+>>> mp = to_pattern(plan, machine_format("act.dst"))
+>>> import pyembroidery as pe
+>>> names = {pe.JUMP: "jump", pe.STOP: "stop", pe.STITCH: "stitch", pe.TRIM: "trim", pe.END: "end"}
+>>> [(names[c], x, y) for x, y, c in mp.pattern.stitches]  # 0.1 mm, y down
+[('jump', 0, -35), ('stop', 0, -35), ('stitch', 0, -35), ('stitch', 10, 35), ('trim', 10, 35), ('end', 10, 35)]
 >>> mp.stops, mp.trims, mp.split_legs
 (1, 1, 0)
 """
