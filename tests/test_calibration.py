@@ -1,0 +1,200 @@
+"""Calibration sets: the paper's numbers, interpolation, extrapolation flags, user sets.
+
+Expected values are MODEL.md section 5's table and linear interpolation done by hand.
+"""
+import dataclasses
+
+import pytest
+
+from embroact.patterns.errors import ModelDomainError, ParameterError
+from embroact.predict.calibration import (
+    PAPER_2025,
+    CalibrationPoint,
+    CalibrationSet,
+    get_set,
+    lookup,
+    register,
+    set_names,
+    unregister,
+)
+
+# MODEL.md section 5, typed from the spec
+PAPER_ZIGZAG = {5.0: (0.8, 50.0), 7.0: (2.7, 85.0), 9.0: (3.4, 180.0)}
+PAPER_CROSS = {15.0: (2.9, 150.0), 30.0: (12.0, 160.0), 45.0: (1.3, 170.0), 60.0: (2.9, 200.0)}
+
+
+@pytest.mark.parametrize("w", sorted(PAPER_ZIGZAG))
+def test_paper_zigzag_points_exact(w):
+    c = lookup("zigzag", width_mm=w)
+    assert (c.g_mpa, c.p0_kpa) == PAPER_ZIGZAG[w]
+    assert not c.interpolated and not c.extrapolated
+    assert c.name == "paper-2025" and c.parameter == "width_mm"
+    assert (c.range_low, c.range_high) == (5.0, 9.0)
+
+
+@pytest.mark.parametrize("a", sorted(PAPER_CROSS))
+def test_paper_cross_points_exact(a):
+    c = lookup("cross", width_mm=7.0, angle_deg=a)
+    assert (c.g_mpa, c.p0_kpa) == PAPER_CROSS[a]
+    assert c.notes == () and not c.interpolated and c.parameter == "angle_deg"
+
+
+def test_paper_set_metadata():
+    assert "paper-2025" in set_names()
+    mats = dict(PAPER_2025.materials)
+    assert "natural rubber" in mats["tube"] and mats["thread"] == "polyester" and mats["fabric"] == "cotton"
+    assert len(PAPER_2025.points) == 7
+
+
+def test_interpolation_is_linear_in_the_parameter():
+    c = lookup("zigzag", width_mm=6.0)  # midway 5..7
+    assert c.g_mpa == pytest.approx((0.8 + 2.7) / 2, rel=1e-15)
+    assert c.p0_kpa == pytest.approx((50 + 85) / 2, rel=1e-15)
+    assert c.interpolated and not c.extrapolated
+    c = lookup("cross", width_mm=7.0, angle_deg=40.0)  # 1/3 of the way from 45 back to 30
+    assert c.g_mpa == pytest.approx(12.0 + (1.3 - 12.0) * 10 / 15, rel=1e-14)
+    assert c.p0_kpa == pytest.approx(160.0 + 10.0 * 10 / 15, rel=1e-14)
+
+
+def test_clamp_outside_range_is_flagged():
+    lo = lookup("zigzag", width_mm=4.0)
+    hi = lookup("zigzag", width_mm=12.0)
+    assert (lo.g_mpa, lo.p0_kpa, lo.extrapolated) == (0.8, 50.0, True)
+    assert (hi.g_mpa, hi.p0_kpa, hi.extrapolated) == (3.4, 180.0, True)
+    assert not hi.interpolated
+    assert "clamped to [5, 9]" in hi.label
+
+
+def test_linear_extrapolation_extends_end_segment():
+    c = lookup("zigzag", width_mm=10.0, extrapolation="linear")
+    assert c.g_mpa == pytest.approx(3.4 + (3.4 - 2.7) / 2, rel=1e-14)
+    assert c.p0_kpa == pytest.approx(180.0 + (180.0 - 85.0) / 2, rel=1e-14)
+    assert c.extrapolated and "extrapolated beyond [5, 9]" in c.label
+
+
+def test_linear_extrapolation_to_negative_modulus_is_refused():
+    # cross 15 -> 30 deg: G rises 2.9 -> 12.0, so at 5 deg it would be 2.9 - 9.1*10/15 < 0
+    with pytest.raises(ModelDomainError, match=r"g_mpa=-") as exc:
+        lookup("cross", width_mm=7.0, angle_deg=5.0, extrapolation="linear")
+    assert "\n" not in str(exc.value)
+    assert lookup("cross", width_mm=7.0, angle_deg=5.0).g_mpa == 2.9
+
+
+def test_cross_width_mismatch_noted():
+    c = lookup("cross", width_mm=9.0, angle_deg=45.0)
+    assert c.g_mpa == 1.3 and any("width_mm 9" in n for n in c.notes)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(pattern="cross", width_mm=7.0), "angle_deg is required"),
+        (dict(pattern="spiral", width_mm=7.0), "pattern must be one of"),
+        (dict(pattern="zigzag", width_mm=-1.0), "width_mm must be in"),
+        (dict(pattern="zigzag", width_mm=7.0, name="nope"), "'paper-2025'"),
+        (dict(pattern="zigzag", width_mm=7.0, extrapolation="cubic"), "'clamp', 'linear'"),
+        (dict(pattern="zigzag", width_mm=7.0, branch="up"), "branch must be one of"),
+        (dict(pattern="cross", width_mm=7.0, angle_deg=90.0), r"angle_deg must be in \(0, 90\)"),
+    ],
+)
+def test_bad_lookup_arguments(kwargs, match):
+    pattern = kwargs.pop("pattern")
+    with pytest.raises(ParameterError, match=match):
+        lookup(pattern, **kwargs)
+
+
+def _user_set(name="lab-a"):
+    return CalibrationSet(
+        name,
+        (
+            CalibrationPoint("zigzag", 6.0, 1.0, 60.0, branch="loading"),
+            CalibrationPoint("zigzag", 6.0, 2.0, 40.0, branch="unloading"),
+            CalibrationPoint("zigzag", 8.0, 3.0, 100.0, branch="both"),
+        ),
+        "synthetic",
+        {"tube": "silicone"},
+    )
+
+
+def test_user_set_via_sets_and_branches():
+    s = _user_set()
+    load = lookup("zigzag", width_mm=7.0, name="lab-a", sets=[s])
+    unload = lookup("zigzag", width_mm=7.0, name="lab-a", sets=[s], branch="unloading")
+    assert (load.g_mpa, load.p0_kpa) == pytest.approx((2.0, 80.0))
+    assert (unload.g_mpa, unload.p0_kpa) == pytest.approx((2.5, 70.0))
+    with pytest.raises(ModelDomainError, match="no cross points"):
+        lookup("cross", width_mm=7.0, angle_deg=30.0, name="lab-a", sets=[s])
+
+
+def test_exact_branch_wins_and_duplicates_average():
+    s = CalibrationSet(
+        "dup",
+        (
+            CalibrationPoint("zigzag", 7.0, 9.0, 90.0, branch="both"),
+            CalibrationPoint("zigzag", 7.0, 1.0, 10.0, branch="loading"),
+            CalibrationPoint("zigzag", 7.0, 3.0, 30.0, branch="loading"),
+        ),
+    )
+    c = lookup("zigzag", width_mm=7.0, name="dup", sets=[s])
+    assert (c.g_mpa, c.p0_kpa) == (2.0, 20.0)
+    assert lookup("zigzag", width_mm=7.0, name="dup", sets=[s], branch="unloading").g_mpa == 9.0
+
+
+def test_g_e_interpolated_only_when_all_points_have_it():
+    pts = (
+        CalibrationPoint("zigzag", 5.0, 1.0, 50.0, g_e_mpa=0.1),
+        CalibrationPoint("zigzag", 9.0, 3.0, 150.0, g_e_mpa=0.2),
+    )
+    c = lookup("zigzag", width_mm=6.0, name="ge", sets=[CalibrationSet("ge", pts)])
+    assert c.g_e_mpa == pytest.approx(0.125)
+    assert lookup("zigzag", width_mm=6.0).g_e_mpa is None
+
+
+def test_register_and_unregister():
+    s = _user_set("lab-reg")
+    register(s)
+    try:
+        assert "lab-reg" in set_names() and get_set("lab-reg") is s
+        assert lookup("zigzag", width_mm=8.0, name="lab-reg").g_mpa == 3.0
+        with pytest.raises(ParameterError, match="already registered"):
+            register(s)
+        register(s, replace=True)
+    finally:
+        unregister("lab-reg")
+    assert "lab-reg" not in set_names()
+    with pytest.raises(ParameterError, match="already registered"):
+        register(dataclasses.replace(s, name="paper-2025"), replace=True)
+    with pytest.raises(ParameterError, match="no user calibration set"):
+        unregister("paper-2025")
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(g_mpa=0.0), "g_mpa must be in"),
+        (dict(p0_kpa=-1.0), "p0_kpa must be in"),
+        (dict(branch="sideways"), "branch must be one of"),
+        (dict(pattern="cross", angle_deg=0.0), "angle_deg must be in"),
+        (dict(n_points=0), "n_points must be a positive integer"),
+        (dict(g_mpa=float("nan")), "g_mpa must be a finite number"),
+    ],
+)
+def test_point_validation(kwargs, match):
+    base = dict(pattern="zigzag", width_mm=7.0, g_mpa=1.0, p0_kpa=50.0)
+    base.update(kwargs)
+    with pytest.raises(ParameterError, match=match):
+        CalibrationPoint(**base)
+
+
+def test_set_validation_and_merge():
+    with pytest.raises(ParameterError, match="calibration name"):
+        CalibrationSet("bad name!", PAPER_2025.points)
+    with pytest.raises(ParameterError, match="at least one"):
+        CalibrationSet("empty", ())
+    s = _user_set()
+    new = CalibrationPoint("zigzag", 6.0, 5.0, 61.0, branch="loading")
+    merged = s.with_points([new])
+    assert len(merged.points) == 3 and new in merged.points
+    assert CalibrationPoint("zigzag", 6.0, 1.0, 60.0, branch="loading") not in merged.points
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.name = "x"
