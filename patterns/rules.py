@@ -14,20 +14,18 @@ Conventions
 * Needle density (EA105/EA106) counts, as Ink/Stitch's density map does, every
   needle point within ``density_radius_mm`` (``<=``) **including the point itself**.
 * Minimum turning radius: ``turning_radius_factor`` x the tube's outer diameter
-  (default 3 x 2 r_f = 9 mm for the default tube). At a path vertex turning by phi
-  between segments of lengths a and b, the radius is that of the largest arc tangent
-  to both segments within their halves, ``min(a, b) / (2 tan(phi/2))``; for a finely
-  flattened arc of radius R it gives R cos(phi/2) ~ R.
+  (default 3 x 2 r_f = 9 mm for the default tube), against
+  :meth:`Centerline.min_radius_mm` (a vertex turning by more than
+  ``MAX_SMOOTH_TURN_DEG`` is a corner of radius 0, as for the generators).
 * The tube extends ``end_margin_mm`` beyond each end of its path along the end
   tangent (connector room); needle points there pierce it too.
 
 Examples
 --------
->>> import shapely
 >>> from embroact.patterns.plan import Command
 >>> from embroact.patterns.rules import Layout, TubeLayout, RuleSettings, check_layout
->>> tube = TubeLayout("A", shapely.LineString([(0, 0), (20, 0)]), outer_radius_mm=1.5,
-...                   clearance_mm=0.3, end_margin_mm=0.0, half_width_mm=3.5)
+>>> tube = TubeLayout.from_path("A", [(0, 0), (20, 0)], outer_radius_mm=1.5,
+...                             clearance_mm=0.3, end_margin_mm=0.0, half_width_mm=3.5)
 >>> recs = [(2, 3.5), (3, -3.5), (4, 3.5), (5, 1.0), (6, -3.5)]
 >>> lay = Layout.from_points(recs, [Command.STITCH] * 5, [0] * 5, (tube,))
 >>> [(f.code, f.stitch_index) for f in check_layout(lay, RuleSettings())]
@@ -41,7 +39,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-from .errors import ParameterError, check_range
+from .centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
+from .errors import ParameterError, PathError, check_range
 from .findings import RULES, Finding
 from .limits import format_limit
 from .params import CrossParams
@@ -57,14 +56,8 @@ __all__ = [
     "check_layout",
     "check_plan",
     "needle_density",
-    "turning_radii_mm",
-    "project_signed",
     "sort_findings",
 ]
-
-#: Step along the path used to take the tangent for the side of a point [mm].
-_TANGENT_STEP_MM = 1e-3
-
 
 @dataclass(frozen=True, slots=True)
 class RuleSettings:
@@ -159,11 +152,14 @@ class TubeLayout:
     ----------
     name : str
     path : shapely.LineString
-        Tube axis [mm] in the layout's frame.
+        Tube axis [mm] in the layout's frame (any line, even one that crosses itself).
     outer_radius_mm, clearance_mm, end_margin_mm : float
         Tube radius r_f, needle clearance, free length beyond each end [mm].
     half_width_mm : float or None
         Half the stitched band width w/2 (realised or measured) [mm]; None if unknown.
+    centerline : Centerline or None
+        The path as a :class:`~embroact.patterns.centerline.Centerline` (projection,
+        curvature); None when the path is not a valid centerline (it crosses itself).
     """
 
     name: str
@@ -172,6 +168,18 @@ class TubeLayout:
     clearance_mm: float
     end_margin_mm: float
     half_width_mm: float | None = None
+    centerline: Centerline | None = None
+
+    @classmethod
+    def from_path(cls, name: str, path, *, outer_radius_mm: float, clearance_mm: float,
+                  end_margin_mm: float, half_width_mm: float | None = None) -> "TubeLayout":
+        """From a LineString or (n, 2) points; ``centerline`` is None if the path is not a valid one."""
+        line = path if isinstance(path, shapely.LineString) else shapely.LineString(np.asarray(path, dtype=float))
+        try:
+            cl = as_centerline(line)
+        except PathError:
+            cl = None
+        return cls(name, line, outer_radius_mm, clearance_mm, end_margin_mm, half_width_mm, cl)
 
     @property
     def corridor_radius_mm(self) -> float:
@@ -180,11 +188,10 @@ class TubeLayout:
 
     def extended_path(self):
         """The path lengthened by ``end_margin_mm`` along the end tangents (the whole laid tube)."""
-        xy = np.asarray(self.path.coords, dtype=np.float64)
         if self.end_margin_mm <= 0.0:
             return self.path
-        t0 = xy[0] - xy[1]
-        t1 = xy[-1] - xy[-2]
+        xy = np.asarray(self.path.coords, dtype=np.float64)[:, :2]
+        t0, t1 = xy[0] - xy[1], xy[-1] - xy[-2]
         head = xy[0] + t0 / np.hypot(*t0) * self.end_margin_mm
         tail = xy[-1] + t1 / np.hypot(*t1) * self.end_margin_mm
         return shapely.LineString(np.vstack([head, xy, tail]))
@@ -228,7 +235,10 @@ class Layout:
             if len(a) != n:
                 raise ParameterError(f"layout arrays must all have {n} entries, got {len(a)}")
             a.setflags(write=False)
-        return cls(arrays[0], arrays[1], arrays[2], tuple(tubes), arrays[3])
+        tubes = tuple(tubes)
+        if n and not (-1 <= arrays[2].min() and arrays[2].max() < len(tubes)):
+            raise ParameterError(f"owner must be in [-1, {len(tubes)}) (tube indices), got {arrays[2].max()}")
+        return cls(arrays[0], arrays[1], arrays[2], tubes, arrays[3])
 
     def __len__(self) -> int:
         return len(self.xy_mm)
@@ -239,56 +249,7 @@ class Layout:
 
 
 # ---------------------------------------------------------------------------
-# geometry helpers (public: the file checker and tests use them)
-
-
-def project_signed(path, xy_mm) -> tuple[np.ndarray, np.ndarray]:
-    """Arc length of the foot point and signed distance (left of the path > 0) [mm].
-
-    Examples
-    --------
-    >>> import shapely
-    >>> s, d = project_signed(shapely.LineString([(0, 0), (10, 0)]), [(3, 2), (4, -1)])
-    >>> s.tolist(), d.tolist()
-    ([3.0, 4.0], [2.0, -1.0])
-    """
-    xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
-    if len(xy) == 0:
-        return np.zeros(0), np.zeros(0)
-    s = shapely.line_locate_point(path, shapely.points(xy))
-    length = path.length
-    foot, ahead, behind = (
-        shapely.get_coordinates(shapely.line_interpolate_point(path, np.clip(v, 0.0, length)))
-        for v in (s, s + _TANGENT_STEP_MM, s - _TANGENT_STEP_MM)
-    )
-    t = ahead - behind
-    d = xy - foot
-    side = np.sign(t[:, 0] * d[:, 1] - t[:, 1] * d[:, 0])
-    return s, side * np.hypot(d[:, 0], d[:, 1])
-
-
-def turning_radii_mm(path) -> np.ndarray:
-    """Turning radius at each interior vertex of a path [mm] (inf where straight).
-
-    ``min(a, b) / (2 tan(phi/2))`` for turning angle phi between segments a and b
-    (module docstring); repeated vertices are ignored.
-
-    Examples
-    --------
-    >>> import shapely
-    >>> turning_radii_mm(shapely.LineString([(0, 0), (10, 0), (10, 10)])).round(6).tolist()
-    [5.0]
-    """
-    xy = np.asarray(path.coords, dtype=np.float64)
-    seg = np.diff(xy, axis=0)
-    seg = seg[np.hypot(seg[:, 0], seg[:, 1]) > DEFAULT_TOLERANCES.length_mm]
-    if len(seg) < 2:
-        return np.full(0, np.inf)
-    lengths = np.hypot(seg[:, 0], seg[:, 1])
-    a, b = seg[:-1], seg[1:]
-    phi = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], np.einsum("ij,ij->i", a, b)))
-    with np.errstate(divide="ignore"):
-        return np.where(phi > 0.0, np.minimum(lengths[:-1], lengths[1:]) / (2.0 * np.tan(phi / 2.0)), np.inf)
+# geometry helpers
 
 
 def needle_density(xy_mm, radius_mm: float = 0.5) -> np.ndarray:
@@ -488,10 +449,10 @@ def _interval(layout: Layout, settings: RuleSettings) -> list[Finding]:
     out = []
     for k, tube in enumerate(layout.tubes):
         legs = np.flatnonzero(consecutive & (layout.owner == k) & np.concatenate([[False], layout.owner[:-1] == k]))
-        if len(legs) == 0:
+        if len(legs) == 0 or tube.centerline is None:
             continue
-        s_b, d_b = project_signed(tube.path, layout.xy_mm[legs])
-        s_a, d_a = project_signed(tube.path, layout.xy_mm[legs - 1])
+        s_b, d_b = tube.centerline.project(layout.xy_mm[legs])
+        s_a, d_a = tube.centerline.project(layout.xy_mm[legs - 1])
         cross = (d_a * d_b) < 0.0
         if np.count_nonzero(cross) < 2:
             continue
@@ -515,51 +476,45 @@ def _interval(layout: Layout, settings: RuleSettings) -> list[Finding]:
 def _turning(layout: Layout, settings: RuleSettings) -> list[Finding]:
     out = []
     for k, tube in enumerate(layout.tubes):
-        radii = turning_radii_mm(tube.path)
+        cl = tube.centerline
+        if cl is None:
+            continue  # a path that crosses itself: EA302 reports it
         r_min = settings.turning_radius_factor * 2.0 * tube.outer_radius_mm
-        bad = np.flatnonzero(radii < r_min - settings.tolerances.length_mm)
-        if len(bad):
-            j = bad[np.argmin(radii[bad])]
-            vertex = _distinct_vertices(tube.path)[j + 1]
-            out.append(
-                _tube_finding(
-                    layout, k, "EA301",
-                    f"tube {tube.name} turns with radius {radii[j]:.2f} mm at {len(bad)} place(s); minimum "
-                    f"turning radius {r_min:g} mm ({settings.turning_radius_factor:g} x outer diameter)",
-                    xy=vertex,
-                )
+        radius = cl.min_radius_mm()
+        if radius >= r_min - settings.tolerances.length_mm:
+            continue
+        pts = cl.points_mm
+        mid = 0.5 * (pts[1:] + pts[:-1])
+        s_mid, _ = cl.project(mid)
+        worst = mid[int(np.argmax(np.abs(cl.curvature_at(s_mid))))]
+        kind = "a corner (turn > %g deg)" % MAX_SMOOTH_TURN_DEG if radius == 0.0 else f"radius {radius:.2f} mm"
+        out.append(
+            _tube_finding(
+                layout, k, "EA301",
+                f"tube {tube.name} turns with {kind}; minimum turning radius {r_min:g} mm "
+                f"({settings.turning_radius_factor:g} x outer diameter)",
+                xy=worst,
             )
+        )
     return out
-
-
-def _distinct_vertices(path) -> np.ndarray:
-    xy = np.asarray(path.coords, dtype=np.float64)
-    seg = np.diff(xy, axis=0)
-    keep = np.concatenate([[True], np.hypot(seg[:, 0], seg[:, 1]) > DEFAULT_TOLERANCES.length_mm])
-    return xy[keep]
 
 
 def _self_intersection(layout: Layout, settings: RuleSettings) -> list[Finding]:
     out = []
     for k, tube in enumerate(layout.tubes):
-        if shapely.is_simple(tube.path):
+        xy = np.asarray(tube.path.coords, dtype=np.float64)[:, :2]
+        closed = np.hypot(*(xy[-1] - xy[0])) <= settings.tolerances.length_mm
+        if shapely.is_simple(tube.path) and not closed:
             continue
-        xy = _distinct_vertices(tube.path)
         segs = shapely.linestrings(np.stack([xy[:-1], xy[1:]], axis=1))
         i, j = shapely.STRtree(segs).query(segs, predicate="intersects")
-        keep = j > i + 1
-        closed = len(segs) > 2 and np.allclose(xy[0], xy[-1])
-        if closed:
-            keep &= ~((i == 0) & (j == len(segs) - 1))
-        if not np.any(keep):
-            continue
-        a, b = i[keep][0], j[keep][0]
-        where = shapely.get_coordinates(shapely.intersection(segs[a], segs[b]))[0]
+        keep = (j > i + 1) & ~(closed & (i == 0) & (j == len(segs) - 1))
+        where = shapely.get_coordinates(shapely.intersection(segs[i[keep][0]], segs[j[keep][0]]))[0] if np.any(keep) else xy[0]
+        what = f"crosses itself {np.count_nonzero(keep)} time(s)" if np.any(keep) else "is closed (a tube has two ends)"
         out.append(
             _tube_finding(
                 layout, k, "EA302",
-                f"tube {tube.name} path crosses itself {np.count_nonzero(keep)} time(s), first near "
-                f"({where[0]:.2f}, {where[1]:.2f}) mm",
+                f"tube {tube.name} path {what}, first at ({where[0]:.2f}, {where[1]:.2f}) mm",
                 xy=where,
             )
         )
@@ -793,6 +748,7 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
             clearance_mm=a.tube.clearance_mm,
             end_margin_mm=a.tube.end_margin_mm,
             half_width_mm=a.realised.width_mm / 2.0,
+            centerline=a.centerline,
         )
         for a in plan.actuators
     )

@@ -1,0 +1,313 @@
+"""Geometric and file-level design rules: one case that triggers each rule, one that does not.
+
+Expected numbers are derived by hand in the comments (not captured from the code).
+"""
+import math
+
+import numpy as np
+import pytest
+
+from embroact.patterns.centerline import Centerline
+from embroact.patterns.findings import RULES, Finding, Severity, count_by_severity, rules_table_markdown
+from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
+from embroact.patterns.rules import Layout, RuleSettings, TubeLayout, check_layout, check_plan, needle_density
+from embroact.patterns.zigzag import zigzag
+
+S, J, T, P = Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP
+
+
+def _tube(points=((0.0, 0.0), (100.0, 0.0)), name="A", half_width_mm=3.5, end_margin_mm=0.0):
+    return TubeLayout.from_path(name, points, outer_radius_mm=1.5, clearance_mm=0.3,
+                                end_margin_mm=end_margin_mm, half_width_mm=half_width_mm)
+
+
+def _zig(n=10, s=1.0, w=7.0, x0=10.0):
+    """Needle points of a zigzag along y = 0: x = x0 + i s, y = +-w/2 alternately."""
+    return [(x0 + i * s, (w / 2) * (1 if i % 2 == 0 else -1)) for i in range(n)]
+
+
+def _layout(xy, commands=None, owner=None, tubes=None):
+    n = len(xy)
+    tubes = (_tube(),) if tubes is None else tubes
+    owner = [0 if tubes else -1] * n if owner is None else owner
+    return Layout.from_points(xy, [S] * n if commands is None else commands, owner, tubes)
+
+
+def _hits(findings, code):
+    return [f for f in findings if f.code == code]
+
+
+def _check(layout, **settings):
+    return check_layout(layout, RuleSettings(**settings))
+
+
+# --------------------------------------------------------------------- findings and registry
+def test_registry_codes_unique_and_documented():
+    codes = [r.code for r in RULES]
+    assert len(codes) == len(set(codes)) == len(RULES)
+    assert codes == sorted(codes)
+    table = rules_table_markdown()
+    assert table.count("\n") == len(RULES) + 2
+    for r in RULES:
+        assert f"| {r.code} | {r.severity.value} |" in table
+        assert r.description and r.fix and r.title
+
+
+def test_finding_value_and_dict():
+    f = RULES.finding("EA103", "stitch 13 mm", actuator="A1", stitch_index=np.int64(5), xy_mm=np.array([1.5, -2.0]))
+    assert isinstance(f, Finding) and f.severity is Severity.ERROR and f.is_error
+    assert f.stitch_index == 5 and type(f.stitch_index) is int
+    assert f.as_dict() == {"code": "EA103", "severity": "error", "title": "stitch over machine maximum",
+                           "message": "stitch 13 mm", "actuator": "A1", "stitch_index": 5,
+                           "xy_mm": [1.5, -2.0], "fix": RULES["EA103"].fix}
+    assert "A1, stitch 5 at (1.50, -2.00) mm" == f.place()
+    assert count_by_severity([f, f]) == {"error": 2, "warning": 0, "info": 0}
+
+
+def test_unknown_code_lists_valid():
+    with pytest.raises(ValueError, match="rule code must be one of EA101, "):
+        RULES["EA999"]
+
+
+def test_settings_validated():
+    with pytest.raises(ValueError, match="format must be one of"):
+        RuleSettings(format="xyz")
+    with pytest.raises(ValueError, match="density_error_count must be an integer"):
+        RuleSettings(density_error_count=0)
+
+
+# --------------------------------------------------------------------- EA1xx
+def test_ea101_needle_in_corridor():
+    xy = _zig()
+    xy[4] = (14.0, 1.0)  # 1.0 mm from the axis, corridor 1.5 + 0.3 = 1.8 mm
+    hits = _hits(_check(_layout(xy)), "EA101")
+    assert [(f.stitch_index, f.xy_mm) for f in hits] == [(4, (14.0, 1.0))]
+    assert "1.00 mm" in hits[0].message and "1.80 mm corridor" in hits[0].message
+    xy[4] = (14.0, 1.81)
+    assert not _hits(_check(_layout(xy)), "EA101")
+
+
+def test_ea101_counts_the_end_margin_tube():
+    xy = [(-5.0, 3.0), (-5.0, -3.0), (-3.0, 0.5)]  # beyond the path start, 0.5 mm from the extended axis
+    assert not _hits(_check(_layout(xy, tubes=(_tube(end_margin_mm=0.0),))), "EA101")
+    hits = _hits(_check(_layout(xy, tubes=(_tube(end_margin_mm=10.0),))), "EA101")
+    assert [f.stitch_index for f in hits] == [2]
+
+
+def test_ea102_record_over_format_limit():
+    xy = [(0.0, 5.0), (12.2, 5.0), (12.2, -7.0)]  # dx 12.2 > 12.1 (DST); second record dy 12.0 fine
+    hits = _hits(_check(_layout(xy, tubes=())), "EA102")
+    assert [f.stitch_index for f in hits] == [1]
+    assert not _hits(_check(_layout([(0.0, 5.0), (12.1, 5.0)], tubes=())), "EA102")
+    assert not _hits(_check(_layout(xy, tubes=()), format="jef"), "EA102")  # 12.7 mm
+
+
+def test_ea103_stitch_over_machine_max():
+    xy = [(0.0, 0.0), (8.0, 7.0), (14.0, 0.0)]  # lengths hypot(8,7)=10.63, hypot(6,7)=9.22
+    hits = _hits(_check(_layout(xy, tubes=()), max_stitch_mm=10.0), "EA103")
+    assert [f.stitch_index for f in hits] == [1] and "10.63 mm" in hits[0].message
+
+
+def test_ea104_too_short_only_between_stitches():
+    xy = [(0.0, 0.0), (0.0, 0.0), (0.2, 0.0), (0.2, 3.0), (0.2, 3.0)]
+    cmds = [P, S, S, J, S]  # stop->stitch and jump->stitch at 0 mm are first penetrations
+    hits = _hits(_check(_layout(xy, cmds, tubes=()), min_stitch_mm=0.3), "EA104")
+    assert [f.stitch_index for f in hits] == [2] and "0.20 mm" in hits[0].message
+
+
+def test_density_hand_counted():
+    # points on a line; within 0.5 mm (inclusive), the point itself counted:
+    # 0: {0, .25, .5} = 3; .25: {0, .25, .5, .75} = 4; .5: 4; .75: {.25, .5, .75} = 3;
+    # 2.0: {2.0, 2.5} = 2; 2.5: 2; 5.0: 1
+    x = [0.0, 0.25, 0.5, 0.75, 2.0, 2.5, 5.0]
+    assert needle_density([(v, 0.0) for v in x]).tolist() == [3, 4, 4, 3, 2, 2, 1]
+    assert needle_density([(0.0, 0.0), (0.3, 0.4)], 0.5).tolist() == [2, 2]  # distance exactly 0.5
+    assert needle_density([(0.0, 0.0), (0.3, 0.41)], 0.5).tolist() == [1, 1]
+
+
+def test_ea105_ea106_density():
+    x = [0.0, 0.25, 0.5, 0.75, 2.0, 2.5, 5.0]
+    found = _check(_layout([(v, 10.0) for v in x], tubes=()), min_stitch_mm=0.0)
+    assert [f.stitch_index for f in _hits(found, "EA105")] == [0, 1, 2, 3]
+    assert not _hits(found, "EA106")
+    # a centre and six points at 0.2 mm around it: each has all 7 within 0.4 mm -> error
+    ring = [(10 + 0.2 * math.cos(k * math.pi / 3), 10 + 0.2 * math.sin(k * math.pi / 3)) for k in range(6)]
+    found = _check(_layout([(10.0, 10.0)] + ring, tubes=()), min_stitch_mm=0.0)
+    assert len(_hits(found, "EA106")) == 7 and not _hits(found, "EA105")
+    assert "7 needle points within 0.5 mm" in _hits(found, "EA106")[0].message
+    assert not _hits(_check(_layout(_zig(), tubes=())), "EA105")
+
+
+# --------------------------------------------------------------------- EA2xx
+def test_ea201_ea202_sleeve():
+    # r0 <= r_f iff w <= (pi^2 - 4)/pi * r_f = 2.8025 mm for r_f = 1.5
+    no_sleeve = _check(_layout(_zig(), tubes=(_tube(half_width_mm=1.3),)))
+    assert len(_hits(no_sleeve, "EA201")) == 1 and "needs w > 2.80 mm" in _hits(no_sleeve, "EA201")[0].message
+    # w = 3.0: r0 = (3 + 2 sqrt(2.25 + 9)) / (2 pi) = 1.54510, gap 0.045 < 0.1
+    r0 = (3.0 + 2 * math.sqrt(2.25 + 9.0)) / (2 * math.pi)
+    tight = _check(_layout(_zig(), tubes=(_tube(half_width_mm=1.5),)))
+    assert len(_hits(tight, "EA202")) == 1 and f"{r0:.3f}" in _hits(tight, "EA202")[0].message
+    assert not _hits(tight, "EA201")
+    fine = _check(_layout(_zig()))
+    assert not _hits(fine, "EA201") and not _hits(fine, "EA202")
+
+
+def test_ea203_interval_over_diameter():
+    # legs cross the axis at the leg midpoints: spacing = s; 3.5 mm > 2 r_f = 3 mm
+    hits = _hits(_check(_layout(_zig(s=3.5))), "EA203")
+    assert [f.stitch_index for f in hits] == list(range(2, 10))
+    assert "3.50 mm apart" in hits[0].message
+    assert not _hits(_check(_layout(_zig(s=2.9))), "EA203")
+
+
+def _actuator_plan(params, realised, w_real=7.0):
+    cl = Centerline.straight(20.0)
+    act = ActuatorPlan("A1", params, Tube(), cl, realised)
+    recs = [(x, y, S, Role.LEG) for x, y in _zig(n=6, w=w_real, x0=2.0)]
+    return StitchPlan.from_records(recs, actuators=(act,))
+
+
+def test_ea204_angle_off_request():
+    def run(angle):
+        plan = _actuator_plan(CrossParams(7.0, 1.4, 60.0), Realised(7.0, 1.4, angle, 20.0))
+        return _hits(check_plan(plan), "EA204")
+
+    hits = run(60.5)  # 0.5 deg off > 0.1 deg tolerance
+    assert len(hits) == 1 and hits[0].actuator == "A1" and hits[0].stitch_index == 0
+    assert not run(60.05)
+
+
+def test_ea205_spacing_off_request():
+    def run(interval):
+        return _hits(check_plan(_actuator_plan(ZigzagParams(7.0, 1.4), Realised(7.0, interval, 11.3, 20.0))), "EA205")
+
+    assert len(run(1.43)) == 1  # 2.1 % > 1 %
+    assert not run(1.41)  # 0.7 %
+
+
+def test_ea206_near_neutral_angle():
+    # neutral: tan(alpha0) = sqrt((2 r_f)^2 + (w/2)^2) / w = sqrt(9 + 12.25) / 7 -> 33.37 deg
+    neutral = math.degrees(math.atan(math.sqrt(9.0 + 12.25) / 7.0))
+    assert abs(neutral - 33.37) < 0.01
+
+    def run(angle):
+        return _hits(check_plan(_actuator_plan(CrossParams(7.0, 1.4, angle), Realised(7.0, 1.4, angle, 20.0))),
+                     "EA206")
+
+    assert len(run(35.0)) == 1 and f"{neutral:.2f}" in run(35.0)[0].message
+    assert not run(45.0) and not run(30.0)  # 3.37 deg away, band 3 deg
+
+
+# --------------------------------------------------------------------- EA3xx
+def _arc(radius, n=400):
+    t = np.linspace(0.0, math.pi / 2, n)
+    return np.column_stack([radius * np.cos(t), radius * np.sin(t)])
+
+
+def test_ea301_turning_radius():
+    # minimum turning radius 3 x 2 r_f = 9 mm
+    hits = _hits(_check(_layout([], tubes=(_tube(_arc(5.0)),))), "EA301")
+    assert len(hits) == 1 and "radius 5.00 mm" in hits[0].message and "9 mm" in hits[0].message
+    assert not _hits(_check(_layout([], tubes=(_tube(_arc(20.0)),))), "EA301")
+    corner = _hits(_check(_layout([], tubes=(_tube([(0, 0), (50, 0), (50, 50)]),))), "EA301")
+    assert len(corner) == 1 and "corner" in corner[0].message
+    assert np.hypot(corner[0].xy_mm[0] - 50.0, corner[0].xy_mm[1]) <= 25.0
+
+
+def test_ea302_self_intersection():
+    hits = _hits(_check(_layout([], tubes=(_tube([(0, 0), (10, 0), (10, 10), (5, 10), (5, -5)]),))), "EA302")
+    assert len(hits) == 1 and hits[0].xy_mm == (5.0, 0.0)  # the last segment crosses the first at (5, 0)
+    closed = _hits(_check(_layout([], tubes=(_tube([(0, 0), (10, 0), (10, 10), (0, 0)]),))), "EA302")
+    assert len(closed) == 1 and "closed" in closed[0].message
+    assert not _hits(_check(_layout([], tubes=(_tube([(0, 0), (10, 0), (10, 10)]),))), "EA302")
+
+
+def _two_tubes(gap_mm):
+    return (_tube(name="A"), _tube([(0.0, gap_mm), (100.0, gap_mm)], name="B"))
+
+
+def test_ea303_ea304_tube_pairs():
+    # corridors 1.8 + 1.8 = 3.6 mm; bands 3.5 + 3.5 + clearance 1 = 8 mm
+    over = _check(_layout([], tubes=_two_tubes(3.0)))
+    assert len(_hits(over, "EA303")) == 1 and "3.00 mm apart" in _hits(over, "EA303")[0].message
+    close = _check(_layout([], tubes=_two_tubes(7.5)))
+    assert not _hits(close, "EA303") and len(_hits(close, "EA304")) == 1
+    assert "0.50 mm apart" in _hits(close, "EA304")[0].message
+    far = _check(_layout([], tubes=_two_tubes(9.0)))
+    assert not _hits(far, "EA303") and not _hits(far, "EA304")
+
+
+def test_ea305_end_margin_outside_hoop():
+    # records span x 0..80 -> hoop 100 wide centred at 40: [-10, 90]; margin 30 reaches -30 and 110
+    xy = [(0.0, 3.5), (40.0, -3.5), (80.0, 3.5)]
+    tubes = (_tube([(0.0, 0.0), (80.0, 0.0)], end_margin_mm=30.0),)
+    hits = _hits(_check(_layout(xy, tubes=tubes), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA305")
+    assert sorted(f.xy_mm for f in hits) == [(-30.0, 0.0), (110.0, 0.0)]
+    tubes = (_tube([(0.0, 0.0), (80.0, 0.0)], end_margin_mm=5.0),)
+    assert not _hits(_check(_layout(xy, tubes=tubes), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA305")
+
+
+def test_ea306_outside_hoop_including_jumps():
+    # span 0..120 in a 100 mm hoop centred at 60 -> [10, 110]: x = 0 (a jump) and 120 are out
+    xy = [(0.0, 0.0), (15.0, 3.5), (60.0, -3.5), (120.0, 3.5)]
+    hits = _hits(_check(_layout(xy, [J, S, S, S], tubes=()), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA306")
+    assert [f.stitch_index for f in hits] == [0, 3] and hits[0].message.startswith("jump record")
+    assert not _hits(_check(_layout(xy[1:3], tubes=()), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA306")
+
+
+# --------------------------------------------------------------------- EA5xx
+def test_ea501_jump_run_reads_as_trim():
+    # file-like: three 10 mm jumps after a stitch (net 30 mm): the machine trims
+    xy = [(0, 0), (10, 0), (20, 0), (30, 0), (31, 0)]
+    hits = _hits(_check(_layout(xy, [S, J, J, J, S], tubes=())), "EA501")
+    assert [f.stitch_index for f in hits] == [1] and "3 consecutive jump records" in hits[0].message
+    # a trim written as jumps netting zero first (pyembroidery's DST trim), then travel: intended
+    xy2 = [(0, 0), (0.2, 0.2), (-0.2, -0.2), (0, 0), (10, 0), (11, 0)]
+    assert not _hits(_check(_layout(xy2, [S, J, J, J, J, S], tubes=())), "EA501")
+    # plan-like: one 30 mm jump needs ceil(30 / 12.1) = 3 DST records; 20 mm needs 2
+    assert _hits(_check(_layout([(0, 0), (30, 0), (31, 0)], [S, J, S], tubes=())), "EA501")
+    assert not _hits(_check(_layout([(0, 0), (20, 0), (21, 0)], [S, J, S], tubes=())), "EA501")
+    assert not _hits(_check(_layout([(0, 0), (0, 0), (30, 0), (31, 0)], [S, T, J, S], tubes=())), "EA501")
+    assert not _hits(_check(_layout([(0, 0), (30, 0), (31, 0)], [S, J, S], tubes=()), format="pes"), "EA501")
+
+
+def test_ea502_ea503_stops():
+    a, b = _zig(n=4, x0=10.0), [(x, y + 50.0) for x, y in _zig(n=4, x0=10.0)]
+    tubes = (_tube(name="A"), _tube([(0.0, 50.0), (100.0, 50.0)], name="B"))
+    owner = [0] * 4 + [1] * 4
+    missing = _check(_layout(a + b, [S] * 8, owner, tubes))
+    hits = _hits(missing, "EA502")
+    assert [(f.stitch_index, f.actuator) for f in hits] == [(4, "B")] and "from A to B" in hits[0].message
+    ok = _check(_layout(a + [b[0]] + b, [S] * 4 + [P] + [S] * 4, owner[:4] + [1] + owner[4:], tubes))
+    assert not _hits(ok, "EA502") and not _hits(ok, "EA503")
+    inside = _check(_layout(a[:2] + [a[1]] + a[2:], [S, S, P, S, S], [0] * 5))
+    assert [(f.stitch_index, f.actuator) for f in _hits(inside, "EA503")] == [(2, "A")]
+
+
+def test_ea504_record_count():
+    lay = _layout(_zig(n=12), tubes=())
+    assert len(_hits(_check(lay, max_records=11), "EA504")) == 1
+    assert not _hits(_check(lay, max_records=12), "EA504")
+
+
+# --------------------------------------------------------------------- real generated plans
+def test_generated_zigzag_is_clean():
+    plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    assert check_plan(plan, RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0)) == ()
+
+
+def test_generated_plan_with_moved_leg_is_found():
+    plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    i = int(np.flatnonzero(plan.roles == Role.LEG)[40])
+    xy = plan.xy_mm.copy()
+    xy[i, 1] = 0.5 * np.sign(xy[i, 1])
+    bad = StitchPlan(xy, plan.commands, plan.roles, plan.actuator, plan.actuators, plan.name)
+    hits = _hits(check_plan(bad), "EA101")
+    assert [f.stitch_index for f in hits] == [i] and hits[0].actuator == plan.actuators[0].name
+
+
+def test_findings_are_capped_per_rule():
+    xy = [(10.0 + i, 0.2) for i in range(30)]
+    found = _hits(_check(_layout(xy), max_findings_per_rule=5), "EA101")
+    assert len(found) == 6 and found[-1].message.startswith("25 more findings")
