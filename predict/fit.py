@@ -1,0 +1,539 @@
+"""Fit the effective modulus G and the transition pressure P0 to measured bend angles.
+
+Measured data are (pressure_kpa, angle_deg) pairs, usually one hysteresis loop:
+pressure rises in steps, then falls (MODEL.md section 8).  The loading and the
+unloading branch are fitted separately (:func:`split_branches`), each by least
+squares in degrees (``scipy.optimize.least_squares``, trust-region reflective with
+bounds), with
+
+* start values from the data: P0 from the onset of bending (and the geometry's P0
+  when known), G from a coarse logarithmic scan;
+* standard errors from the Jacobian at the solution, ``cov = inv(J^T J) * s^2`` with
+  ``s^2 = sum(residual^2) / (n - k)`` (k fitted parameters);
+* RMSE [deg] and the residuals ``model - data`` [deg] per point.
+
+Which parameters are fitted is a choice among ``g_mpa``, ``p0_kpa``, ``g_e_mpa``.  The
+deformation phase depends on G_e only through P0 = P(r0; G_e) (MODEL.md section 3), so
+``g_e_mpa`` can be fitted only when P0 comes from the geometry, never together with
+``p0_kpa``.
+
+:func:`fit_curve` fits any predictor ``predict_deg(pressure_kpa, g_mpa, p0_kpa,
+g_e_mpa) -> theta_deg``; :func:`fit_design` fits the deformation model of a design
+(:func:`embroact.predict.curve.curve`).
+
+Examples
+--------
+A stand-in predictor, theta = (P - P0) / (2 G) above P0 [deg, with kPa and MPa]:
+
+>>> import numpy as np
+>>> from embroact.predict.fit import fit_curve
+>>> def predict_deg(p, g, p0, ge):
+...     return np.maximum(np.asarray(p) - p0, 0.0) / (2.0 * g)
+>>> p = np.arange(0.0, 301.0, 10.0)
+>>> r = fit_curve(p, predict_deg(p, 2.0, 85.0, None), predict_deg)
+>>> round(r.g_mpa, 6), round(r.p0_kpa, 4), r.rmse_deg < 1e-6
+(2.0, 85.0, True)
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Callable, Iterable, Mapping
+
+import numpy as np
+
+from ..patterns.errors import ModelDomainError, ParameterError, SolverError
+from .calibration import CalibrationPoint
+from .derived import DerivedGeometry
+from .inflation import transition_pressure_kpa
+
+__all__ = [
+    "FIT_PARAMETERS",
+    "BRANCH_CHOICES",
+    "MIN_BEND_DEG",
+    "FitResult",
+    "split_branches",
+    "fit_curve",
+    "fit_design",
+    "model_predictor",
+]
+
+FIT_PARAMETERS = ("g_mpa", "p0_kpa", "g_e_mpa")
+#: ``both`` fits each branch present separately; ``pooled`` fits all points at once.
+BRANCH_CHOICES = ("loading", "unloading", "both", "pooled")
+_BRANCHES = ("loading", "unloading")
+
+#: Data whose largest |angle| is below this show no deformation phase [deg].
+MIN_BEND_DEG = 1.0
+#: A point counts as bent for the onset estimate above this fraction of the largest |angle|.
+_ONSET_FRACTION = 0.05
+#: Coarse scan of G for the start value [MPa], logarithmic.
+_G_SCAN_MPA = (1e-2, 1e3, 31)
+#: Scan of G_e when it is fitted without a start value [MPa], logarithmic.
+_GE_SCAN_MPA = (1e-3, 10.0, 17)
+#: Parameter bounds: G and G_e [MPa]; P0 from 0 to the largest measured pressure [kPa].
+_MODULUS_BOUNDS_MPA = (1e-4, 1e5)
+#: Relative step of the finite-difference Jacobian: large enough to swamp the model's
+#: solver tolerance (~1e-7 deg), small enough for a 3-point truncation error ~1e-8.
+_FD_STEP_REL = 1e-4
+#: Relative singular-value floor below which the fitted parameters are not identifiable.
+_RANK_RTOL = 1e-8
+_MAX_NFEV = 400
+
+
+def _frozen(a) -> np.ndarray:
+    a = np.array(a, dtype=np.float64)
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, slots=True)
+class FitResult:
+    """One fitted branch.
+
+    Attributes
+    ----------
+    branch : str
+        ``"loading"``, ``"unloading"`` or ``"pooled"``.
+    fitted : tuple of str
+        Names of the fitted parameters (subset of ``FIT_PARAMETERS``).
+    g_mpa, p0_kpa : float
+        Effective shear modulus [MPa] and transition pressure [kPa] (fitted or fixed).
+    g_e_mpa : float or None
+        Tube modulus [MPa] used for P0 from geometry, when relevant.
+    g_mpa_se, p0_kpa_se, g_e_mpa_se : float or None
+        Standard errors of fitted values (P0 from geometry inherits G_e's relative error).
+    p0_source : str
+        ``"fitted"``, ``"given"`` or ``"geometry"``.
+    rmse_deg : float
+        Root-mean-square residual [deg].
+    n_points : int
+    pressure_kpa, angle_deg, residuals_deg : ndarray (read-only)
+        The data fitted and ``model - data`` at the solution [kPa, deg, deg].
+    method : str
+        Model method the predictions used.
+    nfev : int
+        Model evaluations by the optimiser.
+    design : tuple of (str, float) pairs
+        Design fields (pattern, width_mm, angle_deg, interval_mm, length_mm) when known.
+    """
+
+    branch: str
+    fitted: tuple[str, ...]
+    g_mpa: float
+    p0_kpa: float | None
+    g_e_mpa: float | None
+    g_mpa_se: float | None
+    p0_kpa_se: float | None
+    g_e_mpa_se: float | None
+    p0_source: str
+    rmse_deg: float
+    n_points: int
+    pressure_kpa: np.ndarray
+    angle_deg: np.ndarray
+    residuals_deg: np.ndarray
+    method: str
+    nfev: int
+    design: tuple = ()
+
+    def as_dict(self) -> dict:
+        """JSON-ready dict with unit-suffixed keys; arrays as lists."""
+        d = {k: getattr(self, k) for k in self.__slots__ if k != "design"}
+        for k in ("pressure_kpa", "angle_deg", "residuals_deg"):
+            d[k] = d[k].tolist()
+        d["fitted"] = list(self.fitted)
+        d["design"] = dict(self.design)
+        return d
+
+    def to_point(self) -> CalibrationPoint:
+        """The fit as a calibration point (needs ``design``, i.e. a :func:`fit_design` result)."""
+        des = dict(self.design)
+        if "pattern" not in des:
+            raise ParameterError("to_point needs a fit_design result (design fields unknown)")
+        return CalibrationPoint(
+            pattern=des["pattern"],
+            width_mm=des["width_mm"],
+            angle_deg=des["angle_deg"],
+            interval_mm=des.get("interval_mm"),
+            g_mpa=self.g_mpa,
+            p0_kpa=self.p0_kpa,
+            branch="both" if self.branch == "pooled" else self.branch,
+            g_e_mpa=self.g_e_mpa if "g_e_mpa" in self.fitted else None,
+            g_mpa_se=self.g_mpa_se,
+            p0_kpa_se=self.p0_kpa_se,
+            g_e_mpa_se=self.g_e_mpa_se,
+            rmse_deg=self.rmse_deg,
+            n_points=self.n_points,
+        )
+
+
+def _as_data(pressure_kpa, angle_deg) -> tuple[np.ndarray, np.ndarray]:
+    p = np.asarray(pressure_kpa, dtype=np.float64)
+    a = np.asarray(angle_deg, dtype=np.float64)
+    if p.ndim != 1 or a.shape != p.shape or p.size == 0:
+        raise ParameterError(
+            f"pressure_kpa and angle_deg must be 1-D arrays of equal, non-zero length, got shapes {p.shape} and {a.shape}"
+        )
+    for name, v in (("pressure_kpa", p), ("angle_deg", a)):
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ParameterError(f"{name}[{bad[0]}] must be a finite number, got {v[bad[0]]!r}")
+    neg = np.flatnonzero(p < 0.0)
+    if neg.size:
+        raise ParameterError(f"pressure_kpa[{neg[0]}] must be >= 0 (gauge pressure), got {p[neg[0]]:g}")
+    return p, a
+
+
+def split_branches(pressure_kpa, angle_deg, labels=None) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Split a pressure loop into its loading and unloading branches.
+
+    Parameters
+    ----------
+    pressure_kpa, angle_deg : array_like, shape (n,)
+        Measurements in the order they were taken.
+    labels : sequence of str, optional
+        ``"loading"`` / ``"unloading"`` per point.  Without labels the loop is split
+        at the (first) maximum pressure, which belongs to both branches.
+
+    Returns
+    -------
+    dict
+        ``{"loading": (p, a), "unloading": (p, a)}`` with only the non-empty branches.
+
+    Examples
+    --------
+    >>> br = split_branches([0, 10, 20, 10, 0], [0, 1, 3, 2, 0])
+    >>> {k: v[0].tolist() for k, v in br.items()}
+    {'loading': [0.0, 10.0, 20.0], 'unloading': [20.0, 10.0, 0.0]}
+    """
+    p, a = _as_data(pressure_kpa, angle_deg)
+    if labels is not None:
+        lab = np.array([str(x).strip().lower() for x in labels])
+        if lab.shape != p.shape:
+            raise ParameterError(f"branch labels must have one entry per point ({p.size}), got {lab.size}")
+        bad = np.flatnonzero(~np.isin(lab, _BRANCHES))
+        if bad.size:
+            raise ParameterError(f"branch[{bad[0]}] must be one of 'loading', 'unloading', got {labels[bad[0]]!r}")
+        return {b: (p[lab == b], a[lab == b]) for b in _BRANCHES if np.any(lab == b)}
+    i = int(np.argmax(p))
+    out = {"loading": (p[: i + 1], a[: i + 1])}
+    if i < p.size - 1:
+        out["unloading"] = (p[i:], a[i:])
+    return out
+
+
+def _check_fit_names(fit: Iterable[str]) -> tuple[str, ...]:
+    names = (fit,) if isinstance(fit, str) else tuple(fit)
+    if not names or len(set(names)) != len(names) or not set(names) <= set(FIT_PARAMETERS):
+        raise ParameterError(
+            f"fit must be a non-empty set of distinct names from {', '.join(map(repr, FIT_PARAMETERS))}, got {names!r}"
+        )
+    if {"p0_kpa", "g_e_mpa"} <= set(names):
+        raise ParameterError(
+            "fit cannot contain both 'p0_kpa' and 'g_e_mpa': G_e changes the bend only through P0; "
+            "fit g_e_mpa with P0 from the geometry, or fit p0_kpa"
+        )
+    return tuple(n for n in FIT_PARAMETERS if n in names)
+
+
+def _onset_kpa(p: np.ndarray, a: np.ndarray) -> tuple[float, float]:
+    """(last flat pressure before bending, first bent pressure) [kPa]."""
+    bent = np.abs(a) > max(MIN_BEND_DEG, _ONSET_FRACTION * float(np.max(np.abs(a))))
+    first_bent = float(np.min(p[bent]))
+    flat = p[~bent & (p < first_bent)]
+    return (float(np.max(flat)) if flat.size else 0.0), first_bent
+
+
+def _check_bent(p: np.ndarray, a: np.ndarray, k: int, branch: str) -> None:
+    n_bent = int(np.sum(np.abs(a) >= MIN_BEND_DEG))
+    if n_bent == 0:
+        raise ModelDomainError(
+            f"angle_deg: all {a.size} {branch} points bend less than {MIN_BEND_DEG:g} deg "
+            f"(up to {float(np.max(p)):g} kPa); no deformation phase to fit G and P0 to"
+        )
+    if a.size <= k or n_bent < k:
+        raise ParameterError(
+            f"{branch} data: fitting {k} parameter(s) needs more than {k} points and at least {k} bent "
+            f"(>= {MIN_BEND_DEG:g} deg), got {a.size} points, {n_bent} bent"
+        )
+
+
+def _scan(names, start, p, a):
+    """Candidate start values per fitted parameter."""
+    lo, first = _onset_kpa(p, a)
+    grids = {
+        "g_mpa": np.geomspace(*_G_SCAN_MPA),
+        "p0_kpa": np.unique([lo, 0.5 * (lo + first)]),
+        "g_e_mpa": np.geomspace(*_GE_SCAN_MPA),
+    }
+    for name, value in start.items():
+        if name == "p0_kpa":
+            grids[name] = np.unique(np.append(grids[name], min(max(value, 0.0), float(np.max(p)))))
+        else:
+            grids[name] = np.array([value])
+    mesh = np.meshgrid(*[grids[n] for n in names], indexing="ij")
+    return np.stack([m.ravel() for m in mesh], axis=1)
+
+
+def _bounds(names, p):
+    lo = [0.0 if n == "p0_kpa" else _MODULUS_BOUNDS_MPA[0] for n in names]
+    hi = [float(np.max(p)) if n == "p0_kpa" else _MODULUS_BOUNDS_MPA[1] for n in names]
+    return np.array(lo), np.array(hi)
+
+
+def fit_curve(
+    pressure_kpa,
+    angle_deg,
+    predict_deg: Callable,
+    *,
+    fit: Iterable[str] = ("g_mpa", "p0_kpa"),
+    fixed: Mapping[str, float | None] | None = None,
+    start: Mapping[str, float] | None = None,
+    branch: str = "pooled",
+    method: str = "callable",
+) -> FitResult:
+    """Least-squares fit of ``predict_deg`` to one branch of data.
+
+    Parameters
+    ----------
+    pressure_kpa, angle_deg : array_like, shape (n,)
+        Measured pressures [kPa] and signed bend angles [deg].
+    predict_deg : callable
+        ``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa) -> theta_deg``, finite for all
+        pressures and parameters within bounds.  Parameters neither fitted nor in
+        ``fixed`` are passed as ``None`` (the predictor's default, e.g. P0 from geometry).
+    fit : iterable of str
+        Parameters to fit, from ``FIT_PARAMETERS``; not ``p0_kpa`` with ``g_e_mpa``.
+    fixed : mapping, optional
+        Values of the parameters that are not fitted.
+    start : mapping, optional
+        Start values; fitted parameters without one are scanned (module docstring).
+    branch : str
+        Label stored in the result.
+    method : str
+        Label of the model method stored in the result.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ModelDomainError
+        No point bends by ``MIN_BEND_DEG``, or the parameters are not identifiable.
+    ParameterError
+        Bad data or parameter names; too few points.
+    SolverError
+        The optimiser failed.
+    """
+    from scipy.optimize import least_squares
+
+    names = _check_fit_names(fit)
+    p, a = _as_data(pressure_kpa, angle_deg)
+    fixed = dict(fixed or {})
+    start = {k: float(v) for k, v in (start or {}).items() if k in names and v is not None}
+    _check_bent(p, a, len(names), branch)
+
+    def params(x) -> dict:
+        values = {n: fixed.get(n) for n in FIT_PARAMETERS}
+        values.update(zip(names, map(float, x)))
+        return values
+
+    def residual(x) -> np.ndarray:
+        v = params(x)
+        theta = np.asarray(predict_deg(p, v["g_mpa"], v["p0_kpa"], v["g_e_mpa"]), dtype=np.float64)
+        return theta - a
+
+    candidates = _scan(names, start, p, a)
+    sse = [float(np.sum(residual(c) ** 2)) for c in candidates]
+    x0 = candidates[int(np.nanargmin(sse))]
+    lo, hi = _bounds(names, p)
+    x0 = np.clip(x0, lo + _FD_STEP_REL * np.maximum(np.abs(lo), 1.0), hi * (1.0 - _FD_STEP_REL))
+    res = least_squares(
+        residual, x0, bounds=(lo, hi), jac="3-point", diff_step=_FD_STEP_REL, x_scale="jac", max_nfev=_MAX_NFEV
+    )
+    if res.status <= 0 or not np.all(np.isfinite(res.fun)):
+        raise SolverError(f"least squares did not converge on the {branch} branch after {res.nfev} evaluations: {res.message}")
+    se = _standard_errors(res.jac, res.fun, names, branch)
+    values = params(res.x)
+    return FitResult(
+        branch=branch,
+        fitted=names,
+        g_mpa=values["g_mpa"],
+        p0_kpa=values["p0_kpa"],
+        g_e_mpa=values["g_e_mpa"],
+        g_mpa_se=se.get("g_mpa"),
+        p0_kpa_se=se.get("p0_kpa"),
+        g_e_mpa_se=se.get("g_e_mpa"),
+        p0_source="fitted" if "p0_kpa" in names else "given",
+        rmse_deg=float(math.sqrt(np.mean(res.fun**2))),
+        n_points=int(p.size),
+        pressure_kpa=_frozen(p),
+        angle_deg=_frozen(a),
+        residuals_deg=_frozen(res.fun),
+        method=method,
+        nfev=int(res.nfev),
+    )
+
+
+def _standard_errors(jac, fun, names, branch) -> dict[str, float]:
+    """sqrt(diag(inv(J^T J) * s^2)), via the SVD of J; refuse rank-deficient fits."""
+    n, k = jac.shape
+    _, sv, vt = np.linalg.svd(np.asarray(jac, dtype=np.float64), full_matrices=False)
+    if sv.size < k or sv[-1] <= _RANK_RTOL * sv[0]:
+        raise ModelDomainError(
+            f"{branch} data do not determine {', '.join(names)} independently "
+            f"(Jacobian condition {sv[0] / max(sv[-1], 1e-300):.3g}); fit fewer parameters"
+        )
+    s2 = float(np.sum(fun**2)) / (n - k)
+    cov = (vt.T / sv**2) @ vt * s2
+    return {name: float(math.sqrt(max(cov[i, i], 0.0))) for i, name in enumerate(names)}
+
+
+def model_predictor(derived: DerivedGeometry, *, method: str = "auto") -> Callable:
+    """``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa)`` for a design, via ``curve``.
+
+    ``p0_kpa=None`` means P0 from the geometry with tube modulus ``g_e_mpa`` (the
+    design's tube when that is ``None`` too).  The returned function has an attribute
+    ``last_method``: the method ``curve`` reported for its most recent call.
+    """
+    from .curve import ActuatorModel, curve
+
+    def predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa):
+        g_e = derived.tube.g_e_mpa if g_e_mpa is None else g_e_mpa
+        p0 = _geometry_p0_kpa(derived, g_e) if p0_kpa is None else p0_kpa
+        model = ActuatorModel.from_derived(derived, g_mpa=g_mpa, p0_kpa=p0, calibration="fit")
+        c = curve(model, pressure_kpa, method=method)
+        predict_deg.last_method = str(getattr(c, "method", method))
+        return _theta_of(c)
+
+    predict_deg.last_method = method
+    return predict_deg
+
+
+def _theta_of(c) -> np.ndarray:
+    """Curve angles; locked, unstable and out-of-domain points carry ``curve``'s fill values
+    (lock-up angle, fold angle, domain end), which keep the residuals finite and pull the
+    optimiser back into the model's domain.  A method failure is an error, not data."""
+    from .status import Status
+
+    failed = np.flatnonzero(np.asarray(c.status) == Status.FAILED)
+    if failed.size:
+        raise SolverError(
+            f"model method {getattr(c, 'method', '?')!r} failed at pressure_kpa={float(c.pressure_kpa[failed[0]]):g} during the fit"
+        )
+    return np.asarray(c.theta_deg, dtype=np.float64)
+
+
+def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa: float) -> float:
+    return float(transition_pressure_kpa(derived.r0_mm, derived.tube.outer_radius_mm, g_e_mpa))
+
+
+def _design_fields(derived: DerivedGeometry) -> tuple:
+    return (
+        ("pattern", derived.pattern),
+        ("width_mm", derived.width_mm),
+        ("angle_deg", derived.angle_deg if derived.pattern == "cross" else 0.0),
+        ("interval_mm", derived.interval_mm),
+        ("length_mm", derived.length_mm),
+    )
+
+
+def _check_direction(derived: DerivedGeometry, a: np.ndarray) -> None:
+    big = a[np.abs(a) >= MIN_BEND_DEG]
+    if big.size and (np.median(big) > 0) != derived.bends_positive:
+        want = "positive" if derived.bends_positive else "negative"
+        raise ParameterError(
+            f"angle_deg: the data bend {'positive' if np.median(big) > 0 else 'negative'} but this "
+            f"{derived.pattern} design bends {want} (theta > 0: thread side longer, MODEL.md section 4); "
+            "check the sign of the measured angles or the design"
+        )
+
+
+def fit_design(
+    derived: DerivedGeometry,
+    pressure_kpa,
+    angle_deg,
+    *,
+    fit: Iterable[str] = ("g_mpa", "p0_kpa"),
+    branch: str = "both",
+    labels=None,
+    g_mpa: float | None = None,
+    p0_kpa: float | None = None,
+    g_e_mpa: float | None = None,
+    method: str = "auto",
+) -> tuple[FitResult, ...]:
+    """Fit the deformation model of one design to measured data, per branch.
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design (``embroact.predict.derived.derive`` or ``derive_from_values``).
+    pressure_kpa, angle_deg : array_like, shape (n,)
+        Measurements in the order taken [kPa, deg]; angles signed as MODEL.md section 4.
+    fit : iterable of str
+        Parameters to fit (``FIT_PARAMETERS``).
+    branch : str
+        ``"loading"``, ``"unloading"``, ``"both"`` (each branch present, separately) or
+        ``"pooled"`` (all points in one fit).
+    labels : sequence of str, optional
+        Branch label per point (otherwise split at the maximum pressure).
+    g_mpa, p0_kpa, g_e_mpa : float, optional
+        Fixed values of parameters that are not fitted; without ``p0_kpa`` P0 comes from
+        the geometry and ``g_e_mpa`` (default: the design's tube).  Also used as start
+        values of fitted ones.
+    method : str
+        Model method passed to ``curve``.
+
+    Returns
+    -------
+    tuple of FitResult
+        One per fitted branch, loading first.
+    """
+    if branch not in BRANCH_CHOICES:
+        raise ParameterError(f"branch must be one of {', '.join(map(repr, BRANCH_CHOICES))}, got {branch!r}")
+    names = _check_fit_names(fit)
+    if "g_mpa" not in names and g_mpa is None:
+        raise ParameterError("g_mpa must be given when it is not fitted, got None")
+    p, a = _as_data(pressure_kpa, angle_deg)
+    _check_direction(derived, a)
+    if branch == "pooled":
+        parts = {"pooled": (p, a)}
+    else:
+        parts = split_branches(p, a, labels)
+        if branch != "both":
+            if branch not in parts:
+                raise ParameterError(f"branch {branch!r} has no points in these data (found: {', '.join(parts)})")
+            parts = {branch: parts[branch]}
+    predictor = model_predictor(derived, method=method)
+    fixed = {"g_mpa": g_mpa, "p0_kpa": p0_kpa, "g_e_mpa": g_e_mpa}
+    start = dict(fixed)
+    if "p0_kpa" in names and p0_kpa is None:
+        start["p0_kpa"] = derived.p0_kpa
+    if "g_e_mpa" in names and g_e_mpa is None:
+        # P0 is proportional to G_e: start where the geometry's P0 meets the data's onset
+        lo, first = _onset_kpa(p, a)
+        geo = _geometry_p0_kpa(derived, 1.0)
+        start["g_e_mpa"] = 0.5 * (lo + first) / geo if geo > 0 else derived.tube.g_e_mpa
+    results = []
+    for name, (pb, ab) in parts.items():
+        r = fit_curve(pb, ab, predictor, fit=names, fixed=fixed, start=start, branch=name, method=method)
+        predictor(pb, r.g_mpa, r.p0_kpa, r.g_e_mpa)  # method actually used at the solution
+        results.append(_complete(r, derived, p0_kpa, predictor.last_method))
+    return tuple(results)
+
+
+def _complete(r: FitResult, derived: DerivedGeometry, p0_given: float | None, method: str) -> FitResult:
+    """Fill in P0 from geometry (with its error from G_e's), the method and the design."""
+    changes: dict = {"method": method, "design": _design_fields(derived)}
+    if "p0_kpa" not in r.fitted:
+        g_e = derived.tube.g_e_mpa if r.g_e_mpa is None else r.g_e_mpa
+        changes["g_e_mpa"] = g_e
+        if p0_given is None:
+            p0 = _geometry_p0_kpa(derived, g_e)
+            changes["p0_kpa"] = p0
+            changes["p0_source"] = "geometry"
+            if r.g_e_mpa_se is not None:  # P0 is proportional to G_e
+                changes["p0_kpa_se"] = p0 * r.g_e_mpa_se / g_e
+    return dataclasses.replace(r, **changes)
