@@ -46,6 +46,7 @@ STATUS_STYLE: dict[str, tuple[str, str]] = {
     "locked": ("#fde7c8", "lock-up"),
     "unstable": ("#f9d4d4", "unstable"),
     "out_of_domain": ("#e6e6e6", "outside model"),
+    "failed": ("#cccccc", "no answer (method failed)"),
 }
 
 #: Line colours of successive series (colour-blind safe, Okabe-Ito).

@@ -57,7 +57,6 @@ from pathlib import Path
 import numpy as np
 
 from ..patterns.errors import ExportError, ParameterError, check_range
-from ..patterns.tolerances import DEFAULT_TOLERANCES
 from .atomic import write_bytes_atomic
 from .sideview import FABRIC_THICKNESS_MM
 
@@ -134,44 +133,30 @@ class PlanarPath:
         return cls((0.0, 0.0), 0.0, [check_range("length_mm", length_mm, low=0.0)], [0.0])
 
     @classmethod
-    def from_points(cls, points_mm) -> "PlanarPath":
-        """Pieces from a polyline: each vertex's turning spread over min(neighbour lengths).
+    def from_centerline(cls, centerline) -> "PlanarPath":
+        """The path of a :class:`~embroact.patterns.centerline.Centerline`, in its smooth-tangent model.
 
-        Straight pieces fill the rest; neighbouring pieces whose curvature differs by less
-        than ``KAPPA_MERGE_REL`` are merged (total length and turning are kept exactly),
-        so a finely flattened arc becomes one piece.
+        The centerline's tangent angle varies linearly between its vertices, so each
+        segment is a piece of constant curvature; neighbouring pieces whose curvatures
+        differ by less than ``KAPPA_MERGE_REL`` are merged (total length and turning kept
+        exactly), so a finely flattened arc becomes one piece.
         """
-        p = np.asarray(points_mm, dtype=np.float64).reshape(-1, 2)
-        d = np.diff(p, axis=0)
-        seg = np.hypot(d[:, 0], d[:, 1])
-        keep = seg > 0
-        d, seg = d[keep], seg[keep]
-        if len(seg) == 0:
-            raise ParameterError("points_mm must span a positive length")
-        heading = np.arctan2(d[:, 1], d[:, 0])
-        turn = np.angle(np.exp(1j * np.diff(heading)))
-        spread = np.minimum(seg[:-1], seg[1:])
-        pieces: list[tuple[float, float]] = []  # (length, turning): straight rest, then the vertex's arc
-        for i in range(len(seg)):
-            before = spread[i - 1] / 2.0 if i > 0 else 0.0
-            after = spread[i] / 2.0 if i < len(spread) else 0.0
-            rest = float(seg[i] - before - after)
-            if rest > DEFAULT_TOLERANCES.length_mm:
-                pieces.append((rest, 0.0))
-            if i < len(spread):
-                pieces.append((float(spread[i]), float(turn[i])))
-        merged: list[list[float]] = []
-        for length, t in pieces:
-            k = t / length
+        p = np.asarray(centerline.points_mm, dtype=np.float64)
+        seg = np.hypot(*np.diff(p, axis=0).T)
+        s_mid = np.concatenate([[0.0], np.cumsum(seg)])[:-1] + seg / 2.0
+        turn = np.asarray(centerline.curvature_at(s_mid), dtype=np.float64) * seg
+        merged: list[list[float]] = []  # [length, turning]
+        for length, t in zip(seg.tolist(), turn.tolist()):
             if merged:
-                mk = merged[-1][1] / merged[-1][0]
-                if abs(k - mk) <= KAPPA_MERGE_REL * max(abs(k), abs(mk)) or (k == 0.0 and mk == 0.0):
+                k, mk = t / length, merged[-1][1] / merged[-1][0]
+                if abs(k - mk) <= KAPPA_MERGE_REL * max(abs(k), abs(mk)):
                     merged[-1][0] += length
                     merged[-1][1] += t
                     continue
             merged.append([length, t])
         arr = np.array(merged)
-        return cls((float(p[0, 0]), float(p[0, 1])), math.degrees(heading[0]), arr[:, 0], arr[:, 1] / arr[:, 0])
+        tx, ty = np.asarray(centerline.tangent_at(0.0), dtype=np.float64)
+        return cls((float(p[0, 0]), float(p[0, 1])), math.degrees(math.atan2(ty, tx)), arr[:, 0], arr[:, 1] / arr[:, 0])
 
 
 def _rodrigues(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
