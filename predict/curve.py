@@ -1,0 +1,459 @@
+"""Pressure-to-bend curves: the public API of the deformation model.
+
+``curve(model, pressures_kpa)`` answers theta(P), ``pressure_at(model, theta_deg)``
+answers P(theta), ``lockup(model)`` gives the end of the stable branch and
+``sweep(models, pressures_kpa)`` answers theta(P) for many designs at once
+(vectorised across designs). Every answer carries a status per point
+(:class:`~embroact.predict.status.Status`), the method used and the calibration
+the parameters came from; no public function returns NaN.
+
+Methods
+-------
+A method name is ``"<energy>-<derivative>-<inverse>"`` or ``"auto"``:
+
+* energy ``stable`` | ``printed`` | ``reference`` (see :mod:`embroact.predict.model`);
+* derivative ``analytic`` (closed forms only) | ``complex`` | ``central``
+  (see :mod:`embroact.predict.solvers`);
+* inverse ``trace`` (tabulate along the branch, bracket, polish; cannot jump
+  branches) | ``root`` (scipy ``brentq`` per pressure on the whole branch; may land
+  on an unstable or later branch when P(theta) is not monotone, and is ~100x slower).
+
+Attainable relative accuracy of P (worst case over the paper's designs, against the
+50-digit reference): stable-analytic and stable-complex ~1e-13, reference-complex
+~1e-12, stable-central and reference-central ~1e-9 (round-off of the difference
+quotient), printed-* none: near theta = 0 the printed T loses every digit (at
+|theta| = 1e-4 rad its pressure is already wrong in the 2nd digit).
+``"auto"`` picks the cheapest method whose attainable accuracy meets ``rtol``
+(``stable-analytic-trace`` for any ``rtol >= 1e-13``) and ``Curve.method`` names it.
+``pressure_at`` uses the energy and derivative parts only.
+
+Branch ends
+-----------
+The bending branch starts at theta = 0 and runs in the direction where dV/dtheta > 0
+(zigzag and cross with tan(beta0) < 1/2: positive). It ends at lock-up (dV/dtheta = 0,
+where P has a pole: cross designs), where the model's domain ends (d^2 <= 0), or, for
+designs that never lock (zigzag), at ``MAX_BEND_DEG``, this implementation's cap.
+A fold of P(theta) (dP/dtheta = 0) ends the stable part early: higher pressures snap
+through and are reported ``UNSTABLE`` at the fold angle.
+
+Examples
+--------
+>>> from embroact.predict.curve import ActuatorModel, curve, pressure_at, lockup
+>>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+>>> c = curve(m, [50, 85, 187.65005790858362])
+>>> c.theta_deg.round(6).tolist(), c.as_dict()["status"], c.method
+([0.0, 0.0, 90.0], ['INFLATION', 'INFLATION', 'BENDING'], 'stable-analytic-trace')
+>>> round(float(pressure_at(m, [90.0]).pressure_kpa[0]), 6)
+187.650058
+>>> x = ActuatorModel("cross", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=37.20782535885358,
+...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170)
+>>> round(float(curve(x, [200]).theta_deg[0]), 3), round(lockup(x)[0], 3), lockup(x)[1]
+(-45.638, -312.091, inf)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ..patterns.errors import ParameterError, check_range
+from ..patterns.tolerances import DEFAULT_TOLERANCES
+from . import model as _m
+from . import solvers
+from .inflation import KPA_PER_MPA
+from .status import Status, status_names
+from .tubelaws import TUBE_LAWS, radius_mm, transition_pressure_kpa
+
+__all__ = ["ActuatorModel", "Curve", "METHODS", "curve", "pressure_at", "lockup", "sweep"]
+
+_DERIVATIVES_OF = {"stable": ("analytic", "complex", "central"),
+                   "printed": ("analytic", "complex", "central"),
+                   "reference": ("complex", "central")}
+_INVERSES = ("trace", "root")
+METHODS: tuple[str, ...] = ("auto",) + tuple(
+    f"{e}-{d}-{i}" for e, ds in _DERIVATIVES_OF.items() for d in ds for i in _INVERSES
+)
+#: Attainable relative accuracy of P per (energy, derivative), in the order "auto" tries them.
+_ACCURACY = {("stable", "analytic"): 1e-13, ("stable", "complex"): 1e-13, ("stable", "central"): 1e-9,
+             ("reference", "complex"): 1e-12, ("reference", "central"): 1e-9}
+#: Largest bend the tracer follows on a branch that never locks [deg].
+MAX_BEND_DEG = 3600.0
+#: Tabulation points along a branch (trace inverse) and domain probes.
+TRACE_POINTS = 48
+DOMAIN_PROBES = 33
+#: Fractions of the branch probed to shorten it to the highest requested pressure.
+_END_FRACTIONS = np.concatenate([2.0 ** -np.arange(12, 0, -1), 1.0 - 2.0 ** -np.arange(2, 13), [1.0]])
+
+
+@dataclass(frozen=True, slots=True)
+class ActuatorModel:
+    """Everything the model needs for one actuator, in interface units.
+
+    Parameters
+    ----------
+    pattern : str
+        "zigzag" or "cross".
+    length_mm, r0_mm : float
+        Fabric-side length l0 and sleeve radius r0 [mm], > 0.
+    beta0_deg : float
+        Thread angle at r0 [deg], in [0, 90) (0 for the zigzag).
+    outer_radius_mm, inner_radius_mm, g_e_mpa : float
+        Unpressurised tube r_f, d_f [mm] and its inflation-phase modulus G_e [MPa].
+    g_mpa : float
+        Effective modulus of tube and sleeve, G [MPa], > 0.
+    p0_kpa : float
+        Transition pressure P0 [kPa], >= 0.
+    tube_law : str
+        "paper" or "thick-wall": tube radius below P0 (see :mod:`embroact.predict.tubelaws`).
+    calibration : str
+        Where ``g_mpa`` and ``p0_kpa`` came from; carried into every result.
+    """
+
+    pattern: str
+    length_mm: float
+    r0_mm: float
+    beta0_deg: float
+    outer_radius_mm: float
+    inner_radius_mm: float
+    g_e_mpa: float
+    g_mpa: float
+    p0_kpa: float
+    tube_law: str = "paper"
+    calibration: str = "given"
+
+    def __post_init__(self) -> None:
+        if self.pattern not in ("zigzag", "cross"):
+            raise ParameterError(f"pattern must be one of zigzag, cross, got {self.pattern!r}")
+        for name, hi in (("length_mm", 1e5), ("r0_mm", 1e3), ("outer_radius_mm", 50.0), ("g_mpa", 1e5),
+                         ("g_e_mpa", 1e4)):
+            check_range(name, getattr(self, name), low=0.0, high=hi)
+        check_range("inner_radius_mm", self.inner_radius_mm, low=0.0, low_inclusive=True,
+                    high=float(self.outer_radius_mm))
+        check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=1e6)
+        if self.pattern == "cross":
+            check_range("beta0_deg", self.beta0_deg, low=0.0, high=90.0)
+        elif self.beta0_deg != 0:
+            raise ParameterError(f"beta0_deg must be 0 for the zigzag pattern, got {self.beta0_deg!r}")
+        if self.tube_law not in TUBE_LAWS:
+            raise ParameterError(f"tube_law must be one of {', '.join(TUBE_LAWS)}, got {self.tube_law!r}")
+
+    @classmethod
+    def from_derived(cls, derived, *, g_mpa, p0_kpa=None, calibration="given", tube_law="paper"):
+        """Model of a :class:`~embroact.predict.derived.DerivedGeometry` with G (and P0).
+
+        ``p0_kpa=None`` takes P0 from the geometry: the tube law's pressure at r0.
+        """
+        t = derived.tube
+        if p0_kpa is None:
+            p0_kpa = float(derived.p0_kpa) if tube_law == "paper" else float(
+                transition_pressure_kpa(derived.r0_mm, t, tube_law))
+        return cls(derived.pattern, length_mm=derived.length_mm, r0_mm=derived.r0_mm,
+                   beta0_deg=derived.beta0_deg if derived.pattern == "cross" else 0.0,
+                   outer_radius_mm=t.outer_radius_mm, inner_radius_mm=t.inner_radius_mm,
+                   g_e_mpa=t.g_e_mpa, g_mpa=g_mpa, p0_kpa=p0_kpa, tube_law=tube_law,
+                   calibration=calibration)
+
+
+@dataclass(frozen=True, slots=True)
+class Curve:
+    """A predicted curve: read-only float64 arrays of one shape (1-D; 2-D rows per design from ``sweep``).
+
+    Attributes
+    ----------
+    pressure_kpa, theta_deg : ndarray
+        Pressure [kPa] and bending angle [deg] (positive: thread side longer).
+    status : ndarray of int8
+        :class:`~embroact.predict.status.Status` codes.
+    length_mm, radius_mm, beta_deg, inner_radius_mm : ndarray
+        Thread-side length l, tube outer radius r, thread angle beta, inner radius d.
+    method, calibration : str
+        Method used (resolved from "auto") and where G/P0 came from.
+    """
+
+    pressure_kpa: np.ndarray
+    theta_deg: np.ndarray
+    status: np.ndarray
+    length_mm: np.ndarray
+    radius_mm: np.ndarray
+    beta_deg: np.ndarray
+    inner_radius_mm: np.ndarray
+    method: str
+    calibration: str
+
+    def as_dict(self) -> dict:
+        """Plain dict (lists, status names) with unit-suffixed keys, for JSON."""
+        out = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name == "status":
+                names = status_names(v)
+                out[f.name] = names if v.ndim <= 1 else [names[i:i + v.shape[1]] for i in range(0, len(names),
+                                                                                               v.shape[1])]
+            else:
+                out[f.name] = v.tolist() if isinstance(v, np.ndarray) else v
+        return out
+
+
+# -- method resolution -------------------------------------------------------------------
+def _resolve(method: str, rtol: float):
+    if method == "auto":
+        for (energy, deriv), acc in _ACCURACY.items():
+            if acc <= rtol:
+                return energy, deriv, "trace"
+        best = min(_ACCURACY.values())
+        raise ParameterError(f"rtol must be >= {best:g} (the most accurate method's limit), got {rtol:g}")
+    if method not in METHODS:
+        raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    energy, deriv, inverse = method.split("-")
+    return energy, deriv, inverse
+
+
+# -- inputs --------------------------------------------------------------------------------
+def _geometry(models) -> _m.Geometry:
+    cols = np.array([(m.beta0_deg, m.length_mm, m.r0_mm, m.outer_radius_mm**2 - m.inner_radius_mm**2,
+                      m.g_mpa, m.p0_kpa) for m in models], dtype=np.float64).T
+    return _m.Geometry.from_values(beta0_rad=np.radians(cols[0]), l0_mm=cols[1], r0_mm=cols[2],
+                                   c_mm2=cols[3], g_mpa=cols[4], p0_mpa=cols[5] / KPA_PER_MPA)
+
+
+def _values(name: str, values, *, low=None) -> np.ndarray:
+    a = np.asarray(values, dtype=np.float64)
+    if a.ndim > 1:
+        raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
+    a = np.atleast_1d(a)
+    bad = ~np.isfinite(a) | ((a < low) if low is not None else False)
+    if bad.any():
+        rng = f"[{low:g}, inf)" if low is not None else "(-inf, inf)"
+        raise ParameterError(f"{name} must be finite numbers in {rng}, got {a[bad][0]!r}")
+    return a
+
+
+def _readonly(a) -> np.ndarray:
+    a = np.ascontiguousarray(a)
+    a.flags.writeable = False
+    return a
+
+
+def _calibrations(models) -> str:
+    return ", ".join(dict.fromkeys(m.calibration for m in models))
+
+
+# -- branch geometry ------------------------------------------------------------------------
+def _branch_end(geo: _m.Geometry):
+    """Signed end of each design's bending branch and the status beyond it, (n, 1) each."""
+    lock = _m.lock_theta(geo)
+    cap = math.radians(MAX_BEND_DEG)
+    direction = np.where(lock < 0.0, -1.0, 1.0)
+    full = direction * np.minimum(np.abs(lock), cap)
+    kind = np.where(np.abs(lock) <= cap, Status.LOCKED, Status.OUT_OF_DOMAIN).astype(np.int8)
+
+    def inside(theta):
+        l, r, sinb, _ = _m.constraint(theta, geo)
+        return _m.in_domain(l, r, sinb, geo)
+
+    probes = full * np.linspace(0.0, 1.0, DOMAIN_PROBES)
+    probes[:, -1] = full[:, 0] * (1.0 - np.finfo(np.float64).eps)  # the lock point itself is in the domain
+    ok = inside(probes)
+    cut = ~ok.all(axis=1)
+    if cut.any():
+        j = np.argmin(ok, axis=1)[:, None]
+        lo = np.take_along_axis(probes, np.maximum(j - 1, 0), axis=1)
+        hi = np.take_along_axis(probes, j, axis=1)
+        edge = np.where(j == 0, 0.0, solvers.bisect(inside, lo, hi))
+        full = np.where(cut[:, None], edge, full)
+        kind = np.where(cut[:, None], Status.OUT_OF_DOMAIN, kind).astype(np.int8)
+    return full, kind
+
+
+def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
+    def rate(theta):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            return _m.energy_rate(theta, geo, form=energy, derivative=deriv)
+
+    return rate
+
+
+def _slope_sign(geo, theta, energy, deriv):
+    """sign of dP/dtheta (central difference of P; only the sign is used)."""
+    return np.sign(solvers.derivative(
+        lambda t: _m.pressure_mpa(t, geo, form=energy, derivative=deriv), theta,
+        scale=geo.l0 / (2.0 * geo.r0), method="central"))
+
+
+def _shorten(rate, full, tmax):
+    """Shortest probed part of the branch on which P - P0 reaches ``tmax`` (n, 1)."""
+    probes = full * _END_FRACTIONS
+    de, dv = rate(probes)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        reach = np.nan_to_num(de / dv, nan=-np.inf) >= tmax
+    reach[:, -1] = True
+    return np.take_along_axis(probes, np.argmax(reach, axis=1)[:, None], axis=1)
+
+
+def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
+    """theta (n, m) for P - P0 = targets > 0 (other entries ignored) and the status per point."""
+    n, m = targets.shape
+    theta = np.zeros((n, m))
+    status = np.full((n, m), Status.BENDING, dtype=np.int8)
+    full, kind = _branch_end(geo)
+    empty = (full == 0.0)[:, 0]
+    theta_end_status = np.broadcast_to(kind, (n, m))
+    status[empty] = theta_end_status[empty]
+    rows = np.flatnonzero(~empty)
+    if rows.size == 0:
+        return theta, status
+    g = geo.take(rows)
+    t = targets[rows]
+    rate = _rate_fn(g, energy, deriv)
+    xtol = rtol * np.maximum(1.0, np.abs(full[rows]))
+    if inverse == "trace":
+        end = _shorten(rate, full[rows], t.max(axis=1, keepdims=True))
+        th, where, _, _ = solvers.trace_inverse(rate, end, t, grid_points=TRACE_POINTS, xtol=xtol)
+        st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind[rows], Status.BENDING))
+        th = np.where(where == 1, full[rows], th)
+    else:
+        th = np.empty_like(t)
+        for k in range(rows.size):
+            gk = g.take([k])
+
+            def residual(x, j, gk=gk, k=k):
+                de, dv = _rate_fn(gk, energy, deriv)(np.array([[x]]))
+                return float(de[0, 0] - t[k, j] * dv[0, 0])
+
+            th[k] = solvers.root_each(residual, np.zeros(m), np.full(m, full[rows[k], 0]), xtol=float(xtol[k, 0]))
+        p_end = _m.pressure_mpa(full[rows], g, form=energy, derivative=deriv) - g.p0
+        beyond = ~(t < np.nan_to_num(p_end, nan=np.inf))
+        st = np.where(beyond, kind[rows], np.where(_slope_sign(g, th, energy, deriv) * np.sign(full[rows]) < 0,
+                                                   Status.UNSTABLE, Status.BENDING))
+    bad = ~np.isfinite(th)
+    theta[rows] = np.where(bad, 0.0, th)
+    status[rows] = np.where(bad, Status.FAILED, st)
+    return theta, status
+
+
+def _states(geo, theta, pressure_mpa, status, models):
+    """State arrays (l, r, beta, d) at each point; inflation points from the tube law."""
+    l, r, sinb, _ = _m.constraint(theta, geo)
+    d2 = _m.inner_radius_sq(l, r, geo)
+    infl = status == Status.INFLATION
+    if infl.any():
+        r_law = np.empty_like(theta)
+        for law in {mo.tube_law for mo in models}:
+            sel = np.array([mo.tube_law == law for mo in models])
+            tube = tuple(np.array([[getattr(mo, k)] for mo in models])[sel]
+                         for k in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"))
+            r_law[sel] = radius_mm(pressure_mpa[sel] * KPA_PER_MPA, tube, law)
+        r = np.where(infl, np.minimum(r_law, geo.r0), r)  # the sleeve caps the free tube
+        d2 = np.where(infl, r * r - geo.c, d2)
+    return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
+
+
+def _make_curve(geo, models, pressure_mpa, theta, status, name, squeeze):
+    l, r, beta, d = _states(geo, theta, pressure_mpa, status, models)
+    arrays = [pressure_mpa * KPA_PER_MPA, np.degrees(theta), status, l, r, beta, d]
+    if squeeze:
+        arrays = [a[0] for a in arrays]
+    return Curve(*(_readonly(a) for a in arrays), method=name, calibration=_calibrations(models))
+
+
+# -- public API ----------------------------------------------------------------------------
+def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_TOLERANCES.model_rtol) -> Curve:
+    """theta(P) for many designs at once: a :class:`Curve` of 2-D arrays, one row per model.
+
+    Parameters
+    ----------
+    models : sequence of ActuatorModel
+    pressures_kpa : array_like
+        Pressures [kPa], >= 0, shared by all models.
+    method : str
+        One of :data:`METHODS` (see the module docstring).
+    rtol : float
+        Relative tolerance of the equilibrium angle (and the accuracy "auto" must meet).
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, sweep
+    >>> ms = [ActuatorModel("zigzag", length_mm=100, r0_mm=r0, beta0_deg=0, outer_radius_mm=1.5,
+    ...                     inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85) for r0 in (2.4, 2.6)]
+    >>> sweep(ms, [50, 150]).theta_deg.shape
+    (2, 2)
+    """
+    models = list(models)
+    if not models or not all(isinstance(mo, ActuatorModel) for mo in models):
+        raise ParameterError("models must be a non-empty sequence of ActuatorModel")
+    check_range("rtol", rtol, low=0.0, high=1.0)
+    energy, deriv, inverse = _resolve(method, rtol)
+    p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
+    geo = _geometry(models)
+    pressure = np.broadcast_to(p, (len(models), p.size))
+    targets = pressure - geo.p0
+    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
+    infl = targets <= 0.0
+    theta = np.where(infl, 0.0, theta)
+    status = np.where(infl, Status.INFLATION, status).astype(np.int8)
+    return _make_curve(geo, models, pressure, theta, status, f"{energy}-{deriv}-{inverse}", squeeze=False)
+
+
+def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
+          rtol: float = DEFAULT_TOLERANCES.model_rtol) -> Curve:
+    """Bending angle theta(P) and state at each pressure [kPa] (1-D arrays).
+
+    Below P0: ``INFLATION``, theta = 0. Above: the equilibrium on the branch that
+    starts straight; pressures past a fold are ``UNSTABLE`` at the fold angle,
+    past a lock-up ``LOCKED`` at the lock angle, past the domain or the tracing cap
+    ``OUT_OF_DOMAIN`` at the end angle. See :func:`sweep` for the parameters.
+    """
+    c = sweep([model], pressures_kpa, method=method, rtol=rtol)
+    return Curve(*(_readonly(getattr(c, f.name)[0]) for f in fields(c)[:7]), method=c.method,
+                 calibration=c.calibration)
+
+
+def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Curve:
+    """Pressure P(theta) [kPa] holding each bending angle [deg], with the state there.
+
+    theta = 0 gives P0 (``INFLATION``). Angles no pressure >= P0 reaches carry the
+    fill pressure P0: the wrong bending direction and angles past the domain end
+    (``OUT_OF_DOMAIN``), angles at or past lock-up (``LOCKED``). Angles on a falling
+    part of P(theta) are ``UNSTABLE`` with their (real) pressure.
+    """
+    energy, deriv, inverse = _resolve(method, DEFAULT_TOLERANCES.model_rtol)
+    th = np.radians(_values("theta_deg", theta_deg))[None, :]
+    geo = _geometry([model])
+    full, kind = _branch_end(geo)
+    p = _m.pressure_mpa(th, geo, form=energy, derivative=deriv)
+    slope = _slope_sign(geo, th, energy, deriv) * np.sign(full)
+    along = th * np.sign(np.where(full == 0.0, 1.0, full))  # progress along the branch
+    past = (along > np.abs(full)) | ((full == 0.0) & (th != 0.0))
+    status = np.where(th == 0.0, Status.INFLATION,
+             np.where(along < 0.0, Status.OUT_OF_DOMAIN,
+             np.where(past | ((kind == Status.LOCKED) & (along >= np.abs(full))), kind,
+             np.where(~np.isfinite(p), Status.FAILED,
+             np.where(slope < 0.0, Status.UNSTABLE, Status.BENDING))))).astype(np.int8)
+    filled = (status != Status.BENDING) & (status != Status.UNSTABLE)
+    p = np.where(filled, geo.p0, p)
+    theta = np.where(status == Status.FAILED, 0.0, th)
+    # points without equilibrium show the state at the angle asked for when it is in the domain
+    return _make_curve(geo, [model], p, theta, status, f"{energy}-{deriv}-{inverse}", squeeze=True)
+
+
+def lockup(model: ActuatorModel) -> tuple[float, float]:
+    """(theta_deg, pressure_kpa) where the stable branch ends.
+
+    Lock-up (cross designs): the lock angle and ``math.inf`` (P has a pole there).
+    Otherwise the fold (snap-through), the domain end or the tracing cap
+    ``MAX_BEND_DEG``, with the finite pressure there.
+    """
+    geo = _geometry([model])
+    full, kind = _branch_end(geo)
+    if full[0, 0] == 0.0:
+        return 0.0, (math.inf if kind[0, 0] == Status.LOCKED else float(model.p0_kpa))
+    rate = _rate_fn(geo, "stable", "analytic")
+    end = full
+    _, _, stop, p_stop = solvers.trace_inverse(rate, end, np.array([[np.inf]]), grid_points=TRACE_POINTS * 4,
+                                               xtol=DEFAULT_TOLERANCES.model_rtol)
+    theta = float(np.degrees(stop[0, 0]))
+    if stop[0, 0] == full[0, 0] and kind[0, 0] == Status.LOCKED:
+        return theta, math.inf
+    return theta, float((geo.p0[0, 0] + p_stop[0, 0]) * KPA_PER_MPA)

@@ -1,0 +1,300 @@
+"""Deformation phase physics (MODEL.md section 4): energy, volume, constraint, P(theta).
+
+Equations only, vectorised over numpy arrays that broadcast against a
+:class:`Geometry` (one design per row, shape ``(n, 1)``); no loops. Units inside:
+mm, MPa (N/mm^2), N*mm, rad. The numerical machinery (difference quotients,
+quadrature rules, root finders) lives in :mod:`embroact.predict.solvers`.
+
+Notation: ``A = (l + l0)/(2 l0)``, ``B = (l - l0)/(2 r l0)``, ``lambda2 = r/r0``,
+``c = r_f^2 - d_f^2``, ``q = r^2 - d^2 = c/A`` (incompressible wall),
+``a = A^2 - B^2 r^2 = l/l0`` (exactly) and ``b = A^2 - B^2 d^2 = a + B^2 q``.
+
+Energy forms (``form=``)
+------------------------
+``"printed"``
+    ``E_s`` exactly as MODEL.md prints it: ``d^2`` first, then ``r^2 - d^2``,
+    ``r^4 - d^4`` and ``T = (2A/B^2)(a^-1/2 - b^-1/2)``. Fails near the straight
+    state: the difference in ``T`` cancels, losing about ``2 log10(1/(B r))`` digits
+    (all of them by ``|theta| ~ 1e-8 rad``) and dividing 0 by 0 at ``B = 0``.
+``"stable"``
+    The same function rationalised: ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) + sqrt(b)))``
+    with ``a = l/l0``, ``q = c/A``, ``r^4 - d^4 = q (2 r^2 - q)``. No cancellation
+    anywhere in the domain; fails only where the model does (``l <= 0``, ``d^2 <= 0``).
+``"reference"``
+    Independent of the closed form: ``(G/2)(I1 - 3)`` with ``lambda1 = A + B rho sin(phi)``
+    (the paper's axial stretch at depth ``rho`` in the wall, angle ``phi``),
+    ``lambda2 = r/r0``, ``lambda3 = 1/(lambda1 lambda2)``, integrated by tensor
+    Gauss-Legendre over ``rho in [d, r]``, ``phi in [0, 2 pi]`` and multiplied by the
+    length ``l0``. Accurate to ~1e-14 relative while ``B r / A`` stays below ~0.6
+    (64 nodes in phi); slower by the node count; fails where ``lambda1`` reaches 0.
+
+The pattern constraint is one formula for both patterns: the cross pattern's
+``l(theta)`` with ``beta0 = 0`` is the zigzag's ``l = l0 + 2 r0 theta, r = r0``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.predict.model import Geometry, pressure_mpa
+>>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5814206750769157,
+...                            c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+>>> p = pressure_mpa(np.radians([0.0, 90.0]), geo, form="stable", derivative="analytic")
+>>> np.round(p * 1000, 3).tolist()
+[[85.0, 187.65]]
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import solvers
+
+__all__ = [
+    "ENERGY_FORMS",
+    "DERIVATIVES",
+    "Geometry",
+    "constraint",
+    "constraint_rates",
+    "energy",
+    "energy_gradient",
+    "volume",
+    "volume_gradient",
+    "pressure_mpa",
+    "lock_theta",
+    "inner_radius_sq",
+]
+
+ENERGY_FORMS = ("reference", "printed", "stable")
+DERIVATIVES = ("central", "complex", "analytic")
+
+#: Gauss-Legendre nodes of the reference energy (wall depth, angle around the tube).
+REFERENCE_NODES = (12, 64)
+
+
+@dataclass(frozen=True, slots=True)
+class Geometry:
+    """Model constants of one or more designs, as ``(n, 1)`` float64 arrays (mm, MPa, rad).
+
+    Attributes
+    ----------
+    l0, r0 : ndarray
+        Fabric-side length and sleeve radius [mm].
+    s0, c0 : ndarray
+        sin(beta0), cos(beta0) (0 and 1 for the zigzag).
+    c : ndarray
+        Wall constant r_f^2 - d_f^2 [mm^2].
+    g, p0 : ndarray
+        Effective shear modulus G and transition pressure P0 [MPa].
+    """
+
+    l0: np.ndarray
+    r0: np.ndarray
+    s0: np.ndarray
+    c0: np.ndarray
+    c: np.ndarray
+    g: np.ndarray
+    p0: np.ndarray
+
+    @classmethod
+    def from_values(cls, *, beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa) -> "Geometry":
+        """Broadcast scalars or 1-D arrays (one entry per design) to ``(n, 1)`` columns."""
+        cols = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=np.float64))
+                                     for v in (beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa)))
+        beta0, l0, r0, c, g, p0 = (np.ascontiguousarray(v.reshape(-1, 1)) for v in cols)
+        return cls(l0=l0, r0=r0, s0=np.sin(beta0), c0=np.cos(beta0), c=c, g=g, p0=p0)
+
+    def take(self, rows) -> "Geometry":
+        """The designs at ``rows`` (index array or boolean mask)."""
+        return Geometry(*(getattr(self, k)[rows] for k in self.__slots__))
+
+
+# -- pattern constraint -----------------------------------------------------------------
+def constraint(theta, geo: Geometry):
+    """State along the constraint at bend angle ``theta`` [rad]: (l, r, sin(beta), cos(beta)).
+
+    ``u = l/l0`` is the positive root of ``u = 1 + gamma theta cos(beta)``,
+    ``sin(beta) = u s0``, ``r = r0 cos(beta)/c0``; complex ``theta`` is allowed
+    (complex-step derivatives). Outside the domain the values may be nan; callers
+    check :func:`in_domain`.
+    """
+    gt = 2.0 * geo.r0 / (geo.l0 * geo.c0) * theta
+    gs2 = (gt * geo.s0) ** 2
+    u = (1.0 + gt * np.sqrt(geo.c0**2 + gs2)) / (1.0 + gs2)
+    sinb = u * geo.s0
+    cosb = np.sqrt(1.0 - sinb * sinb)
+    return geo.l0 * u, geo.r0 * cosb / geo.c0, sinb, cosb
+
+
+def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
+    """(dl/dtheta, dr/dtheta) along the constraint.
+
+    From ``theta = (l - l0)/(2 r)`` and ``dr/dl = -(r0 s0/(l0 c0)) tan(beta)``:
+    ``dtheta/dl = (1 - 2 theta dr/dl)/(2 r)``.
+    """
+    r_l = -(geo.r0 * geo.s0 / (geo.l0 * geo.c0)) * sinb / cosb
+    l_t = 2.0 * r / (1.0 - 2.0 * theta * r_l)
+    return l_t, r_l * l_t
+
+
+def inner_radius_sq(l, r, geo: Geometry):
+    """d^2 = r^2 - c/A [mm^2] (incompressible wall, no change of wall volume)."""
+    return r * r - geo.c * 2.0 * geo.l0 / (l + geo.l0)
+
+
+def in_domain(l, r, sinb, geo: Geometry):
+    """True where the model is defined: l > 0, sin(beta) < 1, d^2 > 0 (r > d holds then)."""
+    with np.errstate(invalid="ignore"):
+        return (l > 0.0) & (np.abs(sinb) < 1.0) & (inner_radius_sq(l, r, geo) > 0.0)
+
+
+def lock_theta(geo: Geometry):
+    """Lock-up angle [rad] of each design, where dV/dtheta = 0 (inf for the zigzag).
+
+    With ``V = pi (r^2 (l + l0)/2 - c l0)`` on the pantograph, ``dV/dbeta`` is
+    proportional to ``cos(beta) (1 - 3 x^2 - 2 s0 x)``, ``x = sin(beta)``, so
+    ``x_L = (sqrt(s0^2 + 3) - s0)/3``; ``x_L = s0`` exactly at ``tan(beta0) = 1/2``.
+    """
+    s0 = geo.s0
+    x = (np.sqrt(s0 * s0 + 3.0) - s0) / 3.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        l = geo.l0 * x / s0
+        r = geo.r0 * np.sqrt(1.0 - x * x) / geo.c0
+        theta = (l - geo.l0) / (2.0 * r)
+    return np.where(s0 > 0.0, theta, np.inf)
+
+
+# -- energy ---------------------------------------------------------------------------
+def _invariants(l, r, geo: Geometry):
+    A = (l + geo.l0) / (2.0 * geo.l0)
+    B = (l - geo.l0) / (2.0 * r * geo.l0)
+    return A, B, r / geo.r0
+
+
+def _stable_t(a, b, c):
+    sa, sb = np.sqrt(a), np.sqrt(b)
+    return 2.0 * c / (sa * sb * (sa + sb)), sa, sb
+
+
+def _energy_closed(l, r, geo: Geometry, form: str):
+    A, B, lam = _invariants(l, r, geo)
+    if form == "stable":
+        q = geo.c / A
+        f2 = B * B / 4.0 * q * (2.0 * r * r - q)
+        T = _stable_t(l / geo.l0, l / geo.l0 + B * B * q, geo.c)[0]
+    else:  # printed
+        d2 = inner_radius_sq(l, r, geo)
+        q = r * r - d2
+        f2 = B * B / 4.0 * (r**4 - d2 * d2)
+        T = 2.0 * A / B**2 * ((A * A - B * B * r * r) ** -0.5 - (A * A - B * B * d2) ** -0.5)
+    return (A * A + lam * lam - 3.0) * q + f2 + T / (lam * lam)
+
+
+def _energy_reference(l, r, geo: Geometry):
+    A, B, lam = _invariants(l, r, geo)
+    d = np.sqrt(inner_radius_sq(l, r, geo))
+    (x_rho, w_rho), (x_phi, w_phi) = (solvers.gauss_legendre(n) for n in REFERENCE_NODES)
+    # rho in [d, r] on axis -2, phi in [0, 2 pi] on axis -1
+    half = ((r - d) / 2.0)[..., None, None]
+    rho = ((r + d) / 2.0)[..., None, None] + half * x_rho[:, None]
+    phi = np.pi * (x_phi + 1.0)
+    lam1 = A[..., None, None] + B[..., None, None] * rho * np.sin(phi)
+    lam2 = lam[..., None, None]
+    density = lam1 * lam1 + lam2 * lam2 + 1.0 / (lam1 * lam2) ** 2 - 3.0
+    # (1/pi) * integral over the wall cross-section: the closed forms' bracket; the
+    # phi map [-1, 1] -> [0, 2 pi] has Jacobian pi, which cancels the 1/pi
+    return np.einsum("...ij,i,j->...", density * rho, w_rho, w_phi) * half[..., 0, 0]
+
+
+def energy(l, r, geo: Geometry, form: str = "stable"):
+    """Strain energy E_s [N mm] at (l, r); ``form`` is "stable", "printed" or "reference"."""
+    scale = np.pi * geo.g * geo.l0 / 2.0
+    if form == "reference":
+        return scale * _energy_reference(l, r, geo)
+    return scale * _energy_closed(l, r, geo, form)
+
+
+def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
+    """Analytic partial derivatives (dE/dl, dE/dr) of a closed form [N, N]."""
+    A, B, lam = _invariants(l, r, geo)
+    A_l = 0.5 / geo.l0
+    B_l, B_r = 1.0 / (2.0 * r * geo.l0), -B / r
+    q_l = -geo.c * A_l / (A * A)
+    a, a_l = l / geo.l0, 1.0 / geo.l0
+    if form == "stable":
+        q = geo.c / A
+        b = a + B * B * q
+        b_l = a_l + 2.0 * B * B_l * q + B * B * q_l
+        b_r = -2.0 * B * B * q / r
+        T, sa, sb = _stable_t(a, b, geo.c)
+        # ln T = const - ln(sa) - ln(sb) - ln(sa + sb)
+        T_a = -T * (0.5 / a + 0.5 / (sa * (sa + sb)))
+        T_b = -T * (0.5 / b + 0.5 / (sb * (sa + sb)))
+        T_l, T_r = T_a * a_l + T_b * b_l, T_b * b_r
+    else:  # printed: differentiate the printed T term by term
+        d2 = inner_radius_sq(l, r, geo)
+        q = r * r - d2
+        ap, bp = A * A - B * B * r * r, A * A - B * B * d2
+        D = ap**-0.5 - bp**-0.5
+        ap_l = 2.0 * A * A_l - 2.0 * B * B_l * r * r
+        bp_l = 2.0 * A * A_l - 2.0 * B * B_l * d2 + B * B * q_l
+        bp_r = -2.0 * B * B_r * d2 - 2.0 * B * B * r
+        ap_r = -2.0 * B * B_r * r * r - 2.0 * B * B * r
+        T = 2.0 * A / B**2 * D
+        T_l = (2.0 * A_l / B**2 - 4.0 * A * B_l / B**3) * D + A / B**2 * (bp_l * bp**-1.5 - ap_l * ap**-1.5)
+        T_r = -4.0 * A * B_r / B**3 * D + A / B**2 * (bp_r * bp**-1.5 - ap_r * ap**-1.5)
+    s = 2.0 * r * r * q - q * q
+    f_l = 2.0 * A * A_l * q + (A * A + lam * lam - 3.0) * q_l \
+        + 0.5 * B * B_l * s + 0.25 * B * B * (2.0 * r * r - 2.0 * q) * q_l
+    f_r = 2.0 * lam / geo.r0 * q + 0.5 * B * B_r * s + B * B * r * q
+    f_l = f_l + T_l / (lam * lam)
+    f_r = f_r + T_r / (lam * lam) - 2.0 * T / (lam**3 * geo.r0)
+    scale = np.pi * geo.g * geo.l0 / 2.0
+    return scale * f_l, scale * f_r
+
+
+def volume(l, r, geo: Geometry):
+    """Inner volume V_i = pi d^2 (l + l0)/2 = pi (r^2 (l + l0)/2 - c l0) [mm^3]."""
+    return np.pi * inner_radius_sq(l, r, geo) * (l + geo.l0) / 2.0
+
+
+def volume_gradient(l, r, geo: Geometry):
+    """(dV/dl, dV/dr) = (pi r^2/2, pi r (l + l0)) [mm^2, mm^2]."""
+    return np.pi * r * r / 2.0, np.pi * r * (l + geo.l0)
+
+
+# -- pressure ---------------------------------------------------------------------------
+def _energy_of_theta(geo: Geometry, form: str):
+    def e(theta):
+        l, r, _, _ = constraint(theta, geo)
+        return energy(l, r, geo, form)
+
+    return e
+
+
+def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
+    """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives."""
+    l, r, sinb, cosb = constraint(theta, geo)
+    l_t, r_t = constraint_rates(theta, l, r, sinb, cosb, geo)
+    v_l, v_r = volume_gradient(l, r, geo)
+    dv = v_l * l_t + v_r * r_t
+    if derivative == "analytic":
+        e_l, e_r = energy_gradient(l, r, geo, form)
+        de = e_l * l_t + e_r * r_t
+    else:
+        scale = geo.l0 / (2.0 * geo.r0)  # theta over which l changes by l0
+        de = solvers.derivative(_energy_of_theta(geo, form), theta, scale=scale, method=derivative)
+    return de, dv
+
+
+def pressure_mpa(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
+    """P(theta) = P0 + (dE/dtheta)/(dV/dtheta) [MPa]; P0 exactly at theta = 0.
+
+    The ratio of total derivatives along the constraint equals (dE_s/dl)/(dV_i/dl).
+    Poles (dV/dtheta = 0) and points outside the domain give inf or nan here; the
+    public layer turns them into statuses.
+    """
+    theta = np.asarray(theta, dtype=np.float64)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        de, dv = energy_rate(theta, geo, form=form, derivative=derivative)
+        p = geo.p0 + de / dv
+    return np.where(theta == 0.0, geo.p0 + 0.0 * p, p)

@@ -1,0 +1,261 @@
+"""Numerical machinery of the model: derivatives, quadrature, bracketing and tracing.
+
+Generic over callables; the physics is in :mod:`embroact.predict.model`. All
+routines are vectorised over numpy arrays (one design per row); the only Python
+loops are fixed-length iterations of vectorised updates, and the per-pressure
+scalar root finder of the ``"root"`` inverse (which is the point of that method).
+
+Derivatives (``method=``)
+-------------------------
+``"central"``
+    ``(f(x+h) - f(x-h))/(2h)`` with ``h = eps^(1/3) * scale``: error ~ ``eps^(2/3)``
+    relative to the size of ``f`` (truncation h^2 against round-off eps/h), so a
+    derivative that is small compared with ``f`` (``dE/dtheta`` near the straight
+    state) keeps only ~1e-10 absolute accuracy in units of ``f/scale``.
+``"complex"``
+    ``Im f(x + i h)/h`` with ``h = 1e-30 * scale``: no subtraction, exact to round-off,
+    but ``f`` must be analytic and written with complex-safe operations; it
+    inherits any cancellation already inside ``f`` (the printed ``T``).
+
+Inverses
+--------
+:func:`trace_inverse` tabulates the equilibrium residual on a grid along the branch
+(a parametric trace in theta), finds each target's bracket from the tabulated
+pressures, interpolates linearly and polishes with the Illinois variant of regula
+falsi (superlinear, never leaves the bracket). It follows the branch from theta = 0
+only, so it cannot jump to another branch; a fold narrower than the grid spacing is
+missed. :func:`root_each` runs scipy's ``brentq`` per target on the whole branch: it
+returns *a* root in the bracket, which may belong to an unstable or later branch
+when P(theta) is not monotone.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.predict.solvers import derivative, gauss_legendre
+>>> bool(abs(derivative(np.sin, np.array(0.5), scale=1.0, method="complex") - np.cos(0.5)) < 1e-15)
+True
+>>> x, w = gauss_legendre(4)
+>>> round(float(w @ x**6), 12) == round(2 / 7, 12)
+True
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..patterns.errors import ParameterError, SolverError
+
+__all__ = [
+    "DERIVATIVE_METHODS",
+    "derivative",
+    "gauss_legendre",
+    "bisect",
+    "golden_max",
+    "illinois",
+    "trace_inverse",
+    "root_each",
+]
+
+DERIVATIVE_METHODS = ("central", "complex")
+#: Central-difference step relative to the function's length scale: cbrt(machine epsilon).
+CENTRAL_STEP = float(np.cbrt(np.finfo(np.float64).eps))
+#: Complex step relative to the length scale (any tiny value works; no cancellation).
+COMPLEX_STEP = 1e-30
+#: Iteration caps of the vectorised bracketing methods (float64 halves 1 to 0 in ~1075 steps).
+BISECT_ITERATIONS = 64
+GOLDEN_ITERATIONS = 80
+ILLINOIS_MAX_ITERATIONS = 100
+
+
+def derivative(f, x, *, scale, method: str):
+    """Derivative of the vectorised function ``f`` at ``x`` by ``method`` ("central" or "complex").
+
+    ``scale`` is the length over which ``f`` changes appreciably (sets the step).
+    """
+    if method == "central":
+        h = CENTRAL_STEP * scale
+        return (f(x + h) - f(x - h)) / (2.0 * h)
+    if method == "complex":
+        h = COMPLEX_STEP * scale
+        return np.imag(f(x + 1j * h)) / h
+    raise ParameterError(f"derivative method must be one of {DERIVATIVE_METHODS}, got {method!r}")
+
+
+@lru_cache(maxsize=None)
+def gauss_legendre(n: int):
+    """Nodes and weights of the ``n``-point Gauss-Legendre rule on [-1, 1] (read-only)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x.flags.writeable = False
+    w.flags.writeable = False
+    return x, w
+
+
+def bisect(inside, lo, hi, iterations: int = BISECT_ITERATIONS):
+    """Vectorised bisection of a boolean predicate: ``inside(lo)`` true, ``inside(hi)`` false.
+
+    Returns the last point found inside (a lower bracket of the boundary).
+    """
+    lo, hi = np.array(lo, dtype=np.float64), np.array(hi, dtype=np.float64)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        ok = inside(mid)
+        lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+    return lo
+
+
+def golden_max(f, lo, hi, iterations: int = GOLDEN_ITERATIONS):
+    """Vectorised golden-section search of a unimodal ``f`` on [lo, hi]; returns the argmax."""
+    k = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = np.array(lo, dtype=np.float64), np.array(hi, dtype=np.float64)
+    x1, x2 = b - k * (b - a), a + k * (b - a)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iterations):
+        left = f1 >= f2
+        a, b = np.where(left, a, x1), np.where(left, x2, b)
+        x1n = np.where(left, b - k * (b - a), x2)
+        x2n = np.where(left, x1, a + k * (b - a))
+        fn = f(np.where(left, x1n, x2n))
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+        x1, x2 = x1n, x2n
+    return 0.5 * (a + b)
+
+
+def illinois(residual, a, b, fa, fb, *, xtol, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
+    """Vectorised Illinois regula falsi on brackets ``fa < 0 < fb`` (or the reverse).
+
+    ``residual(x, active)`` evaluates the function at the entries selected by the
+    boolean mask ``active`` (x has the full shape). Stops entrywise when the step
+    or the bracket falls below ``xtol``. Raises :class:`SolverError` if any entry
+    has not converged after ``max_iterations``.
+    """
+    a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
+    x = a.copy()
+    active = np.ones(a.shape, dtype=bool)
+    side = np.zeros(a.shape, dtype=np.int8)  # which end was kept last: -1 a, +1 b
+    for _ in range(max_iterations):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            xn = b - fb * (b - a) / (fb - fa)
+        xn = np.where(np.isfinite(xn) & (xn > np.minimum(a, b)) & (xn < np.maximum(a, b)), xn, 0.5 * (a + b))
+        step = np.abs(xn - x)
+        x = np.where(active, xn, x)
+        fx = residual(x, active)
+        same_as_a = np.sign(fx) == np.sign(fa)
+        # replace the end with the same sign; halve the kept end's value if kept twice
+        fb_half = np.where(same_as_a & (side == 1), 0.5 * fb, fb)
+        fa_half = np.where(~same_as_a & (side == -1), 0.5 * fa, fa)
+        a, fa = np.where(active & same_as_a, x, a), np.where(active & same_as_a, fx, np.where(active, fa_half, fa))
+        b, fb = np.where(active & ~same_as_a, x, b), np.where(active & ~same_as_a, fx, np.where(active, fb_half, fb))
+        side = np.where(active, np.where(same_as_a, 1, -1), side).astype(np.int8)
+        done = (step <= xtol) | (np.abs(b - a) <= xtol) | (fx == 0.0)
+        active &= ~done
+        if not active.any():
+            return x
+    raise SolverError(
+        f"regula falsi did not converge in {max_iterations} iterations on {int(active.sum())} point(s); "
+        f"bracket width up to {float(np.max(np.abs(b - a)[active])):.3g}"
+    )
+
+
+def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
+    """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
+
+    Parameters
+    ----------
+    rate : callable
+        ``rate(theta) -> (dE/dtheta, dV/dtheta)`` for an ``(n, k)`` array, one design per row.
+    theta_end : ndarray, shape (n, 1)
+        End of each branch (lock-up, domain end or cap; finite, sign = bending direction).
+    targets : ndarray, shape (n, m)
+        Pressures minus P0 [MPa], > 0.
+    grid_points : int
+        Tabulation points along each branch.
+    xtol : float or ndarray
+        Absolute tolerance on theta [rad].
+
+    Returns
+    -------
+    theta : ndarray (n, m)
+        Equilibrium angle; for targets beyond the traced part, the end point.
+    where : ndarray of int8 (n, m)
+        0 solved, 1 target above the branch end, 2 target above a fold (unstable).
+    theta_stop, p_stop : ndarray (n, 1)
+        Where the stable part of the branch stops (fold or end) and P - P0 there.
+    """
+    s = np.linspace(0.0, 1.0, grid_points)
+    grid = theta_end * s
+    de, dv = rate(grid)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = de / dv
+    p[:, 0] = 0.0
+    p[:, -1] = np.where(np.isfinite(p[:, -1]), p[:, -1], np.inf)  # lock-up pole
+    rising = np.diff(p, axis=1) > 0.0
+    first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
+    folded = first_fall < grid_points - 1
+    rows = np.arange(grid.shape[0])
+    theta_stop = grid[rows, first_fall][:, None]
+    p_stop = p[rows, first_fall][:, None]
+    if folded.any():  # refine the fold: the maximum of P between the neighbours of the last rising point
+        lo = grid[rows, np.maximum(first_fall - 1, 0)][:, None]
+        hi = grid[rows, np.minimum(first_fall + 1, grid_points - 1)][:, None]
+
+        def p_of(t):
+            e, v = rate(t)
+            return e / v
+
+        t_fold = golden_max(p_of, lo, hi)
+        theta_stop = np.where(folded[:, None], t_fold, theta_stop)
+        p_stop = np.where(folded[:, None], np.maximum(p_of(t_fold), p_stop), p_stop)
+    beyond = targets > p_stop
+    i = _bracket_index(p, np.maximum(first_fall, 1), np.where(beyond, 0.0, targets))
+    where = np.where(beyond, np.where(folded[:, None], 2, 1), 0).astype(np.int8)
+    i = np.where(beyond, 0, i)
+    ta, tb = np.take_along_axis(grid, i, axis=1), np.take_along_axis(grid, i + 1, axis=1)
+    with np.errstate(invalid="ignore"):
+        ra = np.take_along_axis(de, i, axis=1) - targets * np.take_along_axis(dv, i, axis=1)
+        rb = np.take_along_axis(de, i + 1, axis=1) - targets * np.take_along_axis(dv, i + 1, axis=1)
+    solve = ~beyond & (np.sign(ra) != np.sign(rb))
+    if np.any(solve):
+        def residual(t, active):
+            e, v = rate(t)  # full arrays: rows share the rate function's broadcast shape
+            return np.where(active, e - targets * v, 0.0)
+
+        theta = illinois(residual, np.where(solve, ta, 0.0), np.where(solve, tb, 1.0),
+                         np.where(solve, ra, -1.0), np.where(solve, rb, 1.0), xtol=xtol)
+    else:
+        theta = np.zeros_like(targets)
+    theta = np.where(solve, theta, np.where(ra == 0.0, ta, tb))
+    theta = np.where(beyond, theta_stop, theta)
+    return theta, where, theta_stop, p_stop
+
+
+def _bracket_index(values, last, targets):
+    """Per row, the index i < last[row] with values[i] <= target < values[i+1] (binary search).
+
+    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end interval.
+    """
+    lo = np.zeros(targets.shape, dtype=np.intp)
+    hi = np.broadcast_to(last[:, None], targets.shape).astype(np.intp)
+    while np.any(hi - lo > 1):
+        mid = (lo + hi) // 2
+        up = np.take_along_axis(values, mid, axis=1) <= targets
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    return lo
+
+
+def root_each(residual, lo, hi, *, xtol):
+    """Per-target scalar bracketing root finding (scipy ``brentq``) on [lo, hi].
+
+    ``residual(x, k)`` is the scalar residual of target ``k``; ``lo``, ``hi`` are
+    1-D arrays. Entries whose bracket has no sign change return ``hi``.
+    """
+    from scipy.optimize import brentq
+
+    out = np.array(hi, dtype=np.float64)
+    for k, (a, b) in enumerate(zip(lo, hi)):
+        fa, fb = residual(a, k), residual(b, k)
+        if fa == 0.0:
+            out[k] = a
+        elif np.sign(fa) != np.sign(fb):
+            out[k] = brentq(residual, a, b, args=(k,), xtol=xtol, rtol=4 * np.finfo(float).eps)
+    return out
