@@ -228,6 +228,16 @@ class StitchPlan:
         lo, hi = self.xy_mm.min(axis=0), self.xy_mm.max(axis=0)
         return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
+    def _repr_svg_(self) -> str:
+        """Stitch preview for Jupyter (:func:`embroact.export.preview.plan_svg`).
+
+        The one documented exception to the import direction (patterns never imports
+        export): the renderer is imported lazily, only when a notebook asks for it.
+        """
+        from ..export.preview import plan_svg
+
+        return plan_svg(self)
+
     def select(self, index: int) -> "StitchPlan":
         """Records of one actuator only (its STOP/TRIM included)."""
         m = self.actuator == index
