@@ -1,0 +1,147 @@
+"""Turn a generator's needle stations into a complete one-actuator :class:`StitchPlan`.
+
+A generator (zigzag, cross) decides *where* the needle goes: stations given by arc
+length ``s`` along the centerline, rail side (+1 left, -1 right) and the role of the
+stitch arriving there (LEG or EDGE). This module adds what every actuator needs, in
+this fixed record convention:
+
+1. ``STOP`` (CONTROL) at the first needle point: cord in, the operator lays the tube;
+2. ``tie_count`` TIE_IN lock stitches of ``tie_stitch_mm`` back and forth along the
+   first station's rail (towards the inside of the path), ending on the first station;
+3. the stations' LEG / EDGE stitches;
+4. ``tie_count`` TIE_OFF lock stitches along the last station's rail;
+5. ``TRIM`` (CONTROL) at the last point; 6. ``END`` (CONTROL, actuator -1).
+
+It then checks the corridor invariant with shapely (every STITCH at distance
+>= r_f + clearance from the centerline) and measures the realised parameters.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.patterns.assemble import assemble
+>>> from embroact.patterns.centerline import Centerline
+>>> from embroact.patterns.params import ZigzagParams
+>>> from embroact.patterns.plan import Role
+>>> plan = assemble(Centerline.straight(4.0), np.array([0.0, 1.0, 2.0, 3.0]), np.array([1, -1, 1, -1]),
+...                 np.full(4, Role.LEG), params=ZigzagParams(7.0, 1.0))
+>>> len(plan)   # STOP, 3 tie-in (the last on station 0), 3 more stations, 3 tie-off, TRIM, END
+12
+>>> plan.xy_mm[:5].round(9).tolist()   # STOP, 3 tie-in stitches ending on station 0, station 1
+[[0.7, 3.5], [0.0, 3.5], [0.7, 3.5], [0.0, 3.5], [1.0, -3.5]]
+"""
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from .centerline import Centerline
+from .errors import ParameterError, PatternError, PathError
+from .measure import measure
+from .params import PatternParams, StitchOptions, Tube
+from .plan import ActuatorPlan, Command, Role, StitchPlan
+from .tolerances import DEFAULT_TOLERANCES
+
+__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "MAX_RECORDS"]
+
+#: Hard cap on records in one plan; generators refuse before allocating.
+MAX_RECORDS = 5_000_000
+#: Records an actuator adds besides its stations and 2 * tie_count lock stitches (STOP, TRIM, END,
+#: less the first station, which is the last tie-in stitch).
+_EXTRA_RECORDS = 2
+
+
+def check_pattern_inputs(cl: Centerline, params: PatternParams, tube: Tube, options: StitchOptions) -> None:
+    """Checks shared by the generators: types, width vs tube corridor, interval, path bends."""
+    if not isinstance(tube, Tube):
+        raise ParameterError(f"tube must be a Tube, got {type(tube).__name__}")
+    if not isinstance(options, StitchOptions):
+        raise ParameterError(f"options must be a StitchOptions, got {type(options).__name__}")
+    corridor = tube.corridor_radius_mm
+    if params.width_mm / 2.0 <= corridor:
+        raise ParameterError(
+            f"width_mm must be > 2*(r_f + clearance) = {2.0 * corridor:g}, got {params.width_mm:g}"
+        )
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    if params.interval_mm < grid:
+        raise ParameterError(
+            f"interval_mm must be >= {grid:g} (needle points closer than the machine grid merge), "
+            f"got {params.interval_mm:g}"
+        )
+    if options.tie_stitch_mm < grid:
+        raise ParameterError(f"tie_stitch_mm must be >= {grid:g}, got {options.tie_stitch_mm:g}")
+    cl.check_radius(params.width_mm / 2.0, "width_mm/2")
+
+
+def check_record_count(n_stations: float, options: StitchOptions) -> int:
+    """Records a plan with ``n_stations`` stations needs; :class:`PatternError` above the cap."""
+    n = float(n_stations) + 2 * options.tie_count + _EXTRA_RECORDS
+    if n > MAX_RECORDS:
+        raise PatternError(
+            f"pattern would need about {n:.3g} records, more than the limit {MAX_RECORDS:,}; "
+            "use a larger interval_mm or a shorter path"
+        )
+    return int(n)
+
+
+def _inward(cl: Centerline, s: float) -> float:
+    return 1.0 if s <= cl.length_mm / 2.0 else -1.0
+
+
+def assemble(
+    cl: Centerline,
+    station_s: np.ndarray,
+    station_side: np.ndarray,
+    station_role: np.ndarray,
+    *,
+    params: PatternParams,
+    tube: Tube = Tube(),
+    options: StitchOptions = StitchOptions(),
+    name: str = "actuator",
+    adjustments: tuple[str, ...] = (),
+) -> StitchPlan:
+    """Complete one-actuator plan from needle stations (see the module docstring).
+
+    Parameters
+    ----------
+    cl : Centerline
+    station_s, station_side, station_role : arrays (m,)
+        Arc length [mm], rail side (+1 left / -1 right) and role of the stitch arriving
+        at each station (the first station's role is unused: the tie-in ends there).
+    params : ZigzagParams | CrossParams
+        The requested parameters (rail offset is ``params.width_mm / 2``).
+    """
+    k, t = options.tie_count, options.tie_stitch_mm
+    s0, sn = float(station_s[0]), float(station_s[-1])
+    j = np.arange(k + 1)
+    tie_in = s0 + _inward(cl, s0) * t * ((k - j) % 2)  # [STOP, k stitches ending on s0]
+    tie_off = sn + _inward(cl, sn) * t * (j[1:] % 2)  # k stitches from sn
+    s_all = np.concatenate([tie_in, station_s[1:], tie_off])
+    side_all = np.concatenate([np.full(k + 1, station_side[0]), station_side[1:], np.full(k, station_side[-1])])
+    xy = cl.offset_point_at(s_all, side_all * (params.width_mm / 2.0))
+    xy = np.vstack([xy, xy[-1], xy[-1]])  # TRIM, END
+    n = len(xy)
+    commands = np.full(n, Command.STITCH, dtype=np.int8)
+    commands[[0, -2, -1]] = (Command.STOP, Command.TRIM, Command.END)
+    roles = np.concatenate(
+        [[Role.CONTROL], np.full(k, Role.TIE_IN), station_role[1:], np.full(k, Role.TIE_OFF), [Role.CONTROL] * 2]
+    ).astype(np.int8)
+    actuator = np.zeros(n, dtype=np.int16)
+    actuator[-1] = -1
+    _check_corridor(cl, xy[commands == Command.STITCH], tube)
+    realised = measure(xy, roles, cl, params.pattern)
+    act = ActuatorPlan(name, params, tube, cl, realised, tuple(adjustments), options)
+    return StitchPlan(xy, commands, roles, actuator, (act,), name)
+
+
+def _check_corridor(cl: Centerline, xy: np.ndarray, tube: Tube) -> None:
+    line = cl.as_linestring()
+    shapely.prepare(line)
+    limit = tube.corridor_radius_mm - DEFAULT_TOLERANCES.length_mm
+    bad = np.flatnonzero(shapely.dwithin(line, shapely.points(xy), limit))
+    if bad.size:
+        x, y = xy[bad[0]]
+        d = float(shapely.distance(line, shapely.Point(x, y)))
+        raise PathError(
+            f"needle point ({x:.2f}, {y:.2f}) mm is {d:.3g} mm from the path, inside the tube corridor "
+            f"r_f + clearance = {tube.corridor_radius_mm:g} mm: the path comes too close to itself"
+        )

@@ -1,0 +1,387 @@
+"""The tube path: an arc-length parametrised plane curve in the plan frame (mm, y up).
+
+A :class:`Centerline` is stored as a polyline. Dense polylines (flattened SVG
+curves, sampled functions) are treated as a sampled *smooth* curve: the tangent
+angle is known at every vertex (bisector of the two neighbouring segments) and
+varies linearly in arc length between vertices. So ``normal_at`` turns smoothly
+along a curve and the legs of a pattern follow the local normal; on a straight
+segment it is exactly the segment's normal. A vertex that turns by more than
+:data:`MAX_SMOOTH_TURN_DEG` is a *corner*: its curvature radius counts as 0, and
+:meth:`Centerline.check_radius` rejects it with advice to round it.
+
+SVG paths (:meth:`Centerline.from_svg_path`): path units are read as mm and y is
+flipped (SVG's y points down, the plan frame's up), so the drawing looks the same
+on screen as in an SVG viewer. Curves are flattened to a chordal error of at most
+``DEFAULT_TOLERANCES.curve_flatness_mm``.
+
+Examples
+--------
+>>> from embroact.patterns.centerline import Centerline
+>>> c = Centerline.straight(100.0, origin_mm=(10.0, 5.0), rotation_deg=90.0)
+>>> c.length_mm
+100.0
+>>> c.point_at(25.0).round(9).tolist()
+[10.0, 30.0]
+>>> c.normal_at(0.0).round(9).tolist()   # unit LEFT normal
+[-1.0, 0.0]
+>>> s, off = c.project([[8.0, 40.0]])
+>>> round(float(s[0]), 9), round(float(off[0]), 9)
+(35.0, 2.0)
+>>> Centerline.from_svg_path("M 0 0 H 10 V 10").points_mm.tolist()  # y flipped
+[[0.0, 0.0], [10.0, 0.0], [10.0, -10.0]]
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+
+from .errors import ParameterError, PathError, check_range
+from .tolerances import DEFAULT_TOLERANCES
+
+__all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG"]
+
+#: A vertex turning by more than this is a corner (curvature radius 0) [deg].
+MAX_SMOOTH_TURN_DEG = 10.0
+#: Newton steps used by :meth:`Centerline.project` to invert the smooth-normal frame.
+_PROJECT_STEPS = 6
+#: Largest number of vertices a path may have (also bounds SVG flattening).
+_MAX_POINTS = 2_000_000
+
+_SVG_COMMANDS = "MmLlHhVvCcSsQqTtZz"
+_SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "Z": 0}
+_SVG_TOKEN = re.compile(r"([A-Za-z])|([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)|([\s,]+)|(.)")
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=np.float64, copy=True)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Centerline:
+    """A plane path [mm], plan frame, y up; use the constructors, not the raw field.
+
+    Attributes
+    ----------
+    points_mm : ndarray, shape (n, 2)
+        Polyline vertices [mm], read-only, no repeated points, n >= 2.
+    """
+
+    points_mm: np.ndarray
+    _s: np.ndarray = field(init=False, repr=False)
+    _theta: np.ndarray = field(init=False, repr=False)
+    _turn: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        pts = _clean_points(self.points_mm)
+        seg = np.diff(pts, axis=0)
+        h = np.hypot(seg[:, 0], seg[:, 1])
+        phi = np.unwrap(np.arctan2(seg[:, 1], seg[:, 0]))
+        turn = np.diff(phi)
+        theta = np.concatenate([phi[:1], 0.5 * (phi[:-1] + phi[1:]), phi[-1:]])
+        object.__setattr__(self, "points_mm", _frozen(pts))
+        object.__setattr__(self, "_s", _frozen(np.concatenate([[0.0], np.cumsum(h)])))
+        object.__setattr__(self, "_theta", _frozen(theta))
+        object.__setattr__(self, "_turn", _frozen(turn))
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def straight(
+        cls, length_mm: float, *, origin_mm: tuple[float, float] = (0.0, 0.0), rotation_deg: float = 0.0
+    ) -> "Centerline":
+        """Straight path of ``length_mm`` from ``origin_mm``, direction ``rotation_deg`` from +x (CCW)."""
+        length = check_range("length_mm", length_mm, low=0.0, high=1e6)
+        ox, oy = _xy("origin_mm", origin_mm)
+        a = math.radians(check_range("rotation_deg", rotation_deg, low=-3600.0, high=3600.0))
+        return cls(np.array([[ox, oy], [ox + length * math.cos(a), oy + length * math.sin(a)]]))
+
+    @classmethod
+    def from_points(cls, points) -> "Centerline":
+        """Path through ``points`` (sequence or array of (x, y) in mm); exact repeats are dropped."""
+        return cls(points)
+
+    @classmethod
+    def from_svg_path(cls, d: str) -> "Centerline":
+        """Path from an SVG path ``d`` string (M L H V C S Q T Z, absolute and relative).
+
+        Units are mm; y is flipped (SVG y down -> plan y up). One subpath only.
+        """
+        pts = _parse_svg(d)
+        return cls(pts * np.array([1.0, -1.0]) + 0.0)  # + 0.0 turns -0.0 into 0.0
+
+    # ------------------------------------------------------------------ basic geometry
+    @property
+    def length_mm(self) -> float:
+        """Arc length of the path [mm]."""
+        return float(self._s[-1])
+
+    def as_linestring(self) -> shapely.LineString:
+        """The path as a shapely LineString."""
+        return shapely.LineString(self.points_mm)
+
+    def _angle_at(self, s_mm):
+        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+        return s, np.interp(s, self._s, self._theta)
+
+    def point_at(self, s_mm) -> np.ndarray:
+        """Point(s) at arc length ``s_mm`` (clipped to [0, length]) [mm], shape (..., 2)."""
+        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+        return np.stack([np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1])], axis=-1)
+
+    def tangent_at(self, s_mm) -> np.ndarray:
+        """Unit tangent(s) at arc length ``s_mm``, smooth along dense curves, shape (..., 2)."""
+        _, th = self._angle_at(s_mm)
+        return np.stack([np.cos(th), np.sin(th)], axis=-1)
+
+    def normal_at(self, s_mm) -> np.ndarray:
+        """Unit LEFT normal(s) (tangent turned +90 deg), shape (..., 2)."""
+        _, th = self._angle_at(s_mm)
+        return np.stack([-np.sin(th), np.cos(th)], axis=-1)
+
+    def offset_point_at(self, s_mm, offset_mm) -> np.ndarray:
+        """``point_at(s) + offset * normal_at(s)`` (offset > 0 to the left) [mm]."""
+        off = np.asarray(offset_mm, dtype=np.float64)[..., None]
+        return self.point_at(s_mm) + off * self.normal_at(s_mm)
+
+    def curvature_at(self, s_mm) -> np.ndarray:
+        """Signed curvature [1/mm] (> 0 turning left) of the smooth-tangent model.
+
+        Piecewise constant per segment; corners are included at their share of the turn
+        (use :meth:`min_radius_mm` to detect them).
+        """
+        kappa = np.diff(self._theta) / np.diff(self._s)
+        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+        i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
+        return kappa[i]
+
+    def _radii(self) -> np.ndarray:
+        """Curvature radius per segment [mm]; 0 on both segments of a corner."""
+        kappa = np.abs(np.diff(self._theta)) / np.diff(self._s)
+        with np.errstate(divide="ignore"):
+            r = np.where(kappa > 0.0, 1.0 / np.where(kappa > 0.0, kappa, 1.0), np.inf)
+        corner = np.abs(self._turn) > math.radians(MAX_SMOOTH_TURN_DEG)
+        r[:-1][corner] = 0.0
+        r[1:][corner] = 0.0
+        return r
+
+    def min_radius_mm(self) -> float:
+        """Smallest curvature radius along the path [mm]; ``inf`` if straight, 0 at a corner."""
+        return float(self._radii().min())
+
+    def check_radius(self, min_radius_mm: float, name: str) -> None:
+        """Raise :class:`PathError` if the path bends tighter than ``min_radius_mm``.
+
+        ``name`` says where the limit comes from (``"width_mm/2"``).
+        """
+        corner = np.flatnonzero(np.abs(self._turn) > math.radians(MAX_SMOOTH_TURN_DEG))
+        if corner.size:
+            i = int(corner[0])
+            x, y = self.points_mm[i + 1]
+            raise PathError(
+                f"path has a corner at ({x:.2f}, {y:.2f}) mm (turn {math.degrees(abs(self._turn[i])):.1f} deg > "
+                f"{MAX_SMOOTH_TURN_DEG:g} deg), which counts as curvature radius 0 < {name} = {min_radius_mm:g} mm; "
+                f"round the corner with radius >= {min_radius_mm:g} mm or give a smooth path (SVG curve or denser points)"
+            )
+        r = self._radii()
+        i = int(np.argmin(r))
+        if r[i] < min_radius_mm:
+            x, y = 0.5 * (self.points_mm[i] + self.points_mm[i + 1])
+            raise PathError(
+                f"path curvature radius must be >= {name} = {min_radius_mm:g} mm, "
+                f"got {r[i]:.3g} mm near ({x:.2f}, {y:.2f}) mm"
+            )
+
+    def offset_curves(self, distance_mm: float) -> tuple[shapely.LineString, shapely.LineString]:
+        """The two rails at +-``distance_mm`` along the smooth normal: (left, right) LineStrings."""
+        d = check_range("distance_mm", distance_mm, low=0.0, low_inclusive=True)
+        s = np.union1d(self._s, 0.5 * (self._s[1:] + self._s[:-1]))
+        return (shapely.LineString(self.offset_point_at(s, d)), shapely.LineString(self.offset_point_at(s, -d)))
+
+    def project(self, xy_mm) -> tuple[np.ndarray, np.ndarray]:
+        """Arc-length coordinate and signed offset (left > 0) of points [mm].
+
+        The exact inverse of :meth:`offset_point_at` near the path: starts at the closest
+        point of the polyline (shapely STRtree over its segments) and solves ``(p - c(s)) . t(s) = 0`` by Newton steps.
+        """
+        p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+        s = self._closest_s(p)
+        kappa = np.diff(self._theta) / np.diff(self._s)
+        for _ in range(_PROJECT_STEPS):
+            i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
+            r = p - self.point_at(s)
+            f = np.einsum("ij,ij->i", r, self.tangent_at(s))
+            df = -1.0 + kappa[i] * np.einsum("ij,ij->i", r, self.normal_at(s))
+            s = np.clip(s - f / np.where(np.abs(df) > 0.5, df, -1.0), 0.0, self.length_mm)
+        off = np.einsum("ij,ij->i", p - self.point_at(s), self.normal_at(s))
+        return s, off
+
+    def _closest_s(self, p: np.ndarray) -> np.ndarray:
+        """Arc length of the closest polyline point to each of ``p`` (STRtree over segments)."""
+        a, b = self.points_mm[:-1], self.points_mm[1:]
+        tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+        _, seg = tree.query_nearest(shapely.points(p), all_matches=False)
+        d = b[seg] - a[seg]
+        u = np.einsum("ij,ij->i", p - a[seg], d) / np.einsum("ij,ij->i", d, d)
+        return self._s[seg] + np.clip(u, 0.0, 1.0) * np.diff(self._s)[seg]
+
+    def transformed(self, *, origin_mm=(0.0, 0.0), rotation_deg: float = 0.0) -> "Centerline":
+        """This path rotated by ``rotation_deg`` about (0, 0), then moved by ``origin_mm``."""
+        ox, oy = _xy("origin_mm", origin_mm)
+        a = math.radians(check_range("rotation_deg", rotation_deg, low=-3600.0, high=3600.0))
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        return Centerline(self.points_mm @ rot.T + np.array([ox, oy]))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Centerline):
+            return NotImplemented
+        return np.array_equal(self.points_mm, other.points_mm)
+
+    def __hash__(self) -> int:
+        return hash(self.points_mm.tobytes())
+
+    def __repr__(self) -> str:
+        return f"Centerline(n_points={len(self.points_mm)}, length_mm={self.length_mm:.6g})"
+
+
+def as_centerline(obj) -> Centerline:
+    """A :class:`Centerline` from a Centerline, shapely LineString, (n, 2) points or SVG ``d`` string."""
+    if isinstance(obj, Centerline):
+        return obj
+    if isinstance(obj, str):
+        return Centerline.from_svg_path(obj)
+    if isinstance(obj, shapely.LineString):
+        return Centerline(np.asarray(obj.coords)[:, :2])
+    if isinstance(obj, shapely.Geometry):
+        raise PathError(f"path must be a LineString, got a {obj.geom_type}")
+    return Centerline(obj)
+
+
+# ---------------------------------------------------------------------- validation
+def _xy(name: str, value) -> tuple[float, float]:
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a pair [x, y] of numbers in mm, got {value!r}") from None
+    return check_range(f"{name}[0]", a, low=-1e6, high=1e6), check_range(f"{name}[1]", b, low=-1e6, high=1e6)
+
+
+def _clean_points(points) -> np.ndarray:
+    try:
+        pts = np.array(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise PathError(f"path points must be numbers [[x, y], ...] in mm, got {points!r:.60}") from None
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise PathError(f"path points must have shape (n, 2), got {pts.shape}")
+    if len(pts) > _MAX_POINTS:
+        raise PathError(f"path must have at most {_MAX_POINTS} points, got {len(pts)}")
+    if not np.all(np.isfinite(pts)):
+        raise PathError("path points must be finite numbers, got NaN or inf")
+    if len(pts) >= 2:
+        step = np.hypot(*np.diff(pts, axis=0).T)
+        pts = pts[np.concatenate([[True], step > DEFAULT_TOLERANCES.length_mm])]
+    if len(pts) < 2:
+        raise PathError(f"path needs at least 2 distinct points, got {len(pts)}")
+    if np.hypot(*(pts[-1] - pts[0])) <= DEFAULT_TOLERANCES.length_mm:
+        raise PathError("path must be open (a tube has two ends), got a closed path")
+    if not shapely.LineString(pts).is_simple:
+        raise PathError("path crosses or touches itself; give a path that does not")
+    return pts
+
+
+# ---------------------------------------------------------------------- SVG paths
+def _svg_tokens(d: str):
+    for m in _SVG_TOKEN.finditer(d):
+        cmd, num, _sep, bad = m.groups()
+        if bad is not None or (cmd is not None and cmd not in _SVG_COMMANDS):
+            raise PathError(
+                f"SVG path: unsupported character {(bad or cmd)!r} at position {m.start()}; "
+                f"supported commands: {' '.join(_SVG_COMMANDS)}"
+            )
+        if cmd is not None:
+            yield cmd
+        elif num is not None:
+            yield float(num)
+
+
+def _bezier(ctrl: np.ndarray) -> np.ndarray:
+    """Points of a quadratic/cubic Bezier (control points (k, 2)), excluding the start.
+
+    Uniform parameter steps; n = ceil(sqrt(M / (8 e))) with M a bound on |B''| keeps
+    the chordal error below e = curve_flatness_mm.
+    """
+    deg = len(ctrl) - 1
+    second = deg * (deg - 1) * np.diff(ctrl, n=2, axis=0)
+    m = float(np.max(np.hypot(second[:, 0], second[:, 1])))
+    n = max(1, math.ceil(math.sqrt(m / (8.0 * DEFAULT_TOLERANCES.curve_flatness_mm))))
+    if n > _MAX_POINTS:
+        raise PathError(f"SVG path: curve too large to flatten ({n} points > {_MAX_POINTS})")
+    t = np.linspace(0.0, 1.0, n + 1)[1:, None]
+    coef = [math.comb(deg, k) * (1 - t) ** (deg - k) * t**k for k in range(deg + 1)]
+    return sum(c * p for c, p in zip(coef, ctrl))
+
+
+def _parse_svg(d: str) -> np.ndarray:
+    if not isinstance(d, str) or not d.strip():
+        raise PathError(f"SVG path must be a non-empty string, got {d!r}")
+    tokens = list(_svg_tokens(d))
+    out: list[np.ndarray] = []
+    cur = np.zeros(2)
+    start = np.zeros(2)
+    last_ctrl: tuple[str, np.ndarray] | None = None  # ("C"|"Q", control point) for S/T reflection
+    cmd = None
+    i = 0
+    while i < len(tokens):
+        tok = tokens[i]
+        if isinstance(tok, str):
+            cmd, i = tok, i + 1
+            if cmd in "Mm" and out:
+                raise PathError("SVG path: only one subpath is supported (a second 'M' was found)")
+        elif cmd is None:
+            raise PathError("SVG path must start with a command (M), got a number")
+        up = cmd.upper()
+        if not out and up != "M":
+            raise PathError(f"SVG path must start with a move-to (M), got {cmd!r}")
+        k = _SVG_ARITY[up]
+        args = tokens[i : i + k]
+        if len(args) < k or any(isinstance(a, str) for a in args):
+            raise PathError(f"SVG path: command {cmd!r} needs {k} numbers")
+        i += k
+        rel = cmd.islower()
+        base = cur if rel else np.zeros(2)
+        a = np.array(args, dtype=np.float64)
+        new_ctrl = None
+        if up == "M":
+            cur = base + a
+            start = cur.copy()
+            out.append(cur[None, :].copy())
+            cmd = "l" if rel else "L"  # further pairs are implicit line-tos
+        elif up in "LHV":
+            if up == "H":
+                cur = np.array([a[0] + (cur[0] if rel else 0.0), cur[1]])
+            elif up == "V":
+                cur = np.array([cur[0], a[0] + (cur[1] if rel else 0.0)])
+            else:
+                cur = base + a
+            out.append(cur[None, :].copy())
+        elif up == "Z":
+            cur = start.copy()
+            out.append(cur[None, :].copy())
+        else:
+            pts = a.reshape(-1, 2) + base
+            if up in "ST":
+                kind = "C" if up == "S" else "Q"
+                refl = 2 * cur - last_ctrl[1] if last_ctrl and last_ctrl[0] == kind else cur.copy()
+                pts = np.vstack([refl, pts])
+            ctrl = np.vstack([cur, pts])
+            out.append(_bezier(ctrl))
+            new_ctrl = ("C" if len(ctrl) == 4 else "Q", ctrl[-2])
+            cur = ctrl[-1].copy()
+        last_ctrl = new_ctrl
+    if not out:
+        raise PathError("SVG path has no points")
+    return np.vstack(out)

@@ -1,0 +1,99 @@
+"""Zigzag pattern: legs cross the tube alternately from rail to rail.
+
+Needle points sit at arc lengths ``s_i = s0 + i*s`` along the centerline,
+alternately on the left and right rail ``c(s_i) +- (w/2) n(s_i)``; the legs are
+centred on the path (``s0 = (L - n*s) / 2``, ``n = floor(L / s)``)::
+
+    left rail   o---------o---------o---------o          o  needle point
+                 \\       / \\       / \\       /           -- rail (w/2 from the path)
+    centerline  ==\\=====/===\\=====/===\\=====/=== tube
+                   \\   /     \\   /     \\   /
+    right rail      o-/       o-/       o-/
+                  |<-s->|
+                  s0 + 0 s,  s0 + 1 s, ...
+
+Each leg leans by ``atan(s / w)`` from the local perpendicular (its "angle" in the
+realised values). Lock stitches, STOP, TRIM and END follow the record convention of
+:mod:`embroact.patterns.assemble`.
+
+Examples
+--------
+>>> from embroact.patterns.zigzag import zigzag
+>>> from embroact.patterns.centerline import Centerline
+>>> from embroact.patterns.params import ZigzagParams
+>>> plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+>>> r = plan.actuators[0].realised
+>>> round(r.width_mm, 9), round(r.interval_mm, 9), round(r.length_mm, 9)
+(7.0, 1.0, 100.0)
+>>> plan.stitch_count   # 101 needle stations + 2 * 3 lock stitches, first station shared
+106
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .assemble import assemble, check_pattern_inputs, check_record_count
+from .centerline import as_centerline
+from .errors import ParameterError, PatternError
+from .params import StitchOptions, Tube, ZigzagParams
+from .plan import Role, StitchPlan
+from .tolerances import DEFAULT_TOLERANCES
+
+__all__ = ["zigzag", "MIN_LEGS"]
+
+#: Fewest legs a zigzag actuator may have.
+MIN_LEGS = 2
+
+
+def zigzag(
+    centerline,
+    params: ZigzagParams,
+    *,
+    tube: Tube = Tube(),
+    options: StitchOptions = StitchOptions(),
+    name: str = "actuator",
+) -> StitchPlan:
+    """One zigzag actuator along ``centerline``, as a complete plan.
+
+    Parameters
+    ----------
+    centerline : Centerline, shapely LineString, (n, 2) points or SVG path string
+        The tube path [mm]; the legs cover its length.
+    params : ZigzagParams
+        Rail spacing ``width_mm`` (w/2 > r_f + clearance) and interval ``interval_mm``.
+    tube : Tube
+    options : StitchOptions
+        Lock stitches.
+    name : str
+        Actuator name.
+
+    Raises
+    ------
+    ParameterError
+        Width leaves no room for the tube, interval below the machine grid.
+    PathError
+        Path bends tighter than w/2, crosses itself, or comes back into the corridor.
+    PatternError
+        Path shorter than ``MIN_LEGS`` legs, or too many records.
+    """
+    if not isinstance(params, ZigzagParams):
+        raise ParameterError(f"params must be ZigzagParams, got {type(params).__name__}")
+    cl = as_centerline(centerline)
+    check_pattern_inputs(cl, params, tube, options)
+    s, length = params.interval_mm, cl.length_mm
+    minimum = max(MIN_LEGS * s, options.tie_stitch_mm)
+    if length < minimum - DEFAULT_TOLERANCES.length_mm:
+        raise PatternError(
+            f"path length_mm must be >= {minimum:g} for a zigzag with interval_mm={s:g} "
+            f"(at least {MIN_LEGS} legs), got {length:g}"
+        )
+    n = math.floor((length + DEFAULT_TOLERANCES.length_mm) / s)
+    check_record_count(n + 1, options)
+    i = np.arange(n + 1)
+    station_s = 0.5 * max(length - n * s, 0.0) + i * s
+    side = np.where(i % 2 == 0, 1, -1)
+    return assemble(
+        cl, station_s, side, np.full(n + 1, Role.LEG), params=params, tube=tube, options=options, name=name
+    )
