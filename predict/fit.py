@@ -303,6 +303,8 @@ def fit_curve(
         ``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa) -> theta_deg``, finite for all
         pressures and parameters within bounds.  Parameters neither fitted nor in
         ``fixed`` are passed as ``None`` (the predictor's default, e.g. P0 from geometry).
+        The start-value scan passes fitted parameters as (m, 1) arrays and expects
+        (m, n) angles back (numpy broadcasting against the n pressures).
     fit : iterable of str
         Parameters to fit, from ``FIT_PARAMETERS``; not ``p0_kpa`` with ``g_e_mpa``.
     fixed : mapping, optional
@@ -336,8 +338,12 @@ def fit_curve(
     _check_bent(p, a, len(names), branch)
 
     def params(x) -> dict:
+        """Fitted values from x, shape (k,) -> floats, or (m, k) -> (m, 1) columns."""
         values = {n: fixed.get(n) for n in FIT_PARAMETERS}
-        values.update(zip(names, map(float, x)))
+        if np.ndim(x) == 1:
+            values.update(zip(names, map(float, x)))
+        else:
+            values.update((n, x[:, i : i + 1]) for i, n in enumerate(names))
         return values
 
     def residual(x) -> np.ndarray:
@@ -346,7 +352,7 @@ def fit_curve(
         return theta - a
 
     candidates = _scan(names, start, p, a)
-    sse = [float(np.sum(residual(c) ** 2)) for c in candidates]
+    sse = np.sum(residual(candidates) ** 2, axis=-1)
     x0 = candidates[int(np.nanargmin(sse))]
     lo, hi = _bounds(names, p)
     x0 = np.clip(x0, lo + _FD_STEP_REL * np.maximum(np.abs(lo), 1.0), hi * (1.0 - _FD_STEP_REL))
@@ -392,21 +398,29 @@ def _standard_errors(jac, fun, names, branch) -> dict[str, float]:
 
 
 def model_predictor(derived: DerivedGeometry, *, method: str = "auto") -> Callable:
-    """``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa)`` for a design, via ``curve``.
+    """``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa)`` for a design, via the model.
 
     ``p0_kpa=None`` means P0 from the geometry with tube modulus ``g_e_mpa`` (the
-    design's tube when that is ``None`` too).  The returned function has an attribute
-    ``last_method``: the method ``curve`` reported for its most recent call.
+    design's tube when that is ``None`` too).  Scalar parameters give one curve
+    (:func:`~embroact.predict.curve.curve`); parameter arrays of shape (m, 1) give m
+    curves at once (:func:`~embroact.predict.curve.sweep`), shape (m, n).  The function's
+    attribute ``last_method`` is the method the model reported for its latest call.
     """
-    from .curve import ActuatorModel, curve
+    from .curve import ActuatorModel, sweep
 
     def predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa):
         g_e = derived.tube.g_e_mpa if g_e_mpa is None else g_e_mpa
         p0 = _geometry_p0_kpa(derived, g_e) if p0_kpa is None else p0_kpa
-        model = ActuatorModel.from_derived(derived, g_mpa=g_mpa, p0_kpa=p0, calibration="fit")
-        c = curve(model, pressure_kpa, method=method)
-        predict_deg.last_method = str(getattr(c, "method", method))
-        return _theta_of(c)
+        batch = np.ndim(g_mpa) + np.ndim(p0) > 0
+        g_col, p0_col = np.broadcast_arrays(np.ravel(g_mpa), np.ravel(p0))
+        models = [
+            ActuatorModel.from_derived(derived, g_mpa=float(g), p0_kpa=float(q), calibration="fit")
+            for g, q in zip(g_col, p0_col)
+        ]
+        c = sweep(models, pressure_kpa, method=method)
+        predict_deg.last_method = c.method
+        theta = _theta_of(c)
+        return theta if batch else theta[0]
 
     predict_deg.last_method = method
     return predict_deg
@@ -421,13 +435,13 @@ def _theta_of(c) -> np.ndarray:
     failed = np.flatnonzero(np.asarray(c.status) == Status.FAILED)
     if failed.size:
         raise SolverError(
-            f"model method {getattr(c, 'method', '?')!r} failed at pressure_kpa={float(c.pressure_kpa[failed[0]]):g} during the fit"
+            f"model method {getattr(c, 'method', '?')!r} failed at pressure_kpa={float(np.ravel(c.pressure_kpa)[failed[0]]):g} during the fit"
         )
     return np.asarray(c.theta_deg, dtype=np.float64)
 
 
-def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa: float) -> float:
-    return float(transition_pressure_kpa(derived.r0_mm, derived.tube.outer_radius_mm, g_e_mpa))
+def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa):
+    return transition_pressure_kpa(derived.r0_mm, derived.tube.outer_radius_mm, g_e_mpa)
 
 
 def _design_fields(derived: DerivedGeometry) -> tuple:
@@ -514,7 +528,7 @@ def fit_design(
     if "g_e_mpa" in names and g_e_mpa is None:
         # P0 is proportional to G_e: start where the geometry's P0 meets the data's onset
         lo, first = _onset_kpa(p, a)
-        geo = _geometry_p0_kpa(derived, 1.0)
+        geo = float(_geometry_p0_kpa(derived, 1.0))
         start["g_e_mpa"] = 0.5 * (lo + first) / geo if geo > 0 else derived.tube.g_e_mpa
     results = []
     for name, (pb, ab) in parts.items():
@@ -531,7 +545,7 @@ def _complete(r: FitResult, derived: DerivedGeometry, p0_given: float | None, me
         g_e = derived.tube.g_e_mpa if r.g_e_mpa is None else r.g_e_mpa
         changes["g_e_mpa"] = g_e
         if p0_given is None:
-            p0 = _geometry_p0_kpa(derived, g_e)
+            p0 = float(_geometry_p0_kpa(derived, g_e))
             changes["p0_kpa"] = p0
             changes["p0_source"] = "geometry"
             if r.g_e_mpa_se is not None:  # P0 is proportional to G_e

@@ -168,3 +168,87 @@ def test_result_is_frozen_and_serialisable():
     assert d["fitted"] == ["g_mpa", "p0_kpa"] and len(d["residuals_deg"]) == 31
     with pytest.raises(ParameterError, match="fit_design"):
         r.to_point()
+
+
+# -- fit_design: the package's model -------------------------------------------------------
+TUBE = Tube()
+
+
+def _design(pattern="zigzag", width_mm=7.0, angle_deg=0.0):
+    return derive_from_values(pattern, width_mm=width_mm, interval_mm=1.0, angle_deg=angle_deg, length_mm=L0, tube=TUBE)
+
+
+def _loop_data(derived, g, p0, sigma, seed, top=300.0):
+    from embroact.predict.curve import ActuatorModel, curve
+
+    p = np.r_[np.arange(0.0, top + 1, 10.0), np.arange(top - 10, -1, -10.0)]
+    theta = curve(ActuatorModel.from_derived(derived, g_mpa=g, p0_kpa=p0), p).theta_deg
+    return p, theta + np.random.default_rng(seed).normal(0.0, sigma, p.size)
+
+
+@pytest.mark.parametrize(
+    "pattern, angle, g, p0",
+    [("zigzag", 0.0, 2.7, 85.0), ("cross", 45.0, 1.3, 170.0), ("cross", 15.0, 2.9, 150.0)],
+)
+def test_fit_design_recovers_model_parameters_per_branch(pattern, angle, g, p0):
+    d = _design(pattern, angle_deg=angle)
+    p, a = _loop_data(d, g, p0, 1.0, seed=11)
+    results = fit_design(d, p, a)
+    assert [r.branch for r in results] == ["loading", "unloading"]
+    for r in results:
+        assert abs(r.g_mpa - g) < 3 * r.g_mpa_se and abs(r.p0_kpa - p0) < 3 * r.p0_kpa_se
+        assert r.method == "stable-analytic-trace" and r.p0_source == "fitted"
+        assert dict(r.design)["pattern"] == pattern and r.n_points == 31
+
+
+def test_fit_g_e_with_p0_from_geometry():
+    d = _design()
+    p0_true = float(d.p0_kpa) * 0.2 / TUBE.g_e_mpa  # P0 is proportional to G_e
+    p, a = _loop_data(d, 2.7, p0_true, 0.5, seed=5)
+    (r,) = fit_design(d, p, a, fit=("g_mpa", "g_e_mpa"), branch="loading")
+    assert r.p0_source == "geometry" and r.fitted == ("g_mpa", "g_e_mpa")
+    assert abs(r.g_e_mpa - 0.2) < 3 * r.g_e_mpa_se and abs(r.g_mpa - 2.7) < 3 * r.g_mpa_se
+    assert r.p0_kpa == pytest.approx(p0_true * r.g_e_mpa / 0.2, rel=1e-12)
+    assert r.p0_kpa_se == pytest.approx(r.p0_kpa * r.g_e_mpa_se / r.g_e_mpa, rel=1e-12)
+    point = r.to_point()
+    assert point.g_e_mpa == r.g_e_mpa and point.branch == "loading" and point.n_points == 31
+
+
+def test_fit_g_only_with_p0_from_geometry():
+    d = _design()
+    p, a = _loop_data(d, 2.7, float(d.p0_kpa), 0.5, seed=6)
+    (r,) = fit_design(d, p, a, fit=["g_mpa"], branch="pooled")
+    assert r.p0_source == "geometry" and r.p0_kpa == pytest.approx(float(d.p0_kpa), rel=1e-12)
+    assert abs(r.g_mpa - 2.7) < 3 * r.g_mpa_se and r.n_points == p.size
+    assert r.to_point().branch == "both"
+
+
+def test_fit_design_rejects_wrong_direction_and_missing_branch():
+    d = _design("cross", angle_deg=45.0)  # bends negative
+    p, a = _loop_data(d, 1.3, 170.0, 0.5, seed=1)
+    with pytest.raises(ParameterError, match="data bend positive but this cross design bends negative"):
+        fit_design(d, p, -a)
+    up = p[:31]
+    with pytest.raises(ParameterError, match="branch 'unloading' has no points"):
+        fit_design(d, up, a[:31], branch="unloading")
+    with pytest.raises(ParameterError, match="g_mpa must be given"):
+        fit_design(d, p, a, fit=["p0_kpa"])
+    with pytest.raises(ParameterError, match="branch must be one of"):
+        fit_design(d, p, a, branch="up")
+
+
+def test_fit_design_all_zero_is_one_line_error():
+    with pytest.raises(ModelDomainError, match="no deformation phase") as exc:
+        fit_design(_design(), P_LOOP, np.zeros_like(P_LOOP))
+    assert "\n" not in str(exc.value)
+
+
+def test_fitted_point_feeds_a_calibration_set():
+    from embroact.predict.calibration import CalibrationSet, lookup
+
+    d = _design()
+    p, a = _loop_data(d, 2.7, 85.0, 0.5, seed=2)
+    results = fit_design(d, p, a)
+    cset = CalibrationSet("lab-fit", tuple(r.to_point() for r in results))
+    c = lookup("zigzag", width_mm=7.0, name="lab-fit", sets=[cset], branch="unloading")
+    assert (c.g_mpa, c.p0_kpa) == (results[1].g_mpa, results[1].p0_kpa)
