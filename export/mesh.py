@@ -68,6 +68,7 @@ __all__ = [
     "Body",
     "ShapeMesh",
     "actuator_mesh",
+    "shapes_of",
     "write_mesh",
 ]
 
@@ -266,6 +267,8 @@ class ShapeMesh:
 
     Attributes
     ----------
+    name : str
+        Actuator name (prefixes the body names in exported files).
     bodies : tuple of Body
     bent : BentPath
     theta_deg : float
@@ -276,6 +279,7 @@ class ShapeMesh:
         Realised maximum distance of the exact surface from the mesh (sampled) [mm].
     """
 
+    name: str
     bodies: tuple[Body, ...]
     bent: BentPath
     theta_deg: float
@@ -390,6 +394,7 @@ def actuator_mesh(
     r0_mm: float,
     strip_width_mm: float | None = None,
     tolerance_mm: float = DEFAULT_CHORD_TOLERANCE_MM,
+    name: str = "actuator",
 ) -> ShapeMesh:
     """Mesh of the actuator bent by ``theta_deg`` (trimesh is used to measure the deviation).
 
@@ -407,6 +412,8 @@ def actuator_mesh(
         Fabric strip width [mm]; default ``width_mm + 2 * FABRIC_MARGIN_MM``.
     tolerance_mm : float
         Chordal tolerance [mm], in (0, 10].
+    name : str
+        Actuator name.
 
     Returns
     -------
@@ -432,17 +439,26 @@ def actuator_mesh(
         body = _sweep(bent, prof, s, _COLOURS[colour])
         dev = max(dev, _deviation(bent, prof, s, body))
         bodies.append(body)
-    return ShapeMesh(tuple(bodies), bent, float(theta_deg), tol, dev)
+    return ShapeMesh(name, tuple(bodies), bent, float(theta_deg), tol, dev)
 
 
-def _export_bytes(shape: ShapeMesh, kind: str) -> bytes:
+def shapes_of(shapes) -> tuple[ShapeMesh, ...]:
+    """One ShapeMesh or a sequence of them, as a non-empty tuple."""
+    out = (shapes,) if isinstance(shapes, ShapeMesh) else tuple(shapes)
+    if not out or not all(isinstance(s, ShapeMesh) for s in out):
+        raise ParameterError("shapes must be a ShapeMesh or a non-empty sequence of them")
+    return out
+
+
+def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
     import trimesh
 
     meshes = []
-    for b in shape.bodies:
-        mesh = trimesh.Trimesh(vertices=np.array(b.vertices), faces=np.array(b.faces), process=False)
-        mesh.visual.face_colors = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
-        meshes.append((b.name, mesh))
+    for shape in shapes:
+        for b in shape.bodies:
+            mesh = trimesh.Trimesh(vertices=np.array(b.vertices), faces=np.array(b.faces), process=False)
+            mesh.visual.face_colors = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
+            meshes.append((f"{shape.name}.{b.name}", mesh))
     if kind == "glb":
         # glTF: metres, Y up.  Plan frame (x, y, z_thread) -> (x, z_thread, -y) / 1000.
         to_gltf = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
@@ -458,8 +474,11 @@ def _export_bytes(shape: ShapeMesh, kind: str) -> bytes:
     return data.encode("utf-8") if isinstance(data, str) else data
 
 
-def write_mesh(shape: ShapeMesh, path) -> Path:
-    """Write the shape to ``path``; the suffix picks the format (see ``MESH_FORMATS``).
+def write_mesh(shapes, path) -> Path:
+    """Write one shape or several (one per actuator) to ``path``; the suffix picks the format.
+
+    See ``MESH_FORMATS``.  GLB keeps one named node per body (``"A1.tube"``); STL, OBJ
+    and PLY get one joined mesh.
 
     Raises
     ------
@@ -470,5 +489,5 @@ def write_mesh(shape: ShapeMesh, path) -> Path:
     kind = MESH_FORMATS.get(p.suffix.lower())
     if kind is None:
         raise ExportError(f"mesh file suffix must be one of {', '.join(MESH_FORMATS)}, got {p.suffix or p.name!r}")
-    write_bytes_atomic(p, _export_bytes(shape, kind))
+    write_bytes_atomic(p, _export_bytes(shapes_of(shapes), kind))
     return p

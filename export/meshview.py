@@ -65,8 +65,8 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
 
     Parameters
     ----------
-    shape : ShapeMesh
-        From :func:`embroact.export.mesh.actuator_mesh`.
+    shape : ShapeMesh or sequence of ShapeMesh
+        From :func:`embroact.export.mesh.actuator_mesh` (several: drawn together).
     azimuth_deg, elevation_deg : float
         Camera direction [deg] (see :func:`view_rotation`).
     width_px : float
@@ -80,13 +80,16 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     import svgwrite
     from trimesh.remesh import subdivide_to_size
 
+    from .mesh import shapes_of
+
     width = check_range("width_px", width_px, low=100.0, low_inclusive=True, high=10000.0)
     rot = view_rotation(azimuth_deg, elevation_deg) @ (_HANGING if hanging else np.eye(3))
+    shapes = shapes_of(shape)
+    # long thin triangles defeat depth sorting: split them to a fraction of the shape's size
+    split = _SPLIT_FRACTION * max(s.bent.path.length_mm for s in shapes)
     tris, cols = [], []
-    for b in shape.bodies:
-        v = np.asarray(b.vertices)
-        # long thin triangles defeat depth sorting: split them to a fraction of the shape's size
-        v, f = subdivide_to_size(v, np.asarray(b.faces), _SPLIT_FRACTION * shape.bent.path.length_mm)
+    for b in (b for s in shapes for b in s.bodies):
+        v, f = subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), split)
         t = v[f] @ rot.T
         tris.append(t)
         cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(t), 1)))
