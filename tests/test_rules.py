@@ -311,3 +311,17 @@ def test_findings_are_capped_per_rule():
     xy = [(10.0 + i, 0.2) for i in range(30)]
     found = _hits(_check(_layout(xy), max_findings_per_rule=5), "EA101")
     assert len(found) == 6 and found[-1].message.startswith("25 more findings")
+
+
+def test_corridor_query_matches_brute_force_distance():
+    import shapely
+
+    from embroact.patterns.rules import _PathIndex
+
+    t = np.linspace(0.0, 3 * math.pi, 300)
+    path = shapely.LineString(np.column_stack([10 * t, 8 * np.sin(t)]))
+    pts = np.random.default_rng(7).uniform([-5, -12], [100, 12], size=(2000, 2))
+    hit, dist = _PathIndex(path).within(pts, 2.0)
+    brute = shapely.distance(path, shapely.points(pts))
+    assert hit.tolist() == np.flatnonzero(brute < 2.0).tolist()
+    assert np.allclose(dist, brute[hit], atol=1e-12)
