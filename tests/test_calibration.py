@@ -198,3 +198,57 @@ def test_set_validation_and_merge():
     assert CalibrationPoint("zigzag", 6.0, 1.0, 60.0, branch="loading") not in merged.points
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.name = "x"
+
+
+# -- calibration TOML files (export.calibfile) ---------------------------------------------
+from embroact.export.calibfile import calibration_toml, read_calibration, write_calibration  # noqa: E402
+from embroact.patterns.errors import DesignFileError  # noqa: E402
+
+
+def test_toml_round_trip_is_exact_and_stable(tmp_path):
+    odd = CalibrationSet(
+        "lab.odd_1",
+        (
+            CalibrationPoint("cross", 7.25, 0.1 + 0.2, 1e-300 + 170.0, angle_deg=33.37, branch="unloading",
+                             g_mpa_se=1e-17, rmse_deg=0.0, n_points=12, g_e_mpa=0.13),
+            CalibrationPoint("zigzag", 5.0, 123456789.0 / 1e4, 0.0),
+        ),
+        'quote " backslash \\ tab \t newline \n DEL \x7f unicode \u00b5m \U0001f9f5',
+        {"tube": "silicone 'A'", "odd key =": "x"},
+    )
+    path = tmp_path / "odd.toml"
+    write_calibration(path, odd)
+    assert read_calibration(path) == odd
+    first = path.read_bytes()
+    write_calibration(path, read_calibration(path))
+    assert path.read_bytes() == first
+    assert calibration_toml(PAPER_2025).count("[[points]]") == 7
+
+
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ('name = "x"\n[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 1.0\np0_kpa = 50.0\ncolour = 1\n',
+         r"unknown key 'colour' in points\[0\]"),
+        ('name = "x"\n[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 1.0\n', r"points\[0\] is missing key 'p0_kpa'"),
+        ('name = "x"\n[[points]]\npattern = "zigzag"\nwidth_mm = "7"\ng_mpa = 1.0\np0_kpa = 5.0\n',
+         r"points\[0\]: width_mm must be a number"),
+        ('name = "x"\nversion = 2\n[[points]]\n', "unknown key 'version' in the calibration set"),
+        ('name = "x"\n', r"expected \[\[points\]\] tables"),
+        ('name = "bad name"\n[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 1.0\np0_kpa = 5.0\n',
+         "calibration name must be"),
+        ("name = \n", "is not valid TOML"),
+        ('name = "x"\n[materials]\ntube = 3\n[[points]]\n', r"\[materials\] must map names to strings"),
+    ],
+)
+def test_bad_calibration_files(tmp_path, text, match):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(DesignFileError, match=match) as exc:
+        read_calibration(path)
+    assert "\n" not in str(exc.value)
+
+
+def test_missing_calibration_file(tmp_path):
+    with pytest.raises(DesignFileError, match="cannot read"):
+        read_calibration(tmp_path / "nope.toml")
