@@ -119,7 +119,7 @@ class LongLeg:
     def describe(self, fmt: str) -> str:
         """One line naming the leg, its size and the limit."""
         return (
-            f"leg at stitch {self.stitch_index} of actuator {self.actuator!r} (plan record {self.record_index}) is "
+            f"leg at stitch index {self.stitch_index} of actuator {self.actuator!r} (plan record {self.record_index}) is "
             f"{self.length_mm:.1f} mm long (|dx| {abs(self.dx_mm):.1f} mm, |dy| {abs(self.dy_mm):.1f} mm); "
             f"{fmt} allows {self.limit_mm:g} mm per axis in one record"
         )

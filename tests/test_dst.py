@@ -128,7 +128,7 @@ def test_long_leg_refused_with_its_name():
     with pytest.raises(LongLegError) as exc:
         encode(_long_leg_plan(), "dst")
     msg = str(exc.value)
-    assert "stitch 3 of actuator 'A1'" in msg and "13.0 mm" in msg and "12.1 mm" in msg
+    assert "stitch index 3 of actuator 'A1'" in msg and "13.0 mm" in msg and "12.1 mm" in msg
     assert len(exc.value.legs) == 4  # four legs of 4 mm x 13 mm (tie stitches are short)
     # PES allows 204.7 mm: no error
     encode(_long_leg_plan(), "pes")

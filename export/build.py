@@ -1,0 +1,276 @@
+"""Build a design: machine files, worksheet, stitch preview, and whatever later stages add.
+
+Order of work (nothing is written until every output is ready in memory)::
+
+    design --build_plan--> plan --check(design, plan)--> findings --gate--+
+                                                                          |
+        machine files (one per format) <-- encode ------------------------+
+        worksheet.json / worksheet.txt <-- worksheet(plan, findings)      |
+        preview.svg                    <-- plan_svg(plan)                 |
+        stage outputs                  <-- stage(context) for each stage -+
+                                                  |
+                         write every file atomically into out_dir
+
+Plug-in points
+--------------
+``check``
+    ``check(design, plan) -> sequence of Finding``: the design-rule checks.  Any
+    finding whose ``is_error`` is true stops the build with
+    :class:`DesignRuleError` (nothing written) unless ``force=True``.  The
+    findings are listed on the worksheet either way.
+``stages``
+    Callables ``stage(context: BuildContext) -> {file name: str | bytes}`` for the
+    bend chart, side view, 3D model, report...  They run after the built-in
+    outputs and see them in ``context.outputs``; their files are written with the
+    rest.  A stage that raises stops the build before anything is written.
+
+Examples
+--------
+>>> import tempfile, os
+>>> from embroact.patterns.plan import Command, Role, StitchPlan
+>>> plan = StitchPlan.from_records([
+...     (0, 3.5, Command.STOP, Role.CONTROL), (0, 3.5, Command.STITCH, Role.TIE_IN),
+...     (1, -3.5, Command.STITCH, Role.LEG), (1, -3.5, Command.TRIM, Role.CONTROL),
+...     (1, -3.5, Command.END, Role.CONTROL, -1)], name="demo")
+>>> out = tempfile.mkdtemp()
+>>> res = build_plan_outputs(plan, out, formats=("dst", "pes"))
+>>> sorted(os.listdir(out))
+['demo.dst', 'demo.pes', 'preview.svg', 'worksheet.json', 'worksheet.txt']
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Mapping, Sequence
+
+from ..patterns.errors import ExportError, ParameterError, PatternError
+from ..patterns.plan import StitchPlan
+from .atomic import write_bytes_atomic
+from .formats import FORMATS, WriteResult, encode
+
+__all__ = [
+    "DesignRuleError",
+    "BuildContext",
+    "BuildResult",
+    "Stage",
+    "check_out_dir",
+    "parse_formats",
+    "safe_stem",
+    "write_outputs",
+    "build",
+    "build_plan_outputs",
+]
+
+
+class DesignRuleError(PatternError):
+    """The design-rule checks found errors; ``findings`` holds all findings."""
+
+    def __init__(self, findings: Sequence) -> None:
+        errors = [f for f in findings if getattr(f, "is_error", False)]
+        first = errors[0]
+        more = f" (and {len(errors) - 1} more errors)" if len(errors) > 1 else ""
+        super().__init__(
+            f"design-rule error {getattr(first, 'code', '')}: {getattr(first, 'message', first)}{more}; "
+            "nothing written (use --force to write anyway)"
+        )
+        self.findings = tuple(findings)
+
+
+@dataclass(frozen=True, slots=True)
+class BuildContext:
+    """What a stage sees.
+
+    Attributes
+    ----------
+    design : object or None
+    plan : StitchPlan
+    findings : tuple
+    worksheet : Worksheet
+    out_dir : Path
+    outputs : Mapping[str, bytes]
+        Files prepared so far (name -> bytes), read-only view.
+    """
+
+    design: object
+    plan: StitchPlan
+    findings: tuple
+    worksheet: object
+    out_dir: Path
+    outputs: Mapping[str, bytes]
+
+
+Stage = Callable[[BuildContext], Mapping[str, "str | bytes"]]
+
+
+@dataclass(frozen=True, slots=True)
+class BuildResult:
+    """What :func:`build` wrote.
+
+    Attributes
+    ----------
+    out_dir : str
+    files : tuple of str
+        File names written, in order.
+    machine_files : tuple of WriteResult
+    worksheet : Worksheet
+    findings : tuple
+    plan : StitchPlan
+    """
+
+    out_dir: str
+    files: tuple[str, ...]
+    machine_files: tuple[WriteResult, ...]
+    worksheet: object = field(compare=False)
+    findings: tuple = ()
+    plan: StitchPlan | None = field(default=None, compare=False)
+
+    def as_dict(self) -> dict:
+        """JSON-ready summary (unit-suffixed keys inside the worksheet)."""
+        return {
+            "out_dir": self.out_dir,
+            "files": list(self.files),
+            "machine_files": [m.as_dict() for m in self.machine_files],
+            "stitch_count": self.worksheet.stitch_count,
+            "stop_count": self.worksheet.stop_count,
+            "findings": [f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in self.findings],
+            "actuators": self.worksheet.as_dict()["actuators"],
+        }
+
+
+def check_out_dir(out_dir: str | os.PathLike) -> Path:
+    """``out_dir`` as a Path, or :class:`ExportError` if it is missing or not writable."""
+    p = Path(out_dir)
+    if not p.is_dir():
+        raise ExportError(f"output directory {str(p)!r} does not exist")
+    if not os.access(p, os.W_OK | os.X_OK):
+        raise ExportError(f"output directory {str(p)!r} is not writable")
+    return p
+
+
+def parse_formats(text: str | Sequence[str]) -> tuple[str, ...]:
+    """``"dst,pes"`` or ``["dst", "pes"]`` -> ``("dst", "pes")``; unknown names list the valid ones.
+
+    Examples
+    --------
+    >>> parse_formats("DST, pes")
+    ('dst', 'pes')
+    """
+    items = text.split(",") if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        key = str(item).strip().lower().lstrip(".")
+        if key not in FORMATS:
+            raise ParameterError(f"format must be one of {', '.join(FORMATS)}, got {item!r}")
+        if key not in out:
+            out.append(key)
+    if not out:
+        raise ParameterError(f"format must name at least one of {', '.join(FORMATS)}, got {text!r}")
+    return tuple(out)
+
+
+def safe_stem(name: str) -> str:
+    """A file-name stem from a design name (letters, digits, ``-``, ``_``, ``.``).
+
+    Examples
+    --------
+    >>> safe_stem("paper zigzag / w=7")
+    'paper_zigzag_w_7'
+    """
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._")
+    return stem or "design"
+
+
+def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes"]) -> tuple[str, ...]:
+    """Write prepared files atomically into ``out_dir``; return their names in order.
+
+    A failure part-way leaves earlier files complete and the failing one untouched
+    (each file is replaced atomically); the error names the file.
+    """
+    d = check_out_dir(out_dir)
+    for name, data in outputs.items():
+        write_bytes_atomic(d / name, data.encode("utf-8") if isinstance(data, str) else data)
+    return tuple(outputs)
+
+
+def build_plan_outputs(
+    plan: StitchPlan,
+    out_dir: str | os.PathLike,
+    *,
+    design=None,
+    formats: Sequence[str] = ("dst",),
+    force: bool = False,
+    split_long: bool = False,
+    speed_spm: float = 600.0,
+    check: Callable | None = None,
+    stages: Sequence[Stage] = (),
+) -> BuildResult:
+    """Build the outputs of an existing plan (see the module docstring)."""
+    from .preview import plan_svg
+    from .worksheet import worksheet
+
+    d = check_out_dir(out_dir)
+    fmts = parse_formats(formats)
+    findings = tuple(check(design, plan)) if check is not None else ()
+    if not force and any(getattr(f, "is_error", False) for f in findings):
+        raise DesignRuleError(findings)
+    stem = safe_stem(getattr(design, "name", None) or plan.name)
+    outputs: dict[str, bytes] = {}
+    machine = []
+    for fmt in fmts:
+        data, res = encode(plan, fmt, split_long=split_long)
+        name = f"{stem}.{fmt}"
+        outputs[name] = data
+        machine.append(WriteResult(name, res.format, res.size_bytes, res.stitches, res.stops, res.trims, res.jumps,
+                                   res.split_legs))
+    ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings)
+    outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
+    outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
+    outputs["preview.svg"] = plan_svg(plan).encode("utf-8")
+    for stage in stages:
+        ctx = BuildContext(design, plan, findings, ws, d, dict(outputs))
+        for name, data in stage(ctx).items():
+            outputs[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+    files = write_outputs(d, outputs)
+    return BuildResult(str(d), files, tuple(machine), ws, findings, plan)
+
+
+def build(
+    design,
+    out_dir: str | os.PathLike,
+    *,
+    formats: Sequence[str] = ("dst",),
+    force: bool = False,
+    split_long: bool = False,
+    speed_spm: float = 600.0,
+    check: Callable | None = None,
+    stages: Sequence[Stage] = (),
+) -> BuildResult:
+    """Build ``design`` into ``out_dir``: ``<name>.<fmt>`` per format, worksheet, preview, stage outputs.
+
+    Parameters
+    ----------
+    design : Design
+        From :func:`embroact.patterns.design.default_design` or
+        :func:`embroact.export.designfile.load_design`.
+    out_dir : path
+        Existing, writable directory (else :class:`ExportError`, nothing written).
+    formats : sequence of str
+        Machine formats, default DST only.
+    force : bool
+        Write even when ``check`` reports errors.
+    split_long : bool
+        Split legs above a format's per-record limit (see :func:`embroact.export.formats.write`).
+    speed_spm : float
+        Machine speed for the worksheet [stitches/min].
+    check, stages
+        Plug-in points (module docstring).
+    """
+    from ..patterns.design import build_plan
+
+    check_out_dir(out_dir)
+    plan = build_plan(design)
+    return build_plan_outputs(plan, out_dir, design=design, formats=formats, force=force, split_long=split_long,
+                              speed_spm=speed_spm, check=check, stages=stages)

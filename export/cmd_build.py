@@ -1,0 +1,79 @@
+"""``embroact build [DESIGN.toml] --out DIR``: every output of a design in one directory.
+
+Without DESIGN the built-in default design is built (the paper's zigzag
+actuator, w = 7 mm, s = 1.0 mm, l0 = 100 mm).  Writes ``<name>.<fmt>`` per
+format, ``worksheet.json``, ``worksheet.txt`` and ``preview.svg`` (plus what the
+build stages add, see :mod:`embroact.export.build`).
+
+Exit codes: 0 written; 1 design-rule errors (nothing written; ``--force`` writes
+anyway); 2 bad design or option; 3 output directory missing or not writable.
+
+Examples
+--------
+>>> import tempfile
+>>> from embroact.export.cli import main
+>>> main(["build", "--out", tempfile.mkdtemp(), "--format", "dst,pes"])  # doctest: +SKIP
+wrote 5 files to /tmp/...: ...
+0
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+__all__ = ["add_arguments", "run", "STAGES", "CHECK"]
+
+STAGES: tuple = ()
+"""Build stages the integrator plugs in (bend chart, side view, 3D, report); see ``embroact.export.build``."""
+
+CHECK = None
+"""Design-rule check ``check(design, plan) -> findings`` the integrator plugs in (None: no gate)."""
+
+
+def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
+    """Options of ``embroact build``."""
+    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    parser.add_argument("--out", required=True, help="existing output directory")
+    parser.add_argument("--format", default="dst", help="machine formats, comma separated (default dst)")
+    parser.add_argument("--force", action="store_true", help="write even if the design-rule checks find errors")
+    parser.add_argument("--split-long", action="store_true",
+                        help="split legs longer than a format allows into stitches outside the tube corridor")
+    parser.add_argument("--speed-spm", type=float, default=600.0, help="machine speed for the worksheet [stitches/min]")
+    parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
+
+
+def run(args) -> int:
+    """Load (or default) the design, build, report."""
+    from .build import DesignRuleError, build, check_out_dir, parse_formats
+
+    formats = parse_formats(args.format)
+    check_out_dir(args.out)
+    if args.design:
+        from .designfile import load_design
+
+        design = load_design(args.design)
+    else:
+        from ..patterns.design import default_design
+
+        design = default_design()
+    try:
+        res = build(design, args.out, formats=formats, force=args.force, split_long=args.split_long,
+                    speed_spm=args.speed_spm, check=CHECK, stages=STAGES)
+    except DesignRuleError as exc:
+        if args.json:
+            print(json.dumps({"written": False, "findings": [f.as_dict() for f in exc.findings]}, indent=2))
+        else:
+            for f in exc.findings:
+                print(f"{getattr(f, 'severity', '')}: {getattr(f, 'code', '')} {getattr(f, 'message', f)}",
+                      file=sys.stderr)
+            print(f"embroact: error: {exc}", file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(res.as_dict(), indent=2, sort_keys=True))
+    else:
+        ws = res.worksheet
+        print(f"wrote {len(res.files)} files to {res.out_dir}: {', '.join(res.files)}")
+        print(f"{ws.stitch_count} stitches, {ws.stop_count} stops; tube to cut: "
+              + ", ".join(f"{a.name} {a.tube_cut_mm:.0f} mm" for a in ws.actuators))
+    return 0
