@@ -69,6 +69,7 @@ __all__ = [
     "ShapeMesh",
     "actuator_mesh",
     "shapes_of",
+    "mesh_bytes",
     "write_mesh",
 ]
 
@@ -474,6 +475,20 @@ def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
     return data.encode("utf-8") if isinstance(data, str) else data
 
 
+def mesh_bytes(shapes, suffix: str) -> bytes:
+    """File contents of one shape or several in the format named by ``suffix`` (``".glb"``...).
+
+    Raises
+    ------
+    ExportError
+        Unknown suffix; the message lists the valid ones.
+    """
+    kind = MESH_FORMATS.get(str(suffix).lower())
+    if kind is None:
+        raise ExportError(f"mesh file suffix must be one of {', '.join(MESH_FORMATS)}, got {suffix!r}")
+    return _export_bytes(shapes_of(shapes), kind)
+
+
 def write_mesh(shapes, path) -> Path:
     """Write one shape or several (one per actuator) to ``path``; the suffix picks the format.
 
@@ -486,8 +501,5 @@ def write_mesh(shapes, path) -> Path:
         Unknown suffix (the message lists the valid ones) or the file cannot be written.
     """
     p = Path(path)
-    kind = MESH_FORMATS.get(p.suffix.lower())
-    if kind is None:
-        raise ExportError(f"mesh file suffix must be one of {', '.join(MESH_FORMATS)}, got {p.suffix or p.name!r}")
-    write_bytes_atomic(p, _export_bytes(shapes_of(shapes), kind))
+    write_bytes_atomic(p, mesh_bytes(shapes, p.suffix or p.name))
     return p

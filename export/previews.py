@@ -1,17 +1,19 @@
 """What a build attaches to its machine files: bend chart, side view, 3D shape, report.
 
-:func:`write_previews` is the one call ``embroact build`` makes after it has the plan,
-the derived geometry, the predicted curves and the findings.  It writes, atomically,
-into an existing directory:
+:func:`previews_stage` gives the build stage (see :mod:`embroact.export.build`) that
+predicts every actuator's curve and renders, in memory:
 
-============== ===========================================================
-``bend.svg``   pressure-bend chart of every actuator (:mod:`.chart`)
-``shape.svg``  side views at a few pressures (:mod:`.sideview`)
-``shape.glb``  3D shape at the shape pressure (:mod:`.mesh`; suffix selectable)
-``shape3d.svg`` flat-shaded picture of the 3D shape (:mod:`.meshview`)
-``report.json`` everything above as data, plus worksheet and findings
-``report.html`` the same, self-contained, with the stitch preview
-============== ===========================================================
+================ =========================================================
+``bend.svg``     pressure-bend chart of every actuator (:mod:`.chart`)
+``shape.svg``    side views at a few pressures (:mod:`.sideview`)
+``shape.glb``    3D shape at the shape pressure (:mod:`.mesh`; suffix selectable)
+``shape3d.svg``  flat-shaded picture of the 3D shape (:mod:`.meshview`)
+``report.json``  all of it as data, with the worksheet and the findings
+``report.html``  the same, self-contained, with the stitch preview
+================ =========================================================
+
+:func:`render_previews` does the rendering for given curves; :func:`predict_curves`
+makes the curves (G and P0 from the calibration set unless ``model_for`` says otherwise).
 
 Examples
 --------
@@ -22,19 +24,29 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from ..patterns.errors import ParameterError
-from ..predict.status import status_names
-from .atomic import write_text_atomic
+from ..patterns.errors import ExportError, ParameterError
 from .chart import Series, bend_chart_svg
 from .report import report_data, report_html, report_json
 from .sideview import SidePanel, side_view_svg
 
-__all__ = ["OUTPUT_NAMES", "PreviewResult", "side_pressures", "shape_theta_deg", "write_previews"]
+__all__ = [
+    "OUTPUT_NAMES",
+    "DEFAULT_PRESSURES_KPA",
+    "Previews",
+    "side_pressures",
+    "shape_theta_deg",
+    "default_model",
+    "predict_curves",
+    "bend_series",
+    "side_panels",
+    "shape_meshes",
+    "render_previews",
+    "previews_stage",
+]
 
 #: Output kind -> file name (the mesh's suffix follows ``mesh_suffix``).
 OUTPUT_NAMES = {
@@ -45,23 +57,25 @@ OUTPUT_NAMES = {
     "json": "report.json",
     "html": "report.html",
 }
+#: Pressures of the predicted curves unless told otherwise: 0, 10, ..., 300 kPa.
+DEFAULT_PRESSURES_KPA = tuple(float(p) for p in range(0, 301, 10))
 DEFAULT_SIDE_STATES = 5
 
 
 @dataclass(frozen=True, slots=True)
-class PreviewResult:
-    """What :func:`write_previews` wrote.
+class Previews:
+    """Rendered previews, not yet written.
 
     Attributes
     ----------
-    paths : dict
-        Output kind (keys of ``OUTPUT_NAMES``) -> Path written.
+    files : dict
+        File name -> contents (str for text, bytes for the mesh), in writing order.
     mesh : dict or None
-        3D facts: file, pressure_kpa, per-actuator theta_deg, triangle_count,
+        3D facts: file, pressure_kpa and theta_deg per actuator, triangle_count,
         tolerance_mm, max_deviation_mm.
     """
 
-    paths: dict
+    files: dict
     mesh: dict | None
 
 
@@ -70,27 +84,23 @@ def side_pressures(pressure_kpa, theta_deg, *, count: int = DEFAULT_SIDE_STATES)
 
     The nearest sample to each of ``count`` evenly spaced targets is taken (no repeats).
     """
-    p = np.asarray(pressure_kpa, dtype=np.float64)
-    ok = np.isfinite(np.asarray(theta_deg, dtype=np.float64))
-    p = p[ok]
+    p = np.asarray(pressure_kpa, dtype=np.float64)[np.isfinite(np.asarray(theta_deg, dtype=np.float64))]
     if len(p) == 0:
         return ()
     targets = np.linspace(p.min(), p.max(), max(1, int(count)))
-    picks = sorted({float(p[np.argmin(np.abs(p - t))]) for t in targets})
-    return tuple(picks)
+    return tuple(sorted({float(p[np.argmin(np.abs(p - t))]) for t in targets}))
 
 
 def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
-    """(pressure, theta) for the 3D shape: the highest sampled pressure with a finite angle,
-    or the curve interpolated at ``pressure_kpa``."""
+    """(pressure, theta) for a drawn shape: the highest sampled pressure with a finite angle,
+    or the curve interpolated linearly at ``pressure_kpa`` (which must lie in its range)."""
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
     ok = np.isfinite(t)
     if not ok.any():
-        raise ParameterError("the curve has no finite angle to draw a 3D shape from")
-    p, t = p[ok], t[ok]
-    order = np.argsort(p, kind="stable")
-    p, t = p[order], t[order]
+        raise ParameterError("the curve has no finite angle to draw a shape from")
+    order = np.argsort(p[ok], kind="stable")
+    p, t = p[ok][order], t[ok][order]
     if pressure_kpa is None:
         return float(p[-1]), float(t[-1])
     if not p[0] <= pressure_kpa <= p[-1]:
@@ -99,19 +109,75 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     return float(pressure_kpa), float(np.interp(pressure_kpa, p, t))
 
 
-def _curve_dict(curve) -> dict:
-    return {"pressure_kpa": np.asarray(curve.pressure_kpa).tolist(),
-            "theta_deg": np.asarray(curve.theta_deg).tolist(),
-            "status": [n.lower() for n in status_names(curve.status)],
-            "method": getattr(curve, "method", None)}
+def default_model(actuator, derived):
+    """ActuatorModel of one generated actuator with G and P0 from the ``paper-2025`` calibration."""
+    from ..predict.calibration import lookup
+    from ..predict.curve import ActuatorModel
+
+    cal = lookup(derived.pattern, width_mm=derived.width_mm,
+                 angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
+    return ActuatorModel.from_derived(derived, g_mpa=cal.g_mpa, p0_kpa=cal.p0_kpa, calibration=cal.label)
 
 
-def _dict(obj):
-    return obj.as_dict() if hasattr(obj, "as_dict") else obj
+def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, model_for: Callable = default_model,
+                   method: str = "auto") -> tuple[tuple, tuple]:
+    """(derived geometry, curve) per actuator of ``plan``; ``model_for(actuator, derived)`` gives the model."""
+    from ..predict.curve import curve
+    from ..predict.derived import derive
+
+    derived = tuple(derive(a) for a in plan.actuators)
+    curves = tuple(curve(model_for(a, g), pressures_kpa, method=method) for a, g in zip(plan.actuators, derived))
+    return derived, curves
 
 
-def write_previews(
-    out_dir,
+def _status_list(status) -> list[str]:
+    from ..predict.status import status_names
+
+    return [n.lower() for n in status_names(status)]
+
+
+def bend_series(plan, derived, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
+    """Chart series, one per actuator; ``measured`` maps actuator name -> (pressure_kpa, theta_deg)."""
+    measured = dict(measured or {})
+    return [Series.from_curve(c, label=f"{a.name} ({g.pattern}, w {g.width_mm:.1f} mm)", p0_kpa=g.p0_kpa,
+                              measured=measured.get(a.name))
+            for a, g, c in zip(plan.actuators, derived, curves)]
+
+
+def side_panels(plan, derived, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:
+    """Side-view panels, one per actuator, at up to ``count`` of the curve's pressures."""
+    panels = []
+    for a, g, c in zip(plan.actuators, derived, curves):
+        picks = side_pressures(c.pressure_kpa, c.theta_deg, count=count)
+        panels.append(SidePanel(a.name, length_mm=g.length_mm, r0_mm=g.r0_mm, pressure_kpa=picks,
+                                theta_deg=[shape_theta_deg(c, p)[1] for p in picks]))
+    return panels
+
+
+def shape_meshes(plan, derived, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
+    """3D shape per actuator at ``pressure_kpa`` (default the highest predicted); imports trimesh."""
+    from .mesh import DEFAULT_CHORD_TOLERANCE_MM, PlanarPath, actuator_mesh
+
+    tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
+    shapes, pressures = [], {}
+    for a, g, c in zip(plan.actuators, derived, curves):
+        p, theta = shape_theta_deg(c, pressure_kpa)
+        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.centerline), theta, width_mm=g.width_mm,
+                                    r0_mm=g.r0_mm, tolerance_mm=tol, name=a.name))
+        pressures[a.name] = p
+    return shapes, pressures
+
+
+def _check_inputs(plan, derived, curves, side_states) -> None:
+    n = len(plan.actuators)
+    if not n or not (n == len(derived) == len(curves)):
+        raise ParameterError(f"need one derived geometry and one curve per actuator ({n}), "
+                             f"got {len(derived)} and {len(curves)}")
+    if isinstance(side_states, bool) or not isinstance(side_states, int) or not 1 <= side_states <= 12:
+        raise ParameterError(f"side_states must be an integer in [1, 12], got {side_states!r}")
+
+
+def render_previews(
     *,
     plan,
     derived: Sequence,
@@ -124,13 +190,11 @@ def write_previews(
     shape_pressure_kpa: float | None = None,
     mesh_suffix: str | None = ".glb",
     tolerance_mm: float | None = None,
-) -> PreviewResult:
-    """Write the previews and the report of one build into ``out_dir``.
+) -> Previews:
+    """Render the previews and the report of one build, in memory.
 
     Parameters
     ----------
-    out_dir : path
-        Existing, writable directory.
     plan : StitchPlan
         The generated plan; ``plan.actuators[k]`` gives actuator k's name and centerline.
     derived : sequence of DerivedGeometry
@@ -149,73 +213,74 @@ def write_previews(
     shape_pressure_kpa : float, optional
         Pressure of the 3D shape [kPa]; default the highest predicted pressure.
     mesh_suffix : str or None
-        ``".glb"`` (default), ``".stl"``, ``".obj"``, ``".ply"``; None writes no 3D (trimesh is
-        then not imported).
+        ``".glb"`` (default), ``".stl"``, ``".obj"``, ``".ply"``; None: no 3D (trimesh not imported).
     tolerance_mm : float, optional
         Chordal tolerance of the mesh [mm]; default ``mesh.DEFAULT_CHORD_TOLERANCE_MM``.
     """
-    acts = tuple(plan.actuators)
-    if not (len(acts) == len(derived) == len(curves)) or not acts:
-        raise ParameterError(f"need one derived geometry and one curve per actuator ({len(acts)}), "
-                             f"got {len(derived)} and {len(curves)}")
-    if isinstance(side_states, bool) or not isinstance(side_states, int) or not 1 <= side_states <= 12:
-        raise ParameterError(f"side_states must be an integer in [1, 12], got {side_states!r}")
-    out = Path(out_dir)
-    measured = dict(measured or {})
-    series, panels, entries = [], [], []
-    for act, geo, curve in zip(acts, derived, curves):
-        series.append(Series.from_curve(curve, label=f"{act.name} ({geo.pattern}, w {geo.width_mm:.1f} mm)",
-                                        p0_kpa=geo.p0_kpa, measured=measured.get(act.name)))
-        picks = side_pressures(curve.pressure_kpa, curve.theta_deg, count=side_states)
-        thetas = [shape_theta_deg(curve, p)[1] for p in picks]
-        panels.append(SidePanel(act.name, length_mm=geo.length_mm, r0_mm=geo.r0_mm, pressure_kpa=picks,
-                                theta_deg=thetas))
-        entries.append({"name": act.name, "derived": geo.as_dict(), "curve": _curve_dict(curve),
-                        "side_view": [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(picks, thetas)]})
+    _check_inputs(plan, derived, curves, side_states)
     title = getattr(plan, "name", "embroact")
-    figures = {"bend": bend_chart_svg(series, title=f"{title}: predicted bend angle"),
+    panels = side_panels(plan, derived, curves, count=side_states)
+    figures = {"bend": bend_chart_svg(bend_series(plan, derived, curves, measured),
+                                      title=f"{title}: predicted bend angle"),
                "side": side_view_svg(panels)}
-    paths = {"bend": out / OUTPUT_NAMES["bend"], "side": out / OUTPUT_NAMES["side"]}
-    write_text_atomic(paths["bend"], figures["bend"])
-    write_text_atomic(paths["side"], figures["side"])
+    files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
     mesh_info = None
     if mesh_suffix is not None:
-        mesh_info, figures["shape3d"] = _write_shape(out, acts, derived, curves, shape_pressure_kpa, mesh_suffix,
-                                                     tolerance_mm, paths)
-    figures["stitches"] = stitch_svg if stitch_svg is not None else _plan_svg(plan)
-    data = report_data(title=title, actuators=entries, findings=findings, worksheet=_dict(worksheet), mesh=mesh_info)
-    paths["json"], paths["html"] = out / OUTPUT_NAMES["json"], out / OUTPUT_NAMES["html"]
-    write_text_atomic(paths["json"], report_json(data))
-    write_text_atomic(paths["html"], report_html(data, figures=figures))
-    return PreviewResult(paths, mesh_info)
+        from .mesh import MESH_FORMATS, mesh_bytes
+        from .meshview import mesh_svg
+
+        if str(mesh_suffix).lower() not in MESH_FORMATS:
+            raise ExportError(f"mesh suffix must be one of {', '.join(MESH_FORMATS)}, got {mesh_suffix!r}")
+        shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=shape_pressure_kpa,
+                                         tolerance_mm=tolerance_mm)
+        name = OUTPUT_NAMES["mesh"] + str(mesh_suffix).lower()
+        files[name] = mesh_bytes(shapes, mesh_suffix)
+        figures["shape3d"] = mesh_svg(shapes, title="3D shape at " + ", ".join(
+            f"{n}: {p:g} kPa" for n, p in pressures.items()))
+        files[OUTPUT_NAMES["shape3d"]] = figures["shape3d"]
+        mesh_info = {"file": name, "pressure_kpa": pressures, "theta_deg": {s.name: s.theta_deg for s in shapes},
+                     "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": shapes[0].tolerance_mm,
+                     "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
+    if stitch_svg is None:
+        from .preview import plan_svg
+
+        stitch_svg = plan_svg(plan)
+    figures["stitches"] = stitch_svg
+    entries = [{"name": a.name, "derived": g.as_dict(),
+                "curve": {"pressure_kpa": c.pressure_kpa, "theta_deg": c.theta_deg, "status": _status_list(c.status),
+                          "method": getattr(c, "method", None), "calibration": getattr(c, "calibration", None)},
+                "side_view": [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(s.pressure_kpa, s.theta_deg)]}
+               for a, g, c, s in zip(plan.actuators, derived, curves, panels)]
+    ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
+    data = report_data(title=title, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
+    files[OUTPUT_NAMES["json"]] = report_json(data)
+    files[OUTPUT_NAMES["html"]] = report_html(data, figures=figures)
+    return Previews(files, mesh_info)
 
 
-def _plan_svg(plan) -> str:
-    from .preview import plan_svg
+def previews_stage(
+    *,
+    pressures_kpa=DEFAULT_PRESSURES_KPA,
+    model_for: Callable = default_model,
+    measured: Mapping[str, tuple] | None = None,
+    side_states: int = DEFAULT_SIDE_STATES,
+    shape_pressure_kpa: float | None = None,
+    mesh_suffix: str | None = ".glb",
+    tolerance_mm: float | None = None,
+):
+    """The build stage: ``stage(context) -> {file name: contents}`` (see :mod:`embroact.export.build`).
 
-    return plan_svg(plan)
+    It predicts the curves at ``pressures_kpa`` with ``model_for``, takes the stitch
+    preview from ``context.outputs["preview.svg"]`` when present, the worksheet and
+    findings from the context, and returns :attr:`Previews.files`.
+    """
+    def stage(context) -> dict:
+        derived, curves = predict_curves(context.plan, pressures_kpa, model_for=model_for)
+        svg = context.outputs.get("preview.svg")
+        return render_previews(
+            plan=context.plan, derived=derived, curves=curves, findings=context.findings,
+            worksheet=context.worksheet, measured=measured,
+            stitch_svg=svg.decode("utf-8") if isinstance(svg, bytes) else svg, side_states=side_states,
+            shape_pressure_kpa=shape_pressure_kpa, mesh_suffix=mesh_suffix, tolerance_mm=tolerance_mm).files
 
-
-def _write_shape(out: Path, acts, derived, curves, pressure_kpa, suffix, tolerance_mm, paths):
-    from .mesh import DEFAULT_CHORD_TOLERANCE_MM, MESH_FORMATS, PlanarPath, actuator_mesh, write_mesh
-    from .meshview import mesh_svg
-
-    if suffix not in MESH_FORMATS:
-        from ..patterns.errors import ExportError
-
-        raise ExportError(f"mesh suffix must be one of {', '.join(MESH_FORMATS)}, got {suffix!r}")
-    tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
-    shapes, thetas, pressures = [], {}, {}
-    for act, geo, curve in zip(acts, derived, curves):
-        p, theta = shape_theta_deg(curve, pressure_kpa)
-        shapes.append(actuator_mesh(PlanarPath.from_centerline(act.centerline), theta, width_mm=geo.width_mm,
-                                    r0_mm=geo.r0_mm, tolerance_mm=tol, name=act.name))
-        thetas[act.name], pressures[act.name] = theta, p
-    paths["mesh"] = write_mesh(shapes, out / (OUTPUT_NAMES["mesh"] + suffix))
-    paths["shape3d"] = out / OUTPUT_NAMES["shape3d"]
-    picture = mesh_svg(shapes, title="3D shape at " + ", ".join(f"{n}: {p:g} kPa" for n, p in pressures.items()))
-    write_text_atomic(paths["shape3d"], picture)
-    info = {"file": paths["mesh"].name, "pressure_kpa": pressures, "theta_deg": thetas,
-            "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": tol,
-            "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
-    return info, picture
+    return stage
