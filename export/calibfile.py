@@ -173,8 +173,14 @@ def _branches(path, columns, rows) -> tuple[str, ...] | None:
 
 
 def _columns(path, columns, rows, names) -> np.ndarray:
+    """Numbers of the named columns, row by row; the first column is a gauge pressure (>= 0)."""
     _require(path, columns, names)
-    return np.array([[_number(path, line, row, columns, n) for n in names] for line, row in rows])
+    values = np.array([[_number(path, line, row, columns, n) for n in names] for line, row in rows])
+    negative = np.flatnonzero(values[:, 0] < 0.0)
+    if negative.size:
+        line = rows[negative[0]][0]
+        raise DesignFileError(f"{str(path)!r} line {line}: {names[0]} must be >= 0 (gauge pressure), got {values[negative[0], 0]:g}")
+    return values
 
 
 def read_bend_csv(path) -> BendData:

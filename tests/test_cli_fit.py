@@ -1,0 +1,157 @@
+"""``embroact fit``: the demo data give back the parameters they were made with.
+
+The demo CSVs (``examples/make_demo_data.py``, fixed seed) were generated with known
+parameters: zigzag w = 7 mm loading G = 2.7 MPa, P0 = 85 kPa, unloading 2.3 / 70;
+cross alpha0 = 45 deg loading 1.3 / 170, unloading 1.1 / 150; noise 1 deg.
+"""
+import json
+import runpy
+from pathlib import Path
+
+import pytest
+
+from embroact.export.calibfile import read_bend_csv, read_calibration, read_marker_csv
+from embroact.export.cli import main
+from embroact.predict.calibration import lookup
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+DATA = EXAMPLES / "data"
+ZIGZAG = ["--pattern", "zigzag", "--width-mm", "7"]
+CROSS45 = ["--pattern", "cross", "--width-mm", "7", "--angle-deg", "45"]
+TRUTH = {
+    "zigzag": {"loading": (2.7, 85.0), "unloading": (2.3, 70.0)},
+    "cross": {"loading": (1.3, 170.0), "unloading": (1.1, 150.0)},
+}
+
+
+def _fit_json(capsys, *argv):
+    assert main(["fit", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def _assert_truth(doc, pattern):
+    assert [f["branch"] for f in doc["fits"]] == ["loading", "unloading"]
+    for f in doc["fits"]:
+        g, p0 = TRUTH[pattern][f["branch"]]
+        assert abs(f["g_mpa"] - g) < 3 * f["g_mpa_se"]
+        assert abs(f["p0_kpa"] - p0) < 3 * f["p0_kpa_se"]
+        assert 0.7 < f["rmse_deg"] < 1.4  # the demo noise is 1 deg
+
+
+def test_demo_data_are_reproducible(tmp_path):
+    runpy.run_path(str(EXAMPLES / "make_demo_data.py"), run_name="not_main")["main"](str(tmp_path))
+    for name in ("zigzag_w7_loop.csv", "cross_a45_loop.csv", "zigzag_w7_markers.csv"):
+        assert (tmp_path / name).read_bytes() == (DATA / name).read_bytes()
+
+
+def test_fit_zigzag_demo_json(capsys):
+    doc = _fit_json(capsys, str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG)
+    _assert_truth(doc, "zigzag")
+    assert doc["design"]["r0_mm"] == pytest.approx(2.581421, abs=1e-6)
+    assert doc["fits"][0]["method"] == "stable-analytic-trace" and doc["calibration"] is None
+
+
+def test_fit_cross_demo_writes_calibration(capsys, tmp_path):
+    out = tmp_path / "lab.toml"
+    rc = main(["fit", str(DATA / "cross_a45_loop.csv"), *CROSS45, "-o", str(out), "--material", "tube=latex"])
+    text = capsys.readouterr().out
+    assert rc == 0 and "wrote calibration set 'lab' (2 point(s))" in text
+    assert text.splitlines()[1].split()[:2] == ["branch", "n"]
+    cset = read_calibration(out)
+    assert cset.name == "lab" and dict(cset.materials) == {"tube": "latex"}
+    c = lookup("cross", width_mm=7.0, angle_deg=45.0, name="lab", sets=[cset])
+    assert abs(c.g_mpa - 1.3) < 0.05 and abs(c.p0_kpa - 170.0) < 2.0
+
+    # append the zigzag fit to the same set
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "-o", str(out), "--append"]) == 0
+    merged = read_calibration(out)
+    assert len(merged.points) == 4 and merged.name == "lab"
+    assert abs(lookup("zigzag", width_mm=7.0, name="lab", sets=[merged]).g_mpa - 2.7) < 0.05
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "-o", str(out), "--append", "--name", "x"]) == 2
+    assert "differs from the set 'lab'" in capsys.readouterr().err
+
+
+def test_fit_markers_signed(capsys):
+    doc = _fit_json(capsys, str(DATA / "zigzag_w7_markers.csv"), "--markers", "--normal", "1,0,0", *ZIGZAG)
+    for f in doc["fits"]:
+        g, p0 = TRUTH["zigzag"][f["branch"]]
+        # marker noise adds about 1 deg of angle noise on top of the 1 deg in the data
+        assert abs(f["g_mpa"] - g) < 3 * f["g_mpa_se"] and abs(f["p0_kpa"] - p0) < 3 * f["p0_kpa_se"]
+    assert "markers" in doc["note"]
+
+
+def test_fit_options(capsys):
+    doc = _fit_json(capsys, str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "--fit", "g", "--p0-kpa", "85",
+                    "--branch", "loading")
+    (f,) = doc["fits"]
+    assert f["fitted"] == ["g_mpa"] and f["p0_kpa"] == 85.0 and f["p0_source"] == "given"
+    doc = _fit_json(capsys, str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "--fit", "g,g_e", "--branch", "pooled")
+    (f,) = doc["fits"]
+    assert f["p0_source"] == "geometry" and f["g_e_mpa"] > 0 and f["n_points"] == 51
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "--fit", "g,g_e"]) == 0
+    assert "G_e = " in capsys.readouterr().out
+
+
+def _write(tmp_path, text, name="d.csv"):
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("pressure_kpa,angle\n0,0\n", "missing column 'angle_deg' (header has: pressure_kpa, angle)"),
+        ("pressure_kpa,angle_deg\n0,0\n10,abc\n", "line 3: angle_deg must be a finite number, got 'abc'"),
+        ("# comment\npressure_kpa,angle_deg\n0,0\n10,nan\n", "line 4: angle_deg must be a finite number, got 'nan'"),
+        ("pressure_kpa,angle_deg\n0,\n", "line 2: column 'angle_deg' is empty"),
+        ("", "is empty: expected a header line"),
+        ("pressure_kpa,angle_deg\n", "has a header but no data rows"),
+        ("pressure_kpa,angle_deg,angle_deg\n0,0,0\n", "column 'angle_deg' appears more than once"),
+        ("pressure_kpa,angle_deg,branch\n0,0,up\n", "line 2: branch must be 'loading' or 'unloading', got 'up'"),
+        ("pressure_kpa,angle_deg\n" + "".join(f"{p},0.1\n" for p in range(0, 300, 10)), "no deformation phase"),
+        ("pressure_kpa,angle_deg\n0,0\n-5,10\n10,20\n", "line 3: pressure_kpa must be >= 0 (gauge pressure), got -5"),
+    ],
+)
+def test_bad_csv_is_one_line_exit_2(capsys, tmp_path, text, message):
+    assert main(["fit", _write(tmp_path, text), *ZIGZAG, "-o", str(tmp_path / "cal.toml")]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and err.startswith("embroact: error: ")
+    assert not (tmp_path / "cal.toml").exists()
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--pattern", "zigzag"], "give the design: --pattern and --width-mm"),
+        (["--pattern", "cross", "--width-mm", "7"], "--angle-deg is required"),
+        ([*ZIGZAG, "--fit", "g,k"], "--fit must list parameters from g, p0, g_e"),
+        ([*ZIGZAG, "--fit", "p0,g_e", "--g-mpa", "2"], "both 'p0_kpa' and 'g_e_mpa'"),
+        ([*ZIGZAG, "--width-mm", "-7"], "width_mm must be in"),
+        ([*CROSS45], "data bend positive but this cross design bends negative"),
+        ([*ZIGZAG, "--markers"], "missing column 'm1_x'"),
+        ([*ZIGZAG, "--material", "tube", "-o", "x.toml"], "--material must be KEY=VALUE"),
+    ],
+)
+def test_bad_arguments_exit_2(capsys, argv, message, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
+    assert not (tmp_path / "x.toml").exists()
+
+
+def test_missing_file_and_unwritable_output(capsys, tmp_path):
+    assert main(["fit", str(tmp_path / "none.csv"), *ZIGZAG]) == 2
+    assert "cannot read" in capsys.readouterr().err
+    out = tmp_path / "no-such-dir" / "cal.toml"
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), *ZIGZAG, "-o", str(out)]) == 3
+    assert "does not exist" in capsys.readouterr().err and not out.parent.exists()
+
+
+def test_csv_readers(tmp_path):
+    d = read_bend_csv(_write(tmp_path, "Angle_Deg , pressure_kpa,time_s\n1.5,10,0\n\n# note\n2.5,20,1\n"))
+    assert d.pressure_kpa.tolist() == [10.0, 20.0] and d.angle_deg.tolist() == [1.5, 2.5] and d.branch is None
+    header = "pressure_kpa," + ",".join(f"m{i}_{a}" for i in range(1, 4) for a in "xy")
+    m = read_marker_csv(_write(tmp_path, header + "\n5,0,0,10,0,20,0\n"), n_markers=3)
+    assert m.markers_mm.shape == (1, 3, 2) and m.markers_mm[0, 2].tolist() == [20.0, 0.0]
