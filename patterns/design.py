@@ -1,0 +1,489 @@
+"""Designs: several actuators on one fabric, as values; dicts in, plans out (no file I/O).
+
+A design holds a tube, machine and operation limits and one or more actuators.
+:func:`design_from_dict` validates a plain dict (as read from TOML) strictly;
+:func:`build_plan` generates every actuator and joins them into one plan.
+
+Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults shown)::
+
+    name = "paper-zigzag"            # design name (any unicode), default "design"
+    [tube]                           # embroact.patterns.params.Tube
+    outer_radius_mm = 1.5            # r_f
+    inner_radius_mm = 1.0            # d_f
+    g_e_mpa = 0.13                   # G_e, inflation phase
+    clearance_mm = 0.3               # needle-to-tube clearance
+    end_margin_mm = 30.0             # free tube at each end (connectors)
+    [machine]
+    format = "dst"                   # dst tbf exp jef u01 xxx pes pec vp3
+    hoop_width_mm = 200.0
+    hoop_height_mm = 200.0
+    min_stitch_mm = 0.3
+    max_stitch_mm = 12.1
+    speed_spm = 600                  # stitches per minute
+    [operation]
+    max_pressure_kpa = 300.0
+    max_bend_deg = 180.0
+    [[actuator]]                     # one table per actuator, sewn in this order
+    name = "A1"                      # required, unique
+    pattern = "zigzag"               # required: "zigzag" or "cross"
+    width_mm = 7.0                   # required: rail spacing w
+    interval_mm = 1.0                # required: stitch interval s
+    # angle_deg = 45.0               # cross only (required there): alpha0
+    # adjust = "auto"                # cross only: "auto", "interval" or "angle"
+    length_mm = 100.0                # straight path of this length ...
+    # path = "M 0 0 C 30 -30 ..."    # ... or an SVG path d (mm, y down as in SVG) ...
+    # path = [[0, 0], [50, 10], ...] # ... or points (mm, plan frame, y up)
+    origin_mm = [0.0, 0.0]           # start of a straight path / offset of a path
+    rotation_deg = 0.0               # direction of a straight path / rotation of a path
+    tie_stitch_mm = 0.7              # lock stitch length
+    tie_count = 3                    # lock stitches at each end
+    [actuator.model]                 # optional prediction settings
+    g_mpa = 2.7                      # effective shear modulus G (default: from calibration)
+    p0_kpa = 85.0                    # transition pressure override
+    calibration = "paper-2025"
+
+A ``path`` is rotated by ``rotation_deg`` about its own (0, 0) and then moved by
+``origin_mm``.
+
+Examples
+--------
+>>> from embroact.patterns.design import build_plan, default_design, design_from_dict
+>>> from embroact.patterns.plan import Command
+>>> d = design_from_dict({"name": "two", "actuator": [
+...     {"name": "A1", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+...     {"name": "A2", "pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50,
+...      "origin_mm": [0, 20]}]})
+>>> plan = build_plan(d)
+>>> [a.name for a in plan.actuators], int(plan.actuator.max()), plan.count(Command.STOP)
+(['A1', 'A2'], 1, 2)
+>>> default_design().actuators[0].params
+ZigzagParams(width_mm=7.0, interval_mm=1.0)
+>>> try:
+...     design_from_dict({"actuator": [{"name": "A", "pattern": "zigzag", "widht_mm": 7}]})
+... except Exception as exc:
+...     print(str(exc).split(";")[0])
+actuator[0].widht_mm: unknown key
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+from .centerline import Centerline, as_centerline
+from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .limits import format_limit
+from .params import CrossParams, StitchOptions, Tube, ZigzagParams
+from .plan import Command, Role, StitchPlan
+from .tolerances import DEFAULT_TOLERANCES
+from .zigzag import zigzag
+
+__all__ = [
+    "MachineSettings",
+    "OperationSettings",
+    "ModelSettings",
+    "ActuatorSpec",
+    "Design",
+    "design_from_dict",
+    "design_to_dict",
+    "default_design",
+    "generate_actuator",
+    "build_plan",
+    "join_plans",
+    "PATTERN_PARAMS",
+]
+
+#: pattern name -> parameter class
+PATTERN_PARAMS = {"zigzag": ZigzagParams, "cross": CrossParams}
+_GENERATORS = {"zigzag": zigzag}
+
+
+@dataclass(frozen=True, slots=True)
+class MachineSettings:
+    """Machine and fabric limits.
+
+    Parameters
+    ----------
+    format : str
+        Machine-file format (``embroact.patterns.limits.FORMAT_LIMITS``), default ``"dst"``.
+    hoop_width_mm, hoop_height_mm : float
+        Sewable field [mm], > 0.
+    min_stitch_mm, max_stitch_mm : float
+        Shortest sensible and longest allowed stitch [mm], 0 <= min < max.
+    speed_spm : float
+        Sewing speed [stitches/min], > 0 (time estimates).
+    """
+
+    format: str = "dst"
+    hoop_width_mm: float = 200.0
+    hoop_height_mm: float = 200.0
+    min_stitch_mm: float = 0.3
+    max_stitch_mm: float = 12.1
+    speed_spm: float = 600.0
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.format, str):
+            raise ParameterError(f"format must be a string, got {self.format!r}")
+        object.__setattr__(self, "format", format_limit(self.format).name)
+        check_range("hoop_width_mm", self.hoop_width_mm, low=0.0, high=10_000.0)
+        check_range("hoop_height_mm", self.hoop_height_mm, low=0.0, high=10_000.0)
+        mx = check_range("max_stitch_mm", self.max_stitch_mm, low=0.0, high=1000.0)
+        check_range("min_stitch_mm", self.min_stitch_mm, low=0.0, low_inclusive=True, high=mx)
+        check_range("speed_spm", self.speed_spm, low=0.0, high=10_000.0)
+
+
+@dataclass(frozen=True, slots=True)
+class OperationSettings:
+    """How the actuator will be driven.
+
+    Parameters
+    ----------
+    max_pressure_kpa : float
+        Highest supply pressure [kPa], > 0.
+    max_bend_deg : float
+        Largest bend the application needs [deg], in (0, 720].
+    """
+
+    max_pressure_kpa: float = 300.0
+    max_bend_deg: float = 180.0
+
+    def __post_init__(self) -> None:
+        check_range("max_pressure_kpa", self.max_pressure_kpa, low=0.0, high=100_000.0)
+        check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=720.0, high_inclusive=True)
+
+
+@dataclass(frozen=True, slots=True)
+class ModelSettings:
+    """Prediction settings of one actuator.
+
+    Parameters
+    ----------
+    g_mpa : float or None
+        Effective shear modulus G [MPa], > 0; None: take it from the calibration.
+    p0_kpa : float or None
+        Transition pressure override [kPa], >= 0; None: from the tube law.
+    calibration : str
+        Name of the calibration set (``embroact.predict.calibration``).
+    """
+
+    g_mpa: float | None = None
+    p0_kpa: float | None = None
+    calibration: str = "paper-2025"
+
+    def __post_init__(self) -> None:
+        if self.g_mpa is not None:
+            check_range("g_mpa", self.g_mpa, low=0.0, high=1e5)
+        if self.p0_kpa is not None:
+            check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=1e5)
+        if not isinstance(self.calibration, str) or not self.calibration:
+            raise ParameterError(f"calibration must be a non-empty name, got {self.calibration!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class ActuatorSpec:
+    """One actuator as the user asked for it.
+
+    Parameters
+    ----------
+    name : str
+        Unique within the design (any unicode).
+    params : ZigzagParams | CrossParams
+    centerline : Centerline
+        Tube path in the plan frame [mm].
+    options : StitchOptions
+    model : ModelSettings
+    adjust : str
+        Cross only: which of interval/angle may change to make the pattern close
+        (``"auto"``, ``"interval"``, ``"angle"``; see :mod:`embroact.patterns.cross`).
+    """
+
+    name: str
+    params: ZigzagParams | CrossParams
+    centerline: Centerline
+    options: StitchOptions = field(default_factory=StitchOptions)
+    model: ModelSettings = field(default_factory=ModelSettings)
+    adjust: str = "auto"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise ParameterError(f"name must be a non-empty string, got {self.name!r}")
+        if not isinstance(self.params, (ZigzagParams, CrossParams)):
+            raise ParameterError(f"params must be ZigzagParams or CrossParams, got {type(self.params).__name__}")
+        object.__setattr__(self, "centerline", as_centerline(self.centerline))
+
+    @property
+    def pattern(self) -> str:
+        """``"zigzag"`` or ``"cross"``."""
+        return self.params.pattern
+
+
+@dataclass(frozen=True, slots=True)
+class Design:
+    """A fabric with one or more actuators, sewn in order.
+
+    Parameters
+    ----------
+    name : str
+    tube : Tube
+    machine : MachineSettings
+    operation : OperationSettings
+    actuators : tuple of ActuatorSpec
+        At least one; names unique.
+    """
+
+    name: str
+    tube: Tube
+    machine: MachineSettings
+    operation: OperationSettings
+    actuators: tuple[ActuatorSpec, ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "actuators", tuple(self.actuators))
+        if not self.actuators:
+            raise ParameterError("actuators must hold at least one actuator, got none")
+        names = [a.name for a in self.actuators]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise ParameterError(f"actuator names must be unique, got {dup[0]!r} {names.count(dup[0])} times")
+
+
+def default_design() -> Design:
+    """The paper's zigzag actuator: w = 7 mm, s = 1.0 mm, l0 = 100 mm, default tube."""
+    return Design(
+        name="paper-zigzag",
+        tube=Tube(),
+        machine=MachineSettings(),
+        operation=OperationSettings(),
+        actuators=(ActuatorSpec("A1", ZigzagParams(width_mm=7.0, interval_mm=1.0), Centerline.straight(100.0)),),
+    )
+
+
+# ---------------------------------------------------------------------- dict -> Design
+_ACTUATOR_KEYS = (
+    "name", "pattern", "width_mm", "interval_mm", "angle_deg", "adjust", "length_mm", "path",
+    "origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count", "model",
+)  # fmt: skip
+_CROSS_ONLY = ("angle_deg", "adjust")
+
+
+def _names(cls) -> tuple[str, ...]:
+    return tuple(f.name for f in fields(cls))
+
+
+def _where(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _table(value, path: str, allowed: tuple[str, ...], required: tuple[str, ...] = ()) -> dict:
+    if not isinstance(value, dict):
+        raise DesignFileError(f"{path}: must be a table, got {type(value).__name__}")
+    for key in value:
+        if key not in allowed:
+            raise DesignFileError(f"{_where(path, key)}: unknown key; allowed: {', '.join(allowed)}")
+    for key in required:
+        if key not in value:
+            raise DesignFileError(f"{_where(path, key)}: missing key")
+    return value
+
+
+def _number(value, where: str) -> float | int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise DesignFileError(f"{where}: must be a number, got {value!r}")
+    if not math.isfinite(value):
+        raise DesignFileError(f"{where}: must be a finite number, got {value!r}")
+    return value
+
+
+def _string(value, where: str) -> str:
+    if not isinstance(value, str):
+        raise DesignFileError(f"{where}: must be a string, got {value!r}")
+    return value
+
+
+def _pair(value, where: str) -> tuple[float, float]:
+    if not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise DesignFileError(f"{where}: must be a pair [x, y] of numbers in mm, got {value!r}")
+    return (_number(value[0], f"{where}[0]"), _number(value[1], f"{where}[1]"))
+
+
+def _build(path: str, cls, kwargs: dict):
+    """Construct a value, turning its ParameterError into a DesignFileError with the key path."""
+    try:
+        return cls(**kwargs)
+    except EmbroactError as exc:
+        raise DesignFileError(f"{path}: {exc}") from None
+
+
+def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optional: tuple[str, ...] = ()):
+    keys = _names(cls)
+    table = _table(value, path, keys)
+    kwargs = {}
+    for key, v in table.items():
+        where = _where(path, key)
+        if key in strings:
+            kwargs[key] = _string(v, where)
+        elif not (key in optional and v is None):
+            kwargs[key] = _number(v, where)
+    return _build(path, cls, kwargs)
+
+
+def _centerline(a: dict, path: str) -> Centerline:
+    has_len, has_path = "length_mm" in a, "path" in a
+    if has_len == has_path:
+        what = "both" if has_len else "neither"
+        raise DesignFileError(f"{path}: give exactly one of length_mm (straight) or path, got {what}")
+    origin = _pair(a.get("origin_mm", (0.0, 0.0)), f"{path}.origin_mm")
+    rotation = _number(a.get("rotation_deg", 0.0), f"{path}.rotation_deg")
+    if has_len:
+        length = _number(a["length_mm"], f"{path}.length_mm")
+        return _build(path, Centerline.straight, {"length_mm": length, "origin_mm": origin, "rotation_deg": rotation})
+    raw = a["path"]
+    if not isinstance(raw, (str, list)):
+        raise DesignFileError(f"{path}.path: must be an SVG path string or a list of [x, y] points, got {raw!r}")
+    if isinstance(raw, list):
+        raw = [_pair(p, f"{path}.path[{i}]") for i, p in enumerate(raw)]
+    try:
+        return as_centerline(raw).transformed(origin_mm=origin, rotation_deg=rotation)
+    except EmbroactError as exc:
+        raise DesignFileError(f"{path}.path: {exc}") from None
+
+
+def _actuator(value, i: int) -> ActuatorSpec:
+    path = f"actuator[{i}]"
+    a = _table(value, path, _ACTUATOR_KEYS, ("name", "pattern", "width_mm", "interval_mm"))
+    name = _string(a["name"], f"{path}.name")
+    pattern = _string(a["pattern"], f"{path}.pattern")
+    if pattern not in PATTERN_PARAMS:
+        raise DesignFileError(f"{path}.pattern: must be one of {', '.join(map(repr, PATTERN_PARAMS))}, got {pattern!r}")
+    param_keys = ("width_mm", "interval_mm") + (("angle_deg",) if pattern == "cross" else ())
+    if pattern != "cross":
+        for key in _CROSS_ONLY:
+            if key in a:
+                raise DesignFileError(f"{path}.{key}: only allowed with pattern 'cross', got pattern {pattern!r}")
+    else:
+        _table(a, path, _ACTUATOR_KEYS, ("angle_deg",))
+    params = _build(path, PATTERN_PARAMS[pattern], {k: _number(a[k], f"{path}.{k}") for k in param_keys})
+    opts = {k: a[k] for k in ("tie_stitch_mm", "tie_count") if k in a}
+    options = _build(path, StitchOptions, {k: _number(v, f"{path}.{k}") for k, v in opts.items()})
+    model = _numbers_table(a.get("model", {}), f"{path}.model", ModelSettings, ("calibration",), ("g_mpa", "p0_kpa"))
+    adjust = _string(a.get("adjust", "auto"), f"{path}.adjust")
+    return _build(path, ActuatorSpec, dict(name=name, params=params, centerline=_centerline(a, path),
+                                           options=options, model=model, adjust=adjust))  # fmt: skip
+
+
+def design_from_dict(d) -> Design:
+    """Validate a plain dict (parsed TOML) into a :class:`Design`.
+
+    Raises
+    ------
+    DesignFileError
+        One line starting with the key path (``actuator[1].widht_mm: unknown key; allowed: ...``).
+    """
+    top = _table(d, "design", ("name", "tube", "machine", "operation", "actuator"), ("actuator",))
+    acts = top["actuator"]
+    if not isinstance(acts, list) or not acts:
+        raise DesignFileError(f"actuator: must be a non-empty list of tables ([[actuator]]), got {acts!r:.60}")
+    specs = tuple(_actuator(a, i) for i, a in enumerate(acts))
+    seen: dict[str, int] = {}
+    for i, spec in enumerate(specs):
+        if spec.name in seen:
+            raise DesignFileError(f"actuator[{i}].name: duplicate actuator name {spec.name!r} (also actuator[{seen[spec.name]}])")
+        seen[spec.name] = i
+    return Design(
+        name=_string(top.get("name", "design"), "name"),
+        tube=_numbers_table(top.get("tube", {}), "tube", Tube),
+        machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format",)),
+        operation=_numbers_table(top.get("operation", {}), "operation", OperationSettings),
+        actuators=specs,
+    )
+
+
+def _plain(value) -> dict:
+    return {f.name: getattr(value, f.name) for f in fields(value)}
+
+
+def design_to_dict(design: Design) -> dict:
+    """Plain dict (TOML/JSON-ready) that :func:`design_from_dict` turns back into ``design``.
+
+    Paths are written as point lists in the plan frame; ``None`` model values are left out.
+    """
+    acts = []
+    for a in design.actuators:
+        d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
+        if a.pattern == "cross":
+            d["adjust"] = a.adjust
+        d["path"] = a.centerline.points_mm.tolist()
+        d.update(_plain(a.options))
+        d["model"] = {k: v for k, v in _plain(a.model).items() if v is not None}
+        acts.append(d)
+    return {
+        "name": design.name,
+        "tube": _plain(design.tube),
+        "machine": _plain(design.machine),
+        "operation": _plain(design.operation),
+        "actuator": acts,
+    }
+
+
+# ---------------------------------------------------------------------- plans
+def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
+    """One actuator's complete plan; errors are prefixed with the actuator's name."""
+    kwargs = {"tube": tube, "options": spec.options, "name": spec.name}
+    if spec.pattern == "cross":
+        kwargs["adjust"] = spec.adjust
+    try:
+        return _GENERATORS[spec.pattern](spec.centerline, spec.params, **kwargs)
+    except EmbroactError as exc:
+        raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
+
+
+def _jumps(a: np.ndarray, b: np.ndarray, max_jump_mm: float) -> np.ndarray:
+    """Points from ``a`` (excluded) to ``b`` (included), per-axis steps <= max_jump_mm - grid."""
+    step = max_jump_mm - DEFAULT_TOLERANCES.machine_grid_mm
+    n = max(1, math.ceil(float(np.max(np.abs(b - a))) / step))
+    return a + (b - a) * (np.arange(1, n + 1) / n)[:, None]
+
+
+def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> StitchPlan:
+    """Concatenate complete plans into one, in order.
+
+    Each plan's END is dropped; JUMP records (role TRAVEL, owned by the next actuator) lead
+    from one plan's last point to the next plan's first, each step at most
+    ``max_jump_mm - machine_grid_mm`` per axis (room for rounding to the machine grid);
+    actuator indices are renumbered; one END closes the result.
+    """
+    plans = list(plans)
+    if not plans:
+        raise ParameterError("plans must hold at least one plan, got none")
+    limit = check_range("max_jump_mm", max_jump_mm, low=2.0 * DEFAULT_TOLERANCES.machine_grid_mm)
+    xy, cmd, role, owner, acts = [], [], [], [], []
+    for p in plans:
+        keep = p.commands != Command.END
+        index = np.where(p.actuator[keep] >= 0, p.actuator[keep] + len(acts), -1)
+        if xy and len(p.xy_mm[keep]):
+            hop = _jumps(xy[-1][-1], p.xy_mm[keep][0], limit)
+            xy.append(hop)
+            cmd.append(np.full(len(hop), Command.JUMP))
+            role.append(np.full(len(hop), Role.TRAVEL))
+            owner.append(np.full(len(hop), index[0]))
+        xy.append(p.xy_mm[keep])
+        cmd.append(p.commands[keep])
+        role.append(p.roles[keep])
+        owner.append(index)
+        acts.extend(p.actuators)
+    last = xy[-1][-1:] if len(xy[-1]) else np.zeros((1, 2))
+    return StitchPlan(
+        np.vstack(xy + [last]),
+        np.concatenate(cmd + [[Command.END]]),
+        np.concatenate(role + [[Role.CONTROL]]),
+        np.concatenate(owner + [[-1]]),
+        tuple(acts),
+        name,
+    )
+
+
+def build_plan(design: Design) -> StitchPlan:
+    """Generate every actuator of ``design`` and join them (see :func:`join_plans`)."""
+    plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
+    return join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)
