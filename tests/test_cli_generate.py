@@ -1,0 +1,125 @@
+"""``embroact zigzag`` / ``embroact cross`` through ``main([...])``."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import dst_decoder
+from embroact.export.cli import main
+from embroact.patterns.centerline import Centerline
+from embroact.patterns.params import ZigzagParams
+from embroact.patterns.zigzag import zigzag
+
+ZZ = ["zigzag", "--width-mm", "7", "--interval-mm", "1", "--length-mm", "100"]
+
+
+def _has_cross():
+    import importlib.util
+
+    return importlib.util.find_spec("embroact.patterns.cross") is not None
+
+
+def test_zigzag_writes_the_paper_actuator(tmp_path, capsys):
+    out = tmp_path / "act.dst"
+    assert main(ZZ + ["-o", str(out)]) == 0
+    assert "106 stitches, 1 stop, 1 trim" in capsys.readouterr().out
+    dst = dst_decoder.decode(out.read_bytes())
+    pts = np.array([(r.x, r.y) for r in dst.records if r.kind == "stitch"]) / 10.0
+    plan = zigzag(Centerline.straight(100.0), ZigzagParams(7.0, 1.0), name="A1")
+    assert np.abs(pts - plan.xy_mm[plan.commands == 0]).max() <= 0.05 + 1e-9
+    assert dst.header["CO"].strip() == "1"
+
+
+def test_json_output_has_units_and_derived(tmp_path, capsys):
+    out = tmp_path / "act.pes"
+    assert main(ZZ + ["-o", str(out), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["file"] == str(out) and doc["format"] == "pes" and doc["stitch_count"] == 106
+    assert doc["realised"]["width_mm"] == pytest.approx(7.0)
+    assert doc["derived"]["r0_mm"] == pytest.approx(2.5814, abs=1e-4)
+    assert doc["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
+    assert out.read_bytes()[:4] == b"#PES"
+
+
+def test_format_overrides_suffix(tmp_path):
+    out = tmp_path / "act.dst"
+    assert main(ZZ + ["-o", str(out), "--format", "jef"]) == 0
+    assert out.read_bytes()[:4] != b"LA:A"  # not a DST header
+
+
+def test_worksheet_and_preview(tmp_path, capsys):
+    out = tmp_path / "act.dst"
+    svg = tmp_path / "act.svg"
+    assert main(ZZ + ["-o", str(out), "--worksheet", "--preview", str(svg)]) == 0
+    ws = json.loads((tmp_path / "act.worksheet.json").read_text())
+    assert ws["actuators"][0]["tube_cut_mm"] == 160.0
+    assert "stop 1: lay tube for actuator A1 along its path, 160 mm cut length" in (tmp_path / "act.worksheet.txt").read_text()
+    assert svg.read_text().startswith("<svg")
+
+
+def test_curved_path(tmp_path):
+    out = tmp_path / "curve.dst"
+    assert main(ZZ + ["-o", str(out), "--path", "M 0 0 C 30 -25 60 25 90 0"]) == 0
+    plan = zigzag(Centerline.from_svg_path("M 0 0 C 30 -25 60 25 90 0"), ZigzagParams(7.0, 1.0))
+    dst = dst_decoder.decode(out.read_bytes())
+    assert sum(r.kind == "stitch" for r in dst.records) == plan.stitch_count
+
+
+@pytest.mark.skipif(not _has_cross(), reason="cross generator not yet merged")
+def test_cross(tmp_path, capsys):
+    out = tmp_path / "cross.dst"
+    assert main(["cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45", "-o", str(out), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["derived"]["pattern"] == "cross"
+    assert doc["derived"]["beta0_deg"] == pytest.approx(37.208, abs=0.5)
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (["--width-mm", "-1", "--interval-mm", "1"], "width_mm must be in (0, 200), got -1"),
+    (["--width-mm", "nan", "--interval-mm", "1"], "width_mm"),
+    (["--width-mm", "7", "--interval-mm", "0"], "interval_mm"),
+    (["--width-mm", "3", "--interval-mm", "1"], "width"),  # no room for the tube
+    (["--width-mm", "7", "--interval-mm", "1", "--length-mm", "0.5"], "length_mm"),
+    (["--width-mm", "7", "--interval-mm", "1", "--tube-radius-mm", "-2"], "outer_radius_mm"),
+])
+def test_bad_parameters_exit_2_and_write_nothing(tmp_path, capsys, argv, needle):
+    out = tmp_path / "x.dst"
+    assert main(["zigzag"] + argv + ["-o", str(out), "--preview", str(tmp_path / "p.svg"), "--worksheet"]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1 and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_unknown_suffix_lists_formats(tmp_path, capsys):
+    assert main(ZZ + ["-o", str(tmp_path / "x.svg")]) == 2
+    assert ".dst, .tbf, .pes, .pec, .jef, .exp, .vp3, .xxx, .u01" in capsys.readouterr().err
+
+
+def test_long_legs_refused_then_split(tmp_path, capsys):
+    out = tmp_path / "wide.dst"
+    argv = ["zigzag", "--width-mm", "14", "--interval-mm", "1", "--length-mm", "20", "-o", str(out)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "actuator 'A1'" in err and "12.1 mm" in err and "--split-long" in err
+    assert not out.exists()
+    assert main(argv + ["--split-long", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["split_legs"] == 20
+
+
+def test_missing_or_readonly_directory_exit_3(tmp_path, capsys, monkeypatch):
+    assert main(ZZ + ["-o", str(tmp_path / "nope" / "x.dst")]) == 3
+    assert "does not exist" in capsys.readouterr().err
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    real_access = os.access
+    monkeypatch.setattr(os, "access", lambda p, mode: False if str(p) == str(ro) else real_access(p, mode))
+    assert main(ZZ + ["-o", str(ro / "x.dst"), "--worksheet"]) == 3
+    assert "is not writable" in capsys.readouterr().err
+    assert list(ro.iterdir()) == []
+
+
+def test_same_bytes_twice(tmp_path):
+    a, b = tmp_path / "a.vp3", tmp_path / "b.vp3"
+    assert main(ZZ + ["-o", str(a)]) == 0 and main(ZZ + ["-o", str(b)]) == 0
+    assert a.read_bytes() == b.read_bytes()
