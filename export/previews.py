@@ -13,18 +13,20 @@ predicts every actuator's curve and renders, in memory:
 ================ =========================================================
 
 :func:`render_previews` does the rendering for given curves; :func:`predict_curves`
-makes the curves (G and P0 from the calibration set unless ``model_for`` says otherwise).
+makes the curves (each actuator's ``ModelSettings``: G from the calibration set unless given).
 
 Examples
 --------
 >>> from embroact.export.previews import side_pressures
 >>> side_pressures([0.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0], [0, 0, 5, 20, 40, 60, 80], count=4)
 (0.0, 100.0, 200.0, 300.0)
+>>> pressures_for()[:3], pressures_for()[-1]
+((0.0, 10.0, 20.0), 300.0)
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -39,7 +41,8 @@ __all__ = [
     "Previews",
     "side_pressures",
     "shape_theta_deg",
-    "default_model",
+    "pressures_for",
+    "actuator_model",
     "predict_curves",
     "bend_series",
     "side_panels",
@@ -59,6 +62,7 @@ OUTPUT_NAMES = {
 }
 #: Pressures of the predicted curves unless told otherwise: 0, 10, ..., 300 kPa.
 DEFAULT_PRESSURES_KPA = tuple(float(p) for p in range(0, 301, 10))
+PRESSURE_STEP_KPA = 10.0
 DEFAULT_SIDE_STATES = 5
 
 
@@ -109,24 +113,46 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     return float(pressure_kpa), float(np.interp(pressure_kpa, p, t))
 
 
-def default_model(actuator, derived):
-    """ActuatorModel of one generated actuator with G and P0 from the ``paper-2025`` calibration."""
+def pressures_for(design=None, *, step_kpa: float = PRESSURE_STEP_KPA) -> tuple[float, ...]:
+    """0 to the design's ``operation.max_pressure_kpa`` in ``step_kpa`` steps (default 0..300 kPa)."""
+    top = float(design.operation.max_pressure_kpa) if design is not None else DEFAULT_PRESSURES_KPA[-1]
+    n = int(np.floor(top / step_kpa + 0.5))
+    return tuple(float(v) for v in np.linspace(0.0, n * step_kpa, n + 1)) + (() if n * step_kpa >= top else (top,))
+
+
+def actuator_model(derived, settings=None):
+    """ActuatorModel of one generated actuator under its design's ``ModelSettings``.
+
+    ``g_mpa`` None takes G from the named calibration set; ``p0_kpa`` None takes P0 from
+    the tube law (``ModelSettings`` semantics).  No settings: ``ModelSettings()``.
+    """
+    from ..patterns.design import ModelSettings
     from ..predict.calibration import lookup
     from ..predict.curve import ActuatorModel
 
-    cal = lookup(derived.pattern, width_mm=derived.width_mm,
-                 angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
-    return ActuatorModel.from_derived(derived, g_mpa=cal.g_mpa, p0_kpa=cal.p0_kpa, calibration=cal.label)
+    ms = settings if settings is not None else ModelSettings()
+    if ms.g_mpa is None:
+        cal = lookup(derived.pattern, width_mm=derived.width_mm, name=ms.calibration,
+                     angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
+        g, label = cal.g_mpa, cal.label
+    else:
+        g, label = ms.g_mpa, "given"
+    return ActuatorModel.from_derived(derived, g_mpa=g, p0_kpa=ms.p0_kpa, calibration=label)
 
 
-def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, model_for: Callable = default_model,
-                   method: str = "auto") -> tuple[tuple, tuple]:
-    """(derived geometry, curve) per actuator of ``plan``; ``model_for(actuator, derived)`` gives the model."""
+def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, design=None, method: str = "auto") -> tuple[tuple, tuple]:
+    """(derived geometry, curve) per actuator of ``plan``.
+
+    Each actuator's model follows the ``ModelSettings`` of the design's actuator of the
+    same name (defaults when there is no design or no such actuator).
+    """
     from ..predict.curve import curve
     from ..predict.derived import derive
 
+    specs = {a.name: a.model for a in getattr(design, "actuators", ())}
     derived = tuple(derive(a) for a in plan.actuators)
-    curves = tuple(curve(model_for(a, g), pressures_kpa, method=method) for a, g in zip(plan.actuators, derived))
+    curves = tuple(curve(actuator_model(g, specs.get(a.name)), pressures_kpa, method=method)
+                   for a, g in zip(plan.actuators, derived))
     return derived, curves
 
 
@@ -260,8 +286,7 @@ def render_previews(
 
 def previews_stage(
     *,
-    pressures_kpa=DEFAULT_PRESSURES_KPA,
-    model_for: Callable = default_model,
+    pressures_kpa=None,
     measured: Mapping[str, tuple] | None = None,
     side_states: int = DEFAULT_SIDE_STATES,
     shape_pressure_kpa: float | None = None,
@@ -270,12 +295,14 @@ def previews_stage(
 ):
     """The build stage: ``stage(context) -> {file name: contents}`` (see :mod:`embroact.export.build`).
 
-    It predicts the curves at ``pressures_kpa`` with ``model_for``, takes the stitch
-    preview from ``context.outputs["preview.svg"]`` when present, the worksheet and
-    findings from the context, and returns :attr:`Previews.files`.
+    It predicts the curves at ``pressures_kpa`` (default :func:`pressures_for` the
+    design) with each actuator's model settings (:func:`predict_curves`), takes the
+    stitch preview from ``context.outputs["preview.svg"]`` when present, the worksheet
+    and findings from the context, and returns :attr:`Previews.files`.
     """
     def stage(context) -> dict:
-        derived, curves = predict_curves(context.plan, pressures_kpa, model_for=model_for)
+        pressures = pressures_for(context.design) if pressures_kpa is None else pressures_kpa
+        derived, curves = predict_curves(context.plan, pressures, design=context.design)
         svg = context.outputs.get("preview.svg")
         return render_previews(
             plan=context.plan, derived=derived, curves=curves, findings=context.findings,
