@@ -24,7 +24,9 @@ def add_arguments(parser, name: str) -> None:
     """Options of ``embroact fit``."""
     parser.add_argument("data", metavar="DATA.csv", help="pressure_kpa,angle_deg[,branch] rows (or markers with --markers)")
     design = parser.add_argument_group("design (quick parameters or a design file)")
-    design.add_argument("--design", metavar="DESIGN.toml", help="design file; its (first or --actuator) actuator is fitted")
+    design.add_argument(
+        "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
+    )
     design.add_argument("--actuator", metavar="NAME", help="actuator name in the design file")
     design.add_argument("--pattern", choices=("zigzag", "cross"), help="pattern of the measured sample")
     design.add_argument("--width-mm", type=float, help="embroidery width w [mm]")
@@ -97,20 +99,20 @@ def _derived(args):
 
 
 def _derived_from_design(path, actuator_name):
-    """Derived geometry of one actuator of a design file (generated, then measured)."""
+    """Derived geometry of one actuator of a design file, measured on its generated stitches."""
+    from ..patterns.design import generate_actuator
     from ..patterns.errors import ParameterError
     from ..predict.derived import derive
-    from ..patterns.design import build_plan
     from .designfile import load_design
 
-    plan = build_plan(load_design(path))
-    acts = plan.actuators
+    design = load_design(path)
+    specs = design.actuators
     if actuator_name is not None:
-        acts = [a for a in acts if a.name == actuator_name]
-        if not acts:
-            names = ", ".join(a.name for a in plan.actuators)
+        specs = [a for a in specs if a.name == actuator_name]
+        if not specs:
+            names = ", ".join(repr(a.name) for a in design.actuators)
             raise ParameterError(f"--actuator must be one of {names}, got {actuator_name!r}")
-    return derive(acts[0])
+    return derive(generate_actuator(specs[0], design.tube).actuators[0])
 
 
 def _data(args, derived):

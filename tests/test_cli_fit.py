@@ -155,3 +155,17 @@ def test_csv_readers(tmp_path):
     header = "pressure_kpa," + ",".join(f"m{i}_{a}" for i in range(1, 4) for a in "xy")
     m = read_marker_csv(_write(tmp_path, header + "\n5,0,0,10,0,20,0\n"), n_markers=3)
     assert m.markers_mm.shape == (1, 3, 2) and m.markers_mm[0, 2].tolist() == [20.0, 0.0]
+
+
+def test_fit_with_design_file(capsys, tmp_path):
+    design = tmp_path / "d.toml"
+    design.write_text(
+        'name = "lab"\n[[actuator]]\nname = "A1"\npattern = "zigzag"\nwidth_mm = 5.0\ninterval_mm = 1.0\n'
+        'length_mm = 100.0\n[[actuator]]\nname = "Z7"\npattern = "zigzag"\nwidth_mm = 7.0\ninterval_mm = 1.0\n'
+        "length_mm = 100.0\norigin_mm = [0.0, 30.0]\n"
+    )
+    doc = _fit_json(capsys, str(DATA / "zigzag_w7_loop.csv"), "--design", str(design), "--actuator", "Z7")
+    _assert_truth(doc, "zigzag")
+    assert doc["design"]["name"] == "Z7" and doc["design"]["width_mm"] == pytest.approx(7.0, abs=1e-9)
+    assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), "--design", str(design), "--actuator", "Q"]) == 2
+    assert "--actuator must be one of 'A1', 'Z7', got 'Q'" in capsys.readouterr().err
