@@ -1,0 +1,171 @@
+"""``embroact preview KIND [DESIGN.toml] -o FILE``: render one view of a design.
+
+KIND is one of
+
+- ``stitches``: the stitch plan to scale (SVG);
+- ``bend``: the pressure-bend chart of every actuator (SVG);
+- ``shape``: side views of the bent strip at a few pressures (SVG);
+- ``mesh``: the 3D shape at one pressure; the suffix of FILE picks the format
+  (``.glb``, ``.stl``, ``.obj``, ``.ply``, or ``.svg`` for a flat-shaded picture).
+  Only this kind imports trimesh.
+
+Without DESIGN the built-in default design is used (the paper's zigzag actuator).
+Pressures are given as ``START:STOP:STEP`` (inclusive) or a comma list, in kPa.
+
+Examples
+--------
+>>> import os, tempfile
+>>> from embroact.export.cli import main
+>>> out = os.path.join(tempfile.mkdtemp(), "bend.svg")
+>>> main(["preview", "bend", "-o", out, "--pressure-kpa", "0:300:50"])
+wrote ...bend.svg: bend chart, 1 actuator(s), 7 pressures
+0
+>>> parse_pressures("0:300:100"), parse_pressures("50, 120")
+((0.0, 100.0, 200.0, 300.0), (50.0, 120.0))
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from ..patterns.errors import ParameterError, check_range
+
+__all__ = ["KINDS", "add_arguments", "run", "parse_pressures"]
+
+#: kind -> one-line description.
+KINDS = {
+    "stitches": "stitch plan to scale (SVG)",
+    "bend": "pressure-bend chart (SVG)",
+    "shape": "bent-shape side views (SVG)",
+    "mesh": "3D shape: .glb .stl .obj .ply, or .svg for a picture",
+}
+_MAX_PRESSURES = 10_000
+_PRESSURE_MAX_KPA = 100_000.0
+
+
+def parse_pressures(text: str) -> tuple[float, ...]:
+    """``"START:STOP:STEP"`` (STOP included when it falls on the grid) or ``"p1,p2,..."`` [kPa].
+
+    Raises
+    ------
+    ParameterError
+        One line naming ``pressure_kpa``, the value and the rule.
+    """
+    text = str(text).strip()
+    try:
+        if ":" in text:
+            start, stop, step = (float(v) for v in text.split(":"))
+            check_range("pressure_kpa step", step, low=0.0)
+            if not math.isfinite(start) or not math.isfinite(stop) or stop < start:
+                raise ValueError
+            n = math.floor((stop - start) / step + 1e-9)
+            if n + 1 > _MAX_PRESSURES:
+                raise ParameterError(f"pressure_kpa must give at most {_MAX_PRESSURES} pressures, got {n + 1}")
+            values = tuple(start + k * step for k in range(n + 1))
+        else:
+            values = tuple(float(v) for v in text.split(",") if v.strip())
+    except ValueError:
+        raise ParameterError(
+            f"pressure_kpa must be START:STOP:STEP with STOP >= START and STEP > 0, or a comma list, got {text!r}"
+        ) from None
+    if not values:
+        raise ParameterError(f"pressure_kpa must name at least one pressure, got {text!r}")
+    for v in values:
+        check_range("pressure_kpa", v, low=0.0, low_inclusive=True, high=_PRESSURE_MAX_KPA)
+    return values
+
+
+def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
+    """Options of ``embroact preview``."""
+    parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
+                        help="; ".join(f"{k}: {v}" for k, v in KINDS.items()))
+    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    parser.add_argument("-o", "--output", required=True, help="output file")
+    parser.add_argument("--pressure-kpa", default=None,
+                        help="pressures for bend/shape, START:STOP:STEP or a list [kPa] "
+                             "(default 0 to the design's max_pressure_kpa in 10 kPa steps)")
+    parser.add_argument("--shape-pressure-kpa", type=float, default=None,
+                        help="pressure of the 3D shape [kPa] (default: the highest pressure)")
+    parser.add_argument("--states", type=int, default=5, help="pressures drawn in the side view, 1..12 (default 5)")
+    parser.add_argument("--tolerance-mm", type=float, default=None,
+                        help="chordal tolerance of the 3D mesh [mm] (default 0.05)")
+
+
+def _design(path):
+    if path:
+        from .designfile import load_design
+
+        return load_design(path)
+    from ..patterns.design import default_design
+
+    return default_design()
+
+
+def _svg_only(kind: str, out: Path) -> None:
+    if out.suffix.lower() != ".svg":
+        raise ParameterError(f"output of preview {kind} must end in .svg, got {out.name!r}")
+
+
+def run(args) -> int:
+    """Load (or default) the design, render the view, write it atomically."""
+    from ..patterns.design import build_plan
+    from .atomic import check_output_dir, write_text_atomic
+
+    out = check_output_dir(args.output)
+    if args.kind != "mesh":
+        _svg_only(args.kind, out)
+    design = _design(args.design)
+    plan = build_plan(design)
+    if args.kind == "stitches":
+        from .preview import plan_svg
+
+        write_text_atomic(out, plan_svg(plan))
+        print(f"wrote {out}: stitch plan, {plan.stitch_count} stitches")
+        return 0
+    from . import previews as pv
+
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else pv.pressures_for(design)
+    derived, curves = pv.predict_curves(plan, pressures, design=design)
+    if args.kind == "bend":
+        from .chart import bend_chart_svg
+
+        write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves),
+                                              title=f"{plan.name}: predicted bend angle"))
+        print(f"wrote {out}: bend chart, {len(curves)} actuator(s), {len(pressures)} pressures")
+    elif args.kind == "shape":
+        from .sideview import side_view_svg
+
+        if isinstance(args.states, bool) or not 1 <= args.states <= 12:
+            raise ParameterError(f"states must be an integer in [1, 12], got {args.states!r}")
+        write_text_atomic(out, side_view_svg(pv.side_panels(plan, derived, curves, count=args.states)))
+        print(f"wrote {out}: side views, {len(curves)} actuator(s)")
+    else:
+        _write_mesh(out, plan, derived, curves, args)
+    return 0
+
+
+def _write_mesh(out: Path, plan, derived, curves, args) -> None:
+    from .mesh import MESH_FORMATS, write_mesh
+
+    suffix = out.suffix.lower()
+    if suffix != ".svg" and suffix not in MESH_FORMATS:
+        raise ParameterError(f"output of preview mesh must end in one of {', '.join(MESH_FORMATS)}, .svg, "
+                          f"got {out.name!r}")
+    from .previews import shape_meshes
+
+    shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=args.shape_pressure_kpa,
+                                     tolerance_mm=args.tolerance_mm)
+    if suffix == ".svg":
+        from .atomic import write_text_atomic
+        from .meshview import mesh_svg
+
+        write_text_atomic(out, mesh_svg(shapes, title="3D shape at " + ", ".join(
+            f"{n}: {p:g} kPa" for n, p in pressures.items())))
+    else:
+        write_mesh(shapes, out)
+    tri = sum(s.triangle_count for s in shapes)
+    dev = max(s.max_deviation_mm for s in shapes)
+    angles = ", ".join(f"{s.name} {s.theta_deg:.1f} deg at {pressures[s.name]:g} kPa" for s in shapes)
+    print(f"wrote {out}: 3D shape ({angles}); {tri} triangles, max deviation {dev:.4f} mm "
+          f"(tolerance {shapes[0].tolerance_mm:g} mm)")
