@@ -34,7 +34,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import shapely
@@ -53,11 +53,17 @@ __all__ = [
     "TubeLayout",
     "Layout",
     "layout_from_plan",
+    "layout_from_records",
+    "FILE_REACH_MM",
     "check_layout",
     "check_plan",
     "needle_density",
     "sort_findings",
 ]
+
+#: Needle points of a file further than this from every tube belong to no tube [mm].
+FILE_REACH_MM = 15.0
+
 
 @dataclass(frozen=True, slots=True)
 class RuleSettings:
@@ -796,6 +802,47 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
     )
     owner = np.where(plan.actuator < len(tubes), plan.actuator, -1)
     return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes)
+
+
+def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_MM, index=None) -> Layout:
+    """A layout for records without owners (an embroidery file): assign needle points to tubes.
+
+    Each needle point belongs to the nearest tube closer than ``reach_mm`` (else to
+    none); each tube's ``half_width_mm`` becomes the median distance of its needle
+    points from its axis (the measured w/2) unless already set.
+
+    Parameters
+    ----------
+    xy_mm : array (n, 2)
+        Record positions [mm] in the same frame as the tube paths.
+    commands : array (n,)
+        :class:`Command` per record.
+    tubes : sequence of TubeLayout
+    reach_mm : float
+        Needle points further than this from every tube belong to none [mm].
+    index : array (n,), optional
+        Index to report per record (default 0..n-1).
+    """
+    check_range("reach_mm", reach_mm, low=0.0, high=1e4)
+    xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+    cmds = np.asarray(commands, dtype=np.int8)
+    needles = np.flatnonzero(cmds == Command.STITCH)
+    owner = np.full(len(xy), -1, dtype=np.int16)
+    best = np.full(len(needles), np.inf)
+    measured = []
+    for k, tube in enumerate(tubes):
+        hit, dist = _PathIndex(tube.path).within(xy[needles], reach_mm)
+        closer = dist < best[hit]
+        best[hit[closer]] = dist[closer]
+        owner[needles[hit[closer]]] = k
+        measured.append((hit, dist))
+    out = []
+    for k, (tube, (hit, dist)) in enumerate(zip(tubes, measured)):
+        mine = dist[owner[needles[hit]] == k]
+        if tube.half_width_mm is None and len(mine):
+            tube = replace(tube, half_width_mm=float(np.median(mine)))
+        out.append(tube)
+    return Layout.from_points(xy, cmds, owner, out, index)
 
 
 def _pattern_findings(plan: StitchPlan, settings: RuleSettings) -> list[Finding]:

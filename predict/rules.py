@@ -1,0 +1,194 @@
+"""Model-based design rules (EA4xx) and :func:`check_design`, every rule on a design.
+
+For each actuator the model is built from the *realised* geometry
+(:func:`~embroact.predict.derived.derive`) with G from the actuator's
+``ModelSettings`` (or its calibration set) and P0 from the override or the tube
+law; its curve is evaluated from 0 to the working pressure
+``operation.max_pressure_kpa``.
+
+* EA401: P0 above the working pressure (error).
+* EA402: lock-up: the bend at the working pressure reaches ``lockup_fraction``
+  (default 0.9) of the lock-up angle, or the curve reports LOCKED; beyond that
+  more pressure gives almost no bend.
+* EA403: |bend| at the working pressure above ``operation.max_bend_deg``.
+* EA404: the calibration set was extrapolated for this design.
+* EA405: between P0 and the working pressure the curve leaves the model's domain,
+  snaps through (UNSTABLE) or fails; or no model can be built.
+
+Examples
+--------
+>>> from embroact.patterns.design import default_design, build_plan
+>>> from embroact.predict.rules import check_design
+>>> design = default_design()
+>>> [f.code for f in check_design(design, build_plan(design)) if f.is_error]
+[]
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..patterns.errors import EmbroactError, ParameterError, check_range
+from ..patterns.findings import RULES, Finding
+from ..patterns.plan import StitchPlan
+from ..patterns.rules import RuleSettings, check_plan, sort_findings
+from .status import Status
+
+__all__ = ["ModelRuleSettings", "actuator_model", "check_model", "check_design"]
+
+_BAD_STATES = (Status.OUT_OF_DOMAIN, Status.UNSTABLE, Status.FAILED)
+
+
+@dataclass(frozen=True, slots=True)
+class ModelRuleSettings:
+    """Thresholds of the model rules.
+
+    Parameters
+    ----------
+    max_pressure_kpa : float
+        Working pressure [kPa], > 0 (design: ``operation.max_pressure_kpa``).
+    max_bend_deg : float
+        Largest acceptable |bend| at the working pressure [deg] (``operation.max_bend_deg``).
+    lockup_fraction : float
+        Fraction of the lock-up angle counted as locked, in (0, 1].
+    pressure_samples : int
+        Pressures evaluated from 0 to the working pressure, >= 2.
+    method : str
+        Model method (``embroact.predict.curve``), default ``"auto"``.
+    """
+
+    max_pressure_kpa: float = 300.0
+    max_bend_deg: float = 180.0
+    lockup_fraction: float = 0.9
+    pressure_samples: int = 61
+    method: str = "auto"
+
+    def __post_init__(self) -> None:
+        check_range("max_pressure_kpa", self.max_pressure_kpa, low=0.0, high=1e5)
+        check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=1e5)
+        check_range("lockup_fraction", self.lockup_fraction, low=0.0, high=1.0, high_inclusive=True)
+        n = self.pressure_samples
+        if isinstance(n, bool) or not isinstance(n, int) or n < 2:
+            raise ParameterError(f"pressure_samples must be an integer >= 2, got {n!r}")
+
+    @classmethod
+    def for_operation(cls, operation, **overrides) -> "ModelRuleSettings":
+        """From a design's ``OperationSettings`` (``max_pressure_kpa``, ``max_bend_deg``)."""
+        base = dict(max_pressure_kpa=operation.max_pressure_kpa, max_bend_deg=operation.max_bend_deg)
+        base.update(overrides)
+        return cls(**base)
+
+
+def actuator_model(derived, model_settings=None):
+    """(ActuatorModel, Calibration or None) of one generated actuator.
+
+    ``model_settings`` is a ``ModelSettings`` (None: defaults): ``g_mpa`` None takes G
+    from the named calibration set (the returned Calibration says whether it was
+    extrapolated); ``p0_kpa`` None takes P0 from the tube law.
+    """
+    from ..patterns.design import ModelSettings
+    from .calibration import lookup
+    from .curve import ActuatorModel
+
+    ms = model_settings if model_settings is not None else ModelSettings()
+    cal = None
+    if ms.g_mpa is None:
+        cal = lookup(derived.pattern, width_mm=derived.width_mm, name=ms.calibration,
+                     angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
+    g = ms.g_mpa if cal is None else cal.g_mpa
+    model = ActuatorModel.from_derived(derived, g_mpa=g, p0_kpa=ms.p0_kpa,
+                                       calibration="given" if cal is None else cal.label)
+    return model, cal
+
+
+def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSettings) -> list[Finding]:
+    from .curve import curve, lockup
+
+    where = dict(actuator=name)
+    try:
+        model, cal = actuator_model(derived, model_settings)
+    except EmbroactError as exc:
+        return [RULES.finding("EA405", f"no model for this actuator: {exc}", **where)]
+    out = []
+    if cal is not None and cal.extrapolated:
+        out.append(RULES.finding(
+            "EA404", f"calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
+            f"range [{cal.range_low:g}, {cal.range_high:g}]", **where))
+    p_max = settings.max_pressure_kpa
+    if model.p0_kpa > p_max:
+        out.append(RULES.finding(
+            "EA401", f"P0 {model.p0_kpa:.1f} kPa above the working pressure {p_max:g} kPa", **where))
+        return out
+    pressures = np.linspace(0.0, p_max, settings.pressure_samples)
+    c = curve(model, pressures, method=settings.method)
+    bad = np.flatnonzero(np.isin(c.status, [int(s) for s in _BAD_STATES]))
+    if len(bad):
+        i = int(bad[0])
+        out.append(RULES.finding(
+            "EA405", f"model state {Status(int(c.status[i])).name} from {pressures[i]:.0f} kPa on, below the "
+            f"working pressure {p_max:g} kPa", **where))
+    theta = float(c.theta_deg[-1])
+    if abs(theta) > settings.max_bend_deg:
+        out.append(RULES.finding(
+            "EA403", f"bend {theta:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
+    lock_theta, lock_p = lockup(model)
+    locked = int(c.status[-1]) == Status.LOCKED or (
+        np.isinf(lock_p) and lock_theta != 0.0 and abs(theta) >= settings.lockup_fraction * abs(lock_theta))
+    if locked:
+        out.append(RULES.finding(
+            "EA402", f"bend {theta:.1f} deg at {p_max:g} kPa is {abs(theta / lock_theta) * 100:.0f} % of the "
+            f"lock-up angle {lock_theta:.1f} deg", **where))
+    return out
+
+
+def check_model(plan: StitchPlan, *, design=None, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
+    """The model rules (EA401-EA405) for every actuator of a plan.
+
+    Each actuator's ``ModelSettings`` come from the design's actuator of the same
+    name (defaults without a design). Actuators without a sleeve (r0 <= r_f, EA201)
+    are skipped: the model has no inflation phase to start from.
+    """
+    from .derived import derive
+
+    if settings is None:
+        settings = ModelRuleSettings.for_operation(design.operation) if design is not None else ModelRuleSettings()
+    specs = {a.name: a.model for a in getattr(design, "actuators", ())}
+    found: list[Finding] = []
+    for act in plan.actuators:
+        derived = derive(act)
+        if derived.has_sleeve:
+            found += _actuator_findings(act.name, derived, specs.get(act.name), settings)
+    return sort_findings(found)
+
+
+def check_design(
+    design,
+    plan: StitchPlan,
+    *,
+    format: str | None = None,
+    rule_settings: RuleSettings | None = None,
+    model_settings: ModelRuleSettings | None = None,
+) -> tuple[Finding, ...]:
+    """Every design rule on a design and its plan: geometry, pattern, file structure, model.
+
+    Parameters
+    ----------
+    design : Design
+        Supplies machine limits (``machine``), working pressure and bend limit
+        (``operation``) and each actuator's ``ModelSettings``.
+    plan : StitchPlan
+        ``build_plan(design)``.
+    format : str, optional
+        Target machine format; default ``design.machine.format``.
+    rule_settings, model_settings : optional
+        Override the thresholds derived from the design.
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first. ``build`` refuses to write machine files when any is an error.
+    """
+    rs = rule_settings or RuleSettings.for_machine(design.machine, format=format)
+    found = list(check_plan(plan, rs)) + list(check_model(plan, design=design, settings=model_settings))
+    return sort_findings(found)
