@@ -81,7 +81,7 @@ _ACCURACY = {("stable", "analytic"): 1e-13, ("stable", "complex"): 1e-13, ("stab
 #: Largest bend the tracer follows on a branch that never locks [deg].
 MAX_BEND_DEG = 3600.0
 #: Tabulation points along a branch (trace inverse) and domain probes.
-TRACE_POINTS = 48
+TRACE_POINTS = 128
 DOMAIN_PROBES = 33
 #: Fractions of the branch probed to shorten it to the highest requested pressure.
 _END_FRACTIONS = np.concatenate([2.0 ** -np.arange(12, 0, -1), 1.0 - 2.0 ** -np.arange(2, 13), [1.0]])
@@ -246,6 +246,8 @@ def _branch_end(geo: _m.Geometry):
     lock = _m.lock_theta(geo)
     cap = math.radians(MAX_BEND_DEG)
     direction = np.where(lock < 0.0, -1.0, 1.0)
+    # a lock closer to the straight state than the angle tolerance is the neutral angle
+    lock = np.where(np.abs(lock) < math.radians(DEFAULT_TOLERANCES.angle_solution_deg), 0.0, lock)
     full = direction * np.minimum(np.abs(lock), cap)
     kind = np.where(np.abs(lock) <= cap, Status.LOCKED, Status.OUT_OF_DOMAIN).astype(np.int8)
 
@@ -276,10 +278,13 @@ def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
 
 
 def _slope_sign(geo, theta, energy, deriv):
-    """sign of dP/dtheta (central difference of P; only the sign is used)."""
-    return np.sign(solvers.derivative(
-        lambda t: _m.pressure_mpa(t, geo, form=energy, derivative=deriv), theta,
-        scale=geo.l0 / (2.0 * geo.r0), method="central"))
+    """Sign of dP/dtheta = (E'' V' - E' V'')/V'^2: central differences of the smooth rates
+    (E', V' have no pole at lock-up, P has)."""
+    rate = _rate_fn(geo, energy, deriv)
+    de, dv = rate(theta)
+    dde, ddv = solvers.derivative(lambda t: np.stack(rate(t)), theta, scale=geo.l0 / (2.0 * geo.r0),
+                                  method="central")
+    return np.sign(dde * dv - de * ddv)
 
 
 def _shorten(rate, full, tmax):
@@ -310,7 +315,8 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
     xtol = rtol * np.maximum(1.0, np.abs(full[rows]))
     if inverse == "trace":
         end = _shorten(rate, full[rows], t.max(axis=1, keepdims=True))
-        th, where, _, _ = solvers.trace_inverse(rate, end, t, grid_points=TRACE_POINTS, xtol=xtol)
+        th, where, _, _ = solvers.trace_inverse(rate, end, t, grid_points=TRACE_POINTS, xtol=xtol,
+                                                pole_at_end=(end == full[rows]) & (kind[rows] == Status.LOCKED))
         st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind[rows], Status.BENDING))
         th = np.where(where == 1, full[rows], th)
     else:
@@ -323,7 +329,8 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
                 return float(de[0, 0] - t[k, j] * dv[0, 0])
 
             th[k] = solvers.root_each(residual, np.zeros(m), np.full(m, full[rows[k], 0]), xtol=float(xtol[k, 0]))
-        p_end = _m.pressure_mpa(full[rows], g, form=energy, derivative=deriv) - g.p0
+        p_end = np.where(kind[rows] == Status.LOCKED, np.inf,
+                         _m.pressure_mpa(full[rows], g, form=energy, derivative=deriv) - g.p0)
         beyond = ~(t < np.nan_to_num(p_end, nan=np.inf))
         st = np.where(beyond, kind[rows], np.where(_slope_sign(g, th, energy, deriv) * np.sign(full[rows]) < 0,
                                                    Status.UNSTABLE, Status.BENDING))
@@ -451,8 +458,8 @@ def lockup(model: ActuatorModel) -> tuple[float, float]:
         return 0.0, (math.inf if kind[0, 0] == Status.LOCKED else float(model.p0_kpa))
     rate = _rate_fn(geo, "stable", "analytic")
     end = full
-    _, _, stop, p_stop = solvers.trace_inverse(rate, end, np.array([[np.inf]]), grid_points=TRACE_POINTS * 4,
-                                               xtol=DEFAULT_TOLERANCES.model_rtol)
+    _, _, stop, p_stop = solvers.trace_inverse(rate, end, np.empty((1, 0)), grid_points=TRACE_POINTS * 4,
+                                               xtol=DEFAULT_TOLERANCES.model_rtol, pole_at_end=kind == Status.LOCKED)
     theta = float(np.degrees(stop[0, 0]))
     if stop[0, 0] == full[0, 0] and kind[0, 0] == Status.LOCKED:
         return theta, math.inf

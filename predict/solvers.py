@@ -66,6 +66,11 @@ COMPLEX_STEP = 1e-30
 BISECT_ITERATIONS = 64
 GOLDEN_ITERATIONS = 80
 ILLINOIS_MAX_ITERATIONS = 100
+#: Newton steps on the interpolating cubic (no model evaluations) and on the model.
+CUBIC_NEWTON_STEPS = 4
+NEWTON_STEPS = 6
+#: Largest (rows x targets x grid) boolean block when bracketing targets in a table.
+BRACKET_BLOCK = 1 << 22
 
 
 def derivative(f, x, *, scale, method: str):
@@ -121,17 +126,18 @@ def golden_max(f, lo, hi, iterations: int = GOLDEN_ITERATIONS):
     return 0.5 * (a + b)
 
 
-def illinois(residual, a, b, fa, fb, *, xtol, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
+def illinois(residual, a, b, fa, fb, *, xtol, active=None, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
     """Vectorised Illinois regula falsi on brackets ``fa < 0 < fb`` (or the reverse).
 
     ``residual(x, active)`` evaluates the function at the entries selected by the
-    boolean mask ``active`` (x has the full shape). Stops entrywise when the step
+    boolean mask ``active`` (x has the full shape); entries not in the initial
+    ``active`` mask (default: all) are returned as ``a``. Stops entrywise when the step
     or the bracket falls below ``xtol``. Raises :class:`SolverError` if any entry
     has not converged after ``max_iterations``.
     """
     a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
     x = a.copy()
-    active = np.ones(a.shape, dtype=bool)
+    active = np.ones(a.shape, dtype=bool) if active is None else np.array(active, dtype=bool)
     side = np.zeros(a.shape, dtype=np.int8)  # which end was kept last: -1 a, +1 b
     for _ in range(max_iterations):
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -157,7 +163,7 @@ def illinois(residual, a, b, fa, fb, *, xtol, max_iterations: int = ILLINOIS_MAX
     )
 
 
-def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
+def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol, pole_at_end=False):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
@@ -172,6 +178,8 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
         Tabulation points along each branch.
     xtol : float or ndarray
         Absolute tolerance on theta [rad].
+    pole_at_end : bool or ndarray (n, 1)
+        True where ``theta_end`` is a lock-up (P -> +inf there).
 
     Returns
     -------
@@ -188,7 +196,8 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
     with np.errstate(divide="ignore", invalid="ignore"):
         p = de / dv
     p[:, 0] = 0.0
-    p[:, -1] = np.where(np.isfinite(p[:, -1]), p[:, -1], np.inf)  # lock-up pole
+    p[:, -1] = np.where(np.ravel(np.broadcast_to(pole_at_end, theta_end.shape)) | ~np.isfinite(p[:, -1]),
+                        np.inf, p[:, -1])
     rising = np.diff(p, axis=1) > 0.0
     first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
     folded = first_fall < grid_points - 1
@@ -201,7 +210,8 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
 
         def p_of(t):
             e, v = rate(t)
-            return e / v
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return e / v
 
         t_fold = golden_max(p_of, lo, hi)
         theta_stop = np.where(folded[:, None], t_fold, theta_stop)
@@ -209,38 +219,82 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol):
     beyond = targets > p_stop
     i = _bracket_index(p, np.maximum(first_fall, 1), np.where(beyond, 0.0, targets))
     where = np.where(beyond, np.where(folded[:, None], 2, 1), 0).astype(np.int8)
-    i = np.where(beyond, 0, i)
-    ta, tb = np.take_along_axis(grid, i, axis=1), np.take_along_axis(grid, i + 1, axis=1)
+    r2 = rows[:, None]
+    ta, tb = grid[r2, i], grid[r2, i + 1]
     with np.errstate(invalid="ignore"):
-        ra = np.take_along_axis(de, i, axis=1) - targets * np.take_along_axis(dv, i, axis=1)
-        rb = np.take_along_axis(de, i + 1, axis=1) - targets * np.take_along_axis(dv, i + 1, axis=1)
+        ra, rb = de[r2, i] - targets * dv[r2, i], de[r2, i + 1] - targets * dv[r2, i + 1]
     solve = ~beyond & (np.sign(ra) != np.sign(rb))
+    theta = np.where(ra == 0.0, ta, tb)
     if np.any(solve):
-        def residual(t, active):
-            e, v = rate(t)  # full arrays: rows share the rate function's broadcast shape
-            return np.where(active, e - targets * v, 0.0)
-
-        theta = illinois(residual, np.where(solve, ta, 0.0), np.where(solve, tb, 1.0),
-                         np.where(solve, ra, -1.0), np.where(solve, rb, 1.0), xtol=xtol)
-    else:
-        theta = np.zeros_like(targets)
-    theta = np.where(solve, theta, np.where(ra == 0.0, ta, tb))
+        theta = np.where(solve, _polish(rate, grid, de, dv, i, targets, (ta, tb, ra, rb), solve, xtol), theta)
     theta = np.where(beyond, theta_stop, theta)
     return theta, where, theta_stop, p_stop
 
 
-def _bracket_index(values, last, targets):
-    """Per row, the index i < last[row] with values[i] <= target < values[i+1] (binary search).
+#: Power-basis coefficients of the cubic through (0, f0), (1, f1), (2, f2), (3, f3).
+_CUBIC = np.linalg.inv(np.vander(np.arange(4.0), 4, increasing=True))
 
-    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end interval.
+
+def _polish(rate, grid, de, dv, i, targets, bracket, solve, xtol):
+    """Roots of R = dE - t dV in each bracket ``(ta, tb, R(ta), R(tb))``.
+
+    A cubic through the four tabulated residuals around the bracket gives the start
+    (its root) and the slope; Newton steps on the true residual finish. Steps that
+    leave the bracket, or entries still moving after ``NEWTON_STEPS``, go to Illinois.
     """
-    lo = np.zeros(targets.shape, dtype=np.intp)
-    hi = np.broadcast_to(last[:, None], targets.shape).astype(np.intp)
-    while np.any(hi - lo > 1):
-        mid = (lo + hi) // 2
-        up = np.take_along_axis(values, mid, axis=1) <= targets
-        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
-    return lo
+    ta, tb, ra, rb = bracket
+    h = grid[:, 1:2] - grid[:, 0:1]
+    j = np.clip(i - 1, 0, grid.shape[1] - 4)
+    r2 = np.arange(grid.shape[0])[:, None]
+    window = j[..., None] + np.arange(4)
+    coef = (de[r2[..., None], window] - targets[..., None] * dv[r2[..., None], window]) @ _CUBIC.T
+    c0, c1, c2, c3 = coef[..., 0], coef[..., 1], 2.0 * coef[..., 2], 3.0 * coef[..., 3]
+    u_lo = (i - j).astype(np.float64)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = u_lo + ra / (ra - rb)
+        for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1] (u = (x - grid_j)/h)
+            u = u - (c0 + u * (c1 + u * (coef[..., 2] + u * coef[..., 3]))) / (c1 + u * (c2 + u * c3))
+            u = np.clip(np.where(u == u, u, u_lo + 0.5), u_lo, u_lo + 1.0)
+    base = grid[r2, j]
+    lo, hi = np.minimum(ta, tb), np.maximum(ta, tb)
+    x = base + h * u
+    active = solve.copy()
+    for _ in range(NEWTON_STEPS):
+        e, v = rate(x)
+        fx = e - targets * v
+        uu = (x - base) / h
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xn = x - fx * h / (c1 + uu * (c2 + uu * c3))
+        ok = (xn >= lo) & (xn <= hi)
+        done = ok & ((np.abs(xn - x) <= xtol) | (fx == 0.0))
+        x = np.where(active & ok, xn, x)
+        active &= ok & ~done
+        if not active.any():
+            break
+    stuck = solve & ~((x >= lo) & (x <= hi)) | active
+    if stuck.any():
+        def residual(t, act):
+            e, v = rate(t)
+            return np.where(act, e - targets * v, 0.0)
+
+        x = np.where(stuck, illinois(residual, ta, tb, ra, rb, xtol=xtol, active=stuck), x)
+    return x
+
+
+def _bracket_index(values, last, targets):
+    """Per row, the index i < last[row] with values[i] <= target < values[i+1].
+
+    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end
+    interval. Counts in blocks of rows to bound the (rows, targets, grid) temporary.
+    """
+    n, k = values.shape
+    usable = np.arange(k) <= last[:, None]
+    out = np.empty(targets.shape, dtype=np.intp)
+    step = max(1, BRACKET_BLOCK // max(1, targets.shape[1] * k))
+    for lo in range(0, n, step):
+        v, t = values[lo:lo + step], targets[lo:lo + step]
+        out[lo:lo + step] = ((v[:, None, :] <= t[:, :, None]) & usable[lo:lo + step, None, :]).sum(axis=2)
+    return np.clip(out - 1, 0, np.minimum(last, k - 1)[:, None] - 1)
 
 
 def root_each(residual, lo, hi, *, xtol):
