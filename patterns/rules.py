@@ -372,7 +372,7 @@ def _needle_corridor(layout: Layout, settings: RuleSettings) -> list[Finding]:
                     layout,
                     i,
                     "EA101",
-                    f"needle point {dj:.2f} mm from the axis of tube {tube.name}, inside its "
+                    f"needle point {dj:.2f} mm from the tube axis of {tube.name}, inside its "
                     f"{tube.corridor_radius_mm:.2f} mm corridor (r_f {tube.outer_radius_mm:g} + clearance "
                     f"{tube.clearance_mm:g})",
                 )
@@ -513,7 +513,7 @@ def _interval(layout: Layout, settings: RuleSettings) -> list[Finding]:
             out.append(
                 _point(
                     layout, i, "EA203",
-                    f"legs cross tube {tube.name} {gaps[g]:.2f} mm apart along its axis, more than the tube "
+                    f"legs cross the tube of {tube.name} {gaps[g]:.2f} mm apart along its axis, more than the tube "
                     f"diameter {limit:g} mm",
                 )
             )
@@ -539,7 +539,7 @@ def _turning(layout: Layout, settings: RuleSettings) -> list[Finding]:
         out.append(
             _tube_finding(
                 layout, k, "EA301",
-                f"tube {tube.name} turns with {kind}; minimum turning radius {r_min:g} mm "
+                f"the tube of {tube.name} turns with {kind}; minimum turning radius {r_min:g} mm "
                 f"({settings.turning_radius_factor:g} x outer diameter)",
                 xy=worst,
             )
@@ -562,7 +562,7 @@ def _self_intersection(layout: Layout, settings: RuleSettings) -> list[Finding]:
         out.append(
             _tube_finding(
                 layout, k, "EA302",
-                f"tube {tube.name} path {what}, first at ({where[0]:.2f}, {where[1]:.2f}) mm",
+                f"the tube path of {tube.name} {what}, first at ({where[0]:.2f}, {where[1]:.2f}) mm",
                 xy=where,
             )
         )
@@ -584,7 +584,7 @@ def _pairs(layout: Layout, settings: RuleSettings) -> list[Finding]:
                 out.append(
                     _tube_finding(
                         layout, b, "EA303",
-                        f"tubes {ta.name} and {tb.name} are {gap:.2f} mm apart (axis to axis); their corridors "
+                        f"the tubes of {ta.name} and {tb.name} are {gap:.2f} mm apart (axis to axis); their corridors "
                         f"need {need:.2f} mm",
                         xy=where,
                     )
