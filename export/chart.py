@@ -53,7 +53,7 @@ STATUS_STYLE: dict[str, tuple[str, str]] = {
 PALETTE = ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000")
 
 _DECIMALS = 2  # SVG coordinates are rounded to 0.01 user unit: stable bytes, small files
-_TICK_STEPS = (1.0, 2.0, 5.0, 10.0)
+_TICK_STEPS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0)  # two decades: rounding can push past the first
 _FONT = "font-family:Helvetica,Arial,sans-serif"
 _RIBBON_PX = 7.0
 
