@@ -52,6 +52,7 @@ from .atomic import write_bytes_atomic
 from .formats import FORMATS, WriteResult, encode
 
 __all__ = [
+    "DEFAULT_SPEED_SPM",
     "DesignRuleError",
     "BuildContext",
     "BuildResult",
@@ -63,6 +64,10 @@ __all__ = [
     "build",
     "build_plan_outputs",
 ]
+
+
+DEFAULT_SPEED_SPM = 600.0
+"""Machine speed used when neither the caller nor the design gives one [stitches/min]."""
 
 
 class DesignRuleError(PatternError):
@@ -203,7 +208,7 @@ def build_plan_outputs(
     formats: Sequence[str] = ("dst",),
     force: bool = False,
     split_long: bool = False,
-    speed_spm: float = 600.0,
+    speed_spm: float = DEFAULT_SPEED_SPM,
     check: Callable | None = None,
     stages: Sequence[Stage] = (),
 ) -> BuildResult:
@@ -241,10 +246,10 @@ def build(
     design,
     out_dir: str | os.PathLike,
     *,
-    formats: Sequence[str] = ("dst",),
+    formats: Sequence[str] | None = None,
     force: bool = False,
     split_long: bool = False,
-    speed_spm: float = 600.0,
+    speed_spm: float | None = None,
     check: Callable | None = None,
     stages: Sequence[Stage] = (),
 ) -> BuildResult:
@@ -257,20 +262,23 @@ def build(
         :func:`embroact.export.designfile.load_design`.
     out_dir : path
         Existing, writable directory (else :class:`ExportError`, nothing written).
-    formats : sequence of str
-        Machine formats, default DST only.
+    formats : sequence of str, optional
+        Machine formats; default the design's ``machine.format`` (DST by default).
     force : bool
         Write even when ``check`` reports errors.
     split_long : bool
         Split legs above a format's per-record limit (see :func:`embroact.export.formats.write`).
-    speed_spm : float
-        Machine speed for the worksheet [stitches/min].
+    speed_spm : float, optional
+        Machine speed for the worksheet [stitches/min]; default the design's ``machine.speed_spm``.
     check, stages
         Plug-in points (module docstring).
     """
     from ..patterns.design import build_plan
 
     check_out_dir(out_dir)
+    machine = getattr(design, "machine", None)
+    formats = formats if formats is not None else (getattr(machine, "format", "dst"),)
+    speed_spm = speed_spm if speed_spm is not None else getattr(machine, "speed_spm", DEFAULT_SPEED_SPM)
     plan = build_plan(design)
     return build_plan_outputs(plan, out_dir, design=design, formats=formats, force=force, split_long=split_long,
                               speed_spm=speed_spm, check=check, stages=stages)

@@ -35,11 +35,12 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact build``."""
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
     parser.add_argument("--out", required=True, help="existing output directory")
-    parser.add_argument("--format", default="dst", help="machine formats, comma separated (default dst)")
+    parser.add_argument("--format", help="machine formats, comma separated (default: the design's machine.format, dst)")
     parser.add_argument("--force", action="store_true", help="write even if the design-rule checks find errors")
     parser.add_argument("--split-long", action="store_true",
                         help="split legs longer than a format allows into stitches outside the tube corridor")
-    parser.add_argument("--speed-spm", type=float, default=600.0, help="machine speed for the worksheet [stitches/min]")
+    parser.add_argument("--speed-spm", type=float,
+                        help="machine speed for the worksheet [stitches/min] (default: the design's, 600)")
     parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 
 
@@ -47,7 +48,7 @@ def run(args) -> int:
     """Load (or default) the design, build, report."""
     from .build import DesignRuleError, build, check_out_dir, parse_formats
 
-    formats = parse_formats(args.format)
+    formats = parse_formats(args.format) if args.format else None
     check_out_dir(args.out)
     if args.design:
         from .designfile import load_design
@@ -74,6 +75,6 @@ def run(args) -> int:
     else:
         ws = res.worksheet
         print(f"wrote {len(res.files)} files to {res.out_dir}: {', '.join(res.files)}")
-        print(f"{ws.stitch_count} stitches, {ws.stop_count} stops; tube to cut: "
+        print(f"{ws.stitch_count} stitches, {ws.stop_count} stop(s); tube to cut: "
               + ", ".join(f"{a.name} {a.tube_cut_mm:.0f} mm" for a in ws.actuators))
     return 0

@@ -59,6 +59,25 @@ def _dst_post(data: bytes, mp: MachinePattern) -> bytes:
     return fix_dst(data, label=mp.pattern.get_metadata("name", ""))
 
 
+def _vp3_even_center(pattern) -> None:
+    """Make the VP3 design centre whole units (pyembroidery 1.5.1 truncates block offsets from it).
+
+    The VP3 writer stores each colour block's start as ``int(start - centre)`` and
+    the reader adds back ``int(centre)``: with a half-unit centre every block after
+    the first lands 0.1 mm off.  Two jump records before the end (VP3 has no jumps:
+    the writer skips them, only the bounds see them) widen the bounds by one unit
+    where the sum of the extremes is odd.
+    """
+    import pyembroidery as pe
+
+    xmin, ymin, xmax, ymax = pattern.bounds()
+    if (xmin + xmax) % 2 == 0 and (ymin + ymax) % 2 == 0:
+        return
+    corner = [xmax + (xmin + xmax) % 2, ymax + (ymin + ymax) % 2]
+    last = pattern.stitches[-1]
+    pattern.stitches[-1:-1] = [[*corner, pe.JUMP], [last[0], last[1], pe.JUMP]]
+
+
 @dataclass(frozen=True, slots=True)
 class MachineFormat:
     """One writable format.
@@ -77,6 +96,8 @@ class MachineFormat:
         Extra writer settings.
     postprocess : callable or None
         ``(bytes, MachinePattern) -> bytes`` applied after the writer (DST header).
+    prepare : callable or None
+        ``(EmbPattern) -> None`` applied to the records before the writer (VP3 centre).
     """
 
     name: str
@@ -85,6 +106,7 @@ class MachineFormat:
     limit: FormatLimit
     settings: tuple[tuple[str, object], ...] = ()
     postprocess: Callable[[bytes, MachinePattern], bytes] | None = field(default=None, compare=False)
+    prepare: Callable[[object], None] | None = field(default=None, compare=False)
 
     @property
     def description(self) -> str:
@@ -92,8 +114,8 @@ class MachineFormat:
         return self.limit.description
 
 
-def _fmt(name: str, writer: str, style: str, settings=(), post=None) -> MachineFormat:
-    return MachineFormat(name, writer, style, FORMAT_LIMITS[name], tuple(settings), post)
+def _fmt(name: str, writer: str, style: str, settings=(), post=None, prepare=None) -> MachineFormat:
+    return MachineFormat(name, writer, style, FORMAT_LIMITS[name], tuple(settings), post, prepare)
 
 
 FORMATS: dict[str, MachineFormat] = {
@@ -105,7 +127,7 @@ FORMATS: dict[str, MachineFormat] = {
         _fmt("pec", "PecWriter", "color"),
         _fmt("jef", "JefWriter", "color", [("trims", True), ("date", FIXED_DATE)]),
         _fmt("exp", "ExpWriter", "stop"),
-        _fmt("vp3", "Vp3Writer", "color"),
+        _fmt("vp3", "Vp3Writer", "color", prepare=_vp3_even_center),
         _fmt("xxx", "XxxWriter", "color"),
         _fmt("u01", "U01Writer", "needle_stop"),
     )
@@ -180,6 +202,8 @@ def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bo
     f = fmt if isinstance(fmt, MachineFormat) else machine_format("", fmt=fmt)
     mp = to_pattern(plan, f, split_long=split_long)
     writer = importlib.import_module(f"pyembroidery.{f.writer}")
+    if f.prepare is not None:
+        f.prepare(mp.pattern)
     settings = {"encode": False, **dict(f.settings)}
     buf = io.BytesIO()
     try:

@@ -28,7 +28,10 @@ STOP      cord in: the frame first moves to the record's point, then, by the
           * ``"color"`` (PES, PEC, JEF, VP3, XXX): formats with a thread table.
             The first actuator's stop is implicit (the machine waits for start);
             every later STOP is one colour change to that actuator's thread,
-            which makes single-needle machines stop.
+            which makes single-needle machines stop, placed at the actuator's
+            first needle point (the frame travels there first).  PEC/PES
+            writers add a zero-length stitch at a colour change after travel:
+            one extra penetration on the first needle point.
           * ``"needle_stop"`` (TBF, U01): a needle-set record selecting the
             actuator's thread (always needle 1) and a separate stop record.
 TRIM      one trim (DST: pyembroidery's run of 3 jumps netting to zero).
@@ -261,6 +264,12 @@ def _split_leg(p0: np.ndarray, p1: np.ndarray, lim: int, forbidden: list[tuple[f
     return pts + [p1]
 
 
+def _next_stitch(plan: StitchPlan, i: int) -> int:
+    """Index of the first STITCH record after ``i`` (``i`` itself if there is none)."""
+    after = np.flatnonzero(plan.commands[i:] == Command.STITCH)
+    return i + int(after[0]) if len(after) else i
+
+
 class _Builder:
     """Accumulates low-level records and counts them."""
 
@@ -272,6 +281,7 @@ class _Builder:
         self.pattern = pyembroidery.EmbPattern()
         self.pos = np.zeros(2, dtype=np.int64)
         self.jump_ok = True  # at the start or after a trim: a long jump run is harmless
+        self.stitched = False  # a needle record has been written
         self.stops = self.trims = self.jumps = 0
         self.max_jump = round(fmt.limit.max_jump_mm * UNITS_PER_MM)
 
@@ -339,6 +349,8 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     for i, (cmd, p) in enumerate(zip(plan.commands.tolist(), units)):
         k = int(plan.actuator[i])
         if cmd == Command.STITCH:
+            if b.jump_ok and b.stops == 0 and not b.stitched:
+                b.travel(p, i)  # first needle point of the design when no stop record precedes it
             if int(np.abs(p - b.pos).max()) > lim:
                 pts = _split_leg(b.pos, p, lim, _forbidden_t(plan, k, plan.xy_mm[i - 1], plan.xy_mm[i]))
                 split, extra = split + 1, extra + len(pts) - 1
@@ -346,12 +358,16 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
                 pts = [p]
             for q in pts:
                 b.add(pe.STITCH, q)
-            b.jump_ok = False
+            b.jump_ok, b.stitched = False, True
         elif cmd == Command.JUMP:
             b.travel(p, i)
         elif cmd == Command.STOP:
-            b.travel(p, i)
             threads.setdefault(k, len(threads))
+            if fmt.stop_style == "color":
+                if threads[k] == 0:
+                    continue  # implicit first stop: the first stitch travels to its point
+                p = units[_next_stitch(plan, i)]  # colour change where the actuator's first stitch is
+            b.travel(p, i)
             b.stop(threads[k])
         elif cmd == Command.TRIM:
             b.travel(p, i)

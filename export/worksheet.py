@@ -274,7 +274,7 @@ def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet]) -> tuple[str
             continue
         out.append(
             f"stop {n}: lay tube for actuator {a.name} along its path, {a.tube_cut_mm:.0f} mm cut length "
-            f"({a.end_margin_mm:g} mm free at each end); the needle waits at its first needle point "
+            f"({a.end_margin_mm:g} mm free at each end); the needle waits at the actuator's start "
             f"({x:.1f}, {y:.1f}) mm; tape the ends, press start"
         )
     return tuple(out)

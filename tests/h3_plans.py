@@ -14,10 +14,12 @@ from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import ActuatorPlan, Command as C, Realised, Role as R, StitchPlan
 
-HAVE_GENERATORS = all(
-    importlib.util.find_spec(m) is not None
-    for m in ("embroact.patterns.zigzag", "embroact.patterns.cross", "embroact.patterns.design")
-)
+def _have(module: str) -> bool:
+    return importlib.util.find_spec(module) is not None
+
+
+HAVE_GENERATORS = _have("embroact.patterns.zigzag") and _have("embroact.patterns.design")
+HAVE_CROSS = _have("embroact.patterns.cross")
 
 
 def _zigzag_records(k, origin, width, interval, length):
@@ -60,18 +62,33 @@ def generated_plans():
     """(label, plan) pairs from the generators: zigzag and cross, straight and curved, 1 and 3 actuators."""
     if not HAVE_GENERATORS:
         return []
-    from embroact.patterns.cross import cross
-    from embroact.patterns.design import build_plan, default_design
+    from embroact.patterns.design import build_plan, default_design, design_from_dict
     from embroact.patterns.zigzag import zigzag
 
-    curve = Centerline.from_svg_path("M 0 0 C 30 -25 60 25 90 0")
+    d = "M 0 0 C 30 -25 60 25 90 0"
+    curve = Centerline.from_svg_path(d)
+    three = design_from_dict({"name": "three", "actuator": [
+        {"name": "A1", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 60},
+        {"name": "A2", "pattern": "zigzag", "width_mm": 9, "interval_mm": 1.5, "path": d, "origin_mm": [0, 30]},
+        {"name": "A3", "pattern": "zigzag", "width_mm": 5, "interval_mm": 0.8, "length_mm": 40,
+         "origin_mm": [20, 60], "rotation_deg": 90}]})
     plans = [
         ("zigzag-straight", zigzag(Centerline.straight(100.0), ZigzagParams(7.0, 1.0))),
         ("zigzag-curved", zigzag(curve, ZigzagParams(7.0, 1.0))),
-        ("cross-straight", cross(Centerline.straight(100.0), CrossParams(7.0, 1.4, 45.0))),
-        ("cross-curved", cross(curve, CrossParams(7.0, 1.4, 45.0))),
         ("default-design", build_plan(default_design())),
+        ("three-zigzags", build_plan(three)),
     ]
+    if HAVE_CROSS:
+        from embroact.patterns.cross import cross
+
+        plans += [
+            ("cross-straight", cross(Centerline.straight(100.0), CrossParams(7.0, 1.4, 45.0))),
+            ("cross-curved", cross(curve, CrossParams(7.0, 1.4, 45.0))),
+        ]
+        three_cross = design_from_dict({"name": "three-cross", "actuator": [
+            {"name": f"C{k + 1}", "pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45,
+             "length_mm": 50, "origin_mm": [0, 20 * k]} for k in range(3)]})
+        plans.append(("three-cross", build_plan(three_cross)))
     return plans
 
 
