@@ -64,11 +64,14 @@ __all__ = [
     "unregister",
     "get_set",
     "set_names",
+    "P0_SOURCES",
+    "calibrated_model",
 ]
 
 PATTERNS = ("zigzag", "cross")
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
+P0_SOURCES = ("calibration", "geometry")
 
 _G_MAX_MPA = 1e5
 _P_MAX_KPA = 1e5
@@ -469,3 +472,70 @@ def lookup(
         extrapolation=extrapolation,
         notes=tuple(notes),
     )
+
+
+def calibrated_model(
+    derived,
+    *,
+    name: str = "paper-2025",
+    sets: Iterable[CalibrationSet] | None = None,
+    branch: str = "loading",
+    extrapolation: str = "clamp",
+    g_mpa: float | None = None,
+    p0_kpa: float | None = None,
+    p0: str = "calibration",
+):
+    """The deformation model of a design with G and P0 from a calibration set.
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design (``embroact.predict.derived``).
+    name, sets, branch, extrapolation
+        As for :func:`lookup`.
+    g_mpa, p0_kpa : float, optional
+        Values that override the calibration (e.g. a design file's ``[actuator.model]``).
+    p0 : str
+        Without ``p0_kpa``: ``"calibration"`` (the set's fitted P0) or ``"geometry"``
+        (the tube law's pressure at r0).
+
+    Returns
+    -------
+    (ActuatorModel, Calibration or None)
+        The model, whose ``calibration`` field names where G and P0 came from, and the
+        lookup result (``None`` when both values were given).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=40.0,
+    ...                        length_mm=100.0, tube=Tube())
+    >>> m, cal = calibrated_model(d)
+    >>> round(m.g_mpa, 4), round(m.p0_kpa, 2), m.calibration
+    (4.8667, 166.67, 'paper-2025 (cross, angle_deg=40, interpolated in [15, 60])')
+    >>> calibrated_model(d, p0="geometry", g_mpa=2.0)[0].calibration
+    'given (g_mpa), p0_kpa from geometry'
+    """
+    from .curve import ActuatorModel
+
+    _choice("p0", p0, P0_SOURCES)
+    p0_from_set = p0_kpa is None and p0 == "calibration"
+    cal = None
+    if g_mpa is None or p0_from_set:
+        angle = derived.angle_deg if derived.pattern == "cross" else None
+        cal = lookup(derived.pattern, width_mm=derived.width_mm, angle_deg=angle, name=name, sets=sets,
+                     branch=branch, extrapolation=extrapolation)
+    given = [k for k, v in (("g_mpa", g_mpa), ("p0_kpa", p0_kpa)) if v is not None]
+    parts = [cal.label] if cal is not None else []
+    if given:
+        parts.append(f"given ({', '.join(given)})")
+    if p0_kpa is None and p0 == "geometry":
+        parts.append("p0_kpa from geometry")
+    model = ActuatorModel.from_derived(
+        derived,
+        g_mpa=cal.g_mpa if g_mpa is None else g_mpa,
+        p0_kpa=cal.p0_kpa if p0_from_set else p0_kpa,
+        calibration=", ".join(parts),
+    )
+    return model, cal

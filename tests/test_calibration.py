@@ -252,3 +252,30 @@ def test_bad_calibration_files(tmp_path, text, match):
 def test_missing_calibration_file(tmp_path):
     with pytest.raises(DesignFileError, match="cannot read"):
         read_calibration(tmp_path / "nope.toml")
+
+
+# -- calibrated_model: every prediction names its calibration ----------------------------
+from embroact.patterns.params import Tube  # noqa: E402
+from embroact.predict.calibration import calibrated_model  # noqa: E402
+from embroact.predict.derived import derive_from_values  # noqa: E402
+
+
+def _derived(pattern="zigzag", width_mm=7.0, angle_deg=0.0):
+    return derive_from_values(pattern, width_mm=width_mm, interval_mm=1.0, angle_deg=angle_deg, length_mm=100.0,
+                              tube=Tube())
+
+
+def test_calibrated_model_sources():
+    m, cal = calibrated_model(_derived())
+    assert (m.g_mpa, m.p0_kpa, m.calibration) == (2.7, 85.0, "paper-2025 (zigzag, width_mm=7)")
+    m, cal = calibrated_model(_derived(width_mm=11.0))
+    assert cal.extrapolated and m.g_mpa == 3.4 and "clamped to [5, 9]" in m.calibration
+    d = _derived()
+    m, cal = calibrated_model(d, p0="geometry")
+    assert m.p0_kpa == d.p0_kpa and m.calibration.endswith("p0_kpa from geometry") and m.g_mpa == 2.7
+    m, cal = calibrated_model(d, g_mpa=1.5, p0_kpa=60.0)
+    assert cal is None and (m.g_mpa, m.p0_kpa, m.calibration) == (1.5, 60.0, "given (g_mpa, p0_kpa)")
+    m, _ = calibrated_model(_derived("cross", angle_deg=45.0), p0_kpa=100.0)
+    assert (m.g_mpa, m.p0_kpa) == (1.3, 100.0) and m.calibration.endswith("given (p0_kpa)")
+    with pytest.raises(ParameterError, match="p0 must be one of 'calibration', 'geometry'"):
+        calibrated_model(d, p0="fitted")
