@@ -1,11 +1,25 @@
-"""``embroact fit DATA.csv``: fit G and P0 to measured bend angles, write a calibration set.
+r"""``embroact fit DATA.csv``: fit G and P0 to measured bend angles, write a calibration set.
 
 Examples
 --------
+Noise-free angles from the model (G = 2.7 MPa, P0 = 85 kPa) come back as they went in:
+
+>>> import os, tempfile
 >>> from embroact.export.cli import main
->>> main(["fit", "data.csv", "--pattern", "zigzag", "--width-mm", "7"])  # doctest: +SKIP
-branch     n   G [MPa]           P0 [kPa]               RMSE [deg]
-loading    31  2.702 +- 0.0046   84.93 +- 0.36 fitted   0.98
+>>> from embroact.patterns.params import Tube
+>>> from embroact.predict.curve import ActuatorModel, curve
+>>> from embroact.predict.derived import derive_from_values
+>>> d = derive_from_values("zigzag", width_mm=7, interval_mm=1, angle_deg=0, length_mm=100, tube=Tube())
+>>> p = list(range(0, 301, 20))
+>>> theta = curve(ActuatorModel.from_derived(d, g_mpa=2.7, p0_kpa=85.0), p).theta_deg
+>>> path = os.path.join(tempfile.mkdtemp(), "data.csv")
+>>> with open(path, "w") as fh:
+...     _ = fh.write("pressure_kpa,angle_deg\n" + "".join(f"{a},{t:.4f}\n" for a, t in zip(p, theta)))
+>>> main(["fit", path, "--pattern", "zigzag", "--width-mm", "7"])
+fit of zigzag w=7 mm s=1 mm l0=100 mm; model method stable-analytic-trace
+branch        n  G [MPa]            P0 [kPa]                 RMSE [deg]
+loading      16  2.7 +- ...         85 +- ... fitted ...
+0
 """
 from __future__ import annotations
 
