@@ -10,6 +10,18 @@ Examples
 1
 """
 from .centerline import Centerline, as_centerline
+from .cross import cross
+from .design import (
+    ActuatorSpec,
+    Design,
+    MachineSettings,
+    ModelSettings,
+    OperationSettings,
+    build_plan,
+    default_design,
+    design_from_dict,
+    design_to_dict,
+)
 from .errors import DesignFileError, EmbroactError, ParameterError, PathError, PatternError
 from .measure import measure
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
@@ -20,6 +32,16 @@ __all__ = [
     "Centerline",
     "as_centerline",
     "zigzag",
+    "cross",
+    "Design",
+    "ActuatorSpec",
+    "MachineSettings",
+    "OperationSettings",
+    "ModelSettings",
+    "design_from_dict",
+    "design_to_dict",
+    "default_design",
+    "build_plan",
     "measure",
     "Tube",
     "StitchOptions",

@@ -72,6 +72,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from .centerline import Centerline, as_centerline
+from .cross import cross
 from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
@@ -96,7 +97,7 @@ __all__ = [
 
 #: pattern name -> parameter class
 PATTERN_PARAMS = {"zigzag": ZigzagParams, "cross": CrossParams}
-_GENERATORS = {"zigzag": zigzag}
+_GENERATORS = {"zigzag": zigzag, "cross": cross}
 
 
 @dataclass(frozen=True, slots=True)

@@ -8,8 +8,8 @@ record whose role is LEG, from the record before it.
 - angle: mean ``atan(|ds| / |do|)`` of the legs, i.e. the angle from the local
   perpendicular (zigzag: its small lean ``atan(s / w)``; cross: alpha0);
 - interval: zigzag, mean ``|ds|`` of the legs (axial spacing of consecutive needle
-  points); cross, mean spacing along the path between neighbouring parallel legs of
-  one family (a leg's position is where it crosses the centerline, ``o = 0``);
+  points); cross, median spacing along the path between neighbouring parallel legs
+  of one family (a leg's position is where it crosses the centerline, ``o = 0``);
 - length: axial extent of all leg end points; passes: runs of legs advancing the
   same way along the path.
 
@@ -40,7 +40,11 @@ PATTERNS = ("zigzag", "cross")
 
 
 def _family_spacing(pos: np.ndarray, family: np.ndarray) -> float:
-    """Mean spacing of neighbouring distinct leg positions within each family."""
+    """Median spacing of neighbouring distinct leg positions within each family.
+
+    The median, not the mean: a leg left out where two passes turn (see
+    :mod:`embroact.patterns.cross`) must not bias the typical spacing.
+    """
     gaps = []
     for f in (-1.0, 1.0):
         p = np.sort(pos[family == f])
@@ -49,7 +53,7 @@ def _family_spacing(pos: np.ndarray, family: np.ndarray) -> float:
     g = np.concatenate(gaps)
     if g.size == 0:
         raise PatternError("cannot measure the interval: fewer than two parallel legs in each family")
-    return float(g.mean())
+    return float(np.median(g))
 
 
 def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
