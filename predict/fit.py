@@ -105,7 +105,8 @@ class FitResult:
     g_mpa_se, p0_kpa_se, g_e_mpa_se : float or None
         Standard errors of fitted values (P0 from geometry inherits G_e's relative error).
     p0_source : str
-        ``"fitted"``, ``"given"`` or ``"geometry"``.
+        ``"fitted"``, ``"given"``, ``"geometry"`` (:func:`fit_design`) or ``"default"``
+        (:func:`fit_curve` left P0 to the predictor).
     rmse_deg : float
         Root-mean-square residual [deg].
     n_points : int
@@ -372,7 +373,7 @@ def fit_curve(
         g_mpa_se=se.get("g_mpa"),
         p0_kpa_se=se.get("p0_kpa"),
         g_e_mpa_se=se.get("g_e_mpa"),
-        p0_source="fitted" if "p0_kpa" in names else "given",
+        p0_source="fitted" if "p0_kpa" in names else ("given" if fixed.get("p0_kpa") is not None else "default"),
         rmse_deg=float(math.sqrt(np.mean(res.fun**2))),
         n_points=int(p.size),
         pressure_kpa=_frozen(p),
