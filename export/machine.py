@@ -282,6 +282,7 @@ class _Builder:
         self.pos = np.zeros(2, dtype=np.int64)
         self.jump_ok = True  # at the start or after a trim: a long jump run is harmless
         self.stitched = False  # a needle record has been written
+        self.jump_run = 0  # consecutive jump records just written
         self.stops = self.trims = self.jumps = 0
         self.max_jump = round(fmt.limit.max_jump_mm * UNITS_PER_MM)
 
@@ -289,19 +290,19 @@ class _Builder:
         p = self.pos if p is None else p
         self.pattern.stitches.append([int(p[0]), int(p[1]), cmd])
         self.pos = np.array(p, dtype=np.int64)
+        self.jump_run = self.jump_run + 1 if cmd == self.pe.JUMP else 0
 
     def travel(self, target: np.ndarray, record: int) -> None:
         if np.array_equal(target, self.pos):
             return
-        steps = _steps(self.pos, target, self.max_jump)
-        if len(steps) >= TRIM_JUMP_RUN and not self.jump_ok:
-            raise PatternError(
-                f"travel at plan record {record} needs {len(steps)} jump records without a trim before it; "
-                f"machines read {TRIM_JUMP_RUN} or more jumps as a trim: add a TRIM before the travel"
-            )
-        for p in steps:
+        for p in _steps(self.pos, target, self.max_jump):
             self.add(self.pe.JUMP, p)
-        self.jumps += len(steps)
+            self.jumps += 1
+        if self.jump_run >= TRIM_JUMP_RUN and not self.jump_ok:
+            raise PatternError(
+                f"travel up to plan record {record} needs {self.jump_run} jump records in a row without a trim "
+                f"before them; machines read {TRIM_JUMP_RUN} or more jumps as a trim: add a TRIM before the travel"
+            )
 
     def stop(self, thread: int) -> None:
         pe, style = self.pe, self.fmt.stop_style

@@ -21,7 +21,7 @@ Examples
 >>> import xml.etree.ElementTree as ET
 >>> root = ET.fromstring(plan_svg(plan))
 >>> root.get("width"), root.get("viewBox")
-('58.25mm', '-8 -11.5 58.25 37.8')
+('55.5mm', '-8 -11.5 55.5 37.8')
 """
 from __future__ import annotations
 
@@ -80,8 +80,9 @@ def _ring_path(rings: list[np.ndarray]) -> str:
 
 
 def _param_lines(plan: StitchPlan) -> list[str]:
-    lines = [f"{plan.name}: {plan.stitch_count} stitches, {plan.count(Command.STOP)} stops, "
-             f"{plan.count(Command.TRIM)} trims"]
+    n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
+    lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
+             f"{n_trim} trim{'s' * (n_trim != 1)}"]
     for a in plan.actuators:
         r = a.realised
         angle = f", alpha0 {r.angle_deg:.2f} deg" if a.pattern == "cross" else ""

@@ -85,10 +85,12 @@ def generated_plans():
             ("cross-straight", cross(Centerline.straight(100.0), CrossParams(7.0, 1.4, 45.0))),
             ("cross-curved", cross(curve, CrossParams(7.0, 1.4, 45.0))),
         ]
-        three_cross = design_from_dict({"name": "three-cross", "actuator": [
-            {"name": f"C{k + 1}", "pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45,
-             "length_mm": 50, "origin_mm": [0, 20 * k]} for k in range(3)]})
-        plans.append(("three-cross", build_plan(three_cross)))
+        from embroact.patterns.design import join_plans
+
+        three_cross = join_plans(
+            [cross(Centerline.straight(50.0, origin_mm=(0.0, 20.0 * k)), CrossParams(7.0, 1.4, 45.0), name=f"C{k + 1}")
+             for k in range(3)], name="three-cross")
+        plans.append(("three-cross", three_cross))
     return plans
 
 

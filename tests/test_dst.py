@@ -147,10 +147,14 @@ def test_split_long_keeps_needles_out_of_the_corridor():
     assert all(abs(r.dy) <= 121 for r in dst.records)
 
 
-def test_unintended_trim_is_refused():
-    recs = [(0, 0, C.STITCH, R.LEG), (1, 0, C.STITCH, R.LEG), (40, 0, C.JUMP, R.TRAVEL), (41, 0, C.STITCH, R.LEG)]
+@pytest.mark.parametrize("jumps", [[40.0], [12.0, 24.0, 36.0]])
+def test_unintended_trim_is_refused(jumps):
+    """Three jump records in a row after a stitch would cut the thread: refused, one long or several short."""
+    recs = [(0, 0, C.STITCH, R.LEG), (1, 0, C.STITCH, R.LEG)] + [(x, 0, C.JUMP, R.TRAVEL) for x in jumps]
+    recs.append((jumps[-1] + 1, 0, C.STITCH, R.LEG))
     with pytest.raises(PatternError, match="read 3 or more jumps as a trim"):
         encode(StitchPlan.from_records(recs), "dst")
+    encode(StitchPlan.from_records(recs[:2] + [(1, 0, C.TRIM, R.CONTROL)] + recs[2:]), "dst")  # after a trim: fine
 
 
 def test_same_bytes_in_two_processes(tmp_path):
