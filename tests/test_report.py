@@ -1,0 +1,188 @@
+"""report.json / report.html: content, self-containment, the build stage, and a real headless browser."""
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+
+from embroact.export.build import build
+from embroact.export.previews import (Previews, previews_stage, pressures_for, render_previews, shape_theta_deg,
+                                      side_pressures)
+from embroact.export.report import FIGURES, finding_dict, report_data, report_html, report_json
+from embroact.patterns.design import default_design
+from embroact.patterns.errors import ParameterError
+from embroact.patterns.findings import Finding, Severity
+
+
+class _Tags(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.tags, self.refs = [], []
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append(tag)
+        self.refs += [(tag, k, v) for k, v in attrs if k in ("src", "href", "xlink:href", "data", "action")]
+
+
+def _scan(html):
+    p = _Tags()
+    p.feed(html)
+    return p
+
+
+FINDING = Finding("EA104", Severity.WARNING, "stitch 0.2 mm < 0.3 mm <b>&</b>", actuator="A1", stitch_index=7,
+                  xy_mm=(1.0, -3.5), fix="increase the interval")
+
+
+# ----------------------------------------------------------------------------- report.py
+def test_finding_objects_and_dicts_give_the_same_keys():
+    d = finding_dict(FINDING)
+    assert (d["code"], d["severity"], d["stitch_index"], d["xy_mm"]) == ("EA104", "warning", 7, [1.0, -3.5])
+    plain = finding_dict({"code": "X1", "severity": "error", "message": "m"})
+    assert plain["fix"] is None and plain["actuator"] is None
+
+
+def test_json_is_strict_and_keeps_numbers():
+    data = report_data(title="t", actuators=[{"name": "A", "curve": {"theta_deg": np.array([0.0, np.nan, 2.5])}}])
+    text = report_json(data)
+    back = json.loads(text)
+    assert back["actuators"][0]["curve"]["theta_deg"] == [0.0, None, 2.5]
+    assert "NaN" not in text and back["findings"] == [] and back["worksheet"] is None
+
+
+def test_html_escapes_text_and_loads_nothing():
+    data = report_data(title="<design & co>", actuators=[{"name": "A1", "derived": {"r0_mm": 2.5}}],
+                       findings=[FINDING])
+    html = report_html(data, figures={"bend": '<?xml version="1.0"?><svg xmlns="http://www.w3.org/2000/svg"/>'})
+    assert "&lt;design &amp; co&gt;" in html and "&lt;b&gt;&amp;&lt;/b&gt;" in html
+    assert "<?xml" not in html
+    scan = _scan(html)
+    assert not {"script", "link", "iframe", "object", "embed", "img"} & set(scan.tags)
+    assert scan.refs == []
+    assert "Content-Security-Policy" in html and "default-src 'none'" in html
+    assert 'class="warning"' in html and "A1, stitch 7, at (1.00, -3.50) mm" in html
+
+
+def test_unknown_figure_rejected():
+    with pytest.raises(ParameterError, match="figure names must be among"):
+        report_html(report_data(title="t", actuators=[]), figures={"movie": "<svg/>"})
+
+
+# ----------------------------------------------------------------------------- previews helpers
+def test_side_pressures_and_shape_theta():
+    assert side_pressures([0, 10, 20, 30], [0, float("nan"), 1, 2], count=3) == (0.0, 20.0, 30.0)
+
+    class C:
+        pressure_kpa = np.array([0.0, 100.0, 200.0])
+        theta_deg = np.array([0.0, 10.0, 30.0])
+
+    assert shape_theta_deg(C, None) == (200.0, 30.0)
+    assert shape_theta_deg(C, 150.0) == (150.0, 20.0)
+    with pytest.raises(ParameterError, match=r"shape_pressure_kpa must be in \[0, 200\]"):
+        shape_theta_deg(C, 250.0)
+
+
+def test_pressures_follow_the_design():
+    d = default_design()
+    assert pressures_for(d) == tuple(float(p) for p in range(0, 301, 10))
+
+
+# ----------------------------------------------------------------------------- the build stage
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    out = tmp_path_factory.mktemp("build")
+    res = build(default_design(), out, stages=[previews_stage()])
+    return out, res
+
+
+def test_build_writes_every_output(built):
+    out, res = built
+    expected = {"paper-zigzag.dst", "preview.svg", "worksheet.json", "worksheet.txt", "bend.svg", "shape.svg",
+                "shape.glb", "shape3d.svg", "report.json", "report.html"}
+    assert set(res.files) == expected == set(os.listdir(out))
+
+
+def test_report_json_content_against_hand_values(built):
+    out, _ = built
+    data = json.loads((out / "report.json").read_text())
+    (act,) = data["actuators"]
+    # MODEL.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi), w = 7, r_f = 1.5
+    r0 = (7.0 + 2.0 * math.hypot(3.5, 3.0)) / (2.0 * math.pi)
+    assert act["derived"]["r0_mm"] == pytest.approx(r0, rel=1e-12)
+    # paper law P0 = (G_e/2) (x - 1/x)^2, x = r0 / r_f, G_e = 0.13 MPa
+    x = r0 / 1.5
+    assert act["derived"]["p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
+    curve = act["curve"]
+    assert curve["pressure_kpa"][:3] == [0.0, 10.0, 20.0] and curve["status"][0] == "inflation"
+    assert curve["theta_deg"][0] == 0.0 and curve["calibration"].startswith("paper-2025")
+    assert data["mesh"]["theta_deg"]["A1"] == pytest.approx(curve["theta_deg"][-1])
+    assert 0 < data["mesh"]["max_deviation_mm"] <= data["mesh"]["tolerance_mm"] == 0.05
+    assert data["worksheet"]["stitch_count"] == 106
+
+
+def test_report_html_holds_every_section(built):
+    out, _ = built
+    html = (out / "report.html").read_text()
+    for key in list(FIGURES) + ["derived", "worksheet", "findings"]:
+        assert f'<section id="{key}">' in html
+    assert html.count("<svg") == 4
+    assert (out / "preview.svg").read_text()[(out / "preview.svg").read_text().find("<svg"):] in html
+    scan = _scan(html)
+    assert "script" not in scan.tags and scan.refs == []
+
+
+def test_render_is_deterministic_and_mesh_optional(built):
+    from embroact.export.previews import predict_curves
+    from embroact.patterns.design import build_plan
+
+    design = default_design()
+    plan = build_plan(design)
+    derived, curves = predict_curves(plan, [0.0, 100.0, 200.0], design=design)
+    a = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=".stl")
+    b = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=".stl")
+    assert isinstance(a, Previews) and a.files == b.files and "shape.stl" in a.files
+    none = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=None)
+    assert set(none.files) == {"bend.svg", "shape.svg", "report.json", "report.html"} and none.mesh is None
+    with pytest.raises(ParameterError, match="one derived geometry and one curve per actuator"):
+        render_previews(plan=plan, derived=derived, curves=(), stitch_svg="<svg/>")
+
+
+# ----------------------------------------------------------------------------- headless browser
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+          "--disable-component-update", "--disable-sync", "--no-first-run", "--enable-logging=stderr", "--v=0"]
+
+
+def _browse(url, profile, *extra):
+    return subprocess.run([CHROMIUM, *_FLAGS, f"--user-data-dir={profile}", *extra, url],
+                          capture_output=True, text=True, timeout=120)
+
+
+def _console(stderr):
+    return [ln for ln in stderr.splitlines() if ":CONSOLE" in ln]
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no headless browser installed (apt-get install chromium)")
+def test_report_renders_in_headless_chromium_without_console_errors(built, tmp_path):
+    out, _ = built
+    # control: the detector sees a blocked external load and a blocked script
+    bad = tmp_path / "bad.html"
+    bad.write_text(report_html(report_data(title="bad", actuators=[])).replace(
+        "</body>", '<img src="http://example.invalid/x.png"><script>console.error("x")</script></body>'))
+    assert len(_console(_browse(bad.as_uri(), tmp_path / "p0", "--dump-dom").stderr)) >= 2
+    page = (out / "report.html").as_uri()
+    dom = _browse(page, tmp_path / "p1", "--dump-dom")
+    assert dom.returncode == 0 and _console(dom.stderr) == []
+    assert dom.stdout.count("<svg") == 4 and "Design-rule findings" in dom.stdout
+    assert re.search(r'<polyline[^>]*class="curve"', dom.stdout)
+    shot = tmp_path / "report.png"
+    run = _browse(page, tmp_path / "p2", f"--screenshot={shot}", "--window-size=1200,2400")
+    assert run.returncode == 0 and _console(run.stderr) == []
+    png = shot.read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert int.from_bytes(png[16:20], "big") == 1200 and int.from_bytes(png[20:24], "big") == 2400
