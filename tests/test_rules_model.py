@@ -1,0 +1,104 @@
+"""Model-based design rules (EA401-EA405) and check_design: one case that triggers each, one that does not."""
+import math
+
+import pytest
+
+from embroact.patterns.centerline import Centerline
+from embroact.patterns.design import (ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings,
+                                      build_plan, default_design)
+from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
+from embroact.predict.rules import ModelRuleSettings, check_design, check_model
+
+
+def _design(width_mm=7.0, *, model=ModelSettings(), max_pressure_kpa=300.0, max_bend_deg=180.0):
+    spec = ActuatorSpec("A1", ZigzagParams(width_mm=width_mm, interval_mm=1.0), Centerline.straight(100.0),
+                        model=model)
+    return Design("t", Tube(), MachineSettings(), OperationSettings(max_pressure_kpa, max_bend_deg), (spec,))
+
+
+def _codes(design):
+    return [f.code for f in check_model(build_plan(design), design=design)]
+
+
+def _paper_p0_kpa(w, rf=1.5, ge=0.13):
+    """MODEL.md sections 2-3 by hand: r0 = (w + 2 sqrt((w/2)^2 + (2 rf)^2)) / (2 pi), P0 = (Ge/2)(x - 1/x)^2."""
+    r0 = (w + 2 * math.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * math.pi)
+    x = r0 / rf
+    return 0.5 * ge * (x - 1 / x) ** 2 * 1000
+
+
+def test_ea401_p0_above_working_pressure():
+    p0 = _paper_p0_kpa(9.0)  # 171.9 kPa
+    assert 170 < p0 < 174
+    found = check_model(build_plan(_design(9.0, max_pressure_kpa=150.0)), design=_design(9.0, max_pressure_kpa=150.0))
+    hits = [f for f in found if f.code == "EA401"]
+    assert len(hits) == 1 and hits[0].is_error and f"P0 {p0:.1f} kPa" in hits[0].message
+    assert "EA401" not in _codes(_design(9.0, max_pressure_kpa=250.0))
+
+
+def test_ea403_bend_beyond_limit():
+    # paper zigzag w = 7 mm (G 2.7 MPa from the paper-2025 set): 235 deg at 300 kPa
+    assert "EA403" in _codes(_design(7.0, max_bend_deg=180.0))
+    assert "EA403" not in _codes(_design(7.0, max_bend_deg=360.0))
+    assert "EA403" not in _codes(_design(7.0, max_pressure_kpa=150.0))
+
+
+def test_ea404_extrapolated_calibration():
+    # paper-2025 zigzag points cover w = 5..9 mm
+    found = check_model(build_plan(_design(11.0)), design=_design(11.0))
+    hits = [f for f in found if f.code == "EA404"]
+    assert len(hits) == 1 and "[5, 9]" in hits[0].message
+    assert "EA404" not in _codes(_design(8.0))
+    assert "EA404" not in _codes(_design(11.0, model=ModelSettings(g_mpa=3.0)))  # G given: no calibration
+
+
+def test_ea405_snap_through_below_working_pressure():
+    # zigzag w = 5, G 0.8 MPa, P0 50 kPa: the branch folds near 251 kPa
+    model = ModelSettings(g_mpa=0.8, p0_kpa=50.0)
+    assert "EA405" in _codes(_design(5.0, model=model, max_pressure_kpa=300.0))
+    assert "EA405" not in _codes(_design(5.0, model=model, max_pressure_kpa=200.0))
+
+
+def _cross_plan(angle_deg):
+    cl = Centerline.straight(100.0)
+    act = ActuatorPlan("X", CrossParams(7.0, 1.4, angle_deg), Tube(), cl, Realised(7.0, 1.4, angle_deg, 100.0))
+    recs = [(float(i), 3.5 if i % 2 else -3.5, Command.STITCH, Role.LEG) for i in range(10)]
+    return StitchPlan.from_records(recs, actuators=(act,))
+
+
+def test_ea402_lockup():
+    # cross 45 deg, G 1.3 MPa, P0 170 kPa: lock-up angle -312 deg; -303 deg (97 %) at 10 MPa, -190 deg at 300 kPa
+    spec = ActuatorSpec("X", CrossParams(7.0, 1.4, 45.0), Centerline.straight(100.0),
+                        model=ModelSettings(g_mpa=1.3, p0_kpa=170.0))
+    design = Design("x", Tube(), MachineSettings(), OperationSettings(300.0, 720.0), (spec,))
+    plan = _cross_plan(45.0)
+    high = check_model(plan, design=design, settings=ModelRuleSettings(max_pressure_kpa=10_000.0, max_bend_deg=720.0))
+    hits = [f for f in high if f.code == "EA402"]
+    assert len(hits) == 1 and "lock-up angle -312.1 deg" in hits[0].message
+    assert "EA402" not in [f.code for f in check_model(plan, design=design)]
+
+
+def test_no_sleeve_actuator_is_left_to_ea201():
+    cl = Centerline.straight(100.0)
+    act = ActuatorPlan("N", ZigzagParams(2.6, 1.0), Tube(), cl, Realised(2.6, 1.0, 21.0, 100.0))
+    plan = StitchPlan.from_records([(0.0, 1.3, Command.STITCH, Role.LEG)], actuators=(act,))
+    assert check_model(plan) == ()
+
+
+def test_settings_validated():
+    with pytest.raises(ValueError, match="lockup_fraction must be in"):
+        ModelRuleSettings(lockup_fraction=1.5)
+    with pytest.raises(ValueError, match="pressure_samples must be an integer"):
+        ModelRuleSettings(pressure_samples=1)
+
+
+def test_check_design_default_and_format():
+    design = default_design()
+    plan = build_plan(design)
+    assert not [f for f in check_design(design, plan) if f.is_error]
+    # a leg longer than a format allows: w = 12.5 mm zigzag legs have |dy| 12.5 > 12.1 (DST), < 12.7 (JEF)
+    wide = _design(12.5)
+    wide_plan = build_plan(wide)
+    assert "EA102" in [f.code for f in check_design(wide, wide_plan)]
+    assert "EA102" not in [f.code for f in check_design(wide, wide_plan, format="jef")]
