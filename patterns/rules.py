@@ -112,7 +112,7 @@ class RuleSettings:
     actuator_clearance_mm: float = 1.0
     trim_jump_count: int = 3
     max_records: int | None = None
-    max_findings_per_rule: int = 20
+    max_findings_per_rule: int = 10
     tolerances: Tolerances = field(default_factory=lambda: DEFAULT_TOLERANCES)
 
     def __post_init__(self) -> None:
@@ -343,6 +343,7 @@ def _capped(findings: list[Finding], limit: int) -> list[Finding]:
     more = RULES.finding(
         rest[0].code,
         f"{len(rest)} more findings of this rule, from stitch {rest[0].stitch_index} on",
+        actuator=rest[0].actuator,
         stitch_index=rest[0].stitch_index,
         xy_mm=rest[0].xy_mm,
         fix=rest[0].fix,

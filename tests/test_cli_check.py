@@ -1,0 +1,133 @@
+"""``embroact check`` through ``main([...])``: designs, embroidery files, exit codes, table and JSON."""
+import glob
+import json
+import os
+
+import numpy as np
+import pyembroidery as pe
+import pytest
+
+import dst_decoder
+from embroact.export.cli import main
+from embroact.patterns.centerline import Centerline
+from embroact.patterns.params import ZigzagParams
+from embroact.patterns.plan import Command, Role
+from embroact.patterns.zigzag import zigzag
+
+EXAMPLES = sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "examples", "*.toml")))
+_PE = {Command.STITCH: pe.STITCH, Command.JUMP: pe.JUMP, Command.TRIM: pe.TRIM, Command.STOP: pe.STOP,
+       Command.END: pe.END}
+
+
+def _dst_with_leg_in_corridor(path, leg_number=55):
+    """The paper zigzag with one leg's needle point moved to 0.3 mm from the axis, written by pyembroidery."""
+    plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    i = int(np.flatnonzero(plan.roles == Role.LEG)[leg_number])
+    xy = plan.xy_mm.copy()
+    xy[i, 1] = 0.3 * np.sign(xy[i, 1])
+    pat = pe.EmbPattern()
+    for (x, y), c in zip(xy, plan.commands):
+        pat.add_stitch_absolute(_PE[int(c)], round(x * 10), round(-y * 10))
+    pe.write_dst(pat, str(path))
+    records = dst_decoder.decode(path.read_bytes()).records
+    target = (round(xy[i, 0] * 10), round(xy[i, 1] * 10))
+    return [k for k, r in enumerate(records) if r.kind == "stitch" and (r.x, r.y) == target]
+
+
+@pytest.mark.parametrize("example", EXAMPLES, ids=os.path.basename)
+def test_every_example_design_has_no_errors(example, capsys):
+    assert main(["check", example, "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["counts"]["error"] == 0 and doc["kind"] == "design"
+    assert all(f["severity"] != "error" for f in doc["findings"])
+
+
+def test_examples_exist():
+    assert len(EXAMPLES) >= 3
+
+
+def test_misplaced_leg_in_a_dst_is_found_at_its_record(tmp_path, capsys):
+    path = tmp_path / "bad.dst"
+    index = _dst_with_leg_in_corridor(path)
+    assert len(index) == 1
+    assert main(["check", str(path), "--tube-path", "0,0 100,0", "--json"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    errors = [f for f in doc["findings"] if f["severity"] == "error"]
+    assert [(f["code"], f["stitch_index"]) for f in errors] == [("EA101", index[0])]
+    assert doc["counts"] == {"error": 1, "warning": 0, "info": 0} and doc["format"] == "dst"
+    assert "0.30 mm" in errors[0]["message"]
+
+
+def test_table_grouped_by_severity(tmp_path, capsys):
+    path = tmp_path / "bad.dst"
+    index = _dst_with_leg_in_corridor(path)
+    assert main(["check", str(path), "--tube-path", "0,0 100,0"]) == 1
+    out = capsys.readouterr().out
+    lines = out.splitlines()
+    assert lines[0] == f"{path}: embroidery file, format dst, 1 tube(s): 1 error, 0 warnings, 0 info"
+    assert lines[2] == "ERRORS"
+    assert lines[3].startswith(f"  EA101  needle in tube corridor  [tube 1, stitch {index[0]} at (")
+    assert lines[5].strip().startswith("fix: ")
+
+
+def test_clean_file_and_tube_toml(tmp_path, capsys):
+    plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    pat = pe.EmbPattern()
+    for (x, y), c in zip(plan.xy_mm, plan.commands):
+        pat.add_stitch_absolute(_PE[int(c)], round(x * 10), round(-y * 10))
+    path = tmp_path / "ok.dst"
+    pe.write_dst(pat, str(path))
+    tubes = tmp_path / "t.toml"
+    tubes.write_text('[[tube]]\nname = "A1"\npath_mm = [[0, 0], [100, 0]]\n[machine]\nhoop_width_mm = 50.0\n'
+                     'hoop_height_mm = 50.0\n')
+    assert main(["check", str(path), "--tube-path", "0,0 100,0"]) == 0
+    assert capsys.readouterr().out.strip().endswith("1 tube(s): no findings")
+    # the hoop from the tube file is too small for the 100 mm design
+    assert main(["check", str(path), "--tube", str(tubes), "--json"]) == 1
+    codes = {f["code"] for f in json.loads(capsys.readouterr().out)["findings"]}
+    assert codes == {"EA306"}
+    assert main(["check", str(path)]) == 0
+    assert "no tube given (tube rules skipped)" in capsys.readouterr().out
+
+
+def test_design_with_errors_exits_1(tmp_path, capsys):
+    design = tmp_path / "d.toml"
+    design.write_text('name = "wide"\n[machine]\nmax_stitch_mm = 13.0\n[operation]\nmax_pressure_kpa = 450.0\n'
+                      '[[actuator]]\nname = "W"\npattern = "zigzag"\nwidth_mm = 12.5\n'
+                      'interval_mm = 1.0\nlength_mm = 60.0\n')
+    assert main(["check", str(design), "--json"]) == 1  # legs |dy| 12.5 mm > DST's 12.1 mm
+    doc = json.loads(capsys.readouterr().out)
+    assert "EA102" in {f["code"] for f in doc["findings"] if f["severity"] == "error"}
+    assert main(["check", str(design), "--format", "jef", "--json"]) == 0  # 12.7 mm per record
+    assert json.loads(capsys.readouterr().out)["format"] == "jef"
+
+
+@pytest.mark.parametrize("data", [b"", b"LA:junk", b"LA:" + b" " * 509 + b"\x01\x02"])
+def test_unusable_file_exits_2_with_one_line(tmp_path, capsys, data):
+    path = tmp_path / "x.dst"
+    path.write_bytes(data)
+    assert main(["check", str(path), "--tube-path", "0,0 100,0"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("embroact: error: ") and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["check", "missing.dst"], "cannot read"),
+    (["check", "x.dst", "--tube-path", "0,0"], "tube_path must be"),
+    (["check", "x.dst", "--tube-path", "0,0 1,0", "--tube-radius-mm", "-1"], "outer_radius_mm must be in"),
+])
+def test_bad_arguments_exit_2(tmp_path, capsys, argv, message):
+    plan = zigzag(Centerline.straight(20.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    pat = pe.EmbPattern()
+    for (x, y), c in zip(plan.xy_mm, plan.commands):
+        pat.add_stitch_absolute(_PE[int(c)], round(x * 10), round(-y * 10))
+    pe.write_dst(pat, str(tmp_path / "x.dst"))
+    argv = [str(tmp_path / a) if a.endswith(".dst") else a for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
+
+
+def test_tube_options_rejected_for_designs(capsys):
+    assert main(["check", EXAMPLES[0], "--tube-path", "0,0 1,0"]) == 2
+    assert "a design file carries its tubes" in capsys.readouterr().err
