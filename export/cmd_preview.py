@@ -42,6 +42,7 @@ KINDS = {
 }
 _MAX_PRESSURES = 10_000
 _PRESSURE_MAX_KPA = 100_000.0
+_GRID_SLACK = 1e-9  # STOP counts as on the grid when (STOP - START)/STEP is an integer up to round-off
 
 
 def parse_pressures(text: str) -> tuple[float, ...]:
@@ -53,22 +54,24 @@ def parse_pressures(text: str) -> tuple[float, ...]:
         One line naming ``pressure_kpa``, the value and the rule.
     """
     text = str(text).strip()
+    rule = f"pressure_kpa must be START:STOP:STEP with STOP >= START and STEP > 0, or a comma list, got {text!r}"
     try:
-        if ":" in text:
-            start, stop, step = (float(v) for v in text.split(":"))
-            check_range("pressure_kpa step", step, low=0.0)
-            if not math.isfinite(start) or not math.isfinite(stop) or stop < start:
-                raise ValueError
-            n = math.floor((stop - start) / step + 1e-9)
-            if n + 1 > _MAX_PRESSURES:
-                raise ParameterError(f"pressure_kpa must give at most {_MAX_PRESSURES} pressures, got {n + 1}")
-            values = tuple(start + k * step for k in range(n + 1))
-        else:
-            values = tuple(float(v) for v in text.split(",") if v.strip())
+        numbers = tuple(float(v) for v in (text.split(":") if ":" in text else text.split(",")) if v.strip())
     except ValueError:
-        raise ParameterError(
-            f"pressure_kpa must be START:STOP:STEP with STOP >= START and STEP > 0, or a comma list, got {text!r}"
-        ) from None
+        raise ParameterError(rule) from None
+    if ":" in text:
+        if len(numbers) != 3:
+            raise ParameterError(rule)
+        start, stop, step = numbers
+        check_range("pressure_kpa step", step, low=0.0)
+        if not (math.isfinite(start) and math.isfinite(stop)) or stop < start:
+            raise ParameterError(rule)
+        n = math.floor((stop - start) / step + _GRID_SLACK)
+        if n + 1 > _MAX_PRESSURES:
+            raise ParameterError(f"pressure_kpa must give at most {_MAX_PRESSURES} pressures, got {n + 1}")
+        values = tuple(start + k * step for k in range(n + 1))
+    else:
+        values = numbers
     if not values:
         raise ParameterError(f"pressure_kpa must name at least one pressure, got {text!r}")
     for v in values:

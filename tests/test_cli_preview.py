@@ -1,0 +1,125 @@
+"""``embroact preview``: every kind, pressure parsing, one-line errors, lazy trimesh."""
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+from embroact.export.cli import main
+from embroact.export.cmd_preview import parse_pressures
+from embroact.patterns.errors import ParameterError
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+DESIGN = """
+name = "two"
+[[actuator]]
+name = "Z5"
+pattern = "zigzag"
+width_mm = 5.0
+interval_mm = 1.0
+length_mm = 60.0
+[[actuator]]
+name = "Z9"
+pattern = "zigzag"
+width_mm = 9.0
+interval_mm = 1.0
+length_mm = 60.0
+origin_mm = [0.0, 30.0]
+"""
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("0:300:50", (0.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0)),
+    ("0:0.3:0.1", (0.0, 0.1, 0.2, 0.30000000000000004)),
+    ("0:290:100", (0.0, 100.0, 200.0)),
+    ("120", (120.0,)),
+    ("10, 20 ,35", (10.0, 20.0, 35.0)),
+])
+def test_parse_pressures(text, expected):
+    assert parse_pressures(text) == expected
+
+
+@pytest.mark.parametrize("text, match", [
+    ("0:300:0", "step must be in"),
+    ("300:0:10", "STOP >= START"),
+    ("a,b", "comma list"),
+    ("-5", "pressure_kpa must be in"),
+    ("0:1e9:1", "at most"),
+    (",", "at least one"),
+])
+def test_parse_pressures_errors(text, match):
+    with pytest.raises(ParameterError, match=match):
+        parse_pressures(text)
+
+
+def test_bend_chart_has_one_point_per_pressure(tmp_path, capsys):
+    out = tmp_path / "bend.svg"
+    assert main(["preview", "bend", "-o", str(out), "--pressure-kpa", "0:300:25"]) == 0
+    assert "13 pressures" in capsys.readouterr().out
+    lines = [e for e in ET.parse(out).getroot().iter(SVG + "polyline") if e.get("class") == "curve"]
+    assert sum(len(e.get("points").split()) for e in lines) == 13
+
+
+def test_design_file_with_two_actuators(tmp_path):
+    design = tmp_path / "two.toml"
+    design.write_text(DESIGN)
+    bend, side, stl = tmp_path / "b.svg", tmp_path / "s.svg", tmp_path / "m.stl"
+    assert main(["preview", "bend", str(design), "-o", str(bend), "--pressure-kpa", "0:200:20"]) == 0
+    root = ET.parse(bend).getroot()
+    assert {e.get("data-series") for e in root.iter(SVG + "polyline") if e.get("class") == "curve"} == {"0", "1"}
+    assert main(["preview", "shape", str(design), "-o", str(side), "--states", "3"]) == 0
+    groups = [g for g in ET.parse(side).getroot().iter(SVG + "g") if g.get("class") == "state"]
+    assert len(groups) == 6  # 3 pressures x 2 actuators
+    assert main(["preview", "mesh", str(design), "-o", str(stl), "--tolerance-mm", "0.2"]) == 0
+    import trimesh
+
+    mesh = trimesh.load(stl, force="mesh")
+    assert len(mesh.faces) > 0 and mesh.bounds[1][1] > 30.0  # second actuator sits at y = 30
+
+
+def test_stitches_and_mesh_picture(tmp_path, capsys):
+    st, pic = tmp_path / "st.svg", tmp_path / "pic.svg"
+    assert main(["preview", "stitches", "-o", str(st)]) == 0
+    assert main(["preview", "mesh", "-o", str(pic), "--shape-pressure-kpa", "150"]) == 0
+    out = capsys.readouterr().out
+    assert "106 stitches" in out and "at 150 kPa" in out and "max deviation" in out
+    polys = list(ET.parse(pic).getroot().iter(SVG + "polygon"))
+    assert len(polys) > 100
+
+
+@pytest.mark.parametrize("argv, code, message", [
+    (["preview", "bend", "-o", "{tmp}/x.png"], 2, "must end in .svg"),
+    (["preview", "mesh", "-o", "{tmp}/x.fbx"], 2, ".glb, .stl, .obj, .ply, .svg"),
+    (["preview", "bend", "-o", "{tmp}/x.svg", "--pressure-kpa", "5:1:1"], 2, "pressure_kpa"),
+    (["preview", "mesh", "-o", "{tmp}/x.glb", "--tolerance-mm", "-1"], 2, "tolerance_mm must be in"),
+    (["preview", "mesh", "-o", "{tmp}/x.glb", "--shape-pressure-kpa", "900"], 2, "shape_pressure_kpa"),
+    (["preview", "shape", "-o", "{tmp}/x.svg", "--states", "0"], 2, "states must be"),
+    (["preview", "bend", "-o", "{tmp}/missing/x.svg"], 3, "does not exist"),
+    (["preview", "bend", "{tmp}/none.toml", "-o", "{tmp}/x.svg"], 2, "none.toml"),
+])
+def test_errors_are_one_line_and_write_nothing(tmp_path, capsys, argv, code, message):
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    assert main(argv) == code
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("embroact: error:") and message in err and "\n" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("kind, loads", [("bend", False), ("shape", False), ("mesh", True)])
+def test_trimesh_only_for_mesh(tmp_path, kind, loads):
+    out = tmp_path / ("x.glb" if kind == "mesh" else "x.svg")
+    code = ("import sys; from embroact.export.cli import main; "
+            f"rc = main(['preview', '{kind}', '-o', r'{out}', '--pressure-kpa', '0:300:100']); "
+            "print(rc, 'trimesh' in sys.modules)")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert res.stdout.split()[-2:] == ["0", str(loads)]
+
+
+def test_same_bytes_twice(tmp_path):
+    a, b = tmp_path / "a.glb", tmp_path / "b.glb"
+    assert main(["preview", "mesh", "-o", str(a), "--tolerance-mm", "0.5"]) == 0
+    assert main(["preview", "mesh", "-o", str(b), "--tolerance-mm", "0.5"]) == 0
+    assert a.read_bytes() == b.read_bytes()
+    assert np.frombuffer(a.read_bytes()[:4], dtype=np.uint8).tobytes() == b"glTF"
