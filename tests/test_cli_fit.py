@@ -169,3 +169,23 @@ def test_fit_with_design_file(capsys, tmp_path):
     assert doc["design"]["name"] == "Z7" and doc["design"]["width_mm"] == pytest.approx(7.0, abs=1e-9)
     assert main(["fit", str(DATA / "zigzag_w7_loop.csv"), "--design", str(design), "--actuator", "Q"]) == 2
     assert "--actuator must be one of 'A1', 'Z7', got 'Q'" in capsys.readouterr().err
+
+
+def test_unsigned_markers_take_the_design_direction(capsys, tmp_path):
+    """Without --normal the paper's unsigned angle sum is given the design's sign (cross 45: negative)."""
+    import numpy as np
+
+    bend = read_bend_csv(DATA / "cross_a45_loop.csv")
+    step = np.radians(np.abs(bend.angle_deg)) / 5.0  # five joints per side share the bend
+    heading = step[:, None] * np.arange(6)
+    side = np.concatenate([np.zeros((len(step), 1, 2)),
+                           np.cumsum(10.0 * np.stack([np.cos(heading), np.sin(heading)], axis=-1), axis=1)], axis=1)
+    both = np.concatenate([side, side], axis=1)  # 2-D: both rows project onto one line
+    cols = ",".join(f"m{i}_{a}" for i in range(1, 15) for a in "xy")
+    rows = [f"{p:g},{b}," + ",".join(f"{v:.6f}" for v in m.ravel())
+            for p, b, m in zip(bend.pressure_kpa, bend.branch, both)]
+    path = _write(tmp_path, f"pressure_kpa,branch,{cols}\n" + "\n".join(rows) + "\n", "markers.csv")
+    doc = _fit_json(capsys, path, "--markers", *CROSS45, "--branch", "loading")
+    (f,) = doc["fits"]
+    assert "negative bending direction" in doc["note"]
+    assert all(a <= 0 for a in f["angle_deg"]) and f["g_mpa"] == pytest.approx(1.3, rel=0.05)
