@@ -1,0 +1,257 @@
+"""Centerline: constructors, SVG parsing against hand values, frames, projection, validation."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from embroact.patterns.centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
+from embroact.patterns.errors import ParameterError, PathError
+from embroact.patterns.tolerances import DEFAULT_TOLERANCES
+
+from h1_checks import arc
+
+
+def test_straight_frame_by_hand():
+    c = Centerline.straight(10.0, origin_mm=(1.0, 2.0), rotation_deg=90.0)
+    assert c.length_mm == pytest.approx(10.0, abs=1e-12)
+    np.testing.assert_allclose(c.point_at([0.0, 4.0, 10.0]), [[1, 2], [1, 6], [1, 12]], atol=1e-12)
+    np.testing.assert_allclose(c.tangent_at(3.0), [0.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(c.normal_at(3.0), [-1.0, 0.0], atol=1e-12)  # left of +y is -x
+    assert c.curvature_at(5.0) == 0.0
+    assert c.min_radius_mm() == math.inf
+
+
+def test_point_at_clips_and_vectorises():
+    c = Centerline.straight(10.0)
+    out = c.point_at(np.array([[-1.0, 5.0], [11.0, 2.5]]))
+    assert out.shape == (2, 2, 2)
+    np.testing.assert_allclose(out[0, 0], [0, 0])
+    np.testing.assert_allclose(out[1, 0], [10, 0])
+
+
+def test_points_read_only_and_equality():
+    c = Centerline.from_points([[0, 0], [1, 0], [2, 1]])
+    with pytest.raises(ValueError):
+        c.points_mm[0, 0] = 5.0
+    assert c == Centerline.from_points(np.array([[0.0, 0.0], [1, 0], [2, 1]]))
+    assert c != Centerline.straight(3.0)
+    assert hash(c) == hash(Centerline.from_points([[0, 0], [1, 0], [2, 1]]))
+
+
+def test_exact_repeats_dropped():
+    c = Centerline.from_points([[0, 0], [0, 0], [5, 0], [5, 0], [10, 0]])
+    assert c.points_mm.tolist() == [[0, 0], [5, 0], [10, 0]]
+
+
+@pytest.mark.parametrize(
+    "points, fragment",
+    [
+        ([[1, 1]], "at least 2 distinct points, got 1"),
+        ([[1, 1], [1, 1]], "at least 2 distinct points, got 1"),
+        ([[0, 0], [math.nan, 1]], "finite"),
+        ([[0, 0, 0], [1, 1, 1]], "shape (n, 2)"),
+        ([[0, 0], [10, 0], [10, 10], [0, 0]], "closed"),
+        ([[0, 0], [10, 10], [10, 0], [0, 10]], "crosses or touches itself"),
+        ("not a path", "unsupported character"),
+    ],
+)
+def test_bad_paths(points, fragment):
+    with pytest.raises(PathError) as exc:
+        as_centerline(points)
+    assert fragment in str(exc.value)
+    assert "\n" not in str(exc.value)
+
+
+def test_as_centerline_accepts_all_forms():
+    pts = [[0.0, 0.0], [3.0, 4.0]]
+    ref = Centerline.from_points(pts)
+    assert as_centerline(ref) is ref
+    assert as_centerline(pts) == ref
+    assert as_centerline(np.array(pts)) == ref
+    assert as_centerline(shapely.LineString(pts)) == ref
+    assert as_centerline("M 0 0 L 3 -4") == ref  # SVG y is down
+    with pytest.raises(PathError, match="must be a LineString, got a Polygon"):
+        as_centerline(shapely.box(0, 0, 1, 1))
+
+
+def test_straight_rejects_bad_values():
+    with pytest.raises(ParameterError, match=r"length_mm must be in \(0, 1e\+06\), got -1"):
+        Centerline.straight(-1.0)
+    with pytest.raises(ParameterError, match="origin_mm must be a pair"):
+        Centerline.straight(1.0, origin_mm=(1.0,))
+
+
+# ---------------------------------------------------------------------- SVG
+def test_svg_lines_absolute_relative_hand_values():
+    c = Centerline.from_svg_path("M 10 20 L 30 20 h 5 v -10 l -5 -5 H 20 V 0")
+    # SVG (x, y) -> plan (x, -y)
+    assert c.points_mm.tolist() == [[10, -20], [30, -20], [35, -20], [35, -10], [30, -5], [20, -5], [20, 0]]
+
+
+def test_svg_implicit_lineto_after_move_and_compact_numbers():
+    a = Centerline.from_svg_path("m1,1 2,0 0-2")
+    assert a.points_mm.tolist() == [[1, -1], [3, -1], [3, 1]]
+    b = Centerline.from_svg_path("M.5.5L1.5.5 1.5-.5e1")
+    assert b.points_mm.tolist() == [[0.5, -0.5], [1.5, -0.5], [1.5, 5.0]]
+
+
+def _bezier_hand(p, t):
+    """De Casteljau evaluation (independent of the flattener's Bernstein sum)."""
+    pts = [np.asarray(q, float) for q in p]
+    while len(pts) > 1:
+        pts = [(1 - t) * a + t * b for a, b in zip(pts[:-1], pts[1:])]
+    return pts[0]
+
+
+def _max_chord_error(c: Centerline, ctrl):
+    line = c.as_linestring()
+    pts = np.array([_bezier_hand(ctrl, t) for t in np.linspace(0, 1, 801)]) * [1, -1]
+    return float(shapely.distance(line, shapely.points(pts)).max())
+
+
+def test_svg_cubic_endpoints_and_flatness():
+    ctrl = [(0, 0), (0, 10), (10, 10), (10, 0)]
+    c = Centerline.from_svg_path("M0 0 C 0 10 10 10 10 0")
+    np.testing.assert_allclose(c.points_mm[0], [0, 0])
+    np.testing.assert_allclose(c.points_mm[-1], [10, 0])
+    # B(1/2) = (P0 + 3 P1 + 3 P2 + P3) / 8 = (5, 7.5) -> plan (5, -7.5)
+    mid = np.array([5.0, -7.5])
+    assert float(shapely.distance(c.as_linestring(), shapely.Point(mid))) < 1e-9 + DEFAULT_TOLERANCES.curve_flatness_mm
+    assert _max_chord_error(c, ctrl) <= DEFAULT_TOLERANCES.curve_flatness_mm
+
+
+def test_svg_quadratic_flatness_and_relative_equals_absolute():
+    a = Centerline.from_svg_path("M 5 5 Q 15 25 25 5")
+    b = Centerline.from_svg_path("M 5 5 q 10 20 20 0")
+    np.testing.assert_allclose(a.points_mm, b.points_mm, atol=1e-12)
+    assert _max_chord_error(a, [(5, 5), (15, 25), (25, 5)]) <= DEFAULT_TOLERANCES.curve_flatness_mm
+
+
+def test_svg_smooth_reflections():
+    s = Centerline.from_svg_path("M0 0 C 0 10 10 10 10 0 S 20 -10 20 0")
+    c = Centerline.from_svg_path("M0 0 C 0 10 10 10 10 0 C 10 -10 20 -10 20 0")
+    np.testing.assert_allclose(s.points_mm, c.points_mm, atol=1e-12)
+    t = Centerline.from_svg_path("M0 0 Q 5 10 10 0 T 20 0")
+    q = Centerline.from_svg_path("M0 0 Q 5 10 10 0 Q 15 -10 20 0")
+    np.testing.assert_allclose(t.points_mm, q.points_mm, atol=1e-12)
+    # S after a line: first control point is the current point
+    s2 = Centerline.from_svg_path("M0 0 L 5 0 S 10 10 15 10")
+    c2 = Centerline.from_svg_path("M0 0 L 5 0 C 5 0 10 10 15 10")
+    np.testing.assert_allclose(s2.points_mm, c2.points_mm, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "d, fragment",
+    [
+        ("M 0 0 A 5 5 0 0 1 10 0", "unsupported character 'A'"),
+        ("L 1 1", "must start with a move-to (M)"),
+        ("M 0 0 L 1", "command 'L' needs 2 numbers"),
+        ("M 0 0 L 1 1 M 5 5 L 6 6", "only one subpath"),
+        ("M 0 0 L 10 0 L 10 10 Z", "closed"),
+        ("", "non-empty string"),
+    ],
+)
+def test_svg_errors(d, fragment):
+    with pytest.raises(PathError) as exc:
+        Centerline.from_svg_path(d)
+    assert fragment in str(exc.value)
+
+
+# ---------------------------------------------------------------------- curvature and radius
+def test_arc_curvature_sign_and_radius():
+    left, right = arc(20.0, 90.0), arc(20.0, 90.0, left=False)
+    assert left.curvature_at(10.0) == pytest.approx(1 / 20.0, rel=1e-4)
+    assert right.curvature_at(10.0) == pytest.approx(-1 / 20.0, rel=1e-4)
+    assert left.min_radius_mm() == pytest.approx(20.0, rel=1e-3)
+    assert left.length_mm == pytest.approx(20.0 * math.pi / 2, rel=1e-6)
+
+
+def test_smooth_normals_on_dense_arc_point_to_centre():
+    r = 20.0
+    c = arc(r, 180.0)
+    s = np.linspace(0.0, c.length_mm, 37)
+    # hand: left normal at angle phi = s / r is (-sin phi, cos phi)
+    # (end points carry their segment's direction: off by half a chord angle, 0.8 mrad here)
+    phi = s / r
+    chord_angle = math.pi / (len(c.points_mm) - 1)
+    np.testing.assert_allclose(c.normal_at(s[1:-1]), np.c_[-np.sin(phi), np.cos(phi)][1:-1], atol=1e-6)
+    np.testing.assert_allclose(c.tangent_at(s), np.c_[np.cos(phi), np.sin(phi)], atol=chord_angle / 2 + 1e-9)
+
+
+def test_corner_counts_as_radius_zero():
+    c = Centerline.from_points([[0, 0], [50, 0], [50, 50]])
+    assert c.min_radius_mm() == 0.0
+    with pytest.raises(PathError) as exc:
+        c.check_radius(3.5, "width_mm/2")
+    msg = str(exc.value)
+    assert "corner at (50.00, 0.00) mm" in msg and "turn 90.0 deg" in msg
+    assert "radius 0 < width_mm/2 = 3.5 mm" in msg and "round the corner" in msg
+
+
+def test_gentle_vertex_is_smooth():
+    turn = MAX_SMOOTH_TURN_DEG / 2
+    c = Centerline.from_points([[0, 0], [20, 0], [20 + 20 * math.cos(math.radians(turn)), 20 * math.sin(math.radians(turn))]])
+    # the tangent turns linearly from vertex to vertex: half the turn on each 20 mm segment
+    assert c.min_radius_mm() == pytest.approx(20.0 / (math.radians(turn) / 2), rel=1e-9)
+    c.check_radius(3.5, "width_mm/2")
+
+
+def test_check_radius_message():
+    with pytest.raises(PathError) as exc:
+        arc(3.0, 90.0).check_radius(3.5, "width_mm/2")
+    assert str(exc.value).startswith("path curvature radius must be >= width_mm/2 = 3.5 mm, got 3")
+
+
+# ---------------------------------------------------------------------- rails and projection
+def test_offset_curves_straight_hand():
+    left, right = Centerline.straight(10.0).offset_curves(3.5)
+    assert left.coords[0] == (0.0, 3.5) and left.coords[-1] == (10.0, 3.5)
+    assert right.coords[0] == (0.0, -3.5) and right.coords[-1] == (10.0, -3.5)
+
+
+def test_offset_curves_arc_at_radius():
+    c = arc(20.0, 180.0)
+    left, right = c.offset_curves(3.5)
+    centre = np.array([0.0, 20.0])
+    np.testing.assert_allclose(np.hypot(*(np.asarray(left.coords) - centre).T), 16.5, atol=1e-5)
+    np.testing.assert_allclose(np.hypot(*(np.asarray(right.coords) - centre).T), 23.5, atol=1e-5)
+
+
+@pytest.mark.parametrize("path", [arc(12.0, 250.0), Centerline.from_svg_path("M0 0 C 30 0 30 40 60 40 S 90 0 120 0")])
+def test_project_inverts_offset_point(path):
+    rng = np.random.default_rng(1)
+    s = rng.uniform(0.0, path.length_mm, 400)
+    off = rng.uniform(-3.5, 3.5, 400)
+    s2, off2 = path.project(path.offset_point_at(s, off))
+    np.testing.assert_allclose(s2, s, atol=1e-7)
+    np.testing.assert_allclose(off2, off, atol=1e-7)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(1.0, 500.0),
+    st.floats(-180.0, 180.0),
+    st.floats(0.0, 1.0),
+    st.floats(-20.0, 20.0),
+)
+def test_project_straight_property(length, rot, frac, off):
+    c = Centerline.straight(length, origin_mm=(3.0, -7.0), rotation_deg=rot)
+    s, o = c.project(c.offset_point_at(frac * length, off))
+    assert s[0] == pytest.approx(frac * length, abs=1e-7)
+    assert o[0] == pytest.approx(off, abs=1e-7)
+
+
+def test_transformed_rotates_then_moves():
+    c = Centerline.from_points([[0, 0], [10, 0]]).transformed(origin_mm=(5, 5), rotation_deg=90)
+    np.testing.assert_allclose(c.points_mm, [[5, 5], [5, 15]], atol=1e-12)
+
+
+def test_import_patterns_is_light():
+    code = "import sys, embroact.patterns; print(any(m.split('.')[0] in ('scipy', 'trimesh') for m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
