@@ -56,6 +56,8 @@ _DECIMALS = 2  # SVG coordinates are rounded to 0.01 user unit: stable bytes, sm
 _TICK_STEPS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0)  # two decades: rounding can push past the first
 _FONT = "font-family:Helvetica,Arial,sans-serif"
 _RIBBON_PX = 7.0
+_LEGEND_MIN_PX = 190.0
+_CHAR_PX = 6.2
 
 
 def _frozen(values) -> np.ndarray:
@@ -216,13 +218,19 @@ def _ribbons_px(series: Sequence[Series]) -> float:
     return _RIBBON_PX * with_status if len(series) > 1 else 0.0
 
 
-def chart_scale(
-    series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0, legend_px: float = 190.0
-) -> Scale:
+def _legend_px(series: Sequence[Series]) -> float:
+    """Legend column width: room for the longest label (about 6.2 px per character at 11 px)."""
+    longest = max([len(s.label) for s in series] + [len(t) for _, t in STATUS_STYLE.values()])
+    return max(_LEGEND_MIN_PX, 44.0 + _CHAR_PX * longest)
+
+
+def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0) -> Scale:
     """The :class:`Scale` that :func:`bend_chart_svg` uses for these series and sizes.
 
-    The pressure axis starts at 0 kPa and the angle axis always includes 0 deg.
+    The pressure axis starts at 0 kPa and the angle axis always includes 0 deg; the
+    legend column on the right is as wide as its longest label.
     """
+    legend_px = _legend_px(series)
     xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
                                                      if s.measured_pressure_kpa is not None])
     ys = _finite([s.theta_deg for s in series] + [s.measured_theta_deg for s in series
@@ -314,7 +322,7 @@ def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
         x = _fmt(sc.x_px(s.p0_kpa))
         g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(sc.top_px + sc.height_px)), stroke=colour,
                        stroke_width=1.2, stroke_dasharray="5,3", **{"class": "p0", "data-series": str(k)}))
-        g.add(dwg.text(f"P0 {s.p0_kpa:.0f}", insert=(x, _fmt(sc.top_px - 4 - 11 * k)), text_anchor="middle",
+        g.add(dwg.text(f"P0 {s.p0_kpa:.0f}", insert=(_fmt(sc.x_px(s.p0_kpa) + 3), _fmt(sc.top_px + 12 + 12 * k)),
                        font_size=10, fill=colour))
     if s.measured_pressure_kpa is not None:
         for x, y in zip(sc.x_px(s.measured_pressure_kpa), sc.y_px(s.measured_theta_deg)):
