@@ -64,7 +64,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..patterns.errors import PatternError
+from ..patterns.errors import ExportError, PatternError
 from ..patterns.plan import Command, StitchPlan
 from ..patterns.tolerances import DEFAULT_TOLERANCES
 
@@ -247,6 +247,7 @@ def _split_leg(p0: np.ndarray, p1: np.ndarray, lim: int, forbidden: list[tuple[f
     if not any(a < k / n < b for k in range(1, n) for a, b in forbidden):
         return even
     d = (p1 - p0).astype(np.float64)
+    # half a unit below the limit: rounding the new point moves it by at most half a unit more
     dt = (lim - 0.5) / float(np.abs(d).max())
     pts, t, prev = [], 0.0, p0
     while int(np.abs(p1 - prev).max()) > lim:
@@ -337,6 +338,8 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         A leg exceeds the limit and ``split_long`` is false.
     PatternError
         A leg cannot be split, or a travel would read as an unintended trim.
+    ExportError
+        More records than the format holds.
     """
     legs = find_long_legs(plan, fmt.limit.max_record_mm)
     if legs and not split_long:
@@ -379,6 +382,10 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
             b.add(pe.END)
     if not plan.count(Command.END):
         b.add(pe.END)
+    if len(b.pattern.stitches) > fmt.limit.max_records:
+        raise ExportError(
+            f"design needs {len(b.pattern.stitches)} records; {fmt.name} holds at most {fmt.limit.max_records}"
+        )
     for k in sorted(threads, key=threads.get) or [0]:
         t = pe.EmbThread()
         t.set_color(*(THREAD_COLORS[len(b.pattern.threadlist) % len(THREAD_COLORS)].to_bytes(3, "big")))

@@ -114,3 +114,13 @@ def test_long_leg_limit_per_format(fmt):
     encode(plan(lim), fmt)
     with pytest.raises(LongLegError, match=f"{fmt} allows {lim:g} mm"):
         encode(plan(lim + 0.1), fmt)
+
+
+def test_record_limit_is_an_export_error():
+    from dataclasses import replace
+
+    from embroact.patterns.errors import ExportError
+
+    small = replace(FORMATS["dst"], limit=replace(FORMATS["dst"].limit, max_records=50))
+    with pytest.raises(ExportError, match=r"design needs \d+ records; dst holds at most 50"):
+        encode(hand_plan(1), small)
