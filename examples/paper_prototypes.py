@@ -33,8 +33,8 @@ import numpy as np
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.design import ActuatorSpec, generate_actuator
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
-from embroact.predict.calibration import lookup
-from embroact.predict.curve import ActuatorModel, curve, lockup
+from embroact.predict.calibration import calibrated_model
+from embroact.predict.curve import curve, lockup
 from embroact.predict.derived import derive, derive_from_values
 from embroact.predict.status import status_names
 
@@ -68,8 +68,7 @@ def derived_geometry(name, params, geometry: str, tube: Tube):
 def prototype(name, params, geometry: str, tube: Tube) -> dict:
     """Geometry, paper calibration and predicted curve of one prototype, as plain data."""
     d = derived_geometry(name, params, geometry, tube)
-    cal = lookup(params.pattern, width_mm=params.width_mm, angle_deg=getattr(params, "angle_deg", None))
-    model = ActuatorModel.from_derived(d, g_mpa=cal.g_mpa, p0_kpa=cal.p0_kpa, calibration=cal.label)
+    model, cal = calibrated_model(d)  # looked up at the requested width / angle
     c = curve(model, PRESSURES_KPA)
     lock_deg, lock_kpa = lockup(model)
     idx = [int(np.flatnonzero(PRESSURES_KPA == p)[0]) for p in REPORT_AT_KPA]
@@ -80,7 +79,9 @@ def prototype(name, params, geometry: str, tube: Tube) -> dict:
         "pattern": d.pattern,
         "requested_width_mm": d.requested_width_mm,
         "width_mm": d.width_mm,
+        "requested_interval_mm": d.requested_interval_mm,
         "interval_mm": d.interval_mm,
+        "requested_angle_deg": d.requested_angle_deg if d.pattern == "cross" else None,
         "angle_deg": d.angle_deg if d.pattern == "cross" else None,
         "r0_mm": d.r0_mm,
         "beta0_deg": d.beta0_deg,
@@ -112,23 +113,25 @@ def _fmt(v, spec="8.2f") -> str:
 
 def table(rows) -> str:
     """Fixed-width text table of the prototypes (angles in deg, pressures in kPa)."""
-    head = (f"{'prototype':<10} {'w':>5} {'alpha0':>6} {'r0':>6} {'beta0':>6} {'P0 geo':>7} {'P0 pap':>7} "
+    head = (f"{'prototype':<10} {'w':>5} {'alpha0':>6} {'real':>6} {'r0':>6} {'beta0':>6} {'P0 geo':>7} {'P0 pap':>7} "
             f"{'P0 fit':>7} {'G':>5} {'dir':>4} " + " ".join(f"{'th@' + format(p, 'g'):>8} " for p in REPORT_AT_KPA))
-    units = (f"{'':<10} {'mm':>5} {'deg':>6} {'mm':>6} {'deg':>6} {'kPa':>7} {'kPa':>7} {'kPa':>7} {'MPa':>5} "
+    units = (f"{'':<10} {'mm':>5} {'deg':>6} {'deg':>6} {'mm':>6} {'deg':>6} {'kPa':>7} {'kPa':>7} {'kPa':>7} {'MPa':>5} "
              f"{'':>4} " + " ".join(f"{'deg':>8} " for _ in REPORT_AT_KPA))
     lines = [head, units]
     for r in rows:
         th = " ".join(_fmt(r[f"theta_at_{p:g}_kpa_deg"]) + _MARKS.get(r[f"status_at_{p:g}_kpa"], " ")
                       for p in REPORT_AT_KPA)
         lines.append(
-            f"{r['name']:<10} {r['width_mm']:5.2f} {_fmt(r['angle_deg'], '6.1f')} {r['r0_mm']:6.3f} "
+            f"{r['name']:<10} {r['width_mm']:5.2f} {_fmt(r['requested_angle_deg'], '6.1f')} "
+            f"{_fmt(r['angle_deg'], '6.2f')} {r['r0_mm']:6.3f} "
             f"{r['beta0_deg']:6.2f} {r['p0_geometry_kpa']:7.1f} {_fmt(r['p0_paper_predicted_kpa'], '7.0f')} "
             f"{r['p0_fitted_kpa']:7.0f} {r['g_mpa']:5.1f} {'+' if r['direction'] == 'positive' else '-':>4} {th}"
         )
     neutral = rows[-1]["neutral_angle_deg"]
     lines.append(f"cross neutral angle (tan beta0 = 1/2) for w = 7 mm: alpha0 = {neutral:.2f} deg; "
                  f"model method {rows[0]['method']}; calibration paper-2025")
-    lines.append("marks: " + ", ".join(f"{m} {name.lower()}" for name, m in _MARKS.items()))
+    lines.append("alpha0: requested, real: realised by the generator; w realised; "
+                 "marks: " + ", ".join(f"{m} {name.lower()}" for name, m in _MARKS.items()))
     return "\n".join(line.rstrip() for line in lines)
 
 

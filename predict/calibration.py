@@ -14,6 +14,8 @@ written by :mod:`embroact.export.calibfile`.
 
 Lookup scheme
 -------------
+* Points are keyed by the requested design parameters (what a design file asks for,
+  as in the paper's table), not by the slightly different realised stitch geometry.
 * Zigzag points are interpolated over ``width_mm``; cross points over ``angle_deg``
   (among the cross points of the width closest to the requested one; a different
   width is reported in ``notes``).
@@ -490,7 +492,9 @@ def calibrated_model(
     Parameters
     ----------
     derived : DerivedGeometry
-        The design (``embroact.predict.derived``).
+        The design (``embroact.predict.derived``).  The calibration is looked up at
+        its *requested* width and angle (calibration points are keyed by the design a
+        user asks for, as in the paper's table); the model uses the realised geometry.
     name, sets, branch, extrapolation
         As for :func:`lookup`.
     g_mpa, p0_kpa : float, optional
@@ -523,8 +527,8 @@ def calibrated_model(
     p0_from_set = p0_kpa is None and p0 == "calibration"
     cal = None
     if g_mpa is None or p0_from_set:
-        angle = derived.angle_deg if derived.pattern == "cross" else None
-        cal = lookup(derived.pattern, width_mm=derived.width_mm, angle_deg=angle, name=name, sets=sets,
+        angle = derived.requested_angle_deg if derived.pattern == "cross" else None
+        cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle, name=name, sets=sets,
                      branch=branch, extrapolation=extrapolation)
     given = [k for k, v in (("g_mpa", g_mpa), ("p0_kpa", p0_kpa)) if v is not None]
     parts = [cal.label] if cal is not None else []

@@ -117,7 +117,8 @@ class FitResult:
     nfev : int
         Model evaluations by the optimiser.
     design : tuple of (str, float) pairs
-        Design fields (pattern, width_mm, angle_deg, interval_mm, length_mm) when known.
+        Requested design fields (pattern, width_mm, angle_deg, interval_mm, length_mm)
+        when known.
     """
 
     branch: str
@@ -446,11 +447,12 @@ def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa):
 
 
 def _design_fields(derived: DerivedGeometry) -> tuple:
+    """The requested design parameters: calibration points are keyed by them (see calibration.py)."""
     return (
         ("pattern", derived.pattern),
-        ("width_mm", derived.width_mm),
-        ("angle_deg", derived.angle_deg if derived.pattern == "cross" else 0.0),
-        ("interval_mm", derived.interval_mm),
+        ("width_mm", derived.requested_width_mm),
+        ("angle_deg", derived.requested_angle_deg if derived.pattern == "cross" else 0.0),
+        ("interval_mm", derived.requested_interval_mm),
         ("length_mm", derived.length_mm),
     )
 
