@@ -121,6 +121,6 @@ def test_record_limit_is_an_export_error():
 
     from embroact.patterns.errors import ExportError
 
-    small = replace(FORMATS["dst"], limit=replace(FORMATS["dst"].limit, max_records=50))
-    with pytest.raises(ExportError, match=r"design needs \d+ records; dst holds at most 50"):
+    small = replace(FORMATS["dst"], limit=replace(FORMATS["dst"].limit, max_records=40))
+    with pytest.raises(ExportError, match=r"design needs \d+ records; dst holds at most 40"):
         encode(hand_plan(1), small)
