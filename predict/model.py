@@ -283,7 +283,8 @@ def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str =
     else:
         scale = geo.l0 / (2.0 * geo.r0)  # theta over which l changes by l0
         de = solvers.derivative(_energy_of_theta(geo, form), theta, scale=scale, method=derivative)
-    return de, dv
+    # the straight state is stationary (dE_s/dl = 0 at l = l0) whatever the form can evaluate there
+    return np.where(theta == 0.0, 0.0, de), dv
 
 
 def pressure_mpa(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
@@ -297,4 +298,4 @@ def pressure_mpa(theta, geo: Geometry, *, form: str = "stable", derivative: str 
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         de, dv = energy_rate(theta, geo, form=form, derivative=derivative)
         p = geo.p0 + de / dv
-    return np.where(theta == 0.0, geo.p0 + 0.0 * p, p)
+    return np.where(theta == 0.0, geo.p0 + 0.0 * p, p)  # 0/0 at the neutral angle: P0 by continuity

@@ -126,13 +126,13 @@ def golden_max(f, lo, hi, iterations: int = GOLDEN_ITERATIONS):
     return 0.5 * (a + b)
 
 
-def illinois(residual, a, b, fa, fb, *, xtol, active=None, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
+def illinois(residual, a, b, fa, fb, *, rtol, atol, active=None, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
     """Vectorised Illinois regula falsi on brackets ``fa < 0 < fb`` (or the reverse).
 
     ``residual(x, active)`` evaluates the function at the entries selected by the
     boolean mask ``active`` (x has the full shape); entries not in the initial
     ``active`` mask (default: all) are returned as ``a``. Stops entrywise when the step
-    or the bracket falls below ``xtol``. Raises :class:`SolverError` if any entry
+    or the bracket falls below ``rtol * |x| + atol``. Raises :class:`SolverError` if any entry
     has not converged after ``max_iterations``.
     """
     a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
@@ -153,7 +153,8 @@ def illinois(residual, a, b, fa, fb, *, xtol, active=None, max_iterations: int =
         a, fa = np.where(active & same_as_a, x, a), np.where(active & same_as_a, fx, np.where(active, fa_half, fa))
         b, fb = np.where(active & ~same_as_a, x, b), np.where(active & ~same_as_a, fx, np.where(active, fb_half, fb))
         side = np.where(active, np.where(same_as_a, 1, -1), side).astype(np.int8)
-        done = (step <= xtol) | (np.abs(b - a) <= xtol) | (fx == 0.0)
+        tol = rtol * np.abs(x) + atol
+        done = (step <= tol) | (np.abs(b - a) <= tol) | (fx == 0.0)
         active &= ~done
         if not active.any():
             return x
@@ -163,7 +164,7 @@ def illinois(residual, a, b, fa, fb, *, xtol, active=None, max_iterations: int =
     )
 
 
-def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol, pole_at_end=False):
+def trace_inverse(rate, theta_end, targets, *, grid_points: int, rtol, atol, pole_at_end=False):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
@@ -176,8 +177,8 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol, pole_at_e
         Pressures minus P0 [MPa], > 0.
     grid_points : int
         Tabulation points along each branch.
-    xtol : float or ndarray
-        Absolute tolerance on theta [rad].
+    rtol, atol : float
+        Converged when a step is below ``rtol * |theta| + atol`` [rad].
     pole_at_end : bool or ndarray (n, 1)
         True where ``theta_end`` is a lock-up (P -> +inf there).
 
@@ -226,7 +227,7 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol, pole_at_e
     solve = ~beyond & (np.sign(ra) != np.sign(rb))
     theta = np.where(ra == 0.0, ta, tb)
     if np.any(solve):
-        theta = np.where(solve, _polish(rate, grid, de, dv, i, targets, (ta, tb, ra, rb), solve, xtol), theta)
+        theta = np.where(solve, _polish(rate, grid, de, dv, i, targets, (ta, tb, ra, rb), solve, (rtol, atol)), theta)
     theta = np.where(beyond, theta_stop, theta)
     return theta, where, theta_stop, p_stop
 
@@ -235,7 +236,7 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, xtol, pole_at_e
 _CUBIC = np.linalg.inv(np.vander(np.arange(4.0), 4, increasing=True))
 
 
-def _polish(rate, grid, de, dv, i, targets, bracket, solve, xtol):
+def _polish(rate, grid, de, dv, i, targets, bracket, solve, tols):
     """Roots of R = dE - t dV in each bracket ``(ta, tb, R(ta), R(tb))``.
 
     A cubic through the four tabulated residuals around the bracket gives the start
@@ -243,6 +244,7 @@ def _polish(rate, grid, de, dv, i, targets, bracket, solve, xtol):
     leave the bracket, or entries still moving after ``NEWTON_STEPS``, go to Illinois.
     """
     ta, tb, ra, rb = bracket
+    rtol, atol = tols
     h = grid[:, 1:2] - grid[:, 0:1]
     j = np.clip(i - 1, 0, grid.shape[1] - 4)
     r2 = np.arange(grid.shape[0])[:, None]
@@ -266,7 +268,7 @@ def _polish(rate, grid, de, dv, i, targets, bracket, solve, xtol):
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = x - fx * h / (c1 + uu * (c2 + uu * c3))
         ok = (xn >= lo) & (xn <= hi)
-        done = ok & ((np.abs(xn - x) <= xtol) | (fx == 0.0))
+        done = ok & ((np.abs(xn - x) <= rtol * np.abs(x) + atol) | (fx == 0.0))
         x = np.where(active & ok, xn, x)
         active &= ok & ~done
         if not active.any():
@@ -277,7 +279,7 @@ def _polish(rate, grid, de, dv, i, targets, bracket, solve, xtol):
             e, v = rate(t)
             return np.where(act, e - targets * v, 0.0)
 
-        x = np.where(stuck, illinois(residual, ta, tb, ra, rb, xtol=xtol, active=stuck), x)
+        x = np.where(stuck, illinois(residual, ta, tb, ra, rb, rtol=rtol, atol=atol, active=stuck), x)
     return x
 
 
@@ -297,19 +299,25 @@ def _bracket_index(values, last, targets):
     return np.clip(out - 1, 0, np.minimum(last, k - 1)[:, None] - 1)
 
 
-def root_each(residual, lo, hi, *, xtol):
+def root_each(residual, lo, hi, *, rtol, atol):
     """Per-target scalar bracketing root finding (scipy ``brentq``) on [lo, hi].
 
     ``residual(x, k)`` is the scalar residual of target ``k``; ``lo``, ``hi`` are
-    1-D arrays. Entries whose bracket has no sign change return ``hi``.
+    1-D arrays. Entries whose bracket has no sign change return ``hi``; entries
+    where the residual is not finite (a failing method) return nan.
     """
     from scipy.optimize import brentq
 
     out = np.array(hi, dtype=np.float64)
     for k, (a, b) in enumerate(zip(lo, hi)):
         fa, fb = residual(a, k), residual(b, k)
-        if fa == 0.0:
+        if not (np.isfinite(fa) and np.isfinite(fb)):
+            out[k] = np.nan
+        elif fa == 0.0:
             out[k] = a
         elif np.sign(fa) != np.sign(fb):
-            out[k] = brentq(residual, a, b, args=(k,), xtol=xtol, rtol=4 * np.finfo(float).eps)
+            try:
+                out[k] = brentq(residual, a, b, args=(k,), xtol=atol, rtol=max(rtol, 4 * np.finfo(float).eps))
+            except ValueError:  # brentq met a nan inside the bracket
+                out[k] = np.nan
     return out

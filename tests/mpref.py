@@ -21,33 +21,38 @@ import mpmath as mp
 
 DIGITS = 50
 
+
+def _digits(extra=10):
+    """Working precision: at least DIGITS + extra, never lower than the caller's (mp.diff raises it)."""
+    return mp.workdps(max(mp.mp.dps, DIGITS) + extra)
+
 __all__ = ["DIGITS", "Ref", "sleeve_radius", "thread_angle", "paper_law", "thick_wall_law", "thick_wall_quad"]
 
 
 def sleeve_radius(w, rf):
     """MODEL.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi)."""
-    with mp.workdps(DIGITS + 10):
+    with _digits():
         w, rf = mp.mpf(w), mp.mpf(rf)
         return (w + 2 * mp.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * mp.pi)
 
 
 def thread_angle(w, alpha0_deg, rf):
     """MODEL.md section 2: beta0 [rad] from width, embroidery angle and tube radius."""
-    with mp.workdps(DIGITS + 10):
+    with _digits():
         h, t = mp.mpf(w) / 2, mp.tan(mp.radians(mp.mpf(alpha0_deg)))
         return mp.asin(h * t / mp.sqrt((2 * mp.mpf(rf)) ** 2 + h**2 * (1 + t**2)))
 
 
 def paper_law(r, rf, ge):
     """Paper's inflation law P(r) [MPa]."""
-    with mp.workdps(DIGITS + 10):
+    with _digits():
         r, rf = mp.mpf(r), mp.mpf(rf)
         return mp.mpf(ge) / 2 * ((r / rf) ** 2 + (rf / r) ** 2 - 2)
 
 
 def thick_wall_law(r, rf, df, mu):
     """MODEL.md section 3 closed form: mu (ln(la/lb) + (lb^-2 - la^-2)/2), [MPa]."""
-    with mp.workdps(DIGITS + 10):
+    with _digits():
         r, rf, df = mp.mpf(r), mp.mpf(rf), mp.mpf(df)
         a = mp.sqrt(r**2 - (rf**2 - df**2))
         la, lb = a / df, r / rf
@@ -62,7 +67,7 @@ def thick_wall_quad(r, rf, df, mu):
     incompressibility rho^2 - R^2 = r^2 - r_f^2; sigma_r = -P inside, 0 outside, so
     P = integral over the deformed wall of mu (lambda^2 - lambda^-2) / rho.
     """
-    with mp.workdps(DIGITS + 10):
+    with _digits():
         r, rf, df = mp.mpf(r), mp.mpf(rf), mp.mpf(df)
         k = r**2 - rf**2
         a = mp.sqrt(df**2 + k)
@@ -78,7 +83,7 @@ class Ref:
     """One design, every quantity of MODEL.md section 4 at 50 digits."""
 
     def __init__(self, pattern, *, l0, r0, beta0, rf, df, g, p0):
-        with mp.workdps(DIGITS + 10):
+        with _digits():
             self.pattern = pattern
             self.l0, self.r0, self.beta0 = mp.mpf(l0), mp.mpf(r0), mp.mpf(beta0)
             self.c = mp.mpf(rf) ** 2 - mp.mpf(df) ** 2
@@ -137,7 +142,7 @@ class Ref:
         return 20 + (int(-2 * mp.log10(t)) if 0 < t < 1 else 0)
 
     def energy_theta(self, theta):
-        with mp.workdps(DIGITS + self._extra_digits(theta)):
+        with _digits(self._extra_digits(theta)):
             return self.energy(*self.l_r(theta))
 
     def pressure(self, theta):
@@ -145,21 +150,29 @@ class Ref:
         theta = mp.mpf(theta)
         if theta == 0:
             return +self.p0
-        with mp.workdps(DIGITS + self._extra_digits(theta)):
+        with _digits(self._extra_digits(theta)):
             de = mp.diff(lambda t: self.energy(*self.l_r(t)), theta)
             dv = mp.diff(lambda t: self.volume(*self.l_r(t)), theta)
             return self.p0 + de / dv
 
     def dvolume(self, theta):
-        with mp.workdps(DIGITS + 10):
+        with _digits():
             return mp.diff(lambda t: self.volume(*self.l_r(t)), mp.mpf(theta))
 
-    def lock_theta(self, guess):
-        """Lock-up angle: dV/dtheta = 0, found from ``guess`` [rad] by findroot."""
-        with mp.workdps(DIGITS + 10):
-            return mp.findroot(self.dvolume, mp.mpf(guess))
+    def lock_theta(self, direction):
+        """Lock-up angle: first sign change of dV/dtheta from 0 towards ``direction`` (+1/-1),
+        scanned in steps of 0.05 rad, then refined by the Anderson-Bjorck bracketing solver."""
+        with _digits():
+            step = mp.mpf(direction) / 20
+            a, fa = step / 1000, self.dvolume(step / 1000)
+            while True:
+                b = a + step
+                fb = self.dvolume(b)
+                if fa * fb <= 0:
+                    return mp.findroot(self.dvolume, (a, b), solver="anderson")
+                a, fa = b, fb
 
     def theta(self, pressure_mpa, guess):
         """theta [rad] with P(theta) = pressure, Newton/secant from ``guess``."""
-        with mp.workdps(DIGITS + 10):
+        with _digits():
             return mp.findroot(lambda t: self.pressure(t) - mp.mpf(pressure_mpa), mp.mpf(guess))
