@@ -219,9 +219,11 @@ def _ribbons_px(series: Sequence[Series]) -> float:
 
 
 def _legend_px(series: Sequence[Series]) -> float:
-    """Legend column width: room for the longest label (about 6.2 px per character at 11 px)."""
-    longest = max([len(s.label) for s in series] + [len(t) for _, t in STATUS_STYLE.values()])
-    return max(_LEGEND_MIN_PX, 44.0 + _CHAR_PX * longest)
+    """Legend column width: room for the longest series label (about 6.2 px per character at 11 px).
+
+    The minimum fits every status text.
+    """
+    return max(_LEGEND_MIN_PX, 44.0 + _CHAR_PX * max(len(s.label) for s in series))
 
 
 def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0) -> Scale:
