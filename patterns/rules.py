@@ -290,6 +290,13 @@ class _PathIndex:
         first = np.concatenate([[True], np.diff(i[order]) != 0]) if len(order) else np.zeros(0, bool)
         return i[order][first], dist[order][first]
 
+    def nearest(self, xy_mm, max_distance_mm: float) -> tuple[np.ndarray, np.ndarray]:
+        """Indices of the points within ``max_distance_mm`` of the path and their distances [mm]."""
+        p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+        (i, _), dist = self._tree.query_nearest(shapely.points(p), max_distance=max_distance_mm,
+                                                return_distance=True, all_matches=False)
+        return i, dist
+
     def crossings(self, a_mm, b_mm) -> tuple[np.ndarray, np.ndarray]:
         """Where straight legs a -> b cross the path: leg index and arc length of the crossing [mm]."""
         a, b = np.asarray(a_mm, dtype=np.float64), np.asarray(b_mm, dtype=np.float64)
@@ -832,7 +839,7 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
     best = np.full(len(needles), np.inf)
     measured = []
     for k, tube in enumerate(tubes):
-        hit, dist = _PathIndex(tube.path).within(xy[needles], reach_mm)
+        hit, dist = _PathIndex(tube.path).nearest(xy[needles], reach_mm)
         closer = dist < best[hit]
         best[hit[closer]] = dist[closer]
         owner[needles[hit[closer]]] = k
