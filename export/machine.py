@@ -310,14 +310,11 @@ class _Builder:
         if style == "stop":
             self.add(pe.STOP)
         elif style == "color":
-            if thread == 0:
-                return
             self.add(pe.COLOR_CHANGE)
         else:  # needle_stop
             self.add(pe.encode_thread_change(pe.NEEDLE_SET, thread, 1))
             self.add(pe.STOP)
         self.stops += 1
-        self.jump_ok = True
 
 
 def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = False) -> MachinePattern:
