@@ -40,8 +40,8 @@ _STYLE = """
 body{font-family:Helvetica,Arial,sans-serif;margin:24px auto;max-width:1100px;color:#222;padding:0 16px}
 h1{font-size:24px;margin-bottom:4px}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:3px;margin-top:28px}
 .sub{color:#666;margin-top:0}
-figure{margin:8px 0;overflow-x:auto}figure svg{max-width:100%;height:auto;border:1px solid #eee}
-#stitches svg{width:100%}
+figure{margin:8px 0;overflow-x:auto}figure svg{max-width:100%;height:auto;border:1px solid #eee;box-sizing:border-box}
+#stitches svg{width:100%;max-height:80vh}
 summary{cursor:pointer;font-size:14px;margin:6px 0}
 table{border-collapse:collapse;font-size:13px;margin:8px 0}
 th,td{border:1px solid #ddd;padding:3px 8px;text-align:left;vertical-align:top}
