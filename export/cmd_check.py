@@ -24,22 +24,20 @@ import json
 
 __all__ = ["add_arguments", "run", "format_table"]
 
-_DEFAULT_RADIUS_MM = 1.5
-_DEFAULT_CLEARANCE_MM = 0.3
-
-
 def add_arguments(parser, name: str) -> None:
     """Options of ``embroact check``."""
     from ..patterns.limits import FORMAT_LIMITS
+    from ..patterns.params import Tube
 
+    default = Tube()
     parser.add_argument("input", metavar="DESIGN.toml|FILE", help="embroact design (TOML) or any embroidery file")
     tube = parser.add_argument_group("tube (embroidery files only)")
     tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'",
                       help="tube axis in mm, file frame (0.1 mm units / 10, y down); repeat for several tubes")
-    tube.add_argument("--tube-radius-mm", type=float, default=_DEFAULT_RADIUS_MM,
-                      help=f"tube outer radius r_f [mm] (default {_DEFAULT_RADIUS_MM})")
-    tube.add_argument("--clearance-mm", type=float, default=_DEFAULT_CLEARANCE_MM,
-                      help=f"needle clearance around the tube [mm] (default {_DEFAULT_CLEARANCE_MM})")
+    tube.add_argument("--tube-radius-mm", type=float, default=default.outer_radius_mm,
+                      help=f"tube outer radius r_f [mm] (default {default.outer_radius_mm:g})")
+    tube.add_argument("--clearance-mm", type=float, default=default.clearance_mm,
+                      help=f"needle clearance around the tube [mm] (default {default.clearance_mm:g})")
     tube.add_argument("--end-margin-mm", type=float, default=0.0,
                       help="free tube beyond each end of the path [mm] (default 0)")
     tube.add_argument("--tube", metavar="TUBES.toml", help="tubes (and [machine] limits) from a TOML file")
@@ -76,8 +74,8 @@ def _check_file(args):
             for i, text in enumerate(args.tube_path)
         )
     records = read_records(args.input)
-    fmt = args.format or machine.pop("format", None) or default_format(records)
-    machine.pop("format", None)
+    own = machine.pop("format", None)
+    fmt = args.format or own or default_format(records)
     findings = check_file(args.input, tubes, settings=RuleSettings(format=fmt, **machine))
     return findings, {"kind": "embroidery file", "name": args.input, "format": fmt, "tubes": len(tubes),
                       "records": len(records)}

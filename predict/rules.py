@@ -169,6 +169,7 @@ def check_design(
     format: str | None = None,
     rule_settings: RuleSettings | None = None,
     model_settings: ModelRuleSettings | None = None,
+    ignore: tuple[str, ...] = (),
 ) -> tuple[Finding, ...]:
     """Every design rule on a design and its plan: geometry, pattern, file structure, model.
 
@@ -183,12 +184,16 @@ def check_design(
         Target machine format; default ``design.machine.format``.
     rule_settings, model_settings : optional
         Override the thresholds derived from the design.
+    ignore : tuple of str
+        Rule codes to leave out, e.g. ``("EA102",)`` when the writer splits long legs
+        on request (``build --split-long``). Unknown codes are rejected.
 
     Returns
     -------
     tuple of Finding
         Worst first. ``build`` refuses to write machine files when any is an error.
     """
+    skip = {RULES[code].code for code in ignore}
     rs = rule_settings or RuleSettings.for_machine(design.machine, format=format)
     found = list(check_plan(plan, rs)) + list(check_model(plan, design=design, settings=model_settings))
-    return sort_findings(found)
+    return sort_findings(f for f in found if f.code not in skip)

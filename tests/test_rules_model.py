@@ -102,3 +102,6 @@ def test_check_design_default_and_format():
     wide_plan = build_plan(wide)
     assert "EA102" in [f.code for f in check_design(wide, wide_plan)]
     assert "EA102" not in [f.code for f in check_design(wide, wide_plan, format="jef")]
+    assert "EA102" not in [f.code for f in check_design(wide, wide_plan, ignore=("EA102",))]
+    with pytest.raises(ValueError, match="rule code must be one of"):
+        check_design(wide, wide_plan, ignore=("E102",))
