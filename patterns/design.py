@@ -278,7 +278,7 @@ def _where(path: str, key: str) -> str:
 
 def _table(value, path: str, allowed: tuple[str, ...], required: tuple[str, ...] = ()) -> dict:
     if not isinstance(value, dict):
-        raise DesignFileError(f"{path}: must be a table, got {type(value).__name__}")
+        raise DesignFileError(f"{path or 'design'}: must be a table, got {type(value).__name__}")
     for key in value:
         if key not in allowed:
             raise DesignFileError(f"{_where(path, key)}: unknown key; allowed: {', '.join(allowed)}")
@@ -381,7 +381,7 @@ def design_from_dict(d) -> Design:
     DesignFileError
         One line starting with the key path (``actuator[1].widht_mm: unknown key; allowed: ...``).
     """
-    top = _table(d, "design", ("name", "tube", "machine", "operation", "actuator"), ("actuator",))
+    top = _table(d, "", ("name", "tube", "machine", "operation", "actuator"), ("actuator",))
     acts = top["actuator"]
     if not isinstance(acts, list) or not acts:
         raise DesignFileError(f"actuator: must be a non-empty list of tables ([[actuator]]), got {acts!r:.60}")
