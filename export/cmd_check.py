@@ -30,7 +30,8 @@ def add_arguments(parser, name: str) -> None:
     from ..patterns.params import Tube
 
     default = Tube()
-    parser.add_argument("input", metavar="DESIGN.toml|FILE", help="embroact design (TOML) or any embroidery file")
+    parser.add_argument("input", nargs="?", metavar="DESIGN.toml|FILE",
+                        help="embroact design (TOML) or any embroidery file")
     tube = parser.add_argument_group("tube (embroidery files only)")
     tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'",
                       help="tube axis in mm, file frame (0.1 mm units / 10, y down); repeat for several tubes")
@@ -44,6 +45,7 @@ def add_arguments(parser, name: str) -> None:
     parser.add_argument("--format", choices=sorted(FORMAT_LIMITS),
                         help="target machine format (default: the design's machine.format, or the file's own)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.add_argument("--rules", action="store_true", help="print the table of every rule (Markdown) and exit")
 
 
 def _check_design(args):
@@ -102,12 +104,16 @@ def format_table(findings, header: str) -> str:
 
 def run(args) -> int:
     """Check the input; print the table or JSON; 1 if any error."""
-    from ..patterns.findings import count_by_severity
+    from ..patterns.errors import ParameterError
+    from ..patterns.findings import count_by_severity, rules_table_markdown
 
+    if args.rules:
+        print(rules_table_markdown(), end="")
+        return 0
+    if args.input is None:
+        raise ParameterError("check needs an input: DESIGN.toml or an embroidery file (or --rules)")
     is_design = args.input.lower().endswith(".toml")
     if is_design and (args.tube_path or args.tube):
-        from ..patterns.errors import ParameterError
-
         raise ParameterError("--tube-path and --tube apply to embroidery files; a design file carries its tubes")
     findings, info = _check_design(args) if is_design else _check_file(args)
     counts = count_by_severity(findings)

@@ -177,7 +177,8 @@ class RuleSet:
     def markdown_table(self) -> str:
         """The README table: code, severity, title, what is checked, where it runs."""
         lines = ["| code | severity | rule | what is checked | checks |", "|---|---|---|---|---|"]
-        lines += [f"| {r.code} | {r.severity.value} | {r.title} | {r.description} | {r.checks} |" for r in self.rules]
+        cells = [(r.code, r.severity.value, r.title, r.description, r.checks) for r in self.rules]
+        lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in cells]
         return "\n".join(lines) + "\n"
 
 

@@ -131,3 +131,13 @@ def test_bad_arguments_exit_2(tmp_path, capsys, argv, message):
 def test_tube_options_rejected_for_designs(capsys):
     assert main(["check", EXAMPLES[0], "--tube-path", "0,0 1,0"]) == 2
     assert "a design file carries its tubes" in capsys.readouterr().err
+
+
+def test_rules_table_and_missing_input(capsys):
+    from embroact.patterns.findings import RULES
+
+    assert main(["check", "--rules"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("| code | severity | rule |") and out.count("\n") == len(RULES) + 2
+    assert main(["check"]) == 2
+    assert "check needs an input" in capsys.readouterr().err

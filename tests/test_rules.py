@@ -49,6 +49,8 @@ def test_registry_codes_unique_and_documented():
     assert codes == sorted(codes)
     table = rules_table_markdown()
     assert table.count("\n") == len(RULES) + 2
+    for row in table.splitlines():
+        assert row.replace("\\|", "").count("|") == 6  # five cells: pipes inside cells are escaped
     for r in RULES:
         assert f"| {r.code} | {r.severity.value} |" in table
         assert r.description and r.fix and r.title
