@@ -250,7 +250,10 @@ class Body:
     faces : ndarray of int64 (m, 3)
         Triangles, outward normals; read-only.
     ring_size : int
-        Vertices per cross-section ring (rings are stored first, in order along the path).
+        Vertices per cross-section ring (rings are stored in order along the path;
+        vertex ``i`` belongs to ring ``i // ring_size``).
+    ring_s_mm : ndarray
+        Arc length of each ring along the path [mm]; read-only.
     colour : tuple of int
         RGBA 0-255.
     """
@@ -259,6 +262,7 @@ class Body:
     vertices: np.ndarray
     faces: np.ndarray
     ring_size: int
+    ring_s_mm: np.ndarray
     colour: tuple[int, int, int, int]
 
 
@@ -364,7 +368,7 @@ def _sweep(bent: BentPath, prof: _Profile, s: np.ndarray, colour) -> Body:
     start = np.column_stack([np.zeros_like(fan), fan + 1, fan])
     end = np.column_stack([np.zeros_like(fan), fan, fan + 1]) + (rings - 1) * m
     faces = np.concatenate([start, sides, end]).astype(np.int64)
-    return Body(prof.name, _ro(verts), _ro(faces).astype(np.int64), m, colour)
+    return Body(prof.name, _ro(verts), _ro(faces).astype(np.int64), m, _ro(s), colour)
 
 
 def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> float:

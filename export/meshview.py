@@ -59,6 +59,19 @@ def view_rotation(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     return np.vstack([right, up, toward])
 
 
+def _behind_fabric(shape, body, rot: np.ndarray) -> np.ndarray:
+    """Per face: True where a thread-side body sits on a stretch of fabric whose thread side faces away.
+
+    Such faces lie behind the (opaque, thin) fabric; drawing them first keeps depth sorting
+    of large fabric triangles from letting them show through.
+    """
+    if body.name == "fabric":
+        return np.zeros(len(body.faces), dtype=bool)
+    s = np.asarray(body.ring_s_mm)[np.asarray(body.faces) // body.ring_size].mean(axis=1)
+    _, frames = shape.bent.frames(s)
+    return (frames[:, :, 2] @ rot[2]) < 0.0
+
+
 def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, width_px: float = 480.0,
              hanging: bool = True, title: str | None = None) -> str:
     """The shape as a flat-shaded SVG picture (string).
@@ -87,20 +100,22 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     shapes = shapes_of(shape)
     # long thin triangles defeat depth sorting: split them to a fraction of the shape's size
     split = _SPLIT_FRACTION * max(s.bent.path.length_mm for s in shapes)
-    tris, cols = [], []
-    for b in (b for s in shapes for b in s.bodies):
-        v, f = subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), split)
-        t = v[f] @ rot.T
-        tris.append(t)
-        cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(t), 1)))
-    tri, col = np.concatenate(tris), np.concatenate(cols)
+    tris, cols, behind = [], [], []
+    for s in shapes:
+        for b in s.bodies:
+            v, f, parent = subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), split, return_index=True)
+            tris.append(v[f] @ rot.T)
+            cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(f), 1)))
+            behind.append(_behind_fabric(s, b, rot)[parent])
+    tri, col, behind = np.concatenate(tris), np.concatenate(cols), np.concatenate(behind)
     n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     norm = np.linalg.norm(n, axis=1)
     keep = (n[:, 2] > 0) & (norm > 0)
-    tri, col, n = tri[keep], col[keep], n[keep] / norm[keep, None]
+    tri, col, behind, n = tri[keep], col[keep], behind[keep], n[keep] / norm[keep, None]
     shade = _AMBIENT + (1.0 - _AMBIENT) * np.clip(n @ _LIGHT, 0.0, 1.0)
     rgb = np.clip(col * shade[:, None], 0, 255).round().astype(int)
-    order = np.argsort(tri[:, :, 2].mean(axis=1), kind="stable")
+    # parts behind the fabric first, then everything far to near
+    order = np.lexsort((tri[:, :, 2].mean(axis=1), ~behind))
     lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
     scale = (width - 2 * _MARGIN_PX) / max(hi[0] - lo[0], 1e-9)
     top = 30.0 if title else _MARGIN_PX

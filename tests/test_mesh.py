@@ -193,3 +193,34 @@ def test_mesh_module_imports_trimesh_lazily():
     code = "import sys, embroact.export.mesh, embroact.export.previews; print('trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
+
+
+@pytest.mark.parametrize("az, el", [(0.0, 0.0), (60.0, 20.0), (-135.0, 75.0), (0.0, 90.0)])
+def test_view_rotation_is_a_proper_rotation(az, el):
+    from embroact.export.meshview import view_rotation
+
+    r = view_rotation(az, el)
+    assert r @ r.T == pytest.approx(np.eye(3), abs=1e-12) and np.linalg.det(r) == pytest.approx(1.0)
+    # the camera looks along -z': its toward-viewer axis is at elevation el above the plan
+    assert math.degrees(math.asin(r[2, 2])) == pytest.approx(el)
+    if el == 0.0:
+        assert r[1] == pytest.approx([0.0, 0.0, 1.0])  # plan +z is screen up
+
+
+def test_picture_draws_front_faces_only_and_is_stable():
+    import xml.etree.ElementTree as ET
+
+    from embroact.export.meshview import mesh_svg
+
+    m = _mesh(90.0, 0.5)
+    svg = mesh_svg(m)
+    assert svg == mesh_svg(m)
+    polys = list(ET.fromstring(svg).iter("{http://www.w3.org/2000/svg}polygon"))
+    # closed bodies: roughly half of the (subdivided) triangles face the camera
+    from trimesh.remesh import subdivide_to_size
+
+    total = sum(len(subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), 0.04 * 100.0)[1])
+                for b in m.bodies)
+    assert 0.3 * total < len(polys) < 0.7 * total
+    with pytest.raises(ParameterError, match="elevation_deg must be in"):
+        mesh_svg(m, elevation_deg=95.0)
