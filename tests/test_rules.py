@@ -327,3 +327,10 @@ def test_corridor_query_matches_brute_force_distance():
     brute = shapely.distance(path, shapely.points(pts))
     assert hit.tolist() == np.flatnonzero(brute < 2.0).tolist()
     assert np.allclose(dist, brute[hit], atol=1e-12)
+
+
+def test_density_matches_brute_force_counts():
+    pts = np.random.default_rng(3).uniform(0.0, 4.0, size=(400, 2))
+    pts[10] = pts[11]  # a repeated hole counts twice
+    d = np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))
+    assert needle_density(pts, 0.5).tolist() == (d <= 0.5).sum(axis=1).tolist()
