@@ -27,7 +27,7 @@ Examples
 >>> tube = TubeLayout.from_path("A", [(0, 0), (20, 0)], outer_radius_mm=1.5,
 ...                             clearance_mm=0.3, end_margin_mm=0.0, half_width_mm=3.5)
 >>> recs = [(2, 3.5), (3, -3.5), (4, 3.5), (5, 1.0), (6, -3.5)]
->>> lay = Layout.from_points(recs, [Command.STITCH] * 5, [0] * 5, (tube,))
+>>> lay = Layout.from_points(recs, [Command.STITCH] * 5, [0] * 5, tubes=(tube,))
 >>> [(f.code, f.stitch_index) for f in check_layout(lay, RuleSettings())]
 [('EA101', 3)]
 """
@@ -180,7 +180,12 @@ class TubeLayout:
     def from_path(cls, name: str, path, *, outer_radius_mm: float, clearance_mm: float,
                   end_margin_mm: float, half_width_mm: float | None = None) -> "TubeLayout":
         """From a LineString or (n, 2) points; ``centerline`` is None if the path is not a valid one."""
-        line = path if isinstance(path, shapely.LineString) else shapely.LineString(np.asarray(path, dtype=float))
+        xy = np.asarray(path.coords if isinstance(path, shapely.LineString) else path, dtype=np.float64)
+        if xy.ndim != 2 or xy.shape[1] < 2 or len(xy) < 2 or not np.all(np.isfinite(xy)):
+            raise ParameterError(f"tube path of {name} must be finite (x, y) points, at least 2, got shape {xy.shape}")
+        line = shapely.LineString(xy[:, :2])
+        if line.length <= DEFAULT_TOLERANCES.length_mm:
+            raise ParameterError(f"tube path of {name} must have a length > 0, got {line.length:g} mm")
         try:
             cl = as_centerline(line)
         except PathError:
@@ -227,7 +232,7 @@ class Layout:
     index: np.ndarray
 
     @classmethod
-    def from_points(cls, xy_mm, commands, owner, tubes, index=None) -> "Layout":
+    def from_points(cls, xy_mm, commands, owner, *, tubes, index=None) -> "Layout":
         """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1."""
         xy = np.array(xy_mm, dtype=np.float64).reshape(-1, 2)
         n = len(xy)
@@ -811,7 +816,7 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
         for a in plan.actuators
     )
     owner = np.where(plan.actuator < len(tubes), plan.actuator, -1)
-    return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes)
+    return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes=tubes)
 
 
 def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_MM, index=None) -> Layout:
@@ -852,7 +857,7 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
         if tube.half_width_mm is None and len(mine):
             tube = replace(tube, half_width_mm=float(np.median(mine)))
         out.append(tube)
-    return Layout.from_points(xy, cmds, owner, out, index)
+    return Layout.from_points(xy, cmds, owner, tubes=out, index=index)
 
 
 def _pattern_findings(plan: StitchPlan, settings: RuleSettings) -> list[Finding]:

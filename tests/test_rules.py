@@ -31,7 +31,7 @@ def _layout(xy, commands=None, owner=None, tubes=None):
     n = len(xy)
     tubes = (_tube(),) if tubes is None else tubes
     owner = [0 if tubes else -1] * n if owner is None else owner
-    return Layout.from_points(xy, [S] * n if commands is None else commands, owner, tubes)
+    return Layout.from_points(xy, [S] * n if commands is None else commands, owner, tubes=tubes)
 
 
 def _hits(findings, code):
@@ -334,3 +334,12 @@ def test_density_matches_brute_force_counts():
     pts[10] = pts[11]  # a repeated hole counts twice
     d = np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))
     assert needle_density(pts, 0.5).tolist() == (d <= 0.5).sum(axis=1).tolist()
+
+
+def test_bad_tube_paths_and_owners():
+    with pytest.raises(ValueError, match="tube path of A must have a length > 0"):
+        _tube([(1.0, 1.0), (1.0, 1.0)])
+    with pytest.raises(ValueError, match="at least 2"):
+        _tube([(1.0, 1.0)])
+    with pytest.raises(ValueError, match="owner must be in"):
+        Layout.from_points([(0, 0)], [S], [1], tubes=(_tube(),))
