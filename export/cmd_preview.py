@@ -31,7 +31,7 @@ from pathlib import Path
 
 from ..patterns.errors import ParameterError, check_range
 
-__all__ = ["KINDS", "add_arguments", "run", "parse_pressures"]
+__all__ = ["KINDS", "add_arguments", "run", "parse_pressures", "measured_points"]
 
 #: kind -> one-line description.
 KINDS = {
@@ -93,6 +93,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     parser.add_argument("--states", type=int, default=5, help="pressures drawn in the side view, 1..12 (default 5)")
     parser.add_argument("--tolerance-mm", type=float, default=None,
                         help="chordal tolerance of the 3D mesh [mm] (default 0.05)")
+    parser.add_argument("--measured", action="append", default=[], metavar="[ACTUATOR=]CSV",
+                        help="bend chart: overlay measured points from a bend CSV (pressure_kpa,angle_deg), "
+                             "on the named actuator or the first one; repeatable")
 
 
 def _design(path):
@@ -103,6 +106,22 @@ def _design(path):
     from ..patterns.design import default_design
 
     return default_design()
+
+
+def measured_points(specs, names) -> dict:
+    """``["A1=loop.csv", "other.csv"]`` -> {actuator name: (pressure_kpa, angle_deg)}.
+
+    A spec without a known ``NAME=`` prefix belongs to the first actuator.
+    """
+    from .calibfile import read_bend_csv
+
+    out = {}
+    for spec in specs:
+        name, _, rest = spec.partition("=")
+        name, path = (name, rest) if rest and name in names else (names[0], spec)
+        data = read_bend_csv(path)
+        out[name] = (data.pressure_kpa, data.angle_deg)
+    return out
 
 
 def _svg_only(kind: str, out: Path) -> None:
@@ -133,7 +152,8 @@ def run(args) -> int:
     if args.kind == "bend":
         from .chart import bend_chart_svg
 
-        write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves),
+        measured = measured_points(args.measured, [a.name for a in plan.actuators])
+        write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves, measured),
                                               title=f"{plan.name}: predicted bend angle"))
         print(f"wrote {out}: bend chart, {len(curves)} actuator(s), {len(pressures)} pressures")
     elif args.kind == "shape":

@@ -123,3 +123,25 @@ def test_same_bytes_twice(tmp_path):
     assert main(["preview", "mesh", "-o", str(b), "--tolerance-mm", "0.5"]) == 0
     assert a.read_bytes() == b.read_bytes()
     assert np.frombuffer(a.read_bytes()[:4], dtype=np.uint8).tobytes() == b"glTF"
+
+
+def test_measured_points_overlay_at_their_coordinates(tmp_path):
+    from embroact.export.chart import chart_scale
+
+    csv = tmp_path / "loop.csv"
+    csv.write_text("pressure_kpa,angle_deg\n0,0\n150,40\n300,120\n150,60\n")
+    out = tmp_path / "b.svg"
+    assert main(["preview", "bend", "-o", str(out), "--pressure-kpa", "0:300:50", "--measured", f"A1={csv}"]) == 0
+    circles = [e for e in ET.parse(out).getroot().iter(SVG + "circle") if e.get("class") == "measured"]
+    got = np.array([[float(c.get("cx")), float(c.get("cy"))] for c in circles])
+    # the same chart scale, rebuilt from the series the command drew
+    from embroact.export import previews as pv
+    from embroact.patterns.design import build_plan, default_design
+
+    design = default_design()
+    plan = build_plan(design)
+    derived, curves = pv.predict_curves(plan, parse_pressures("0:300:50"), design=design)
+    sc = chart_scale(pv.bend_series(plan, derived, curves, {"A1": ([0, 150, 300, 150], [0, 40, 120, 60])}))
+    want = np.column_stack([sc.x_px([0, 150, 300, 150]), sc.y_px([0, 40, 120, 60])])
+    assert np.abs(got - want).max() <= 0.006
+    assert sc.y_max_deg >= 120.0
