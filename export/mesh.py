@@ -85,7 +85,8 @@ KAPPA_MERGE_REL = 1e-3
 #: Suffix -> writer kind.  GLB is written in metres, Y up (glTF convention); the others in mm, plan frame.
 MESH_FORMATS = {".glb": "glb", ".stl": "stl", ".obj": "obj", ".ply": "ply"}
 
-_SAMPLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75)
+_SAMPLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75)  # of a cell, along and across: where the deviation is sampled
+_M_PER_MM = 1e-3
 _MIN_TUBE_SEGMENTS = 8
 _COLOURS = {"fabric": (225, 214, 190, 255), "tube": (70, 130, 200, 255), "rails": (200, 60, 60, 255)}
 
@@ -467,7 +468,7 @@ def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
     if kind == "glb":
         # glTF: metres, Y up.  Plan frame (x, y, z_thread) -> (x, z_thread, -y) / 1000.
         to_gltf = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
-        to_gltf[:3, :3] *= 1e-3
+        to_gltf[:3, :3] *= _M_PER_MM
         scene = trimesh.Scene()
         for name, mesh in meshes:
             mesh = mesh.copy()

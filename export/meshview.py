@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from ..patterns.errors import check_range
+from ..patterns.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["view_rotation", "mesh_svg"]
 
@@ -117,7 +118,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     # parts behind the fabric first, then everything far to near
     order = np.lexsort((tri[:, :, 2].mean(axis=1), ~behind))
     lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
-    scale = (width - 2 * _MARGIN_PX) / max(hi[0] - lo[0], 1e-9)
+    scale = (width - 2 * _MARGIN_PX) / max(hi[0] - lo[0], DEFAULT_TOLERANCES.length_mm)
     top = 30.0 if title else _MARGIN_PX
     height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
     dwg = svgwrite.Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}",
