@@ -714,8 +714,15 @@ def _jump_runs(layout: Layout, settings: RuleSettings) -> list[Finding]:
 
 
 def _stops(layout: Layout, settings: RuleSettings) -> list[Finding]:
-    """EA502 (missing stop between tubes) and EA503 (stop inside one tube's stitches)."""
-    owned = np.flatnonzero((layout.commands == Command.STITCH) & (layout.owner >= 0))
+    """EA502 (missing stop between tubes) and EA503 (stop inside one tube's stitches).
+
+    Needle records that do not move (a zero-length stitch, e.g. the needle-down some
+    writers put at a colour change) lay no thread across a tube and are ignored.
+    """
+    d = _displacements(layout)
+    moves = np.hypot(d[:, 0], d[:, 1]) > settings.tolerances.length_mm
+    moves[:1] = True
+    owned = np.flatnonzero((layout.commands == Command.STITCH) & (layout.owner >= 0) & moves)
     if len(owned) < 2:
         return []
     is_stop = layout.commands == Command.STOP

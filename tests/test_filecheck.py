@@ -192,3 +192,23 @@ def test_tube_toml(tmp_path):
         path.write_text(text)
         with pytest.raises(DesignFileError, match=message):
             load_tube_file(path)
+
+
+@pytest.mark.parametrize("fmt", ["dst", "tbf", "u01", "jef", "exp", "pes", "xxx"])
+def test_three_actuator_machine_files_check_clean(tmp_path, fmt):
+    """embroact's own writer output, checked with the tubes in the file frame (plan y negated)."""
+    import os
+
+    from embroact.export.designfile import load_design
+    from embroact.export.formats import write
+    from embroact.patterns.design import build_plan
+
+    here = os.path.dirname(__file__)
+    plan = build_plan(load_design(os.path.join(here, "..", "examples", "three_actuators.toml")))
+    path = tmp_path / f"three.{fmt}"
+    write(plan, str(path))
+    tubes = [tube_layout(a.centerline.points_mm * np.array([1.0, -1.0]), name=a.name) for a in plan.actuators]
+    found = check_file(path, tubes)
+    assert not [f for f in found if f.is_error or f.code in ("EA502", "EA503")]
+    # checked against only the first two tubes, the third actuator's needle points belong to no tube
+    assert not [f for f in check_file(path, tubes[:2]) if f.is_error]

@@ -285,6 +285,11 @@ def test_ea502_ea503_stops():
     assert not _hits(ok, "EA502") and not _hits(ok, "EA503")
     inside = _check(_layout(a[:2] + [a[1]] + a[2:], [S, S, P, S, S], [0] * 5))
     assert [(f.stitch_index, f.actuator) for f in _hits(inside, "EA503")] == [(2, "A")]
+    # a writer's needle-down in place before the colour change (PES): jump, stitch 0 mm, stop, stitch 0 mm
+    seq = a + [b[0], b[0], b[0], b[0]] + b[1:]
+    cmds = [S] * 4 + [J, S, P, S] + [S] * 3
+    found = _check(_layout(seq, cmds, [0] * 4 + [-1, 1, -1, 1] + [1] * 3, tubes))
+    assert not _hits(found, "EA502") and not _hits(found, "EA503")
 
 
 def test_ea504_record_count():
