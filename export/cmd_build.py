@@ -22,13 +22,23 @@ import argparse
 import json
 import sys
 
-__all__ = ["add_arguments", "run", "STAGES", "CHECK"]
-
-STAGES: tuple = ()
-"""Build stages the integrator plugs in (bend chart, side view, 3D, report); see ``embroact.export.build``."""
+__all__ = ["add_arguments", "run", "CHECK"]
 
 CHECK = None
-"""Design-rule check ``check(design, plan) -> findings`` the integrator plugs in (None: no gate)."""
+"""Design-rule check ``check(design, plan) -> findings`` (None: no gate)."""
+
+
+def _stages(args) -> tuple:
+    """The preview stage (bend chart, side view, 3D, report) unless ``--no-previews``."""
+    if args.no_previews:
+        return ()
+    from .cmd_preview import parse_pressures
+    from .previews import previews_stage
+
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else None
+    suffix = None if args.mesh_format == "none" else f".{args.mesh_format}"
+    return (previews_stage(pressures_kpa=pressures, mesh_suffix=suffix, tolerance_mm=args.tolerance_mm,
+                           shape_pressure_kpa=args.shape_pressure_kpa),)
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
@@ -41,6 +51,16 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                         help="split legs longer than a format allows into stitches outside the tube corridor")
     parser.add_argument("--speed-spm", type=float,
                         help="machine speed for the worksheet [stitches/min] (default: the design's, 600)")
+    parser.add_argument("--pressure-kpa", help="pressures for the bend chart, 'start:stop:step' or a list "
+                        "(default: 0 to the design's max_pressure_kpa in 10 kPa steps)")
+    parser.add_argument("--shape-pressure-kpa", type=float,
+                        help="pressure of the 3D shape (default: the highest predicted pressure)")
+    parser.add_argument("--mesh-format", default="glb", choices=("glb", "stl", "obj", "ply", "none"),
+                        help="3D shape file format (default glb; none: no mesh file)")
+    parser.add_argument("--tolerance-mm", type=float,
+                        help="chordal tolerance of the 3D mesh [mm] (default 0.05)")
+    parser.add_argument("--no-previews", action="store_true",
+                        help="write only machine files, worksheet and stitch preview (no model previews)")
     parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 
 
@@ -60,7 +80,7 @@ def run(args) -> int:
         design = default_design()
     try:
         res = build(design, args.out, formats=formats, force=args.force, split_long=args.split_long,
-                    speed_spm=args.speed_spm, check=CHECK, stages=STAGES)
+                    speed_spm=args.speed_spm, check=CHECK, stages=_stages(args))
     except DesignRuleError as exc:
         if args.json:
             print(json.dumps({"written": False, "findings": [f.as_dict() for f in exc.findings]}, indent=2))
