@@ -14,6 +14,9 @@ flipped (SVG's y points down, the plan frame's up), so the drawing looks the sam
 on screen as in an SVG viewer. Curves are flattened to a chordal error of at most
 ``DEFAULT_TOLERANCES.curve_flatness_mm``.
 
+End points carry the direction of their segment (no extrapolation), so on a coarsely
+sampled curve the frame at the very ends is off by half a chord angle.
+
 Examples
 --------
 >>> from embroact.patterns.centerline import Centerline
@@ -42,10 +45,14 @@ import shapely
 from .errors import ParameterError, PathError, check_range
 from .tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG"]
+__all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
 
 #: A vertex turning by more than this is a corner (curvature radius 0) [deg].
 MAX_SMOOTH_TURN_DEG = 10.0
+#: Relative slack of :meth:`Centerline.check_radius`: a polyline flattened from an arc of
+#: radius R, turning by up to MAX_SMOOTH_TURN_DEG per vertex, has a curvature radius up
+#: to turn^2/24 (0.13 %) smaller than R, so an arc of exactly the limit still passes.
+RADIUS_RTOL = 2e-3
 #: Newton steps used by :meth:`Centerline.project` to invert the smooth-normal frame.
 _PROJECT_STEPS = 6
 #: Largest number of vertices a path may have (also bounds SVG flattening).
@@ -189,7 +196,7 @@ class Centerline:
             )
         r = self._radii()
         i = int(np.argmin(r))
-        if r[i] < min_radius_mm:
+        if r[i] < min_radius_mm * (1.0 - RADIUS_RTOL):
             x, y = 0.5 * (self.points_mm[i] + self.points_mm[i + 1])
             raise PathError(
                 f"path curvature radius must be >= {name} = {min_radius_mm:g} mm, "

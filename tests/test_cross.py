@@ -4,6 +4,8 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.cross import MAX_EDGE_STITCH_MM, closing, cross
@@ -12,7 +14,7 @@ from embroact.patterns.params import CrossParams, ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.predict.derived import derive
 
-from h1_checks import PATHS, assert_outside_corridor, assert_record_convention, legs, rail_distance_error
+from h1_checks import PATHS, arc, assert_outside_corridor, assert_record_convention, legs, rail_distance_error
 
 PAPER = CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0)
 
@@ -189,3 +191,32 @@ def test_single_pass_when_legs_are_dense():
     assert plan.actuators[0].realised.passes == 1 and plan.count(Command.STITCH) > 0
     assert plan.actuators[0].adjustments == ()
     assert not np.any(plan.roles == Role.EDGE)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    w=st.floats(3.7, 20.0),
+    s=st.floats(0.3, 3.0),
+    angle=st.floats(3.0, 75.0),
+    radius_factor=st.floats(0.6, 20.0),
+    extra=st.floats(0.0, 60.0),
+    left=st.booleans(),
+)
+def test_property_any_cross_on_an_arc(w, s, angle, radius_factor, extra, left):
+    params = CrossParams(w, s, angle)
+    n, s_real, alpha, _ = closing(params)
+    radius = radius_factor * w  # >= w/2
+    length = 4.0 * n * s_real / 2.0 + extra + 1.0
+    sweep = min(math.degrees(length / radius), 300.0)
+    path = arc(radius, sweep, n=3000, left=left)
+    if path.length_mm < 4.0 * n * s_real / 2.0:
+        with pytest.raises(PatternError, match="path length_mm must be >="):
+            cross(path, params)
+        return
+    plan = cross(path, params)
+    assert_record_convention(plan)
+    assert_outside_corridor(plan)
+    r = plan.actuators[0].realised
+    assert abs(r.angle_deg - alpha) <= 0.1
+    assert r.interval_mm == pytest.approx(s_real, rel=0.01)
+    assert r.passes == n

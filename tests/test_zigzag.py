@@ -4,6 +4,8 @@ import math
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.errors import ParameterError, PathError, PatternError
@@ -194,3 +196,26 @@ def test_accepts_svg_string_and_linestring():
     a = zigzag(d, ZigzagParams(7.0, 1.0))
     b = zigzag(shapely.LineString(Centerline.from_svg_path(d).points_mm), ZigzagParams(7.0, 1.0))
     assert a.isclose(b)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    w=st.floats(3.7, 20.0),
+    s=st.floats(0.1, 5.0),
+    radius_factor=st.floats(0.6, 20.0),  # at exactly w/2 the inner rail collapses to a point
+    sweep=st.floats(5.0, 320.0),
+    left=st.booleans(),
+)
+def test_property_any_zigzag_on_an_arc(w, s, radius_factor, sweep, left):
+    path = arc(radius_factor * w, sweep, n=3000, left=left)
+    if path.length_mm < max(2 * s, StitchOptions().tie_stitch_mm):
+        with pytest.raises(PatternError, match="path length_mm must be >="):
+            zigzag(path, ZigzagParams(w, s))
+        return
+    plan = zigzag(path, ZigzagParams(w, s))
+    assert_record_convention(plan)
+    assert_outside_corridor(plan)
+    r = plan.actuators[0].realised
+    assert abs(r.angle_deg - math.degrees(math.atan(s / w))) <= 0.1
+    assert r.interval_mm == pytest.approx(s, rel=0.01)
+    assert r.width_mm == pytest.approx(w, rel=0.01)
