@@ -33,7 +33,6 @@ Examples
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -45,7 +44,7 @@ from .findings import RULES, Finding
 from .limits import format_limit
 from .params import CrossParams
 from .plan import Command, Role, StitchPlan
-from .sleeve import neutral_angle_deg, sleeve_radius_mm
+from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 from .tolerances import DEFAULT_TOLERANCES, Tolerances
 
 __all__ = [
@@ -495,7 +494,7 @@ def _sleeve(layout: Layout, settings: RuleSettings) -> list[Finding]:
                 _tube_finding(
                     layout, k, "EA201",
                     f"width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f "
-                    f"{tube.outer_radius_mm:g} mm (needs w > {(math.pi**2 - 4) / math.pi * tube.outer_radius_mm:.2f} mm)",
+                    f"{tube.outer_radius_mm:g} mm (needs w > {float(min_sleeve_width_mm(tube.outer_radius_mm)):.2f} mm)",
                 )
             )
         elif gap < settings.min_sleeve_gap_mm:
@@ -572,7 +571,9 @@ def _self_intersection(layout: Layout, settings: RuleSettings) -> list[Finding]:
         segs = shapely.linestrings(np.stack([xy[:-1], xy[1:]], axis=1))
         i, j = shapely.STRtree(segs).query(segs, predicate="intersects")
         keep = (j > i + 1) & ~(closed & (i == 0) & (j == len(segs) - 1))
-        where = shapely.get_coordinates(shapely.intersection(segs[i[keep][0]], segs[j[keep][0]]))[0] if np.any(keep) else xy[0]
+        where = xy[0]
+        if np.any(keep):
+            where = shapely.get_coordinates(shapely.intersection(segs[i[keep][0]], segs[j[keep][0]]))[0]
         what = f"crosses itself {np.count_nonzero(keep)} time(s)" if np.any(keep) else "is closed (a tube has two ends)"
         out.append(
             _tube_finding(

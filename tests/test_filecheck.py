@@ -106,7 +106,8 @@ def test_missing_stop_between_tubes(tmp_path):
     no_stop = body(a) + [(second[0][0], Command.JUMP)] + second + [(second[-1][0], Command.END)]
     path = _write(tmp_path / "two.dst", [r[0] for r in no_stop], [r[1] for r in no_stop])
     # the first needle record of U that moves (the jump's landing stitch of 0 mm lays no thread)
-    expected = next(k for k, r in enumerate(_records(path)) if r.kind == "stitch" and r.y < -200 and (r.dx, r.dy) != (0, 0))
+    expected = next(k for k, r in enumerate(_records(path))
+                    if r.kind == "stitch" and r.y < -200 and (r.dx, r.dy) != (0, 0))
     hits = [f for f in check_file(path, tubes) if f.code == "EA502"]
     assert [(f.stitch_index, f.actuator) for f in hits] == [(expected, "U")]
     with_stop = body(a) + [(second[0][0], Command.JUMP), (second[0][0], Command.STOP)] + second
