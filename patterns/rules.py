@@ -60,6 +60,9 @@ __all__ = [
     "sort_findings",
 ]
 
+#: Formats whose writer encodes a trim as a run of ``trim_jump_count`` jumps (pyembroidery's DST).
+_TRIM_AS_JUMPS = ("dst",)
+
 #: Needle points of a file further than this from every tube belong to no tube [mm].
 FILE_REACH_MM = 15.0
 
@@ -682,7 +685,7 @@ def _jump_records(layout: Layout, settings: RuleSettings) -> np.ndarray:
     jump = layout.commands == Command.JUMP
     n[jump] = np.maximum(1, np.ceil(d[jump] / lim - settings.tolerances.length_mm)).astype(np.int64)
     trim = layout.commands == Command.TRIM
-    if not format_limit(settings.format).separate_stop:
+    if settings.format in _TRIM_AS_JUMPS:
         n[trim] = settings.trim_jump_count
     return n
 
