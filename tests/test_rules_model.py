@@ -105,3 +105,24 @@ def test_check_design_default_and_format():
     assert "EA102" not in [f.code for f in check_design(wide, wide_plan, ignore=("EA102",))]
     with pytest.raises(ValueError, match="rule code must be one of"):
         check_design(wide, wide_plan, ignore=("E102",))
+
+
+def test_build_gate_uses_check_design(tmp_path):
+    """The contract with export.build: check(design, plan) -> findings; errors stop the build."""
+    import json
+    import os
+
+    from embroact.export.build import DesignRuleError, build
+
+    weak = _design(9.0, max_pressure_kpa=150.0)  # P0 171.9 kPa: EA401
+    with pytest.raises(DesignRuleError) as err:
+        build(weak, tmp_path, formats=("dst",), check=check_design)
+    assert [f.code for f in err.value.findings if f.is_error] == ["EA401"]
+    assert os.listdir(tmp_path) == []
+    build(weak, tmp_path, formats=("dst",), check=check_design, force=True)
+    sheet = json.loads((tmp_path / "worksheet.json").read_text())
+    assert "EA401" in {f["code"] for f in sheet["findings"]}
+    ok = tmp_path / "ok"
+    ok.mkdir()
+    build(default_design(), ok, formats=("dst",), check=check_design)
+    assert "paper-zigzag.dst" in os.listdir(ok)
