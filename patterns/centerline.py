@@ -58,8 +58,8 @@ _PROJECT_STEPS = 6
 #: Largest number of vertices a path may have (also bounds SVG flattening).
 _MAX_POINTS = 2_000_000
 
-_SVG_COMMANDS = "MmLlHhVvCcSsQqTtZz"
-_SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "Z": 0}
+_SVG_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
+_SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "A": 7, "Z": 0}
 _SVG_TOKEN = re.compile(r"([A-Za-z])|([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)|([\s,]+)|(.)")
 
 
@@ -114,9 +114,10 @@ class Centerline:
 
     @classmethod
     def from_svg_path(cls, d: str) -> "Centerline":
-        """Path from an SVG path ``d`` string (M L H V C S Q T Z, absolute and relative).
+        """Path from an SVG path ``d`` string (M L H V C S Q T A Z, absolute and relative).
 
-        Units are mm; y is flipped (SVG y down -> plan y up). One subpath only.
+        Units are mm; y is flipped (SVG y down -> plan y up). One subpath only. Arc flags
+        must be separated from the numbers around them (``a 5 5 0 0 1 10 0``).
         """
         pts = _parse_svg(d)
         return cls(pts * np.array([1.0, -1.0]) + 0.0)  # + 0.0 turns -0.0 into 0.0
@@ -332,6 +333,44 @@ def _bezier(ctrl: np.ndarray) -> np.ndarray:
     return sum(c * p for c, p in zip(coef, ctrl))
 
 
+def _arc(p1: np.ndarray, rx: float, ry: float, phi_deg: float, large: float, sweep: float, p2: np.ndarray) -> np.ndarray:
+    """Points of an SVG elliptical arc from ``p1`` to ``p2`` (excluding ``p1``), SVG 1.1 F.6.5.
+
+    Out-of-range radii are scaled up as the SVG spec says; zero radii give a line.
+    """
+    if large not in (0.0, 1.0) or sweep not in (0.0, 1.0):
+        raise PathError(f"SVG path: arc flags must be 0 or 1 (separated by spaces or commas), got {large:g}, {sweep:g}")
+    rx, ry = abs(rx), abs(ry)
+    if rx == 0.0 or ry == 0.0 or np.array_equal(p1, p2):
+        return p2[None, :].copy()
+    c, s = math.cos(math.radians(phi_deg)), math.sin(math.radians(phi_deg))
+    rot = np.array([[c, -s], [s, c]])
+    x1, y1 = rot.T @ ((p1 - p2) / 2.0)
+    lam = (x1 / rx) ** 2 + (y1 / ry) ** 2
+    if lam > 1.0:
+        rx, ry = rx * math.sqrt(lam), ry * math.sqrt(lam)
+    num = rx**2 * ry**2 - rx**2 * y1**2 - ry**2 * x1**2
+    coef = math.sqrt(max(0.0, num / (rx**2 * y1**2 + ry**2 * x1**2)))
+    coef = -coef if large == sweep else coef
+    cxp, cyp = coef * rx * y1 / ry, -coef * ry * x1 / rx
+    centre = rot @ np.array([cxp, cyp]) + (p1 + p2) / 2.0
+    th1 = math.atan2((y1 - cyp) / ry, (x1 - cxp) / rx)
+    dth = math.atan2((-y1 - cyp) / ry, (-x1 - cxp) / rx) - th1
+    if sweep and dth < 0.0:
+        dth += 2.0 * math.pi
+    elif not sweep and dth > 0.0:
+        dth -= 2.0 * math.pi
+    r = max(rx, ry)
+    step = 2.0 * math.acos(max(-1.0, 1.0 - DEFAULT_TOLERANCES.curve_flatness_mm / r))
+    n = max(1, math.ceil(abs(dth) / step))
+    if n > _MAX_POINTS:
+        raise PathError(f"SVG path: arc too large to flatten ({n} points > {_MAX_POINTS})")
+    th = th1 + dth * np.linspace(0.0, 1.0, n + 1)[1:]
+    pts = centre + np.c_[rx * np.cos(th), ry * np.sin(th)] @ rot.T
+    pts[-1] = p2  # land exactly on the given end point
+    return pts
+
+
 def _parse_svg(d: str) -> np.ndarray:
     if not isinstance(d, str) or not d.strip():
         raise PathError(f"SVG path must be a non-empty string, got {d!r}")
@@ -356,7 +395,8 @@ def _parse_svg(d: str) -> np.ndarray:
         k = _SVG_ARITY[up]
         args = tokens[i : i + k]
         if len(args) < k or any(isinstance(a, str) for a in args):
-            raise PathError(f"SVG path: command {cmd!r} needs {k} numbers")
+            hint = " (arc flags must be separated: a rx ry rotation 0 1 x y)" if up == "A" else ""
+            raise PathError(f"SVG path: command {cmd!r} needs {k} numbers{hint}")
         i += k
         rel = cmd.islower()
         base = cur if rel else np.zeros(2)
@@ -378,6 +418,10 @@ def _parse_svg(d: str) -> np.ndarray:
         elif up == "Z":
             cur = start.copy()
             out.append(cur[None, :].copy())
+        elif up == "A":
+            end = a[5:7] + base
+            out.append(_arc(cur, a[0], a[1], a[2], a[3], a[4], end))
+            cur = end
         else:
             pts = a.reshape(-1, 2) + base
             if up in "ST":

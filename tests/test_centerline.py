@@ -145,10 +145,40 @@ def test_svg_smooth_reflections():
     np.testing.assert_allclose(s2.points_mm, c2.points_mm, atol=1e-12)
 
 
+def test_svg_arc_semicircle_by_hand():
+    up = Centerline.from_svg_path("M 0 0 A 10 10 0 0 1 20 0")  # sweep 1: clockwise on screen = up in plan
+    np.testing.assert_allclose(np.hypot(*(up.points_mm - [10.0, 0.0]).T), 10.0, atol=1e-12)
+    assert up.points_mm[:, 1].max() == pytest.approx(10.0, abs=DEFAULT_TOLERANCES.curve_flatness_mm)
+    assert up.points_mm[:, 1].min() >= 0.0
+    np.testing.assert_array_equal(up.points_mm[-1], [20.0, 0.0])
+    down = Centerline.from_svg_path("M 0 0 A 10 10 0 0 0 20 0")
+    assert down.points_mm[:, 1].min() == pytest.approx(-10.0, abs=DEFAULT_TOLERANCES.curve_flatness_mm)
+    # chordal error: the true circle's points lie within the flatness of the polyline
+    th = np.linspace(0.0, np.pi, 721)
+    true = np.c_[10.0 - 10.0 * np.cos(th), 10.0 * np.sin(th)]
+    assert shapely.distance(up.as_linestring(), shapely.points(true)).max() <= DEFAULT_TOLERANCES.curve_flatness_mm
+
+
+def test_svg_arc_radius_scaled_up_relative_and_ellipse():
+    small = Centerline.from_svg_path("M 0 0 A 1 1 0 0 1 20 0")  # radius too small: scaled to 10
+    assert small.length_mm == pytest.approx(10.0 * np.pi, rel=5e-4)  # chords: shorter by step^2/24
+    rel = Centerline.from_svg_path("M 5 5 a 10 10 0 0 1 20 0")
+    np.testing.assert_allclose(rel.points_mm, small.points_mm + [5.0, -5.0], atol=1e-12)
+    # quarter of the ellipse x^2/20^2 + (y-10)^2/10^2 = 1 (SVG frame), from its bottom to its right end
+    q = Centerline.from_svg_path("M 0 0 A 20 10 0 0 1 20 10")
+    x, y_svg = q.points_mm[:, 0], -q.points_mm[:, 1]
+    np.testing.assert_allclose((x / 20.0) ** 2 + ((y_svg - 10.0) / 10.0) ** 2, 1.0, atol=1e-12)
+    assert x.min() == 0.0 and x.max() == 20.0
+    line = Centerline.from_svg_path("M 0 0 A 0 5 0 0 1 20 0")  # zero radius: a straight line
+    assert line.points_mm.tolist() == [[0.0, 0.0], [20.0, 0.0]]
+
+
 @pytest.mark.parametrize(
     "d, fragment",
     [
-        ("M 0 0 A 5 5 0 0 1 10 0", "unsupported character 'A'"),
+        ("M 0 0 R 5 5", "unsupported character 'R'"),
+        ("M 0 0 A 5 5 0 2 1 10 0", "arc flags must be 0 or 1"),
+        ("M 0 0 A 5 5 0 01 10 0", "needs 7 numbers (arc flags must be separated"),
         ("L 1 1", "must start with a move-to (M)"),
         ("M 0 0 L 1", "command 'L' needs 2 numbers"),
         ("M 0 0 L 1 1 M 5 5 L 6 6", "only one subpath"),
