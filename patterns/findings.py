@@ -273,6 +273,10 @@ RULES = RuleSet(
              "Between P0 and the working pressure the model leaves its domain or becomes unstable "
              "(MODEL.md 6); predictions there are not valid.",
              "Lower the working pressure or change the pattern.", _DM),
+        Rule("EA406", _I, "calibration approximate",
+             "The calibration set matches this design only approximately (e.g. a cross width other than the "
+             "calibrated one); its notes are listed.",
+             "Measure a sample of this design and fit it ('embroact fit').", _DM),
         Rule("EA501", _W, "jump run reads as trim",
              "Three or more consecutive jump records (the machine's trim count) where no trim is meant: the "
              "machine cuts the thread.",

@@ -14,6 +14,7 @@ law; its curve is evaluated from 0 to the working pressure
 * EA404: the calibration set was extrapolated for this design.
 * EA405: between P0 and the working pressure the curve leaves the model's domain,
   snaps through (UNSTABLE) or fails; or no model can be built.
+* EA406 (info): the calibration's notes (approximate match, e.g. another cross width).
 
 Examples
 --------
@@ -111,6 +112,8 @@ def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSe
     except EmbroactError as exc:
         return [RULES.finding("EA405", f"no model for this actuator: {exc}", **where)]
     out = []
+    if cal is not None and cal.notes:
+        out.append(RULES.finding("EA406", f"calibration {cal.name}: " + "; ".join(cal.notes), **where))
     if cal is not None and cal.extrapolated:
         out.append(RULES.finding(
             "EA404", f"calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
@@ -143,7 +146,7 @@ def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSe
 
 
 def check_model(plan: StitchPlan, *, design=None, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
-    """The model rules (EA401-EA405) for every actuator of a plan.
+    """The model rules (EA401-EA406) for every actuator of a plan.
 
     Each actuator's ``ModelSettings`` come from the design's actuator of the same
     name (defaults without a design). Actuators without a sleeve (r0 <= r_f, EA201)

@@ -126,3 +126,16 @@ def test_build_gate_uses_check_design(tmp_path):
     ok.mkdir()
     build(default_design(), ok, formats=("dst",), check=check_design)
     assert "paper-zigzag.dst" in os.listdir(ok)
+
+
+def test_ea406_calibration_notes():
+    def run(width_mm):
+        spec = ActuatorSpec("X", CrossParams(width_mm, 1.4, 40.0), Centerline.straight(100.0))
+        design = Design("x", Tube(), MachineSettings(), OperationSettings(300.0, 720.0), (spec,))
+        act = ActuatorPlan("X", spec.params, Tube(), spec.centerline, Realised(width_mm, 1.4, 40.0, 100.0))
+        plan = StitchPlan.from_records([(0.0, width_mm / 2, Command.STITCH, Role.LEG)], actuators=(act,))
+        return [f for f in check_model(plan, design=design) if f.code == "EA406"]
+
+    hits = run(9.0)  # paper-2025 cross points are all at w = 7 mm
+    assert len(hits) == 1 and hits[0].severity.value == "info" and "9 differs from the calibrated" in hits[0].message
+    assert not run(7.0)
