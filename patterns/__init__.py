@@ -21,6 +21,8 @@ from .design import (
     default_design,
     design_from_dict,
     design_to_dict,
+    generate_actuator,
+    join_plans,
 )
 from .errors import DesignFileError, EmbroactError, ParameterError, PathError, PatternError
 from .measure import measure
@@ -42,6 +44,8 @@ __all__ = [
     "design_to_dict",
     "default_design",
     "build_plan",
+    "generate_actuator",
+    "join_plans",
     "measure",
     "Tube",
     "StitchOptions",

@@ -56,7 +56,8 @@ def test_exact_repeats_dropped():
         ([[0, 0], [math.nan, 1]], "finite"),
         ([[0, 0, 0], [1, 1, 1]], "shape (n, 2)"),
         ([[0, 0], [10, 0], [10, 10], [0, 0]], "closed"),
-        ([[0, 0], [10, 10], [10, 0], [0, 10]], "crosses or touches itself"),
+        ([[0, 0], [10, 10], [10, 0], [0, 10]], "crosses or touches itself near (5.00, 5.00) mm"),
+        ([[0, 0], [10, 0], [5, 0]], "crosses or touches itself near (5.00, 0.00) mm"),
         ("not a path", "unsupported character"),
     ],
 )
