@@ -69,7 +69,7 @@ from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA
 from .status import Status, status_names
-from .tubelaws import TUBE_LAWS, radius_mm, transition_pressure_kpa
+from .tubelaws import TUBE_LAWS, pressure_kpa, radius_mm, transition_pressure_kpa
 
 __all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "MAX_BEND_DEG", "curve", "pressure_at", "lockup", "sweep"]
 
@@ -234,7 +234,7 @@ def _values(name: str, values, *, low=None) -> np.ndarray:
     bad = ~np.isfinite(a) | ((a < low) if low is not None else False)
     if bad.any():
         rng = f"[{low:g}, inf)" if low is not None else "(-inf, inf)"
-        raise ParameterError(f"{name} must be finite numbers in {rng}, got {a[bad][0]!r}")
+        raise ParameterError(f"{name} must be finite numbers in {rng}, got {float(a[bad][0]):g}")
     return a
 
 
@@ -285,14 +285,19 @@ def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
     return rate
 
 
-def _slope_sign(geo, theta, energy, deriv):
-    """Sign of dP/dtheta = (E'' V' - E' V'')/V'^2: central differences of the smooth rates
-    (E', V' have no pole at lock-up, P has)."""
+def _slope_fn(geo, energy, deriv):
+    """theta -> E'' V' - E' V'' = V'^2 dP/dtheta: central differences of the smooth rates
+    (E', V' have no pole at lock-up, P has), times the bending direction."""
     rate = _rate_fn(geo, energy, deriv)
-    de, dv = rate(theta)
-    dde, ddv = solvers.derivative(lambda t: np.stack(rate(t)), theta, scale=geo.l0 / (2.0 * geo.r0),
-                                  method="central")
-    return np.sign(dde * dv - de * ddv)
+    direction = np.sign(_m.lock_theta(geo))
+
+    def slope(theta):
+        de, dv = rate(theta)
+        dde, ddv = solvers.derivative(lambda t: np.stack(rate(t)), theta, scale=geo.l0 / (2.0 * geo.r0),
+                                      method="central")
+        return (dde * dv - de * ddv) * direction
+
+    return slope
 
 
 def _shorten(rate, full, tmax):
@@ -323,7 +328,8 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
     atol = rtol * THETA_FLOOR_RAD
     if inverse == "trace":
         end = _shorten(rate, full[rows], t.max(axis=1, keepdims=True))
-        th, where, _, _ = solvers.trace_inverse(rate, end, t, grid_points=TRACE_POINTS, rtol=rtol, atol=atol,
+        th, where, _, _ = solvers.trace_inverse(rate, end, t, slope=_slope_fn(g, energy, deriv),
+                                                grid_points=TRACE_POINTS, rtol=rtol, atol=atol,
                                                 pole_at_end=(end == full[rows]) & (kind[rows] == Status.LOCKED))
         st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind[rows], Status.BENDING))
         th = np.where(where == 1, full[rows], th)
@@ -341,8 +347,8 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
         p_end = np.where(kind[rows] == Status.LOCKED, np.inf,
                          _m.pressure_mpa(full[rows], g, form=energy, derivative=deriv) - g.p0)
         beyond = ~(t < np.nan_to_num(p_end, nan=np.inf))
-        st = np.where(beyond, kind[rows], np.where(_slope_sign(g, th, energy, deriv) * np.sign(full[rows]) < 0,
-                                                   Status.UNSTABLE, Status.BENDING))
+        st = np.where(beyond, kind[rows], np.where(_slope_fn(g, energy, deriv)(th) < 0, Status.UNSTABLE,
+                                                   Status.BENDING))
     bad = ~np.isfinite(th)
     theta[rows] = np.where(bad, 0.0, th)
     status[rows] = np.where(bad, Status.FAILED, st)
@@ -350,7 +356,11 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
 
 
 def _states(geo, theta, pressure_mpa, status, models):
-    """State arrays (l, r, beta, d) at each point; inflation points from the tube law."""
+    """State arrays (l, r, beta, d) at each point; inflation points from the tube law.
+
+    Below P0 the free tube follows its law until it meets the sleeve (r = r0): a P0
+    given above the law's pressure at r0 leaves the tube at r0 in between.
+    """
     l, r, sinb, _ = _m.constraint(theta, geo)
     d2 = _m.inner_radius_sq(l, r, geo)
     infl = status == Status.INFLATION
@@ -360,8 +370,11 @@ def _states(geo, theta, pressure_mpa, status, models):
             sel = np.array([mo.tube_law == law for mo in models])
             tube = tuple(np.array([[getattr(mo, k)] for mo in models])[sel]
                          for k in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"))
-            r_law[sel] = radius_mm(pressure_mpa[sel] * KPA_PER_MPA, tube, law)
-        r = np.where(infl, np.minimum(r_law, geo.r0), r)  # the sleeve caps the free tube
+            r0 = np.maximum(geo.r0[sel], tube[0])
+            p_sleeve = pressure_kpa(r0, tube, law)  # below the thick-wall limit: r0 is finite
+            p = np.minimum(pressure_mpa[sel] * KPA_PER_MPA, p_sleeve)
+            r_law[sel] = np.where(p >= p_sleeve, r0, radius_mm(p, tube, law))
+        r = np.where(infl, np.minimum(r_law, geo.r0), r)  # a sleeve narrower than the tube squeezes it
         d2 = np.where(infl, r * r - geo.c, d2)
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
@@ -439,11 +452,11 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
     geo = _geometry([model])
     full, kind = _branch_end(geo)
     p = _m.pressure_mpa(th, geo, form=energy, derivative=deriv)
-    slope = _slope_sign(geo, th, energy, deriv) * np.sign(full)
+    slope = _slope_fn(geo, energy, deriv)(th)
     along = th * np.sign(np.where(full == 0.0, 1.0, full))  # progress along the branch
     past = (along > np.abs(full)) | ((full == 0.0) & (th != 0.0))
     status = np.where(th == 0.0, Status.INFLATION,
-             np.where(along < 0.0, Status.OUT_OF_DOMAIN,
+             np.where((along < 0.0) & (full != 0.0), Status.OUT_OF_DOMAIN,
              np.where(past | ((kind == Status.LOCKED) & (along >= np.abs(full))), kind,
              np.where(~np.isfinite(p), Status.FAILED,
              np.where(slope < 0.0, Status.UNSTABLE, Status.BENDING))))).astype(np.int8)
@@ -466,8 +479,8 @@ def lockup(model: ActuatorModel) -> tuple[float, float]:
     if full[0, 0] == 0.0:
         return 0.0, (math.inf if kind[0, 0] == Status.LOCKED else float(model.p0_kpa))
     rate = _rate_fn(geo, "stable", "analytic")
-    end = full
-    _, _, stop, p_stop = solvers.trace_inverse(rate, end, np.empty((1, 0)), grid_points=TRACE_POINTS * 4,
+    _, _, stop, p_stop = solvers.trace_inverse(rate, full, np.empty((1, 0)), slope=_slope_fn(geo, "stable", "analytic"),
+                                               grid_points=TRACE_POINTS * 4,
                                                rtol=DEFAULT_TOLERANCES.model_rtol, atol=0.0,
                                                pole_at_end=kind == Status.LOCKED)
     theta = float(np.degrees(stop[0, 0]))

@@ -298,4 +298,4 @@ def pressure_mpa(theta, geo: Geometry, *, form: str = "stable", derivative: str 
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         de, dv = energy_rate(theta, geo, form=form, derivative=derivative)
         p = geo.p0 + de / dv
-    return np.where(theta == 0.0, geo.p0 + 0.0 * p, p)  # 0/0 at the neutral angle: P0 by continuity
+    return np.where(theta == 0.0, geo.p0, p)  # 0/0 at the neutral angle: P0 by continuity

@@ -51,7 +51,6 @@ __all__ = [
     "derivative",
     "gauss_legendre",
     "bisect",
-    "golden_max",
     "illinois",
     "trace_inverse",
     "root_each",
@@ -64,7 +63,6 @@ CENTRAL_STEP = float(np.cbrt(np.finfo(np.float64).eps))
 COMPLEX_STEP = 1e-30
 #: Iteration caps of the vectorised bracketing methods (float64 halves 1 to 0 in ~1075 steps).
 BISECT_ITERATIONS = 64
-GOLDEN_ITERATIONS = 80
 ILLINOIS_MAX_ITERATIONS = 100
 #: Newton steps on the interpolating cubic (no model evaluations) and on the model.
 CUBIC_NEWTON_STEPS = 4
@@ -109,23 +107,6 @@ def bisect(inside, lo, hi, iterations: int = BISECT_ITERATIONS):
     return lo
 
 
-def golden_max(f, lo, hi, iterations: int = GOLDEN_ITERATIONS):
-    """Vectorised golden-section search of a unimodal ``f`` on [lo, hi]; returns the argmax."""
-    k = (np.sqrt(5.0) - 1.0) / 2.0
-    a, b = np.array(lo, dtype=np.float64), np.array(hi, dtype=np.float64)
-    x1, x2 = b - k * (b - a), a + k * (b - a)
-    f1, f2 = f(x1), f(x2)
-    for _ in range(iterations):
-        left = f1 >= f2
-        a, b = np.where(left, a, x1), np.where(left, x2, b)
-        x1n = np.where(left, b - k * (b - a), x2)
-        x2n = np.where(left, x1, a + k * (b - a))
-        fn = f(np.where(left, x1n, x2n))
-        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
-        x1, x2 = x1n, x2n
-    return 0.5 * (a + b)
-
-
 def illinois(residual, a, b, fa, fb, *, rtol, atol, active=None, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
     """Vectorised Illinois regula falsi on brackets ``fa < 0 < fb`` (or the reverse).
 
@@ -164,13 +145,16 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, active=None, max_iterations:
     )
 
 
-def trace_inverse(rate, theta_end, targets, *, grid_points: int, rtol, atol, pole_at_end=False):
+def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, atol, pole_at_end=False):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
     ----------
     rate : callable
         ``rate(theta) -> (dE/dtheta, dV/dtheta)`` for an ``(n, k)`` array, one design per row.
+    slope : callable
+        ``slope(theta)``, a smooth function with the sign of dP/dtheta along the branch
+        (zero at a fold), for ``(n, 1)`` arrays.
     theta_end : ndarray, shape (n, 1)
         End of each branch (lock-up, domain end or cap; finite, sign = bending direction).
     targets : ndarray, shape (n, m)
@@ -205,18 +189,18 @@ def trace_inverse(rate, theta_end, targets, *, grid_points: int, rtol, atol, pol
     rows = np.arange(grid.shape[0])
     theta_stop = grid[rows, first_fall][:, None]
     p_stop = p[rows, first_fall][:, None]
-    if folded.any():  # refine the fold: the maximum of P between the neighbours of the last rising point
+    if folded.any():  # refine the fold: the root of the slope between the last rising point's neighbours
         lo = grid[rows, np.maximum(first_fall - 1, 0)][:, None]
         hi = grid[rows, np.minimum(first_fall + 1, grid_points - 1)][:, None]
-
-        def p_of(t):
-            e, v = rate(t)
+        s_lo, s_hi = slope(lo), slope(hi)
+        change = folded[:, None] & (np.sign(s_lo) != np.sign(s_hi))
+        if change.any():
+            t_fold = illinois(lambda t, act: np.where(act, slope(t), 0.0), lo, hi, s_lo, s_hi,
+                              rtol=rtol, atol=atol, active=change)
+            e, v = rate(t_fold)
             with np.errstate(divide="ignore", invalid="ignore"):
-                return e / v
-
-        t_fold = golden_max(p_of, lo, hi)
-        theta_stop = np.where(folded[:, None], t_fold, theta_stop)
-        p_stop = np.where(folded[:, None], np.maximum(p_of(t_fold), p_stop), p_stop)
+                theta_stop = np.where(change, t_fold, theta_stop)
+                p_stop = np.where(change, e / v, p_stop)
     beyond = targets > p_stop
     i = _bracket_index(p, np.maximum(first_fall, 1), np.where(beyond, 0.0, targets))
     where = np.where(beyond, np.where(folded[:, None], 2, 1), 0).astype(np.int8)
