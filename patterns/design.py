@@ -31,7 +31,8 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     # angle_deg = 45.0               # cross only (required there): alpha0
     # adjust = "auto"                # cross only: "auto", "interval" or "angle"
     length_mm = 100.0                # straight path of this length ...
-    # path = "M 0 0 C 30 -30 ..."    # ... or an SVG path d (mm, y down as in SVG) ...
+    # path = "M 0 0 A 40 40 0 0 1 40 40"  # ... or an SVG path d (M L H V C S Q T A Z;
+    #                                      mm, y down as in SVG; flipped to the plan) ...
     # path = [[0, 0], [50, 10], ...] # ... or points (mm, plan frame, y up)
     origin_mm = [0.0, 0.0]           # start of a straight path / offset of a path
     rotation_deg = 0.0               # direction of a straight path / rotation of a path
