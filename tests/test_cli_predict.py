@@ -1,0 +1,142 @@
+"""``embroact predict``: quick parameters, design files, JSON and table output, errors."""
+import json
+
+import numpy as np
+import pytest
+
+from embroact.export.cli import main
+from embroact.export.cmd_predict import parse_pressures
+from embroact.patterns.errors import ParameterError
+from embroact.patterns.params import Tube
+from embroact.predict.curve import ActuatorModel, curve
+from embroact.predict.derived import derive_from_values
+
+
+def run_json(capsys, *argv):
+    code = main(["predict", *argv, "--json"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    return json.loads(out.out)
+
+
+def test_quick_zigzag_json_matches_the_api(capsys):
+    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85",
+                 "--pressure-kpa", "0:300:10")
+    p = np.arange(0.0, 301.0, 10.0)
+    assert d["pressure_kpa"] == p.tolist()
+    dg = derive_from_values("zigzag", width_mm=7, interval_mm=1, angle_deg=0, length_mm=100, tube=Tube())
+    ref = curve(ActuatorModel.from_derived(dg, g_mpa=2.7, p0_kpa=85.0), p)
+    np.testing.assert_allclose(d["theta_deg"], ref.theta_deg, rtol=1e-12, atol=1e-12)
+    assert d["status"][:9] == ["INFLATION"] * 9 and d["status"][9] == "BENDING"
+    assert len(d["radius_mm"]) == len(d["length_mm"]) == len(d["beta_deg"]) == len(d["inner_radius_mm"]) == 31
+    assert d["method"] == "stable-analytic-trace"
+    assert d["calibration"] == "given (g_mpa, p0_kpa)"
+    assert d["model"] == {"g_mpa": 2.7, "p0_kpa": 85.0, "tube_law": "paper"}
+    assert d["derived"]["r0_mm"] == pytest.approx(2.5814206750769157, rel=1e-12)
+    assert d["lockup_theta_deg"] == pytest.approx(1888.7643, abs=1e-3)
+
+
+def test_quick_cross_uses_the_calibration_set(capsys):
+    d = run_json(capsys, "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45",
+                 "--pressure-kpa", "100,200,300")
+    assert d["model"]["g_mpa"] == 1.3 and d["model"]["p0_kpa"] == 170.0  # paper's fit, MODEL.md section 5
+    assert d["calibration"].startswith("paper-2025")
+    assert d["status"] == ["INFLATION", "BENDING", "BENDING"]
+    assert d["theta_deg"][1] < 0 and d["theta_deg"][2] < d["theta_deg"][1]  # alpha0 = 45 bends negative
+    assert d["lockup_pressure_kpa"] is None  # lock-up is a pole: no finite pressure
+
+
+def test_p0_from_geometry_and_thick_wall_law(capsys):
+    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-from", "geometry",
+                 "--pressure-kpa", "0,40,60")
+    assert d["model"]["p0_kpa"] == pytest.approx(84.455, abs=1e-3)
+    t = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-from", "geometry",
+                 "--tube-law", "thick-wall", "--pressure-kpa", "0,40,60")
+    assert t["model"]["p0_kpa"] == pytest.approx(49.148, abs=1e-3) and t["model"]["tube_law"] == "thick-wall"
+    assert t["status"] == ["INFLATION", "INFLATION", "BENDING"]
+
+
+def test_table_output(capsys):
+    assert main(["predict", "zigzag", "--width-mm", "5", "--pressure-kpa", "0:100:50"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("A1: zigzag w=5 mm") and "paper-2025" in lines[0]
+    assert lines[1].split()[:3] == ["pressure_kpa", "theta_deg", "status"]
+    assert [ln.split()[2] for ln in lines[2:]] == ["INFLATION", "INFLATION", "BENDING"]
+
+
+DESIGN = """
+name = "two"
+[[actuator]]
+name = "Z"
+pattern = "zigzag"
+width_mm = 7.0
+interval_mm = 1.0
+length_mm = 100.0
+[actuator.model]
+g_mpa = 2.7
+p0_kpa = 85.0
+
+[[actuator]]
+name = "X"
+pattern = "cross"
+width_mm = 7.0
+interval_mm = 1.4
+angle_deg = 15.0
+length_mm = 80.0
+origin_mm = [0.0, 30.0]
+[operation]
+max_pressure_kpa = 200.0
+"""
+
+
+def test_design_file(tmp_path, capsys):
+    path = tmp_path / "two.toml"
+    path.write_text(DESIGN)
+    d = run_json(capsys, str(path))
+    assert d["design"] == "two"
+    z, x = d["actuators"]
+    assert (z["name"], x["name"]) == ("Z", "X")
+    assert z["pressure_kpa"] == np.arange(0.0, 201.0, 10.0).tolist()  # default: 0 to max_pressure_kpa
+    assert z["calibration"] == "given (g_mpa, p0_kpa)" and x["calibration"].startswith("paper-2025")
+    assert 72.0 < x["derived"]["length_mm"] <= 80.0  # realised: whole pattern repeats within the path
+    assert x["theta_deg"][-1] > 0  # alpha0 = 15 bends positive
+    only = run_json(capsys, str(path), "--actuator", "X", "--g-mpa", "5")
+    assert [a["name"] for a in only["actuators"]] == ["X"] and only["actuators"][0]["model"]["g_mpa"] == 5.0
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["zigzag", "--width-mm", "7", "--pressure-kpa", "0:300"], "--pressure-kpa must be 'start:stop:step'"),
+    (["zigzag", "--width-mm", "7", "--pressure-kpa", "0:abc:10"], "--pressure-kpa: 'abc' is not a number"),
+    (["zigzag", "--width-mm", "7", "--pressure-kpa", "300:0:10"], "--pressure-kpa: stop must be >= start"),
+    (["zigzag", "--width-mm", "7", "--pressure-kpa=-5,10"], "--pressure-kpa: pressures must be finite and >= 0"),
+    (["zigzag", "--width-mm", "7", "--pressure-kpa", "0:1e9:1e-3"], "--pressure-kpa: at most 100000 pressures"),
+    (["zigzag", "--pressure-kpa", "10"], "--width-mm is required"),
+    (["cross", "--width-mm", "7", "--pressure-kpa", "10"], "--angle-deg is required for the cross pattern"),
+    (["zigzag", "--width-mm", "7", "--method", "fast"], "method must be one of auto, stable-analytic-trace"),
+    (["zigzag", "--width-mm", "-7"], "width_mm must be in (0, 200), got -7"),
+])
+def test_errors_are_one_line(capsys, argv, message):
+    assert main(["predict", *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("embroact: error: ") and message in err and err.count("\n") == 1
+
+
+def test_missing_design_file(tmp_path, capsys):
+    assert main(["predict", str(tmp_path / "nope.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "nope.toml" in err and err.count("\n") == 1
+
+
+def test_unknown_actuator(tmp_path, capsys):
+    path = tmp_path / "two.toml"
+    path.write_text(DESIGN)
+    assert main(["predict", str(path), "--actuator", "Q"]) == 2
+    assert "--actuator must be one of Z, X, got 'Q'" in capsys.readouterr().err
+
+
+def test_parse_pressures_inclusive_stop():
+    assert parse_pressures("0:1:0.1").tolist() == pytest.approx([0.1 * k for k in range(11)])
+    assert parse_pressures("10:10:5").tolist() == [10.0]
+    assert parse_pressures("0:0.95:0.1")[-1] == pytest.approx(0.9)
+    with pytest.raises(ParameterError, match="--pressure-kpa"):
+        parse_pressures("")
