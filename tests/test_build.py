@@ -94,7 +94,9 @@ def test_missing_dir_and_bad_format(tmp_path):
 def test_cli_build_default_and_json(tmp_path, capsys):
     assert main(["build", "--out", str(tmp_path), "--format", "dst,pes", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert doc["files"] == ["paper-zigzag.dst", "paper-zigzag.pes", "worksheet.json", "worksheet.txt", "preview.svg"]
+    assert doc["files"] == ["paper-zigzag.dst", "paper-zigzag.pes", "worksheet.json", "worksheet.txt", "preview.svg",
+                            "bend.svg", "shape.svg", "shape.glb", "shape3d.svg", "report.json", "report.html"]
+    assert sorted(os.listdir(tmp_path)) == sorted(doc["files"])
     assert doc["actuators"][0]["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
 
 
@@ -128,7 +130,20 @@ def test_cli_build_rule_errors_exit_1(tmp_path, capsys, monkeypatch):
     import embroact.export.cmd_build as cmd
 
     bad = RULES.finding("EA101", "needle point 0.4 mm from the tube axis", stitch_index=7)
-    monkeypatch.setattr(cmd, "CHECK", lambda design, plan: [bad])
-    assert main(["build", "--out", str(tmp_path)]) == 1
+    monkeypatch.setattr(cmd, "_check", lambda args: lambda design, plan: [bad])
+    assert main(["build", "--out", str(tmp_path), "--no-previews"]) == 1
     assert "EA101" in capsys.readouterr().err and os.listdir(tmp_path) == []
-    assert main(["build", "--out", str(tmp_path), "--force"]) == 0
+    assert main(["build", "--out", str(tmp_path), "--no-previews", "--force"]) == 0
+    assert "EA101" in (tmp_path / "worksheet.txt").read_text()
+
+
+def test_cli_build_real_gate_refuses_misplaced_design(tmp_path, capsys):
+    """A design whose P0 exceeds the working pressure is refused by the real checks (EA401)."""
+    design = tmp_path / "hot.toml"
+    design.write_text('name = "hot"\n[operation]\nmax_pressure_kpa = 50.0\n'
+                      '[[actuator]]\nname = "A"\npattern = "zigzag"\nwidth_mm = 9.0\n'
+                      'interval_mm = 1.0\nlength_mm = 60.0\n', encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    assert main(["build", str(design), "--out", str(out)]) == 1
+    assert "EA401" in capsys.readouterr().err and os.listdir(out) == []
