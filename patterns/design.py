@@ -74,7 +74,7 @@ import numpy as np
 
 from .centerline import Centerline, as_centerline
 from .cross import cross
-from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .errors import DesignFileError, EmbroactError, ParameterError, check_range
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan

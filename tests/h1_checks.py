@@ -85,3 +85,15 @@ def legs(plan):
     """(start, end) xy arrays of the LEG stitches."""
     ends = np.flatnonzero(plan.roles == Role.LEG)
     return plan.xy_mm[ends - 1], plan.xy_mm[ends]
+
+
+def assert_valid_plan(plan, *, width_mm: float, interval_mm: float, angle_deg: float, passes: int) -> None:
+    """Record convention, corridor invariant, and the realised values within the card's tolerances
+    (angle 0.1 deg, interval and width 1 %)."""
+    assert_record_convention(plan)
+    assert_outside_corridor(plan)
+    r = plan.actuators[0].realised
+    assert abs(r.angle_deg - angle_deg) <= 0.1
+    assert abs(r.interval_mm - interval_mm) <= 0.01 * interval_mm
+    assert abs(r.width_mm - width_mm) <= 0.01 * width_mm
+    assert r.passes == passes

@@ -14,7 +14,15 @@ from embroact.patterns.params import CrossParams, ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.predict.derived import derive
 
-from h1_checks import PATHS, arc, assert_outside_corridor, assert_record_convention, legs, rail_distance_error
+from h1_checks import (
+    PATHS,
+    arc,
+    assert_outside_corridor,
+    assert_record_convention,
+    assert_valid_plan,
+    legs,
+    rail_distance_error,
+)
 
 PAPER = CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0)
 
@@ -128,16 +136,11 @@ def test_unknown_adjust_lists_valid_names():
 def test_invariants_on_every_path(name, angle):
     path = PATHS[name]()
     plan = cross(path, CrossParams(7.0, 1.4, angle))
-    assert_record_convention(plan)
-    assert_outside_corridor(plan)
-    a = plan.actuators[0]
-    n, s, alpha, _ = closing(a.params)
+    n, s, alpha, _ = closing(plan.actuators[0].params)
+    assert_valid_plan(plan, width_mm=7.0, interval_mm=s, angle_deg=alpha, passes=n)
     ds, do, _ = _leg_frame(plan, path)
     leg_angle = np.degrees(np.arctan2(np.abs(ds), np.abs(do)))
     assert np.max(np.abs(leg_angle - alpha)) <= 0.1  # every leg, in the path frame
-    assert abs(a.realised.angle_deg - alpha) <= 0.1
-    assert a.realised.interval_mm == pytest.approx(s, rel=0.01)
-    assert a.realised.passes == n
     _, off = path.project(plan.xy_mm[plan.commands == Command.STITCH])
     np.testing.assert_allclose(np.abs(off), 3.5, rtol=1e-9)  # every needle point on a rail
 
@@ -214,9 +217,4 @@ def test_property_any_cross_on_an_arc(w, s, angle, radius_factor, extra, left):
             cross(path, params)
         return
     plan = cross(path, params)
-    assert_record_convention(plan)
-    assert_outside_corridor(plan)
-    r = plan.actuators[0].realised
-    assert abs(r.angle_deg - alpha) <= 0.1
-    assert r.interval_mm == pytest.approx(s_real, rel=0.01)
-    assert r.passes == n
+    assert_valid_plan(plan, width_mm=w, interval_mm=s_real, angle_deg=alpha, passes=n)

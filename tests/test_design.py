@@ -19,7 +19,7 @@ from embroact.patterns.design import (
     join_plans,
 )
 from embroact.patterns.errors import DesignFileError, ParameterError, PatternError
-from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+from embroact.patterns.params import Tube, ZigzagParams
 from embroact.patterns.plan import Command, Role
 
 from h1_checks import assert_outside_corridor

@@ -14,7 +14,14 @@ from embroact.patterns.plan import Command, Role
 from embroact.patterns.zigzag import zigzag
 from embroact.predict.derived import derive
 
-from h1_checks import PATHS, arc, assert_outside_corridor, assert_record_convention, legs, rail_distance_error
+from h1_checks import (
+    PATHS,
+    arc,
+    assert_record_convention,
+    assert_valid_plan,
+    legs,
+    rail_distance_error,
+)
 
 S, C, T, E = Command.STITCH, Command.STOP, Command.TRIM, Command.END
 
@@ -70,13 +77,7 @@ def test_tie_options_are_used():
 def test_invariants_on_every_path(name, w, s):
     path = PATHS[name]()
     plan = zigzag(path, ZigzagParams(w, s), name=name)
-    assert_record_convention(plan)
-    assert_outside_corridor(plan)
-    r = plan.actuators[0].realised
-    assert abs(r.angle_deg - math.degrees(math.atan(s / w))) <= 0.1
-    assert r.interval_mm == pytest.approx(s, rel=0.01)
-    assert r.width_mm == pytest.approx(w, rel=0.01)
-    assert r.passes == 1
+    assert_valid_plan(plan, width_mm=w, interval_mm=s, angle_deg=math.degrees(math.atan(s / w)), passes=1)
     assert plan.actuators[0].adjustments == ()
     # each leg individually: advances s along the path and crosses from rail to rail
     sa, oa = path.project(legs(plan)[0])
@@ -213,9 +214,4 @@ def test_property_any_zigzag_on_an_arc(w, s, radius_factor, sweep, left):
             zigzag(path, ZigzagParams(w, s))
         return
     plan = zigzag(path, ZigzagParams(w, s))
-    assert_record_convention(plan)
-    assert_outside_corridor(plan)
-    r = plan.actuators[0].realised
-    assert abs(r.angle_deg - math.degrees(math.atan(s / w))) <= 0.1
-    assert r.interval_mm == pytest.approx(s, rel=0.01)
-    assert r.width_mm == pytest.approx(w, rel=0.01)
+    assert_valid_plan(plan, width_mm=w, interval_mm=s, angle_deg=math.degrees(math.atan(s / w)), passes=1)
