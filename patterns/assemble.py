@@ -5,9 +5,11 @@ length ``s`` along the centerline, rail side (+1 left, -1 right) and the role of
 stitch arriving there (LEG or EDGE). This module adds what every actuator needs, in
 this fixed record convention:
 
-1. ``STOP`` (CONTROL) at the first needle point: cord in, the operator lays the tube;
-2. ``tie_count`` TIE_IN lock stitches of ``tie_stitch_mm`` back and forth along the
-   first station's rail (towards the inside of the path), ending on the first station;
+1. ``STOP`` (CONTROL) where the lock stitches start, a needle point on the first
+   station's rail: cord in, the operator lays the tube;
+2. ``tie_count`` TIE_IN lock stitches of ``tie_stitch_mm`` back and forth along that
+   rail (towards the inside of the path), ending on the first station (so the STOP sits
+   ``tie_stitch_mm`` from it when ``tie_count`` is odd, on it when even);
 3. the stations' LEG / EDGE stitches;
 4. ``tie_count`` TIE_OFF lock stitches along the last station's rail;
 5. ``TRIM`` (CONTROL) at the last point; 6. ``END`` (CONTROL, actuator -1).

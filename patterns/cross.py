@@ -157,7 +157,7 @@ def cross(
     ------
     ParameterError, PathError, PatternError
         As for :func:`embroact.patterns.zigzag.zigzag`; the minimum path length is
-        ``4 w tan(alpha0)`` (two leg pitches of each family).
+        ``4 w tan(alpha0)`` (two leg pitches of each family) and at least ``tie_stitch_mm``.
     """
     if not isinstance(params, CrossParams):
         raise ParameterError(f"params must be CrossParams, got {type(params).__name__}")
@@ -166,12 +166,12 @@ def cross(
     check_pattern_inputs(cl, CrossParams(params.width_mm, s, alpha), tube, options)
     d = n * s / 2.0  # = w tan(alpha), exactly closing
     length = cl.length_mm
-    minimum = 4.0 * d
+    minimum = max(4.0 * d, options.tie_stitch_mm)
     tol = DEFAULT_TOLERANCES.length_mm
     if length < minimum - tol:
         raise PatternError(
             f"path length_mm must be >= {minimum:.4g} for a cross pattern with width_mm={params.width_mm:g}, "
-            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches), got {length:g}"
+            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
         )
     span = math.floor((length + tol) / s) * s
     check_record_count(2.0 * span / s + n * (2.0 + s / MAX_EDGE_STITCH_MM), options)

@@ -167,7 +167,7 @@ def test_parallel_spacing_on_curves(name):
     [
         (Centerline.straight(20.0), PAPER, PatternError,
          "path length_mm must be >= 28 for a cross pattern with width_mm=7, angle_deg=45 "
-         "(4*w*tan(angle), two leg pitches), got 20"),
+         "(4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got 20"),
         (Centerline.straight(100.0), CrossParams(3.0, 1.4, 45.0), ParameterError,
          "width_mm must be > 2*(r_f + clearance) = 3.6, got 3"),
         (Centerline.straight(9e5), CrossParams(7.0, 0.1, 45.0), PatternError,
