@@ -27,6 +27,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                         + (" / parallel legs" if name == "cross" else "") + " [mm]")
     if name == "cross":
         g.add_argument("--angle-deg", type=float, required=True, help="embroidery angle alpha0 from the perpendicular, (0, 90) [deg]")
+        g.add_argument("--adjust", choices=("auto", "interval", "angle"), default="auto",
+                       help="what to change when s and alpha0 cannot both be met: the smaller relative "
+                            "change (auto), the interval or the angle")
     g.add_argument("--length-mm", type=float, default=100.0, help="straight path length l0 [mm] (default 100; ignored with --path)")
     g.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm, e.g. "M 0 0 C 30 -20 60 20 90 0"')
     g.add_argument("--name", default="A1", help="actuator name for the thread list (default A1)")
@@ -58,7 +61,8 @@ def _plan(args):
     if args.command == "cross":
         from ..patterns.cross import cross
 
-        return cross(path, CrossParams(args.width_mm, args.interval_mm, args.angle_deg), tube=tube, name=args.name)
+        return cross(path, CrossParams(args.width_mm, args.interval_mm, args.angle_deg), tube=tube,
+                     name=args.name, adjust=args.adjust)
     from ..patterns.zigzag import zigzag
 
     return zigzag(path, ZigzagParams(args.width_mm, args.interval_mm), tube=tube, name=args.name)
@@ -132,6 +136,8 @@ def run(args) -> int:
         print(json.dumps(doc, indent=2, sort_keys=True))
     else:
         print(_summary(str(out), res, derived))
+        for note in plan.actuators[0].adjustments:
+            print(f"adjusted: {note} (requested values could not both be met)")
         for p in list(outputs)[1:]:
             print(f"wrote {p}")
     return 0
