@@ -70,7 +70,7 @@ def pareto_svg(points, *, title: str = "Speed against accuracy (Pareto chart)") 
     xs = [p["time_ms"] for p in finite]
     ys = [max(p["error_deg"], ERROR_FLOOR) for p in finite if math.isfinite(p["error_deg"])] or [1.0]
     xlo, xhi = _decade_range(min(xs), max(xs))
-    ylo, yhi = _decade_range(min(ys), max(ys) * 3.0)
+    ylo, yhi = _decade_range(min(ys) / 3.0, max(ys) * 3.0)
     fx, fy = _log_map(xlo, xhi, left, w - right), _log_map(ylo, yhi, h - bottom, top)
     dwg = svgwrite.Drawing(size=(f"{w}px", f"{h}px"), profile="full", debug=False)
     dwg.add(dwg.rect((0, 0), (w, h), fill="white"))
@@ -87,8 +87,8 @@ def pareto_svg(points, *, title: str = "Speed against accuracy (Pareto chart)") 
     dwg.add(_text(dwg, "max angle error vs 50-digit mpmath [deg] (log)", 18, (top + h - bottom) / 2,
                   text_anchor="middle", transform=f"rotate(-90 18 {(top + h - bottom) / 2})"))
     fail_y = top - 14
-    dwg.add(_text(dwg, "failed", w - right + 6, fail_y + 4))
-    placed = []
+    if any(not math.isfinite(p["error_deg"]) for p in finite):
+        dwg.add(_text(dwg, "failed (no finite error)", w - right + 6, fail_y + 4))
     coords = [(p["time_ms"], max(p["error_deg"], ERROR_FLOOR)) for p in finite]
     front = [i for i in pareto_front(coords) if math.isfinite(coords[i][1])]
     if front:
@@ -101,20 +101,21 @@ def pareto_svg(points, *, title: str = "Speed against accuracy (Pareto chart)") 
             prev = y
         pts.append((w - right, prev))
         dwg.add(dwg.polyline(pts, fill="none", stroke="#1a9850", stroke_width=2, stroke_dasharray="6,3"))
-    for p in finite:
-        x = fx(p["time_ms"])
-        y = fy(max(p["error_deg"], ERROR_FLOOR)) if math.isfinite(p["error_deg"]) else fail_y
+    xy = [(fx(p["time_ms"]), fy(max(p["error_deg"], ERROR_FLOOR)) if math.isfinite(p["error_deg"]) else fail_y)
+          for p in finite]
+    boxes = [(x - 5, y - 5, x + 5, y + 5) for x, y in xy]
+    for p, (x, y) in zip(finite, xy):
         colour = _KIND_COLOURS.get(p["kind"], "#444444")
         if math.isfinite(p["error_deg"]):
             dwg.add(dwg.circle((x, y), 5, fill=colour, stroke="black", stroke_width=0.5))
         else:
             dwg.add(dwg.path(f"M{x - 5},{y - 5} L{x + 5},{y + 5} M{x - 5},{y + 5} L{x + 5},{y - 5}",
                              stroke=colour, stroke_width=2))
-        ly = y + 4
-        while any(abs(ly - q) < 11 and abs(x - px) < 120 for px, q in placed):
-            ly += 11
-        placed.append((x, ly))
-        dwg.add(_text(dwg, p["label"], x + 8, ly))
+    for p, (x, y) in zip(finite, xy):
+        tx, ty, leader = _place_label(p["label"], x, y, boxes, (left + 2, w - 4))
+        if leader:
+            dwg.add(dwg.line((x, y), (tx, ty - 4), stroke="#999999", stroke_width=0.5))
+        dwg.add(_text(dwg, p["label"], tx, ty))
     ky = top + 10
     for kind, label in (("auto", "auto (default)"), ("method", "embroact method"), ("baseline", "baseline")):
         dwg.add(dwg.circle((w - right + 16, ky + 30), 5, fill=_KIND_COLOURS[kind]))
@@ -126,18 +127,38 @@ def pareto_svg(points, *, title: str = "Speed against accuracy (Pareto chart)") 
     return _xml(dwg)
 
 
+#: Label offsets tried in turn (right, above, below, left, further out) [px].
+_LABEL_OFFSETS = ((8, 4), (8, -7), (8, 15), (-8, 4), (8, -18), (8, 26), (-8, -14), (-8, 22), (8, -30), (8, 38))
+_CHAR_PX = 6.2
+
+
+def _place_label(label: str, x: float, y: float, boxes: list, x_range) -> tuple[float, float, bool]:
+    """First label position (text start, baseline) inside ``x_range`` overlapping no earlier box; appends it."""
+    width = _CHAR_PX * len(label)
+    for k, (dx, dy) in enumerate(_LABEL_OFFSETS):
+        tx = x + dx if dx > 0 else x + dx - width
+        box = (tx, y + dy - 10, tx + width, y + dy + 2)
+        if x_range[0] <= box[0] and box[2] <= x_range[1] and not any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in boxes):
+            boxes.append(box)
+            return tx, y + dy, k >= 3
+    dx, dy = _LABEL_OFFSETS[0]
+    boxes.append((x + dx, y + dy - 10, x + dx + width, y + dy + 2))
+    return x + dx, y + dy, False
+
+
 def _xml(dwg) -> str:
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + dwg.tostring() + "\n"
 
 
 def stability_svg(panels: dict, theta_abs_deg, row_info: dict, class_labels, *,
-                  title: str = "Stability map: angle error per method and design") -> str:
+                  title: str = "Stability map: relative angle error per method and design") -> str:
     """Heat maps, one row of panels per method (zigzag, cross), coloured by class.
 
     ``panels[method][pattern]`` is a 2-D array of class indices (rows x thetas);
-    ``row_info[pattern]`` is ``(row_label, row_values)``.
+    ``row_info[pattern]`` is ``(row_label, row_values)``; panels are drawn in the
+    order of ``panels`` and ``row_info``.
     """
-    patterns = list(next(iter(panels.values())))
+    patterns = list(row_info)
     cell_w, cell_h, pw_gap, ph_gap = 9, 5, 90, 26
     n_t = len(theta_abs_deg)
     rows = {pt: len(row_info[pt][1]) for pt in patterns}
@@ -149,13 +170,14 @@ def stability_svg(panels: dict, theta_abs_deg, row_info: dict, class_labels, *,
     dwg = svgwrite.Drawing(size=(f"{w}px", f"{h}px"), profile="full", debug=False)
     dwg.add(dwg.rect((0, 0), (w, h), fill="white"))
     dwg.add(_text(dwg, title, 10, 20, font_weight="bold"))
-    lx = 10
+    lx, ly = 10, 32
     for k, label in enumerate(class_labels):
-        dwg.add(dwg.rect((lx, 32), (12, 12), fill=CLASS_COLOURS[k], stroke="black", stroke_width=0.3))
-        dwg.add(_text(dwg, label, lx + 16, 42))
-        lx += 16 + 6.3 * len(label) + 14
-        if lx > w - 200 and k < len(class_labels) - 1:
-            lx = 10
+        step = 16 + _CHAR_PX * len(label) + 14
+        if lx + step > w:
+            lx, ly = 10, ly + 18
+        dwg.add(dwg.rect((lx, ly), (12, 12), fill=CLASS_COLOURS[k], stroke="black", stroke_width=0.3))
+        dwg.add(_text(dwg, label, lx + 16, ly + 10))
+        lx += step
     t_lo, t_hi = theta_abs_deg[0], theta_abs_deg[-1]
     for j, pt in enumerate(patterns):
         x0 = left + j * (pw + pw_gap)

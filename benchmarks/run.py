@@ -37,10 +37,11 @@ from sample import reference_points, sample_designs  # noqa: E402
 
 from embroact.predict.curve import METHODS, curve  # noqa: E402
 
-__all__ = ["Config", "CONFIGS", "main", "run", "targets"]
+__all__ = ["Config", "CONFIGS", "main", "run", "targets", "write_charts", "markdown_table"]
 
 #: The default method, "the closed form as printed" baseline and its printed-form twin.
 AUTO, PRINTED = "auto", "printed-analytic-trace"
+_PATTERNS = ("zigzag", "cross")
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,7 +154,7 @@ def _throughput(cfg: Config) -> dict:
 
 def _stability(cfg: Config) -> dict:
     n_theta, rows = stability.GRID[cfg.stability_grid]
-    panels = {pt: stability.panel_reference(pt, n_theta, rows) for pt in ("zigzag", "cross")}
+    panels = {pt: stability.panel_reference(pt, n_theta, rows) for pt in _PATTERNS}
     maps, summary = {}, {}
     for m in METHODS:
         maps[m], summary[m] = {}, {}
@@ -168,19 +169,17 @@ def _stability(cfg: Config) -> dict:
                               "out_of_tolerance_theta_deg": [float(where.min()), float(where.max())]
                               if where.size else None,
                               "notes": r["notes"][:6]}
-    svg = charts.stability_svg(maps, panels["zigzag"]["theta_abs_deg"],
-                               {pt: (p["row_label"], p["row_values"]) for pt, p in panels.items()},
-                               [c for c, _ in stability.CLASSES])
     grid = {"theta_abs_deg": panels["zigzag"]["theta_abs_deg"].tolist(),
             "rows": {pt: p["row_values"] for pt, p in panels.items()},
+            "row_labels": {pt: p["row_label"] for pt, p in panels.items()},
             "classes": [c for c, _ in stability.CLASSES],
             "maps": {m: {pt: v.tolist() for pt, v in by.items()} for m, by in maps.items()}}
-    return {"summary": summary, "grid": grid, "svg": svg}
+    return {"summary": summary, "grid": grid}
 
 
 def _stitches(cfg: Config) -> dict:
     return {
-        "needle_rate": [stitch_bench.needle_rate(pt, cfg.long_path_mm) for pt in ("zigzag", "cross")],
+        "needle_rate": [stitch_bench.needle_rate(pt, cfg.long_path_mm) for pt in _PATTERNS],
         "cli": stitch_bench.cli_timings(cfg.cli_runs),
         "help_heavy_imports": stitch_bench.help_imports(),
         "long_design": stitch_bench.ten_metre(cfg.long_path_mm, cfg.long_path_runs),
@@ -256,8 +255,6 @@ def run(cfg: Config, out_dir: Path) -> dict:
     res = {"config": asdict(cfg), "machine": {"python": platform.python_version(), "cpus": os.cpu_count(),
                                               "platform": platform.platform(),
                                               "load_average": list(os.getloadavg())}}
-    if hasattr(os, "sched_setaffinity"):  # one core, as the targets ask
-        os.sched_setaffinity(0, {sorted(os.sched_getaffinity(0))[0]})
     _log(f"design sample: {cfg.n_designs} designs x {cfg.n_pressures} pressures; 50-digit references")
     designs = sample_designs(cfg.n_designs)
     points = [reference_points(d, cfg.n_pressures) for d in designs]
@@ -281,8 +278,7 @@ def run(cfg: Config, out_dir: Path) -> dict:
     _log(f"  {tp['default_rtol']['evals_per_s']:.3g} evals/s (rtol 1e-6: {tp['rtol_1e-6']['evals_per_s']:.3g}); "
          f"vectorised {tp['vectorised_over_loop']:.3g}x a loop of curve()")
     _log("stability maps:")
-    st = _stability(cfg)
-    res["stability"] = {"summary": st["summary"], "grid": st["grid"]}
+    res["stability"] = _stability(cfg)
     _log("stitches, files, command line:")
     res["stitches"] = _stitches(cfg)
     for r in res["stitches"]["needle_rate"]:
@@ -292,9 +288,17 @@ def run(cfg: Config, out_dir: Path) -> dict:
     res["elapsed_s"] = time.perf_counter() - t_start
     out_dir.mkdir(parents=True, exist_ok=True)
     (out_dir / "results.json").write_text(json.dumps(_jsonable(res), indent=1, sort_keys=True) + "\n")
-    (out_dir / "pareto.svg").write_text(charts.pareto_svg(_pareto_points(res)))
-    (out_dir / "stability.svg").write_text(st["svg"])
+    write_charts(res, out_dir)
     return res
+
+
+def write_charts(res: dict, out_dir: Path) -> None:
+    """pareto.svg and stability.svg from a results dict (as written to results.json)."""
+    g = res["stability"]["grid"]
+    (out_dir / "pareto.svg").write_text(charts.pareto_svg(_pareto_points(res)))
+    maps = {m: g["maps"][m] for m in METHODS}  # the order of METHODS, whatever the JSON's
+    (out_dir / "stability.svg").write_text(charts.stability_svg(
+        maps, g["theta_abs_deg"], {pt: (g["row_labels"][pt], g["rows"][pt]) for pt in _PATTERNS}, g["classes"]))
 
 
 def main(argv=None) -> int:
@@ -302,7 +306,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description="embroact benchmarks (speed against accuracy)")
     ap.add_argument("--quick", action="store_true", help="smoke run: tiny sample, timings meaningless")
     ap.add_argument("--out", type=Path, default=Path(__file__).resolve().parent, help="output folder")
+    ap.add_argument("--replot", action="store_true", help="only redraw the charts from OUT/results.json")
     args = ap.parse_args(argv)
+    if args.replot:
+        write_charts(json.loads((args.out / "results.json").read_text()), args.out)
+        return 0
     res = run(CONFIGS["quick" if args.quick else "full"], args.out)
     _log("\n" + markdown_table(res) + "\n")
     _log("targets:")

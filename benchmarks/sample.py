@@ -122,12 +122,13 @@ def reference_points(d: Design, n: int) -> tuple[np.ndarray, np.ndarray]:
     theta = np.zeros(n)
     pressures[:n_infl] = np.linspace(0.0, d.model.p0_kpa, n_infl, endpoint=False)
     for k, t in enumerate(np.linspace(0.0, theta_max, n - n_infl + 1)[1:], start=n_infl):
-        pressures[k], theta[k] = reference_point(ref, t)
+        pressures[k], theta[k], _ = reference_point(ref, t)
     return pressures, theta
 
 
-def reference_point(ref: Ref, theta_deg: float) -> tuple[float, float]:
-    """(P_ref(theta) rounded to float64 [kPa], the reference angle of that rounded pressure [deg]).
+def reference_point(ref: Ref, theta_deg: float) -> tuple[float, float, float]:
+    """(P_ref(theta) rounded to float64 [kPa], the reference angle of that rounded pressure [deg],
+    the slope dP/dtheta there [kPa/deg]).
 
     The angle is ``theta`` corrected by one Newton step at 60 digits for the rounding,
     ``(P - P_ref(theta)) / P_ref'(theta)``; the correction is ~1e-16 relative, so its own
@@ -138,4 +139,5 @@ def reference_point(ref: Ref, theta_deg: float) -> tuple[float, float]:
         p_t = ref.pressure(t)
         slope = (ref.pressure(t * (1 + _SLOPE_STEP)) - p_t) / (t * _SLOPE_STEP)
         p = float(p_t * _KPA_PER_MPA)
-        return p, float(mp.degrees(t + (mp.mpf(p) / _KPA_PER_MPA - p_t) / slope))
+        return p, float(mp.degrees(t + (mp.mpf(p) / _KPA_PER_MPA - p_t) / slope)), float(slope * _KPA_PER_MPA
+                                                                                          / mp.degrees(1))

@@ -1,0 +1,30 @@
+"""Heavy imports stay lazy: what a fresh interpreter has loaded after a light entry point."""
+import json
+import subprocess
+import sys
+
+import pytest
+
+HEAVY_FOR_HELP = ("numpy", "shapely", "trimesh", "scipy")
+
+
+def _loaded_after(code: str, candidates) -> list[str]:
+    probe = f"{code}\nimport json, sys\nprint(json.dumps(sorted(m for m in {tuple(candidates)!r} if m in sys.modules)))"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_a_fresh_interpreter_loads_none_of_them():
+    # the control: otherwise the checks below could pass or fail for reasons of the environment
+    assert _loaded_after("pass", HEAVY_FOR_HELP) == []
+
+
+def test_import_patterns_loads_neither_trimesh_nor_scipy():
+    assert _loaded_after("import embroact.patterns", ("trimesh", "scipy")) == []
+
+
+@pytest.mark.parametrize("argv", [["--help"], ["zigzag", "--help"], ["--version"]])
+def test_help_loads_no_numpy_shapely_trimesh_scipy(argv):
+    code = ("import contextlib, io\nfrom embroact.export.cli import main\n"
+            f"with contextlib.redirect_stdout(io.StringIO()):\n    code = main({argv!r})\nassert code == 0, code")
+    assert _loaded_after(code, HEAVY_FOR_HELP) == []
