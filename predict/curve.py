@@ -91,6 +91,8 @@ THETA_FLOOR_RAD = 1e-12
 #: Tabulation points along a branch (trace inverse) and domain probes.
 TRACE_POINTS = 128
 DOMAIN_PROBES = 33
+#: Designs solved together by ``sweep`` (arrays of a block stay in cache).
+SWEEP_BLOCK = 128
 #: Fractions of the branch probed to shorten it to the highest requested pressure.
 _END_FRACTIONS = np.concatenate([2.0 ** -np.arange(12, 0, -1), 1.0 - 2.0 ** -np.arange(2, 13), [1.0]])
 
@@ -278,24 +280,31 @@ def _branch_end(geo: _m.Geometry):
 
 
 def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
-    def rate(theta):
+    """rate(theta, rows=None) -> (dE/dtheta, dV/dtheta): theta (n, k) for every design,
+    or 1-D theta at the designs ``rows`` (the solvers' calling convention)."""
+    def rate(theta, rows=None):
+        g = geo if rows is None else geo.take(rows)
+        th = theta if rows is None else theta[:, None]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            return _m.energy_rate(theta, geo, form=energy, derivative=deriv)
+            de, dv = _m.energy_rate(th, g, form=energy, derivative=deriv)
+        return (de, dv) if rows is None else (de[:, 0], dv[:, 0])
 
     return rate
 
 
 def _slope_fn(geo, energy, deriv):
-    """theta -> E'' V' - E' V'' = V'^2 dP/dtheta: central differences of the smooth rates
-    (E', V' have no pole at lock-up, P has), times the bending direction."""
+    """slope(theta, rows=None) = (E'' V' - E' V'') * direction, which has the sign of dP/dtheta
+    along the branch: central differences of the smooth rates (E', V' have no pole at
+    lock-up; P has)."""
     rate = _rate_fn(geo, energy, deriv)
     direction = np.sign(_m.lock_theta(geo))
+    scale = geo.l0 / (2.0 * geo.r0)
 
-    def slope(theta):
-        de, dv = rate(theta)
-        dde, ddv = solvers.derivative(lambda t: np.stack(rate(t)), theta, scale=geo.l0 / (2.0 * geo.r0),
-                                      method="central")
-        return (dde * dv - de * ddv) * direction
+    def slope(theta, rows=None):
+        de, dv = rate(theta, rows)
+        d, s = (direction, scale) if rows is None else (direction[rows, 0], scale[rows, 0])
+        dde, ddv = solvers.derivative(lambda t: np.stack(rate(t, rows)), theta, scale=s, method="central")
+        return (dde * dv - de * ddv) * d
 
     return slope
 
@@ -379,12 +388,16 @@ def _states(geo, theta, pressure_mpa, status, models):
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
 
-def _make_curve(geo, models, pressure_mpa, theta, status, name, squeeze):
-    l, r, beta, d = _states(geo, theta, pressure_mpa, status, models)
-    arrays = [pressure_mpa * KPA_PER_MPA, np.degrees(theta), status, l, r, beta, d]
-    if squeeze:
-        arrays = [a[0] for a in arrays]
-    return Curve(*(_readonly(a) for a in arrays), method=name, calibration=_calibrations(models))
+def _block(models, p, energy, deriv, inverse, rtol):
+    """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
+    geo = _geometry(models)
+    pressure = np.broadcast_to(p, (len(models), p.size))
+    targets = pressure - geo.p0
+    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
+    infl = targets <= 0.0
+    theta = np.where(infl, 0.0, theta)
+    status = np.where(infl, Status.INFLATION, status).astype(np.int8)
+    return (pressure * KPA_PER_MPA, np.degrees(theta), status) + _states(geo, theta, pressure, status, models)
 
 
 # -- public API ----------------------------------------------------------------------------
@@ -415,14 +428,11 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
     check_range("rtol", rtol, low=0.0, high=1.0)
     energy, deriv, inverse = _resolve(method, rtol)
     p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
-    geo = _geometry(models)
-    pressure = np.broadcast_to(p, (len(models), p.size))
-    targets = pressure - geo.p0
-    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
-    infl = targets <= 0.0
-    theta = np.where(infl, 0.0, theta)
-    status = np.where(infl, Status.INFLATION, status).astype(np.int8)
-    return _make_curve(geo, models, pressure, theta, status, f"{energy}-{deriv}-{inverse}", squeeze=False)
+    blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol)
+              for k in range(0, len(models), SWEEP_BLOCK)]
+    arrays = [np.concatenate(parts) for parts in zip(*blocks)]
+    return Curve(*(_readonly(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+                 calibration=_calibrations(models))
 
 
 def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
@@ -462,9 +472,10 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
              np.where(slope < 0.0, Status.UNSTABLE, Status.BENDING))))).astype(np.int8)
     filled = (status != Status.BENDING) & (status != Status.UNSTABLE)
     p = np.where(filled, geo.p0, p)
-    theta = np.where(status == Status.FAILED, 0.0, th)
-    # points without equilibrium show the state at the angle asked for when it is in the domain
-    return _make_curve(geo, [model], p, theta, status, f"{energy}-{deriv}-{inverse}", squeeze=True)
+    theta = np.where(status == Status.FAILED, 0.0, th)  # other points show the state at the angle asked for
+    arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + _states(geo, theta, p, status, [model])
+    return Curve(*(_readonly(a[0]) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+                 calibration=model.calibration)
 
 
 def lockup(model: ActuatorModel) -> tuple[float, float]:

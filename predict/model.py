@@ -215,41 +215,64 @@ def energy(l, r, geo: Geometry, form: str = "stable"):
 
 def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
     """Analytic partial derivatives (dE/dl, dE/dr) of a closed form [N, N]."""
+    f_l, f_r = (_gradient_stable if form == "stable" else _gradient_printed)(l, r, geo)
+    scale = np.pi * geo.g * geo.l0 / 2.0
+    return scale * f_l, scale * f_r
+
+
+def _gradient_stable(l, r, geo: Geometry):
+    """Gradient of the stable bracket in the variables (A, r).
+
+    With ``m = A - 1 = B r``, ``s = c/r^2`` and ``w = B^2 q = m^2 s/A`` the bracket is
+    ``c A + (lambda2^2 - 3) c/A + c m^2 (2A - s)/(4 A^2) + T/lambda2^2`` with
+    ``a = 2A - 1``, ``b = a + w``; r enters only through lambda2 and s.
+    """
+    c = geo.c
+    inv2l0 = 0.5 / geo.l0
+    A = (l + geo.l0) * inv2l0
+    m = (l - geo.l0) * inv2l0
+    ia = 1.0 / A
+    ir = 1.0 / r
+    s = c * ir * ir
+    lam2 = (r / geo.r0) ** 2
+    w = m * m * s * ia
+    a = l / geo.l0
+    b = a + w
+    T, sa, sb = _stable_t(a, b, c)
+    hs = 0.5 / (sa + sb)
+    T_a = -T * (0.5 / a + hs / sa)
+    T_b = -T * (0.5 / b + hs / sb)
+    il2 = 1.0 / lam2
+    f_a = (c * (1.0 - (lam2 - 3.0) * ia * ia)
+           + 0.5 * c * m * ia * ia * ((2.0 * A - s) - m * (1.0 - s * ia))
+           + (2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia * ia)) * il2)
+    f_r = (2.0 * c * lam2 * ia + 0.5 * c * m * m * s * ia * ia - 2.0 * (T_b * w + T) * il2) * ir
+    return f_a * inv2l0, f_r
+
+
+def _gradient_printed(l, r, geo: Geometry):
+    """Gradient of the printed bracket, term by term as printed (inherits its cancellation)."""
     A, B, lam = _invariants(l, r, geo)
     A_l = 0.5 / geo.l0
     B_l, B_r = 1.0 / (2.0 * r * geo.l0), -B / r
     q_l = -geo.c * A_l / (A * A)
-    a, a_l = l / geo.l0, 1.0 / geo.l0
-    if form == "stable":
-        q = geo.c / A
-        b = a + B * B * q
-        b_l = a_l + 2.0 * B * B_l * q + B * B * q_l
-        b_r = -2.0 * B * B * q / r
-        T, sa, sb = _stable_t(a, b, geo.c)
-        # ln T = const - ln(sa) - ln(sb) - ln(sa + sb)
-        T_a = -T * (0.5 / a + 0.5 / (sa * (sa + sb)))
-        T_b = -T * (0.5 / b + 0.5 / (sb * (sa + sb)))
-        T_l, T_r = T_a * a_l + T_b * b_l, T_b * b_r
-    else:  # printed: differentiate the printed T term by term
-        d2 = inner_radius_sq(l, r, geo)
-        q = r * r - d2
-        ap, bp = A * A - B * B * r * r, A * A - B * B * d2
-        D = ap**-0.5 - bp**-0.5
-        ap_l = 2.0 * A * A_l - 2.0 * B * B_l * r * r
-        bp_l = 2.0 * A * A_l - 2.0 * B * B_l * d2 + B * B * q_l
-        bp_r = -2.0 * B * B_r * d2 - 2.0 * B * B * r
-        ap_r = -2.0 * B * B_r * r * r - 2.0 * B * B * r
-        T = 2.0 * A / B**2 * D
-        T_l = (2.0 * A_l / B**2 - 4.0 * A * B_l / B**3) * D + A / B**2 * (bp_l * bp**-1.5 - ap_l * ap**-1.5)
-        T_r = -4.0 * A * B_r / B**3 * D + A / B**2 * (bp_r * bp**-1.5 - ap_r * ap**-1.5)
+    d2 = inner_radius_sq(l, r, geo)
+    q = r * r - d2
+    ap, bp = A * A - B * B * r * r, A * A - B * B * d2
+    D = ap**-0.5 - bp**-0.5
+    ap_l = 2.0 * A * A_l - 2.0 * B * B_l * r * r
+    bp_l = 2.0 * A * A_l - 2.0 * B * B_l * d2 + B * B * q_l
+    bp_r = -2.0 * B * B_r * d2 - 2.0 * B * B * r
+    ap_r = -2.0 * B * B_r * r * r - 2.0 * B * B * r
+    T = 2.0 * A / B**2 * D
+    T_l = (2.0 * A_l / B**2 - 4.0 * A * B_l / B**3) * D + A / B**2 * (bp_l * bp**-1.5 - ap_l * ap**-1.5)
+    T_r = -4.0 * A * B_r / B**3 * D + A / B**2 * (bp_r * bp**-1.5 - ap_r * ap**-1.5)
     s = 2.0 * r * r * q - q * q
     f_l = 2.0 * A * A_l * q + (A * A + lam * lam - 3.0) * q_l \
-        + 0.5 * B * B_l * s + 0.25 * B * B * (2.0 * r * r - 2.0 * q) * q_l
-    f_r = 2.0 * lam / geo.r0 * q + 0.5 * B * B_r * s + B * B * r * q
-    f_l = f_l + T_l / (lam * lam)
-    f_r = f_r + T_r / (lam * lam) - 2.0 * T / (lam**3 * geo.r0)
-    scale = np.pi * geo.g * geo.l0 / 2.0
-    return scale * f_l, scale * f_r
+        + 0.5 * B * B_l * s + 0.25 * B * B * (2.0 * r * r - 2.0 * q) * q_l + T_l / (lam * lam)
+    f_r = 2.0 * lam / geo.r0 * q + 0.5 * B * B_r * s + B * B * r * q \
+        + T_r / (lam * lam) - 2.0 * T / (lam**3 * geo.r0)
+    return f_l, f_r
 
 
 def volume(l, r, geo: Geometry):

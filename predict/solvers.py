@@ -67,8 +67,6 @@ ILLINOIS_MAX_ITERATIONS = 100
 #: Newton steps on the interpolating cubic (no model evaluations) and on the model.
 CUBIC_NEWTON_STEPS = 4
 NEWTON_STEPS = 6
-#: Largest (rows x targets x grid) boolean block when bracketing targets in a table.
-BRACKET_BLOCK = 1 << 22
 
 
 def derivative(f, x, *, scale, method: str):
@@ -107,41 +105,41 @@ def bisect(inside, lo, hi, iterations: int = BISECT_ITERATIONS):
     return lo
 
 
-def illinois(residual, a, b, fa, fb, *, rtol, atol, active=None, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
-    """Vectorised Illinois regula falsi on brackets ``fa < 0 < fb`` (or the reverse).
+def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINOIS_MAX_ITERATIONS):
+    """Illinois regula falsi on 1-D brackets ``[a, b]`` with ``sign(fa) != sign(fb)``.
 
-    ``residual(x, active)`` evaluates the function at the entries selected by the
-    boolean mask ``active`` (x has the full shape); entries not in the initial
-    ``active`` mask (default: all) are returned as ``a``. Stops entrywise when the step
-    or the bracket falls below ``rtol * |x| + atol``. Raises :class:`SolverError` if any entry
-    has not converged after ``max_iterations``.
+    ``residual(x, idx)`` evaluates the function of entries ``idx`` at ``x`` (both
+    1-D); only unconverged entries are evaluated. An entry stops when its step or
+    its bracket falls below ``rtol * |x| + atol``. Raises :class:`SolverError` if
+    any entry has not converged after ``max_iterations``.
     """
     a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
     x = a.copy()
-    active = np.ones(a.shape, dtype=bool) if active is None else np.array(active, dtype=bool)
-    side = np.zeros(a.shape, dtype=np.int8)  # which end was kept last: -1 a, +1 b
+    side = np.zeros(a.shape, dtype=np.int8)  # end kept by the last step: -1 a, +1 b
+    idx = np.arange(a.size)
     for _ in range(max_iterations):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            xn = b - fb * (b - a) / (fb - fa)
-        xn = np.where(np.isfinite(xn) & (xn > np.minimum(a, b)) & (xn < np.maximum(a, b)), xn, 0.5 * (a + b))
-        step = np.abs(xn - x)
-        x = np.where(active, xn, x)
-        fx = residual(x, active)
-        same_as_a = np.sign(fx) == np.sign(fa)
-        # replace the end with the same sign; halve the kept end's value if kept twice
-        fb_half = np.where(same_as_a & (side == 1), 0.5 * fb, fb)
-        fa_half = np.where(~same_as_a & (side == -1), 0.5 * fa, fa)
-        a, fa = np.where(active & same_as_a, x, a), np.where(active & same_as_a, fx, np.where(active, fa_half, fa))
-        b, fb = np.where(active & ~same_as_a, x, b), np.where(active & ~same_as_a, fx, np.where(active, fb_half, fb))
-        side = np.where(active, np.where(same_as_a, 1, -1), side).astype(np.int8)
-        tol = rtol * np.abs(x) + atol
-        done = (step <= tol) | (np.abs(b - a) <= tol) | (fx == 0.0)
-        active &= ~done
-        if not active.any():
+        if idx.size == 0:
             return x
+        ai, bi, fai, fbi = a[idx], b[idx], fa[idx], fb[idx]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            xn = bi - fbi * (bi - ai) / (fbi - fai)
+        inside = np.isfinite(xn) & (xn > np.minimum(ai, bi)) & (xn < np.maximum(ai, bi))
+        xn = np.where(inside, xn, 0.5 * (ai + bi))
+        step = np.abs(xn - x[idx])
+        x[idx] = xn
+        fx = residual(xn, idx)
+        low = np.sign(fx) == np.sign(fai)  # xn replaces a; if b is kept twice, halve fb
+        kept = side[idx]
+        fbi = np.where(low & (kept == 1), 0.5 * fbi, fbi)
+        fai = np.where(~low & (kept == -1), 0.5 * fai, fai)
+        a[idx], fa[idx] = np.where(low, xn, ai), np.where(low, fx, fai)
+        b[idx], fb[idx] = np.where(low, bi, xn), np.where(low, fbi, fx)
+        side[idx] = np.where(low, 1, -1)
+        tol = rtol * np.abs(xn) + atol
+        idx = idx[~((step <= tol) | (np.abs(b[idx] - a[idx]) <= tol) | (fx == 0.0))]
     raise SolverError(
-        f"regula falsi did not converge in {max_iterations} iterations on {int(active.sum())} point(s); "
-        f"bracket width up to {float(np.max(np.abs(b - a)[active])):.3g}"
+        f"regula falsi did not converge in {max_iterations} iterations on {idx.size} point(s); "
+        f"bracket width up to {float(np.max(np.abs(b - a)[idx])):.3g}"
     )
 
 
@@ -151,10 +149,11 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     Parameters
     ----------
     rate : callable
-        ``rate(theta) -> (dE/dtheta, dV/dtheta)`` for an ``(n, k)`` array, one design per row.
+        ``rate(theta, rows=None) -> (dE/dtheta, dV/dtheta)``: for an ``(n, k)`` array
+        (one design per row), or for 1-D ``theta`` at the designs ``rows``.
     slope : callable
-        ``slope(theta)``, a smooth function with the sign of dP/dtheta along the branch
-        (zero at a fold), for ``(n, 1)`` arrays.
+        ``slope(theta, rows)``, a smooth function with the sign of dP/dtheta along the
+        branch (zero at a fold), same calling convention.
     theta_end : ndarray, shape (n, 1)
         End of each branch (lock-up, domain end or cap; finite, sign = bending direction).
     targets : ndarray, shape (n, m)
@@ -175,8 +174,7 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     theta_stop, p_stop : ndarray (n, 1)
         Where the stable part of the branch stops (fold or end) and P - P0 there.
     """
-    s = np.linspace(0.0, 1.0, grid_points)
-    grid = theta_end * s
+    grid = theta_end * np.linspace(0.0, 1.0, grid_points)
     de, dv = rate(grid)
     with np.errstate(divide="ignore", invalid="ignore"):
         p = de / dv
@@ -185,34 +183,27 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
                         np.inf, p[:, -1])
     rising = np.diff(p, axis=1) > 0.0
     first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
-    folded = first_fall < grid_points - 1
     rows = np.arange(grid.shape[0])
-    theta_stop = grid[rows, first_fall][:, None]
-    p_stop = p[rows, first_fall][:, None]
-    if folded.any():  # refine the fold: the root of the slope between the last rising point's neighbours
-        lo = grid[rows, np.maximum(first_fall - 1, 0)][:, None]
-        hi = grid[rows, np.minimum(first_fall + 1, grid_points - 1)][:, None]
-        s_lo, s_hi = slope(lo), slope(hi)
-        change = folded[:, None] & (np.sign(s_lo) != np.sign(s_hi))
-        if change.any():
-            t_fold = illinois(lambda t, act: np.where(act, slope(t), 0.0), lo, hi, s_lo, s_hi,
-                              rtol=rtol, atol=atol, active=change)
-            e, v = rate(t_fold)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                theta_stop = np.where(change, t_fold, theta_stop)
-                p_stop = np.where(change, e / v, p_stop)
+    theta_stop = grid[rows, first_fall]
+    p_stop = p[rows, first_fall]
+    folded = np.flatnonzero(first_fall < grid_points - 1)
+    if folded.size:  # refine each fold: the root of the slope around the last rising point
+        lo = grid[folded, np.maximum(first_fall[folded] - 1, 0)]
+        hi = grid[folded, first_fall[folded] + 1]
+        s_lo, s_hi = slope(lo, folded), slope(hi, folded)
+        ok = np.sign(s_lo) != np.sign(s_hi)
+        sel = folded[ok]
+        t_fold = illinois(lambda x, k: slope(x, sel[k]), lo[ok], hi[ok], s_lo[ok], s_hi[ok], rtol=rtol, atol=atol)
+        e, v = rate(t_fold, sel)
+        theta_stop[sel], p_stop[sel] = t_fold, e / v
+    theta_stop, p_stop = theta_stop[:, None], p_stop[:, None]
     beyond = targets > p_stop
     i = _bracket_index(p, np.maximum(first_fall, 1), np.where(beyond, 0.0, targets))
-    where = np.where(beyond, np.where(folded[:, None], 2, 1), 0).astype(np.int8)
-    r2 = rows[:, None]
-    ta, tb = grid[r2, i], grid[r2, i + 1]
-    with np.errstate(invalid="ignore"):
-        ra, rb = de[r2, i] - targets * dv[r2, i], de[r2, i + 1] - targets * dv[r2, i + 1]
-    solve = ~beyond & (np.sign(ra) != np.sign(rb))
-    theta = np.where(ra == 0.0, ta, tb)
-    if np.any(solve):
-        theta = np.where(solve, _polish(rate, grid, de, dv, i, targets, (ta, tb, ra, rb), solve, (rtol, atol)), theta)
-    theta = np.where(beyond, theta_stop, theta)
+    where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
+    theta = np.where(beyond, theta_stop, 0.0)
+    solve = np.nonzero(~beyond)
+    if solve[0].size:
+        theta[solve] = _polish(rate, grid, de, dv, i[solve], solve[0], targets[solve], (rtol, atol))
     return theta, where, theta_stop, p_stop
 
 
@@ -220,67 +211,82 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
 _CUBIC = np.linalg.inv(np.vander(np.arange(4.0), 4, increasing=True))
 
 
-def _polish(rate, grid, de, dv, i, targets, bracket, solve, tols):
-    """Roots of R = dE - t dV in each bracket ``(ta, tb, R(ta), R(tb))``.
+def _polish(rate, grid, de, dv, i, rows, t, tols):
+    """Roots of R = dE - t dV between grid points i and i + 1 of each entry's row (1-D).
 
     A cubic through the four tabulated residuals around the bracket gives the start
-    (its root) and the slope; Newton steps on the true residual finish. Steps that
-    leave the bracket, or entries still moving after ``NEWTON_STEPS``, go to Illinois.
+    (its root) and the slope; Newton steps on the true residual finish. Entries whose
+    step leaves the bracket, or that still move after ``NEWTON_STEPS``, go to Illinois.
     """
-    ta, tb, ra, rb = bracket
     rtol, atol = tols
-    h = grid[:, 1:2] - grid[:, 0:1]
-    j = np.clip(i - 1, 0, grid.shape[1] - 4)
-    r2 = np.arange(grid.shape[0])[:, None]
-    window = j[..., None] + np.arange(4)
-    coef = (de[r2[..., None], window] - targets[..., None] * dv[r2[..., None], window]) @ _CUBIC.T
-    c0, c1, c2, c3 = coef[..., 0], coef[..., 1], 2.0 * coef[..., 2], 3.0 * coef[..., 3]
-    u_lo = (i - j).astype(np.float64)
+    n_grid = grid.shape[1]
+    ta, tb = grid[rows, i], grid[rows, i + 1]
+    ra, rb = de[rows, i] - t * dv[rows, i], de[rows, i + 1] - t * dv[rows, i + 1]
+    x = np.where(ra == 0.0, ta, tb)  # exact grid hits, and no sign change (target at the end)
+    todo = np.flatnonzero((np.sign(ra) != np.sign(rb)) & (ra != 0.0))
+    if todo.size == 0:
+        return x
+    rows_t, t_t, i_t = rows[todo], t[todo], i[todo]
+    h = grid[rows_t, 1] - grid[rows_t, 0]
+    j = np.clip(i_t - 1, 0, n_grid - 4)
+    window = j[:, None] + np.arange(4)
+    coef = (de[rows_t[:, None], window] - t_t[:, None] * dv[rows_t[:, None], window]) @ _CUBIC.T
+    c0, c1, c2, c3 = coef[:, 0], coef[:, 1], coef[:, 2], coef[:, 3]
+    d2, d3 = 2.0 * c2, 3.0 * c3
+    u_lo = (i_t - j).astype(np.float64)
+    ra_t, rb_t = ra[todo], rb[todo]
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = u_lo + ra / (ra - rb)
-        for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1] (u = (x - grid_j)/h)
-            u = u - (c0 + u * (c1 + u * (coef[..., 2] + u * coef[..., 3]))) / (c1 + u * (c2 + u * c3))
+        u = u_lo + ra_t / (ra_t - rb_t)
+        for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1], u = (x - grid_j)/h
+            u = u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (d2 + u * d3))
             u = np.clip(np.where(u == u, u, u_lo + 0.5), u_lo, u_lo + 1.0)
-    base = grid[r2, j]
-    lo, hi = np.minimum(ta, tb), np.maximum(ta, tb)
-    x = base + h * u
-    active = solve.copy()
+    base = grid[rows_t, j]
+    lo, hi = np.minimum(ta[todo], tb[todo]), np.maximum(ta[todo], tb[todo])
+    xt = base + h * u
+    act = np.arange(todo.size)
+    stuck = []
     for _ in range(NEWTON_STEPS):
-        e, v = rate(x)
-        fx = e - targets * v
-        uu = (x - base) / h
+        e, v = rate(xt[act], rows_t[act])
+        fx = e - t_t[act] * v
+        uu = (xt[act] - base[act]) / h[act]
         with np.errstate(divide="ignore", invalid="ignore"):
-            xn = x - fx * h / (c1 + uu * (c2 + uu * c3))
-        ok = (xn >= lo) & (xn <= hi)
-        done = ok & ((np.abs(xn - x) <= rtol * np.abs(x) + atol) | (fx == 0.0))
-        x = np.where(active & ok, xn, x)
-        active &= ok & ~done
-        if not active.any():
+            xn = xt[act] - fx * h[act] / (c1[act] + uu * (d2[act] + uu * d3[act]))
+        ok = (xn >= lo[act]) & (xn <= hi[act])
+        done = ok & ((np.abs(xn - xt[act]) <= rtol * np.abs(xt[act]) + atol) | (fx == 0.0))
+        xt[act] = np.where(ok, xn, xt[act])
+        stuck.append(act[~ok])
+        act = act[ok & ~done]
+        if act.size == 0:
             break
-    stuck = solve & ~((x >= lo) & (x <= hi)) | active
-    if stuck.any():
-        def residual(t, act):
-            e, v = rate(t)
-            return np.where(act, e - targets * v, 0.0)
+    stuck = np.concatenate(stuck + [act])
+    if stuck.size:
+        r_s, t_s = rows_t[stuck], t_t[stuck]
 
-        x = np.where(stuck, illinois(residual, ta, tb, ra, rb, rtol=rtol, atol=atol, active=stuck), x)
+        def residual(xs, k):
+            e, v = rate(xs, r_s[k])
+            return e - t_s[k] * v
+
+        xt[stuck] = illinois(residual, ta[todo][stuck], tb[todo][stuck], ra_t[stuck], rb_t[stuck],
+                             rtol=rtol, atol=atol)
+    x[todo] = xt
     return x
 
 
 def _bracket_index(values, last, targets):
-    """Per row, the index i < last[row] with values[i] <= target < values[i+1].
+    """Per row, the index i < last[row] with values[i] <= target < values[i+1] (binary search).
 
-    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end
-    interval. Counts in blocks of rows to bound the (rows, targets, grid) temporary.
+    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end interval.
     """
     n, k = values.shape
-    usable = np.arange(k) <= last[:, None]
-    out = np.empty(targets.shape, dtype=np.intp)
-    step = max(1, BRACKET_BLOCK // max(1, targets.shape[1] * k))
-    for lo in range(0, n, step):
-        v, t = values[lo:lo + step], targets[lo:lo + step]
-        out[lo:lo + step] = ((v[:, None, :] <= t[:, :, None]) & usable[lo:lo + step, None, :]).sum(axis=2)
-    return np.clip(out - 1, 0, np.minimum(last, k - 1)[:, None] - 1)
+    flat = values.ravel()
+    offset = (np.arange(n) * k)[:, None]
+    lo = np.zeros(targets.shape, dtype=np.intp)
+    hi = np.broadcast_to(np.minimum(last, k - 1)[:, None], targets.shape).astype(np.intp)
+    for _ in range(int(np.ceil(np.log2(max(k, 2))))):
+        mid = (lo + hi) // 2
+        up = flat[offset + mid] <= targets
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    return lo
 
 
 def root_each(residual, lo, hi, *, rtol, atol):
