@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Regenerates the README's pictures with the installed embroact:
+# the built-in default design (the paper's zigzag actuator) and the paper's cross design.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+embroact build --out "$tmp" > /dev/null
+cp "$tmp"/preview.svg "$tmp"/bend.svg "$tmp"/shape.svg "$tmp"/shape3d.svg docs/img/
+embroact preview stitches examples/paper_cross.toml -o docs/img/cross_preview.svg > /dev/null
+embroact preview stitches examples/three_actuators.toml -o docs/img/three_preview.svg > /dev/null
+echo "figures written to docs/img"
