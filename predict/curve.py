@@ -90,7 +90,7 @@ MAX_BEND_DEG = 3600.0
 THETA_FLOOR_RAD = 1e-12
 #: Tabulation points along a branch (trace inverse) and domain probes.
 TRACE_POINTS = 128
-DOMAIN_PROBES = 33
+DOMAIN_PROBES = 17
 #: Designs solved together by ``sweep`` (arrays of a block stay in cache).
 SWEEP_BLOCK = 128
 #: Fractions of the branch probed to shorten it to the highest requested pressure.
@@ -319,48 +319,49 @@ def _shorten(rate, full, tmax):
     return np.take_along_axis(probes, np.argmax(reach, axis=1)[:, None], axis=1)
 
 
+def _trace(geo, t, full, kind, energy, deriv, rtol):
+    """The "trace" inverse on non-empty branches: (theta, status)."""
+    rate = _rate_fn(geo, energy, deriv)
+    end = _shorten(rate, full, t.max(axis=1, keepdims=True))
+    th, where, _, _ = solvers.trace_inverse(rate, end, t, slope=_slope_fn(geo, energy, deriv),
+                                            grid_points=TRACE_POINTS, rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
+                                            pole_at_end=(end == full) & (kind == Status.LOCKED))
+    st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind, Status.BENDING))
+    return np.where(where == 1, full, th), st
+
+
+def _root(geo, t, full, kind, energy, deriv, rtol):
+    """The "root" inverse: brentq per design and pressure on the whole branch."""
+    th = np.empty_like(t)
+    for k in range(t.shape[0]):
+        rate = _rate_fn(geo.take([k]), energy, deriv)
+
+        def residual(x, j, rate=rate, k=k):
+            de, dv = rate(np.array([[x]]))
+            return float(de[0, 0] - t[k, j] * dv[0, 0])
+
+        th[k] = solvers.root_each(residual, np.zeros(t.shape[1]), np.full(t.shape[1], full[k, 0]), rtol=rtol,
+                                  atol=rtol * THETA_FLOOR_RAD)
+    p_end = np.where(kind == Status.LOCKED, np.inf, _m.pressure_mpa(full, geo, form=energy, derivative=deriv) - geo.p0)
+    beyond = ~(t < np.where(np.isnan(p_end), np.inf, p_end))
+    unstable = _slope_fn(geo, energy, deriv)(th) < 0
+    return th, np.where(beyond, kind, np.where(unstable, Status.UNSTABLE, Status.BENDING))
+
+
 def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
     """theta (n, m) for P - P0 = targets > 0 (other entries ignored) and the status per point."""
-    n, m = targets.shape
-    theta = np.zeros((n, m))
-    status = np.full((n, m), Status.BENDING, dtype=np.int8)
     full, kind = _branch_end(geo)
-    empty = (full == 0.0)[:, 0]
-    theta_end_status = np.broadcast_to(kind, (n, m))
-    status[empty] = theta_end_status[empty]
-    rows = np.flatnonzero(~empty)
+    theta = np.zeros(targets.shape)
+    status = np.broadcast_to(kind, targets.shape).astype(np.int8)  # empty branches: the end's status
+    rows = np.flatnonzero(full[:, 0] != 0.0)
     if rows.size == 0:
         return theta, status
-    g = geo.take(rows)
-    t = targets[rows]
-    rate = _rate_fn(g, energy, deriv)
-    atol = rtol * THETA_FLOOR_RAD
-    if inverse == "trace":
-        end = _shorten(rate, full[rows], t.max(axis=1, keepdims=True))
-        th, where, _, _ = solvers.trace_inverse(rate, end, t, slope=_slope_fn(g, energy, deriv),
-                                                grid_points=TRACE_POINTS, rtol=rtol, atol=atol,
-                                                pole_at_end=(end == full[rows]) & (kind[rows] == Status.LOCKED))
-        st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind[rows], Status.BENDING))
-        th = np.where(where == 1, full[rows], th)
-    else:
-        th = np.empty_like(t)
-        for k in range(rows.size):
-            gk = g.take([k])
-
-            def residual(x, j, gk=gk, k=k):
-                de, dv = _rate_fn(gk, energy, deriv)(np.array([[x]]))
-                return float(de[0, 0] - t[k, j] * dv[0, 0])
-
-            th[k] = solvers.root_each(residual, np.zeros(m), np.full(m, full[rows[k], 0]), rtol=rtol,
-                                         atol=atol)
-        p_end = np.where(kind[rows] == Status.LOCKED, np.inf,
-                         _m.pressure_mpa(full[rows], g, form=energy, derivative=deriv) - g.p0)
-        beyond = ~(t < np.nan_to_num(p_end, nan=np.inf))
-        st = np.where(beyond, kind[rows], np.where(_slope_fn(g, energy, deriv)(th) < 0, Status.UNSTABLE,
-                                                   Status.BENDING))
+    sub = slice(None) if rows.size == full.shape[0] else rows
+    g = geo if rows.size == full.shape[0] else geo.take(rows)
+    th, st = (_trace if inverse == "trace" else _root)(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol)
     bad = ~np.isfinite(th)
-    theta[rows] = np.where(bad, 0.0, th)
-    status[rows] = np.where(bad, Status.FAILED, st)
+    theta[sub] = np.where(bad, 0.0, th)
+    status[sub] = np.where(bad, Status.FAILED, st)
     return theta, status
 
 
@@ -425,12 +426,16 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
     models = list(models)
     if not models or not all(isinstance(mo, ActuatorModel) for mo in models):
         raise ParameterError("models must be a non-empty sequence of ActuatorModel")
+    return _solve(models, pressures_kpa, method, rtol, squeeze=False)
+
+
+def _solve(models, pressures_kpa, method, rtol, *, squeeze):
     check_range("rtol", rtol, low=0.0, high=1.0)
     energy, deriv, inverse = _resolve(method, rtol)
     p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
     blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol)
               for k in range(0, len(models), SWEEP_BLOCK)]
-    arrays = [np.concatenate(parts) for parts in zip(*blocks)]
+    arrays = [parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks)]
     return Curve(*(_readonly(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
 
@@ -444,9 +449,9 @@ def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
     past a lock-up ``LOCKED`` at the lock angle, past the domain or the tracing cap
     ``OUT_OF_DOMAIN`` at the end angle. See :func:`sweep` for the parameters.
     """
-    c = sweep([model], pressures_kpa, method=method, rtol=rtol)
-    return Curve(*(_readonly(getattr(c, f.name)[0]) for f in fields(c)[:7]), method=c.method,
-                 calibration=c.calibration)
+    if not isinstance(model, ActuatorModel):
+        raise ParameterError(f"model must be an ActuatorModel, got {type(model).__name__}")
+    return _solve([model], pressures_kpa, method, rtol, squeeze=True)
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Curve:

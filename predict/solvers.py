@@ -65,7 +65,7 @@ COMPLEX_STEP = 1e-30
 BISECT_ITERATIONS = 64
 ILLINOIS_MAX_ITERATIONS = 100
 #: Newton steps on the interpolating cubic (no model evaluations) and on the model.
-CUBIC_NEWTON_STEPS = 4
+CUBIC_NEWTON_STEPS = 3
 NEWTON_STEPS = 6
 
 
@@ -249,10 +249,15 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
         e, v = rate(xt[act], rows_t[act])
         fx = e - t_t[act] * v
         uu = (xt[act] - base[act]) / h[act]
+        r_u = c1[act] + uu * (d2[act] + uu * d3[act])  # dR/du of the cubic
         with np.errstate(divide="ignore", invalid="ignore"):
-            xn = xt[act] - fx * h[act] / (c1[act] + uu * (d2[act] + uu * d3[act]))
+            xn = xt[act] - fx * h[act] / r_u
+            # error left after the step: the cubic's slope error (bounded by its cubic term)
+            # times the step, plus Newton's quadratic term
+            step = np.abs(xn - xt[act])
+            left = step * (9.0 * np.abs(d3[act]) + np.abs(d2[act] + 3.0 * d3[act] * uu) * step / h[act]) / np.abs(r_u)
         ok = (xn >= lo[act]) & (xn <= hi[act])
-        done = ok & ((np.abs(xn - xt[act]) <= rtol * np.abs(xt[act]) + atol) | (fx == 0.0))
+        done = ok & ((np.minimum(step, left) <= rtol * np.abs(xn) + atol) | (fx == 0.0))
         xt[act] = np.where(ok, xn, xt[act])
         stuck.append(act[~ok])
         act = act[ok & ~done]
