@@ -35,6 +35,10 @@ __all__ = ["add_arguments", "run", "parse_pressures"]
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
 _DEFAULT_STEP_KPA = 10.0
+#: Tube options of the quick form: flag, Tube field (also the argparse dest), help.
+_TUBE_FLAGS = (("--tube-radius-mm", "outer_radius_mm", "tube outer radius r_f [mm]"),
+               ("--tube-inner-radius-mm", "inner_radius_mm", "tube inner radius d_f [mm]"),
+               ("--tube-g-mpa", "g_e_mpa", "tube modulus G_e, inflation phase [MPa]"))
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
@@ -46,9 +50,12 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     g.add_argument("--interval-mm", type=float, default=1.0, help="stitch interval s [mm] (default 1)")
     g.add_argument("--angle-deg", type=float, help="cross embroidery angle alpha0, (0, 90) [deg] (cross: required)")
     g.add_argument("--length-mm", type=float, default=100.0, help="actuator length l0 [mm] (default 100)")
-    g.add_argument("--tube-radius-mm", type=float, default=1.5, help="tube outer radius r_f [mm] (default 1.5)")
-    g.add_argument("--tube-inner-radius-mm", type=float, default=1.0, help="tube inner radius d_f [mm] (default 1.0)")
-    g.add_argument("--tube-g-mpa", type=float, default=0.13, help="tube modulus G_e [MPa] (default 0.13)")
+    from ..patterns.params import Tube
+
+    for flag, field, text in _TUBE_FLAGS:
+        default = getattr(Tube(), field)
+        g.add_argument(flag, type=float, default=default, dest=field, metavar=flag[2:].replace("-", "_").upper(),
+                       help=f"{text} (default {default:g})")
     m = parser.add_argument_group("model")
     m.add_argument("--actuator", metavar="NAME", help="design file: only this actuator")
     m.add_argument("--g-mpa", type=float, help="effective modulus G [MPa] (default: design file or calibration set)")
@@ -121,8 +128,7 @@ def _quick_design(args):
         params = CrossParams(args.width_mm, args.interval_mm, args.angle_deg)
     else:
         params = ZigzagParams(args.width_mm, args.interval_mm)
-    tube = Tube(outer_radius_mm=args.tube_radius_mm, inner_radius_mm=args.tube_inner_radius_mm,
-                g_e_mpa=args.tube_g_mpa)
+    tube = Tube(**{field: getattr(args, field) for _, field, _ in _TUBE_FLAGS})
     spec = ActuatorSpec("A1", params, Centerline.straight(args.length_mm), model=ModelSettings())
     return Design("quick", tube, MachineSettings(), OperationSettings(), (spec,))
 

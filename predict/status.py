@@ -4,20 +4,23 @@ Every public answer of the model carries one :class:`Status` per point; a point
 that has no equilibrium never holds NaN but a documented fill value, and its
 status says why.
 
-============== ===== =====================================================================
-name           value meaning (and the fill value used by ``curve`` / ``pressure_at``)
-============== ===== =====================================================================
+============== ===== ========================================================================
+name           value meaning; fill values of ``curve`` (theta) and ``pressure_at`` (pressure)
+============== ===== ========================================================================
 INFLATION      0     P <= P0: the tube fills the sleeve, theta = 0, r from the tube law
+                     (``pressure_at``: theta = 0 gives P0)
 BENDING        1     deformation phase, a stable equilibrium (dP/dtheta > 0 along the bend)
-LOCKED         2     dV/dl -> 0: the sleeve has locked; theta is the lock-up angle and no
-                     pressure bends it further (``pressure_at``: pressure = +P(lock) fill)
-OUT_OF_DOMAIN  3     l <= 0, sin(beta) >= 1, d^2 <= 0, or the angle is on the side no
-                     pressure >= P0 reaches; theta is the domain end (or 0), pressure P0
-UNSTABLE       4     dP/dtheta < 0: snap-through. ``curve`` gives the fold angle (the last
-                     stable state before the jump); ``pressure_at`` gives P(theta)
-FAILED         5     the chosen method produced no finite number here (a documented failure
-                     of that method, e.g. the printed form at |theta| ~ 1e-160); theta is 0
-============== ===== =====================================================================
+LOCKED         2     dV/dl -> 0: the sleeve has locked and no pressure bends it further.
+                     ``curve``: theta = lock-up angle (0 at the neutral angle);
+                     ``pressure_at``: angles at or past lock-up, pressure = P0
+OUT_OF_DOMAIN  3     l <= 0, sin(beta) >= 1, d^2 <= 0, past the tracing cap, or an angle on
+                     the side no pressure >= P0 reaches. ``curve``: theta = the domain end
+                     (0 when the straight state is already outside); ``pressure_at``: P0
+UNSTABLE       4     dP/dtheta < 0: snap-through. ``curve``: theta = the fold angle (the
+                     last stable state before the jump); ``pressure_at``: the real P(theta)
+FAILED         5     the chosen method produced no finite number (a documented failure of
+                     that method, e.g. "printed" where B^2 underflows); theta 0, pressure P0
+============== ===== ========================================================================
 
 Examples
 --------
