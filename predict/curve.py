@@ -73,9 +73,8 @@ from .tubelaws import TUBE_LAWS, pressure_kpa, radius_mm, transition_pressure_kp
 
 __all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "MAX_BEND_DEG", "curve", "pressure_at", "lockup", "sweep"]
 
-_DERIVATIVES_OF = {"stable": ("analytic", "complex", "central"),
-                   "printed": ("analytic", "complex", "central"),
-                   "reference": ("complex", "central")}
+_DERIVATIVES_OF = {e: tuple(d for d in _m.DERIVATIVES if not (e == "reference" and d == "analytic"))
+                   for e in _m.ENERGY_FORMS}
 _INVERSES = ("trace", "root")
 METHODS: tuple[str, ...] = ("auto",) + tuple(
     f"{e}-{d}-{i}" for e, ds in _DERIVATIVES_OF.items() for d in ds for i in _INVERSES

@@ -25,8 +25,15 @@ Energy forms (``form=``)
     (the paper's axial stretch at depth ``rho`` in the wall, angle ``phi``),
     ``lambda2 = r/r0``, ``lambda3 = 1/(lambda1 lambda2)``, integrated by tensor
     Gauss-Legendre over ``rho in [d, r]``, ``phi in [0, 2 pi]`` and multiplied by the
-    length ``l0``. Accurate to ~1e-14 relative while ``B r / A`` stays below ~0.6
-    (64 nodes in phi); slower by the node count; fails where ``lambda1`` reaches 0.
+    length ``l0``. Accurate to ~1e-13 relative up to ``B r / A ~ 0.85`` (64 nodes in
+    phi); the phi integrand ``1/lambda1^2`` sharpens as ``B r / A -> 1`` (lambda1 -> 0 on
+    the wall) and the rule then loses digits; ~100x slower than the closed forms.
+
+Derivatives (``derivative=`` of :func:`energy_rate`): ``"analytic"`` differentiates the
+closed forms by hand (the stable one in the variables ``A`` and ``r`` with
+``m = A - 1 = B r``, free of cancellation; the printed one term by term, inheriting
+its cancellation); ``"complex"`` and ``"central"`` differentiate ``E_s(theta)``
+numerically (see :mod:`embroact.predict.solvers`).
 
 The pattern constraint is one formula for both patterns: the cross pattern's
 ``l(theta)`` with ``beta0 = 0`` is the zigzag's ``l = l0 + 2 r0 theta, r = r0``.
@@ -47,6 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.errors import ParameterError
 from . import solvers
 
 __all__ = [
@@ -59,13 +67,16 @@ __all__ = [
     "energy_gradient",
     "volume",
     "volume_gradient",
+    "energy_rate",
     "pressure_mpa",
+    "in_domain",
     "lock_theta",
     "inner_radius_sq",
 ]
 
-ENERGY_FORMS = ("reference", "printed", "stable")
-DERIVATIVES = ("central", "complex", "analytic")
+ENERGY_FORMS = ("stable", "printed", "reference")
+#: Derivative methods; "analytic" exists for the closed forms only.
+DERIVATIVES = ("analytic", "complex", "central")
 
 #: Gauss-Legendre nodes of the reference energy (wall depth, angle around the tube).
 REFERENCE_NODES = (12, 64)
@@ -215,7 +226,10 @@ def energy(l, r, geo: Geometry, form: str = "stable"):
 
 def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
     """Analytic partial derivatives (dE/dl, dE/dr) of a closed form [N, N]."""
-    f_l, f_r = (_gradient_stable if form == "stable" else _gradient_printed)(l, r, geo)
+    gradients = {"stable": _gradient_stable, "printed": _gradient_printed}
+    if form not in gradients:
+        raise ParameterError(f"form must be one of {', '.join(gradients)} for analytic derivatives, got {form!r}")
+    f_l, f_r = gradients[form](l, r, geo)
     scale = np.pi * geo.g * geo.l0 / 2.0
     return scale * f_l, scale * f_r
 
