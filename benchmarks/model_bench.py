@@ -17,6 +17,7 @@ Examples
 """
 from __future__ import annotations
 
+import gc
 import statistics
 import time
 
@@ -33,14 +34,23 @@ MAX_REPEATS = 25
 
 
 def timed(fn, *, budget_s: float = TIME_BUDGET_S, max_repeats: int = MAX_REPEATS):
-    """(result of the first call, list of wall times [s]) repeating ``fn()`` within the budget."""
-    t0 = time.perf_counter()
-    result = fn()
-    times = [time.perf_counter() - t0]
-    while sum(times) < budget_s and len(times) < max_repeats:
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
+    """(result of the first call, list of wall times [s]) repeating ``fn()`` within the budget.
+
+    As :mod:`timeit` does, the garbage collector is off while timing.
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        t0 = time.perf_counter()
+        result = fn()
+        times = [time.perf_counter() - t0]
+        while sum(times) < budget_s and len(times) < max_repeats:
+            t = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t)
+    finally:
+        if enabled:
+            gc.enable()
     return result, times
 
 
@@ -111,11 +121,7 @@ def sweep_throughput(models, pressures_kpa, *, rtol: float | None = None, repeat
     """Design-pressure evaluations per second of one vectorised ``sweep`` call (median of repeats after a warm-up)."""
     kwargs = {} if rtol is None else {"rtol": rtol}
     c = sweep(models, pressures_kpa, **kwargs)  # warm-up; its answer gives the counts
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        sweep(models, pressures_kpa, **kwargs)
-        times.append(time.perf_counter() - t)
+    _, times = timed(lambda: sweep(models, pressures_kpa, **kwargs), budget_s=float("inf"), max_repeats=repeats)
     n = len(models) * len(pressures_kpa)
     med = statistics.median(times)
     return {"designs": len(models), "pressures": len(pressures_kpa), "evaluations": n, "time_s": med,

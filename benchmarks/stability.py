@@ -101,7 +101,7 @@ def method_panel(panel: dict, method: str) -> dict:
             c = curve(d.model, p[i, ok], method=method)
         except Exception as exc:  # the failure is the result
             err[i, ok] = np.inf
-            notes.add(f"{type(exc).__name__}: {str(exc)[:120]}")
+            notes.add(f"{d.name}: {type(exc).__name__}: {str(exc)[:120]}")
             continue
         e = np.maximum(np.abs(c.theta_deg - th[i, ok]) - panel["input_floor_deg"][i, ok], 0.0) / np.abs(th[i, ok])
         bad = (c.status != Status.BENDING) | ~np.isfinite(e)
