@@ -162,12 +162,12 @@ def _stability(cfg: Config) -> dict:
             r = stability.method_panel(panel, m)
             maps[m][pt] = r["cls"]
             counts = np.bincount(r["cls"].ravel(), minlength=len(stability.CLASSES))
-            bad = r["cls"] >= 2
-            bad &= r["cls"] != stability.NO_EQUILIBRIUM_CLASS
-            where = panel["theta_abs_deg"][bad.any(axis=0)]
+            bad = (r["cls"] >= 2) & (r["cls"] != stability.NO_EQUILIBRIUM_CLASS)
+            cols = np.flatnonzero(bad.any(axis=0))
+            thetas = panel["theta_abs_deg"]
             summary[m][pt] = {"counts": dict(zip([c for c, _ in stability.CLASSES], counts.tolist())),
-                              "out_of_tolerance_theta_deg": [float(where.min()), float(where.max())]
-                              if where.size else None,
+                              "within_tolerance_from_deg": float(thetas[0]) if cols.size == 0
+                              else (float(thetas[cols[-1] + 1]) if cols[-1] + 1 < thetas.size else None),
                               "notes": r["notes"][:6]}
     grid = {"theta_abs_deg": panels["zigzag"]["theta_abs_deg"].tolist(),
             "rows": {pt: p["row_values"] for pt, p in panels.items()},
