@@ -112,8 +112,7 @@ def _baseline(cfg: Config, designs, points, methods) -> dict:
     """scipy baseline on a few designs; per-curve time extrapolated from timed pressures."""
     rows = []
     auto = {r["design"]: r for r in methods[AUTO]["per_design"]}
-    picks = [i for i in range(len(designs))][: cfg.baseline_designs]
-    for i in picks:
+    for i in range(min(cfg.baseline_designs, len(designs))):  # alternately zigzag and cross
         d, (p, th) = designs[i], points[i]
         bending = np.flatnonzero(th != 0.0)
         idx = bending[np.linspace(0, bending.size - 1, cfg.baseline_points).round().astype(int)]
