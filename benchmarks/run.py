@@ -62,7 +62,7 @@ class Config:
 
 CONFIGS = {
     "full": Config(n_designs=12, n_pressures=200, time_budget_s=0.25, baseline_designs=4, baseline_points=6,
-                   stability_grid="full", sweep_designs=1000, cli_runs=7, long_path_mm=10_000.0, long_path_runs=3),
+                   stability_grid="full", sweep_designs=1000, cli_runs=11, long_path_mm=10_000.0, long_path_runs=3),
     "quick": Config(n_designs=2, n_pressures=12, time_budget_s=0.0, baseline_designs=1, baseline_points=2,
                     stability_grid="quick", sweep_designs=8, cli_runs=1, long_path_mm=500.0, long_path_runs=1),
 }
