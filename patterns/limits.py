@@ -2,6 +2,9 @@
 
 Values from pyembroidery 1.5.1's writers (EMBROIDERY.md), in mm per axis (not
 Euclidean). A stitch whose |dx| or |dy| exceeds the limit cannot be one record.
+XXX: the writer encodes a stitch of 124 units (12.4 mm) or more per axis with the
+long-move code 0x7D, which every reader takes as a jump, so its stitch limit is
+12.3 mm (frame moves of 12.4 mm are fine).
 
 Examples
 --------
@@ -55,7 +58,7 @@ FORMAT_LIMITS: dict[str, FormatLimit] = {
         FormatLimit("exp", 12.7, 12.7, 9_999_999, False, "Melco / Bernina EXP"),
         FormatLimit("jef", 12.7, 12.7, 9_999_999, False, "Janome JEF"),
         FormatLimit("u01", 12.7, 12.7, 9_999_999, True, "Barudan U01"),
-        FormatLimit("xxx", 12.4, 12.4, 9_999_999, False, "Singer XXX"),
+        FormatLimit("xxx", 12.3, 12.4, 9_999_999, False, "Singer XXX"),
         FormatLimit("pes", 204.7, 204.7, 9_999_999, False, "Brother PES"),
         FormatLimit("pec", 204.7, 204.7, 9_999_999, False, "Brother PEC"),
         FormatLimit("vp3", 25.5, 320.0, 9_999_999, False, "Pfaff / Husqvarna VP3"),
