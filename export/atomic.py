@@ -31,7 +31,8 @@ def check_output_dir(path: str | os.PathLike) -> Path:
     p = Path(path)
     parent = p.parent if str(p.parent) else Path(".")
     if not parent.is_dir():
-        raise ExportError(f"output directory {str(parent)!r} does not exist")
+        what = "is not a directory" if parent.exists() else "does not exist"
+        raise ExportError(f"output directory {str(parent)!r} {what}")
     if not os.access(parent, os.W_OK):
         raise ExportError(f"output directory {str(parent)!r} is not writable")
     return p
@@ -40,7 +41,10 @@ def check_output_dir(path: str | os.PathLike) -> Path:
 def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
     """Write ``data`` to ``path`` via a temporary file in the same directory and ``os.replace``."""
     p = check_output_dir(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent)
+    try:  # a directory root may not write to (/proc, a read-only mount) passes os.access
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent)
+    except OSError as exc:
+        raise ExportError(f"cannot write {str(p)!r}: {exc.strerror or exc}") from exc
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)

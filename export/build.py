@@ -149,7 +149,7 @@ def check_out_dir(out_dir: str | os.PathLike) -> Path:
     """``out_dir`` as a Path, or :class:`ExportError` if it is missing or not writable."""
     p = Path(out_dir)
     if not p.is_dir():
-        raise ExportError(f"output directory {str(p)!r} does not exist")
+        raise ExportError(f"output directory {str(p)!r} {'is not a directory' if p.exists() else 'does not exist'}")
     if not os.access(p, os.W_OK | os.X_OK):
         raise ExportError(f"output directory {str(p)!r} is not writable")
     return p
