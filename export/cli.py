@@ -41,10 +41,17 @@ COMMANDS: dict[str, tuple[str, str]] = {
 EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER = 0, 1, 2, 3, 4
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse whose usage errors are one line (no usage block), like every other error."""
+
+    def error(self, message: str):
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+
 def _top_parser() -> argparse.ArgumentParser:
     width = max(len(n) for n in COMMANDS)
     lines = "\n".join(f"  {n:<{width}}  {h}" for n, (_, h) in COMMANDS.items())
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="embroact",
         description="CAD tool and stitch generator for embroidery actuators.\n\ncommands:\n" + lines,
         epilog="Units: mm, kPa, MPa, deg. 'embroact COMMAND --help' shows a command's options. "
@@ -60,7 +67,7 @@ def _top_parser() -> argparse.ArgumentParser:
 
 def _command_parser(name: str):
     module = importlib.import_module(f".{COMMANDS[name][0]}", __package__)
-    parser = argparse.ArgumentParser(prog=f"embroact {name}", description=COMMANDS[name][1])
+    parser = _Parser(prog=f"embroact {name}", description=COMMANDS[name][1])
     parser.add_argument("--debug", action="store_true", help="show tracebacks for errors")
     module.add_arguments(parser, name)
     return module, parser
