@@ -76,7 +76,7 @@ def run(args) -> int:
     """Load (or default) the design, build, report."""
     from .build import DesignRuleError, build, check_out_dir, parse_formats
 
-    formats = parse_formats(args.format) if args.format else None
+    formats = parse_formats(args.format) if args.format is not None else None
     check_out_dir(args.out)
     if args.design:
         from .designfile import load_design
