@@ -96,6 +96,9 @@ class Geometry:
         Wall constant r_f^2 - d_f^2 [mm^2].
     g, p0 : ndarray
         Effective shear modulus G and transition pressure P0 [MPa].
+    gamma, r_c0, r_slope, e_scale : ndarray
+        Derived once: 2 r0/(l0 c0) [1/rad], r0/c0 [mm], r0 s0/(l0 c0) [-] and the
+        energy's factor pi G l0/2 [N].
     """
 
     l0: np.ndarray
@@ -105,6 +108,10 @@ class Geometry:
     c: np.ndarray
     g: np.ndarray
     p0: np.ndarray
+    gamma: np.ndarray
+    r_c0: np.ndarray
+    r_slope: np.ndarray
+    e_scale: np.ndarray
 
     @classmethod
     def from_values(cls, *, beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa) -> "Geometry":
@@ -112,7 +119,9 @@ class Geometry:
         cols = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=np.float64))
                                      for v in (beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa)))
         beta0, l0, r0, c, g, p0 = (np.ascontiguousarray(v.reshape(-1, 1)) for v in cols)
-        return cls(l0=l0, r0=r0, s0=np.sin(beta0), c0=np.cos(beta0), c=c, g=g, p0=p0)
+        s0, c0 = np.sin(beta0), np.cos(beta0)
+        return cls(l0=l0, r0=r0, s0=s0, c0=c0, c=c, g=g, p0=p0, gamma=2.0 * r0 / (l0 * c0), r_c0=r0 / c0,
+                   r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0)
 
     def take(self, rows) -> "Geometry":
         """The designs at ``rows`` (index array or boolean mask)."""
@@ -128,12 +137,13 @@ def constraint(theta, geo: Geometry):
     (complex-step derivatives). Outside the domain the values may be nan; callers
     check :func:`in_domain`.
     """
-    gt = 2.0 * geo.r0 / (geo.l0 * geo.c0) * theta
-    gs2 = (gt * geo.s0) ** 2
-    u = (1.0 + gt * np.sqrt(geo.c0**2 + gs2)) / (1.0 + gs2)
+    gt = geo.gamma * theta
+    gs = gt * geo.s0
+    gs2 = gs * gs
+    u = (1.0 + gt * np.sqrt(geo.c0 * geo.c0 + gs2)) / (1.0 + gs2)
     sinb = u * geo.s0
     cosb = np.sqrt(1.0 - sinb * sinb)
-    return geo.l0 * u, geo.r0 * cosb / geo.c0, sinb, cosb
+    return geo.l0 * u, geo.r_c0 * cosb, sinb, cosb
 
 
 def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
@@ -142,9 +152,9 @@ def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
     From ``theta = (l - l0)/(2 r)`` and ``dr/dl = -(r0 s0/(l0 c0)) tan(beta)``:
     ``dtheta/dl = (1 - 2 theta dr/dl)/(2 r)``.
     """
-    r_l = -(geo.r0 * geo.s0 / (geo.l0 * geo.c0)) * sinb / cosb
-    l_t = 2.0 * r / (1.0 - 2.0 * theta * r_l)
-    return l_t, r_l * l_t
+    r_l = geo.r_slope * sinb / cosb  # -dr/dl
+    l_t = r / (0.5 + theta * r_l)
+    return l_t, -r_l * l_t
 
 
 def inner_radius_sq(l, r, geo: Geometry):
@@ -165,12 +175,13 @@ def lock_theta(geo: Geometry):
     proportional to ``cos(beta) (1 - 3 x^2 - 2 s0 x)``, ``x = sin(beta)``, so
     ``x_L = (sqrt(s0^2 + 3) - s0)/3``; ``x_L = s0`` exactly at ``tan(beta0) = 1/2``.
     """
-    s0 = geo.s0
-    x = (np.sqrt(s0 * s0 + 3.0) - s0) / 3.0
+    s0, c0 = geo.s0, geo.c0
+    root = np.sqrt(s0 * s0 + 3.0)
+    x = (root - s0) / 3.0
+    # x - s0 = (1 - 5 s0^2)/(root + 4 s0): no cancellation near the neutral angle
     with np.errstate(divide="ignore", invalid="ignore"):
-        l = geo.l0 * x / s0
-        r = geo.r0 * np.sqrt(1.0 - x * x) / geo.c0
-        theta = (l - geo.l0) / (2.0 * r)
+        dl = geo.l0 * (c0 - 2.0 * s0) * (c0 + 2.0 * s0) / ((root + 4.0 * s0) * s0)
+        theta = dl / (2.0 * geo.r_c0 * np.sqrt(1.0 - x * x))
     return np.where(s0 > 0.0, theta, np.inf)
 
 
@@ -218,10 +229,9 @@ def _energy_reference(l, r, geo: Geometry):
 
 def energy(l, r, geo: Geometry, form: str = "stable"):
     """Strain energy E_s [N mm] at (l, r); ``form`` is "stable", "printed" or "reference"."""
-    scale = np.pi * geo.g * geo.l0 / 2.0
     if form == "reference":
-        return scale * _energy_reference(l, r, geo)
-    return scale * _energy_closed(l, r, geo, form)
+        return geo.e_scale * _energy_reference(l, r, geo)
+    return geo.e_scale * _energy_closed(l, r, geo, form)
 
 
 def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
@@ -230,8 +240,7 @@ def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
     if form not in gradients:
         raise ParameterError(f"form must be one of {', '.join(gradients)} for analytic derivatives, got {form!r}")
     f_l, f_r = gradients[form](l, r, geo)
-    scale = np.pi * geo.g * geo.l0 / 2.0
-    return scale * f_l, scale * f_r
+    return geo.e_scale * f_l, geo.e_scale * f_r
 
 
 def _gradient_stable(l, r, geo: Geometry):
@@ -296,7 +305,7 @@ def volume(l, r, geo: Geometry):
 
 def volume_gradient(l, r, geo: Geometry):
     """(dV/dl, dV/dr) = (pi r^2/2, pi r (l + l0)) [mm^2, mm^2]."""
-    return np.pi * r * r / 2.0, np.pi * r * (l + geo.l0)
+    return (0.5 * np.pi) * (r * r), np.pi * r * (l + geo.l0)
 
 
 # -- pressure ---------------------------------------------------------------------------

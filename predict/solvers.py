@@ -65,8 +65,10 @@ COMPLEX_STEP = 1e-30
 BISECT_ITERATIONS = 64
 ILLINOIS_MAX_ITERATIONS = 100
 #: Newton steps on the interpolating cubic (no model evaluations) and on the model.
-CUBIC_NEWTON_STEPS = 3
+CUBIC_NEWTON_STEPS = 2
 NEWTON_STEPS = 6
+#: A branch is tabulated again up to its highest target when that lies within the first 1/ZOOM.
+ZOOM = 4
 
 
 def derivative(f, x, *, scale, method: str):
@@ -149,8 +151,9 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     Parameters
     ----------
     rate : callable
-        ``rate(theta, rows=None) -> (dE/dtheta, dV/dtheta)``: for an ``(n, k)`` array
-        (one design per row), or for 1-D ``theta`` at the designs ``rows``.
+        ``rate(theta, rows=None) -> (dE/dtheta, dV/dtheta)`` for theta of shape
+        ``(n, k)`` (one design per row), or at the designs ``rows`` (theta 1-D, one
+        value per row, or 2-D, one row each).
     slope : callable
         ``slope(theta, rows)``, a smooth function with the sign of dP/dtheta along the
         branch (zero at a fold), same calling convention.
@@ -159,7 +162,7 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     targets : ndarray, shape (n, m)
         Pressures minus P0 [MPa], > 0.
     grid_points : int
-        Tabulation points along each branch.
+        Tabulation points along each branch (and again on a zoomed part, see below).
     rtol, atol : float
         Converged when a step is below ``rtol * |theta| + atol`` [rad].
     pole_at_end : bool or ndarray (n, 1)
@@ -172,7 +175,16 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     where : ndarray of int8 (n, m)
         0 solved, 1 target above the branch end, 2 target above a fold (unstable).
     theta_stop, p_stop : ndarray (n, 1)
-        Where the stable part of the branch stops (fold or end) and P - P0 there.
+        Where the stable part of the branch stops (fold or end) and P - P0 there. A
+        fold is located exactly (root of ``slope``) only when a target lies above the
+        last rising grid point, or when ``targets`` is empty (the caller asks for the
+        end); otherwise it is the last rising grid point.
+
+    Notes
+    -----
+    Rows whose targets all lie in the first quarter of the tabulated branch are
+    tabulated again on the part up to the highest target (a zoom), so that the cubic
+    start of the polish is accurate without a finer grid everywhere.
     """
     grid = theta_end * np.linspace(0.0, 1.0, grid_points)
     de, dv = rate(grid)
@@ -186,8 +198,9 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     rows = np.arange(grid.shape[0])
     theta_stop = grid[rows, first_fall]
     p_stop = p[rows, first_fall]
-    folded = np.flatnonzero(first_fall < grid_points - 1)
-    if folded.size:  # refine each fold: the root of the slope around the last rising point
+    top = targets.max(axis=1) if targets.shape[1] else np.full(rows.size, np.inf)
+    folded = np.flatnonzero((first_fall < grid_points - 1) & (top > p[rows, np.maximum(first_fall - 1, 0)]))
+    if folded.size:  # locate the fold: the root of the slope around the last rising point
         lo = grid[folded, np.maximum(first_fall[folded] - 1, 0)]
         hi = grid[folded, first_fall[folded] + 1]
         s_lo, s_hi = slope(lo, folded), slope(hi, folded)
@@ -197,11 +210,35 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
         e, v = rate(t_fold, sel)
         theta_stop[sel], p_stop[sel] = t_fold, e / v
     theta_stop, p_stop = theta_stop[:, None], p_stop[:, None]
+    # the stable part ends at the last grid point before the fold (the fold may precede grid[ff])
+    last = first_fall - (np.abs(grid[rows, first_fall]) > np.abs(theta_stop[:, 0]))
+    reach = np.array([np.searchsorted(p[k, :last[k] + 1], top[k]) for k in rows])  # first point >= top
+    zoom = np.flatnonzero((reach + 1) * ZOOM < last)
+    if zoom.size:
+        grid[zoom] = grid[zoom, reach[zoom] + 1][:, None] * np.linspace(0.0, 1.0, grid_points)
+        de[zoom], dv[zoom] = rate(grid[zoom], zoom)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            p[zoom] = de[zoom] / dv[zoom]
+        p[zoom, 0] = 0.0
+        last[zoom] = grid_points - 1
     beyond = targets > p_stop
-    i = _bracket_index(p, np.maximum(first_fall, 1), np.where(beyond, 0.0, targets))
     where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
     theta = np.where(beyond, theta_stop, 0.0)
-    solve = np.nonzero(~beyond)
+    # between the last rising grid point and a located fold: bracket [grid point, fold]
+    tail = ~beyond & (targets > p[rows, last][:, None])
+    if tail.any():
+        r_t, t_t = np.nonzero(tail)[0], targets[tail]
+        a, b = grid[r_t, last[r_t]], theta_stop[r_t, 0]
+        fa = de[r_t, last[r_t]] - t_t * dv[r_t, last[r_t]]
+        e, v = rate(b, r_t)
+
+        def residual(x, k):
+            e, v = rate(x, r_t[k])
+            return e - t_t[k] * v
+
+        theta[tail] = illinois(residual, a, b, fa, e - t_t * v, rtol=rtol, atol=atol)
+    i = _bracket_index(p, last, np.where(beyond | tail, 0.0, targets))
+    solve = np.nonzero(~beyond & ~tail)
     if solve[0].size:
         theta[solve] = _polish(rate, grid, de, dv, i[solve], solve[0], targets[solve], (rtol, atol))
     return theta, where, theta_stop, p_stop
@@ -239,30 +276,35 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
         u = u_lo + ra_t / (ra_t - rb_t)
         for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1], u = (x - grid_j)/h
             u = u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (d2 + u * d3))
-            u = np.clip(np.where(u == u, u, u_lo + 0.5), u_lo, u_lo + 1.0)
+            u = np.minimum(np.maximum(u, u_lo), u_lo + 1.0)  # nan (flat cubic) goes on to Illinois
     base = grid[rows_t, j]
     lo, hi = np.minimum(ta[todo], tb[todo]), np.maximum(ta[todo], tb[todo])
     xt = base + h * u
-    act = np.arange(todo.size)
+    # Newton on the model's residual; the working arrays shrink to the unconverged entries
+    work = [np.arange(todo.size), xt.copy(), rows_t, t_t, base, h, c1, d2, d3, lo, hi]
     stuck = []
     for _ in range(NEWTON_STEPS):
-        e, v = rate(xt[act], rows_t[act])
-        fx = e - t_t[act] * v
-        uu = (xt[act] - base[act]) / h[act]
-        r_u = c1[act] + uu * (d2[act] + uu * d3[act])  # dR/du of the cubic
+        idx, xw, rw, tw, bw, hw, c1w, d2w, d3w, low, hiw = work
+        e, v = rate(xw, rw)
+        fx = e - tw * v
+        uu = (xw - bw) / hw
+        r_u = c1w + uu * (d2w + uu * d3w)  # dR/du of the cubic
         with np.errstate(divide="ignore", invalid="ignore"):
-            xn = xt[act] - fx * h[act] / r_u
+            xn = xw - fx * hw / r_u
             # error left after the step: the cubic's slope error (bounded by its cubic term)
             # times the step, plus Newton's quadratic term
-            step = np.abs(xn - xt[act])
-            left = step * (9.0 * np.abs(d3[act]) + np.abs(d2[act] + 3.0 * d3[act] * uu) * step / h[act]) / np.abs(r_u)
-        ok = (xn >= lo[act]) & (xn <= hi[act])
+            step = np.abs(xn - xw)
+            left = step * (9.0 * np.abs(d3w) + np.abs(d2w + 3.0 * d3w * uu) * step / hw) / np.abs(r_u)
+        ok = (xn >= low) & (xn <= hiw)
         done = ok & ((np.minimum(step, left) <= rtol * np.abs(xn) + atol) | (fx == 0.0))
-        xt[act] = np.where(ok, xn, xt[act])
-        stuck.append(act[~ok])
-        act = act[ok & ~done]
-        if act.size == 0:
+        xt[idx] = np.where(ok, xn, xw)
+        stuck.append(idx[~ok])
+        keep = ok & ~done
+        work = [a[keep] for a in work]
+        work[1] = xn[keep]
+        if not keep.any():
             break
+    act = work[0]  # still moving after NEWTON_STEPS
     stuck = np.concatenate(stuck + [act])
     if stuck.size:
         r_s, t_s = rows_t[stuck], t_t[stuck]
@@ -278,20 +320,15 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
 
 
 def _bracket_index(values, last, targets):
-    """Per row, the index i < last[row] with values[i] <= target < values[i+1] (binary search).
+    """Per row, the index i < last[row] with values[i] <= target < values[i+1].
 
-    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end interval.
+    ``values[:, :last+1]`` must be increasing; targets outside give the nearest end
+    interval (the first one when ``last`` is 0). One ``searchsorted`` per row.
     """
-    n, k = values.shape
-    flat = values.ravel()
-    offset = (np.arange(n) * k)[:, None]
-    lo = np.zeros(targets.shape, dtype=np.intp)
-    hi = np.broadcast_to(np.minimum(last, k - 1)[:, None], targets.shape).astype(np.intp)
-    for _ in range(int(np.ceil(np.log2(max(k, 2))))):
-        mid = (lo + hi) // 2
-        up = flat[offset + mid] <= targets
-        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
-    return lo
+    out = np.empty(targets.shape, dtype=np.intp)
+    for k, (row, end) in enumerate(zip(values, last)):
+        out[k] = np.searchsorted(row[:end + 1], targets[k], side="right") - 1
+    return np.clip(out, 0, np.maximum(last - 1, 0)[:, None])
 
 
 def root_each(residual, lo, hi, *, rtol, atol):

@@ -119,6 +119,12 @@ def test_beyond_the_fold_is_unstable_at_the_fold_angle():
         assert theta_fold == pytest.approx(float(mp.degrees(ref)), abs=1e-6)
         assert p_fold == pytest.approx(float(ZIGZAG7.pressure(ref)) * 1000, rel=1e-12)
         assert float(ZIGZAG7.pressure(mp.radians(c.theta_deg[0]))) * 1000 == pytest.approx(505.0, rel=1e-11)
+    # just below the fold (between the last rising grid point and the fold): still answered
+    near = curve(model(), [p_fold - 1e-3, p_fold * (1 - 1e-12)])
+    assert np.all(near.status == Status.BENDING) and np.all(near.theta_deg < theta_fold)
+    with mp.workdps(30):
+        for t, p in zip(near.theta_deg, near.pressure_kpa):
+            assert float(ZIGZAG7.pressure(mp.radians(t))) * 1000 == pytest.approx(p, rel=1e-12)
     # P(theta) past the fold: real pressures, reported unstable
     back = pressure_at(model(), [1000.0, 2000.0, 2500.0])
     assert back.status.tolist() == [Status.BENDING, Status.UNSTABLE, Status.UNSTABLE]

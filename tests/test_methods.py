@@ -177,7 +177,7 @@ def test_theta_of_pressure_against_reference(name, method, reference_angles):
     c = curve(model(ref), p, method=method)
     assert np.all(c.status == 1)
     if "central" in method:
-        # central differences resolve P to ~1e-7 relative (ACCURACY): P0 (1 + 1e-9) is below that
+        # central differences resolve P to ~3e-7 relative (ACCURACY): P0 (1 + 1e-9) is below that
         c, p, expected = c.theta_deg[1:], p[1:], expected[1:]
         np.testing.assert_allclose(c, expected, rtol=0, atol=1e-5)
         return
@@ -234,3 +234,71 @@ def test_printed_methods_never_return_nan(method):
     for k in ("theta_deg", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm"):
         assert np.all(np.isfinite(getattr(c, k)))
     assert c.method == method
+
+
+# -- the solvers on functions with known answers -------------------------------------------
+def _rate_of(f):
+    """Solver calling convention for P(theta) = f(theta) with dV/dtheta = 1."""
+    def rate(theta, rows=None):
+        return f(theta), np.ones_like(theta)
+    return rate
+
+
+def _central_slope(f):
+    def slope(theta, rows=None):
+        h = 1e-6
+        return (f(theta + h) - f(theta - h)) / (2 * h)
+    return slope
+
+
+def test_trace_inverse_on_a_cubic():
+    """P = theta^3 + theta: theta(P) by Cardano, to the last digits."""
+    from embroact.predict import solvers
+
+    f = lambda t: t**3 + t  # noqa: E731
+    targets = np.array([[1e-9, 0.5, 2.0, 9.9]])
+    theta, where, stop, p_stop = solvers.trace_inverse(_rate_of(f), np.array([[2.0]]), targets,
+                                                       slope=_central_slope(f), grid_points=16, rtol=1e-14, atol=0)
+    exact = 2 / np.sqrt(3) * np.sinh(np.arcsinh(1.5 * np.sqrt(3) * targets) / 3)  # real root, no cancellation
+    np.testing.assert_allclose(theta, exact, rtol=1e-13)
+    assert where.tolist() == [[0, 0, 0, 0]] and stop[0, 0] == 2.0 and p_stop[0, 0] == 10.0
+    beyond = solvers.trace_inverse(_rate_of(f), np.array([[2.0]]), np.array([[10.5]]), slope=_central_slope(f),
+                                   grid_points=16, rtol=1e-14, atol=0)
+    assert beyond[1].tolist() == [[1]] and beyond[0][0, 0] == 2.0
+
+
+@pytest.mark.parametrize("end", [3.0, (np.pi / 2 + 0.01) * 23 / 12], ids=["fold-after-grid-point",
+                                                                         "fold-before-grid-point"])
+def test_trace_inverse_finds_the_fold_and_stops_there(end):
+    """P = sin(theta): the fold is at pi/2 with P = 1; higher targets are past it. With the
+    second end a grid point sits just past the fold and still looks rising."""
+    from embroact.predict import solvers
+
+    targets = np.array([[0.5, 0.99999, 0.999999, 1.5]])
+    theta, where, stop, p_stop = solvers.trace_inverse(_rate_of(np.sin), np.array([[end]]), targets,
+                                                       slope=_central_slope(np.sin), grid_points=24, rtol=1e-13, atol=0)
+    assert where.tolist() == [[0, 0, 0, 2]]
+    assert stop[0, 0] == pytest.approx(np.pi / 2, abs=1e-9) and p_stop[0, 0] == pytest.approx(1.0, abs=1e-15)
+    np.testing.assert_allclose(theta[0, :3], np.arcsin(targets[0, :3]), rtol=1e-10)  # the rising side
+    assert theta[0, 3] == stop[0, 0]
+
+
+def test_polish_falls_back_to_illinois_when_newton_cannot_finish(monkeypatch):
+    """With no Newton step allowed, every entry is finished by the bracketing method."""
+    from embroact.predict import solvers
+
+    monkeypatch.setattr(solvers, "NEWTON_STEPS", 0)
+    f = lambda t: np.exp(t) - 1  # noqa: E731
+    targets = np.array([[0.1, 1.0, 5.0]])
+    theta = solvers.trace_inverse(_rate_of(f), np.array([[2.0]]), targets, slope=_central_slope(f),
+                                  grid_points=8, rtol=1e-14, atol=0)[0]
+    np.testing.assert_allclose(theta, np.log1p(targets), rtol=1e-13)
+
+
+def test_illinois_reports_non_convergence():
+    from embroact.patterns.errors import SolverError
+    from embroact.predict import solvers
+
+    with pytest.raises(SolverError, match="did not converge in 3 iterations on 1 point"):
+        solvers.illinois(lambda x, k: x**3 - 2.0, np.array([0.0]), np.array([2.0]), np.array([-2.0]),
+                         np.array([6.0]), rtol=1e-15, atol=0.0, max_iterations=3)
