@@ -280,12 +280,15 @@ def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
     """rate(theta, rows=None) -> (dE/dtheta, dV/dtheta): theta (n, k) for every design, or
     at the designs ``rows`` with 1-D theta (one value each) or 2-D theta (one row each),
     the solvers' calling convention."""
+    single = geo.l0.shape[0] == 1  # one design: rows need no gathering, theta lies along axis 1
+
     def rate(theta, rows=None):
-        g = geo if rows is None else geo.take(rows)
+        g = geo if rows is None or single else geo.take(rows)
         flat = theta.ndim == 1
+        th = theta if not flat else theta[None, :] if single else theta[:, None]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            de, dv = _m.energy_rate(theta[:, None] if flat else theta, g, form=energy, derivative=deriv)
-        return (de[:, 0], dv[:, 0]) if flat else (de, dv)
+            de, dv = _m.energy_rate(th, g, form=energy, derivative=deriv)
+        return (de.ravel(), dv.ravel()) if flat else (de, dv)
 
     return rate
 
