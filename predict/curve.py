@@ -14,22 +14,24 @@ A method name is ``"<energy>-<derivative>-<inverse>"`` or ``"auto"``:
 * energy ``stable`` | ``printed`` | ``reference`` (see :mod:`embroact.predict.model`);
 * derivative ``analytic`` (closed forms only) | ``complex`` | ``central``
   (see :mod:`embroact.predict.solvers`);
-* inverse ``trace`` (tabulate along the branch, bracket, polish; cannot jump
-  branches) | ``root`` (scipy ``brentq`` per pressure on the whole branch; may land
-  on an unstable or later branch when P(theta) is not monotone, and is ~100x slower).
+* inverse ``trace`` (tabulate E' and V' along the branch, zoom onto the part the
+  pressures need, bracket each pressure, start from a cubic and polish by Newton;
+  follows the branch from the straight state, so it cannot jump branches; a fold
+  narrower than the tabulation step is missed) | ``root`` (scipy ``brentq`` per
+  pressure on the whole branch; may land on an unstable or later branch, or miss
+  the branch, when P(theta) is not monotone; 10-20x slower).
 
 Relative accuracy of P (:data:`ACCURACY`, held by the tests against the 50-digit
 reference over the parameter space, near theta = 0, the neutral angle and lock-up):
-stable-analytic, stable-complex and reference-complex 1e-12 (observed <= 1e-13),
+stable-analytic, stable-complex and reference-complex 1e-12 (observed <= 1e-13);
 stable-central and reference-central 3e-7 (round-off of the difference quotient:
 the energy's terms are ~G l0 c and cancel to E ~ 0 near the straight state, so the
 error is worst when P0 is small against G, and near the neutral angle where
-dV/dtheta is small), printed-* none: near
-theta = 0 the printed T loses every digit (at |theta| = 1e-3 rad the pressure is
-wrong in the 1st-3rd digit, at 1e-5 rad by orders of magnitude); it is good to
-~1e-6 only beyond |theta| ~ 0.5 rad. ``"auto"`` picks the cheapest method whose
-accuracy meets ``rtol`` (``stable-analytic-trace`` for any ``rtol >= 1e-12``) and
-``Curve.method`` names it.
+dV/dtheta is small); printed-* none: near theta = 0 the printed T loses every
+digit (at |theta| = 1e-3 rad the pressure is wrong in the 1st-3rd digit, at 1e-5 rad
+by orders of magnitude); it is good to ~1e-6 only beyond |theta| ~ 0.5 rad.
+``"auto"`` picks the cheapest method whose accuracy meets ``rtol``
+(``stable-analytic-trace`` for any ``rtol >= 1e-12``) and ``Curve.method`` names it.
 ``pressure_at`` uses the energy and derivative parts only.
 
 Branch ends
@@ -473,7 +475,7 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
 
 
 def lockup(model: ActuatorModel) -> tuple[float, float]:
-    """(theta_deg, pressure_kpa) where the stable branch ends.
+    """(theta_deg, pressure_kpa) where the stable branch ends (stable analytic method).
 
     Lock-up (cross designs): the lock angle and ``math.inf`` (P has a pole there).
     Otherwise the fold (snap-through), the domain end or the tracing cap

@@ -19,14 +19,20 @@ Derivatives (``method=``)
 
 Inverses
 --------
-:func:`trace_inverse` tabulates the equilibrium residual on a grid along the branch
-(a parametric trace in theta), finds each target's bracket from the tabulated
-pressures, interpolates linearly and polishes with the Illinois variant of regula
-falsi (superlinear, never leaves the bracket). It follows the branch from theta = 0
-only, so it cannot jump to another branch; a fold narrower than the grid spacing is
-missed. :func:`root_each` runs scipy's ``brentq`` per target on the whole branch: it
-returns *a* root in the bracket, which may belong to an unstable or later branch
-when P(theta) is not monotone.
+:func:`trace_inverse` is a parametric trace in theta: it tabulates the rates
+``E'(theta)``, ``V'(theta)`` on a grid along the branch (and again on the part the
+targets need when they sit in its first quarter), finds the first fold of
+``P = P0 + E'/V'`` on the grid, brackets each target between grid points, starts
+from the root of a cubic through the four tabulated residuals
+``R = E' - (P - P0) V'`` around the bracket (R has no pole at lock-up, P has) and
+finishes with Newton steps on the true residual, stopping when the predicted error
+left after a step is below the tolerance; entries a Newton step would take out of
+the bracket finish by Illinois regula falsi (bracketing, superlinear). It follows the
+branch from theta = 0 only, so it cannot jump to another branch; a fold narrower than
+the grid spacing is missed. :func:`root_each` runs scipy's ``brentq`` per target on
+the whole branch: it returns *a* root in the bracket, which may belong to an
+unstable or later branch, or finds none when P(theta) dips below the target and
+ends below it (a missed branch).
 
 Examples
 --------
