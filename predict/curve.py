@@ -147,6 +147,9 @@ class ActuatorModel:
             raise ParameterError(f"beta0_deg must be 0 for the zigzag pattern, got {self.beta0_deg!r}")
         if self.tube_law not in TUBE_LAWS:
             raise ParameterError(f"tube_law must be one of {', '.join(TUBE_LAWS)}, got {self.tube_law!r}")
+        if self.tube_law == "thick-wall" and self.inner_radius_mm == 0:
+            raise ParameterError("inner_radius_mm must be > 0 with tube_law 'thick-wall' (a solid rod does not "
+                                 "inflate), got 0")
 
     @classmethod
     def from_derived(cls, derived, *, g_mpa, p0_kpa=None, calibration="given", tube_law="paper"):

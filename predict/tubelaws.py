@@ -81,14 +81,14 @@ def pressure_kpa(radius_mm, tube, law: str = "paper"):
     return _thick_wall_mpa((rf / r) ** 2, rf, df, mu) * KPA_PER_MPA
 
 
-def radius_mm(pressure_kpa_, tube, law: str = "paper"):
+def radius_mm(pressure_kpa, tube, law: str = "paper"):
     """Outer radius [mm] of the free tube at ``pressure_kpa`` >= 0 (inverse of the law).
 
     Raises :class:`ModelDomainError` for the thick-wall law at or above its limit.
     """
     _check_law(law)
     rf, df, mu = _tube_arrays(tube)
-    p = np.asarray(pressure_kpa_, dtype=np.float64)
+    p = np.asarray(pressure_kpa, dtype=np.float64)
     if law == "paper":
         return paper_radius_mm(p, rf, mu)
     limit = thick_wall_limit_kpa((rf, df, mu))

@@ -46,6 +46,7 @@ ZIGZAG7 = mpref.Ref.zigzag(width_mm=7, g_mpa=2.7, p0_kpa=85)
     ({"p0": -5.0}, r"p0_kpa must be in \[0, 1e\+06\), got -5"),
     ({"g": 0.0}, r"g_mpa must be in \(0, 100000\), got 0"),
     ({"tube_law": "thin"}, "tube_law must be one of paper, thick-wall, got 'thin'"),
+    ({"tube_law": "thick-wall", "df": 0.0}, "inner_radius_mm must be > 0 with tube_law 'thick-wall'"),
 ])
 def test_model_validation_one_line(kwargs, match):
     with pytest.raises(ParameterError, match=match):
