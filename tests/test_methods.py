@@ -302,3 +302,18 @@ def test_illinois_reports_non_convergence():
     with pytest.raises(SolverError, match="did not converge in 3 iterations on 1 point"):
         solvers.illinois(lambda x, k: x**3 - 2.0, np.array([0.0]), np.array([2.0]), np.array([-2.0]),
                          np.array([6.0]), rtol=1e-15, atol=0.0, max_iterations=3)
+
+
+def test_printed_form_failure_is_reported_not_nan():
+    """At |theta| = 1e-20 deg B^2 r^2 is below A^2's last bit: the printed analytic
+    derivative divides 0 by 0 (FAILED, fill P0); the printed complex step returns a
+    number that is wrong by an order of magnitude (the documented cancellation)."""
+    from embroact.predict.status import Status
+
+    m = model(DESIGNS["zigzag-w5"])
+    failed = pressure_at(m, [1e-20], method="printed-analytic-trace")
+    assert failed.status[0] == Status.FAILED and failed.pressure_kpa[0] == m.p0_kpa and failed.theta_deg[0] == 0
+    wrong = pressure_at(m, [1e-20], method="printed-complex-trace")
+    assert wrong.status[0] == Status.BENDING and wrong.pressure_kpa[0] > 2 * m.p0_kpa
+    right = pressure_at(m, [1e-20])
+    assert right.pressure_kpa[0] == pytest.approx(m.p0_kpa, rel=1e-15)
