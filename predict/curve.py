@@ -87,11 +87,12 @@ ACCURACY = {("stable", "analytic"): 1e-12, ("stable", "complex"): 1e-12, ("stabl
             ("reference", "complex"): 1e-12, ("reference", "central"): 3e-7}
 #: Largest bend the tracer follows on a branch that never locks [deg].
 MAX_BEND_DEG = 3600.0
+#: Largest |theta| ``pressure_at`` accepts [deg] (the constraint overflows near 1e300).
+ANGLE_LIMIT_DEG = 1e6
 #: Angle below which convergence is absolute: steps < rtol * THETA_FLOOR_RAD stop [rad].
 THETA_FLOOR_RAD = 1e-12
-#: Tabulation points along a branch (trace inverse) and domain probes.
+#: Tabulation points along a branch (trace inverse).
 TRACE_POINTS = 128
-DOMAIN_PROBES = 17
 #: Designs solved together by ``sweep`` (arrays of a block stay in cache).
 SWEEP_BLOCK = 128
 
@@ -230,15 +231,13 @@ def _geometry(models) -> _m.Geometry:
                                    c_mm2=cols[3], g_mpa=cols[4], p0_mpa=cols[5] / KPA_PER_MPA)
 
 
-def _values(name: str, values, *, low=None) -> np.ndarray:
-    a = np.asarray(values, dtype=np.float64)
+def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
+    a = np.atleast_1d(np.asarray(values, dtype=np.float64))
     if a.ndim > 1:
         raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
-    a = np.atleast_1d(a)
-    bad = ~np.isfinite(a) | ((a < low) if low is not None else False)
+    bad = ~np.isfinite(a) | (a < low) | (a > high)
     if bad.any():
-        rng = f"[{low:g}, inf)" if low is not None else "(-inf, inf)"
-        raise ParameterError(f"{name} must be finite numbers in {rng}, got {float(a[bad][0]):g}")
+        raise ParameterError(f"{name} must be finite numbers in [{low:g}, {high:g}], got {float(a[bad][0]):g}")
     return a
 
 
@@ -254,31 +253,22 @@ def _calibrations(models) -> str:
 
 # -- branch geometry ------------------------------------------------------------------------
 def _branch_end(geo: _m.Geometry):
-    """Signed end of each design's bending branch and the status beyond it, (n, 1) each."""
+    """Signed end of each design's bending branch and the status beyond it, (n, 1) each.
+
+    The branch runs where V grows, and ``V = pi l0 A d^2``: with ``d^2 > 0`` at the
+    straight state (``r0^2 > c``) it stays positive up to lock-up, and so do ``l`` and
+    ``1 - sin(beta)`` (``sin(beta)`` lies between ``s0`` and ``x_L < 1``). The domain
+    therefore holds on the whole branch or, when ``r0^2 <= c``, nowhere.
+    """
     lock = _m.lock_theta(geo)
     cap = math.radians(MAX_BEND_DEG)
     direction = np.where(lock < 0.0, -1.0, 1.0)
     # a lock closer to the straight state than the angle tolerance is the neutral angle
     lock = np.where(np.abs(lock) < math.radians(DEFAULT_TOLERANCES.angle_solution_deg), 0.0, lock)
-    full = direction * np.minimum(np.abs(lock), cap)
     kind = np.where(np.abs(lock) <= cap, Status.LOCKED, Status.OUT_OF_DOMAIN).astype(np.int8)
-
-    def inside(theta):
-        l, r, sinb, _ = _m.constraint(theta, geo)
-        return _m.in_domain(l, r, sinb, geo)
-
-    probes = full * np.linspace(0.0, 1.0, DOMAIN_PROBES)
-    probes[:, -1] = full[:, 0] * (1.0 - np.finfo(np.float64).eps)  # the lock point itself is in the domain
-    ok = inside(probes)
-    cut = ~ok.all(axis=1)
-    if cut.any():
-        j = np.argmin(ok, axis=1)[:, None]
-        lo = np.take_along_axis(probes, np.maximum(j - 1, 0), axis=1)
-        hi = np.take_along_axis(probes, j, axis=1)
-        edge = np.where(j == 0, 0.0, solvers.bisect(inside, lo, hi))
-        full = np.where(cut[:, None], edge, full)
-        kind = np.where(cut[:, None], Status.OUT_OF_DOMAIN, kind).astype(np.int8)
-    return full, kind
+    squeezed = geo.r0 * geo.r0 <= geo.c  # the wall does not fit in the sleeve: d^2 <= 0 already
+    full = np.where(squeezed, 0.0, direction * np.minimum(np.abs(lock), cap))
+    return full, np.where(squeezed, Status.OUT_OF_DOMAIN, kind).astype(np.int8)
 
 
 def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
@@ -457,7 +447,7 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
     part of P(theta) are ``UNSTABLE`` with their (real) pressure.
     """
     energy, deriv, inverse = _resolve(method, DEFAULT_TOLERANCES.model_rtol)
-    th = np.radians(_values("theta_deg", theta_deg))[None, :]
+    th = np.radians(_values("theta_deg", theta_deg, low=-ANGLE_LIMIT_DEG, high=ANGLE_LIMIT_DEG))[None, :]
     geo = _geometry([model])
     full, kind = _branch_end(geo)
     p = _m.pressure_mpa(th, geo, form=energy, derivative=deriv)

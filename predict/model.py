@@ -69,7 +69,6 @@ __all__ = [
     "volume_gradient",
     "energy_rate",
     "pressure_mpa",
-    "in_domain",
     "lock_theta",
     "inner_radius_sq",
 ]
@@ -134,16 +133,21 @@ def constraint(theta, geo: Geometry):
 
     ``u = l/l0`` is the positive root of ``u = 1 + gamma theta cos(beta)``,
     ``sin(beta) = u s0``, ``r = r0 cos(beta)/c0``; complex ``theta`` is allowed
-    (complex-step derivatives). Outside the domain the values may be nan; callers
-    check :func:`in_domain`.
+    (complex-step derivatives). ``cos(beta)`` comes from a rationalised form, so it
+    stays accurate (and real) as ``sin(beta) -> 1`` at any angle.
     """
     gt = geo.gamma * theta
     gs = gt * geo.s0
     gs2 = gs * gs
-    u = (1.0 + gt * np.sqrt(geo.c0 * geo.c0 + gs2)) / (1.0 + gs2)
-    sinb = u * geo.s0
-    cosb = np.sqrt(1.0 - sinb * sinb)
-    return geo.l0 * u, geo.r_c0 * cosb, sinb, cosb
+    den = 1.0 + gs2
+    gS = gt * np.sqrt(geo.c0 * geo.c0 + gs2)
+    u = (1.0 + gS) / den
+    # cos^2(beta) = 1 - u^2 s0^2 = (X - Y)/den^2 = c0^4/(X + Y), X = c0^2 + g^2 s0^2 (1 + s0^2),
+    # Y = 2 s0^2 g S: the form without cancellation for each sign of g (never below 0)
+    x = geo.c0 * geo.c0 + gs2 * (1.0 + geo.s0 * geo.s0)
+    y = (2.0 * geo.s0 * geo.s0) * gS
+    cosb = np.sqrt(np.where(np.real(gt) >= 0.0, geo.c0**4 / (x + y), (x - y) / (den * den)))
+    return geo.l0 * u, geo.r_c0 * cosb, u * geo.s0, cosb
 
 
 def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
@@ -160,12 +164,6 @@ def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
 def inner_radius_sq(l, r, geo: Geometry):
     """d^2 = r^2 - c/A [mm^2] (incompressible wall, no change of wall volume)."""
     return r * r - geo.c * 2.0 * geo.l0 / (l + geo.l0)
-
-
-def in_domain(l, r, sinb, geo: Geometry):
-    """True where the model is defined: l > 0, sin(beta) < 1, d^2 > 0 (r > d holds then)."""
-    with np.errstate(invalid="ignore"):
-        return (l > 0.0) & (np.abs(sinb) < 1.0) & (inner_radius_sq(l, r, geo) > 0.0)
 
 
 def lock_theta(geo: Geometry):
