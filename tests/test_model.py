@@ -207,3 +207,18 @@ def test_thick_wall_p0_from_geometry():
     assert c.radius_mm[1] == pytest.approx(float(radius_mm(m.p0_kpa / 2, Tube(), "thick-wall")), rel=1e-12)
     assert c.radius_mm[2] == pytest.approx(float(r0), rel=1e-10)
     assert c.radius_mm[0] == pytest.approx(1.5, rel=1e-15)
+
+
+@pytest.mark.parametrize("beta0_deg", [10.0, 60.0, 89.0, 89.99])
+def test_radius_stays_accurate_as_beta_approaches_90(beta0_deg):
+    """cos(beta) from the rationalised form: no cancellation as sin(beta) -> 1."""
+    with mp.workdps(60):
+        ref = mpref.Ref("cross", l0=100, r0=2.5, beta0=mp.radians(beta0_deg), rf=1.5, df=1.0, g=1.0, p0=0.1)
+    geo = geometry(ref)
+    th = np.array([[-100.0, -3.0, 3.0, 100.0, 1e4]])
+    l, r, sinb, cosb = M.constraint(th, geo)
+    for k, t in enumerate(th[0]):
+        with mp.workdps(60):
+            lr = ref.l_r(t)
+        assert l[0, k] == pytest.approx(float(lr[0]), rel=1e-13)
+        assert r[0, k] == pytest.approx(float(lr[1]), rel=1e-12)  # 1 - sin^2 would lose all digits at 89 deg
