@@ -293,10 +293,10 @@ def _slope_fn(geo, energy, deriv):
     along the branch: central differences of the smooth rates (E', V' have no pole at
     lock-up; P has)."""
     rate = _rate_fn(geo, energy, deriv)
-    direction = np.sign(_m.lock_theta(geo))
-    scale = geo.l0 / (2.0 * geo.r0)
 
     def slope(theta, rows=None):
+        direction = np.sign(_m.lock_theta(geo))
+        scale = geo.l0 / (2.0 * geo.r0)
         de, dv = rate(theta, rows)
         d, s = (direction, scale) if rows is None else (direction[rows, 0], scale[rows, 0])
         dde, ddv = solvers.derivative(lambda t: np.stack(rate(t, rows)), theta, scale=s, method="central")

@@ -199,7 +199,7 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     p[:, 0] = 0.0
     p[:, -1] = np.where(np.ravel(np.broadcast_to(pole_at_end, theta_end.shape)) | ~np.isfinite(p[:, -1]),
                         np.inf, p[:, -1])
-    rising = np.diff(p, axis=1) > 0.0
+    rising = p[:, 1:] > p[:, :-1]
     first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
     rows = np.arange(grid.shape[0])
     theta_stop = grid[rows, first_fall]
@@ -306,11 +306,13 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
         xt[idx] = np.where(ok, xn, xw)
         stuck.append(idx[~ok])
         keep = ok & ~done
+        if not keep.any():
+            act = idx[:0]
+            break
         work = [a[keep] for a in work]
         work[1] = xn[keep]
-        if not keep.any():
-            break
-    act = work[0]  # still moving after NEWTON_STEPS
+    else:
+        act = work[0]  # still moving after NEWTON_STEPS
     stuck = np.concatenate(stuck + [act])
     if stuck.size:
         r_s, t_s = rows_t[stuck], t_t[stuck]
