@@ -1,0 +1,20 @@
+"""Hypothesis profiles for the property suite (tests/test_properties_*.py).
+
+``ci`` (default): a fixed seed (``derandomize=True``) and a bounded example budget, so
+the suite is reproducible and finishes in bounded time. ``dev`` and ``thorough``
+run many more random examples; pick one with the environment variable
+``EMBROACT_HYPOTHESIS_PROFILE`` (e.g. ``EMBROACT_HYPOTHESIS_PROFILE=thorough pytest``).
+Deadlines are off in every profile: run times on a loaded 2-core machine vary.
+"""
+import os
+
+from hypothesis import HealthCheck, settings
+
+#: Examples per property in the "ci" profile; tests scale this with ``strategies.budget``.
+CI_EXAMPLES = 25
+
+_COMMON = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+settings.register_profile("ci", max_examples=CI_EXAMPLES, derandomize=True, print_blob=True, **_COMMON)
+settings.register_profile("dev", max_examples=10 * CI_EXAMPLES, **_COMMON)
+settings.register_profile("thorough", max_examples=100 * CI_EXAMPLES, **_COMMON)
+settings.load_profile(os.environ.get("EMBROACT_HYPOTHESIS_PROFILE", "ci"))
