@@ -57,7 +57,10 @@ def _plan(args):
 
     tube = Tube(outer_radius_mm=args.tube_radius_mm, inner_radius_mm=args.tube_inner_radius_mm,
                 g_e_mpa=args.tube_g_mpa, clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
-    path = Centerline.from_svg_path(args.path) if args.path else Centerline.straight(_length(args.length_mm))
+    if args.path is not None:  # an empty --path is an error, not the default straight path
+        path = Centerline.from_svg_path(args.path)
+    else:
+        path = Centerline.straight(_length(args.length_mm))
     if args.command == "cross":
         from ..patterns.cross import cross
 
