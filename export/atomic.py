@@ -14,10 +14,11 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
+from typing import Mapping
 
 from ..patterns.errors import ExportError
 
-__all__ = ["write_bytes_atomic", "write_text_atomic", "check_output_dir"]
+__all__ = ["write_bytes_atomic", "write_text_atomic", "write_files_atomic", "check_output_dir"]
 
 
 def check_output_dir(path: str | os.PathLike) -> Path:
@@ -38,28 +39,65 @@ def check_output_dir(path: str | os.PathLike) -> Path:
     return p
 
 
-def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
-    """Write ``data`` to ``path`` via a temporary file in the same directory and ``os.replace``."""
-    p = check_output_dir(path)
+def _cannot_write(p: Path, exc: OSError) -> ExportError:
+    return ExportError(f"cannot write {str(p)!r}: {exc.strerror or exc}")
+
+
+def _stage(p: Path, data: bytes) -> str:
+    """Write ``data`` to a synced temporary file next to ``p``; return its name (removed on failure)."""
     try:  # a directory root may not write to (/proc, a read-only mount) passes os.access
         fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent)
     except OSError as exc:
-        raise ExportError(f"cannot write {str(p)!r}: {exc.strerror or exc}") from exc
+        raise _cannot_write(p, exc) from exc
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o644)
-        os.replace(tmp, p)
     except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        if isinstance(exc, OSError) and not isinstance(exc, ExportError):
-            raise ExportError(f"cannot write {str(p)!r}: {exc.strerror or exc}") from exc
+        _remove(tmp)
+        if isinstance(exc, OSError):
+            raise _cannot_write(p, exc) from exc
         raise
+    return tmp
+
+
+def _remove(tmp: str) -> None:
+    try:
+        os.unlink(tmp)
+    except FileNotFoundError:
+        pass
+
+
+def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
+    """Write several files so that a failed run changes none of them, as far as the file system allows.
+
+    Every file is first written and synced to a temporary file next to its target; only when
+    all are ready are they renamed over their targets (``os.replace``). A failure while
+    preparing (disk full, I/O error, interrupt) leaves every target untouched and no
+    temporary file; only a failing rename, after the earlier ones, can leave a mix.
+    """
+    targets = [check_output_dir(path) for path in outputs]
+    staged: list[tuple[str, Path]] = []
+    try:
+        for p, data in zip(targets, outputs.values()):
+            staged.append((_stage(p, data), p))
+        while staged:
+            tmp, p = staged[0]
+            try:
+                os.replace(tmp, p)
+            except OSError as exc:
+                raise _cannot_write(p, exc) from exc
+            staged.pop(0)
+    finally:
+        for tmp, _ in staged:
+            _remove(tmp)
+
+
+def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` via a temporary file in the same directory and ``os.replace``."""
+    write_files_atomic({path: data})
 
 
 def write_text_atomic(path: str | os.PathLike, text: str) -> None:

@@ -48,7 +48,7 @@ from typing import Callable, Mapping, Sequence
 
 from ..patterns.errors import ExportError, ParameterError, PatternError
 from ..patterns.plan import StitchPlan
-from .atomic import write_bytes_atomic
+from .atomic import write_files_atomic
 from .formats import FORMATS, WriteResult, encode
 
 __all__ = [
@@ -191,12 +191,13 @@ def safe_stem(name: str) -> str:
 def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes"]) -> tuple[str, ...]:
     """Write prepared files atomically into ``out_dir``; return their names in order.
 
-    A failure part-way leaves earlier files complete and the failing one untouched
-    (each file is replaced atomically); the error names the file.
+    Every file is prepared (written and synced to a temporary file) before the first is
+    replaced, so a failure while writing changes none of them
+    (:func:`embroact.export.atomic.write_files_atomic`); the error names the file.
     """
     d = check_out_dir(out_dir)
-    for name, data in outputs.items():
-        write_bytes_atomic(d / name, data.encode("utf-8") if isinstance(data, str) else data)
+    write_files_atomic({d / name: data.encode("utf-8") if isinstance(data, str) else data
+                        for name, data in outputs.items()})
     return tuple(outputs)
 
 

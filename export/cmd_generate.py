@@ -95,8 +95,7 @@ def _summary(path: str, res, derived) -> str:
 
 def run(args) -> int:
     """Generate, encode and write; every output is prepared before the first is written."""
-    from .atomic import check_output_dir
-    from .build import write_outputs
+    from .atomic import check_output_dir, write_files_atomic
     from .formats import encode, machine_format
 
     out = Path(args.output)
@@ -116,8 +115,7 @@ def run(args) -> int:
         from .preview import plan_svg
 
         outputs[Path(args.preview)] = plan_svg(plan)
-    for path, content in outputs.items():
-        write_outputs(path.parent, {path.name: content})
+    write_files_atomic({p: c.encode("utf-8") if isinstance(c, str) else c for p, c in outputs.items()})
     from ..predict.derived import derive
 
     derived = derive(plan.actuators[0])
