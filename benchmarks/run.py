@@ -1,7 +1,8 @@
 """Run every embroact benchmark: ``python benchmarks/run.py [--quick] [--out DIR]``.
 
 Writes ``results.json``, ``pareto.svg`` and ``stability.svg`` to ``--out`` (default:
-this folder) and prints each figure with its target and PASS/FAIL. ``--quick`` is
+this folder; a full run there also refreshes the tables of its README) and prints each
+figure with its target and PASS/FAIL. ``--quick`` is
 the smoke run (tiny sample, one repeat; its timings mean nothing). See
 ``benchmarks/README.md`` for what is measured and how.
 
@@ -37,7 +38,8 @@ from sample import reference_points, sample_designs  # noqa: E402
 
 from embroact.predict.curve import METHODS, curve  # noqa: E402
 
-__all__ = ["Config", "CONFIGS", "main", "run", "targets", "write_charts", "markdown_table", "markdown_targets"]
+__all__ = ["Config", "CONFIGS", "main", "run", "targets", "write_charts", "markdown_table", "markdown_targets",
+           "markdown_notes", "update_readme"]
 
 #: The default method, "the closed form as printed" baseline and its printed-form twin.
 AUTO, PRINTED = "auto", "printed-analytic-trace"
@@ -238,10 +240,54 @@ def markdown_table(res: dict) -> str:
 def markdown_targets(res: dict) -> str:
     """The README's table of targets from a results dict."""
     lines = ["| target | measured | limit | |", "|---|---:|---|---|"]
-    for k, t in res["targets"].items():
+    for k in TARGETS:
+        t = res["targets"][k]
         lines.append(f"| {k} | {float(t['value']):.4g} {t['unit']} | {t['target']} | "
                      f"{'PASS' if t['pass'] else '**FAIL**'} |")
     return "\n".join(lines)
+
+
+def markdown_notes(res: dict) -> str:
+    """The README's figures besides the two tables (ratios, sweeps, stitches, command line)."""
+    b, pr, tp = res["baseline_scipy"], res["baseline_printed"], res["throughput"]
+    st, cli, ld = res["stitches"], res["stitches"]["cli"]["median_s"], res["stitches"]["long_design"]
+    rates = ", ".join(f"{r['pattern']} {r['points_per_s']:.3g} needle points/s ({r['needle_points']} points in "
+                      f"{r['time_s'] * 1e3:.0f} ms)" for r in st["needle_rate"])
+    return "\n".join([
+        f"* `auto` against the scipy baseline (same {len(b['designs'])} designs): {b['auto_time_per_curve_ms']:.3g} ms "
+        f"against {b['time_per_curve_ms'] / 1e3:.3g} s per curve, **{b['speedup_auto']:.3g} times faster**, with a "
+        f"maximum angle error of {b['auto_angle_err_max_deg']:.1e} deg against {b['angle_err_max_deg']:.1e} deg.",
+        f"* `auto` against the closed form as printed (`{pr['method']}`, same machinery): the printed form is "
+        f"{pr['time_ratio_to_auto']:.3g} times slower and its largest angle error ({pr['angle_err_max_deg']:.1e} deg) "
+        f"is {pr['error_ratio_to_auto']:.2g} times `auto`'s.",
+        f"* Sweeps: `sweep` of {tp['default_rtol']['designs']} designs x {tp['default_rtol']['pressures']} pressures "
+        f"in {tp['default_rtol']['time_s'] * 1e3:.0f} ms = **{tp['default_rtol']['evals_per_s']:.3g} design-pressure "
+        f"evaluations/s** ({tp['rtol_1e-6']['evals_per_s']:.3g}/s at rtol 1e-6); "
+        f"{tp['vectorised_per_design_ms']:.3g} ms per design against {tp['loop_of_curve_per_design_ms']:.3g} ms in a "
+        f"loop of `curve()` ({tp['vectorised_over_loop']:.3g} times).",
+        f"* Stitch generation on a {st['needle_rate'][0]['length_mm'] / 1000:g} m curved path: {rates}.",
+        f"* The {ld['length_mm'] / 1000:g} m zigzag design ({ld['stitches']} stitches): generated in "
+        f"{ld['generate_s'] * 1e3:.0f} ms, checked (every rule, {ld['findings']} findings) in {ld['check_s'] * 1e3:.0f} ms, "
+        f"written as DST in {ld['write_s'] * 1e3:.0f} ms; peak memory {ld['peak_rss_mb']:.0f} MB for the whole process "
+        f"({ld['tracemalloc_peak_mb']:.0f} MB traced allocations of the work itself).",
+        f"* Command line (median wall time of fresh processes): `python -c pass` {cli['python_pass'] * 1e3:.0f} ms, "
+        f"`embroact --help` {cli['embroact_help'] * 1e3:.0f} ms; import floor {cli['import_floor'] * 1e3:.0f} ms, "
+        f"`embroact zigzag ... -o x.dst` {cli['embroact_zigzag'] * 1e3:.0f} ms. `--help` loads "
+        f"{', '.join(st['help_heavy_imports']) or 'none of numpy, shapely, trimesh, scipy'}.",
+        f"* Machine: {res['machine']['cpus']} cores, Python {res['machine']['python']}, load average at the start "
+        f"{res['machine']['load_average'][0]:.2f} (other jobs were running); whole run {res['elapsed_s']:.0f} s.",
+    ])
+
+
+def update_readme(res: dict, path: Path) -> None:
+    """Replace the blocks between ``<!-- begin:NAME -->`` and ``<!-- end:NAME -->`` in the README."""
+    text = path.read_text()
+    for name, body in (("targets", markdown_targets(res)), ("methods", markdown_table(res)),
+                       ("notes", markdown_notes(res))):
+        begin, end = f"<!-- begin:{name} -->", f"<!-- end:{name} -->"
+        head, rest = text.split(begin, 1)
+        text = head + begin + "\n" + body + "\n" + end + rest.split(end, 1)[1]
+    path.write_text(text)
 
 
 def _jsonable(obj):
@@ -316,12 +362,18 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description="embroact benchmarks (speed against accuracy)")
     ap.add_argument("--quick", action="store_true", help="smoke run: tiny sample, timings meaningless")
     ap.add_argument("--out", type=Path, default=Path(__file__).resolve().parent, help="output folder")
-    ap.add_argument("--replot", action="store_true", help="only redraw the charts from OUT/results.json")
+    ap.add_argument("--replot", action="store_true",
+                    help="only redraw the charts from OUT/results.json (and its README tables, if OUT has a README)")
     args = ap.parse_args(argv)
     if args.replot:
-        write_charts(json.loads((args.out / "results.json").read_text()), args.out)
+        res = json.loads((args.out / "results.json").read_text())
+        write_charts(res, args.out)
+        if (args.out / "README.md").exists():
+            update_readme(res, args.out / "README.md")
         return 0
     res = run(CONFIGS["quick" if args.quick else "full"], args.out)
+    if (args.out / "README.md").exists() and not args.quick:
+        update_readme(json.loads((args.out / "results.json").read_text()), args.out / "README.md")
     _log("\n" + markdown_table(res) + "\n\n" + markdown_targets(res) + "\n")
     _log(f"wrote results.json, pareto.svg, stability.svg to {args.out} in {res['elapsed_s']:.0f} s")
     return 0
