@@ -21,6 +21,7 @@ import os
 import platform
 import statistics
 import sys
+import tempfile
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -361,10 +362,14 @@ def main(argv=None) -> int:
     """Command line; returns 0 (targets are reported, not enforced: this is a benchmark)."""
     ap = argparse.ArgumentParser(description="embroact benchmarks (speed against accuracy)")
     ap.add_argument("--quick", action="store_true", help="smoke run: tiny sample, timings meaningless")
-    ap.add_argument("--out", type=Path, default=Path(__file__).resolve().parent, help="output folder")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output folder (default: this folder; with --quick a temporary folder, so the smoke run "
+                         "never overwrites the committed results)")
     ap.add_argument("--replot", action="store_true",
                     help="only redraw the charts from OUT/results.json (and its README tables, if OUT has a README)")
     args = ap.parse_args(argv)
+    if args.out is None:
+        args.out = Path(tempfile.gettempdir()) / "embroact-bench-quick" if args.quick else Path(__file__).resolve().parent
     if args.replot:
         res = json.loads((args.out / "results.json").read_text())
         write_charts(res, args.out)
