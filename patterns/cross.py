@@ -69,7 +69,7 @@ from .params import CrossParams, StitchOptions, Tube
 from .plan import Role, StitchPlan
 from .tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["cross", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
+__all__ = ["cross", "cross_stations", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
 
 #: Valid values of ``adjust``.
 ADJUST_METHODS = ("auto", "interval", "angle")
@@ -131,6 +131,17 @@ def _edge(p: float, q: float) -> np.ndarray:
     return p + (q - p) * np.arange(1, m + 1) / m
 
 
+def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") -> float:
+    """Upper bound of the needle stations (legs and edge stitches) of a cross pattern (no allocation).
+
+    >>> round(cross_stations(100.0, CrossParams(7.0, 1.4, 45.0)))
+    167
+    """
+    n, s, _, _ = closing(params, adjust)
+    span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
+    return 2.0 * span / s + n * (2.0 + s / MAX_EDGE_STITCH_MM)
+
+
 def cross(
     centerline,
     params: CrossParams,
@@ -174,7 +185,7 @@ def cross(
             f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
         )
     span = math.floor((length + tol) / s) * s
-    check_record_count(2.0 * span / s + n * (2.0 + s / MAX_EDGE_STITCH_MM), options)
+    check_record_count(cross_stations(length, params, adjust), options)
     start = 0.5 * (length - span)
     passes = []
     for j in range(n):

@@ -73,13 +73,14 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from .centerline import Centerline, as_centerline
-from .cross import cross
-from .errors import DesignFileError, EmbroactError, ParameterError, check_range
+from .assemble import MAX_RECORDS, check_record_count
+from .cross import cross, cross_stations
+from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
 from .tolerances import DEFAULT_TOLERANCES
-from .zigzag import zigzag
+from .zigzag import zigzag, zigzag_stations
 
 __all__ = [
     "MachineSettings",
@@ -485,7 +486,28 @@ def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> S
     )
 
 
+def _records(spec: ActuatorSpec) -> int:
+    """Records the actuator will need, from its parameters alone (refuses one above the cap)."""
+    length = spec.centerline.length_mm
+    stations = (cross_stations(length, spec.params, spec.adjust) if spec.pattern == "cross"
+                else zigzag_stations(length, spec.params))
+    try:
+        return check_record_count(stations, spec.options)
+    except EmbroactError as exc:
+        raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
+
+
 def build_plan(design: Design) -> StitchPlan:
-    """Generate every actuator of ``design`` and join them (see :func:`join_plans`)."""
+    """Generate every actuator of ``design`` and join them (see :func:`join_plans`).
+
+    The records of all actuators together are counted before anything is generated: a
+    design above :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
+    """
+    total = sum(_records(spec) for spec in design.actuators)
+    if total > MAX_RECORDS:
+        raise PatternError(
+            f"design would need about {total:.3g} records over {len(design.actuators)} actuators, more than the "
+            f"limit {MAX_RECORDS:,}; use larger interval_mm values, shorter paths or fewer actuators"
+        )
     plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
     return join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)

@@ -41,10 +41,19 @@ from .params import StitchOptions, Tube, ZigzagParams
 from .plan import Role, StitchPlan
 from .tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["zigzag", "MIN_LEGS"]
+__all__ = ["zigzag", "zigzag_stations", "MIN_LEGS"]
 
 #: Fewest legs a zigzag actuator may have.
 MIN_LEGS = 2
+
+
+def zigzag_stations(length_mm: float, params: ZigzagParams) -> int:
+    """Needle stations a zigzag of ``params`` has on a path of ``length_mm`` (no allocation).
+
+    >>> zigzag_stations(100.0, ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    101
+    """
+    return math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / params.interval_mm) + 1
 
 
 def zigzag(
@@ -89,7 +98,7 @@ def zigzag(
             f"path length_mm must be >= {minimum:g} for a zigzag with interval_mm={s:g} "
             f"(at least {MIN_LEGS} legs), got {length:g}"
         )
-    n = math.floor((length + DEFAULT_TOLERANCES.length_mm) / s)
+    n = zigzag_stations(length, params) - 1
     check_record_count(n + 1, options)
     i = np.arange(n + 1)
     station_s = 0.5 * max(length - n * s, 0.0) + i * s
