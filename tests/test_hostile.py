@@ -19,10 +19,6 @@ import functools
 import io
 import os
 import random
-import resource
-import subprocess
-import sys
-import textwrap
 import tracemalloc
 from pathlib import Path
 
@@ -80,6 +76,8 @@ def _hostile_files(d: Path) -> None:
         "nanwidth.toml": b'[[actuator]]\nname = "A1"\npattern = "zigzag"\nwidth_mm = nan\ninterval_mm = 1\nlength_mm = 100\n',
         "tenmillion.toml": (b'[[actuator]]\nname = "A1"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 0.1\n'
                             b'length_mm = 999999\n'),
+        "sixmillion.toml": b"".join(b'[[actuator]]\nname = "A%d"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 0.5\n'
+                                    b'length_mm = 999999\norigin_mm = [0, %d]\n' % (i, 20 * i) for i in range(3)),
         "afile": b"a regular file, not a directory",
     }
     for name, data in {**files, **_machine_files()}.items():
@@ -144,6 +142,8 @@ CATALOGUE = [
     ("design-ten-million-stitches", ["build", "{tmp}/tenmillion.toml", "--out", "{tmp}"], 2,
      "actuator 'A1': pattern would need about 1e+07 records, more than the limit 5,000,000; "
      "use a larger interval_mm or a shorter path"),
+    ("design-millions-over-three-actuators", ["check", "{tmp}/sixmillion.toml"], 2,
+     "design would need about 6e+06 records over 3 actuators, more than the limit 5,000,000"),
     # --- paths with repeated points, zero-length segments, self-touching curves --------------------------
     ("path-single-repeated-point", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 0 0"], 2,
      "path needs at least 2 distinct points, got 1"),
@@ -330,33 +330,23 @@ def test_ten_million_stitches_refused_before_allocating():
     assert peak < 5_000_000, peak
 
 
-_BILLIONS = textwrap.dedent("""
-    import sys
+def test_billions_of_stitches_over_many_actuators_refused_before_allocating():
+    """Found by this catalogue (bug B3): the cap was per actuator, so 1000 actuators of 4.5 million records
+    each were generated one after another (~1.6 GB each). Now the design total is refused up front."""
     from embroact.patterns import PatternError, build_plan, design_from_dict
+
     acts = [dict(name=f"A{i}", pattern="zigzag", width_mm=7, interval_mm=0.2, length_mm=900000,
                  origin_mm=[0, 20 * i]) for i in range(1000)]
+    design = design_from_dict({"actuator": acts})
+    tracemalloc.start()
     try:
-        build_plan(design_from_dict({"actuator": acts}))
-    except PatternError as exc:
-        print(exc)
-        sys.exit(2)
-    sys.exit(0)
-""")
-
-
-def _limit_memory():  # child process only: 800 MB of address space
-    resource.setrlimit(resource.RLIMIT_AS, (800_000_000, 800_000_000))
-
-
-@pytest.mark.xfail(strict=True, reason="bug B3 (notes/bugs.md): the record cap is per actuator; 1000 actuators "
-                   "of 4.5 million records each (4.5e9) are generated one after another instead of refused")
-def test_billions_of_stitches_over_many_actuators_refused_before_allocating():
-    try:
-        res = subprocess.run([sys.executable, "-c", _BILLIONS], capture_output=True, text=True, timeout=60,
-                             preexec_fn=_limit_memory)
-    except subprocess.TimeoutExpired:
-        pytest.fail("still generating after 60 s")
-    assert res.returncode == 2 and "records" in res.stdout, (res.returncode, res.stderr[-300:])
+        with pytest.raises(PatternError, match=r"design would need about 4.5e\+09 records over 1000 actuators, "
+                                               r"more than the limit 5,000,000"):
+            build_plan(design)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < 5_000_000, peak
 
 
 # ------------------------------------------------------------------------------ nothing lost
