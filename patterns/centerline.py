@@ -57,6 +57,8 @@ RADIUS_RTOL = 2e-3
 _PROJECT_STEPS = 6
 #: Largest number of vertices a path may have (also bounds SVG flattening).
 _MAX_POINTS = 2_000_000
+#: Largest |coordinate| of a path vertex [mm] (10 km: far beyond any hoop, far below float overflow).
+_MAX_COORD_MM = 1e7
 
 _SVG_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
 _SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "A": 7, "Z": 0}
@@ -289,6 +291,8 @@ def _clean_points(points) -> np.ndarray:
         raise PathError(f"path must have at most {_MAX_POINTS} points, got {len(pts)}")
     if not np.all(np.isfinite(pts)):
         raise PathError("path points must be finite numbers, got NaN or inf")
+    if len(pts) and np.abs(pts).max() > _MAX_COORD_MM:
+        raise PathError(f"path coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {np.abs(pts).max():g}")
     if len(pts) >= 2:
         step = np.hypot(*np.diff(pts, axis=0).T)
         pts = pts[np.concatenate([[True], step > DEFAULT_TOLERANCES.length_mm])]
