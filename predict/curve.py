@@ -73,7 +73,8 @@ from .inflation import KPA_PER_MPA
 from .status import Status, status_names
 from .tubelaws import TUBE_LAWS, pressure_kpa, radius_mm, transition_pressure_kpa
 
-__all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "MAX_BEND_DEG", "curve", "pressure_at", "lockup", "sweep"]
+__all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "MAX_BEND_DEG", "ANGLE_LIMIT_DEG", "curve", "pressure_at", "lockup",
+           "sweep"]
 
 _DERIVATIVES_OF = {e: tuple(d for d in _m.DERIVATIVES if not (e == "reference" and d == "analytic"))
                    for e in _m.ENERGY_FORMS}
