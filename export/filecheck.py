@@ -45,6 +45,7 @@ Examples
 """
 from __future__ import annotations
 
+import io
 import os
 import tomllib
 from dataclasses import dataclass
@@ -75,6 +76,13 @@ _RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
 _DST_HEADER_BYTES = 512
 _DST_RECORD_BYTES = 3
 _DST_END_MASK = 0b11110011
+#: Leading bytes of formats that have a magic number.
+_MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
+#: Formats whose stitch data ends with an end-of-design code the reader stops at: a reader that runs
+#: into the end of the file instead was given a truncated or garbage file. (JEF: see _check_jef_end;
+#: EXP has no header and no end code, so a truncated EXP file cannot be told from a short design.)
+_END_CODED = {"dst", "pes", "pec", "vp3", "xxx", "tbf", "u01"}
+_JEF_CONTROL, _JEF_END = 0x80, 0x10
 _TUBE_KEYS = {"name", "path_mm", "outer_radius_mm", "clearance_mm", "end_margin_mm"}
 _MACHINE_KEYS = {"hoop_width_mm", "hoop_height_mm", "min_stitch_mm", "max_stitch_mm", "format"}
 
@@ -125,6 +133,51 @@ def _check_dst_bytes(path: str, data: bytes) -> None:
         )
 
 
+class _TrackedBytes(io.BytesIO):
+    """An in-memory file that remembers whether a read came back short (the reader hit the end)."""
+
+    hit_end = False
+
+    def read(self, size=-1):
+        data = super().read(size)
+        if size is not None and size >= 0 and len(data) < size:
+            self.hit_end = True
+        return data
+
+
+def _check_jef_end(path: str, data: bytes) -> None:
+    """Walk the JEF records from the header's stitch offset to the end code 0x80 0x10."""
+    i = int.from_bytes(data[:4], "little") if len(data) >= 4 else len(data)
+    while i + 1 < len(data):
+        if data[i] == _JEF_CONTROL:
+            if data[i + 1] == _JEF_END:
+                return
+            i += 2
+        i += 2
+    raise DesignFileError(f"{path}: truncated or garbage JEF file: no end code (0x80 0x10) after the stitches")
+
+
+def _read_pattern(path: str, suffix: str, data: bytes):
+    """pyembroidery's reader for ``suffix`` on ``data``; checks magic numbers and end codes first/after."""
+    import pyembroidery
+
+    magic = _MAGIC.get(suffix)
+    if magic is not None and not data.startswith(magic):
+        raise DesignFileError(f"{path}: not a {suffix.upper()} file: it does not start with {magic.decode()!r}")
+    if suffix == "jef":
+        _check_jef_end(path, data)
+    reader = next(f["reader"] for f in pyembroidery.supported_formats() if f["extension"] == suffix)
+    if getattr(reader, "READ_FILE_IN_TEXT_MODE", False):
+        return pyembroidery.read(path, dict(_RAW_READ))
+    stream = _TrackedBytes(data)
+    pattern = pyembroidery.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+    if suffix in _END_CODED and stream.hit_end:
+        raise DesignFileError(
+            f"{path}: truncated or garbage {suffix.upper()} file: the data ends before the end-of-design code"
+        )
+    return pattern
+
+
 def _command_map() -> dict[int, Command]:
     import pyembroidery as pe
 
@@ -157,7 +210,9 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     if suffix == "dst":
         _check_dst_bytes(p, data)
     try:
-        pattern = pyembroidery.read(p, dict(_RAW_READ))
+        pattern = _read_pattern(p, suffix, data)
+    except DesignFileError:
+        raise
     except Exception as exc:  # any reader failure on garbage is unusable input, one line
         raise DesignFileError(f"{p}: unreadable {suffix.upper()} file ({type(exc).__name__}: {exc})") from None
     if pattern is None or not any(s[2] & pyembroidery.COMMAND_MASK == pyembroidery.STITCH for s in pattern.stitches):
