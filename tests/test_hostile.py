@@ -96,12 +96,21 @@ CATALOGUE = [
     ("check-dst-truncated", ["check", "{tmp}/truncated.dst", "--tube-path", "0,0 100,0"], 2,
      "{tmp}/truncated.dst: truncated DST file: no end record among"),
     ("check-dst-garbage", ["check", "{tmp}/garbage.dst"], 2, "not a DST file: the header does not start with 'LA:'"),
-    ("check-pes-garbage", ["check", "{tmp}/garbage.pes"], 2, "{tmp}/garbage.pes: unreadable PES file ("),
-    ("check-jef-garbage", ["check", "{tmp}/garbage.jef"], 2, "{tmp}/garbage.jef: unreadable JEF file ("),
-    ("check-vp3-garbage", ["check", "{tmp}/garbage.vp3"], 2, "{tmp}/garbage.vp3: unreadable VP3 file ("),
+    ("check-pes-garbage", ["check", "{tmp}/garbage.pes"], 2, "{tmp}/garbage.pes: not a PES file: it does not start with '#PES'"),
+    ("check-pes-zeros", ["check", "{tmp}/zeros.pes"], 2, "{tmp}/zeros.pes: not a PES file: it does not start with '#PES'"),
+    ("check-pec-zeros", ["check", "{tmp}/zeros.pec"], 2, "{tmp}/zeros.pec: not a PEC file: it does not start with '#PEC0001'"),
+    ("check-jef-garbage", ["check", "{tmp}/garbage.jef"], 2,
+     "{tmp}/garbage.jef: truncated or garbage JEF file: no end code (0x80 0x10) after the stitches"),
+    ("check-jef-zeros", ["check", "{tmp}/zeros.jef"], 2,
+     "{tmp}/zeros.jef: truncated or garbage JEF file: no end code (0x80 0x10) after the stitches"),
+    ("check-jef-truncated", ["check", "{tmp}/half.jef"], 2,
+     "{tmp}/half.jef: truncated or garbage JEF file: no end code (0x80 0x10) after the stitches"),
+    ("check-vp3-garbage", ["check", "{tmp}/garbage.vp3"], 2, "{tmp}/garbage.vp3: not a VP3 file: it does not start with '%vsm%'"),
     ("check-pes-truncated", ["check", "{tmp}/half.pes"], 2, "{tmp}/half.pes: unreadable PES file ("),
-    ("check-vp3-truncated", ["check", "{tmp}/half.vp3"], 2, "{tmp}/half.vp3: no stitches in this VP3 file"),
-    ("check-tbf-truncated", ["check", "{tmp}/half.tbf"], 2, "{tmp}/half.tbf: no stitches in this TBF file"),
+    ("check-vp3-truncated", ["check", "{tmp}/half.vp3"], 2, "{tmp}/half.vp3: truncated or garbage VP3 file: the data ends before the end-of-design code"),
+    ("check-tbf-truncated", ["check", "{tmp}/half.tbf"], 2, "{tmp}/half.tbf: truncated or garbage TBF file: the data ends before the end-of-design code"),
+    ("check-pec-truncated", ["check", "{tmp}/half.pec"], 2, "{tmp}/half.pec: truncated or garbage PEC file: the data ends before the end-of-design code"),
+    ("check-u01-truncated", ["check", "{tmp}/half.u01"], 2, "{tmp}/half.u01: truncated or garbage U01 file: the data ends before the end-of-design code"),
     ("check-missing-file", ["check", "{tmp}/missing.dst"], 2, "{tmp}/missing.dst: cannot read: No such file or directory"),
     ("check-directory", ["check", "{tmp}/dir.dst"], 2, "{tmp}/dir.dst: cannot read: Is a directory"),
     ("check-unknown-suffix", ["check", "{tmp}/notes.xyz"], 2, "{tmp}/notes.xyz: cannot read '.xyz' embroidery files; readable: 100, "),
@@ -298,16 +307,6 @@ def test_hostile_input(tmp_path, case_id, argv, code, fragment):
         assert err.startswith("embroact") and ": error: " in err, err
         assert fragment.replace("{tmp}", t) in err, err
     assert _listing(tmp_path) == before  # no output, no partial file
-
-
-# ------------------------------------------------------------------------------ known bugs (xfail)
-@pytest.mark.xfail(strict=True, reason="bug B5 (notes/bugs.md): check reads garbage/truncated JEF, PEC, U01, PES "
-                   "files as designs (exit 0 or 1) instead of refusing them (exit 2)")
-@pytest.mark.parametrize("name", ["half.jef", "half.pec", "half.u01", "zeros.pes", "zeros.pec", "zeros.jef"])
-def test_check_refuses_truncated_or_garbage_files_without_end_markers(tmp_path, name):
-    _hostile_files(tmp_path)
-    code, _, err = _run(["check", str(tmp_path / name), "--tube-path", "0,0 100,0"])
-    assert code == 2 and err.count("\n") == 1, (code, err)
 
 
 # ------------------------------------------------------------------------------ memory and time bounds
