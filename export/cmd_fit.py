@@ -28,6 +28,8 @@ import os
 import re
 import sys
 
+from .cliargs import add_tube_arguments, tube_from_args
+
 __all__ = ["add_arguments", "run"]
 
 _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa"}
@@ -47,9 +49,7 @@ def add_arguments(parser, name: str) -> None:
     design.add_argument("--interval-mm", type=float, help="stitch interval s [mm] (default: paper's 1.0 zigzag, 1.4 cross)")
     design.add_argument("--angle-deg", type=float, help="cross embroidery angle alpha0 [deg]")
     design.add_argument("--length-mm", type=float, default=100.0, help="embroidered length l0 [mm] (default 100)")
-    design.add_argument("--tube-radius-mm", type=float, default=1.5, help="tube outer radius r_f [mm] (default 1.5)")
-    design.add_argument("--tube-inner-radius-mm", type=float, default=1.0, help="tube inner radius d_f [mm] (default 1.0)")
-    design.add_argument("--tube-g-mpa", type=float, default=0.13, help="tube modulus G_e [MPa] (default 0.13)")
+    add_tube_arguments(design)
     fit = parser.add_argument_group("fit")
     fit.add_argument("--fit", default="g,p0", help="parameters to fit: g, p0, g_e (comma-separated; default g,p0)")
     fit.add_argument(
@@ -92,7 +92,6 @@ def _fit_names(text: str) -> tuple[str, ...]:
 
 def _derived(args):
     from ..patterns.errors import ParameterError
-    from ..patterns.params import Tube
     from ..predict.derived import derive_from_values
 
     if args.design:
@@ -101,7 +100,7 @@ def _derived(args):
         raise ParameterError("give the design: --pattern and --width-mm (and --angle-deg for cross), or --design FILE")
     if args.pattern == "cross" and args.angle_deg is None:
         raise ParameterError("--angle-deg is required for a cross design")
-    tube = Tube(outer_radius_mm=args.tube_radius_mm, inner_radius_mm=args.tube_inner_radius_mm, g_e_mpa=args.tube_g_mpa)
+    tube = tube_from_args(args)
     return derive_from_values(
         args.pattern,
         width_mm=args.width_mm,

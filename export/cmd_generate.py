@@ -15,6 +15,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .cliargs import TUBE_FLAGS, add_tube_arguments, tube_from_args
+
 __all__ = ["add_arguments", "run"]
 
 
@@ -34,11 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     g.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm, e.g. "M 0 0 C 30 -20 60 20 90 0"')
     g.add_argument("--name", default="A1", help="actuator name for the thread list (default A1)")
     t = parser.add_argument_group("tube")
-    t.add_argument("--tube-radius-mm", type=float, default=1.5, help="tube outer radius r_f [mm] (default 1.5)")
-    t.add_argument("--tube-inner-radius-mm", type=float, default=1.0, help="tube inner radius d_f [mm] (default 1.0)")
-    t.add_argument("--tube-g-mpa", type=float, default=0.13, help="tube shear modulus G_e [MPa] (default 0.13)")
-    t.add_argument("--clearance-mm", type=float, default=0.3, help="needle clearance from the tube [mm] (default 0.3)")
-    t.add_argument("--end-margin-mm", type=float, default=30.0, help="free tube at each end [mm] (default 30)")
+    add_tube_arguments(t, fields=[field for _, field, _ in TUBE_FLAGS])
     o = parser.add_argument_group("output")
     o.add_argument("-o", "--output", required=True, help="machine file; the suffix picks the format (.dst .pes ...)")
     o.add_argument("--format", help="format overriding the suffix: dst, tbf, pes, pec, jef, exp, vp3, xxx, u01")
@@ -53,10 +51,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 def _plan(args):
     from ..patterns.centerline import Centerline
-    from ..patterns.params import CrossParams, Tube, ZigzagParams
+    from ..patterns.params import CrossParams, ZigzagParams
 
-    tube = Tube(outer_radius_mm=args.tube_radius_mm, inner_radius_mm=args.tube_inner_radius_mm,
-                g_e_mpa=args.tube_g_mpa, clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
+    tube = tube_from_args(args)
     if args.path is not None:  # an empty --path is an error, not the default straight path
         path = Centerline.from_svg_path(args.path)
     else:

@@ -30,15 +30,11 @@ import json
 import math
 import sys
 
+from .cliargs import add_tube_arguments, parse_pressures, tube_from_args
+
 __all__ = ["add_arguments", "run", "parse_pressures"]
 
-#: Most pressures one command evaluates (a range string with a tiny step is a typo).
-MAX_PRESSURES = 100_000
 _DEFAULT_STEP_KPA = 10.0
-#: Tube options of the quick form: flag, Tube field (also the argparse dest), help.
-_TUBE_FLAGS = (("--tube-radius-mm", "outer_radius_mm", "tube outer radius r_f [mm]"),
-               ("--tube-inner-radius-mm", "inner_radius_mm", "tube inner radius d_f [mm]"),
-               ("--tube-g-mpa", "g_e_mpa", "tube modulus G_e, inflation phase [MPa]"))
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
@@ -50,12 +46,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     g.add_argument("--interval-mm", type=float, default=1.0, help="stitch interval s [mm] (default 1)")
     g.add_argument("--angle-deg", type=float, help="cross embroidery angle alpha0, (0, 90) [deg] (cross: required)")
     g.add_argument("--length-mm", type=float, default=100.0, help="actuator length l0 [mm] (default 100)")
-    from ..patterns.params import Tube
-
-    for flag, field, text in _TUBE_FLAGS:
-        default = getattr(Tube(), field)
-        g.add_argument(flag, type=float, default=default, dest=field, metavar=flag[2:].replace("-", "_").upper(),
-                       help=f"{text} (default {default:g})")
+    add_tube_arguments(g)
     m = parser.add_argument_group("model")
     m.add_argument("--actuator", metavar="NAME", help="design file: only this actuator")
     m.add_argument("--g-mpa", type=float, help="effective modulus G [MPa] (default: design file or calibration set)")
@@ -72,53 +63,11 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 
 
-def parse_pressures(text: str, flag: str = "--pressure-kpa"):
-    """Pressures [kPa] from ``start:stop:step`` or ``p1,p2,...``; one-line errors name ``flag``.
-
-    >>> parse_pressures("0:30:10").tolist(), parse_pressures("0:25:10").tolist(), parse_pressures("5, 7.5").tolist()
-    ([0.0, 10.0, 20.0, 30.0], [0.0, 10.0, 20.0], [5.0, 7.5])
-    """
-    import numpy as np
-
-    from ..patterns.errors import ParameterError
-
-    def number(s: str) -> float:
-        try:
-            v = float(s)
-        except ValueError:
-            raise ParameterError(f"{flag}: {s.strip()!r} is not a number in {text!r}") from None
-        if not math.isfinite(v) or v < 0:
-            raise ParameterError(f"{flag}: pressures must be finite and >= 0 kPa, got {s.strip()!r} in {text!r}")
-        return v
-
-    if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3:
-            raise ParameterError(f"{flag} must be 'start:stop:step' or a comma-separated list, got {text!r}")
-        start, stop = number(parts[0]), number(parts[1])
-        try:
-            step = float(parts[2])
-        except ValueError:
-            raise ParameterError(f"{flag}: {parts[2].strip()!r} is not a number in {text!r}") from None
-        if not (math.isfinite(step) and step > 0):
-            raise ParameterError(f"{flag}: step must be > 0 in 'start:stop:step', got {text!r}")
-        if stop < start:
-            raise ParameterError(f"{flag}: stop must be >= start in 'start:stop:step', got {text!r}")
-        n = math.floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1
-        if n > MAX_PRESSURES:
-            raise ParameterError(f"{flag}: at most {MAX_PRESSURES} pressures, {text!r} gives {n}")
-        return start + step * np.arange(n)
-    values = [number(s) for s in text.split(",") if s.strip()]
-    if not values or len(values) > MAX_PRESSURES:
-        raise ParameterError(f"{flag} must list 1 to {MAX_PRESSURES} pressures, got {text!r}")
-    return np.array(values)
-
-
 def _quick_design(args):
     from ..patterns.centerline import Centerline
     from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
     from ..patterns.errors import ParameterError
-    from ..patterns.params import CrossParams, Tube, ZigzagParams
+    from ..patterns.params import CrossParams, ZigzagParams
 
     if args.width_mm is None:
         raise ParameterError(f"--width-mm is required for 'embroact predict {args.target}'")
@@ -128,7 +77,7 @@ def _quick_design(args):
         params = CrossParams(args.width_mm, args.interval_mm, args.angle_deg)
     else:
         params = ZigzagParams(args.width_mm, args.interval_mm)
-    tube = Tube(**{field: getattr(args, field) for _, field, _ in _TUBE_FLAGS})
+    tube = tube_from_args(args)
     spec = ActuatorSpec("A1", params, Centerline.straight(args.length_mm), model=ModelSettings())
     return Design("quick", tube, MachineSettings(), OperationSettings(), (spec,))
 
