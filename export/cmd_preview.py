@@ -147,7 +147,7 @@ def run(args) -> int:
         return 0
     from . import previews as pv
 
-    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else pv.pressures_for(design)
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else pv.pressures_for(design)
     derived, curves = pv.predict_curves(plan, pressures, design=design)
     if args.kind == "bend":
         from .chart import bend_chart_svg
