@@ -20,25 +20,23 @@ __all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "add_tube_arguments", "tube_from_args"
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
 
-#: Tube options: flag, :class:`~embroact.patterns.params.Tube` field (also the argparse dest), help.
+#: Tube options: flag, :class:`~embroact.patterns.params.Tube` field (also the argparse dest),
+#: help, default. The defaults repeat Tube's (a test holds them equal) so that a command's
+#: ``--help`` needs no numpy.
 TUBE_FLAGS = (
-    ("--tube-radius-mm", "outer_radius_mm", "tube outer radius r_f [mm]"),
-    ("--tube-inner-radius-mm", "inner_radius_mm", "tube inner radius d_f [mm]"),
-    ("--tube-g-mpa", "g_e_mpa", "tube shear modulus G_e, inflation phase [MPa]"),
-    ("--clearance-mm", "clearance_mm", "needle clearance from the tube [mm]"),
-    ("--end-margin-mm", "end_margin_mm", "free tube at each end for connectors [mm]"),
+    ("--tube-radius-mm", "outer_radius_mm", "tube outer radius r_f [mm]", 1.5),
+    ("--tube-inner-radius-mm", "inner_radius_mm", "tube inner radius d_f [mm]", 1.0),
+    ("--tube-g-mpa", "g_e_mpa", "tube shear modulus G_e, inflation phase [MPa]", 0.13),
+    ("--clearance-mm", "clearance_mm", "needle clearance from the tube [mm]", 0.3),
+    ("--end-margin-mm", "end_margin_mm", "free tube at each end for connectors [mm]", 30.0),
 )
 _MATERIAL_FIELDS = ("outer_radius_mm", "inner_radius_mm", "g_e_mpa")
 
 
 def add_tube_arguments(group, *, fields=_MATERIAL_FIELDS) -> None:
     """Add the tube flags for ``fields`` (Tube field names) with the Tube defaults."""
-    from ..patterns.params import Tube
-
-    default_tube = Tube()
-    for flag, field, text in TUBE_FLAGS:
+    for flag, field, text, default in TUBE_FLAGS:
         if field in fields:
-            default = getattr(default_tube, field)
             group.add_argument(flag, type=float, default=default, dest=field,
                                metavar=flag[2:].replace("-", "_").upper(), help=f"{text} (default {default:g})")
 
@@ -47,7 +45,7 @@ def tube_from_args(args):
     """The :class:`~embroact.patterns.params.Tube` the parsed tube flags describe (validated there)."""
     from ..patterns.params import Tube
 
-    return Tube(**{field: getattr(args, field) for _, field, _ in TUBE_FLAGS if hasattr(args, field)})
+    return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
 
 
 def parse_pressures(text: str, flag: str = "--pressure-kpa"):

@@ -36,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     g.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm, e.g. "M 0 0 C 30 -20 60 20 90 0"')
     g.add_argument("--name", default="A1", help="actuator name for the thread list (default A1)")
     t = parser.add_argument_group("tube")
-    add_tube_arguments(t, fields=[field for _, field, _ in TUBE_FLAGS])
+    add_tube_arguments(t, fields=[flag[1] for flag in TUBE_FLAGS])
     o = parser.add_argument_group("output")
     o.add_argument("-o", "--output", required=True, help="machine file; the suffix picks the format (.dst .pes ...)")
     o.add_argument("--format", help="format overriding the suffix: dst, tbf, pes, pec, jef, exp, vp3, xxx, u01")
