@@ -146,6 +146,16 @@ def _place_label(label: str, x: float, y: float, boxes: list, x_range) -> tuple[
     return x + dx, y + dy, False
 
 
+def _runs(row):
+    """(start, stop, value) of each run of equal values in ``row``."""
+    out, start = [], 0
+    for i in range(1, len(row) + 1):
+        if i == len(row) or row[i] != row[start]:
+            out.append((start, i, row[start]))
+            start = i
+    return out
+
+
 def _xml(dwg) -> str:
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + dwg.tostring() + "\n"
 
@@ -195,8 +205,8 @@ def stability_svg(panels: dict, theta_abs_deg, row_info: dict, class_labels, *,
             x0 = left + j * (pw + pw_gap)
             grid = by_pattern[pt]
             for r, row in enumerate(grid):
-                for c, k in enumerate(row):
-                    dwg.add(dwg.rect((x0 + c * cell_w, y0 + r * cell_h), (cell_w, cell_h),
+                for c0, c1, k in _runs(row):  # one rectangle per run of equal cells keeps the file small
+                    dwg.add(dwg.rect((x0 + c0 * cell_w, y0 + r * cell_h), ((c1 - c0) * cell_w, cell_h),
                                      fill=CLASS_COLOURS[int(k)]))
             dwg.add(dwg.rect((x0, y0), (pw, len(grid) * cell_h), fill="none", stroke="black", stroke_width=0.5))
     return _xml(dwg)
