@@ -222,14 +222,24 @@ def _steps(p0: np.ndarray, p1: np.ndarray, lim: int) -> list[np.ndarray]:
     return [p0 + np.rint(d * (k / n)).astype(np.int64) for k in range(1, n + 1)]
 
 
+#: Growth of the tube corridor when placing split points [mm]: covers the rounding of the leg ends and
+#: of the split point to the machine grid (found by the H8 round-trip property: 0.011 mm inside before).
+_SPLIT_MARGIN_MM = 2.0 * DEFAULT_TOLERANCES.machine_grid_mm
+
+
 def _forbidden_t(plan: StitchPlan, index: int, a_mm: np.ndarray, b_mm: np.ndarray) -> list[tuple[float, float]]:
-    """Parameter ranges of segment a->b inside actuator ``index``'s corridor (grown by one grid step)."""
+    """Parameter ranges of segment a->b inside actuator ``index``'s corridor, grown by the rounding margin.
+
+    A split point is taken on the segment between the *rounded* leg ends and then rounded itself:
+    each rounding moves it by up to half a grid step per axis (sqrt(2)/2 grid), so the corridor
+    is grown by :data:`_SPLIT_MARGIN_MM` = 2 grid steps (> sqrt(2) grid).
+    """
     if not 0 <= index < len(plan.actuators):
         return []
     from shapely.geometry import LineString
 
     seg = LineString([a_mm, b_mm])
-    inside = seg.intersection(plan.actuators[index].corridor().buffer(DEFAULT_TOLERANCES.machine_grid_mm))
+    inside = seg.intersection(plan.actuators[index].corridor().buffer(_SPLIT_MARGIN_MM))
     parts = getattr(inside, "geoms", [inside])
     out = []
     for g in parts:
