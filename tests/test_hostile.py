@@ -239,6 +239,8 @@ CATALOGUE = [
      "pressure_kpa step must be in (0, inf), got 0"),
     ("preview-pressure-billions", ["preview", "bend", "-o", "{tmp}/b.svg", "--pressure-kpa", "0:1e9:1e-9"], 2,
      "pressure_kpa must give at most 10000 pressures, got"),
+    ("preview-pressure-empty", ["preview", "bend", "-o", "{tmp}/b.svg", "--pressure-kpa", ""], 2,
+     "pressure_kpa must name at least one pressure, got ''"),
     ("preview-pressure-huge", ["preview", "bend", "-o", "{tmp}/b.svg", "--pressure-kpa", "1e400"], 2,
      "pressure_kpa must be a finite number in [0, 100000), got inf"),
     # --- unreadable CSVs for fit ---------------------------------------------------------------------------
