@@ -43,10 +43,13 @@ from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "MAX_RECORDS"]
+__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "MAX_RECORDS", "MIN_TIE_GRID_STEPS"]
 
 #: Hard cap on records in one plan; generators refuse before allocating.
 MAX_RECORDS = 5_000_000
+#: Shortest lock stitch in machine grid steps: two points 2 steps apart stay distinct after rounding
+#: each to the grid (found by the H8 round-trip property: 0.1 mm ties at x.x5 mm rounded to one point).
+MIN_TIE_GRID_STEPS = 2
 #: Records an actuator adds besides its stations and 2 * tie_count lock stitches (STOP, TRIM, END,
 #: less the first station, which is the last tie-in stitch).
 _EXTRA_RECORDS = 2
@@ -69,8 +72,9 @@ def check_pattern_inputs(cl: Centerline, params: PatternParams, tube: Tube, opti
             f"interval_mm must be >= {grid:g} (needle points closer than the machine grid merge), "
             f"got {params.interval_mm:g}"
         )
-    if options.tie_stitch_mm < grid:
-        raise ParameterError(f"tie_stitch_mm must be >= {grid:g}, got {options.tie_stitch_mm:g}")
+    if options.tie_stitch_mm < MIN_TIE_GRID_STEPS * grid:  # shorter lock stitches can round to zero length
+        raise ParameterError(f"tie_stitch_mm must be >= {MIN_TIE_GRID_STEPS * grid:g} (two machine grid steps), "
+                             f"got {options.tie_stitch_mm:g}")
     cl.check_radius(params.width_mm / 2.0, "width_mm/2")
 
 
