@@ -250,3 +250,17 @@ def test_leg_at_the_format_limit_reads_back_as_a_stitch(fmt):
                                     (0, 0, Command.END, Role.CONTROL, -1)])
     with pytest.raises(LongLegError):
         encode(over, fmt)
+
+
+def test_lock_stitches_survive_the_machine_grid():
+    """Found by the round-trip property (zigzag w=13 s=1 on a 4.5 mm path, tie_stitch_mm=0.1): lock stitches
+    of one grid step at x.x5 mm rounded to a single point. Two grid steps is now the minimum."""
+    from embroact.patterns import Centerline, ParameterError, StitchOptions, ZigzagParams, zigzag
+
+    with pytest.raises(ParameterError, match=r"tie_stitch_mm must be >= 0.2 \(two machine grid steps\), got 0.1"):
+        zigzag(Centerline.straight(4.5), ZigzagParams(13.0, 1.0), options=StitchOptions(tie_stitch_mm=0.1))
+    for start in (0.05, 0.15, 0.25):  # half-grid positions
+        plan = zigzag(Centerline.straight(4.5, origin_mm=(start, 0.0)), ZigzagParams(7.0, 1.0),
+                      options=StitchOptions(tie_stitch_mm=0.2))
+        got = _read_back(encode(plan, "dst")[0], "dst")
+        assert np.all(np.abs(np.diff(got, axis=0)).max(axis=1) > 0)  # no zero-length stitch
