@@ -11,7 +11,7 @@ import os
 from hypothesis import HealthCheck, settings
 
 #: Examples per property in the "ci" profile; tests scale this with ``strategies.budget``.
-CI_EXAMPLES = 25
+CI_EXAMPLES = 100
 
 _COMMON = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 settings.register_profile("ci", max_examples=CI_EXAMPLES, derandomize=True, print_blob=True, **_COMMON)
