@@ -264,3 +264,20 @@ def test_lock_stitches_survive_the_machine_grid():
                       options=StitchOptions(tie_stitch_mm=0.2))
         got = _read_back(encode(plan, "dst")[0], "dst")
         assert np.all(np.abs(np.diff(got, axis=0)).max(axis=1) > 0)  # no zero-length stitch
+
+
+@pytest.mark.xfail(strict=True, reason="bug B8 (notes/bugs.md): lock stitches are tie_stitch_mm long along the "
+                   "centerline, not along the rail as StitchOptions documents; on the inner rail of a tight arc "
+                   "they shrink below the machine grid and vanish from the machine file")
+def test_lock_stitches_on_the_inner_rail_of_a_tight_arc():
+    """Found by the round-trip property (profile dev): zigzag w=4 s=1 on an arc of radius 2.3 mm, tube r_f=1,
+    clearance 0, tie_stitch_mm=0.5: the inner-rail lock stitches are 0.065 mm long, DST holds 11 of 13 points."""
+    from h1_checks import arc
+    from embroact.patterns import StitchOptions, Tube, ZigzagParams, zigzag
+
+    plan = zigzag(arc(2.3, 236.0), ZigzagParams(4.0, 1.0), tube=Tube(1.0, 0.0, 1.0, 0.0, 0.0),
+                  options=StitchOptions(tie_stitch_mm=0.5, tie_count=2))
+    for role in (Role.TIE_IN, Role.TIE_OFF):
+        idx = np.flatnonzero(plan.roles == role)
+        seg = np.hypot(*(plan.xy_mm[idx] - plan.xy_mm[idx - 1]).T)
+        np.testing.assert_allclose(seg, 0.5, rtol=0.05)
