@@ -145,6 +145,8 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
         side[idx] = np.where(low, 1, -1)
         tol = rtol * np.abs(xn) + atol
         idx = idx[~((step <= tol) | (np.abs(b[idx] - a[idx]) <= tol) | (fx == 0.0))]
+    if idx.size == 0:  # the last iteration converged
+        return x
     raise SolverError(
         f"regula falsi did not converge in {max_iterations} iterations on {idx.size} point(s); "
         f"bracket width up to {float(np.max(np.abs(b - a)[idx])):.3g}"
