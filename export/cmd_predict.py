@@ -140,7 +140,8 @@ def run(args) -> int:
 
         design = load_design(args.target)
         max_kpa = design.operation.max_pressure_kpa
-    pressures = parse_pressures(args.pressure_kpa or f"0:{max_kpa:g}:{_DEFAULT_STEP_KPA:g}")
+    default = f"0:{max_kpa:g}:{_DEFAULT_STEP_KPA:g}"
+    pressures = parse_pressures(args.pressure_kpa if args.pressure_kpa is not None else default)
     specs = design.actuators
     if args.actuator is not None:
         specs = tuple(s for s in specs if s.name == args.actuator)
