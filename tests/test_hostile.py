@@ -232,6 +232,7 @@ CATALOGUE = [
      "--pressure-kpa: pressures must be finite and >= 0 kPa, got '1e400' in '1e400'"),
     ("pressure-negative-list", PRED + ["--pressure-kpa=-5,10"], 2,
      "--pressure-kpa: pressures must be finite and >= 0 kPa, got '-5' in '-5,10'"),
+    ("pressure-empty", PRED + ["--pressure-kpa", ""], 2, "--pressure-kpa must list 1 to 100000 pressures, got ''"),
     ("pressure-only-commas", PRED + ["--pressure-kpa", ","], 2, "--pressure-kpa must list 1 to 100000 pressures, got ','"),
     ("preview-pressure-reversed", ["preview", "bend", "-o", "{tmp}/b.svg", "--pressure-kpa", "300:0:10"], 2,
      "pressure_kpa must be START:STOP:STEP with STOP >= START and STEP > 0, or a comma list, got '300:0:10'"),
