@@ -100,6 +100,9 @@ def closing(params: CrossParams, adjust: str = "auto") -> tuple[int, float, floa
         raise ParameterError(f"adjust must be one of {', '.join(map(repr, ADJUST_METHODS))}, got {adjust!r}")
     w, s, a = params.width_mm, params.interval_mm, params.angle_deg
     ratio = 2.0 * w * math.tan(math.radians(a)) / s
+    if not math.isfinite(ratio):  # a subnormal interval: no number of passes exists
+        raise ParameterError(f"interval_mm is too small to close the cross pattern (2*w*tan(angle)/interval_mm "
+                             f"overflows), got {s:g}")
     if abs(ratio - round(ratio)) <= _EXACT_REL * ratio and round(ratio) >= 1:
         return round(ratio), s, a, ""
     options = []

@@ -73,8 +73,8 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from .centerline import Centerline, as_centerline
-from .assemble import MAX_RECORDS, check_record_count
-from .cross import cross, cross_stations
+from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
+from .cross import closing, cross, cross_stations
 from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
@@ -486,12 +486,21 @@ def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> S
     )
 
 
-def _records(spec: ActuatorSpec) -> int:
-    """Records the actuator will need, from its parameters alone (refuses one above the cap)."""
+def _records(spec: ActuatorSpec, tube: Tube) -> int:
+    """Records the actuator will need, from its parameters alone (refuses one above the cap).
+
+    The generator's own input checks run first, so a degenerate interval or width is reported
+    as such (not as an overflowing count).
+    """
     length = spec.centerline.length_mm
-    stations = (cross_stations(length, spec.params, spec.adjust) if spec.pattern == "cross"
-                else zigzag_stations(length, spec.params))
     try:
+        if spec.pattern == "cross":
+            _, s, alpha, _ = closing(spec.params, spec.adjust)
+            check_pattern_inputs(spec.centerline, CrossParams(spec.params.width_mm, s, alpha), tube, spec.options)
+            stations = cross_stations(length, spec.params, spec.adjust)
+        else:
+            check_pattern_inputs(spec.centerline, spec.params, tube, spec.options)
+            stations = zigzag_stations(length, spec.params)
         return check_record_count(stations, spec.options)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
@@ -503,7 +512,7 @@ def build_plan(design: Design) -> StitchPlan:
     The records of all actuators together are counted before anything is generated: a
     design above :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
     """
-    total = sum(_records(spec) for spec in design.actuators)
+    total = sum(_records(spec, design.tube) for spec in design.actuators)
     if total > MAX_RECORDS:
         raise PatternError(
             f"design would need about {total:.3g} records over {len(design.actuators)} actuators, more than the "
