@@ -67,9 +67,21 @@ def tubes(draw) -> Tube:
     )
 
 
+#: Shortest lock stitch drawn [mm]: the default min_stitch_mm.
+MIN_TIE_MM = 0.3
+#: Lock stitches are laid tie_stitch_mm along the centerline (bug B8), i.e. shorter by 1 - w/(2R) on an
+#: inner rail: draw them long enough to stay this long there [mm] (above 2 machine grid steps).
+MIN_TIE_ON_RAIL_MM = 0.25
+
+
 @st.composite
-def stitch_options(draw) -> StitchOptions:
-    return StitchOptions(tie_stitch_mm=draw(_floats(0.3, 2.0)), tie_count=draw(st.integers(2, 6)))
+def stitch_options(draw, min_tie_mm: float = MIN_TIE_MM) -> StitchOptions:
+    return StitchOptions(tie_stitch_mm=draw(_floats(min_tie_mm, max(min_tie_mm, 2.0))), tie_count=draw(st.integers(2, 6)))
+
+
+def _min_tie_mm() -> float:
+    """Shortest tie so that the inner-rail lock stitch keeps MIN_TIE_ON_RAIL_MM at R = RADIUS_MARGIN w/2."""
+    return max(MIN_TIE_MM, MIN_TIE_ON_RAIL_MM / (1.0 - 1.0 / RADIUS_MARGIN))
 
 
 def _width(draw, tube: Tube, max_width_mm: float) -> float:
@@ -172,7 +184,7 @@ def zigzag_cases(draw, max_width_mm: float = 14.0, kinds=PATH_KINDS) -> Generato
     tube = draw(tubes())
     w = _width(draw, tube, max_width_mm)
     s = draw(_floats(0.1, 4.0))
-    opts = draw(stitch_options())
+    opts = draw(stitch_options(_min_tie_mm()))
     length = _length(draw, max(2.0 * s, opts.tie_stitch_mm))
     path = draw(smooth_paths(length, RADIUS_MARGIN * w / 2.0, kinds))
     return GeneratorCase("zigzag", ZigzagParams(width_mm=w, interval_mm=s), tube, opts, path)
@@ -184,7 +196,7 @@ def cross_cases(draw, max_width_mm: float = 12.0, kinds=PATH_KINDS) -> Generator
     w = _width(draw, tube, max_width_mm)
     alpha = draw(_floats(5.0, 70.0))
     s = draw(_floats(0.3, 4.0))
-    opts = draw(stitch_options())
+    opts = draw(stitch_options(_min_tie_mm()))
     adjust = draw(st.sampled_from(("auto", "interval", "angle")))
     # the adjusted angle can be up to atan(n s / 2w) with n = ceil(ratio): bound the minimum length with it
     ratio = 2.0 * w * math.tan(math.radians(alpha)) / s

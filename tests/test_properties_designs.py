@@ -30,7 +30,7 @@ from embroact.patterns.plan import Command
 #: Replacement values of the "wrong type" mutation.
 WRONG_TYPES = ("7", "seven", [1, 2], {"x": 1}, True, [], "")
 #: Replacement values of the "bad number" mutation.
-BAD_NUMBERS = (1e308, -1e308, 1e-308, 0.0, -0.0, 2**63, 10**30, -(2**31), math.nan, math.inf, -math.inf)
+BAD_NUMBERS = (1e308, -1e308, 1e-308, 5e-324, 0.0, -0.0, 2**63, 10**30, -(2**31), math.nan, math.inf, -math.inf)
 #: Names users type: accents, CJK, emoji, right-to-left, whitespace, quotes, TOML/SVG metacharacters.
 NAMES = ("Aktor-ü", "执行器", "🦾 arm", "שריר", "  ", "a\"b'c", "x = 1", "[[actuator]]", "\\", "A" * 300, "é\u0301")
 
