@@ -49,6 +49,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import DesignFileError, EmbroactError
 from ..predict.calibration import CalibrationPoint, CalibrationSet
 from .atomic import write_text_atomic
@@ -73,12 +74,6 @@ _TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n"
 def _escape_control(ch: str) -> str:
     """TOML basic strings forbid raw U+0000-U+001F and U+007F; everything else stays UTF-8."""
     return f"\\u{ord(ch):04x}" if ord(ch) < 0x20 or ord(ch) == 0x7F else ch
-
-
-def _frozen(a, dtype=np.float64) -> np.ndarray:
-    a = np.array(a, dtype=dtype)
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True, slots=True)
@@ -193,7 +188,7 @@ def read_bend_csv(path) -> BendData:
     """
     columns, rows = _read_rows(path)
     values = _columns(path, columns, rows, ("pressure_kpa", "angle_deg"))
-    return BendData(_frozen(values[:, 0]), _frozen(values[:, 1]), _branches(path, columns, rows))
+    return BendData(frozen_array(values[:, 0]), frozen_array(values[:, 1]), _branches(path, columns, rows))
 
 
 def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
@@ -209,7 +204,7 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     names = [f"m{i}_{ax}" for i in range(1, n_markers + 1) for ax in axes]
     values = _columns(path, columns, rows, ["pressure_kpa", *names])
     markers = values[:, 1:].reshape(len(rows), n_markers, len(axes))
-    return MarkerData(_frozen(values[:, 0]), _frozen(markers), _branches(path, columns, rows))
+    return MarkerData(frozen_array(values[:, 0]), frozen_array(markers), _branches(path, columns, rows))
 
 
 def _toml_value(value) -> str:

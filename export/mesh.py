@@ -56,6 +56,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import ExportError, ParameterError, check_range
 from .atomic import write_bytes_atomic
 from .sideview import FABRIC_THICKNESS_MM
@@ -91,12 +92,6 @@ _MIN_TUBE_SEGMENTS = 8
 _COLOURS = {"fabric": (225, 214, 190, 255), "tube": (70, 130, 200, 255), "rails": (200, 60, 60, 255)}
 
 
-def _ro(a) -> np.ndarray:
-    a = np.array(a, dtype=np.float64)
-    a.setflags(write=False)
-    return a
-
-
 @dataclass(frozen=True, slots=True, eq=False)
 class PlanarPath:
     """A plan-frame path made of pieces of constant curvature.
@@ -119,7 +114,7 @@ class PlanarPath:
     kappa_per_mm: np.ndarray
 
     def __post_init__(self) -> None:
-        lengths, kappa = _ro(self.lengths_mm).reshape(-1), _ro(self.kappa_per_mm).reshape(-1)
+        lengths, kappa = frozen_array(self.lengths_mm).reshape(-1), frozen_array(self.kappa_per_mm).reshape(-1)
         if len(lengths) == 0 or len(lengths) != len(kappa) or not np.all(lengths > 0):
             raise ParameterError("lengths_mm must be positive, one per curvature, at least one piece")
         object.__setattr__(self, "lengths_mm", lengths)
@@ -202,7 +197,7 @@ class BentPath:
             s0.append(s0[-1] + float(length))
             xs.append(x)
             rs.append(r)
-        return cls(path, kb, _ro(s0), _ro(xs), _ro(rs))
+        return cls(path, kb, frozen_array(s0), frozen_array(xs), frozen_array(rs))
 
     def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
         """Positions (n, 3) and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm``."""
@@ -369,7 +364,7 @@ def _sweep(bent: BentPath, prof: _Profile, s: np.ndarray, colour) -> Body:
     start = np.column_stack([np.zeros_like(fan), fan + 1, fan])
     end = np.column_stack([np.zeros_like(fan), fan, fan + 1]) + (rings - 1) * m
     faces = np.concatenate([start, sides, end]).astype(np.int64)
-    return Body(prof.name, _ro(verts), _ro(faces).astype(np.int64), m, _ro(s), colour)
+    return Body(prof.name, frozen_array(verts), frozen_array(faces).astype(np.int64), m, frozen_array(s), colour)
 
 
 def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> float:

@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
+from .arrays import frozen_array
 from .errors import ParameterError, PathError, check_range
 from .tolerances import DEFAULT_TOLERANCES
 
@@ -63,12 +64,6 @@ _MAX_COORD_MM = 1e7
 _SVG_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
 _SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "A": 7, "Z": 0}
 _SVG_TOKEN = re.compile(r"([A-Za-z])|([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)|([\s,]+)|(.)")
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=np.float64, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -93,10 +88,10 @@ class Centerline:
         phi = np.unwrap(np.arctan2(seg[:, 1], seg[:, 0]))
         turn = np.diff(phi)
         theta = np.concatenate([phi[:1], 0.5 * (phi[:-1] + phi[1:]), phi[-1:]])
-        object.__setattr__(self, "points_mm", _frozen(pts))
-        object.__setattr__(self, "_s", _frozen(np.concatenate([[0.0], np.cumsum(h)])))
-        object.__setattr__(self, "_theta", _frozen(theta))
-        object.__setattr__(self, "_turn", _frozen(turn))
+        object.__setattr__(self, "points_mm", frozen_array(pts))
+        object.__setattr__(self, "_s", frozen_array(np.concatenate([[0.0], np.cumsum(h)])))
+        object.__setattr__(self, "_theta", frozen_array(theta))
+        object.__setattr__(self, "_turn", frozen_array(turn))
 
     # ------------------------------------------------------------------ constructors
     @classmethod

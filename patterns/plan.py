@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
 
+from .arrays import frozen_array
 from .params import CrossParams, PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -75,12 +76,6 @@ class Realised:
     angle_deg: float
     length_mm: float
     passes: int = 1
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True, slots=True)
@@ -164,8 +159,8 @@ class StitchPlan:
             arr = np.asarray(getattr(self, attr), dtype=dtype).reshape(-1)
             if len(arr) != n:
                 raise ValueError(f"{attr} has {len(arr)} entries, xy_mm has {n}")
-            object.__setattr__(self, attr, _frozen(arr))
-        object.__setattr__(self, "xy_mm", _frozen(xy))
+            object.__setattr__(self, attr, frozen_array(arr, dtype=None))
+        object.__setattr__(self, "xy_mm", frozen_array(xy))
 
     @classmethod
     def from_records(

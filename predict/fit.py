@@ -43,6 +43,7 @@ from typing import Callable, Iterable, Mapping
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import ModelDomainError, ParameterError, SolverError
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
@@ -80,12 +81,6 @@ _FD_STEP_REL = 1e-4
 #: Relative singular-value floor below which the fitted parameters are not identifiable.
 _RANK_RTOL = 1e-8
 _MAX_NFEV = 400
-
-
-def _frozen(a) -> np.ndarray:
-    a = np.array(a, dtype=np.float64)
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True, slots=True)
@@ -377,9 +372,9 @@ def fit_curve(
         p0_source="fitted" if "p0_kpa" in names else ("given" if fixed.get("p0_kpa") is not None else "default"),
         rmse_deg=float(math.sqrt(np.mean(res.fun**2))),
         n_points=int(p.size),
-        pressure_kpa=_frozen(p),
-        angle_deg=_frozen(a),
-        residuals_deg=_frozen(res.fun),
+        pressure_kpa=frozen_array(p),
+        angle_deg=frozen_array(a),
+        residuals_deg=frozen_array(res.fun),
         method=method,
         nfev=int(res.nfev),
     )

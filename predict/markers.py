@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import ParameterError
 from ..patterns.tolerances import DEFAULT_TOLERANCES
 
@@ -46,12 +47,6 @@ __all__ = ["MarkerAngles", "marker_angles", "bend_angle_deg", "PAPER_MARKERS_PER
 
 PAPER_MARKERS_PER_SIDE = 7
 PAPER_SIDES = 2
-
-
-def _frozen(a) -> np.ndarray:
-    a = np.array(a, dtype=np.float64)
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,9 +141,9 @@ def marker_angles(
         joint = np.where(turn < 0.0, -joint, joint)
     side = joint.sum(axis=-1)
     return MarkerAngles(
-        theta_deg=_frozen(side.mean(axis=-1)),
-        side_deg=_frozen(side),
-        joint_deg=_frozen(joint),
+        theta_deg=frozen_array(side.mean(axis=-1)),
+        side_deg=frozen_array(side),
+        joint_deg=frozen_array(joint),
         signed=signed,
     )
 
