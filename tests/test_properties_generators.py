@@ -200,7 +200,9 @@ def _check_dst(data: bytes, plan) -> None:
 def test_plan_round_trips_every_writer_and_the_dst_decoder(case):
     _describe(case)
     plan = case.generate()
-    want = _dedup(_needles(plan))
+    # the plan on the 0.1 mm machine grid: points closer than the grid merge there (on inner rails of tight
+    # curves, bug B8); the writers must reproduce exactly these
+    want = _dedup(np.rint(_needles(plan) * 10.0) / 10.0)
     worst = _longest_leg_units(plan)
     corridor = shapely.buffer(case.path.centerline.as_linestring(), case.tube.corridor_radius_mm - 1e-9,
                               cap_style="flat")
