@@ -15,10 +15,12 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "add_tube_arguments", "tube_from_args", "parse_pressures"]
+__all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures"]
 
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
+#: Highest pressure a command accepts [kPa] (100 MPa: far beyond any tube; larger is a typo).
+MAX_PRESSURE_KPA = 100_000.0
 
 #: Tube options: flag, :class:`~embroact.patterns.params.Tube` field (also the argparse dest),
 #: help, default. The defaults repeat Tube's (a test holds them equal) so that a command's
@@ -65,6 +67,8 @@ def parse_pressures(text: str, flag: str = "--pressure-kpa"):
             raise ParameterError(f"{flag}: {s.strip()!r} is not a number in {text!r}") from None
         if not math.isfinite(v) or v < 0:
             raise ParameterError(f"{flag}: pressures must be finite and >= 0 kPa, got {s.strip()!r} in {text!r}")
+        if v > MAX_PRESSURE_KPA:
+            raise ParameterError(f"{flag}: pressures must be <= {MAX_PRESSURE_KPA:g} kPa, got {s.strip()!r} in {text!r}")
         return v
 
     if ":" in text:

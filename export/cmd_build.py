@@ -40,7 +40,7 @@ def _stages(args) -> tuple:
     """The preview stage (bend chart, side view, 3D, report) unless ``--no-previews``."""
     if args.no_previews:
         return ()
-    from .cmd_preview import parse_pressures
+    from .cliargs import parse_pressures
     from .previews import previews_stage
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else None

@@ -20,18 +20,16 @@ Examples
 >>> main(["preview", "bend", "-o", out, "--pressure-kpa", "0:300:50"])
 wrote ...bend.svg: bend chart, 1 actuator(s), 7 pressures
 0
->>> parse_pressures("0:300:100"), parse_pressures("50, 120")
-((0.0, 100.0, 200.0, 300.0), (50.0, 120.0))
 """
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 
-from ..patterns.errors import ParameterError, check_range
+from ..patterns.errors import ParameterError
+from .cliargs import parse_pressures
 
-__all__ = ["KINDS", "add_arguments", "run", "parse_pressures", "measured_points"]
+__all__ = ["KINDS", "add_arguments", "run", "measured_points"]
 
 #: kind -> one-line description.
 KINDS = {
@@ -40,45 +38,6 @@ KINDS = {
     "shape": "bent-shape side views (SVG)",
     "mesh": "3D shape: .glb .stl .obj .ply, or .svg for a picture",
 }
-_MAX_PRESSURES = 10_000
-_PRESSURE_MAX_KPA = 100_000.0
-_GRID_SLACK = 1e-9  # STOP counts as on the grid when (STOP - START)/STEP is an integer up to round-off
-
-
-def parse_pressures(text: str) -> tuple[float, ...]:
-    """``"START:STOP:STEP"`` (STOP included when it falls on the grid) or ``"p1,p2,..."`` [kPa].
-
-    Raises
-    ------
-    ParameterError
-        One line naming ``pressure_kpa``, the value and the rule.
-    """
-    text = str(text).strip()
-    rule = f"pressure_kpa must be START:STOP:STEP with STOP >= START and STEP > 0, or a comma list, got {text!r}"
-    try:
-        numbers = tuple(float(v) for v in (text.split(":") if ":" in text else text.split(",")) if v.strip())
-    except ValueError:
-        raise ParameterError(rule) from None
-    if ":" in text:
-        if len(numbers) != 3:
-            raise ParameterError(rule)
-        start, stop, step = numbers
-        check_range("pressure_kpa step", step, low=0.0)
-        if not (math.isfinite(start) and math.isfinite(stop)) or stop < start:
-            raise ParameterError(rule)
-        n = math.floor((stop - start) / step + _GRID_SLACK)
-        if n + 1 > _MAX_PRESSURES:
-            raise ParameterError(f"pressure_kpa must give at most {_MAX_PRESSURES} pressures, got {n + 1}")
-        values = tuple(start + k * step for k in range(n + 1))
-    else:
-        values = numbers
-    if not values:
-        raise ParameterError(f"pressure_kpa must name at least one pressure, got {text!r}")
-    for v in values:
-        check_range("pressure_kpa", v, low=0.0, low_inclusive=True, high=_PRESSURE_MAX_KPA)
-    return values
-
-
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact preview``."""
     parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
