@@ -92,6 +92,11 @@ MAX_BEND_DEG = 3600.0
 ANGLE_LIMIT_DEG = 1e6
 #: Angle below which convergence is absolute: steps < rtol * THETA_FLOOR_RAD stop [rad].
 THETA_FLOOR_RAD = 1e-12
+#: Round-off floor of P - P0 per MPa of G, by derivative: the energy's terms (~G l0 c) cancel
+#: near the straight state, leaving ~4 eps G (analytic, complex) and ~2 eps^(2/3) G (central;
+#: measured with P0 = 0 over l0/r0 = 4..60); the inverse stops where its residual is within 8x.
+PRESSURE_FLOOR_PER_G = {"analytic": 32 * solvers.EPS, "complex": 32 * solvers.EPS,
+                        "central": 16 * solvers.EPS ** (2.0 / 3.0)}
 #: Tabulation points along a branch (trace inverse).
 TRACE_POINTS = 128
 #: Designs solved together by ``sweep`` (arrays of a block stay in cache).
@@ -310,7 +315,8 @@ def _trace(geo, t, full, kind, energy, deriv, rtol):
     """The "trace" inverse on non-empty branches: (theta, status)."""
     th, where, _, _ = solvers.trace_inverse(_rate_fn(geo, energy, deriv), full, t,
                                             slope=_slope_fn(geo, energy, deriv), grid_points=TRACE_POINTS,
-                                            rtol=rtol, atol=rtol * THETA_FLOOR_RAD, pole_at_end=kind == Status.LOCKED)
+                                            rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
+                                            ptol=PRESSURE_FLOOR_PER_G[deriv] * geo.g, pole_at_end=kind == Status.LOCKED)
     st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind, Status.BENDING))
     return np.where(where == 1, full, th), st
 

@@ -26,7 +26,8 @@ targets need when they sit in its first quarter), finds the first fold of
 from the root of a cubic through the four tabulated residuals
 ``R = E' - (P - P0) V'`` around the bracket (R has no pole at lock-up, P has) and
 finishes with Newton steps on the true residual, stopping when the predicted error
-left after a step is below the tolerance; entries a Newton step would take out of
+left after a step is below the tolerance or the residual is within the round-off
+floor of P(theta) the caller gives (``ptol``); entries a Newton step would take out of
 the bracket finish by Illinois regula falsi (bracketing, superlinear). It follows the
 branch from theta = 0 only, so it cannot jump to another branch; a fold narrower than
 the grid spacing is missed. :func:`root_each` runs scipy's ``brentq`` per target on
@@ -63,8 +64,10 @@ __all__ = [
 ]
 
 DERIVATIVE_METHODS = ("central", "complex")
+#: Machine epsilon of float64.
+EPS = float(np.finfo(np.float64).eps)
 #: Central-difference step relative to the function's length scale: cbrt(machine epsilon).
-CENTRAL_STEP = float(np.cbrt(np.finfo(np.float64).eps))
+CENTRAL_STEP = float(np.cbrt(EPS))
 #: Complex step relative to the length scale (any tiny value works; no cancellation).
 COMPLEX_STEP = 1e-30
 #: Iteration caps of the vectorised bracketing methods (float64 halves 1 to 0 in ~1075 steps).
@@ -118,7 +121,8 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
 
     ``residual(x, idx)`` evaluates the function of entries ``idx`` at ``x`` (both
     1-D); only unconverged entries are evaluated. An entry stops when its step or
-    its bracket falls below ``rtol * |x| + atol``. Raises :class:`SolverError` if
+    its bracket falls below ``rtol * |x| + atol``, or its residual is 0 (callers
+    floor a residual at its round-off level to 0). Raises :class:`SolverError` if
     any entry has not converged after ``max_iterations``.
     """
     a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
@@ -153,7 +157,8 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
     )
 
 
-def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, atol, pole_at_end=False):
+def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, atol, ptol=0.0,
+                  pole_at_end=False):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
@@ -173,6 +178,10 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
         Tabulation points along each branch (and again on a zoomed part, see below).
     rtol, atol : float
         Converged when a step is below ``rtol * |theta| + atol`` [rad].
+    ptol : float or ndarray (n, 1)
+        Round-off floor of P - P0 [MPa]: also converged where the residual is
+        within it, ``|E' - (P - P0) V'| <= ptol |V'|`` (theta is resolved as far as
+        P(theta) can be; a target below the floor would otherwise chase noise).
     pole_at_end : bool or ndarray (n, 1)
         True where ``theta_end`` is a lock-up (P -> +inf there).
 
@@ -233,23 +242,35 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
     theta = np.where(beyond, theta_stop, 0.0)
     # between the last rising grid point and a located fold: bracket [grid point, fold]
+    floor = np.broadcast_to(ptol, theta_end.shape)[:, 0]
     tail = ~beyond & (targets > p[rows, last][:, None])
     if tail.any():
         r_t, t_t = np.nonzero(tail)[0], targets[tail]
         a, b = grid[r_t, last[r_t]], theta_stop[r_t, 0]
         fa = de[r_t, last[r_t]] - t_t * dv[r_t, last[r_t]]
         e, v = rate(b, r_t)
-
-        def residual(x, k):
-            e, v = rate(x, r_t[k])
-            return e - t_t[k] * v
-
-        theta[tail] = illinois(residual, a, b, fa, e - t_t * v, rtol=rtol, atol=atol)
+        theta[tail] = illinois(_residual_fn(rate, r_t, t_t, floor[r_t]), a, b, fa, e - t_t * v, rtol=rtol,
+                               atol=atol)
     i = _bracket_index(p, last, np.where(beyond | tail, 0.0, targets))
     solve = np.nonzero(~beyond & ~tail)
     if solve[0].size:
-        theta[solve] = _polish(rate, grid, de, dv, i[solve], solve[0], targets[solve], (rtol, atol))
+        theta[solve] = _polish(rate, grid, de, dv, i[solve], solve[0], targets[solve], (rtol, atol, floor))
     return theta, where, theta_stop, p_stop
+
+
+def _floored(e, v, t, ptol):
+    """Residual ``e - t v``, zero where it is within the round-off floor ``ptol |v|``."""
+    r = e - t * v
+    return np.where(np.abs(r) <= ptol * np.abs(v), 0.0, r)
+
+
+def _residual_fn(rate, rows, t, ptol):
+    """residual(x, k) of entries k (1-D) of the targets ``t`` on ``rows``, floored (illinois' convention)."""
+    def residual(x, k):
+        e, v = rate(x, rows[k])
+        return _floored(e, v, t[k], ptol[k])
+
+    return residual
 
 
 #: Power-basis coefficients of the cubic through (0, f0), (1, f1), (2, f2), (3, f3).
@@ -263,7 +284,7 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
     (its root) and the slope; Newton steps on the true residual finish. Entries whose
     step leaves the bracket, or that still move after ``NEWTON_STEPS``, go to Illinois.
     """
-    rtol, atol = tols
+    rtol, atol, floor = tols
     n_grid = grid.shape[1]
     ta, tb = grid[rows, i], grid[rows, i + 1]
     ra, rb = de[rows, i] - t * dv[rows, i], de[rows, i + 1] - t * dv[rows, i + 1]
@@ -289,12 +310,12 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
     lo, hi = np.minimum(ta[todo], tb[todo]), np.maximum(ta[todo], tb[todo])
     xt = base + h * u
     # Newton on the model's residual; the working arrays shrink to the unconverged entries
-    work = [np.arange(todo.size), xt.copy(), rows_t, t_t, base, h, c1, d2, d3, lo, hi]
+    work = [np.arange(todo.size), xt.copy(), rows_t, t_t, base, h, c1, d2, d3, lo, hi, floor[rows_t]]
     stuck = []
     for _ in range(NEWTON_STEPS):
-        idx, xw, rw, tw, bw, hw, c1w, d2w, d3w, low, hiw = work
+        idx, xw, rw, tw, bw, hw, c1w, d2w, d3w, low, hiw, fw = work
         e, v = rate(xw, rw)
-        fx = e - tw * v
+        fx = _floored(e, v, tw, fw)
         uu = (xw - bw) / hw
         r_u = c1w + uu * (d2w + uu * d3w)  # dR/du of the cubic
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -317,14 +338,9 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
         act = work[0]  # still moving after NEWTON_STEPS
     stuck = np.concatenate(stuck + [act])
     if stuck.size:
-        r_s, t_s = rows_t[stuck], t_t[stuck]
-
-        def residual(xs, k):
-            e, v = rate(xs, r_s[k])
-            return e - t_s[k] * v
-
-        xt[stuck] = illinois(residual, ta[todo][stuck], tb[todo][stuck], ra_t[stuck], rb_t[stuck],
-                             rtol=rtol, atol=atol)
+        r_s = rows_t[stuck]
+        xt[stuck] = illinois(_residual_fn(rate, r_s, t_t[stuck], floor[r_s]), ta[todo][stuck], tb[todo][stuck],
+                             ra_t[stuck], rb_t[stuck], rtol=rtol, atol=atol)
     x[todo] = xt
     return x
 
@@ -359,7 +375,7 @@ def root_each(residual, lo, hi, *, rtol, atol):
             out[k] = a
         elif np.sign(fa) != np.sign(fb):
             try:
-                out[k] = brentq(residual, a, b, args=(k,), xtol=atol, rtol=max(rtol, 4 * np.finfo(float).eps))
+                out[k] = brentq(residual, a, b, args=(k,), xtol=atol, rtol=max(rtol, 4 * EPS))
             except ValueError:  # brentq met a nan inside the bracket
                 out[k] = np.nan
     return out

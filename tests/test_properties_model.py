@@ -185,19 +185,24 @@ def test_statuses_at_the_domain_ends(m, beyond):
 
 @pytest.mark.parametrize("length_mm, inner_mm, g_mpa, p_kpa", [
     (289.0, 0.5, 7.5, 436.0),  # was ValueError: the solver's last converging iteration fell through (fixed)
-    pytest.param(29.0, 0.0, 2.5, 354.0, marks=pytest.mark.xfail(strict=True, reason=(
-        "bug B1 (notes/bugs.md): SolverError 'regula falsi did not converge' for an excess pressure of "
-        "2.2e-16 kPa: the residual is at its round-off floor before the bracket meets the 1e-22 rad tolerance"))),
+    (29.0, 0.0, 2.5, 354.0),  # was SolverError: regula falsi chased the residual's round-off (B1 case B, fixed)
 ])
 def test_tiny_excess_next_to_a_large_pressure(length_mm, inner_mm, g_mpa, p_kpa):
-    """Found by test_theta_monotone_where_bending_and_pressure_round_trips (profile dev, shrunk)."""
+    """Found by test_theta_monotone_where_bending_and_pressure_round_trips (profile dev, shrunk).
+
+    The excess 2.2e-16 kPa lies below the round-off floor of P - P0 (PRESSURE_FLOOR_PER_G:
+    32 eps G); the angle found must hold it to that floor by the 50-digit reference."""
     from embroact.predict.curve import ActuatorModel
 
+    tiny_kpa = 2.220446049250313e-16
     m = ActuatorModel("zigzag", length_mm=length_mm, r0_mm=1.5369360885246874, beta0_deg=0.0, outer_radius_mm=1.0,
                       inner_radius_mm=inner_mm, g_e_mpa=1.0, g_mpa=g_mpa, p0_kpa=0.0)
-    c = curve(m, [p_kpa, 2.220446049250313e-16])
+    c = curve(m, [p_kpa, tiny_kpa])
     _finite(c)
     assert np.all(c.status == Status.BENDING)
+    with mp.workdps(60):
+        p_kpa_back = float(_reference(m).pressure(mp.radians(mp.mpf(float(c.theta_deg[1]))))) * 1000.0
+    assert abs(p_kpa_back - tiny_kpa) <= 32 * np.finfo(float).eps * g_mpa * 1000.0
 
 
 @pytest.mark.xfail(strict=True, reason="bug B2 (notes/bugs.md): ACCURACY documents 1e-7 relative for central "
