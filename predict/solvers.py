@@ -362,7 +362,8 @@ def root_each(residual, lo, hi, *, rtol, atol):
 
     ``residual(x, k)`` is the scalar residual of target ``k``; ``lo``, ``hi`` are
     1-D arrays. Entries whose bracket has no sign change return ``hi``; entries
-    where the residual is not finite (a failing method) return nan.
+    where the residual is not finite (a failing method) or where ``brentq`` does not
+    converge (a noisy residual) return nan, which the caller reports as FAILED.
     """
     from scipy.optimize import brentq
 
@@ -376,6 +377,6 @@ def root_each(residual, lo, hi, *, rtol, atol):
         elif np.sign(fa) != np.sign(fb):
             try:
                 out[k] = brentq(residual, a, b, args=(k,), xtol=atol, rtol=max(rtol, 4 * EPS))
-            except ValueError:  # brentq met a nan inside the bracket
+            except (ValueError, RuntimeError):  # a nan inside the bracket, or no convergence
                 out[k] = np.nan
     return out
