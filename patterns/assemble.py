@@ -9,7 +9,10 @@ this fixed record convention:
    station's rail: cord in, the operator lays the tube;
 2. ``tie_count`` TIE_IN lock stitches of ``tie_stitch_mm`` back and forth along that
    rail (towards the inside of the path), ending on the first station (so the STOP sits
-   ``tie_stitch_mm`` from it when ``tie_count`` is odd, on it when even);
+   ``tie_stitch_mm`` from it when ``tie_count`` is odd, on it when even); the length is
+   the straight stitch between two points of the rail, so on a curve the second point
+   lies about ``tie_stitch_mm / (1 - kappa * offset)`` along the centerline, farther on an
+   inner rail (:func:`tie_step_mm`);
 3. the stations' LEG / EDGE stitches;
 4. ``tie_count`` TIE_OFF lock stitches along the last station's rail;
 5. ``TRIM`` (CONTROL) at the last point; 6. ``END`` (CONTROL, actuator -1).
@@ -33,6 +36,8 @@ Examples
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 
@@ -43,13 +48,19 @@ from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "MAX_RECORDS", "MIN_TIE_GRID_STEPS"]
+__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm", "MAX_RECORDS",
+           "MIN_TIE_GRID_STEPS"]
 
 #: Hard cap on records in one plan; generators refuse before allocating.
 MAX_RECORDS = 5_000_000
 #: Shortest lock stitch in machine grid steps: two points 2 steps apart stay distinct after rounding
 #: each to the grid (found by the H8 round-trip property: 0.1 mm ties at x.x5 mm rounded to one point).
 MIN_TIE_GRID_STEPS = 2
+#: A lock stitch's far point is searched within this many tie_stitch_mm of centerline (the inner rail
+#: covers at least 1/16 of the centerline's length there), on this many samples, then bisected.
+_TIE_SEARCH_SPAN = 16.0
+_TIE_SEARCH_SAMPLES = 129
+_BISECT_STEPS = 40
 #: Records an actuator adds besides its stations and 2 * tie_count lock stitches (STOP, TRIM, END,
 #: less the first station, which is the last tie-in stitch).
 _EXTRA_RECORDS = 2
@@ -76,6 +87,69 @@ def check_pattern_inputs(cl: Centerline, params: PatternParams, tube: Tube, opti
         raise ParameterError(f"tie_stitch_mm must be >= {MIN_TIE_GRID_STEPS * grid:g} (two machine grid steps), "
                              f"got {options.tie_stitch_mm:g}")
     cl.check_radius(params.width_mm / 2.0, "width_mm/2")
+
+
+def rail_positions(cl: Centerline, s_from: float, s_to: float, offset_mm: float, max_step_mm: float) -> np.ndarray:
+    """Centerline positions after ``s_from`` up to ``s_to`` (included) that split the rail at
+    ``offset_mm`` (> 0 left) between them into the fewest equal pieces of at most ``max_step_mm``
+    measured along that rail, whose arc length is ``(1 - kappa * offset) ds``.
+
+    >>> from embroact.patterns.centerline import Centerline
+    >>> rail_positions(Centerline.straight(10.0), 1.0, 7.0, 2.0, 2.5).tolist()
+    [3.0, 5.0, 7.0]
+    """
+    pts = cl.points_mm
+    h = np.hypot(*np.diff(pts, axis=0).T)
+    s_v = np.concatenate([[0.0], np.cumsum(h)])
+    factor = np.maximum(1.0 - cl.curvature_at(0.5 * (s_v[1:] + s_v[:-1])) * offset_mm, 0.0)
+    sigma_v = np.concatenate([[0.0], np.cumsum(h * factor)])
+    a, b = np.interp([s_from, s_to], s_v, sigma_v)
+    count = max(1, math.ceil(abs(b - a) / max_step_mm))
+    out = np.interp(a + (b - a) * np.arange(1, count + 1) / count, sigma_v, s_v)
+    out[-1] = s_to
+    return out
+
+
+def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np.ndarray:
+    """Centerline distance from each ``s_mm`` (towards ``direction``, +-1) to the point of the rail at
+    ``offset_mm`` that is ``tie_mm`` (straight) from the rail point at ``s_mm``; 1-D arrays.
+
+    Where the path ends before that point (a path shorter than about ``tie_mm`` on that rail:
+    an inner rail shrinks by 1 - w/(2R) on a bend of radius R), the longest stitch the rail
+    holds there (its other needle points are as close); :class:`PatternError` if the rail
+    holds none.
+
+    >>> from embroact.patterns.centerline import Centerline
+    >>> tie_step_mm(Centerline.straight(10.0), [1.0, 9.0], [2.0, -2.0], [1, -1], 0.5).round(12).tolist()
+    [0.5, 0.5]
+    """
+    s = np.asarray(s_mm, dtype=np.float64)[:, None]
+    off = np.asarray(offset_mm, dtype=np.float64)[:, None]
+    d = np.asarray(direction, dtype=np.float64)[:, None]
+    room = np.where(d > 0.0, cl.length_mm - s, s)
+    u = np.minimum(room, _TIE_SEARCH_SPAN * tie_mm) * np.linspace(0.0, 1.0, _TIE_SEARCH_SAMPLES)
+    start = cl.offset_point_at(s, off)
+
+    def chord(step):
+        return np.hypot(*np.moveaxis(cl.offset_point_at(s + d * step, off) - start, -1, 0))
+
+    c = chord(u)
+    reach = c >= tie_mm
+    rows = np.arange(u.shape[0])
+    first = np.argmax(reach, axis=1)
+    lo, hi = u[rows, first - 1][:, None], u[rows, first][:, None]
+    for _ in range(_BISECT_STEPS):
+        mid = 0.5 * (lo + hi)
+        short = chord(mid) < tie_mm
+        lo, hi = np.where(short, mid, lo), np.where(short, hi, mid)
+    # a rail too short for the whole stitch: the longest one it holds (not a point)
+    short_path = ~reach.any(axis=1)
+    if np.any(short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm)):
+        x, y = start[int(np.argmax(short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm))), 0]
+        raise PatternError(f"the rail at ({x:.2f}, {y:.2f}) mm has no room for a lock stitch (tie_stitch_mm="
+                           f"{tie_mm:g}): the path is too short or bends at radius width_mm/2; use a longer or "
+                           f"gentler path")
+    return np.where(short_path, u[rows, np.argmax(c, axis=1)], hi[:, 0])
 
 
 def check_record_count(n_stations: float, options: StitchOptions) -> int:
@@ -116,11 +190,14 @@ def assemble(
     params : ZigzagParams | CrossParams
         The requested parameters (rail offset is ``params.width_mm / 2``).
     """
-    k, t = options.tie_count, options.tie_stitch_mm
+    k = options.tie_count
     s0, sn = float(station_s[0]), float(station_s[-1])
+    inward = np.array([_inward(cl, s0), _inward(cl, sn)])
+    step = inward * tie_step_mm(cl, [s0, sn], np.array([station_side[0], station_side[-1]]) * (params.width_mm / 2.0),
+                                inward, options.tie_stitch_mm)
     j = np.arange(k + 1)
-    tie_in = s0 + _inward(cl, s0) * t * ((k - j) % 2)  # [STOP, k stitches ending on s0]
-    tie_off = sn + _inward(cl, sn) * t * (j[1:] % 2)  # k stitches from sn
+    tie_in = s0 + step[0] * ((k - j) % 2)  # [STOP, k stitches ending on s0]
+    tie_off = sn + step[1] * (j[1:] % 2)  # k stitches from sn
     s_all = np.concatenate([tie_in, station_s[1:], tie_off])
     side_all = np.concatenate([np.full(k + 1, station_side[0]), station_side[1:], np.full(k, station_side[-1])])
     xy = cl.offset_point_at(s_all, side_all * (params.width_mm / 2.0))

@@ -62,7 +62,7 @@ import math
 
 import numpy as np
 
-from .assemble import assemble, check_pattern_inputs, check_record_count
+from .assemble import assemble, check_pattern_inputs, check_record_count, rail_positions
 from .centerline import as_centerline
 from .errors import ParameterError, PatternError
 from .params import CrossParams, StitchOptions, Tube
@@ -73,7 +73,7 @@ __all__ = ["cross", "cross_stations", "closing", "ADJUST_METHODS", "MAX_EDGE_STI
 
 #: Valid values of ``adjust``.
 ADJUST_METHODS = ("auto", "interval", "angle")
-#: Longest single EDGE stitch along a rail between passes [mm]; longer edges are split.
+#: Longest single EDGE stitch between passes, measured along its rail [mm]; longer edges are split.
 MAX_EDGE_STITCH_MM = 3.0
 #: Passes closer to an integer than this (relative) count as exact.
 _EXACT_REL = 1e-9
@@ -128,21 +128,15 @@ def _trim_turn(prev: tuple, nxt: tuple) -> tuple[tuple, tuple]:
     return prev, (np_[1:], ns[1:])
 
 
-def _edge(p: float, q: float) -> np.ndarray:
-    """Intermediate and final positions of an EDGE run from ``p`` to ``q`` (excluding p)."""
-    m = max(1, math.ceil(abs(q - p) / MAX_EDGE_STITCH_MM))
-    return p + (q - p) * np.arange(1, m + 1) / m
-
-
 def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") -> float:
     """Upper bound of the needle stations (legs and edge stitches) of a cross pattern (no allocation).
 
     >>> round(cross_stations(100.0, CrossParams(7.0, 1.4, 45.0)))
-    167
+    171
     """
     n, s, _, _ = closing(params, adjust)
     span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
-    return 2.0 * span / s + n * (2.0 + s / MAX_EDGE_STITCH_MM)
+    return 2.0 * span / s + n * (2.0 + 2.0 * s / MAX_EDGE_STITCH_MM)  # an outer rail is at most 2x as long
 
 
 def cross(
@@ -199,7 +193,7 @@ def cross(
         passes[j], passes[j + 1] = _trim_turn(passes[j], passes[j + 1])
     station_s, station_side, station_role = [passes[0][0]], [passes[0][1]], [np.full(len(passes[0][0]), Role.LEG)]
     for (pp, _), (pos, side) in zip(passes[:-1], passes[1:]):
-        run = _edge(pp[-1], pos[0])
+        run = rail_positions(cl, pp[-1], pos[0], side[0] * params.width_mm / 2.0, MAX_EDGE_STITCH_MM)
         station_s += [run[:-1], pos]
         station_side += [np.full(len(run) - 1, side[0]), side]
         station_role += [np.full(len(run), Role.EDGE), np.full(len(pos) - 1, Role.LEG)]

@@ -77,7 +77,10 @@ class StitchOptions:
     Parameters
     ----------
     tie_stitch_mm : float
-        Length of each lock (tie-in / tie-off) stitch, laid along a rail [mm], in (0, 5].
+        Length of each lock (tie-in / tie-off) stitch, laid along a rail [mm], in (0, 5]: the
+        straight distance between its two needle points on that rail (on a bend the inner rail
+        needs more centerline for it, the outer less); a rail shorter than that near the end
+        of a short path gets the longest stitch it holds.
     tie_count : int
         Number of lock stitches at each end, in [2, 10].
     """

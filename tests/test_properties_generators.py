@@ -268,12 +268,11 @@ def test_lock_stitches_survive_the_machine_grid():
         assert np.all(np.abs(np.diff(got, axis=0)).max(axis=1) > 0)  # no zero-length stitch
 
 
-@pytest.mark.xfail(strict=True, reason="bug B8 (notes/bugs.md): lock stitches are tie_stitch_mm long along the "
-                   "centerline, not along the rail as StitchOptions documents; on the inner rail of a tight arc "
-                   "they shrink below the machine grid and vanish from the machine file")
 def test_lock_stitches_on_the_inner_rail_of_a_tight_arc():
     """Found by the round-trip property (profile dev): zigzag w=4 s=1 on an arc of radius 2.3 mm, tube r_f=1,
-    clearance 0, tie_stitch_mm=0.5: the inner-rail lock stitches are 0.065 mm long, DST holds 11 of 13 points."""
+    clearance 0, tie_stitch_mm=0.5: the inner-rail lock stitches were 0.065 mm long (laid 0.5 mm along the
+    centerline), DST held 11 of 13 points (bug B8, fixed). Each lock stitch is now 0.5 mm (straight, its two
+    needle points on the rail) and the machine file keeps every needle point."""
     from h1_checks import arc
     from embroact.patterns import StitchOptions, Tube, ZigzagParams, zigzag
 
@@ -282,4 +281,25 @@ def test_lock_stitches_on_the_inner_rail_of_a_tight_arc():
     for role in (Role.TIE_IN, Role.TIE_OFF):
         idx = np.flatnonzero(plan.roles == role)
         seg = np.hypot(*(plan.xy_mm[idx] - plan.xy_mm[idx - 1]).T)
-        np.testing.assert_allclose(seg, 0.5, rtol=0.05)
+        np.testing.assert_allclose(seg, 0.5, rtol=1e-9)
+        r = np.hypot(*(plan.xy_mm[idx] - [0.0, 2.3]).T)  # from the arc's centre: on the inner or outer rail
+        assert np.all(np.minimum(abs(r - 0.3), abs(r - 4.3)) < 1e-5), r
+    got = _read_back(encode(plan, "dst")[0], "dst")
+    assert len(np.unique(got.round(6), axis=0)) == len(np.unique((plan.xy_mm / 0.1).round() * 0.1, axis=0))
+
+
+def test_edge_stitches_are_split_along_their_rail():
+    """B8, same family: EDGE runs between cross passes are split by their length along the rail they lie on.
+    Cross w=4 s=2.3 alpha=30 (2 passes) on a left arc of radius 2.5: the one edge, ~2.3 mm of centerline, lies
+    on the outer rail (radius 4.5, factor 1 + w/(2R) = 1.8): ~4.1 mm there, one stitch longer than
+    MAX_EDGE_STITCH_MM before the fix; now two equal stitches of ~2.05 mm."""
+    from h1_checks import arc
+    from embroact.patterns import CrossParams, Tube, cross
+    from embroact.patterns.cross import MAX_EDGE_STITCH_MM
+
+    plan = cross(arc(2.5, 250.0), CrossParams(4.0, 2.3, 30.0), tube=Tube(1.0, 0.0, 1.0, 0.0, 0.0))
+    idx = np.flatnonzero(plan.roles == Role.EDGE)
+    seg = np.hypot(*(plan.xy_mm[idx] - plan.xy_mm[idx - 1]).T)
+    np.testing.assert_allclose(np.hypot(*(plan.xy_mm[idx] - [0.0, 2.5]).T), 4.5, atol=1e-5)  # the outer rail
+    assert idx.size == 2 and seg.max() <= MAX_EDGE_STITCH_MM
+    np.testing.assert_allclose(seg, seg[0], rtol=1e-6)
