@@ -204,7 +204,8 @@ class Centerline:
     def offset_curves(self, distance_mm: float) -> tuple[shapely.LineString, shapely.LineString]:
         """The two rails at +-``distance_mm`` along the smooth normal: (left, right) LineStrings."""
         d = check_range("distance_mm", distance_mm, low=0.0, low_inclusive=True)
-        s = np.union1d(self._s, 0.5 * (self._s[1:] + self._s[:-1]))
+        s = np.empty(2 * len(self._s) - 1)  # vertices and midpoints, interleaved (sorted: _s increases)
+        s[0::2], s[1::2] = self._s, 0.5 * (self._s[1:] + self._s[:-1])
         return (shapely.LineString(self.offset_point_at(s, d)), shapely.LineString(self.offset_point_at(s, -d)))
 
     def project(self, xy_mm) -> tuple[np.ndarray, np.ndarray]:

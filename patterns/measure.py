@@ -79,7 +79,8 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     s, o = cl.project(xy)
     sa, oa, sb, ob = s[ends - 1], o[ends - 1], s[ends], o[ends]
     ds, do = sb - sa, ob - oa
-    pts = np.union1d(ends - 1, ends)
+    pts = np.zeros(len(xy), dtype=bool)  # both ends of every leg (a mask: np.union1d would load numpy.ma)
+    pts[ends - 1] = pts[ends] = True
     angle = float(np.degrees(np.arctan2(np.abs(ds), np.abs(do))).mean())
     direction = np.sign(ds[np.abs(ds) > DEFAULT_TOLERANCES.length_mm])
     passes = 1 + int(np.count_nonzero(np.diff(direction)))

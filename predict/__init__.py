@@ -1,6 +1,8 @@
 """embroact.predict: the deformation model of MODEL.md, its numerical methods and calibration.
 
-No file I/O; scipy is imported only by the functions that need it (root finding, fitting).
+No file I/O; scipy is imported only by the functions that need it (root finding,
+fitting). The names below load their module on first use (:mod:`embroact.patterns.lazy`), so
+importing one small module (``embroact.predict.derived``) does not load the model.
 The function ``curve`` lives in (and is not re-exported over) the module
 :mod:`embroact.predict.curve`: ``from embroact.predict.curve import curve``.
 
@@ -15,22 +17,22 @@ Examples
 >>> c.as_dict()["status"], c.method
 (['INFLATION', 'BENDING'], 'stable-analytic-trace')
 """
-from .calibration import calibrated_model, lookup
-from .curve import METHODS, ActuatorModel, Curve, lockup, pressure_at, sweep
-from .derived import DerivedGeometry, derive, derive_from_values
-from .status import Status
+from ..patterns.lazy import lazy_exports
 
-__all__ = [
-    "ActuatorModel",
-    "Curve",
-    "pressure_at",
-    "lockup",
-    "sweep",
-    "METHODS",
-    "Status",
-    "DerivedGeometry",
-    "derive",
-    "derive_from_values",
-    "lookup",
-    "calibrated_model",
-]
+_EXPORTS = {
+    "ActuatorModel": "curve",
+    "Curve": "curve",
+    "pressure_at": "curve",
+    "lockup": "curve",
+    "sweep": "curve",
+    "METHODS": "curve",
+    "Status": "status",
+    "DerivedGeometry": "derived",
+    "derive": "derived",
+    "derive_from_values": "derived",
+    "lookup": "calibration",
+    "calibrated_model": "calibration",
+}
+
+__all__ = list(_EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
