@@ -24,9 +24,11 @@ wrote ...bend.svg: bend chart, 1 actuator(s), 7 pressures
 from __future__ import annotations
 
 import argparse
+import json
 from pathlib import Path
 
 from ..patterns.errors import ParameterError
+from .atomic import check_output_dir, write_text_atomic
 from .cliargs import parse_pressures
 
 __all__ = ["KINDS", "add_arguments", "run", "measured_points"]
@@ -55,6 +57,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     parser.add_argument("--measured", action="append", default=[], metavar="[ACTUATOR=]CSV",
                         help="bend chart: overlay measured points from a bend CSV (pressure_kpa,angle_deg), "
                              "on the named actuator or the first one; repeatable")
+    parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 
 
 def _design(path):
@@ -89,45 +92,52 @@ def _svg_only(kind: str, out: Path) -> None:
 
 
 def run(args) -> int:
-    """Load (or default) the design, render the view, write it atomically."""
-    from ..patterns.design import build_plan
-    from .atomic import check_output_dir, write_text_atomic
-
+    """Load (or default) the design, render the view, write it atomically, report."""
     out = check_output_dir(args.output)
     if args.kind != "mesh":
         _svg_only(args.kind, out)
-    design = _design(args.design)
+    text, info = _render(args, out, _design(args.design))
+    if args.json:
+        print(json.dumps({"file": str(out), "kind": args.kind, **info}, indent=2, sort_keys=True))
+    else:
+        print(f"wrote {out}: {text}")
+    return 0
+
+
+def _render(args, out: Path, design) -> tuple[str, dict]:
+    """Write the view; return a one-line summary and its JSON fields."""
+    from ..patterns.design import build_plan
+
     plan = build_plan(design)
     if args.kind == "stitches":
         from .preview import plan_svg
 
         write_text_atomic(out, plan_svg(plan))
-        print(f"wrote {out}: stitch plan, {plan.stitch_count} stitches")
-        return 0
+        return f"stitch plan, {plan.stitch_count} stitches", {"stitch_count": plan.stitch_count}
     from . import previews as pv
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else pv.pressures_for(design)
     derived, curves = pv.predict_curves(plan, pressures, design=design)
+    info = {"actuators": [a.name for a in plan.actuators], "pressure_kpa": [float(p) for p in pressures]}
     if args.kind == "bend":
         from .chart import bend_chart_svg
 
         measured = measured_points(args.measured, [a.name for a in plan.actuators])
         write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves, measured),
                                               title=f"{plan.name}: predicted bend angle"))
-        print(f"wrote {out}: bend chart, {len(curves)} actuator(s), {len(pressures)} pressures")
-    elif args.kind == "shape":
+        return f"bend chart, {len(curves)} actuator(s), {len(pressures)} pressures", info
+    if args.kind == "shape":
         from .sideview import side_view_svg
 
         if isinstance(args.states, bool) or not 1 <= args.states <= 12:
             raise ParameterError(f"states must be an integer in [1, 12], got {args.states!r}")
         write_text_atomic(out, side_view_svg(pv.side_panels(plan, derived, curves, count=args.states)))
-        print(f"wrote {out}: side views, {len(curves)} actuator(s)")
-    else:
-        _write_mesh(out, plan, derived, curves, args)
-    return 0
+        return f"side views, {len(curves)} actuator(s)", info
+    text, mesh_info = _write_mesh(out, plan, derived, curves, args)
+    return text, {**info, **mesh_info}
 
 
-def _write_mesh(out: Path, plan, derived, curves, args) -> None:
+def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
     from .mesh import MESH_FORMATS, write_mesh
 
     suffix = out.suffix.lower()
@@ -139,7 +149,6 @@ def _write_mesh(out: Path, plan, derived, curves, args) -> None:
     shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=args.shape_pressure_kpa,
                                      tolerance_mm=args.tolerance_mm)
     if suffix == ".svg":
-        from .atomic import write_text_atomic
         from .meshview import mesh_svg
 
         write_text_atomic(out, mesh_svg(shapes, title="3D shape at " + ", ".join(
@@ -149,5 +158,7 @@ def _write_mesh(out: Path, plan, derived, curves, args) -> None:
     tri = sum(s.triangle_count for s in shapes)
     dev = max(s.max_deviation_mm for s in shapes)
     angles = ", ".join(f"{s.name} {s.theta_deg:.1f} deg at {pressures[s.name]:g} kPa" for s in shapes)
-    print(f"wrote {out}: 3D shape ({angles}); {tri} triangles, max deviation {dev:.4f} mm "
-          f"(tolerance {shapes[0].tolerance_mm:g} mm)")
+    info = {"triangle_count": tri, "max_deviation_mm": dev, "tolerance_mm": shapes[0].tolerance_mm,
+            "shapes": [{"name": s.name, "theta_deg": s.theta_deg, "pressure_kpa": pressures[s.name]} for s in shapes]}
+    return (f"3D shape ({angles}); {tri} triangles, max deviation {dev:.4f} mm "
+            f"(tolerance {shapes[0].tolerance_mm:g} mm)"), info

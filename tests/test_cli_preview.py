@@ -135,3 +135,14 @@ def test_measured_points_overlay_at_their_coordinates(tmp_path):
     want = np.column_stack([sc.x_px([0, 150, 300, 150]), sc.y_px([0, 40, 120, 60])])
     assert np.abs(got - want).max() <= 0.006
     assert sc.y_max_deg >= 120.0
+
+
+def test_json_output_names_file_kind_and_counts(tmp_path, capsys):
+    import json
+
+    out = tmp_path / "bend.svg"
+    assert main(["preview", "bend", "-o", str(out), "--pressure-kpa", "0:300:100", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["file"] == str(out) and doc["kind"] == "bend"
+    assert doc["pressure_kpa"] == [0.0, 100.0, 200.0, 300.0] and doc["actuators"] == ["A1"]
+    assert out.exists()
