@@ -34,6 +34,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import ParameterError
 
 __all__ = ["STATUS_STYLE", "Scale", "Series", "nice_ticks", "chart_scale", "bend_chart_svg"]
@@ -61,9 +62,7 @@ _CHAR_PX = 6.2
 
 
 def _frozen(values) -> np.ndarray:
-    a = np.array(values, dtype=np.float64).reshape(-1)
-    a.setflags(write=False)
-    return a
+    return frozen_array(values).reshape(-1)
 
 
 def _scalar(a: np.ndarray):

@@ -59,6 +59,7 @@ from ..patterns.limits import FORMAT_LIMITS
 from ..patterns.params import Tube
 from ..patterns.plan import Command
 from ..patterns.rules import RuleSettings, TubeLayout, check_layout, layout_from_records
+from .dst import END_BYTE, HEADER_SIZE
 
 __all__ = [
     "FileRecords",
@@ -73,9 +74,7 @@ __all__ = [
 
 #: pyembroidery reader settings that keep the file's own record order.
 _RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
-_DST_HEADER_BYTES = 512
 _DST_RECORD_BYTES = 3
-_DST_END_MASK = 0b11110011
 #: Leading bytes of formats that have a magic number.
 _MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
 #: Formats whose stitch data ends with an end-of-design code the reader stops at: a reader that runs
@@ -120,14 +119,13 @@ def readable_suffixes() -> tuple[str, ...]:
 
 
 def _check_dst_bytes(path: str, data: bytes) -> None:
-    if len(data) < _DST_HEADER_BYTES:
+    if len(data) < HEADER_SIZE:
         raise DesignFileError(f"{path}: not a DST file: {len(data)} bytes, shorter than the 512-byte header")
     if not data.startswith(b"LA:"):
         raise DesignFileError(f"{path}: not a DST file: the header does not start with 'LA:'")
-    body = data[_DST_HEADER_BYTES:]
-    ends = [i for i in range(0, len(body) - _DST_RECORD_BYTES + 1, _DST_RECORD_BYTES)
-            if body[i + 2] & _DST_END_MASK == _DST_END_MASK]
-    if not ends:
+    body = data[HEADER_SIZE:]
+    if not any(body[i + 2] & END_BYTE == END_BYTE
+               for i in range(0, len(body) - _DST_RECORD_BYTES + 1, _DST_RECORD_BYTES)):
         raise DesignFileError(
             f"{path}: truncated DST file: no end record among {len(body) // _DST_RECORD_BYTES} records"
         )
