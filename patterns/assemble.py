@@ -98,11 +98,9 @@ def rail_positions(cl: Centerline, s_from: float, s_to: float, offset_mm: float,
     >>> rail_positions(Centerline.straight(10.0), 1.0, 7.0, 2.0, 2.5).tolist()
     [3.0, 5.0, 7.0]
     """
-    pts = cl.points_mm
-    h = np.hypot(*np.diff(pts, axis=0).T)
-    s_v = np.concatenate([[0.0], np.cumsum(h)])
-    factor = np.maximum(1.0 - cl.curvature_at(0.5 * (s_v[1:] + s_v[:-1])) * offset_mm, 0.0)
-    sigma_v = np.concatenate([[0.0], np.cumsum(h * factor)])
+    s_v = cl.vertex_s_mm
+    factor = np.maximum(1.0 - cl.segment_curvature() * offset_mm, 0.0)
+    sigma_v = np.concatenate([[0.0], np.cumsum(np.diff(s_v) * factor)])
     a, b = np.interp([s_from, s_to], s_v, sigma_v)
     count = max(1, math.ceil(abs(b - a) / max_step_mm))
     out = np.interp(a + (b - a) * np.arange(1, count + 1) / count, sigma_v, s_v)
@@ -144,8 +142,9 @@ def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np
         lo, hi = np.where(short, mid, lo), np.where(short, hi, mid)
     # a rail too short for the whole stitch: the longest one it holds (not a point)
     short_path = ~reach.any(axis=1)
-    if np.any(short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm)):
-        x, y = start[int(np.argmax(short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm))), 0]
+    no_room = short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm)
+    if np.any(no_room):
+        x, y = start[int(np.argmax(no_room)), 0]
         raise PatternError(f"the rail at ({x:.2f}, {y:.2f}) mm has no room for a lock stitch (tie_stitch_mm="
                            f"{tie_mm:g}): the path is too short or bends at radius width_mm/2; use a longer or "
                            f"gentler path")

@@ -125,6 +125,15 @@ class Centerline:
         """Arc length of the path [mm]."""
         return float(self._s[-1])
 
+    @property
+    def vertex_s_mm(self) -> np.ndarray:
+        """Arc length at each vertex of ``points_mm`` [mm], read-only (0 ... ``length_mm``)."""
+        return self._s
+
+    def segment_curvature(self) -> np.ndarray:
+        """Signed curvature per segment [1/mm] (> 0 turning left); :meth:`curvature_at` looks it up."""
+        return np.diff(self._theta) / np.diff(self._s)
+
     def as_linestring(self) -> shapely.LineString:
         """The path as a shapely LineString."""
         return shapely.LineString(self.points_mm)
@@ -159,14 +168,14 @@ class Centerline:
         Piecewise constant per segment; corners are included at their share of the turn
         (use :meth:`min_radius_mm` to detect them).
         """
-        kappa = np.diff(self._theta) / np.diff(self._s)
+        kappa = self.segment_curvature()
         s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
         i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
         return kappa[i]
 
     def _radii(self) -> np.ndarray:
         """Curvature radius per segment [mm]; 0 on both segments of a corner."""
-        kappa = np.abs(np.diff(self._theta)) / np.diff(self._s)
+        kappa = np.abs(self.segment_curvature())
         with np.errstate(divide="ignore"):
             r = np.where(kappa > 0.0, 1.0 / np.where(kappa > 0.0, kappa, 1.0), np.inf)
         corner = np.abs(self._turn) > math.radians(MAX_SMOOTH_TURN_DEG)
@@ -216,7 +225,7 @@ class Centerline:
         """
         p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
         s = self._closest_s(p)
-        kappa = np.diff(self._theta) / np.diff(self._s)
+        kappa = self.segment_curvature()
         for _ in range(_PROJECT_STEPS):
             i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
             r = p - self.point_at(s)

@@ -549,8 +549,7 @@ def _turning(layout: Layout, settings: RuleSettings) -> list[Finding]:
         if radius >= r_min - settings.tolerances.length_mm:
             continue
         pts = cl.points_mm
-        s_vertex = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
-        kappa = np.abs(cl.curvature_at(0.5 * (s_vertex[1:] + s_vertex[:-1])))  # per segment
+        kappa = np.abs(cl.segment_curvature())
         worst = pts[1 + int(np.argmax(kappa[1:] + kappa[:-1]))] if len(kappa) > 1 else pts[0]
         kind = "a corner (turn > %g deg)" % MAX_SMOOTH_TURN_DEG if radius == 0.0 else f"radius {radius:.2f} mm"
         out.append(
