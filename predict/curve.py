@@ -72,6 +72,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from ..patterns.arrays import frozen_array
 from ..patterns.errors import ParameterError, check_range
 from ..patterns.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
@@ -216,9 +217,7 @@ class Curve:
         for f in fields(self):
             v = getattr(self, f.name)
             if f.name == "status":
-                names = status_names(v)
-                out[f.name] = names if v.ndim <= 1 else [names[i:i + v.shape[1]] for i in range(0, len(names),
-                                                                                               v.shape[1])]
+                out[f.name] = status_names(v) if v.ndim <= 1 else [status_names(row) for row in v]
             else:
                 out[f.name] = v.tolist() if isinstance(v, np.ndarray) else v
         return out
@@ -253,12 +252,6 @@ def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
     bad = ~np.isfinite(a) | (a < low) | (a > high)
     if bad.any():
         raise ParameterError(f"{name} must be finite numbers in [{low:g}, {high:g}], got {float(a[bad][0]):g}")
-    return a
-
-
-def _readonly(a) -> np.ndarray:
-    a = np.ascontiguousarray(a)
-    a.flags.writeable = False
     return a
 
 
@@ -308,10 +301,10 @@ def _slope_fn(geo, energy, deriv):
     along the branch: central differences of the smooth rates (E', V' have no pole at
     lock-up; P has)."""
     rate = _rate_fn(geo, energy, deriv)
+    direction = np.sign(_m.lock_theta(geo))
+    scale = geo.l0 / (2.0 * geo.r0)
 
     def slope(theta, rows=None):
-        direction = np.sign(_m.lock_theta(geo))
-        scale = geo.l0 / (2.0 * geo.r0)
         de, dv = rate(theta, rows)
         d, s = (direction, scale) if rows is None else (direction[rows, 0], scale[rows, 0])
         dde, ddv = solvers.derivative(lambda t: np.stack(rate(t, rows)), theta, scale=s, method="central")
@@ -436,7 +429,7 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze):
     blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol)
               for k in range(0, len(models), SWEEP_BLOCK)]
     arrays = [parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks)]
-    return Curve(*(_readonly(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+    return Curve(*(frozen_array(a, dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
 
 
@@ -479,7 +472,7 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
     p = np.where(filled, geo.p0, p)
     theta = np.where(status == Status.FAILED, 0.0, th)  # other points show the state at the angle asked for
     arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + _states(geo, theta, p, status, [model])
-    return Curve(*(_readonly(a[0]) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+    return Curve(*(frozen_array(a[0], dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=model.calibration)
 
 
