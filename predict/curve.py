@@ -79,7 +79,7 @@ from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA
 from .status import Status, status_names
-from .tubelaws import TUBE_LAWS, pressure_kpa, radius_mm, transition_pressure_kpa
+from .tubelaws import check_tube_law, pressure_kpa, radius_mm, transition_pressure_kpa
 
 __all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "PRESSURE_FLOOR_PER_G", "MAX_BEND_DEG", "ANGLE_LIMIT_DEG",
            "curve", "pressure_at", "lockup", "sweep"]
@@ -162,8 +162,7 @@ class ActuatorModel:
             check_range("beta0_deg", self.beta0_deg, low=0.0, high=90.0)
         elif self.beta0_deg != 0:
             raise ParameterError(f"beta0_deg must be 0 for the zigzag pattern, got {self.beta0_deg!r}")
-        if self.tube_law not in TUBE_LAWS:
-            raise ParameterError(f"tube_law must be one of {', '.join(TUBE_LAWS)}, got {self.tube_law!r}")
+        check_tube_law(self.tube_law)
         if self.tube_law == "thick-wall" and self.inner_radius_mm == 0:
             raise ParameterError("inner_radius_mm must be > 0 with tube_law 'thick-wall' (a solid rod does not "
                                  "inflate), got 0")

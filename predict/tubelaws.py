@@ -30,14 +30,15 @@ from ..patterns.errors import ModelDomainError, ParameterError
 from .inflation import KPA_PER_MPA, paper_pressure_kpa, paper_radius_mm
 from .solvers import bisect
 
-__all__ = ["TUBE_LAWS", "pressure_kpa", "radius_mm", "transition_pressure_kpa", "thick_wall_limit_kpa"]
+__all__ = ["TUBE_LAWS", "check_tube_law", "pressure_kpa", "radius_mm", "transition_pressure_kpa", "thick_wall_limit_kpa"]
 
 TUBE_LAWS = ("paper", "thick-wall")
 #: Bisection steps of the thick-wall inverse (t in (0, 1] to the last float64 bit).
 THICK_WALL_BISECTIONS = 200
 
 
-def _check_law(law: str) -> None:
+def check_tube_law(law: str) -> None:
+    """Raise :class:`ParameterError` unless ``law`` is one of :data:`TUBE_LAWS`."""
     if law not in TUBE_LAWS:
         raise ParameterError(f"tube_law must be one of {', '.join(TUBE_LAWS)}, got {law!r}")
 
@@ -71,7 +72,7 @@ def pressure_kpa(radius_mm, tube, law: str = "paper"):
     ``tube`` is a :class:`~embroact.patterns.params.Tube` or a tuple of arrays
     ``(outer_radius_mm, inner_radius_mm, g_e_mpa)``.
     """
-    _check_law(law)
+    check_tube_law(law)
     rf, df, mu = _tube_arrays(tube)
     r = np.asarray(radius_mm, dtype=np.float64)
     if law == "paper":
@@ -86,7 +87,7 @@ def radius_mm(pressure_kpa, tube, law: str = "paper"):
 
     Raises :class:`ModelDomainError` for the thick-wall law at or above its limit.
     """
-    _check_law(law)
+    check_tube_law(law)
     rf, df, mu = _tube_arrays(tube)
     p = np.asarray(pressure_kpa, dtype=np.float64)
     if law == "paper":
