@@ -696,6 +696,7 @@ def _jump_runs(layout: Layout, settings: RuleSettings) -> list[Finding]:
     edges = np.diff(np.concatenate([[0], jump.astype(np.int8), [0]]))
     starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
     records = _jump_records(layout, settings)
+    d = _displacements(layout)
     out = []
     for a, b in zip(starts, stops):
         if a == 0 or layout.commands[a - 1] != Command.STITCH:
@@ -703,7 +704,7 @@ def _jump_runs(layout: Layout, settings: RuleSettings) -> list[Finding]:
         n = int(records[a:b].sum())
         if n < settings.trim_jump_count:
             continue
-        net = np.cumsum(_displacements(layout)[a:b], axis=0)
+        net = np.cumsum(d[a:b], axis=0)
         if np.any(np.all(np.abs(net[1:]) <= settings.tolerances.length_mm, axis=1)):
             continue  # the run starts with jumps that net to zero: a trim written as jumps
         out.append(
