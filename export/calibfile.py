@@ -43,7 +43,6 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import re
 import tomllib
 from dataclasses import dataclass
 
@@ -53,6 +52,7 @@ from ..patterns.arrays import frozen_array
 from ..patterns.errors import DesignFileError, EmbroactError
 from ..predict.calibration import CalibrationPoint, CalibrationSet
 from .atomic import write_text_atomic
+from .tomltext import toml_key, toml_value
 
 __all__ = [
     "BendData",
@@ -67,13 +67,6 @@ __all__ = [
 _SET_KEYS = ("name", "description", "materials", "points")
 _POINT_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationPoint))
 _AXES = ("x", "y", "z")
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
-_TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
-
-
-def _escape_control(ch: str) -> str:
-    """TOML basic strings forbid raw U+0000-U+001F and U+007F; everything else stays UTF-8."""
-    return f"\\u{ord(ch):04x}" if ord(ch) < 0x20 or ord(ch) == 0x7F else ch
 
 
 @dataclass(frozen=True, slots=True)
@@ -207,26 +200,14 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     return MarkerData(frozen_array(values[:, 0]), frozen_array(markers), _branches(path, columns, rows))
 
 
-def _toml_value(value) -> str:
-    if isinstance(value, str):
-        return '"' + "".join(_TOML_ESCAPES.get(ch) or _escape_control(ch) for ch in value) + '"'
-    if isinstance(value, int):
-        return str(value)
-    return repr(float(value))
-
-
-def _toml_key(key: str) -> str:
-    return key if _BARE_KEY.fullmatch(key) else _toml_value(key)
-
-
 def calibration_toml(cset: CalibrationSet) -> str:
     """The TOML text of a calibration set (stable key order, shortest round-trip floats)."""
-    lines = ["# embroact calibration set", f"name = {_toml_value(cset.name)}"]
-    lines.append(f"description = {_toml_value(cset.description)}")
+    lines = ["# embroact calibration set", f"name = {toml_value(cset.name)}"]
+    lines.append(f"description = {toml_value(cset.description)}")
     if cset.materials:
-        lines += ["", "[materials]"] + [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in cset.materials]
+        lines += ["", "[materials]"] + [f"{toml_key(k)} = {toml_value(v)}" for k, v in cset.materials]
     for p in cset.points:
-        lines += ["", "[[points]]"] + [f"{k} = {_toml_value(v)}" for k, v in p.as_dict().items()]
+        lines += ["", "[[points]]"] + [f"{k} = {toml_value(v)}" for k, v in p.as_dict().items()]
     return "\n".join(lines) + "\n"
 
 

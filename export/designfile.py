@@ -23,19 +23,16 @@ d.toml: actuator[0].widht_mm: unknown key
 """
 from __future__ import annotations
 
-import json
 import os
-import re
 import tomllib
 from pathlib import Path
 
 from ..patterns.design import Design, design_from_dict, design_to_dict
 from ..patterns.errors import DesignFileError
 from .atomic import write_text_atomic
+from .tomltext import toml_key, toml_value
 
 __all__ = ["load_design", "loads_design", "dumps_design", "save_design"]
-
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
 def loads_design(text: str, *, source: str = "<string>") -> Design:
@@ -71,26 +68,8 @@ def load_design(path: str | os.PathLike) -> Design:
     return loads_design(text, source=str(p))
 
 
-def _value(v) -> str:
-    if isinstance(v, str):
-        return json.dumps(v, ensure_ascii=False)  # JSON string escapes are valid TOML
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, float):
-        return repr(v)
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_value(x) for x in v) + "]"
-    raise DesignFileError(f"cannot write value {v!r} to TOML")
-
-
-def _key(k: str) -> str:
-    return k if _BARE_KEY.fullmatch(k) else json.dumps(k, ensure_ascii=False)
-
-
 def _lines(d: dict) -> list[str]:
-    return [f"{_key(k)} = {_value(v)}" for k, v in d.items() if not isinstance(v, dict)]
+    return [f"{toml_key(k)} = {toml_value(v)}" for k, v in d.items() if not isinstance(v, dict)]
 
 
 def dumps_design(design: Design) -> str:
