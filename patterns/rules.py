@@ -591,10 +591,11 @@ def _pairs(layout: Layout, settings: RuleSettings) -> list[Finding]:
     """EA303 and EA304: every pair of tubes."""
     out = []
     tubes = layout.tubes
+    extended = [t.extended_path() for t in tubes]
     for a in range(len(tubes)):
         for b in range(a + 1, len(tubes)):
             ta, tb = tubes[a], tubes[b]
-            pa, pb = ta.extended_path(), tb.extended_path()
+            pa, pb = extended[a], extended[b]
             gap = float(shapely.distance(pa, pb))
             where = shapely.get_coordinates(shapely.shortest_line(pa, pb))[0]
             need = ta.corridor_radius_mm + tb.corridor_radius_mm
