@@ -48,6 +48,7 @@ from ..patterns.errors import ModelDomainError, ParameterError, SolverError
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
 from .inflation import transition_pressure_kpa
+from .status import Status
 
 __all__ = [
     "FIT_PARAMETERS",
@@ -427,12 +428,10 @@ def _theta_of(c) -> np.ndarray:
     """Curve angles; locked, unstable and out-of-domain points carry ``curve``'s fill values
     (lock-up angle, fold angle, domain end), which keep the residuals finite and pull the
     optimiser back into the model's domain.  A method failure is an error, not data."""
-    from .status import Status
-
     failed = np.flatnonzero(np.asarray(c.status) == Status.FAILED)
     if failed.size:
         raise SolverError(
-            f"model method {getattr(c, 'method', '?')!r} failed at pressure_kpa={float(np.ravel(c.pressure_kpa)[failed[0]]):g} during the fit"
+            f"model method {c.method!r} failed at pressure_kpa={float(np.ravel(c.pressure_kpa)[failed[0]]):g} during the fit"
         )
     return np.asarray(c.theta_deg, dtype=np.float64)
 
