@@ -38,6 +38,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import shapely
 
+from .arrays import frozen_array
 from .centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
 from .errors import ParameterError, PathError, check_range
 from .findings import RULES, Finding
@@ -236,18 +237,17 @@ class Layout:
     @classmethod
     def from_points(cls, xy_mm, commands, owner, *, tubes, index=None) -> "Layout":
         """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1."""
-        xy = np.array(xy_mm, dtype=np.float64).reshape(-1, 2)
+        xy = frozen_array(xy_mm).reshape(-1, 2)
         n = len(xy)
         arrays = [
             xy,
-            np.array(commands, dtype=np.int8).reshape(-1),
-            np.array(owner, dtype=np.int16).reshape(-1),
-            np.arange(n, dtype=np.int64) if index is None else np.array(index, dtype=np.int64).reshape(-1),
+            frozen_array(commands, np.int8).reshape(-1),
+            frozen_array(owner, np.int16).reshape(-1),
+            frozen_array(np.arange(n) if index is None else index, np.int64).reshape(-1),
         ]
         for a in arrays:
             if len(a) != n:
                 raise ParameterError(f"layout arrays must all have {n} entries, got {len(a)}")
-            a.setflags(write=False)
         tubes = tuple(tubes)
         if n and not (-1 <= arrays[2].min() and arrays[2].max() < len(tubes)):
             raise ParameterError(f"owner must be in [-1, {len(tubes)}) (tube indices), got {arrays[2].max()}")
