@@ -50,6 +50,7 @@ from ..patterns.errors import ExportError, ParameterError, PatternError
 from ..patterns.plan import StitchPlan
 from .atomic import write_files_atomic
 from .formats import FORMATS, WriteResult, encode
+from .worksheet import DEFAULT_SPEED_SPM, worksheet
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
@@ -64,10 +65,6 @@ __all__ = [
     "build",
     "build_plan_outputs",
 ]
-
-
-DEFAULT_SPEED_SPM = 600.0
-"""Machine speed used when neither the caller nor the design gives one [stitches/min]."""
 
 
 class DesignRuleError(PatternError):
@@ -215,7 +212,6 @@ def build_plan_outputs(
 ) -> BuildResult:
     """Build the outputs of an existing plan (see the module docstring)."""
     from .preview import plan_svg
-    from .worksheet import worksheet
 
     d = check_out_dir(out_dir)
     fmts = parse_formats(formats)

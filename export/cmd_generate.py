@@ -22,6 +22,8 @@ __all__ = ["add_arguments", "run"]
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact zigzag`` / ``embroact cross``."""
+    from .worksheet import DEFAULT_SPEED_SPM
+
     g = parser.add_argument_group("pattern")
     g.add_argument("--width-mm", type=float, required=True, help="rail spacing w [mm]")
     g.add_argument("--interval-mm", type=float, required=True,
@@ -44,7 +46,8 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                    help="split legs longer than the format allows into stitches outside the tube corridor")
     o.add_argument("--worksheet", action="store_true",
                    help="also write OUTPUT_STEM.worksheet.txt and OUTPUT_STEM.worksheet.json")
-    o.add_argument("--speed-spm", type=float, default=600.0, help="machine speed for the worksheet [stitches/min]")
+    o.add_argument("--speed-spm", type=float, default=DEFAULT_SPEED_SPM,
+                   help="machine speed for the worksheet [stitches/min]")
     o.add_argument("--preview", metavar="SVG", help="also write the stitch preview to this SVG file")
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 

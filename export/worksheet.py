@@ -49,6 +49,7 @@ from ..patterns.errors import check_range
 from ..patterns.plan import ActuatorPlan, Command, StitchPlan
 
 __all__ = [
+    "DEFAULT_SPEED_SPM",
     "TAIL_MM",
     "TRIM_TIME_S",
     "STOP_RESTART_S",
@@ -60,6 +61,8 @@ __all__ = [
     "worksheet",
 ]
 
+DEFAULT_SPEED_SPM = 600.0
+"""Machine speed used when neither the caller nor the design gives one [stitches/min]."""
 TAIL_MM = 20.0
 """Top-thread tail left at each start and trim [mm]."""
 TRIM_TIME_S = 3.0
@@ -284,7 +287,7 @@ def worksheet(
     plan: StitchPlan,
     design=None,
     *,
-    speed_spm: float = 600.0,
+    speed_spm: float = DEFAULT_SPEED_SPM,
     fabric_thickness_mm: float = FABRIC_THICKNESS_MM,
     findings=(),
 ) -> Worksheet:
