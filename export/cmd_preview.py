@@ -40,6 +40,8 @@ KINDS = {
     "shape": "bent-shape side views (SVG)",
     "mesh": "3D shape: .glb .stl .obj .ply, or .svg for a picture",
 }
+
+
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact preview``."""
     parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
@@ -129,8 +131,7 @@ def _render(args, out: Path, design) -> tuple[str, dict]:
     if args.kind == "shape":
         from .sideview import side_view_svg
 
-        if isinstance(args.states, bool) or not 1 <= args.states <= 12:
-            raise ParameterError(f"states must be an integer in [1, 12], got {args.states!r}")
+        pv.check_side_states(args.states, name="states")
         write_text_atomic(out, side_view_svg(pv.side_panels(plan, derived, curves, count=args.states)))
         return f"side views, {len(curves)} actuator(s)", info
     text, mesh_info = _write_mesh(out, plan, derived, curves, args)
@@ -144,15 +145,14 @@ def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
     if suffix != ".svg" and suffix not in MESH_FORMATS:
         raise ParameterError(f"output of preview mesh must end in one of {', '.join(MESH_FORMATS)}, .svg, "
                           f"got {out.name!r}")
-    from .previews import shape_meshes
+    from .previews import shape3d_title, shape_meshes
 
     shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=args.shape_pressure_kpa,
                                      tolerance_mm=args.tolerance_mm)
     if suffix == ".svg":
         from .meshview import mesh_svg
 
-        write_text_atomic(out, mesh_svg(shapes, title="3D shape at " + ", ".join(
-            f"{n}: {p:g} kPa" for n, p in pressures.items())))
+        write_text_atomic(out, mesh_svg(shapes, title=shape3d_title(pressures)))
     else:
         write_mesh(shapes, out)
     tri = sum(s.triangle_count for s in shapes)

@@ -47,6 +47,8 @@ __all__ = [
     "bend_series",
     "side_panels",
     "shape_meshes",
+    "shape3d_title",
+    "check_side_states",
     "render_previews",
     "previews_stage",
 ]
@@ -64,6 +66,7 @@ OUTPUT_NAMES = {
 DEFAULT_PRESSURES_KPA = tuple(float(p) for p in range(0, 301, 10))
 PRESSURE_STEP_KPA = 10.0
 DEFAULT_SIDE_STATES = 5
+MAX_SIDE_STATES = 12
 
 
 @dataclass(frozen=True, slots=True)
@@ -194,13 +197,36 @@ def shape_meshes(plan, derived, curves, *, pressure_kpa: float | None = None, to
     return shapes, pressures
 
 
+def shape3d_title(pressures: Mapping[str, float]) -> str:
+    """Title of the 3D picture: the pressure of each actuator's shape.
+
+    Examples
+    --------
+    >>> shape3d_title({"A1": 150.0, "A2": 87.5})
+    '3D shape at A1: 150 kPa, A2: 87.5 kPa'
+    """
+    return "3D shape at " + ", ".join(f"{n}: {p:g} kPa" for n, p in pressures.items())
+
+
+def check_side_states(value, *, name: str = "side_states") -> int:
+    """``value`` if it is an integer in [1, :data:`MAX_SIDE_STATES`], else :class:`ParameterError` naming ``name``.
+
+    Examples
+    --------
+    >>> check_side_states(5)
+    5
+    """
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_SIDE_STATES:
+        raise ParameterError(f"{name} must be an integer in [1, {MAX_SIDE_STATES}], got {value!r}")
+    return value
+
+
 def _check_inputs(plan, derived, curves, side_states) -> None:
     n = len(plan.actuators)
     if not n or not (n == len(derived) == len(curves)):
         raise ParameterError(f"need one derived geometry and one curve per actuator ({n}), "
                              f"got {len(derived)} and {len(curves)}")
-    if isinstance(side_states, bool) or not isinstance(side_states, int) or not 1 <= side_states <= 12:
-        raise ParameterError(f"side_states must be an integer in [1, 12], got {side_states!r}")
+    check_side_states(side_states)
 
 
 def render_previews(
@@ -261,8 +287,7 @@ def render_previews(
                                          tolerance_mm=tolerance_mm)
         name = OUTPUT_NAMES["mesh"] + str(mesh_suffix).lower()
         files[name] = mesh_bytes(shapes, mesh_suffix)
-        figures["shape3d"] = mesh_svg(shapes, title="3D shape at " + ", ".join(
-            f"{n}: {p:g} kPa" for n, p in pressures.items()))
+        figures["shape3d"] = mesh_svg(shapes, title=shape3d_title(pressures))
         files[OUTPUT_NAMES["shape3d"]] = figures["shape3d"]
         mesh_info = {"file": name, "pressure_kpa": pressures, "theta_deg": {s.name: s.theta_deg for s in shapes},
                      "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": shapes[0].tolerance_mm,
