@@ -42,7 +42,7 @@ from __future__ import annotations
 import json
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
@@ -225,8 +225,7 @@ def build_plan_outputs(
         data, res = encode(plan, fmt, split_long=split_long)
         name = f"{stem}.{fmt}"
         outputs[name] = data
-        machine.append(WriteResult(name, res.format, res.size_bytes, res.stitches, res.stops, res.trims, res.jumps,
-                                   res.split_legs))
+        machine.append(replace(res, path=name))
     ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings)
     outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
     outputs["worksheet.txt"] = ws.as_text().encode("utf-8")

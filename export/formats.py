@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import io
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -239,4 +239,4 @@ def write(
     check_output_dir(path)
     data, res = encode(plan, f, split_long=split_long)
     write_bytes_atomic(path, data)
-    return WriteResult(str(path), res.format, res.size_bytes, res.stitches, res.stops, res.trims, res.jumps, res.split_legs)
+    return replace(res, path=str(path))
