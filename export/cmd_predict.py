@@ -133,14 +133,12 @@ def run(args) -> int:
     from ..predict.derived import derive
 
     if args.target in ("zigzag", "cross"):
-        design = _quick_design(args)
-        max_kpa = 300.0
+        design = _quick_design(args)  # default OperationSettings: max_pressure_kpa 300
     else:
         from .designfile import load_design
 
         design = load_design(args.target)
-        max_kpa = design.operation.max_pressure_kpa
-    default = f"0:{max_kpa:g}:{_DEFAULT_STEP_KPA:g}"
+    default = f"0:{design.operation.max_pressure_kpa:g}:{_DEFAULT_STEP_KPA:g}"
     pressures = parse_pressures(args.pressure_kpa if args.pressure_kpa is not None else default)
     specs = design.actuators
     if args.actuator is not None:
