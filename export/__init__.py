@@ -6,3 +6,6 @@ the ``embroact`` command line (:mod:`~embroact.export.cli`). This package's
 ``__init__`` imports nothing, so that ``embroact --help`` stays fast; import the
 modules you need.
 """
+
+__version__ = "0.1.0"
+"""Shown by ``embroact --version`` and in report.json's ``generator`` (keep equal to pyproject.toml)."""

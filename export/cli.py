@@ -25,6 +25,8 @@ import argparse
 import importlib
 import sys
 
+from . import __version__
+
 __all__ = ["main", "COMMANDS"]
 
 #: name -> (module, one-line help). Order is the order shown by ``--help``.
@@ -58,7 +60,7 @@ def _top_parser() -> argparse.ArgumentParser:
         "Exit codes: 0 ok, 1 design-rule errors, 2 bad input, 3 cannot write, 4 solver failure.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("--version", action="version", version="embroact 0.1.0")
+    p.add_argument("--version", action="version", version=f"embroact {__version__}")
     p.add_argument("--debug", action="store_true", help="show tracebacks for errors")
     p.add_argument("command", choices=list(COMMANDS), metavar="COMMAND", help="one of the commands above")
     p.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)

@@ -24,6 +24,8 @@ import json
 import math
 from typing import Mapping, Sequence
 
+from . import __version__
+
 __all__ = ["FIGURES", "report_data", "report_json", "report_html", "finding_dict"]
 
 #: Figure keys report_html knows, in page order, with their headings.
@@ -87,7 +89,7 @@ def report_data(
     findings=(),
     worksheet: Mapping | None = None,
     mesh: Mapping | None = None,
-    generator: str = "embroact 0.1.0",
+    generator: str = f"embroact {__version__}",
 ) -> dict:
     """The report as one plain, JSON-ready dict.
 
