@@ -22,8 +22,6 @@ __all__ = ["add_arguments", "run"]
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact zigzag`` / ``embroact cross``."""
-    from .worksheet import DEFAULT_SPEED_SPM
-
     g = parser.add_argument_group("pattern")
     g.add_argument("--width-mm", type=float, required=True, help="rail spacing w [mm]")
     g.add_argument("--interval-mm", type=float, required=True,
@@ -46,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                    help="split legs longer than the format allows into stitches outside the tube corridor")
     o.add_argument("--worksheet", action="store_true",
                    help="also write OUTPUT_STEM.worksheet.txt and OUTPUT_STEM.worksheet.json")
-    o.add_argument("--speed-spm", type=float, default=DEFAULT_SPEED_SPM,
+    o.add_argument("--speed-spm", type=float, default=None,  # None: worksheet.DEFAULT_SPEED_SPM (no numpy for --help)
                    help="machine speed for the worksheet [stitches/min]")
     o.add_argument("--preview", metavar="SVG", help="also write the stitch preview to this SVG file")
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
@@ -106,9 +104,9 @@ def run(args) -> int:
     data, res = encode(plan, fmt, split_long=args.split_long)
     outputs = {out: data}
     if args.worksheet:
-        from .worksheet import worksheet
+        from .worksheet import DEFAULT_SPEED_SPM, worksheet
 
-        ws = worksheet(plan, speed_spm=args.speed_spm)
+        ws = worksheet(plan, speed_spm=DEFAULT_SPEED_SPM if args.speed_spm is None else args.speed_spm)
         outputs[out.with_name(out.stem + ".worksheet.txt")] = ws.as_text()
         outputs[out.with_name(out.stem + ".worksheet.json")] = json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n"
     if args.preview:
