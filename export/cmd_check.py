@@ -24,21 +24,18 @@ import json
 
 __all__ = ["add_arguments", "run", "format_table"]
 
+
 def add_arguments(parser, name: str) -> None:
     """Options of ``embroact check``."""
     from ..patterns.limits import FORMAT_LIMITS
-    from ..patterns.params import Tube
+    from .cliargs import add_tube_arguments
 
-    default = Tube()
     parser.add_argument("input", nargs="?", metavar="DESIGN.toml|FILE",
                         help="embroact design (TOML) or any embroidery file")
     tube = parser.add_argument_group("tube (embroidery files only)")
     tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'",
                       help="tube axis in mm, file frame (0.1 mm units / 10, y down); repeat for several tubes")
-    tube.add_argument("--tube-radius-mm", type=float, default=default.outer_radius_mm,
-                      help=f"tube outer radius r_f [mm] (default {default.outer_radius_mm:g})")
-    tube.add_argument("--clearance-mm", type=float, default=default.clearance_mm,
-                      help=f"needle clearance around the tube [mm] (default {default.clearance_mm:g})")
+    add_tube_arguments(tube, fields=("outer_radius_mm", "clearance_mm"))
     tube.add_argument("--end-margin-mm", type=float, default=0.0,
                       help="free tube beyond each end of the path [mm] (default 0)")
     tube.add_argument("--tube", metavar="TUBES.toml", help="tubes (and [machine] limits) from a TOML file")
@@ -71,7 +68,7 @@ def _check_file(args):
         tubes, machine = load_tube_file(args.tube)
     else:
         tubes = tuple(
-            tube_layout(parse_tube_path(text), name=f"tube {i + 1}", outer_radius_mm=args.tube_radius_mm,
+            tube_layout(parse_tube_path(text), name=f"tube {i + 1}", outer_radius_mm=args.outer_radius_mm,
                         clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
             for i, text in enumerate(args.tube_path)
         )
