@@ -27,8 +27,6 @@ import argparse
 import json
 from pathlib import Path
 
-from ..patterns.errors import ParameterError
-from .atomic import check_output_dir, write_text_atomic
 from .cliargs import parse_pressures
 
 __all__ = ["KINDS", "add_arguments", "run", "measured_points"]
@@ -89,12 +87,16 @@ def measured_points(specs, names) -> dict:
 
 
 def _svg_only(kind: str, out: Path) -> None:
+    from ..patterns.errors import ParameterError
+
     if out.suffix.lower() != ".svg":
         raise ParameterError(f"output of preview {kind} must end in .svg, got {out.name!r}")
 
 
 def run(args) -> int:
     """Load (or default) the design, render the view, write it atomically, report."""
+    from .atomic import check_output_dir
+
     out = check_output_dir(args.output)
     if args.kind != "mesh":
         _svg_only(args.kind, out)
@@ -109,6 +111,7 @@ def run(args) -> int:
 def _render(args, out: Path, design) -> tuple[str, dict]:
     """Write the view; return a one-line summary and its JSON fields."""
     from ..patterns.design import build_plan
+    from .atomic import write_text_atomic
 
     plan = build_plan(design)
     if args.kind == "stitches":
@@ -139,6 +142,8 @@ def _render(args, out: Path, design) -> tuple[str, dict]:
 
 
 def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
+    from ..patterns.errors import ParameterError
+    from .atomic import write_text_atomic
     from .mesh import MESH_FORMATS, write_mesh
 
     suffix = out.suffix.lower()
