@@ -18,7 +18,7 @@ from typing import Mapping
 
 from ..patterns.errors import ExportError
 
-__all__ = ["write_bytes_atomic", "write_text_atomic", "write_files_atomic", "check_output_dir"]
+__all__ = ["write_bytes_atomic", "write_text_atomic", "write_files_atomic", "check_output_dir", "check_writable_dir"]
 
 
 def check_output_dir(path: str | os.PathLike) -> Path:
@@ -30,13 +30,25 @@ def check_output_dir(path: str | os.PathLike) -> Path:
         One line naming the directory when it is missing or not writable.
     """
     p = Path(path)
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir():
-        what = "is not a directory" if parent.exists() else "does not exist"
-        raise ExportError(f"output directory {str(parent)!r} {what}")
-    if not os.access(parent, os.W_OK):
-        raise ExportError(f"output directory {str(parent)!r} is not writable")
+    check_writable_dir(p.parent)
     return p
+
+
+def check_writable_dir(path: str | os.PathLike) -> Path:
+    """Return ``path`` as a Path if it is an existing directory files can be created in.
+
+    Raises
+    ------
+    ExportError
+        One line naming the directory when it is missing, not a directory or not writable.
+    """
+    d = Path(path)
+    if not d.is_dir():
+        what = "is not a directory" if d.exists() else "does not exist"
+        raise ExportError(f"output directory {str(d)!r} {what}")
+    if not os.access(d, os.W_OK | os.X_OK):
+        raise ExportError(f"output directory {str(d)!r} is not writable")
+    return d
 
 
 def _cannot_write(p: Path, exc: OSError) -> ExportError:

@@ -48,7 +48,7 @@ from typing import Callable, Mapping, Sequence
 
 from ..patterns.errors import ExportError, ParameterError, PatternError
 from ..patterns.plan import StitchPlan
-from .atomic import write_files_atomic
+from .atomic import check_writable_dir, write_files_atomic
 from .formats import FORMATS, WriteResult, encode
 from .worksheet import DEFAULT_SPEED_SPM, worksheet
 
@@ -58,7 +58,6 @@ __all__ = [
     "BuildContext",
     "BuildResult",
     "Stage",
-    "check_out_dir",
     "parse_formats",
     "safe_stem",
     "write_outputs",
@@ -142,16 +141,6 @@ class BuildResult:
         }
 
 
-def check_out_dir(out_dir: str | os.PathLike) -> Path:
-    """``out_dir`` as a Path, or :class:`ExportError` if it is missing or not writable."""
-    p = Path(out_dir)
-    if not p.is_dir():
-        raise ExportError(f"output directory {str(p)!r} {'is not a directory' if p.exists() else 'does not exist'}")
-    if not os.access(p, os.W_OK | os.X_OK):
-        raise ExportError(f"output directory {str(p)!r} is not writable")
-    return p
-
-
 def parse_formats(text: str | Sequence[str]) -> tuple[str, ...]:
     """``"dst,pes"`` or ``["dst", "pes"]`` -> ``("dst", "pes")``; unknown names list the valid ones.
 
@@ -192,7 +181,7 @@ def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes
     replaced, so a failure while writing changes none of them
     (:func:`embroact.export.atomic.write_files_atomic`); the error names the file.
     """
-    d = check_out_dir(out_dir)
+    d = check_writable_dir(out_dir)
     write_files_atomic({d / name: data.encode("utf-8") if isinstance(data, str) else data
                         for name, data in outputs.items()})
     return tuple(outputs)
@@ -213,7 +202,7 @@ def build_plan_outputs(
     """Build the outputs of an existing plan (see the module docstring)."""
     from .preview import plan_svg
 
-    d = check_out_dir(out_dir)
+    d = check_writable_dir(out_dir)
     fmts = parse_formats(formats)
     findings = tuple(check(design, plan)) if check is not None else ()
     if not force and any(getattr(f, "is_error", False) for f in findings):
@@ -271,7 +260,7 @@ def build(
     """
     from ..patterns.design import build_plan
 
-    check_out_dir(out_dir)
+    check_writable_dir(out_dir)
     machine = getattr(design, "machine", None)
     formats = formats if formats is not None else (getattr(machine, "format", "dst"),)
     speed_spm = speed_spm if speed_spm is not None else getattr(machine, "speed_spm", DEFAULT_SPEED_SPM)

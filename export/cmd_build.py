@@ -74,10 +74,11 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 def run(args) -> int:
     """Load (or default) the design, build, report."""
-    from .build import DesignRuleError, build, check_out_dir, parse_formats
+    from .atomic import check_writable_dir
+    from .build import DesignRuleError, build, parse_formats
 
     formats = parse_formats(args.format) if args.format is not None else None
-    check_out_dir(args.out)
+    check_writable_dir(args.out)
     if args.design:
         from .designfile import load_design
 
