@@ -84,18 +84,12 @@ def _quick_design(args):
 
 def _model(derived, settings, args):
     """ActuatorModel from flags > design settings > calibration set."""
-    from dataclasses import replace
-
     from ..predict.calibration import calibrated_model
-    from ..predict.tubelaws import transition_pressure_kpa
 
     g = args.g_mpa if args.g_mpa is not None else settings.g_mpa
     p0 = args.p0_kpa if args.p0_kpa is not None else settings.p0_kpa
     name = args.calibration or settings.calibration
-    model, _ = calibrated_model(derived, name=name, g_mpa=g, p0_kpa=p0, p0=args.p0_from)
-    if p0 is None and args.p0_from == "geometry":  # the chosen tube law's P0, not the paper law's
-        model = replace(model, p0_kpa=float(transition_pressure_kpa(derived.r0_mm, derived.tube, args.tube_law)))
-    return replace(model, tube_law=args.tube_law)
+    return calibrated_model(derived, name=name, g_mpa=g, p0_kpa=p0, p0=args.p0_from, tube_law=args.tube_law)[0]
 
 
 def _finite(x: float):

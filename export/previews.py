@@ -42,7 +42,6 @@ __all__ = [
     "side_pressures",
     "shape_theta_deg",
     "pressures_for",
-    "actuator_model",
     "predict_curves",
     "bend_series",
     "side_panels",
@@ -123,38 +122,19 @@ def pressures_for(design=None, *, step_kpa: float = PRESSURE_STEP_KPA) -> tuple[
     return tuple(float(v) for v in np.linspace(0.0, n * step_kpa, n + 1)) + (() if n * step_kpa >= top else (top,))
 
 
-def actuator_model(derived, settings=None):
-    """ActuatorModel of one generated actuator under its design's ``ModelSettings``.
-
-    ``g_mpa`` None takes G from the named calibration set; ``p0_kpa`` None takes P0 from
-    the tube law (``ModelSettings`` semantics).  No settings: ``ModelSettings()``.
-    """
-    from ..patterns.design import ModelSettings
-    from ..predict.calibration import lookup
-    from ..predict.curve import ActuatorModel
-
-    ms = settings if settings is not None else ModelSettings()
-    if ms.g_mpa is None:
-        cal = lookup(derived.pattern, width_mm=derived.width_mm, name=ms.calibration,
-                     angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
-        g, label = cal.g_mpa, cal.label
-    else:
-        g, label = ms.g_mpa, "given"
-    return ActuatorModel.from_derived(derived, g_mpa=g, p0_kpa=ms.p0_kpa, calibration=label)
-
-
 def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, design=None, method: str = "auto") -> tuple[tuple, tuple]:
     """(derived geometry, curve) per actuator of ``plan``.
 
     Each actuator's model follows the ``ModelSettings`` of the design's actuator of the
     same name (defaults when there is no design or no such actuator).
     """
+    from ..predict.calibration import settings_model
     from ..predict.curve import curve
     from ..predict.derived import derive
 
     specs = {a.name: a.model for a in getattr(design, "actuators", ())}
     derived = tuple(derive(a) for a in plan.actuators)
-    curves = tuple(curve(actuator_model(g, specs.get(a.name)), pressures_kpa, method=method)
+    curves = tuple(curve(settings_model(g, specs.get(a.name))[0], pressures_kpa, method=method)
                    for a, g in zip(plan.actuators, derived))
     return derived, curves
 

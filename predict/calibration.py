@@ -68,6 +68,7 @@ __all__ = [
     "set_names",
     "P0_SOURCES",
     "calibrated_model",
+    "settings_model",
 ]
 
 PATTERNS = ("zigzag", "cross")
@@ -486,6 +487,7 @@ def calibrated_model(
     g_mpa: float | None = None,
     p0_kpa: float | None = None,
     p0: str = "calibration",
+    tube_law: str = "paper",
 ):
     """The deformation model of a design with G and P0 from a calibration set.
 
@@ -502,6 +504,9 @@ def calibrated_model(
     p0 : str
         Without ``p0_kpa``: ``"calibration"`` (the set's fitted P0) or ``"geometry"``
         (the tube law's pressure at r0).
+    tube_law : str
+        Tube law of the inflation phase (``"paper"`` or ``"thick-wall"``); with
+        ``p0="geometry"`` it also gives P0.
 
     Returns
     -------
@@ -541,5 +546,31 @@ def calibrated_model(
         g_mpa=cal.g_mpa if g_mpa is None else g_mpa,
         p0_kpa=cal.p0_kpa if p0_from_set else p0_kpa,
         calibration=", ".join(parts),
+        tube_law=tube_law,
     )
     return model, cal
+
+
+def settings_model(derived, settings=None):
+    """``(ActuatorModel, Calibration or None)`` under a design's ``ModelSettings``.
+
+    The design-file semantics: ``g_mpa`` None takes G from the named calibration set,
+    ``p0_kpa`` None takes P0 from the tube law (see ``patterns.design.ModelSettings``).
+    Used by the model-based rules and the build's previews, so both see one model.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0,
+    ...                        length_mm=100.0, tube=Tube())
+    >>> m, cal = settings_model(d)
+    >>> m.g_mpa, round(m.p0_kpa, 2)
+    (2.7, 84.45)
+    """
+    if settings is None:
+        from ..patterns.design import ModelSettings
+
+        settings = ModelSettings()
+    return calibrated_model(derived, name=settings.calibration, g_mpa=settings.g_mpa,
+                            p0_kpa=settings.p0_kpa, p0="geometry")

@@ -36,7 +36,7 @@ from ..patterns.plan import StitchPlan
 from ..patterns.rules import RuleSettings, check_plan, sort_findings
 from .status import Status
 
-__all__ = ["ModelRuleSettings", "actuator_model", "check_model", "check_design"]
+__all__ = ["ModelRuleSettings", "check_model", "check_design"]
 
 _BAD_STATES = (Status.OUT_OF_DOMAIN, Status.UNSTABLE, Status.FAILED)
 
@@ -81,34 +81,13 @@ class ModelRuleSettings:
         return cls(**base)
 
 
-def actuator_model(derived, model_settings=None):
-    """(ActuatorModel, Calibration or None) of one generated actuator.
-
-    ``model_settings`` is a ``ModelSettings`` (None: defaults): ``g_mpa`` None takes G
-    from the named calibration set (the returned Calibration says whether it was
-    extrapolated); ``p0_kpa`` None takes P0 from the tube law.
-    """
-    from ..patterns.design import ModelSettings
-    from .calibration import lookup
-    from .curve import ActuatorModel
-
-    ms = model_settings if model_settings is not None else ModelSettings()
-    cal = None
-    if ms.g_mpa is None:
-        cal = lookup(derived.pattern, width_mm=derived.width_mm, name=ms.calibration,
-                     angle_deg=derived.angle_deg if derived.pattern == "cross" else None)
-    g = ms.g_mpa if cal is None else cal.g_mpa
-    model = ActuatorModel.from_derived(derived, g_mpa=g, p0_kpa=ms.p0_kpa,
-                                       calibration="given" if cal is None else cal.label)
-    return model, cal
-
-
 def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSettings) -> list[Finding]:
+    from .calibration import settings_model
     from .curve import curve, lockup
 
     where = dict(actuator=name)
     try:
-        model, cal = actuator_model(derived, model_settings)
+        model, cal = settings_model(derived, model_settings)
     except EmbroactError as exc:
         return [RULES.finding("EA405", f"no model for this actuator: {exc}", **where)]
     out = []
