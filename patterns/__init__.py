@@ -1,6 +1,9 @@
 """embroact.patterns: tube paths, stitch-pattern generators, plans and design values.
 
-Pure geometry: imports numpy and shapely only (no scipy, no trimesh).
+Pure geometry: imports numpy and shapely only (no scipy, no trimesh). The generators are
+imported here (their names equal their modules' names, which a lazy name cannot shadow);
+every other name loads its module on first use (:mod:`embroact.patterns.lazy`), so a
+command that never reads a design file does not load one.
 
 Examples
 --------
@@ -9,56 +12,40 @@ Examples
 >>> plan.actuators[0].realised.passes
 1
 """
-from .centerline import Centerline, as_centerline
 from .cross import cross
-from .design import (
-    ActuatorSpec,
-    Design,
-    MachineSettings,
-    ModelSettings,
-    OperationSettings,
-    build_plan,
-    default_design,
-    design_from_dict,
-    design_to_dict,
-    generate_actuator,
-    join_plans,
-)
-from .errors import DesignFileError, EmbroactError, ParameterError, PathError, PatternError
+from .lazy import lazy_exports
 from .measure import measure
-from .params import CrossParams, StitchOptions, Tube, ZigzagParams
-from .plan import ActuatorPlan, Command, Realised, Role, StitchPlan
 from .zigzag import zigzag
 
-__all__ = [
-    "Centerline",
-    "as_centerline",
-    "zigzag",
-    "cross",
-    "Design",
-    "ActuatorSpec",
-    "MachineSettings",
-    "OperationSettings",
-    "ModelSettings",
-    "design_from_dict",
-    "design_to_dict",
-    "default_design",
-    "build_plan",
-    "generate_actuator",
-    "join_plans",
-    "measure",
-    "Tube",
-    "StitchOptions",
-    "ZigzagParams",
-    "CrossParams",
-    "Command",
-    "Role",
-    "Realised",
-    "ActuatorPlan",
-    "StitchPlan",
-    "EmbroactError",
-    "ParameterError",
-    "PatternError",
-    "PathError",
-    "DesignFileError",
-]
+_EXPORTS = {
+    "Centerline": "centerline",
+    "as_centerline": "centerline",
+    "ActuatorSpec": "design",
+    "Design": "design",
+    "MachineSettings": "design",
+    "ModelSettings": "design",
+    "OperationSettings": "design",
+    "build_plan": "design",
+    "default_design": "design",
+    "design_from_dict": "design",
+    "design_to_dict": "design",
+    "generate_actuator": "design",
+    "join_plans": "design",
+    "DesignFileError": "errors",
+    "EmbroactError": "errors",
+    "ParameterError": "errors",
+    "PathError": "errors",
+    "PatternError": "errors",
+    "CrossParams": "params",
+    "StitchOptions": "params",
+    "Tube": "params",
+    "ZigzagParams": "params",
+    "ActuatorPlan": "plan",
+    "Command": "plan",
+    "Realised": "plan",
+    "Role": "plan",
+    "StitchPlan": "plan",
+}
+
+__all__ = ["zigzag", "cross", "measure", *_EXPORTS]
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
