@@ -94,7 +94,7 @@ def _entry() -> list[str]:
     script = Path(sys.executable).with_name("embroact")
     if script.exists():
         return [sys.executable, str(script)]
-    return [sys.executable, "-c", "import sys; from embroact.export.cli import main; sys.exit(main())"]
+    return [sys.executable, "-c", "import sys; from embroact.export.cli.main import main; sys.exit(main())"]
 
 
 def cli_timings(runs: int) -> dict:
@@ -122,7 +122,7 @@ def cli_timings(runs: int) -> dict:
 
 def help_imports() -> list[str]:
     """Heavy modules loaded after ``main(["--help"])`` in a fresh interpreter."""
-    code = ("import contextlib, io, json, sys\nfrom embroact.export.cli import main\n"
+    code = ("import contextlib, io, json, sys\nfrom embroact.export.cli.main import main\n"
             "with contextlib.redirect_stdout(io.StringIO()):\n    main(['--help'])\n"
             f"print(json.dumps(sorted(m for m in {HEAVY!r} if m in sys.modules)))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=_env())
@@ -137,7 +137,7 @@ from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import ZigzagParams
 from embroact.patterns.rules import check_plan
 from embroact.patterns.zigzag import zigzag
-from embroact.export.formats import write
+from embroact.export.machine.formats import write
 trace = {trace!r}
 if trace:
     tracemalloc.start()

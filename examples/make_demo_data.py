@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from embroact.export.atomic import write_text_atomic
+from embroact.export.files.atomic import write_text_atomic
 from embroact.patterns.params import Tube
 from embroact.predict.curve import ActuatorModel, curve
 from embroact.predict.derived import derive_from_values

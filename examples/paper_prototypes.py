@@ -136,9 +136,9 @@ def table(rows) -> str:
 
 
 def write_charts(rows, out_dir: Path) -> list[str]:
-    """One SVG bend chart per pattern (embroact.export.chart); returns the paths written."""
-    from embroact.export.atomic import write_text_atomic
-    from embroact.export.chart import Series, bend_chart_svg
+    """One SVG bend chart per pattern (embroact.export.pictures.chart); returns the paths written."""
+    from embroact.export.files.atomic import write_text_atomic
+    from embroact.export.pictures.chart import Series, bend_chart_svg
 
     out_dir.mkdir(parents=True, exist_ok=True)
     written = []

@@ -1,8 +1,8 @@
 """embroact.export: everything that leaves the program.
 
-Machine files (:mod:`~embroact.export.formats`), stitch preview SVG
-(:mod:`~embroact.export.preview`), bend charts, side views, 3D meshes, reports and
-the ``embroact`` command line (:mod:`~embroact.export.cli`). This package's
+Machine files (:mod:`~embroact.export.machine.formats`), stitch preview SVG
+(:mod:`~embroact.export.pictures.stitches`), bend charts, side views, 3D meshes, reports and
+the ``embroact`` command line (:mod:`~embroact.export.cli.main`). This package's
 ``__init__`` imports nothing, so that ``embroact --help`` stays fast; import the
 modules you need.
 """

@@ -2,7 +2,7 @@
 
 Pure geometry: imports numpy and shapely only (no scipy, no trimesh). The generators are
 imported here (their names equal their modules' names, which a lazy name cannot shadow);
-every other name loads its module on first use (:mod:`embroact.patterns.lazy`), so a
+every other name loads its module on first use (:mod:`embroact.patterns.base.lazy`), so a
 command that never reads a design file does not load one.
 
 Examples
@@ -13,7 +13,7 @@ Examples
 1
 """
 from .cross import cross
-from .lazy import lazy_exports
+from .base.lazy import lazy_exports
 from .measure import measure
 from .zigzag import zigzag
 
@@ -31,11 +31,11 @@ _EXPORTS = {
     "design_to_dict": "design",
     "generate_actuator": "design",
     "join_plans": "design",
-    "DesignFileError": "errors",
-    "EmbroactError": "errors",
-    "ParameterError": "errors",
-    "PathError": "errors",
-    "PatternError": "errors",
+    "DesignFileError": "base.errors",
+    "EmbroactError": "base.errors",
+    "ParameterError": "base.errors",
+    "PathError": "base.errors",
+    "PatternError": "base.errors",
     "CrossParams": "params",
     "StitchOptions": "params",
     "Tube": "params",

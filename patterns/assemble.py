@@ -42,11 +42,11 @@ import numpy as np
 import shapely
 
 from .centerline import Centerline
-from .errors import ParameterError, PatternError, PathError
+from .base.errors import ParameterError, PatternError, PathError
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Role, StitchPlan
-from .tolerances import DEFAULT_TOLERANCES
+from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["assemble", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm", "MAX_RECORDS",
            "MIN_TIE_GRID_STEPS"]

@@ -42,9 +42,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-from .arrays import frozen_array
-from .errors import ParameterError, PathError, check_range
-from .tolerances import DEFAULT_TOLERANCES
+from .base.arrays import frozen_array
+from .base.errors import ParameterError, PathError, check_range
+from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
 

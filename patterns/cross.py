@@ -64,10 +64,10 @@ import numpy as np
 
 from .assemble import assemble, check_pattern_inputs, check_record_count, rail_positions
 from .centerline import as_centerline
-from .errors import ParameterError, PatternError
+from .base.errors import ParameterError, PatternError
 from .params import CrossParams, StitchOptions, Tube
 from .plan import Role, StitchPlan
-from .tolerances import DEFAULT_TOLERANCES
+from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["cross", "cross_stations", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
 

@@ -75,11 +75,11 @@ import numpy as np
 from .centerline import Centerline, as_centerline
 from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
 from .cross import closing, cross, cross_stations
-from .errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
-from .tolerances import DEFAULT_TOLERANCES
+from .base.tolerances import DEFAULT_TOLERANCES
 from .zigzag import zigzag, zigzag_stations
 
 __all__ = [

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import ParameterError
+from .base.errors import ParameterError
 
 __all__ = ["FormatLimit", "FORMAT_LIMITS", "format_limit"]
 

@@ -29,9 +29,9 @@ from __future__ import annotations
 import numpy as np
 
 from .centerline import as_centerline
-from .errors import ParameterError, PatternError
+from .base.errors import ParameterError, PatternError
 from .plan import Realised, Role
-from .tolerances import DEFAULT_TOLERANCES
+from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["measure", "PATTERNS"]
 

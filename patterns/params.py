@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
-from .errors import ParameterError, check_range
+from .base.errors import ParameterError, check_range
 
 __all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams"]
 

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
 
-from .arrays import frozen_array
+from .base.arrays import frozen_array
 from .params import CrossParams, PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -224,12 +224,12 @@ class StitchPlan:
         return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
     def _repr_svg_(self) -> str:
-        """Stitch preview for Jupyter (:func:`embroact.export.preview.plan_svg`).
+        """Stitch preview for Jupyter (:func:`embroact.export.pictures.stitches.plan_svg`).
 
         The one documented exception to the import direction (patterns never imports
         export): the renderer is imported lazily, only when a notebook asks for it.
         """
-        from ..export.preview import plan_svg
+        from ..export.pictures.stitches import plan_svg
 
         return plan_svg(self)
 

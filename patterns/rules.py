@@ -4,7 +4,7 @@ A :class:`Layout` is what every geometric rule needs: records (positions in mm,
 :class:`~embroact.patterns.plan.Command` per record, the tube each record belongs
 to) and the tubes (path, radius, clearance, end margin, stitched half width).
 Stitch plans become layouts with :func:`layout_from_plan`; embroidery files read
-by ``embroact.export.filecheck`` become layouts too, so the same rules check both.
+by ``embroact.export.machine.filecheck`` become layouts too, so the same rules check both.
 
 Conventions
 -----------
@@ -38,15 +38,15 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import shapely
 
-from .arrays import frozen_array
+from .base.arrays import frozen_array
 from .centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
-from .errors import ParameterError, PathError, check_range
-from .findings import RULES, Finding
+from .base.errors import ParameterError, PathError, check_range
+from .base.findings import RULES, Finding
 from .limits import format_limit
 from .params import CrossParams
 from .plan import Command, Role, StitchPlan
 from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
-from .tolerances import DEFAULT_TOLERANCES, Tolerances
+from .base.tolerances import DEFAULT_TOLERANCES, Tolerances
 
 __all__ = [
     "RuleSettings",

@@ -36,10 +36,10 @@ import numpy as np
 
 from .assemble import assemble, check_pattern_inputs, check_record_count
 from .centerline import as_centerline
-from .errors import ParameterError, PatternError
+from .base.errors import ParameterError, PatternError
 from .params import StitchOptions, Tube, ZigzagParams
 from .plan import Role, StitchPlan
-from .tolerances import DEFAULT_TOLERANCES
+from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["zigzag", "zigzag_stations", "MIN_LEGS"]
 

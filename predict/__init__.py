@@ -1,7 +1,7 @@
 """embroact.predict: the deformation model of MODEL.md, its numerical methods and calibration.
 
 No file I/O; scipy is imported only by the functions that need it (root finding,
-fitting). The names below load their module on first use (:mod:`embroact.patterns.lazy`), so
+fitting). The names below load their module on first use (:mod:`embroact.patterns.base.lazy`), so
 importing one small module (``embroact.predict.derived``) does not load the model.
 The function ``curve`` lives in (and is not re-exported over) the module
 :mod:`embroact.predict.curve`: ``from embroact.predict.curve import curve``.
@@ -17,7 +17,7 @@ Examples
 >>> c.as_dict()["status"], c.method
 (['INFLATION', 'BENDING'], 'stable-analytic-trace')
 """
-from ..patterns.lazy import lazy_exports
+from ..patterns.base.lazy import lazy_exports
 
 _EXPORTS = {
     "ActuatorModel": "curve",

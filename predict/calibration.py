@@ -10,7 +10,7 @@ The built-in set ``"paper-2025"`` holds the paper's fitted parameters (MODEL.md
 section 5: natural rubber tube, polyester thread, cotton fabric).  Users add their
 own sets from :func:`embroact.predict.fit.fit_design` results, either globally with
 :func:`register` or per call with ``lookup(..., sets=[...])``; TOML files are read and
-written by :mod:`embroact.export.calibfile`.
+written by :mod:`embroact.export.files.calibfile`.
 
 Lookup scheme
 -------------
@@ -50,8 +50,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Iterable, Mapping
 
-from ..patterns.errors import ModelDomainError, ParameterError, check_range
-from ..patterns.tolerances import DEFAULT_TOLERANCES
+from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = [
     "PATTERNS",

@@ -72,9 +72,9 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..patterns.arrays import frozen_array
-from ..patterns.errors import ParameterError, check_range
-from ..patterns.tolerances import DEFAULT_TOLERANCES
+from ..patterns.base.arrays import frozen_array
+from ..patterns.base.errors import ParameterError, check_range
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA

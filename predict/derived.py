@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.errors import ParameterError, check_range
+from ..patterns.base.errors import ParameterError, check_range
 from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
 from ..patterns.sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg

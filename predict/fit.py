@@ -43,8 +43,8 @@ from typing import Callable, Iterable, Mapping
 
 import numpy as np
 
-from ..patterns.arrays import frozen_array
-from ..patterns.errors import ModelDomainError, ParameterError, SolverError
+from ..patterns.base.arrays import frozen_array
+from ..patterns.base.errors import ModelDomainError, ParameterError, SolverError
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
 from .inflation import transition_pressure_kpa

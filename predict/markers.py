@@ -39,9 +39,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.arrays import frozen_array
-from ..patterns.errors import ParameterError
-from ..patterns.tolerances import DEFAULT_TOLERANCES
+from ..patterns.base.arrays import frozen_array
+from ..patterns.base.errors import ParameterError
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["MarkerAngles", "marker_angles", "bend_angle_deg", "PAPER_MARKERS_PER_SIDE", "PAPER_SIDES"]
 

@@ -54,7 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.errors import ParameterError
+from ..patterns.base.errors import ParameterError
 from . import solvers
 
 __all__ = [

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.errors import EmbroactError, ParameterError, check_range
-from ..patterns.findings import RULES, Finding
+from ..patterns.base.errors import EmbroactError, ParameterError, check_range
+from ..patterns.base.findings import RULES, Finding
 from ..patterns.plan import StitchPlan
 from ..patterns.rules import RuleSettings, check_plan, sort_findings
 from .status import Status

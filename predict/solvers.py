@@ -51,7 +51,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..patterns.errors import ParameterError, SolverError
+from ..patterns.base.errors import ParameterError, SolverError
 
 __all__ = [
     "DERIVATIVE_METHODS",

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..patterns.errors import ModelDomainError, ParameterError
+from ..patterns.base.errors import ModelDomainError, ParameterError
 from .inflation import KPA_PER_MPA, paper_pressure_kpa, paper_radius_mm
 from .solvers import bisect
 

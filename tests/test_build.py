@@ -7,11 +7,11 @@ import pytest
 
 import dst_decoder
 from h3_plans import hand_plan
-from embroact.export.build import BuildContext, DesignRuleError, build, build_plan_outputs
-from embroact.export.cli import main
+from embroact.export.report.build import BuildContext, DesignRuleError, build, build_plan_outputs
+from embroact.export.cli.main import main
 from embroact.patterns.design import build_plan, default_design, design_from_dict
-from embroact.patterns.errors import ExportError, ParameterError
-from embroact.patterns.findings import RULES
+from embroact.patterns.base.errors import ExportError, ParameterError
+from embroact.patterns.base.findings import RULES
 from embroact.patterns.plan import Command as C
 
 THREE = {"name": "three", "actuator": [
@@ -101,7 +101,7 @@ def test_cli_build_default_and_json(tmp_path, capsys):
 
 
 def test_cli_build_design_file(tmp_path, capsys):
-    from embroact.export.designfile import save_design
+    from embroact.export.files.designfile import save_design
 
     path = tmp_path / "three.toml"
     save_design(design_from_dict(THREE), path)
@@ -127,7 +127,7 @@ def test_cli_build_errors(tmp_path, capsys, argv, code, needle):
 
 
 def test_cli_build_rule_errors_exit_1(tmp_path, capsys, monkeypatch):
-    import embroact.export.cmd_build as cmd
+    import embroact.export.cli.cmd_build as cmd
 
     bad = RULES.finding("EA101", "needle point 0.4 mm from the tube axis", stitch_index=7)
     monkeypatch.setattr(cmd, "_check", lambda args: lambda design, plan: [bad])

@@ -6,7 +6,7 @@ import dataclasses
 
 import pytest
 
-from embroact.patterns.errors import ModelDomainError, ParameterError
+from embroact.patterns.base.errors import ModelDomainError, ParameterError
 from embroact.predict.calibration import (
     PAPER_2025,
     CalibrationPoint,
@@ -201,8 +201,8 @@ def test_set_validation_and_merge():
 
 
 # -- calibration TOML files (export.calibfile) ---------------------------------------------
-from embroact.export.calibfile import calibration_toml, read_calibration, write_calibration  # noqa: E402
-from embroact.patterns.errors import DesignFileError  # noqa: E402
+from embroact.export.files.calibfile import calibration_toml, read_calibration, write_calibration  # noqa: E402
+from embroact.patterns.base.errors import DesignFileError  # noqa: E402
 
 
 def test_toml_round_trip_is_exact_and_stable(tmp_path):

@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from embroact.patterns.centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
-from embroact.patterns.errors import ParameterError, PathError
-from embroact.patterns.tolerances import DEFAULT_TOLERANCES
+from embroact.patterns.base.errors import ParameterError, PathError
+from embroact.patterns.base.tolerances import DEFAULT_TOLERANCES
 
 from h1_checks import arc
 

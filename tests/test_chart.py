@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from embroact.export.chart import Scale, Series, bend_chart_svg, chart_scale, nice_ticks
-from embroact.patterns.errors import ParameterError
+from embroact.export.pictures.chart import Scale, Series, bend_chart_svg, chart_scale, nice_ticks
+from embroact.patterns.base.errors import ParameterError
 
 SVG = "{http://www.w3.org/2000/svg}"
 

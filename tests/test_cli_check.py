@@ -8,7 +8,7 @@ import pyembroidery as pe
 import pytest
 
 import dst_decoder
-from embroact.export.cli import main
+from embroact.export.cli.main import main
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import ZigzagParams
 from embroact.patterns.plan import Command, Role
@@ -134,7 +134,7 @@ def test_tube_options_rejected_for_designs(capsys):
 
 
 def test_rules_table_and_missing_input(capsys):
-    from embroact.patterns.findings import RULES
+    from embroact.patterns.base.findings import RULES
 
     assert main(["check", "--rules"]) == 0
     out = capsys.readouterr().out

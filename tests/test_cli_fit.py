@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from embroact.export.calibfile import read_bend_csv, read_calibration, read_marker_csv
-from embroact.export.cli import main
+from embroact.export.files.calibfile import read_bend_csv, read_calibration, read_marker_csv
+from embroact.export.cli.main import main
 from embroact.predict.calibration import lookup
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dst_decoder
-from embroact.export.cli import main
+from embroact.export.cli.main import main
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import ZigzagParams
 from embroact.patterns.zigzag import zigzag

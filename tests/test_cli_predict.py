@@ -4,9 +4,9 @@ import json
 import numpy as np
 import pytest
 
-from embroact.export.cli import main
-from embroact.export.cmd_predict import parse_pressures
-from embroact.patterns.errors import ParameterError
+from embroact.export.cli.main import main
+from embroact.export.cli.cmd_predict import parse_pressures
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict.curve import ActuatorModel, curve
 from embroact.predict.derived import derive_from_values

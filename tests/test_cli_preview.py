@@ -6,9 +6,9 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from embroact.export.cli import main
-from embroact.export.cliargs import parse_pressures
-from embroact.patterns.errors import ParameterError
+from embroact.export.cli.main import main
+from embroact.export.cli.args import parse_pressures
+from embroact.patterns.base.errors import ParameterError
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -100,7 +100,7 @@ def test_errors_are_one_line_and_write_nothing(tmp_path, capsys, argv, code, mes
 @pytest.mark.parametrize("kind, loads", [("bend", False), ("shape", False), ("mesh", True)])
 def test_trimesh_only_for_mesh(tmp_path, kind, loads):
     out = tmp_path / ("x.glb" if kind == "mesh" else "x.svg")
-    code = ("import sys; from embroact.export.cli import main; "
+    code = ("import sys; from embroact.export.cli.main import main; "
             f"rc = main(['preview', '{kind}', '-o', r'{out}', '--pressure-kpa', '0:300:100']); "
             "print(rc, 'trimesh' in sys.modules)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -116,7 +116,7 @@ def test_same_bytes_twice(tmp_path):
 
 
 def test_measured_points_overlay_at_their_coordinates(tmp_path):
-    from embroact.export.chart import chart_scale
+    from embroact.export.pictures.chart import chart_scale
 
     csv = tmp_path / "loop.csv"
     csv.write_text("pressure_kpa,angle_deg\n0,0\n150,40\n300,120\n150,60\n")
@@ -125,7 +125,7 @@ def test_measured_points_overlay_at_their_coordinates(tmp_path):
     circles = [e for e in ET.parse(out).getroot().iter(SVG + "circle") if e.get("class") == "measured"]
     got = np.array([[float(c.get("cx")), float(c.get("cy"))] for c in circles])
     # the same chart scale, rebuilt from the series the command drew
-    from embroact.export import previews as pv
+    from embroact.export.pictures import previews as pv
     from embroact.patterns.design import build_plan, default_design
 
     design = default_design()

@@ -3,8 +3,8 @@ import argparse
 
 import pytest
 
-from embroact.export.cliargs import TUBE_FLAGS, add_tube_arguments, parse_pressures, tube_from_args
-from embroact.patterns.errors import ParameterError
+from embroact.export.cli.args import TUBE_FLAGS, add_tube_arguments, parse_pressures, tube_from_args
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.params import Tube
 
 

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.cross import MAX_EDGE_STITCH_MM, closing, cross
-from embroact.patterns.errors import ParameterError, PatternError
+from embroact.patterns.base.errors import ParameterError, PatternError
 from embroact.patterns.params import CrossParams, ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.predict.derived import derive

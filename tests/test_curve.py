@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mpref
-from embroact.patterns.errors import ParameterError
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict import curve as C
 from embroact.predict.curve import ActuatorModel, Curve, curve, lockup, pressure_at, sweep

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from embroact.export.designfile import dumps_design, load_design, loads_design, save_design
+from embroact.export.files.designfile import dumps_design, load_design, loads_design, save_design
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.design import (
     ActuatorSpec,
@@ -18,7 +18,7 @@ from embroact.patterns.design import (
     design_to_dict,
     join_plans,
 )
-from embroact.patterns.errors import DesignFileError, ParameterError, PatternError
+from embroact.patterns.base.errors import DesignFileError, ParameterError, PatternError
 from embroact.patterns.params import Tube, ZigzagParams
 from embroact.patterns.plan import Command, Role
 

@@ -12,9 +12,9 @@ def _modules():
     for pkg_name in PACKAGES:
         pkg = importlib.import_module(pkg_name)
         yield pkg_name
-        for info in pkgutil.iter_modules(pkg.__path__):
-            if info.name != "__main__":
-                yield f"{pkg_name}.{info.name}"
+        for info in pkgutil.walk_packages(pkg.__path__, prefix=f"{pkg_name}."):
+            if not info.name.endswith("__main__"):
+                yield info.name
 
 
 @pytest.mark.parametrize("name", sorted(_modules()))

@@ -8,9 +8,9 @@ import pytest
 
 import dst_decoder
 from h3_plans import generated_plans, hand_plan, needle_points
-from embroact.export.formats import encode, write
-from embroact.export.machine import LongLegError
-from embroact.patterns.errors import ExportError, PatternError
+from embroact.export.machine.formats import encode, write
+from embroact.export.machine.encode import LongLegError
+from embroact.patterns.base.errors import ExportError, PatternError
 from embroact.patterns.plan import Command as C, Role as R, StitchPlan
 
 GRID_HALF_MM = 0.05 + 1e-9  # a 0.1 mm grid puts every point within half a step of the plan
@@ -95,8 +95,8 @@ def test_header_corrects_pyembroidery():
     import io
 
     import pyembroidery
-    from embroact.export.formats import machine_format
-    from embroact.export.machine import to_pattern
+    from embroact.export.machine.formats import machine_format
+    from embroact.export.machine.encode import to_pattern
 
     plan = hand_plan(3)  # A1 at y = -3 +- 3.5 mm, then 20 mm lower each
     mp = to_pattern(plan, machine_format("a.dst"))
@@ -159,7 +159,7 @@ def test_unintended_trim_is_refused(jumps):
 
 def test_same_bytes_in_two_processes(tmp_path):
     code = ("import sys; sys.path.insert(0, 'tests'); from h3_plans import hand_plan; "
-            "from embroact.export.formats import write; write(hand_plan(3), sys.argv[1])")
+            "from embroact.export.machine.formats import write; write(hand_plan(3), sys.argv[1])")
     outs = []
     for i in range(2):
         p = tmp_path / f"{i}.dst"

@@ -1,17 +1,17 @@
 """Checking embroidery files written by pyembroidery against their tubes.
 
 Record indices are located with the test suite's own DST decoder (tests/dst_decoder.py),
-not with pyembroidery's reader that embroact.export.filecheck uses.
+not with pyembroidery's reader that embroact.export.machine.filecheck uses.
 """
 import numpy as np
 import pyembroidery as pe
 import pytest
 
 import dst_decoder
-from embroact.export.filecheck import (check_file, load_tube_file, parse_tube_path, read_records,
+from embroact.export.machine.filecheck import (check_file, load_tube_file, parse_tube_path, read_records,
                                        tube_layout)
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.errors import DesignFileError, ParameterError
+from embroact.patterns.base.errors import DesignFileError, ParameterError
 from embroact.patterns.params import ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.patterns.rules import RuleSettings
@@ -200,8 +200,8 @@ def test_three_actuator_machine_files_check_clean(tmp_path, fmt):
     """embroact's own writer output, checked with the tubes in the file frame (plan y negated)."""
     import os
 
-    from embroact.export.designfile import load_design
-    from embroact.export.formats import write
+    from embroact.export.files.designfile import load_design
+    from embroact.export.machine.formats import write
     from embroact.patterns.design import build_plan
 
     here = os.path.dirname(__file__)

@@ -12,7 +12,7 @@ import json
 import numpy as np
 import pytest
 
-from embroact.patterns.errors import ModelDomainError, ParameterError
+from embroact.patterns.base.errors import ModelDomainError, ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict.derived import derive_from_values
 from embroact.predict.fit import FitResult, fit_curve, fit_design, split_branches

@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 
 from h3_plans import generated_plans, hand_plan, needle_points
-from embroact.export.formats import FORMATS, encode, machine_format, write
-from embroact.export.machine import THREAD_COLORS
-from embroact.patterns.errors import ParameterError
+from embroact.export.machine.formats import FORMATS, encode, machine_format, write
+from embroact.export.machine.encode import THREAD_COLORS
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.limits import FORMAT_LIMITS
 from embroact.patterns.plan import Command as C
 
@@ -103,7 +103,7 @@ def test_generated_round_trip(tmp_path, fmt, label, plan):
 @pytest.mark.parametrize("fmt", ["exp", "jef", "u01", "tbf", "xxx"])
 def test_long_leg_limit_per_format(fmt):
     """A leg just over the format's limit is refused, one just under is written."""
-    from embroact.export.machine import LongLegError
+    from embroact.export.machine.encode import LongLegError
     from embroact.patterns.plan import Role as R, StitchPlan
 
     lim = FORMAT_LIMITS[fmt].max_record_mm
@@ -119,7 +119,7 @@ def test_long_leg_limit_per_format(fmt):
 def test_record_limit_is_an_export_error():
     from dataclasses import replace
 
-    from embroact.patterns.errors import ExportError
+    from embroact.patterns.base.errors import ExportError
 
     small = replace(FORMATS["dst"], limit=replace(FORMATS["dst"].limit, max_records=40))
     with pytest.raises(ExportError, match=r"design needs \d+ records; dst holds at most 40"):

@@ -1,6 +1,6 @@
 """Hostile inputs and faults: a catalogue of command lines with the exact error each must produce.
 
-Every case runs ``embroact.export.cli.main`` in a fresh ``tmp_path`` holding the hostile files
+Every case runs ``embroact.export.cli.main.main`` in a fresh ``tmp_path`` holding the hostile files
 (:func:`_hostile_files`) and asserts: the documented exit code (0 ok, 1 rule errors, 2 bad
 input, 3 cannot write, 4 solver failure); for errors exactly one line on stderr, starting
 ``embroact...: error:``, containing the expected fragment (parameter, value and range where
@@ -24,7 +24,7 @@ from pathlib import Path
 
 import pytest
 
-from embroact.export.cli import main
+from embroact.export.cli.main import main
 
 ZZ = ["zigzag", "--width-mm", "7", "--interval-mm", "1"]
 CR = ["cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45"]
@@ -40,7 +40,7 @@ def _garbage(n: int, seed: int) -> bytes:
 @functools.lru_cache(maxsize=1)
 def _machine_files() -> dict[str, bytes]:
     """A good DST and truncated files of every format with an end marker (encoded once)."""
-    from embroact.export.formats import encode
+    from embroact.export.machine.formats import encode
     from embroact.patterns import Centerline, ZigzagParams, zigzag
 
     plan = zigzag(Centerline.straight(100.0), ZigzagParams(7.0, 1.0))
@@ -515,7 +515,7 @@ def test_integer_flags_refuse_bad_numbers(tmp_path, prefix, flag, name, value):
 
 def test_debug_shows_the_traceback(tmp_path):
     """--debug re-raises the error (Python prints the traceback); without it, one line."""
-    from embroact.patterns.errors import ParameterError
+    from embroact.patterns.base.errors import ParameterError
 
     argv = ["zigzag", "--width-mm", "-1", "--interval-mm", "1", "-o", str(tmp_path / "a.dst")]
     with pytest.raises(ParameterError, match=r"width_mm must be in \(0, 200\), got -1"):

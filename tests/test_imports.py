@@ -25,6 +25,6 @@ def test_import_patterns_loads_neither_trimesh_nor_scipy():
 
 @pytest.mark.parametrize("argv", [["--help"], ["zigzag", "--help"], ["--version"]])
 def test_help_loads_no_numpy_shapely_trimesh_scipy(argv):
-    code = ("import contextlib, io\nfrom embroact.export.cli import main\n"
+    code = ("import contextlib, io\nfrom embroact.export.cli.main import main\n"
             f"with contextlib.redirect_stdout(io.StringIO()):\n    code = main({argv!r})\nassert code == 0, code")
     assert _loaded_after(code, HEAVY_FOR_HELP) == []

@@ -7,7 +7,7 @@ and the five joint angles of seven markers sum to 5/6 of the arc angle (the chor
 import numpy as np
 import pytest
 
-from embroact.patterns.errors import ParameterError
+from embroact.patterns.base.errors import ParameterError
 from embroact.predict.markers import bend_angle_deg, marker_angles
 
 

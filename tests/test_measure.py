@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.errors import ParameterError, PatternError
+from embroact.patterns.base.errors import ParameterError, PatternError
 from embroact.patterns.measure import measure
 from embroact.patterns.plan import Role
 

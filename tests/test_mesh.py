@@ -6,10 +6,10 @@ import sys
 import numpy as np
 import pytest
 
-from embroact.export.mesh import (DEFAULT_CHORD_TOLERANCE_MM, BentPath, PlanarPath, actuator_mesh, mesh_bytes,
+from embroact.export.pictures.mesh import (DEFAULT_CHORD_TOLERANCE_MM, BentPath, PlanarPath, actuator_mesh, mesh_bytes,
                                   write_mesh)
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.errors import ExportError, ParameterError
+from embroact.patterns.base.errors import ExportError, ParameterError
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -56,7 +56,7 @@ def test_frames_orthonormal_and_end_tangent_exact():
 
 
 def test_straight_bend_matches_the_side_view_model():
-    from embroact.export.sideview import bent_line_mm
+    from embroact.export.pictures.sideview import bent_line_mm
 
     bent = BentPath.from_theta(PlanarPath.straight(100.0), 70.0)
     s = np.linspace(0.0, 100.0, 9)
@@ -190,14 +190,14 @@ def test_bad_parameters(kwargs, match):
 
 
 def test_mesh_module_imports_trimesh_lazily():
-    code = "import sys, embroact.export.mesh, embroact.export.previews; print('trimesh' in sys.modules)"
+    code = "import sys, embroact.export.pictures.mesh, embroact.export.pictures.previews; print('trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
 
 
 @pytest.mark.parametrize("az, el", [(0.0, 0.0), (60.0, 20.0), (-135.0, 75.0), (0.0, 90.0)])
 def test_view_rotation_is_a_proper_rotation(az, el):
-    from embroact.export.meshview import view_rotation
+    from embroact.export.pictures.meshview import view_rotation
 
     r = view_rotation(az, el)
     assert r @ r.T == pytest.approx(np.eye(3), abs=1e-12) and np.linalg.det(r) == pytest.approx(1.0)
@@ -210,7 +210,7 @@ def test_view_rotation_is_a_proper_rotation(az, el):
 def test_picture_draws_front_faces_only_and_is_stable():
     import xml.etree.ElementTree as ET
 
-    from embroact.export.meshview import mesh_svg
+    from embroact.export.pictures.meshview import mesh_svg
 
     m = _mesh(90.0, 0.5)
     svg = mesh_svg(m)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import mpref
-from embroact.patterns.errors import ParameterError
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.sleeve import neutral_angle_deg
 from embroact.predict import model as M
 from embroact.predict.curve import ACCURACY, METHODS, ActuatorModel, curve, lockup, pressure_at
@@ -296,7 +296,7 @@ def test_polish_falls_back_to_illinois_when_newton_cannot_finish(monkeypatch):
 
 
 def test_illinois_reports_non_convergence():
-    from embroact.patterns.errors import SolverError
+    from embroact.patterns.base.errors import SolverError
     from embroact.predict import solvers
 
     with pytest.raises(SolverError, match="did not converge in 3 iterations on 1 point"):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import mpref
-from embroact.patterns.errors import ModelDomainError, ParameterError
+from embroact.patterns.base.errors import ModelDomainError, ParameterError
 from embroact.patterns.params import Tube
 from embroact.patterns.sleeve import neutral_angle_deg, thread_angle_deg
 from embroact.predict import model as M

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from h3_plans import generated_plans, hand_plan
-from embroact.export.preview import plan_svg
-from embroact.patterns.errors import ParameterError
+from embroact.export.pictures.stitches import plan_svg
+from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.plan import Command as C, Role as R
 
 NS = {"s": "http://www.w3.org/2000/svg"}

@@ -21,10 +21,10 @@ import shapely
 from hypothesis import given, note, strategies as st
 
 from strategies import budget, design_dicts
-from embroact.export.cli import main
-from embroact.export.designfile import dumps_design, loads_design
+from embroact.export.cli.main import main
+from embroact.export.files.designfile import dumps_design, loads_design
 from embroact.patterns.design import build_plan, design_from_dict
-from embroact.patterns.errors import DesignFileError, EmbroactError
+from embroact.patterns.base.errors import DesignFileError, EmbroactError
 from embroact.patterns.plan import Command
 
 #: Replacement values of the "wrong type" mutation.

@@ -23,9 +23,9 @@ from hypothesis import given, note
 import dst_decoder
 from h1_checks import assert_record_convention
 from strategies import budget, cross_cases, generator_cases, zigzag_cases
-from embroact.export.formats import FORMATS, encode
-from embroact.export.machine import LongLegError
-from embroact.patterns.errors import PatternError
+from embroact.export.machine.formats import FORMATS, encode
+from embroact.export.machine.encode import LongLegError
+from embroact.patterns.base.errors import PatternError
 from embroact.patterns.plan import Command, Role
 
 GRID_HALF_MM = 0.05 + 1e-9  # a 0.1 mm machine grid puts every point within half a step of the plan

@@ -10,13 +10,13 @@ from html.parser import HTMLParser
 import numpy as np
 import pytest
 
-from embroact.export.build import build
-from embroact.export.previews import (Previews, previews_stage, pressures_for, render_previews, shape_theta_deg,
+from embroact.export.report.build import build
+from embroact.export.pictures.previews import (Previews, previews_stage, pressures_for, render_previews, shape_theta_deg,
                                       side_pressures)
-from embroact.export.report import FIGURES, finding_dict, report_data, report_html, report_json
+from embroact.export.report.report import FIGURES, finding_dict, report_data, report_html, report_json
 from embroact.patterns.design import default_design
-from embroact.patterns.errors import ParameterError
-from embroact.patterns.findings import Finding, Severity
+from embroact.patterns.base.errors import ParameterError
+from embroact.patterns.base.findings import Finding, Severity
 
 
 class _Tags(HTMLParser):
@@ -137,7 +137,7 @@ def test_report_html_holds_every_section(built):
 
 
 def test_render_is_deterministic_and_mesh_optional(built):
-    from embroact.export.previews import predict_curves
+    from embroact.export.pictures.previews import predict_curves
     from embroact.patterns.design import build_plan
 
     design = default_design()

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.findings import RULES, Finding, Severity, count_by_severity, rules_table_markdown
+from embroact.patterns.base.findings import RULES, Finding, Severity, count_by_severity, rules_table_markdown
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
 from embroact.patterns.rules import Layout, RuleSettings, TubeLayout, check_layout, check_plan, needle_density

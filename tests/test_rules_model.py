@@ -112,7 +112,7 @@ def test_build_gate_uses_check_design(tmp_path):
     import json
     import os
 
-    from embroact.export.build import DesignRuleError, build
+    from embroact.export.report.build import DesignRuleError, build
 
     weak = _design(9.0, max_pressure_kpa=150.0)  # P0 171.9 kPa: EA401
     with pytest.raises(DesignRuleError) as err:

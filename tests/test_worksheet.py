@@ -6,10 +6,10 @@ import pytest
 from mpmath import mp, mpf
 
 from h3_plans import hand_plan
-from embroact.export.worksheet import (
+from embroact.export.report.worksheet import (
     FABRIC_THICKNESS_MM, LAY_TUBE_S, STOP_RESTART_S, TAIL_MM, TRIM_TIME_S, over_tube_extra_mm, worksheet)
-from embroact.patterns.errors import ParameterError
-from embroact.patterns.findings import RULES
+from embroact.patterns.base.errors import ParameterError
+from embroact.patterns.base.findings import RULES
 
 
 def _taut_extra(a, r):

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.errors import ParameterError, PathError, PatternError
+from embroact.patterns.base.errors import ParameterError, PathError, PatternError
 from embroact.patterns.params import CrossParams, StitchOptions, Tube, ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.patterns.zigzag import zigzag

@@ -1,0 +1,94 @@
+"""Command-line pieces shared by several commands: tube flags and pressure lists.
+
+Examples
+--------
+>>> import argparse
+>>> from embroact.export.cli.args import add_tube_arguments, tube_from_args, parse_pressures
+>>> p = argparse.ArgumentParser()
+>>> add_tube_arguments(p)
+>>> tube_from_args(p.parse_args(["--tube-radius-mm", "2"])).outer_radius_mm
+2.0
+>>> parse_pressures("0:30:10").tolist()
+[0.0, 10.0, 20.0, 30.0]
+"""
+from __future__ import annotations
+
+import math
+
+__all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures"]
+
+#: Most pressures one command evaluates (a range string with a tiny step is a typo).
+MAX_PRESSURES = 100_000
+#: Highest pressure a command accepts [kPa] (100 MPa: far beyond any tube; larger is a typo).
+MAX_PRESSURE_KPA = 100_000.0
+
+#: Tube options: flag, :class:`~embroact.patterns.params.Tube` field (also the argparse dest),
+#: help, default. The defaults repeat Tube's (a test holds them equal) so that a command's
+#: ``--help`` needs no numpy.
+TUBE_FLAGS = (
+    ("--tube-radius-mm", "outer_radius_mm", "tube outer radius r_f [mm]", 1.5),
+    ("--tube-inner-radius-mm", "inner_radius_mm", "tube inner radius d_f [mm]", 1.0),
+    ("--tube-g-mpa", "g_e_mpa", "tube shear modulus G_e, inflation phase [MPa]", 0.13),
+    ("--clearance-mm", "clearance_mm", "needle clearance from the tube [mm]", 0.3),
+    ("--end-margin-mm", "end_margin_mm", "free tube at each end for connectors [mm]", 30.0),
+)
+_MATERIAL_FIELDS = ("outer_radius_mm", "inner_radius_mm", "g_e_mpa")
+
+
+def add_tube_arguments(group, *, fields=_MATERIAL_FIELDS) -> None:
+    """Add the tube flags for ``fields`` (Tube field names) with the Tube defaults."""
+    for flag, field, text, default in TUBE_FLAGS:
+        if field in fields:
+            group.add_argument(flag, type=float, default=default, dest=field,
+                               metavar=flag[2:].replace("-", "_").upper(), help=f"{text} (default {default:g})")
+
+
+def tube_from_args(args):
+    """The :class:`~embroact.patterns.params.Tube` the parsed tube flags describe (validated there)."""
+    from ...patterns.params import Tube
+
+    return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
+
+
+def parse_pressures(text: str, flag: str = "--pressure-kpa"):
+    """Pressures [kPa] from ``start:stop:step`` or ``p1,p2,...``; one-line errors name ``flag``.
+
+    >>> parse_pressures("0:30:10").tolist(), parse_pressures("0:25:10").tolist(), parse_pressures("5, 7.5").tolist()
+    ([0.0, 10.0, 20.0, 30.0], [0.0, 10.0, 20.0], [5.0, 7.5])
+    """
+    import numpy as np
+
+    from ...patterns.base.errors import ParameterError
+
+    def number(s: str) -> float:
+        try:
+            v = float(s)
+        except ValueError:
+            raise ParameterError(f"{flag}: {s.strip()!r} is not a number in {text!r}") from None
+        if not math.isfinite(v) or v < 0:
+            raise ParameterError(f"{flag}: pressures must be finite and >= 0 kPa, got {s.strip()!r} in {text!r}")
+        if v > MAX_PRESSURE_KPA:
+            raise ParameterError(f"{flag}: pressures must be <= {MAX_PRESSURE_KPA:g} kPa, got {s.strip()!r} in {text!r}")
+        return v
+
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise ParameterError(f"{flag} must be 'start:stop:step' or a comma-separated list, got {text!r}")
+        start, stop = number(parts[0]), number(parts[1])
+        try:
+            step = float(parts[2])
+        except ValueError:
+            raise ParameterError(f"{flag}: {parts[2].strip()!r} is not a number in {text!r}") from None
+        if not (math.isfinite(step) and step > 0):
+            raise ParameterError(f"{flag}: step must be > 0 in 'start:stop:step', got {text!r}")
+        if stop < start:
+            raise ParameterError(f"{flag}: stop must be >= start in 'start:stop:step', got {text!r}")
+        n = math.floor((stop - start) / step * (1 + 1e-12) + 1e-9) + 1
+        if n > MAX_PRESSURES:
+            raise ParameterError(f"{flag}: at most {MAX_PRESSURES} pressures, {text!r} gives {n}")
+        return start + step * np.arange(n)
+    values = [number(s) for s in text.split(",") if s.strip()]
+    if not values or len(values) > MAX_PRESSURES:
+        raise ParameterError(f"{flag} must list 1 to {MAX_PRESSURES} pressures, got {text!r}")
+    return np.array(values)

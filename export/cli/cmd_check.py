@@ -1,0 +1,125 @@
+"""``embroact check DESIGN.toml | FILE.dst``: the design-rule checks, as a table or JSON.
+
+A ``.toml`` input is an embroact design: it is generated and every rule runs
+(geometry, pattern, file structure, model). Any other input is an embroidery file
+read with pyembroidery, checked against the tube(s) given with ``--tube-path``
+(repeatable, one per tube, ``"x1,y1 x2,y2 ..."`` in mm in the file's frame as
+pyembroidery reads it: 0.1 mm units divided by 10, y down; see
+:mod:`embroact.export.machine.filecheck`) or ``--tube TUBES.toml``; findings name the
+record index in the file's own order.
+
+Exit codes: 0 no errors (warnings allowed); 1 at least one error; 2 unusable input
+(missing, truncated or garbage file, bad option), one line on stderr.
+
+Examples
+--------
+>>> from embroact.export.cli.main import main
+>>> main(["check", "act.dst", "--tube-path", "0,0 100,0"])  # doctest: +SKIP
+act.dst: embroidery file, format dst, 1 tube: no findings
+0
+"""
+from __future__ import annotations
+
+import json
+
+__all__ = ["add_arguments", "run", "format_table"]
+
+
+def add_arguments(parser, name: str) -> None:
+    """Options of ``embroact check``."""
+    from ...patterns.limits import FORMAT_LIMITS
+    from .args import add_tube_arguments
+
+    parser.add_argument("input", nargs="?", metavar="DESIGN.toml|FILE",
+                        help="embroact design (TOML) or any embroidery file")
+    tube = parser.add_argument_group("tube (embroidery files only)")
+    tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'",
+                      help="tube axis in mm, file frame (0.1 mm units / 10, y down); repeat for several tubes")
+    add_tube_arguments(tube, fields=("outer_radius_mm", "clearance_mm"))
+    tube.add_argument("--end-margin-mm", type=float, default=0.0,
+                      help="free tube beyond each end of the path [mm] (default 0)")
+    tube.add_argument("--tube", metavar="TUBES.toml", help="tubes (and [machine] limits) from a TOML file")
+    parser.add_argument("--format", choices=sorted(FORMAT_LIMITS),
+                        help="target machine format (default: the design's machine.format, or the file's own)")
+    parser.add_argument("--json", action="store_true", help="machine-readable output")
+    parser.add_argument("--rules", action="store_true", help="print the table of every rule (Markdown) and exit")
+
+
+def _check_design(args):
+    from ...patterns.design import build_plan
+    from ...predict.rules import check_design
+    from ..files.designfile import load_design
+
+    design = load_design(args.input)
+    fmt = args.format or design.machine.format
+    findings = check_design(design, build_plan(design), format=fmt)
+    return findings, {"kind": "design", "name": design.name, "format": fmt, "actuators": len(design.actuators)}
+
+
+def _check_file(args):
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.rules import RuleSettings
+    from ..machine.filecheck import check_file, default_format, load_tube_file, parse_tube_path, read_records, tube_layout
+
+    if args.tube and args.tube_path:
+        raise ParameterError("give either --tube TUBES.toml or --tube-path, not both")
+    machine: dict = {}
+    if args.tube:
+        tubes, machine = load_tube_file(args.tube)
+    else:
+        tubes = tuple(
+            tube_layout(parse_tube_path(text), name=f"tube {i + 1}", outer_radius_mm=args.outer_radius_mm,
+                        clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
+            for i, text in enumerate(args.tube_path)
+        )
+    records = read_records(args.input)
+    own = machine.pop("format", None)
+    fmt = args.format or own or default_format(records)
+    findings = check_file(args.input, tubes, settings=RuleSettings(format=fmt, **machine))
+    return findings, {"kind": "embroidery file", "name": args.input, "format": fmt, "tubes": len(tubes),
+                      "records": len(records)}
+
+
+def format_table(findings, header: str) -> str:
+    """Findings as text: a summary line, then per severity the code, place, message and fix."""
+    from ...patterns.base.findings import RULES, Severity, count_by_severity
+
+    counts = count_by_severity(findings)
+    summary = ", ".join(f"{n} {s}{'s' if n != 1 and s != 'info' else ''}" for s, n in counts.items())
+    lines = [f"{header}: {summary if findings else 'no findings'}"]
+    for sev in Severity:
+        group = [f for f in findings if f.severity is sev]
+        if not group:
+            continue
+        lines += ["", f"{sev.value.upper()}S" if sev is not Severity.INFO else "INFO"]
+        for f in group:
+            lines.append(f"  {f.code}  {RULES[f.code].title}  [{f.place()}]")
+            lines.append(f"         {f.message}")
+            lines.append(f"         fix: {f.fix}")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    """Check the input; print the table or JSON; 1 if any error."""
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.base.findings import count_by_severity, rules_table_markdown
+
+    if args.rules:
+        print(rules_table_markdown(), end="")
+        return 0
+    if args.input is None:
+        raise ParameterError("check needs an input: DESIGN.toml or an embroidery file (or --rules)")
+    is_design = args.input.lower().endswith(".toml")
+    if is_design and (args.tube_path or args.tube):
+        raise ParameterError("--tube-path and --tube apply to embroidery files; a design file carries its tubes")
+    findings, info = _check_design(args) if is_design else _check_file(args)
+    counts = count_by_severity(findings)
+    if args.json:
+        doc = dict(info, input=args.input, counts=counts, findings=[f.as_dict() for f in findings])
+        print(json.dumps(doc, indent=2, sort_keys=True, ensure_ascii=False))
+    else:
+        what = f"{info['kind']}, format {info['format']}"
+        if not is_design:
+            what += f", {info['tubes']} tube(s)" if info["tubes"] else ", no tube given (tube rules skipped)"
+        print(format_table(findings, f"{args.input}: {what}"))
+    return 1 if counts["error"] else 0

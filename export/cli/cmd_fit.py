@@ -1,0 +1,239 @@
+r"""``embroact fit DATA.csv``: fit G and P0 to measured bend angles, write a calibration set.
+
+Examples
+--------
+Noise-free angles from the model (G = 2.7 MPa, P0 = 85 kPa) come back as they went in:
+
+>>> import os, tempfile
+>>> from embroact.export.cli.main import main
+>>> from embroact.patterns.params import Tube
+>>> from embroact.predict.curve import ActuatorModel, curve
+>>> from embroact.predict.derived import derive_from_values
+>>> d = derive_from_values("zigzag", width_mm=7, interval_mm=1, angle_deg=0, length_mm=100, tube=Tube())
+>>> p = list(range(0, 301, 20))
+>>> theta = curve(ActuatorModel.from_derived(d, g_mpa=2.7, p0_kpa=85.0), p).theta_deg
+>>> path = os.path.join(tempfile.mkdtemp(), "data.csv")
+>>> with open(path, "w") as fh:
+...     _ = fh.write("pressure_kpa,angle_deg\n" + "".join(f"{a},{t:.4f}\n" for a, t in zip(p, theta)))
+>>> main(["fit", path, "--pattern", "zigzag", "--width-mm", "7"])
+fit of zigzag w=7 mm s=1 mm l0=100 mm; model method stable-analytic-trace
+branch        n  G [MPa]            P0 [kPa]                 RMSE [deg]
+loading      16  2.7 +- ...         85 +- ... fitted ...
+0
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import sys
+
+from .args import add_tube_arguments, tube_from_args
+
+__all__ = ["add_arguments", "run"]
+
+_ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa"}
+_PAPER_INTERVAL_MM = {"zigzag": 1.0, "cross": 1.4}
+
+
+def add_arguments(parser, name: str) -> None:
+    """Options of ``embroact fit``."""
+    parser.add_argument("data", metavar="DATA.csv", help="pressure_kpa,angle_deg[,branch] rows (or markers with --markers)")
+    design = parser.add_argument_group("design (quick parameters or a design file)")
+    design.add_argument(
+        "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
+    )
+    design.add_argument("--actuator", metavar="NAME", help="actuator name in the design file")
+    design.add_argument("--pattern", choices=("zigzag", "cross"), help="pattern of the measured sample")
+    design.add_argument("--width-mm", type=float, help="embroidery width w [mm]")
+    design.add_argument("--interval-mm", type=float, help="stitch interval s [mm] (default: paper's 1.0 zigzag, 1.4 cross)")
+    design.add_argument("--angle-deg", type=float, help="cross embroidery angle alpha0 [deg]")
+    design.add_argument("--length-mm", type=float, default=100.0, help="embroidered length l0 [mm] (default 100)")
+    add_tube_arguments(design)
+    fit = parser.add_argument_group("fit")
+    fit.add_argument("--fit", default="g,p0", help="parameters to fit: g, p0, g_e (comma-separated; default g,p0)")
+    fit.add_argument(
+        "--branch",
+        choices=("loading", "unloading", "both", "pooled"),
+        default="both",
+        help="fit each branch present separately (both, default), one of them, or all points at once (pooled)",
+    )
+    fit.add_argument("--g-mpa", type=float, help="G [MPa] when not fitted (also a start value)")
+    fit.add_argument("--p0-kpa", type=float, help="P0 [kPa] when not fitted (default: from geometry and G_e)")
+    fit.add_argument("--method", default="auto", help="model method (default auto)")
+    marks = parser.add_argument_group("markers (DATA.csv holds m1_x, m1_y[, m1_z] ... per frame)")
+    marks.add_argument("--markers", action="store_true", help="compute bend angles from marker coordinates first")
+    marks.add_argument("--markers-per-side", type=int, default=7, help="markers per side (default 7)")
+    marks.add_argument("--sides", type=int, default=2, help="marker rows (default 2)")
+    marks.add_argument(
+        "--normal",
+        metavar="X,Y,Z",
+        help="direction out of the fabric's back: signs the angles; without it the unsigned angles "
+        "take the design's bending direction",
+    )
+    out = parser.add_argument_group("output")
+    out.add_argument("-o", "--output", metavar="CAL.toml", help="write the fits as a calibration set")
+    out.add_argument("--name", help="calibration set name (default: the output file's stem)")
+    out.add_argument("--description", default="", help="calibration set description")
+    out.add_argument("--material", action="append", default=[], metavar="KEY=VALUE", help="e.g. tube=silicone (repeatable)")
+    out.add_argument("--append", action="store_true", help="merge into an existing calibration file instead of replacing it")
+    out.add_argument("--json", action="store_true", help="machine-readable output")
+
+
+def _fit_names(text: str) -> tuple[str, ...]:
+    from ...patterns.base.errors import ParameterError
+
+    names = [t.strip().lower() for t in text.split(",") if t.strip()]
+    bad = [n for n in names if n not in _ALIASES and n not in _ALIASES.values()]
+    if bad or not names:
+        raise ParameterError(f"--fit must list parameters from g, p0, g_e, got {text!r}")
+    return tuple(_ALIASES.get(n, n) for n in names)
+
+
+def _derived(args):
+    from ...patterns.base.errors import ParameterError
+    from ...predict.derived import derive_from_values
+
+    if args.design:
+        return _derived_from_design(args.design, args.actuator)
+    if args.pattern is None or args.width_mm is None:
+        raise ParameterError("give the design: --pattern and --width-mm (and --angle-deg for cross), or --design FILE")
+    if args.pattern == "cross" and args.angle_deg is None:
+        raise ParameterError("--angle-deg is required for a cross design")
+    tube = tube_from_args(args)
+    return derive_from_values(
+        args.pattern,
+        width_mm=args.width_mm,
+        interval_mm=args.interval_mm if args.interval_mm is not None else _PAPER_INTERVAL_MM[args.pattern],
+        angle_deg=args.angle_deg if args.pattern == "cross" else 0.0,
+        length_mm=args.length_mm,
+        tube=tube,
+    )
+
+
+def _derived_from_design(path, actuator_name):
+    """Derived geometry of one actuator of a design file, measured on its generated stitches."""
+    from ...patterns.design import generate_actuator
+    from ...patterns.base.errors import ParameterError
+    from ...predict.derived import derive
+    from ..files.designfile import load_design
+
+    design = load_design(path)
+    specs = design.actuators
+    if actuator_name is not None:
+        specs = [a for a in specs if a.name == actuator_name]
+        if not specs:
+            names = ", ".join(repr(a.name) for a in design.actuators)
+            raise ParameterError(f"--actuator must be one of {names}, got {actuator_name!r}")
+    return derive(generate_actuator(specs[0], design.tube).actuators[0])
+
+
+def _data(args, derived):
+    """(pressure_kpa, angle_deg, branch labels, note) from the CSV."""
+    import numpy as np
+
+    from ...patterns.base.errors import ParameterError
+    from ...predict.markers import marker_angles
+    from ..files.calibfile import read_bend_csv, read_marker_csv
+
+    if not args.markers:
+        d = read_bend_csv(args.data)
+        return d.pressure_kpa, d.angle_deg, d.branch, ""
+    normal = None
+    if args.normal is not None:
+        try:
+            normal = [float(t) for t in args.normal.split(",")]
+        except ValueError:
+            raise ParameterError(f"--normal must be 2 or 3 comma-separated numbers, got {args.normal!r}") from None
+    m = read_marker_csv(args.data, n_markers=args.markers_per_side * args.sides)
+    angles = marker_angles(m.markers_mm, markers_per_side=args.markers_per_side, sides=args.sides, normal=normal)
+    theta = np.asarray(angles.theta_deg)
+    note = f"bend angles from {args.sides} x {args.markers_per_side} markers"
+    if normal is None and not derived.bends_positive:
+        theta = -theta
+        note += " (unsigned; given this design's negative bending direction)"
+    return m.pressure_kpa, theta, m.branch, note
+
+
+def _materials(items):
+    from ...patterns.base.errors import ParameterError
+
+    out = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise ParameterError(f"--material must be KEY=VALUE, got {item!r}")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def _write_set(args, results):
+    from ...patterns.base.errors import ParameterError
+    from ...predict.calibration import CalibrationSet
+    from ..files.calibfile import read_calibration, write_calibration
+
+    points = tuple(r.to_point() for r in results)
+    stem = os.path.splitext(os.path.basename(args.output))[0]
+    name = args.name or re.sub(r"[^A-Za-z0-9._-]", "-", stem)
+    if args.append and os.path.exists(args.output):
+        old = read_calibration(args.output)
+        if args.name and args.name != old.name:
+            raise ParameterError(f"--name {args.name!r} differs from the set {old.name!r} in {args.output!r}")
+        cset = old.with_points(points)
+    else:
+        cset = CalibrationSet(name, points, args.description, _materials(args.material))
+    write_calibration(args.output, cset)
+    return cset
+
+
+def _pm(value, se, digits=4) -> str:
+    return f"{value:.{digits}g}" + ("" if se is None else f" +- {se:.2g}")
+
+
+def _table(derived, results, note, cset, path) -> str:
+    d = derived
+    design = f"{d.pattern} w={d.width_mm:g} mm s={d.interval_mm:g} mm l0={d.length_mm:g} mm"
+    if d.pattern == "cross":
+        design += f" alpha0={d.angle_deg:g} deg"
+    lines = [f"fit of {design}; model method {results[0].method}" + (f"; {note}" if note else "")]
+    lines.append(f"{'branch':<10} {'n':>4}  {'G [MPa]':<18} {'P0 [kPa]':<24} {'RMSE [deg]':>10}")
+    for r in results:
+        p0 = f"{_pm(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
+        lines.append(f"{r.branch:<10} {r.n_points:>4}  {_pm(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
+        if "g_e_mpa" in r.fitted:
+            lines.append(f"{'':<16}G_e = {_pm(r.g_e_mpa, r.g_e_mpa_se)} MPa")
+    if cset is not None:
+        lines.append(f"wrote calibration set {cset.name!r} ({len(cset.points)} point(s)) to {path}")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    """Read the data, fit, print, write the calibration set; return the exit code."""
+    from ...predict.fit import fit_design
+
+    derived = _derived(args)
+    pressure, angle, labels, note = _data(args, derived)
+    results = fit_design(
+        derived,
+        pressure,
+        angle,
+        fit=_fit_names(args.fit),
+        branch=args.branch,
+        labels=labels,
+        g_mpa=args.g_mpa,
+        p0_kpa=args.p0_kpa,
+        method=args.method,
+    )
+    cset = _write_set(args, results) if args.output else None
+    if args.json:
+        doc = {
+            "design": derived.as_dict(),
+            "note": note,
+            "fits": [r.as_dict() for r in results],
+            "calibration": None if cset is None else {"name": cset.name, "path": args.output, "points": len(cset.points)},
+        }
+        json.dump(doc, sys.stdout, indent=1, sort_keys=True, allow_nan=False)
+        sys.stdout.write("\n")
+    else:
+        print(_table(derived, results, note, cset, args.output))
+    return 0

@@ -1,0 +1,169 @@
+"""``embroact preview KIND [DESIGN.toml] -o FILE``: render one view of a design.
+
+KIND is one of
+
+- ``stitches``: the stitch plan to scale (SVG);
+- ``bend``: the pressure-bend chart of every actuator (SVG);
+- ``shape``: side views of the bent strip at a few pressures (SVG);
+- ``mesh``: the 3D shape at one pressure; the suffix of FILE picks the format
+  (``.glb``, ``.stl``, ``.obj``, ``.ply``, or ``.svg`` for a flat-shaded picture).
+  Only this kind imports trimesh.
+
+Without DESIGN the built-in default design is used (the paper's zigzag actuator).
+Pressures are given as ``START:STOP:STEP`` (inclusive) or a comma list, in kPa.
+
+Examples
+--------
+>>> import os, tempfile
+>>> from embroact.export.cli.main import main
+>>> out = os.path.join(tempfile.mkdtemp(), "bend.svg")
+>>> main(["preview", "bend", "-o", out, "--pressure-kpa", "0:300:50"])
+wrote ...bend.svg: bend chart, 1 actuator(s), 7 pressures
+0
+"""
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from .args import parse_pressures
+
+__all__ = ["KINDS", "add_arguments", "run", "measured_points"]
+
+#: kind -> one-line description.
+KINDS = {
+    "stitches": "stitch plan to scale (SVG)",
+    "bend": "pressure-bend chart (SVG)",
+    "shape": "bent-shape side views (SVG)",
+    "mesh": "3D shape: .glb .stl .obj .ply, or .svg for a picture",
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
+    """Options of ``embroact preview``."""
+    parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
+                        help="; ".join(f"{k}: {v}" for k, v in KINDS.items()))
+    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    parser.add_argument("-o", "--output", required=True, help="output file")
+    parser.add_argument("--pressure-kpa", default=None,
+                        help="pressures for bend/shape, START:STOP:STEP or a list [kPa] "
+                             "(default 0 to the design's max_pressure_kpa in 10 kPa steps)")
+    parser.add_argument("--shape-pressure-kpa", type=float, default=None,
+                        help="pressure of the 3D shape [kPa] (default: the highest pressure)")
+    parser.add_argument("--states", type=int, default=5, help="pressures drawn in the side view, 1..12 (default 5)")
+    parser.add_argument("--tolerance-mm", type=float, default=None,
+                        help="chordal tolerance of the 3D mesh [mm] (default 0.05)")
+    parser.add_argument("--measured", action="append", default=[], metavar="[ACTUATOR=]CSV",
+                        help="bend chart: overlay measured points from a bend CSV (pressure_kpa,angle_deg), "
+                             "on the named actuator or the first one; repeatable")
+    parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
+
+
+def _design(path):
+    if path:
+        from ..files.designfile import load_design
+
+        return load_design(path)
+    from ...patterns.design import default_design
+
+    return default_design()
+
+
+def measured_points(specs, names) -> dict:
+    """``["A1=loop.csv", "other.csv"]`` -> {actuator name: (pressure_kpa, angle_deg)}.
+
+    A spec without a known ``NAME=`` prefix belongs to the first actuator.
+    """
+    from ..files.calibfile import read_bend_csv
+
+    out = {}
+    for spec in specs:
+        name, _, rest = spec.partition("=")
+        name, path = (name, rest) if rest and name in names else (names[0], spec)
+        data = read_bend_csv(path)
+        out[name] = (data.pressure_kpa, data.angle_deg)
+    return out
+
+
+def _svg_only(kind: str, out: Path) -> None:
+    from ...patterns.base.errors import ParameterError
+
+    if out.suffix.lower() != ".svg":
+        raise ParameterError(f"output of preview {kind} must end in .svg, got {out.name!r}")
+
+
+def run(args) -> int:
+    """Load (or default) the design, render the view, write it atomically, report."""
+    from ..files.atomic import check_output_dir
+
+    out = check_output_dir(args.output)
+    if args.kind != "mesh":
+        _svg_only(args.kind, out)
+    text, info = _render(args, out, _design(args.design))
+    if args.json:
+        print(json.dumps({"file": str(out), "kind": args.kind, **info}, indent=2, sort_keys=True))
+    else:
+        print(f"wrote {out}: {text}")
+    return 0
+
+
+def _render(args, out: Path, design) -> tuple[str, dict]:
+    """Write the view; return a one-line summary and its JSON fields."""
+    from ...patterns.design import build_plan
+    from ..files.atomic import write_text_atomic
+
+    plan = build_plan(design)
+    if args.kind == "stitches":
+        from ..pictures.stitches import plan_svg
+
+        write_text_atomic(out, plan_svg(plan))
+        return f"stitch plan, {plan.stitch_count} stitches", {"stitch_count": plan.stitch_count}
+    from ..pictures import previews as pv
+
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else pv.pressures_for(design)
+    derived, curves = pv.predict_curves(plan, pressures, design=design)
+    info = {"actuators": [a.name for a in plan.actuators], "pressure_kpa": [float(p) for p in pressures]}
+    if args.kind == "bend":
+        from ..pictures.chart import bend_chart_svg
+
+        measured = measured_points(args.measured, [a.name for a in plan.actuators])
+        write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves, measured),
+                                              title=f"{plan.name}: predicted bend angle"))
+        return f"bend chart, {len(curves)} actuator(s), {len(pressures)} pressures", info
+    if args.kind == "shape":
+        from ..pictures.sideview import side_view_svg
+
+        pv.check_side_states(args.states, name="states")
+        write_text_atomic(out, side_view_svg(pv.side_panels(plan, derived, curves, count=args.states)))
+        return f"side views, {len(curves)} actuator(s)", info
+    text, mesh_info = _write_mesh(out, plan, derived, curves, args)
+    return text, {**info, **mesh_info}
+
+
+def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
+    from ...patterns.base.errors import ParameterError
+    from ..files.atomic import write_text_atomic
+    from ..pictures.mesh import MESH_FORMATS, write_mesh
+
+    suffix = out.suffix.lower()
+    if suffix != ".svg" and suffix not in MESH_FORMATS:
+        raise ParameterError(f"output of preview mesh must end in one of {', '.join(MESH_FORMATS)}, .svg, "
+                          f"got {out.name!r}")
+    from ..pictures.previews import shape3d_title, shape_meshes
+
+    shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=args.shape_pressure_kpa,
+                                     tolerance_mm=args.tolerance_mm)
+    if suffix == ".svg":
+        from ..pictures.meshview import mesh_svg
+
+        write_text_atomic(out, mesh_svg(shapes, title=shape3d_title(pressures)))
+    else:
+        write_mesh(shapes, out)
+    tri = sum(s.triangle_count for s in shapes)
+    dev = max(s.max_deviation_mm for s in shapes)
+    angles = ", ".join(f"{s.name} {s.theta_deg:.1f} deg at {pressures[s.name]:g} kPa" for s in shapes)
+    info = {"triangle_count": tri, "max_deviation_mm": dev, "tolerance_mm": shapes[0].tolerance_mm,
+            "shapes": [{"name": s.name, "theta_deg": s.theta_deg, "pressure_kpa": pressures[s.name]} for s in shapes]}
+    return (f"3D shape ({angles}); {tri} triangles, max deviation {dev:.4f} mm "
+            f"(tolerance {shapes[0].tolerance_mm:g} mm)"), info

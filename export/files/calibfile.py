@@ -1,0 +1,260 @@
+"""Measured data and calibration sets on disk: CSV readers, calibration TOML read/write.
+
+Bend CSV (one row per measurement, in the order taken; ``#`` lines are comments;
+other columns are ignored)::
+
+    pressure_kpa,angle_deg,branch
+    0,0,loading
+    10,0.2,loading
+    ...
+
+``branch`` is optional (``loading`` / ``unloading``); without it the loop is split at
+the maximum pressure.  Marker CSV: ``pressure_kpa[,branch]`` plus ``m1_x,m1_y,m1_z``
+... for every marker (``m1``-``m7`` side 1 from base to tip, ``m8``-``m14`` side 2 for
+the paper's layout; ``_z`` columns may be left out for 2-D data).
+
+Calibration TOML::
+
+    name = "mylab"
+    description = "..."
+    [materials]
+    tube = "silicone"
+    [[points]]
+    pattern = "zigzag"
+    width_mm = 7.0
+    g_mpa = 2.7
+    p0_kpa = 85.0
+    branch = "loading"
+
+Every problem is one line naming the file, the line or point, the column or key and
+the value; files are written atomically and byte-for-byte reproducibly.
+
+Examples
+--------
+>>> import os, tempfile
+>>> from embroact.predict.calibration import PAPER_2025
+>>> from embroact.export.files.calibfile import write_calibration, read_calibration
+>>> path = os.path.join(tempfile.mkdtemp(), "paper.toml")
+>>> write_calibration(path, PAPER_2025)
+>>> read_calibration(path) == PAPER_2025
+True
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import tomllib
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...patterns.base.arrays import frozen_array
+from ...patterns.base.errors import DesignFileError, EmbroactError
+from ...predict.calibration import CalibrationPoint, CalibrationSet
+from .atomic import write_text_atomic
+from .tomltext import toml_key, toml_value
+
+__all__ = [
+    "BendData",
+    "MarkerData",
+    "read_bend_csv",
+    "read_marker_csv",
+    "read_calibration",
+    "write_calibration",
+    "calibration_toml",
+]
+
+_SET_KEYS = ("name", "description", "materials", "points")
+_POINT_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationPoint))
+_AXES = ("x", "y", "z")
+
+
+@dataclass(frozen=True, slots=True)
+class BendData:
+    """Measured bend angles.
+
+    Attributes
+    ----------
+    pressure_kpa, angle_deg : ndarray, shape (n,)
+    branch : tuple of str or None
+        ``"loading"`` / ``"unloading"`` per row when the file has a ``branch`` column.
+    """
+
+    pressure_kpa: np.ndarray
+    angle_deg: np.ndarray
+    branch: tuple[str, ...] | None
+
+
+@dataclass(frozen=True, slots=True)
+class MarkerData:
+    """Marker positions per frame.
+
+    Attributes
+    ----------
+    pressure_kpa : ndarray, shape (frames,)
+    markers_mm : ndarray, shape (frames, n_markers, 2 or 3)
+    branch : tuple of str or None
+    """
+
+    pressure_kpa: np.ndarray
+    markers_mm: np.ndarray
+    branch: tuple[str, ...] | None
+
+
+def _read_rows(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
+    """Header -> column index, and (line number, cells) of each data row."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            lines = [(i, line) for i, line in enumerate(fh, start=1) if line.strip() and not line.lstrip().startswith("#")]
+    except OSError as exc:
+        raise DesignFileError(f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise DesignFileError(f"{str(path)!r} is not a UTF-8 text (CSV) file") from None
+    if not lines:
+        raise DesignFileError(f"{str(path)!r} is empty: expected a header line and data rows")
+    rows = list(csv.reader(line for _, line in lines))
+    header = [h.strip().lower() for h in rows[0]]
+    dup = sorted({h for h in header if header.count(h) > 1})
+    if dup:
+        raise DesignFileError(f"{str(path)!r}: column {dup[0]!r} appears more than once in the header")
+    if len(rows) == 1:
+        raise DesignFileError(f"{str(path)!r} has a header but no data rows")
+    return {h: i for i, h in enumerate(header)}, [(n, r) for (n, _), r in zip(lines[1:], rows[1:])]
+
+
+def _require(path, columns: dict[str, int], names) -> None:
+    missing = [n for n in names if n not in columns]
+    if missing:
+        raise DesignFileError(
+            f"{str(path)!r}: missing column {missing[0]!r} (header has: {', '.join(columns) or 'nothing'})"
+        )
+
+
+def _cell(path, line: int, row: list[str], columns: dict[str, int], name: str) -> str:
+    i = columns[name]
+    if i >= len(row) or not row[i].strip():
+        raise DesignFileError(f"{str(path)!r} line {line}: column {name!r} is empty")
+    return row[i].strip()
+
+
+def _number(path, line, row, columns, name) -> float:
+    text = _cell(path, line, row, columns, name)
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not np.isfinite(value):
+        raise DesignFileError(f"{str(path)!r} line {line}: {name} must be a finite number, got {text!r}")
+    return value
+
+
+def _branches(path, columns, rows) -> tuple[str, ...] | None:
+    if "branch" not in columns:
+        return None
+    out = []
+    for line, row in rows:
+        b = _cell(path, line, row, columns, "branch").lower()
+        if b not in ("loading", "unloading"):
+            raise DesignFileError(f"{str(path)!r} line {line}: branch must be 'loading' or 'unloading', got {b!r}")
+        out.append(b)
+    return tuple(out)
+
+
+def _columns(path, columns, rows, names) -> np.ndarray:
+    """Numbers of the named columns, row by row; the first column is a gauge pressure (>= 0)."""
+    _require(path, columns, names)
+    values = np.array([[_number(path, line, row, columns, n) for n in names] for line, row in rows])
+    negative = np.flatnonzero(values[:, 0] < 0.0)
+    if negative.size:
+        line = rows[negative[0]][0]
+        raise DesignFileError(f"{str(path)!r} line {line}: {names[0]} must be >= 0 (gauge pressure), got {values[negative[0], 0]:g}")
+    return values
+
+
+def read_bend_csv(path) -> BendData:
+    """Read ``pressure_kpa,angle_deg[,branch]`` rows (module docstring).
+
+    Raises
+    ------
+    DesignFileError
+        Unreadable or empty file, missing column, empty or non-numeric cell, bad branch.
+    """
+    columns, rows = _read_rows(path)
+    values = _columns(path, columns, rows, ("pressure_kpa", "angle_deg"))
+    return BendData(frozen_array(values[:, 0]), frozen_array(values[:, 1]), _branches(path, columns, rows))
+
+
+def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
+    """Read ``pressure_kpa[,branch]`` and marker columns ``m1_x, m1_y[, m1_z]`` ... ``m{n}_*``.
+
+    Raises
+    ------
+    DesignFileError
+        As :func:`read_bend_csv`, naming the first missing marker column.
+    """
+    columns, rows = _read_rows(path)
+    axes = _AXES if "m1_z" in columns else _AXES[:2]
+    names = [f"m{i}_{ax}" for i in range(1, n_markers + 1) for ax in axes]
+    values = _columns(path, columns, rows, ["pressure_kpa", *names])
+    markers = values[:, 1:].reshape(len(rows), n_markers, len(axes))
+    return MarkerData(frozen_array(values[:, 0]), frozen_array(markers), _branches(path, columns, rows))
+
+
+def calibration_toml(cset: CalibrationSet) -> str:
+    """The TOML text of a calibration set (stable key order, shortest round-trip floats)."""
+    lines = ["# embroact calibration set", f"name = {toml_value(cset.name)}"]
+    lines.append(f"description = {toml_value(cset.description)}")
+    if cset.materials:
+        lines += ["", "[materials]"] + [f"{toml_key(k)} = {toml_value(v)}" for k, v in cset.materials]
+    for p in cset.points:
+        lines += ["", "[[points]]"] + [f"{k} = {toml_value(v)}" for k, v in p.as_dict().items()]
+    return "\n".join(lines) + "\n"
+
+
+def write_calibration(path, cset: CalibrationSet) -> None:
+    """Write ``cset`` as TOML to ``path`` atomically (an existing file is replaced whole)."""
+    write_text_atomic(path, calibration_toml(cset))
+
+
+def _unknown(path, where: str, keys, allowed) -> None:
+    extra = sorted(set(keys) - set(allowed))
+    if extra:
+        raise DesignFileError(f"{str(path)!r}: unknown key {extra[0]!r} in {where} (allowed: {', '.join(allowed)})")
+
+
+def read_calibration(path) -> CalibrationSet:
+    """Read a calibration set written by :func:`write_calibration` (or by hand).
+
+    Raises
+    ------
+    DesignFileError
+        Unreadable file, TOML syntax, unknown keys, wrong types or out-of-range values.
+    """
+    try:
+        with open(path, "rb") as fh:
+            doc = tomllib.load(fh)
+    except OSError as exc:
+        raise DesignFileError(f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise DesignFileError(f"{str(path)!r} is not valid TOML: {exc}") from None
+    _unknown(path, "the calibration set", doc, _SET_KEYS)
+    points = doc.get("points")
+    if not isinstance(points, list) or not all(isinstance(p, dict) for p in points):
+        raise DesignFileError(f"{str(path)!r}: expected [[points]] tables, got {type(points).__name__}")
+    materials = doc.get("materials", {})
+    if not isinstance(materials, dict) or not all(isinstance(v, str) for v in materials.values()):
+        raise DesignFileError(f"{str(path)!r}: [materials] must map names to strings")
+    parsed = []
+    for i, p in enumerate(points):
+        _unknown(path, f"points[{i}]", p, _POINT_KEYS)
+        try:
+            parsed.append(CalibrationPoint(**p))
+        except TypeError:
+            missing = [k for k in ("pattern", "width_mm", "g_mpa", "p0_kpa") if k not in p]
+            raise DesignFileError(f"{str(path)!r}: points[{i}] is missing key {missing[0]!r}") from None
+        except EmbroactError as exc:
+            raise DesignFileError(f"{str(path)!r}: points[{i}]: {exc}") from None
+    try:
+        return CalibrationSet(doc.get("name"), tuple(parsed), doc.get("description", ""), materials)
+    except EmbroactError as exc:
+        raise DesignFileError(f"{str(path)!r}: {exc}") from None

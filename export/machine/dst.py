@@ -1,0 +1,103 @@
+"""DST specifics: a correct 512-byte header and the 0x1A terminator.
+
+pyembroidery 1.5.1 writes the DST records correctly but its header does not
+describe them (EMBROIDERY.md): ``CO`` ignores stops, ``+Y``/``-Y`` are swapped,
+``+X``/``-X`` take absolute values of signed bounds, ``ST`` counts a trim as one
+record although it is written as three, and no 0x1A follows the end record.
+:func:`fix_dst` keeps the records and rewrites the header from them.
+
+Header written (fixed offsets, each field ends with CR)
+-------------------------------------------------------
+``LA:`` label, printable ASCII, 16 chars; ``ST:`` number of 3-byte records in the
+body, the end record included; ``CO:`` number of colour-change/stop records
+(0xC3); ``+X:``/``-X:``/``+Y:``/``-Y:`` largest excursion from the start point in
+each direction, 0.1 mm, machine frame (y up), over every record's end point;
+``AX:``/``AY:`` signed end position relative to the start; ``MX:``/``MY:`` 0 (no
+linked previous file); ``PD:******``; then 0x1A and spaces up to 512 bytes.
+
+Examples
+--------
+>>> body = bytes([0x01, 0x00, 0x03]) + bytes([0x00, 0x00, 0xF3])  # x+1, end
+>>> data = fix_dst(bytes(512) + body, label="demo")
+>>> data[:23]
+b'LA:demo            \\rST:'
+>>> header_fields(data)["ST"], header_fields(data)["+X"], data[-1:]
+('2', '1', b'\\x1a')
+"""
+from __future__ import annotations
+
+from ...patterns.base.errors import ExportError
+
+__all__ = ["HEADER_SIZE", "END_BYTE", "COLOR_BYTE", "decode_moves", "build_header", "fix_dst", "header_fields"]
+
+HEADER_SIZE = 512
+END_BYTE = 0xF3
+"""Third byte of the end record."""
+COLOR_BYTE = 0xC3
+"""Third byte of a colour-change / stop record."""
+_SUB = b"\x1a"
+
+# (byte, bit) -> (dx, dy) weight, machine frame (y up).
+_WEIGHTS = {
+    (0, 0): (1, 0), (0, 1): (-1, 0), (0, 2): (9, 0), (0, 3): (-9, 0),
+    (0, 4): (0, -9), (0, 5): (0, 9), (0, 6): (0, -1), (0, 7): (0, 1),
+    (1, 0): (3, 0), (1, 1): (-3, 0), (1, 2): (27, 0), (1, 3): (-27, 0),
+    (1, 4): (0, -27), (1, 5): (0, 27), (1, 6): (0, -3), (1, 7): (0, 3),
+    (2, 2): (81, 0), (2, 3): (-81, 0), (2, 4): (0, -81), (2, 5): (0, 81),
+}
+
+
+def decode_moves(body: bytes) -> list[tuple[int, int, int]]:
+    """``(dx, dy, byte3)`` per record up to and including the end record (0.1 mm, y up)."""
+    out = []
+    for i in range(0, len(body) - len(body) % 3, 3):
+        rec = body[i : i + 3]
+        dx = dy = 0
+        if rec[2] not in (END_BYTE, COLOR_BYTE):
+            for (b, bit), (wx, wy) in _WEIGHTS.items():
+                if rec[b] >> bit & 1:
+                    dx, dy = dx + wx, dy + wy
+        out.append((dx, dy, rec[2]))
+        if rec[2] == END_BYTE:
+            break
+    return out
+
+
+def build_header(moves: list[tuple[int, int, int]], *, label: str) -> bytes:
+    """The 512-byte header describing ``moves`` (see the module docstring)."""
+    x = y = 0
+    xmin = xmax = ymin = ymax = 0
+    for dx, dy, _ in moves:
+        x, y = x + dx, y + dy
+        xmin, xmax, ymin, ymax = min(xmin, x), max(xmax, x), min(ymin, y), max(ymax, y)
+    colors = sum(1 for *_, b3 in moves if b3 == COLOR_BYTE)
+    text = "".join(ch if 32 <= ord(ch) < 127 else "_" for ch in label)[:16]
+    fields = [
+        f"LA:{text:<16}", f"ST:{len(moves):7d}", f"CO:{colors:3d}",
+        f"+X:{xmax:5d}", f"-X:{-xmin:5d}", f"+Y:{ymax:5d}", f"-Y:{-ymin:5d}",
+        f"AX:{'+' if x >= 0 else '-'}{abs(x):5d}", f"AY:{'+' if y >= 0 else '-'}{abs(y):5d}",
+        f"MX:+{0:5d}", f"MY:+{0:5d}", "PD:******",
+    ]
+    head = ("\r".join(fields) + "\r").encode("ascii") + _SUB
+    return head + b" " * (HEADER_SIZE - len(head))
+
+
+def fix_dst(data: bytes, *, label: str) -> bytes:
+    """Replace the header of a DST file with one built from its records; end with 0x1A.
+
+    Raises
+    ------
+    ExportError
+        The body has no end record.
+    """
+    moves = decode_moves(data[HEADER_SIZE:])
+    if not moves or moves[-1][2] != END_BYTE:
+        raise ExportError("DST body has no end record")
+    body = data[HEADER_SIZE : HEADER_SIZE + 3 * len(moves)]
+    return build_header(moves, label=label) + body + _SUB
+
+
+def header_fields(data: bytes) -> dict[str, str]:
+    """Header ``KEY:value`` fields of a DST file, blanks removed from the values."""
+    head = data[:HEADER_SIZE].split(_SUB, 1)[0].decode("ascii", "replace")
+    return {part[:2]: part[3:].replace(" ", "") for part in head.split("\r") if part[2:3] == ":"}

@@ -1,0 +1,335 @@
+"""Check any embroidery file pyembroidery reads against the tube(s) it is meant to couch.
+
+The file's records are read **in the file's own order** (no trims inserted, no
+zero-length jump runs removed: pyembroidery's reader is called with
+``trim_at=None, trim_distance=None, clipping=False``), so a finding's
+``stitch_index`` is the record number in the file (DST: record ``i`` is bytes
+``512 + 3 i`` to ``512 + 3 i + 2``).
+
+Frame
+-----
+Positions are those pyembroidery reads, converted to millimetres: ``x_mm = x / 10``,
+``y_mm = y / 10`` with **y pointing down** (pyembroidery's frame; DST stores y up
+and the reader flips it). Tube paths are given in this same frame. For a tube
+drawn in an embroact design (plan frame, y up), negate y:
+plan ``(x, y)`` -> file ``(x, -y)``.
+
+Commands
+--------
+stitch -> STITCH; jump -> JUMP; trim -> TRIM; stop, colour change and needle set ->
+STOP (a colour change is how DST writes a stop; set the machine to stop at each);
+end -> END; any other command (sequins, speed) -> JUMP (a frame move).
+
+Tube files
+----------
+A small TOML file describes one or more tubes and, optionally, the machine::
+
+    [[tube]]
+    name = "A1"                       # optional
+    path_mm = "0,0 100,0"             # or [[0, 0], [100, 0]]; mm, file frame
+    outer_radius_mm = 1.5             # optional, default 1.5
+    clearance_mm = 0.3                # optional, default 0.3
+    end_margin_mm = 0.0               # optional, default 0
+
+    [machine]                         # optional
+    hoop_width_mm = 200.0
+    hoop_height_mm = 200.0
+    min_stitch_mm = 0.3
+    max_stitch_mm = 12.1
+
+Examples
+--------
+>>> from embroact.export.machine.filecheck import parse_tube_path
+>>> parse_tube_path("0,0 100,0 100.5,-20").tolist()
+[[0.0, 0.0], [100.0, 0.0], [100.5, -20.0]]
+"""
+from __future__ import annotations
+
+import io
+import os
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...patterns.base.errors import DesignFileError, ParameterError, check_range
+from ...patterns.base.findings import Finding
+from ...patterns.limits import FORMAT_LIMITS
+from ...patterns.params import Tube
+from ...patterns.plan import Command
+from ...patterns.rules import RuleSettings, TubeLayout, check_layout, layout_from_records
+from .dst import END_BYTE, HEADER_SIZE
+
+__all__ = [
+    "FileRecords",
+    "read_records",
+    "parse_tube_path",
+    "tube_layout",
+    "load_tube_file",
+    "check_file",
+    "readable_suffixes",
+    "default_format",
+]
+
+#: pyembroidery reader settings that keep the file's own record order.
+_RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
+_DST_RECORD_BYTES = 3
+#: Leading bytes of formats that have a magic number.
+_MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
+#: Formats whose stitch data ends with an end-of-design code the reader stops at: a reader that runs
+#: into the end of the file instead was given a truncated or garbage file. (JEF: see _check_jef_end;
+#: EXP has no header and no end code, so a truncated EXP file cannot be told from a short design.)
+_END_CODED = {"dst", "pes", "pec", "vp3", "xxx", "tbf", "u01"}
+_JEF_CONTROL, _JEF_END = 0x80, 0x10
+_TUBE_KEYS = {"name", "path_mm", "outer_radius_mm", "clearance_mm", "end_margin_mm"}
+_MACHINE_KEYS = {"hoop_width_mm", "hoop_height_mm", "min_stitch_mm", "max_stitch_mm", "format"}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class FileRecords:
+    """The records of an embroidery file, in its own order.
+
+    Attributes
+    ----------
+    path : str
+    suffix : str
+        Lower-case format suffix without the dot.
+    xy_mm : ndarray (n, 2)
+        Positions [mm], pyembroidery's frame (y down); read-only.
+    commands : ndarray of int8
+        :class:`Command` per record.
+    """
+
+    path: str
+    suffix: str
+    xy_mm: np.ndarray
+    commands: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.xy_mm)
+
+
+def readable_suffixes() -> tuple[str, ...]:
+    """Embroidery suffixes pyembroidery can read, sorted."""
+    import pyembroidery
+
+    return tuple(sorted(f["extension"] for f in pyembroidery.supported_formats()
+                        if f.get("reader") is not None and f.get("category") == "embroidery"))
+
+
+def _check_dst_bytes(path: str, data: bytes) -> None:
+    if len(data) < HEADER_SIZE:
+        raise DesignFileError(f"{path}: not a DST file: {len(data)} bytes, shorter than the 512-byte header")
+    if not data.startswith(b"LA:"):
+        raise DesignFileError(f"{path}: not a DST file: the header does not start with 'LA:'")
+    body = data[HEADER_SIZE:]
+    if not any(body[i + 2] & END_BYTE == END_BYTE
+               for i in range(0, len(body) - _DST_RECORD_BYTES + 1, _DST_RECORD_BYTES)):
+        raise DesignFileError(
+            f"{path}: truncated DST file: no end record among {len(body) // _DST_RECORD_BYTES} records"
+        )
+
+
+class _TrackedBytes(io.BytesIO):
+    """An in-memory file that remembers whether a read came back short (the reader hit the end)."""
+
+    hit_end = False
+
+    def read(self, size=-1):
+        data = super().read(size)
+        if size is not None and size >= 0 and len(data) < size:
+            self.hit_end = True
+        return data
+
+
+def _check_jef_end(path: str, data: bytes) -> None:
+    """Walk the JEF records from the header's stitch offset to the end code 0x80 0x10."""
+    i = int.from_bytes(data[:4], "little") if len(data) >= 4 else len(data)
+    while i + 1 < len(data):
+        if data[i] == _JEF_CONTROL:
+            if data[i + 1] == _JEF_END:
+                return
+            i += 2
+        i += 2
+    raise DesignFileError(f"{path}: truncated or garbage JEF file: no end code (0x80 0x10) after the stitches")
+
+
+def _read_pattern(path: str, suffix: str, data: bytes):
+    """pyembroidery's reader for ``suffix`` on ``data``; checks magic numbers and end codes first/after."""
+    import pyembroidery
+
+    magic = _MAGIC.get(suffix)
+    if magic is not None and not data.startswith(magic):
+        raise DesignFileError(f"{path}: not a {suffix.upper()} file: it does not start with {magic.decode()!r}")
+    if suffix == "jef":
+        _check_jef_end(path, data)
+    reader = next(f["reader"] for f in pyembroidery.supported_formats() if f["extension"] == suffix)
+    if getattr(reader, "READ_FILE_IN_TEXT_MODE", False):
+        return pyembroidery.read(path, dict(_RAW_READ))
+    stream = _TrackedBytes(data)
+    pattern = pyembroidery.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+    if suffix in _END_CODED and stream.hit_end:
+        raise DesignFileError(
+            f"{path}: truncated or garbage {suffix.upper()} file: the data ends before the end-of-design code"
+        )
+    return pattern
+
+
+def _command_map() -> dict[int, Command]:
+    import pyembroidery as pe
+
+    return {pe.STITCH: Command.STITCH, pe.JUMP: Command.JUMP, pe.TRIM: Command.TRIM, pe.STOP: Command.STOP,
+            pe.COLOR_CHANGE: Command.STOP, pe.NEEDLE_SET: Command.STOP, pe.END: Command.END}
+
+
+def read_records(path: str | os.PathLike) -> FileRecords:
+    """Read an embroidery file into arrays, one row per record in the file's own order.
+
+    Raises
+    ------
+    DesignFileError
+        One line when the file is missing, of an unknown kind, truncated or garbage.
+    """
+    import pyembroidery
+
+    p = str(path)
+    suffix = Path(p).suffix.lower().lstrip(".")
+    if suffix not in readable_suffixes():
+        raise DesignFileError(
+            f"{p}: cannot read '.{suffix}' embroidery files; readable: {', '.join(readable_suffixes())}"
+        )
+    try:
+        data = Path(p).read_bytes()
+    except OSError as exc:
+        raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    if not data:
+        raise DesignFileError(f"{p}: empty file")
+    if suffix == "dst":
+        _check_dst_bytes(p, data)
+    try:
+        pattern = _read_pattern(p, suffix, data)
+    except DesignFileError:
+        raise
+    except Exception as exc:  # any reader failure on garbage is unusable input, one line
+        raise DesignFileError(f"{p}: unreadable {suffix.upper()} file ({type(exc).__name__}: {exc})") from None
+    if pattern is None or not any(s[2] & pyembroidery.COMMAND_MASK == pyembroidery.STITCH for s in pattern.stitches):
+        raise DesignFileError(f"{p}: no stitches in this {suffix.upper()} file")
+    raw = np.array(pattern.stitches, dtype=np.float64).reshape(-1, 3)
+    cmap = _command_map()
+    commands = np.array([cmap.get(int(c) & pyembroidery.COMMAND_MASK, Command.JUMP) for c in raw[:, 2]], dtype=np.int8)
+    xy = raw[:, :2] / 10.0
+    xy.setflags(write=False)
+    commands.setflags(write=False)
+    return FileRecords(p, suffix, xy, commands)
+
+
+def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
+    """Points from ``"x1,y1 x2,y2 ..."`` [mm]; one-line :class:`ParameterError` on bad text."""
+    usage = f"{name} must be 'x1,y1 x2,y2 ...' with at least 2 points in mm"
+    try:
+        pts = np.array([[float(v) for v in pair.split(",")] for pair in str(text).split()], dtype=np.float64)
+    except ValueError:
+        raise ParameterError(f"{usage}, got {text!r}") from None
+    if pts.ndim != 2 or pts.shape[1:] != (2,) or len(pts) < 2:
+        raise ParameterError(f"{usage}, got {text!r}")
+    if not np.all(np.isfinite(pts)):
+        raise ParameterError(f"{name} must hold finite numbers, got {text!r}")
+    return pts
+
+
+def tube_layout(
+    points_mm,
+    *,
+    name: str = "tube",
+    outer_radius_mm: float = Tube().outer_radius_mm,
+    clearance_mm: float = Tube().clearance_mm,
+    end_margin_mm: float = 0.0,
+) -> TubeLayout:
+    """A tube for file checks from path points in the file's frame [mm], with range checks."""
+    return TubeLayout.from_path(
+        name,
+        np.asarray(points_mm, dtype=np.float64),
+        outer_radius_mm=check_range("outer_radius_mm", outer_radius_mm, low=0.0, high=50.0),
+        clearance_mm=check_range("clearance_mm", clearance_mm, low=0.0, low_inclusive=True, high=50.0),
+        end_margin_mm=check_range("end_margin_mm", end_margin_mm, low=0.0, low_inclusive=True, high=1e4),
+    )
+
+
+def _unknown(table: dict, allowed: set[str], where: str, path: str) -> None:
+    extra = sorted(set(table) - allowed)
+    if extra:
+        raise DesignFileError(f"{path}: unknown key {extra[0]!r} in {where}; allowed: {', '.join(sorted(allowed))}")
+
+
+def _toml_points(raw, where: str) -> np.ndarray:
+    if isinstance(raw, str):
+        return parse_tube_path(raw, name=where)
+    try:
+        pts = np.array(raw, dtype=np.float64)
+    except (TypeError, ValueError):
+        pts = np.zeros(0)
+    if pts.ndim != 2 or pts.shape[1:] != (2,) or len(pts) < 2 or not np.all(np.isfinite(pts)):
+        raise DesignFileError(f"{where} must be [[x, y], ...] with at least 2 finite points in mm, got {raw!r:.80}")
+    return pts
+
+
+def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dict]:
+    """Tubes and machine settings (a dict of :class:`RuleSettings` fields) from a tube TOML file."""
+    p = str(path)
+    try:
+        doc = tomllib.loads(Path(p).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise DesignFileError(f"{p}: not valid TOML: {exc}") from None
+    _unknown(doc, {"tube", "machine"}, "the file", p)
+    entries = doc.get("tube")
+    if not isinstance(entries, list) or not entries or not all(isinstance(t, dict) for t in entries):
+        raise DesignFileError(f"{p}: needs at least one [[tube]] table with path_mm")
+    tubes = []
+    for i, t in enumerate(entries):
+        _unknown(t, _TUBE_KEYS, f"[[tube]] {i + 1}", p)
+        if "path_mm" not in t:
+            raise DesignFileError(f"{p}: [[tube]] {i + 1} has no path_mm")
+        pts = _toml_points(t["path_mm"], f"{p}: [[tube]] {i + 1} path_mm")
+        opts = {k: t[k] for k in ("outer_radius_mm", "clearance_mm", "end_margin_mm") if k in t}
+        tubes.append(tube_layout(pts, name=str(t.get("name", f"tube {i + 1}")), **opts))
+    machine = doc.get("machine", {})
+    if not isinstance(machine, dict):
+        raise DesignFileError(f"{p}: [machine] must be a table")
+    _unknown(machine, _MACHINE_KEYS, "[machine]", p)
+    return tuple(tubes), dict(machine)
+
+
+def default_format(records: FileRecords) -> str:
+    """The file's own format when it has per-record limits in ``patterns/limits.py``, else ``"dst"``."""
+    return records.suffix if records.suffix in FORMAT_LIMITS else "dst"
+
+
+def check_file(
+    path: str | os.PathLike,
+    tubes,
+    *,
+    settings: RuleSettings | None = None,
+) -> tuple[Finding, ...]:
+    """Read an embroidery file and run the geometric and file-level rules against ``tubes``.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        Any file pyembroidery reads.
+    tubes : sequence of TubeLayout
+        Tube paths in the file's frame (mm, y down); see :func:`tube_layout`.
+    settings : RuleSettings, optional
+        Defaults to the file's own format and default machine limits.
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first; ``stitch_index`` is the record index in the file.
+    """
+    records = read_records(path)
+    settings = settings or RuleSettings(format=default_format(records))
+    layout = layout_from_records(records.xy_mm, records.commands, tuple(tubes))
+    return check_layout(layout, settings)

@@ -1,0 +1,401 @@
+"""Pressure-bend chart: bend angle [deg] against pressure [kPa], drawn with svgwrite.
+
+One or many designs on one chart; each design's transition pressure P0 is a dashed
+vertical mark, the model's status regions are shaded (a full-height band for a
+single design, a thin ribbon per design under the plot for several), measured points
+are overlaid as open circles, axes carry 1-2-5 ticks.  The data-to-SVG mapping is
+the small frozen :class:`Scale` value, so callers and tests can locate any point::
+
+     angle [deg]
+       |             _____ locked
+       |           /
+       |  infl.  /  bending
+       0 -------'.................> pressure [kPa]
+                 P0
+
+Examples
+--------
+>>> from embroact.export.pictures.chart import Series, bend_chart_svg, chart_scale, nice_ticks
+>>> nice_ticks(0.0, 290.0)
+(0.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0)
+>>> s = Series("w = 7 mm", [0, 100, 200], [0.0, 20.0, 60.0],
+...            status=("inflation", "bending", "bending"), p0_kpa=84.5)
+>>> sc = chart_scale([s])
+>>> sc.x_px(0.0) == sc.left_px, sc.y_px(0.0) == sc.top_px + sc.height_px
+(True, True)
+>>> bend_chart_svg([s]).startswith('<svg')
+True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ...patterns.base.arrays import frozen_array
+from ...patterns.base.errors import ParameterError
+
+__all__ = ["STATUS_STYLE", "Scale", "Series", "nice_ticks", "chart_scale", "bend_chart_svg"]
+
+#: status name -> (fill colour, legend text).  Names are the lower-case members of
+#: ``embroact.predict.status.Status``.
+STATUS_STYLE: dict[str, tuple[str, str]] = {
+    "inflation": ("#dbe9f6", "inflation (no bend)"),
+    "bending": ("#e3f2df", "bending"),
+    "locked": ("#fde7c8", "lock-up"),
+    "unstable": ("#f9d4d4", "unstable"),
+    "out_of_domain": ("#e6e6e6", "outside model"),
+    "failed": ("#cccccc", "no answer (method failed)"),
+}
+
+#: Line colours of successive series (colour-blind safe, Okabe-Ito).
+PALETTE = ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000")
+
+_DECIMALS = 2  # SVG coordinates are rounded to 0.01 user unit: stable bytes, small files
+_TICK_STEPS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0)  # two decades: rounding can push past the first
+_FONT = "font-family:Helvetica,Arial,sans-serif"
+_RIBBON_PX = 7.0
+_LEGEND_MIN_PX = 190.0
+_CHAR_PX = 6.2
+
+
+def _frozen(values) -> np.ndarray:
+    return frozen_array(values).reshape(-1)
+
+
+def _scalar(a: np.ndarray):
+    """Plain float for 0-d results, the array otherwise."""
+    return float(a) if np.ndim(a) == 0 else a
+
+
+def _status_names(status) -> tuple[str, ...]:
+    """Status values (strings, Status members or their integer values) as lower-case names."""
+    out = []
+    for v in status:
+        if isinstance(v, str):
+            name = v.lower()
+        elif hasattr(v, "name"):
+            name = v.name.lower()
+        else:
+            from ...predict.status import Status  # lazy: only integer codes need the enum
+
+            name = Status(int(v)).name.lower()
+        if name not in STATUS_STYLE:
+            raise ParameterError(f"status must be one of {', '.join(STATUS_STYLE)}, got {v!r}")
+        out.append(name)
+    return tuple(out)
+
+
+@dataclass(frozen=True, slots=True)
+class Series:
+    """One design's predicted curve (and optional measurements) for the chart.
+
+    Parameters
+    ----------
+    label : str
+        Legend text.
+    pressure_kpa, theta_deg : array-like
+        Curve samples [kPa], [deg]; NaN angles (no answer) break the line.
+    status : sequence, optional
+        Per-sample status: names (``"bending"``), ``Status`` members or their codes.
+    p0_kpa : float, optional
+        Transition pressure to mark [kPa].
+    measured_pressure_kpa, measured_theta_deg : array-like, optional
+        Measured points to overlay [kPa], [deg].
+    """
+
+    label: str
+    pressure_kpa: np.ndarray
+    theta_deg: np.ndarray
+    status: tuple[str, ...] | None = None
+    p0_kpa: float | None = None
+    measured_pressure_kpa: np.ndarray | None = None
+    measured_theta_deg: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        p = _frozen(self.pressure_kpa)
+        t = _frozen(self.theta_deg)
+        if len(p) != len(t):
+            raise ParameterError(f"theta_deg must have one value per pressure ({len(p)}), got {len(t)}")
+        if not np.all(np.isfinite(p)):
+            raise ParameterError("pressure_kpa must be finite numbers")
+        object.__setattr__(self, "pressure_kpa", p)
+        object.__setattr__(self, "theta_deg", t)
+        if self.status is not None:
+            names = _status_names(self.status)
+            if len(names) != len(p):
+                raise ParameterError(f"status must have one value per pressure ({len(p)}), got {len(names)}")
+            object.__setattr__(self, "status", names)
+        mp, mt = self.measured_pressure_kpa, self.measured_theta_deg
+        if (mp is None) != (mt is None):
+            raise ParameterError("measured_pressure_kpa and measured_theta_deg must be given together")
+        if mp is not None:
+            mp, mt = _frozen(mp), _frozen(mt)
+            if len(mp) != len(mt):
+                raise ParameterError(
+                    f"measured_theta_deg must have one value per measured pressure ({len(mp)}), got {len(mt)}"
+                )
+            object.__setattr__(self, "measured_pressure_kpa", mp)
+            object.__setattr__(self, "measured_theta_deg", mt)
+
+    @classmethod
+    def from_curve(cls, curve, *, label: str, p0_kpa: float | None = None, measured=None) -> "Series":
+        """Series from a ``predict`` curve (``pressure_kpa``, ``theta_deg``, ``status``).
+
+        ``measured`` is an optional pair (pressure_kpa, theta_deg) of arrays.
+        """
+        mp, mt = (None, None) if measured is None else measured
+        return cls(label, curve.pressure_kpa, curve.theta_deg, status=tuple(curve.status), p0_kpa=p0_kpa,
+                   measured_pressure_kpa=mp, measured_theta_deg=mt)
+
+
+@dataclass(frozen=True, slots=True)
+class Scale:
+    """Linear map from (pressure [kPa], angle [deg]) to SVG user units (y down).
+
+    Attributes
+    ----------
+    x_min_kpa, x_max_kpa, y_min_deg, y_max_deg : float
+        Data range shown, equal to the first and last tick.
+    left_px, top_px, width_px, height_px : float
+        Plot box in SVG user units.
+    """
+
+    x_min_kpa: float
+    x_max_kpa: float
+    y_min_deg: float
+    y_max_deg: float
+    left_px: float
+    top_px: float
+    width_px: float
+    height_px: float
+
+    def x_px(self, pressure_kpa):
+        """SVG x of a pressure [kPa] (scalar or array)."""
+        p = np.asarray(pressure_kpa, dtype=np.float64)
+        return _scalar(self.left_px + (p - self.x_min_kpa) / (self.x_max_kpa - self.x_min_kpa) * self.width_px)
+
+    def y_px(self, angle_deg):
+        """SVG y of an angle [deg] (scalar or array); larger angles are higher up."""
+        a = np.asarray(angle_deg, dtype=np.float64)
+        return _scalar(self.top_px + (self.y_max_deg - a) / (self.y_max_deg - self.y_min_deg) * self.height_px)
+
+
+def nice_ticks(low: float, high: float, *, max_ticks: int = 8) -> tuple[float, ...]:
+    """Ticks with a 1-2-5 step covering [low, high], first <= low and last >= high.
+
+    Parameters
+    ----------
+    low, high : float
+        Data range (low <= high; an empty range is widened to one unit).
+    max_ticks : int
+        Upper bound on the number of ticks (>= 2).
+    """
+    if not (math.isfinite(low) and math.isfinite(high)) or high < low:
+        raise ParameterError(f"tick range must be finite with low <= high, got ({low!r}, {high!r})")
+    if high == low:
+        low, high = low - 0.5, high + 0.5
+    raw = (high - low) / (max_ticks - 1)
+    decade = 10.0 ** math.floor(math.log10(raw))
+    for m in _TICK_STEPS:
+        step = m * decade
+        first, last = math.floor(low / step), math.ceil(high / step)
+        if last - first + 1 <= max_ticks:
+            break
+    return tuple(float(k * step) + 0.0 for k in range(first, last + 1))
+
+
+def _finite(values: Sequence[np.ndarray]) -> np.ndarray:
+    cat = np.concatenate([np.asarray(v, dtype=np.float64) for v in values]) if values else np.zeros(0)
+    return cat[np.isfinite(cat)]
+
+
+def _ribbons_px(series: Sequence[Series]) -> float:
+    with_status = sum(s.status is not None for s in series)
+    return _RIBBON_PX * with_status if len(series) > 1 else 0.0
+
+
+def _legend_px(series: Sequence[Series]) -> float:
+    """Legend column width: room for the longest series label (about 6.2 px per character at 11 px).
+
+    The minimum fits every status text.
+    """
+    return max(_LEGEND_MIN_PX, 44.0 + _CHAR_PX * max(len(s.label) for s in series))
+
+
+def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0) -> Scale:
+    """The :class:`Scale` that :func:`bend_chart_svg` uses for these series and sizes.
+
+    The pressure axis starts at 0 kPa and the angle axis always includes 0 deg; the
+    legend column on the right is as wide as its longest label.
+    """
+    legend_px = _legend_px(series)
+    xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
+                                                     if s.measured_pressure_kpa is not None])
+    ys = _finite([s.theta_deg for s in series] + [s.measured_theta_deg for s in series
+                                                  if s.measured_theta_deg is not None])
+    xt = nice_ticks(0.0, float(xs.max()) if xs.size else 1.0)
+    yt = nice_ticks(min(0.0, float(ys.min()) if ys.size else 0.0), max(0.0, float(ys.max()) if ys.size else 1.0))
+    left, top, bottom = 64.0, 46.0, 52.0 + _ribbons_px(series)
+    return Scale(xt[0], xt[-1], yt[0], yt[-1], left, top, width_px - left - legend_px, height_px - top - bottom)
+
+
+def _fmt(v: float) -> str:
+    return f"{round(float(v), _DECIMALS):g}"
+
+
+def _tick_label(v: float) -> str:
+    return f"{v:g}"
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """(start, stop) index pairs of consecutive True entries."""
+    idx = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+    return list(zip(idx[::2].tolist(), idx[1::2].tolist()))
+
+
+def _status_spans(s: Series) -> list[tuple[str, float, float]]:
+    """(status, p_from, p_to) spans; boundaries halfway between samples of different status."""
+    p = s.pressure_kpa
+    order = np.argsort(p, kind="stable")
+    p, names = p[order], [s.status[i] for i in order]
+    edges = np.concatenate([[p[0]], (p[1:] + p[:-1]) / 2.0, [p[-1]]])
+    spans: list[tuple[str, float, float]] = []
+    for i, name in enumerate(names):
+        if spans and spans[-1][0] == name:
+            spans[-1] = (name, spans[-1][1], float(edges[i + 1]))
+        else:
+            spans.append((name, float(edges[i]), float(edges[i + 1])))
+    return spans
+
+
+def _draw_status(dwg, g, series: Sequence[Series], sc: Scale) -> list[str]:
+    used: list[str] = []
+    rows = [s for s in series if s.status is not None]
+    for k, s in enumerate(rows):
+        if len(series) == 1:
+            y0, h = sc.top_px, sc.height_px
+        else:
+            y0, h = sc.top_px + sc.height_px + 2.0 + k * _RIBBON_PX, _RIBBON_PX - 1.0
+        for name, a, b in _status_spans(s):
+            x0, x1 = float(sc.x_px(a)), float(sc.x_px(b))
+            g.add(dwg.rect((_fmt(x0), _fmt(y0)), (_fmt(x1 - x0), _fmt(h)), fill=STATUS_STYLE[name][0],
+                           **{"class": f"status {name}", "data-series": str(series.index(s))}))
+            if name not in used:
+                used.append(name)
+    return used
+
+
+def _draw_axes(dwg, g, sc: Scale, xt, yt, ribbons_px: float) -> None:
+    right, bottom = sc.left_px + sc.width_px, sc.top_px + sc.height_px
+    below = bottom + ribbons_px
+    for v in xt:
+        x = _fmt(sc.x_px(v))
+        g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(bottom)), stroke="#d0d0d0", stroke_width=0.5))
+        g.add(dwg.text(_tick_label(v), insert=(x, _fmt(below + 16)), text_anchor="middle", font_size=11,
+                       **{"class": "xtick"}))
+    for v in yt:
+        y = _fmt(sc.y_px(v))
+        g.add(dwg.line((_fmt(sc.left_px), y), (_fmt(right), y), stroke="#000" if v == 0 else "#d0d0d0",
+                       stroke_width=0.8 if v == 0 else 0.5))
+        g.add(dwg.text(_tick_label(v), insert=(_fmt(sc.left_px - 6), _fmt(sc.y_px(v) + 4)), text_anchor="end",
+                       font_size=11, **{"class": "ytick"}))
+    g.add(dwg.rect((_fmt(sc.left_px), _fmt(sc.top_px)), (_fmt(sc.width_px), _fmt(sc.height_px)),
+                   fill="none", stroke="#333", stroke_width=1))
+    g.add(dwg.text("pressure [kPa]", insert=(_fmt(sc.left_px + sc.width_px / 2), _fmt(below + 36)),
+                   text_anchor="middle", font_size=12))
+    cy = sc.top_px + sc.height_px / 2
+    g.add(dwg.text("bend angle [deg]", insert=(16, _fmt(cy)), text_anchor="middle", font_size=12,
+                   transform=f"rotate(-90 16 {_fmt(cy)})"))
+
+
+def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
+    colour = PALETTE[k % len(PALETTE)]
+    order = np.argsort(s.pressure_kpa, kind="stable")
+    p, t = s.pressure_kpa[order], s.theta_deg[order]
+    for a, b in _runs(np.isfinite(t)):
+        pts = [(_fmt(x), _fmt(y)) for x, y in zip(sc.x_px(p[a:b]), sc.y_px(t[a:b]))]
+        g.add(dwg.polyline(pts, fill="none", stroke=colour, stroke_width=2, stroke_linejoin="round",
+                           **{"class": "curve", "data-series": str(k)}))
+    if s.p0_kpa is not None and sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa:
+        x = _fmt(sc.x_px(s.p0_kpa))
+        g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(sc.top_px + sc.height_px)), stroke=colour,
+                       stroke_width=1.2, stroke_dasharray="5,3", **{"class": "p0", "data-series": str(k)}))
+        g.add(dwg.text(f"P0 {s.p0_kpa:.0f}", insert=(_fmt(sc.x_px(s.p0_kpa) + 3), _fmt(sc.top_px + 12 + 12 * k)),
+                       font_size=10, fill=colour))
+    if s.measured_pressure_kpa is not None:
+        for x, y in zip(sc.x_px(s.measured_pressure_kpa), sc.y_px(s.measured_theta_deg)):
+            g.add(dwg.circle((_fmt(x), _fmt(y)), 3.2, fill="#fff", stroke=colour, stroke_width=1.5,
+                             **{"class": "measured", "data-series": str(k)}))
+
+
+def _draw_legend(dwg, g, series: Sequence[Series], used: list[str], sc: Scale) -> None:
+    x, y = sc.left_px + sc.width_px + 16.0, sc.top_px + 6.0
+    for k, s in enumerate(series):
+        colour = PALETTE[k % len(PALETTE)]
+        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + 22), _fmt(y)), stroke=colour, stroke_width=2))
+        g.add(dwg.text(s.label, insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11, **{"class": "legend"}))
+        y += 18.0
+    if any(s.measured_pressure_kpa is not None for s in series):
+        g.add(dwg.circle((_fmt(x + 11), _fmt(y)), 3.2, fill="#fff", stroke="#333", stroke_width=1.5))
+        g.add(dwg.text("measured", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
+        y += 18.0
+    if any(s.p0_kpa is not None for s in series):
+        g.add(dwg.line((_fmt(x + 11), _fmt(y - 7)), (_fmt(x + 11), _fmt(y + 7)), stroke="#333",
+                       stroke_dasharray="5,3"))
+        g.add(dwg.text("P0 (transition)", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
+        y += 18.0
+    y += 6.0
+    for name in used:
+        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (22, 12), fill=STATUS_STYLE[name][0], stroke="#999",
+                       stroke_width=0.5))
+        g.add(dwg.text(STATUS_STYLE[name][1], insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
+        y += 18.0
+
+
+def bend_chart_svg(
+    series: Sequence[Series],
+    *,
+    title: str = "Predicted bend angle",
+    width_px: float = 720.0,
+    height_px: float = 440.0,
+) -> str:
+    """The pressure-bend chart as an SVG document string.
+
+    Parameters
+    ----------
+    series : sequence of Series
+        One per design (at least one, each with at least one sample).
+    title : str
+        Chart title.
+    width_px, height_px : float
+        Drawing size in SVG user units (px), at least 320 x 240.
+
+    Returns
+    -------
+    str
+        SVG text; polylines carry ``class="curve"`` and ``data-series="k"``.
+    """
+    import svgwrite
+
+    if not series or any(len(s.pressure_kpa) == 0 for s in series):
+        raise ParameterError("series must hold at least one curve with at least one sample")
+    if width_px < 320 or height_px < 240:
+        raise ParameterError(f"chart size must be at least 320 x 240 px, got {width_px:g} x {height_px:g}")
+    sc = chart_scale(series, width_px=width_px, height_px=height_px)
+    xt = nice_ticks(sc.x_min_kpa, sc.x_max_kpa)
+    yt = nice_ticks(sc.y_min_deg, sc.y_max_deg)
+    dwg = svgwrite.Drawing(size=(_fmt(width_px), _fmt(height_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(height_px)}",
+                           debug=False)
+    dwg.add(dwg.rect((0, 0), (_fmt(width_px), _fmt(height_px)), fill="#fff"))
+    g = dwg.g(style=_FONT)
+    dwg.add(g)
+    used = _draw_status(dwg, g, series, sc)
+    _draw_axes(dwg, g, sc, xt, yt, _ribbons_px(series))
+    for k, s in enumerate(series):
+        _draw_series(dwg, g, k, s, sc)
+    _draw_legend(dwg, g, series, used, sc)
+    g.add(dwg.text(title, insert=(_fmt(sc.left_px), 22), font_size=15, font_weight="bold", **{"class": "title"}))
+    return dwg.tostring()

@@ -1,0 +1,505 @@
+"""3D shape of a bent actuator: fabric strip, tube and rail footprints swept along the bent path.
+
+Kinematics
+----------
+A frame ``(T, N, B)`` moves along the fabric-side centerline, arc length ``s`` in
+[0, l0]: ``T`` the tangent, ``N = B x T`` the in-fabric normal (left of the path in
+the plan), ``B`` the fabric normal toward the thread side (plan +z).  It turns with
+the body-frame angular velocity ``omega = (0, kappa_b, kappa_p)``:
+
+- ``kappa_p(s)``: the path's own in-plane curvature (positive: turning left);
+  a curved-path design keeps bending along its own path;
+- ``kappa_b = theta / l0``: the model's uniform bending curvature; with
+  ``omega = kappa_b N`` the tangent obeys ``dT/ds = -kappa_b B``: positive ``theta``
+  bends toward the back of the fabric (MODEL.md sign convention).
+
+The path is stored as pieces of constant ``kappa_p`` (:class:`PlanarPath`), so on a
+piece ``omega`` is constant and the motion is a rotation about a fixed axis (``omega``
+is perpendicular to ``T``: no pitch).  The frame and the position then have closed
+forms (Rodrigues), integrated exactly piece by piece.  A straight path bends in a
+plane and the angle between its end tangents is ``|theta|`` exactly.
+
+Resolution ("model no more than a scene needs")
+-----------------------------------------------
+Each body is a closed profile (rectangle or circle, in the ``(N, B)`` plane) swept
+along the path.  Half the chordal tolerance goes along the path: a profile point at
+distance ``rho`` from the rotation axis moves on a circle, and a step of rotation
+``dphi`` has sagitta ``rho (1 - cos(dphi/2))``, kept below ``tol/2``; a straight,
+unbent piece needs one step.  The other half goes round the tube:
+``r0 (1 - cos(pi/n)) <= tol/2``.  The realised deviation is then *measured*: the exact
+surface is sampled on a grid inside every mesh cell and its distance to that cell's
+two triangles taken.
+
+::
+
+        tube (radius r0, axis at v = r0)
+          .-.
+         (   )
+    ______'-'______     <- rail footprints at u = +-w/2 (thread side, v = 0 .. 0.2)
+    |_______________|   <- fabric strip, v = -t .. 0 (t = FABRIC_THICKNESS_MM)
+
+Examples
+--------
+>>> from embroact.export.pictures.mesh import PlanarPath, actuator_mesh
+>>> m = actuator_mesh(PlanarPath.straight(100.0), 0.0, width_mm=7.0, r0_mm=2.58)
+>>> m.triangle_count, m.max_deviation_mm <= 0.05
+(124, True)
+>>> bent = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58)
+>>> bent.triangle_count > m.triangle_count
+True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...patterns.base.arrays import frozen_array
+from ...patterns.base.errors import ExportError, ParameterError, check_range
+from ..files.atomic import write_bytes_atomic
+from .sideview import FABRIC_THICKNESS_MM
+
+__all__ = [
+    "DEFAULT_CHORD_TOLERANCE_MM",
+    "MESH_FORMATS",
+    "PlanarPath",
+    "BentPath",
+    "Body",
+    "ShapeMesh",
+    "actuator_mesh",
+    "shapes_of",
+    "mesh_bytes",
+    "write_mesh",
+]
+
+#: Default maximum distance between the mesh and the exact bent surface [mm].
+DEFAULT_CHORD_TOLERANCE_MM = 0.05
+#: Fabric beyond the rails on each side, when no strip width is given [mm].
+FABRIC_MARGIN_MM = 5.0
+#: Width and height of the thread footprint band along each rail [mm].
+RAIL_BAND_WIDTH_MM = 0.6
+RAIL_BAND_HEIGHT_MM = 0.2
+#: Relative difference below which neighbouring path pieces are merged into one arc.
+KAPPA_MERGE_REL = 1e-3
+#: Suffix -> writer kind.  GLB is written in metres, Y up (glTF convention); the others in mm, plan frame.
+MESH_FORMATS = {".glb": "glb", ".stl": "stl", ".obj": "obj", ".ply": "ply"}
+
+_SAMPLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75)  # of a cell, along and across: where the deviation is sampled
+_M_PER_MM = 1e-3
+_MIN_TUBE_SEGMENTS = 8
+_COLOURS = {"fabric": (225, 214, 190, 255), "tube": (70, 130, 200, 255), "rails": (200, 60, 60, 255)}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class PlanarPath:
+    """A plan-frame path made of pieces of constant curvature.
+
+    Attributes
+    ----------
+    start_mm : tuple of float
+        Start point (x, y) [mm].
+    heading_deg : float
+        Start direction, counter-clockwise from +x [deg].
+    lengths_mm : ndarray
+        Piece lengths [mm], > 0.
+    kappa_per_mm : ndarray
+        Piece curvatures [1/mm], positive turning left.
+    """
+
+    start_mm: tuple[float, float]
+    heading_deg: float
+    lengths_mm: np.ndarray
+    kappa_per_mm: np.ndarray
+
+    def __post_init__(self) -> None:
+        lengths, kappa = frozen_array(self.lengths_mm).reshape(-1), frozen_array(self.kappa_per_mm).reshape(-1)
+        if len(lengths) == 0 or len(lengths) != len(kappa) or not np.all(lengths > 0):
+            raise ParameterError("lengths_mm must be positive, one per curvature, at least one piece")
+        object.__setattr__(self, "lengths_mm", lengths)
+        object.__setattr__(self, "kappa_per_mm", kappa)
+
+    @property
+    def length_mm(self) -> float:
+        """Total length [mm]."""
+        return float(self.lengths_mm.sum())
+
+    @classmethod
+    def straight(cls, length_mm: float) -> "PlanarPath":
+        """A straight path along +x from the origin."""
+        return cls((0.0, 0.0), 0.0, [check_range("length_mm", length_mm, low=0.0)], [0.0])
+
+    @classmethod
+    def from_centerline(cls, centerline) -> "PlanarPath":
+        """The path of a :class:`~embroact.patterns.centerline.Centerline`, in its smooth-tangent model.
+
+        The centerline's tangent angle varies linearly between its vertices, so each
+        segment is a piece of constant curvature; neighbouring pieces whose curvatures
+        differ by less than ``KAPPA_MERGE_REL`` are merged (total length and turning kept
+        exactly), so a finely flattened arc becomes one piece.
+        """
+        p = np.asarray(centerline.points_mm, dtype=np.float64)
+        seg = np.hypot(*np.diff(p, axis=0).T)
+        s_mid = np.concatenate([[0.0], np.cumsum(seg)])[:-1] + seg / 2.0
+        turn = np.asarray(centerline.curvature_at(s_mid), dtype=np.float64) * seg
+        merged: list[list[float]] = []  # [length, turning]
+        for length, t in zip(seg.tolist(), turn.tolist()):
+            if merged:
+                k, mk = t / length, merged[-1][1] / merged[-1][0]
+                if abs(k - mk) <= KAPPA_MERGE_REL * max(abs(k), abs(mk)):
+                    merged[-1][0] += length
+                    merged[-1][1] += t
+                    continue
+            merged.append([length, t])
+        arr = np.array(merged)
+        tx, ty = np.asarray(centerline.tangent_at(0.0), dtype=np.float64)
+        return cls((float(p[0, 0]), float(p[0, 1])), math.degrees(math.atan2(ty, tx)), arr[:, 0], arr[:, 1] / arr[:, 0])
+
+
+def _rodrigues(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n, 3, 3) about unit axes (n, 3) by angles (n,)."""
+    kx = np.zeros((len(axis), 3, 3))
+    kx[:, 0, 1], kx[:, 0, 2], kx[:, 1, 2] = -axis[:, 2], axis[:, 1], -axis[:, 0]
+    kx -= np.transpose(kx, (0, 2, 1))
+    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
+    return np.eye(3) + s * kx + (1.0 - c) * (kx @ kx)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class BentPath:
+    """The bent centerline: exact frames at any arc length (see the module docstring).
+
+    Attributes
+    ----------
+    path : PlanarPath
+    kappa_b_per_mm : float
+        Bending curvature theta / l0 [1/mm].
+    """
+
+    path: PlanarPath
+    kappa_b_per_mm: float
+    _s0: np.ndarray
+    _x0: np.ndarray
+    _r0: np.ndarray
+
+    @classmethod
+    def from_theta(cls, path: PlanarPath, theta_deg: float) -> "BentPath":
+        """Bend ``path`` uniformly by ``theta_deg`` over its length."""
+        kb = math.radians(check_range("theta_deg", theta_deg)) / path.length_mm
+        h = math.radians(path.heading_deg)
+        x = np.array([path.start_mm[0], path.start_mm[1], 0.0])
+        r = np.array([[math.cos(h), -math.sin(h), 0.0], [math.sin(h), math.cos(h), 0.0], [0.0, 0.0, 1.0]])
+        s0, xs, rs = [0.0], [x], [r]
+        for length, kp in zip(path.lengths_mm[:-1], path.kappa_per_mm[:-1]):
+            dx, dr = _step(np.array([kb]), np.array([kp]), np.array([length]))
+            x, r = x + r @ dx[0], r @ dr[0]
+            s0.append(s0[-1] + float(length))
+            xs.append(x)
+            rs.append(r)
+        return cls(path, kb, frozen_array(s0), frozen_array(xs), frozen_array(rs))
+
+    def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
+        """Positions (n, 3) and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm``."""
+        s = np.clip(np.asarray(s_mm, dtype=np.float64).reshape(-1), 0.0, self.path.length_mm)
+        i = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
+        kp = self.path.kappa_per_mm[i]
+        dx, dr = _step(np.full(len(s), self.kappa_b_per_mm), kp, s - self._s0[i])
+        r0 = self._r0[i]
+        return self._x0[i] + np.einsum("nij,nj->ni", r0, dx), r0 @ dr
+
+    def points(self, s_mm, offsets_uv_mm) -> np.ndarray:
+        """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``."""
+        x, r = self.frames(s_mm)
+        uv = np.asarray(offsets_uv_mm, dtype=np.float64).reshape(-1, 2)
+        return x[:, None, :] + uv[None, :, 0, None] * r[:, None, :, 1] + uv[None, :, 1, None] * r[:, None, :, 2]
+
+    def pieces(self):
+        """(s_start, length, kappa_p) of each piece."""
+        return zip(self._s0.tolist(), self.path.lengths_mm.tolist(), self.path.kappa_per_mm.tolist())
+
+
+def _step(kb: np.ndarray, kp: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Body-frame displacement (n, 3) and rotation (n, 3, 3) after arc length h with omega = (0, kb, kp)."""
+    k = np.hypot(kb, kp)
+    safe = np.where(k > 0, k, 1.0)
+    axis = np.column_stack([np.zeros_like(k), np.where(k > 0, kb / safe, 0.0), np.where(k > 0, kp / safe, 1.0)])
+    phi = k * h
+    # int_0^h Rot(a, k t) e1 dt = e1 sin(phi)/k + (a x e1)(1 - cos phi)/k   (a . e1 = 0)
+    a_x_e1 = np.column_stack([np.zeros_like(k), axis[:, 2], -axis[:, 1]])
+    sin_k = h * np.sinc(phi / np.pi)
+    vers_k = h * np.sin(phi / 2.0) * np.sinc(phi / (2.0 * np.pi))
+    dx = sin_k[:, None] * np.array([1.0, 0.0, 0.0]) + vers_k[:, None] * a_x_e1
+    return dx, _rodrigues(axis, phi)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Body:
+    """One closed body of the mesh.
+
+    Attributes
+    ----------
+    name : str
+        ``"fabric"``, ``"tube"``, ``"rail_left"`` or ``"rail_right"``.
+    vertices : ndarray (n, 3)
+        World positions [mm], plan frame, z toward the thread side; read-only.
+    faces : ndarray of int64 (m, 3)
+        Triangles, outward normals; read-only.
+    ring_size : int
+        Vertices per cross-section ring (rings are stored in order along the path;
+        vertex ``i`` belongs to ring ``i // ring_size``).
+    ring_s_mm : ndarray
+        Arc length of each ring along the path [mm]; read-only.
+    colour : tuple of int
+        RGBA 0-255.
+    """
+
+    name: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    ring_size: int
+    ring_s_mm: np.ndarray
+    colour: tuple[int, int, int, int]
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ShapeMesh:
+    """The bent actuator's bodies and what the mesh achieved.
+
+    Attributes
+    ----------
+    name : str
+        Actuator name (prefixes the body names in exported files).
+    bodies : tuple of Body
+    bent : BentPath
+    theta_deg : float
+        Bend angle the shape was built for [deg].
+    tolerance_mm : float
+        Requested chordal tolerance [mm].
+    max_deviation_mm : float
+        Realised maximum distance of the exact surface from the mesh (sampled) [mm].
+    """
+
+    name: str
+    bodies: tuple[Body, ...]
+    bent: BentPath
+    theta_deg: float
+    tolerance_mm: float
+    max_deviation_mm: float
+
+    @property
+    def triangle_count(self) -> int:
+        """Triangles over all bodies."""
+        return int(sum(len(b.faces) for b in self.bodies))
+
+    def stats(self) -> dict:
+        """Plain dict for reports."""
+        return {"triangle_count": self.triangle_count, "tolerance_mm": self.tolerance_mm,
+                "max_deviation_mm": self.max_deviation_mm, "theta_deg": self.theta_deg,
+                "bodies": {b.name: len(b.faces) for b in self.bodies}}
+
+
+@dataclass(frozen=True, slots=True)
+class _Profile:
+    """A closed convex cross-section: polygon vertices in (u, v) and how to sample its exact outline."""
+
+    name: str
+    uv: np.ndarray
+    centre: tuple[float, float] | None = None  # a circle's centre (None: straight-edged polygon)
+    radius: float = 0.0
+
+    def outline(self, j: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """Exact outline points between vertex j and j + 1 at fractions g."""
+        n = len(self.uv)
+        if self.centre is None:
+            a, b = self.uv[j % n], self.uv[(j + 1) % n]
+            return a + g[:, None] * (b - a)
+        ang = 2.0 * np.pi * (j + g) / n
+        return np.column_stack([self.centre[0] + self.radius * np.cos(ang), self.centre[1] + self.radius * np.sin(ang)])
+
+    def reach(self, axis_point: np.ndarray, axis_dir: np.ndarray) -> float:
+        """Largest distance of the exact outline from an axis lying in the (u, v) plane."""
+        normal = np.array([-axis_dir[1], axis_dir[0]])
+        if self.centre is None:
+            return float(np.abs((self.uv - axis_point) @ normal).max())
+        return float(abs((np.asarray(self.centre) - axis_point) @ normal) + self.radius)
+
+
+def _rect(name: str, u0: float, u1: float, v0: float, v1: float) -> _Profile:
+    return _Profile(name, np.array([[u0, v0], [u1, v0], [u1, v1], [u0, v1]]))
+
+
+def _circle(name: str, centre: tuple[float, float], radius: float, tol: float) -> _Profile:
+    n = max(_MIN_TUBE_SEGMENTS, math.ceil(math.pi / math.acos(max(1.0 - tol / radius, -1.0))))
+    ang = 2.0 * np.pi * np.arange(n) / n
+    return _Profile(name, np.column_stack([centre[0] + radius * np.cos(ang), centre[1] + radius * np.sin(ang)]),
+                    centre, radius)
+
+
+def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
+    """Arc lengths of the rings: per piece, steps whose sagitta stays within tol."""
+    out = [0.0]
+    kb = bent.kappa_b_per_mm
+    for s0, length, kp in bent.pieces():
+        k = math.hypot(kb, kp)
+        steps = 1
+        if k > 0:
+            # rotation axis in the (u, v) plane: through (kp, -kb)/k^2, direction (kb, kp)/k
+            rho = prof.reach(np.array([kp, -kb]) / k**2, np.array([kb, kp]) / k)
+            dphi = 2.0 * math.acos(max(1.0 - tol / rho, -1.0)) if rho > 0 else math.pi
+            steps = max(1, math.ceil(k * length / dphi))
+        out += (s0 + length * np.arange(1, steps + 1) / steps).tolist()
+    return np.array(out)
+
+
+def _sweep(bent: BentPath, prof: _Profile, s: np.ndarray, colour) -> Body:
+    ring = bent.points(s, prof.uv)  # (rings, m, 3)
+    rings, m = ring.shape[:2]
+    verts = ring.reshape(-1, 3)
+    i, j = np.meshgrid(np.arange(rings - 1), np.arange(m), indexing="ij")
+    a, b = i * m + j, i * m + (j + 1) % m
+    c, d = b + m, a + m
+    sides = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
+    fan = np.arange(1, m - 1)
+    start = np.column_stack([np.zeros_like(fan), fan + 1, fan])
+    end = np.column_stack([np.zeros_like(fan), fan, fan + 1]) + (rings - 1) * m
+    faces = np.concatenate([start, sides, end]).astype(np.int64)
+    return Body(prof.name, frozen_array(verts), frozen_array(faces).astype(np.int64), m, frozen_array(s), colour)
+
+
+def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> float:
+    """Max distance of exact-surface samples inside each side cell from that cell's two triangles."""
+    from trimesh.triangles import closest_point
+
+    m, f = body.ring_size, np.array(_SAMPLE_FRACTIONS)
+    i, j, fs, gs = (x.reshape(-1) for x in np.meshgrid(np.arange(len(s) - 1), np.arange(m), f, f, indexing="ij"))
+    sq = s[i] + fs * (s[i + 1] - s[i])
+    x, r = bent.frames(sq)
+    uv = prof.outline(j, gs)
+    pts = x + uv[:, :1] * r[:, :, 1] + uv[:, 1:] * r[:, :, 2]
+    v = body.vertices
+    a, b = i * m + j, i * m + (j + 1) % m
+    c, d = b + m, a + m
+    best = np.full(len(pts), np.inf)
+    for tri in ((a, b, c), (a, c, d)):
+        tris = np.stack([v[tri[0]], v[tri[1]], v[tri[2]]], axis=1)
+        best = np.minimum(best, np.linalg.norm(closest_point(tris, pts) - pts, axis=1))
+    return float(best.max())
+
+
+def actuator_mesh(
+    path: PlanarPath,
+    theta_deg: float,
+    *,
+    width_mm: float,
+    r0_mm: float,
+    strip_width_mm: float | None = None,
+    tolerance_mm: float = DEFAULT_CHORD_TOLERANCE_MM,
+    name: str = "actuator",
+) -> ShapeMesh:
+    """Mesh of the actuator bent by ``theta_deg`` (trimesh is used to measure the deviation).
+
+    Parameters
+    ----------
+    path : PlanarPath
+        Fabric-side centerline in the plan, length l0.
+    theta_deg : float
+        Predicted bend angle [deg].
+    width_mm : float
+        Rail spacing w [mm] (where the footprints lie), > 0.
+    r0_mm : float
+        Sleeve radius r0 [mm]: tube radius in the deformation phase, > 0.
+    strip_width_mm : float, optional
+        Fabric strip width [mm]; default ``width_mm + 2 * FABRIC_MARGIN_MM``.
+    tolerance_mm : float
+        Chordal tolerance [mm], in (0, 10].
+    name : str
+        Actuator name.
+
+    Returns
+    -------
+    ShapeMesh
+        Closed bodies ``fabric``, ``tube``, ``rail_left``, ``rail_right``.
+    """
+    w = check_range("width_mm", width_mm, low=0.0)
+    r0 = check_range("r0_mm", r0_mm, low=0.0)
+    tol = check_range("tolerance_mm", tolerance_mm, low=0.0, high=10.0, high_inclusive=True)
+    half = check_range("strip_width_mm", strip_width_mm if strip_width_mm is not None else w + 2 * FABRIC_MARGIN_MM,
+                       low=w + RAIL_BAND_WIDTH_MM) / 2.0
+    bent = BentPath.from_theta(path, theta_deg)
+    rb = RAIL_BAND_WIDTH_MM / 2.0
+    profiles = [
+        (_rect("fabric", -half, half, -FABRIC_THICKNESS_MM, 0.0), "fabric"),
+        (_circle("tube", (0.0, r0), r0, tol / 2.0), "tube"),
+        (_rect("rail_left", w / 2 - rb, w / 2 + rb, 0.0, RAIL_BAND_HEIGHT_MM), "rails"),
+        (_rect("rail_right", -w / 2 - rb, -w / 2 + rb, 0.0, RAIL_BAND_HEIGHT_MM), "rails"),
+    ]
+    bodies, dev = [], 0.0
+    for prof, colour in profiles:
+        s = _stations(bent, prof, tol / 2.0)
+        body = _sweep(bent, prof, s, _COLOURS[colour])
+        dev = max(dev, _deviation(bent, prof, s, body))
+        bodies.append(body)
+    return ShapeMesh(name, tuple(bodies), bent, float(theta_deg), tol, dev)
+
+
+def shapes_of(shapes) -> tuple[ShapeMesh, ...]:
+    """One ShapeMesh or a sequence of them, as a non-empty tuple."""
+    out = (shapes,) if isinstance(shapes, ShapeMesh) else tuple(shapes)
+    if not out or not all(isinstance(s, ShapeMesh) for s in out):
+        raise ParameterError("shapes must be a ShapeMesh or a non-empty sequence of them")
+    return out
+
+
+def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
+    import trimesh
+
+    meshes = []
+    for shape in shapes:
+        for b in shape.bodies:
+            mesh = trimesh.Trimesh(vertices=np.array(b.vertices), faces=np.array(b.faces), process=False)
+            mesh.visual.face_colors = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
+            meshes.append((f"{shape.name}.{b.name}", mesh))
+    if kind == "glb":
+        # glTF: metres, Y up.  Plan frame (x, y, z_thread) -> (x, z_thread, -y) / 1000.
+        to_gltf = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
+        to_gltf[:3, :3] *= _M_PER_MM
+        scene = trimesh.Scene()
+        for name, mesh in meshes:
+            mesh = mesh.copy()
+            mesh.apply_transform(to_gltf)
+            scene.add_geometry(mesh, geom_name=name, node_name=name)
+        return scene.export(file_type="glb")
+    joined = trimesh.util.concatenate([m for _, m in meshes])
+    data = joined.export(file_type=kind)
+    return data.encode("utf-8") if isinstance(data, str) else data
+
+
+def mesh_bytes(shapes, suffix: str) -> bytes:
+    """File contents of one shape or several in the format named by ``suffix`` (``".glb"``...).
+
+    Raises
+    ------
+    ExportError
+        Unknown suffix; the message lists the valid ones.
+    """
+    kind = MESH_FORMATS.get(str(suffix).lower())
+    if kind is None:
+        raise ExportError(f"mesh file suffix must be one of {', '.join(MESH_FORMATS)}, got {suffix!r}")
+    return _export_bytes(shapes_of(shapes), kind)
+
+
+def write_mesh(shapes, path) -> Path:
+    """Write one shape or several (one per actuator) to ``path``; the suffix picks the format.
+
+    See ``MESH_FORMATS``.  GLB keeps one named node per body (``"A1.tube"``); STL, OBJ
+    and PLY get one joined mesh.
+
+    Raises
+    ------
+    ExportError
+        Unknown suffix (the message lists the valid ones) or the file cannot be written.
+    """
+    p = Path(path)
+    write_bytes_atomic(p, mesh_bytes(shapes, p.suffix or p.name))
+    return p

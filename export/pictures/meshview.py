@@ -1,0 +1,138 @@
+"""A picture of the 3D shape without a GL context: orthographic projection, painter's algorithm, SVG.
+
+Triangles facing away from the camera are dropped (the bodies are closed), the rest
+are flat-shaded (ambient + Lambert) and drawn far to near.  Good enough for a report
+or a README; the GLB file is the real 3D output.
+
+The camera turns the plan frame by ``azimuth_deg`` about +z, then tilts it by
+``elevation_deg`` about the screen's horizontal axis; the view is along -z' (x' right,
+y' up on screen)::
+
+        y' (up)
+        |
+        +---- x' (right)      camera looks along -z'
+       /
+      z' (toward the viewer)
+
+Examples
+--------
+>>> from embroact.export.pictures.mesh import PlanarPath, actuator_mesh
+>>> from embroact.export.pictures.meshview import mesh_svg, view_rotation
+>>> import numpy as np
+>>> view_rotation(0.0, 90.0).round(6).tolist() == np.eye(3).tolist()  # from the top: plan x right, y up
+True
+>>> m = actuator_mesh(PlanarPath.straight(50.0), 45.0, width_mm=7.0, r0_mm=2.58, tolerance_mm=0.5)
+>>> mesh_svg(m).startswith('<svg')
+True
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...patterns.base.errors import check_range
+from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+
+__all__ = ["view_rotation", "mesh_svg"]
+
+_AMBIENT = 0.45
+_LIGHT = np.array([-0.35, 0.55, 0.75]) / np.linalg.norm([-0.35, 0.55, 0.75])
+_MARGIN_PX = 12.0
+_SPLIT_FRACTION = 0.04
+_HANGING = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
+
+
+def view_rotation(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
+    """World-to-view rotation (3, 3): rows are the screen x', y' and the toward-viewer z' axes.
+
+    ``elevation_deg = 90`` looks straight down on the plan; ``0`` looks along the plan
+    from the side (plan +z up on screen).
+    """
+    az = math.radians(check_range("azimuth_deg", azimuth_deg, low=-360.0, high=360.0, low_inclusive=True,
+                                  high_inclusive=True))
+    el = math.radians(check_range("elevation_deg", elevation_deg, low=-90.0, high=90.0, low_inclusive=True,
+                                  high_inclusive=True))
+    ca, sa, ce, se = math.cos(az), math.sin(az), math.cos(el), math.sin(el)
+    right = np.array([ca, sa, 0.0])
+    toward = np.array([sa * ce, -ca * ce, se])  # el = 90: +z (top view); el = 0: horizontal
+    up = np.cross(toward, right)
+    return np.vstack([right, up, toward])
+
+
+def _behind_fabric(shape, body, rot: np.ndarray) -> np.ndarray:
+    """Per face: True where a thread-side body sits on a stretch of fabric whose thread side faces away.
+
+    Such faces lie behind the (opaque, thin) fabric; drawing them first keeps depth sorting
+    of large fabric triangles from letting them show through.
+    """
+    if body.name == "fabric":
+        return np.zeros(len(body.faces), dtype=bool)
+    s = np.asarray(body.ring_s_mm)[np.asarray(body.faces) // body.ring_size].mean(axis=1)
+    _, frames = shape.bent.frames(s)
+    return (frames[:, :, 2] @ rot[2]) < 0.0
+
+
+def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, width_px: float = 480.0,
+             hanging: bool = True, title: str | None = None) -> str:
+    """The shape as a flat-shaded SVG picture (string).
+
+    Parameters
+    ----------
+    shape : ShapeMesh or sequence of ShapeMesh
+        From :func:`embroact.export.pictures.mesh.actuator_mesh` (several: drawn together).
+    azimuth_deg, elevation_deg : float
+        Camera direction [deg] (see :func:`view_rotation`).
+    width_px : float
+        Picture width [px], >= 100; the height follows the shape's aspect.
+    hanging : bool
+        Turn the plan frame first so that the strip hangs from its clamped start, as in
+        the paper's photographs: plan +x -> down, plan +z (thread side) -> world +x.
+    title : str, optional
+        Caption drawn in the top-left corner.
+    """
+    import svgwrite
+    from trimesh.remesh import subdivide_to_size
+
+    from .mesh import shapes_of
+
+    width = check_range("width_px", width_px, low=100.0, low_inclusive=True, high=10000.0)
+    rot = view_rotation(azimuth_deg, elevation_deg) @ (_HANGING if hanging else np.eye(3))
+    shapes = shapes_of(shape)
+    # long thin triangles defeat depth sorting: split them to a fraction of the shape's size
+    split = _SPLIT_FRACTION * max(s.bent.path.length_mm for s in shapes)
+    tris, cols, behind = [], [], []
+    for s in shapes:
+        for b in s.bodies:
+            v, f, parent = subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), split, return_index=True)
+            tris.append(v[f] @ rot.T)
+            cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(f), 1)))
+            behind.append(_behind_fabric(s, b, rot)[parent])
+    tri, col, behind = np.concatenate(tris), np.concatenate(cols), np.concatenate(behind)
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    norm = np.linalg.norm(n, axis=1)
+    keep = (n[:, 2] > 0) & (norm > 0)
+    tri, col, behind, n = tri[keep], col[keep], behind[keep], n[keep] / norm[keep, None]
+    shade = _AMBIENT + (1.0 - _AMBIENT) * np.clip(n @ _LIGHT, 0.0, 1.0)
+    rgb = np.clip(col * shade[:, None], 0, 255).round().astype(int)
+    # parts behind the fabric first, then everything far to near
+    order = np.lexsort((tri[:, :, 2].mean(axis=1), ~behind))
+    lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
+    scale = (width - 2 * _MARGIN_PX) / max(hi[0] - lo[0], DEFAULT_TOLERANCES.length_mm)
+    top = 30.0 if title else _MARGIN_PX
+    height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
+    dwg = svgwrite.Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}",
+                           debug=False)
+    dwg.add(dwg.rect((0, 0), (f"{width:.0f}", f"{height:.0f}"), fill="#fff"))
+    g = dwg.g(stroke_width=0.4, stroke_linejoin="round", **{"class": "mesh"})
+    dwg.add(g)
+    px = np.empty_like(tri[:, :, :2])
+    px[:, :, 0] = _MARGIN_PX + (tri[:, :, 0] - lo[0]) * scale
+    px[:, :, 1] = top + (hi[1] - tri[:, :, 1]) * scale
+    for k in order:
+        c = "#{:02x}{:02x}{:02x}".format(*rgb[k])
+        g.add(dwg.polygon([(round(float(x), 1), round(float(y), 1)) for x, y in px[k]], fill=c, stroke=c))
+    if title:
+        dwg.add(dwg.text(title, insert=(_MARGIN_PX, 20), font_size=14, font_weight="bold",
+                         style="font-family:Helvetica,Arial,sans-serif"))
+    return dwg.tostring()

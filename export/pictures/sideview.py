@@ -1,0 +1,208 @@
+"""Bent-shape side view (SVG): strip and tube at several pressures, as the paper photographs them.
+
+The top end is clamped, the strip hangs down, the lower end is free.  The model bends
+the fabric side (length ``l0``) into a circular arc of total angle ``theta``, curvature
+``kappa = theta / l0`` (uniform along the strip).  Seen from the side, the thread side
+(tube side) faces +x at the clamp; positive ``theta`` bends toward the back of the
+fabric, i.e. toward -x, with the tube on the outside of the bend::
+
+      ##  clamp
+      |o
+      |o      theta > 0: curls to the left (toward the fabric's back)
+       \\o
+         `--o
+
+With the clamp at the origin, x across, z up, arc length s along the fabric line:
+
+    x(s) = (cos(kappa s) - 1) / kappa,    z(s) = -sin(kappa s) / kappa
+
+and a line at distance ``o`` on the thread side is ``(x, z) + o * (cos(kappa s), -sin(kappa s))``.
+
+Examples
+--------
+>>> from embroact.export.pictures.sideview import SidePanel, bent_line_mm, side_view_svg
+>>> pts = bent_line_mm(100.0, 180.0, 0.0)
+>>> [round(float(v), 3) for v in pts[-1]]   # half a turn: back up beside the clamp
+[-63.662, 0.0]
+>>> panel = SidePanel("w = 7 mm", length_mm=100.0, r0_mm=2.58,
+...                   pressure_kpa=[0.0, 150.0], theta_deg=[0.0, 40.0])
+>>> side_view_svg([panel]).startswith('<svg')
+True
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ...patterns.base.errors import ParameterError, check_range
+from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+from .chart import PALETTE
+
+__all__ = ["FABRIC_THICKNESS_MM", "SidePanel", "bent_line_mm", "side_view_svg"]
+
+#: Drawn thickness of the fabric strip [mm] (woven cotton; for the picture only).
+FABRIC_THICKNESS_MM = 0.4
+
+_PX_PER_MM = 3.0
+_PANEL_GAP_MM = 24.0
+_MARGIN_MM = 8.0
+_LEGEND_ROW_MM = 6.0
+_LEGEND_WIDTH_MM = 50.0
+_FONT = "font-family:Helvetica,Arial,sans-serif"
+
+
+@dataclass(frozen=True, slots=True)
+class SidePanel:
+    """One actuator's bent shapes at several pressures.
+
+    Parameters
+    ----------
+    label : str
+        Panel title.
+    length_mm : float
+        Fabric-side length l0 [mm], > 0.
+    r0_mm : float
+        Sleeve radius r0 [mm] (the tube is drawn with diameter 2 r0 on the thread side), > 0.
+    pressure_kpa, theta_deg : array-like
+        Pressures [kPa] and the predicted bend angles there [deg]; NaN angles are skipped.
+    """
+
+    label: str
+    length_mm: float
+    r0_mm: float
+    pressure_kpa: tuple[float, ...]
+    theta_deg: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        check_range("length_mm", self.length_mm, low=0.0)
+        check_range("r0_mm", self.r0_mm, low=0.0)
+        p = tuple(float(v) for v in np.asarray(self.pressure_kpa, dtype=np.float64).reshape(-1))
+        t = tuple(float(v) for v in np.asarray(self.theta_deg, dtype=np.float64).reshape(-1))
+        if len(p) != len(t):
+            raise ParameterError(f"theta_deg must have one value per pressure ({len(p)}), got {len(t)}")
+        object.__setattr__(self, "pressure_kpa", p)
+        object.__setattr__(self, "theta_deg", t)
+
+
+def _sample_count(theta_rad: float, radius_mm: float, tol_mm: float) -> int:
+    """Segments so that the sagitta radius*(1 - cos(dphi/2)) stays <= tol_mm."""
+    if theta_rad == 0.0:
+        return 1
+    dphi = 2.0 * math.acos(max(1.0 - tol_mm / radius_mm, -1.0))
+    return max(1, math.ceil(abs(theta_rad) / dphi))
+
+
+def bent_line_mm(length_mm: float, theta_deg: float, offset_mm: float, *,
+                 tolerance_mm: float = DEFAULT_TOLERANCES.curve_flatness_mm) -> np.ndarray:
+    """Side-view points (x, z) [mm] of a line at ``offset_mm`` on the thread side of the bent strip.
+
+    Parameters
+    ----------
+    length_mm : float
+        Fabric-side length l0 [mm].
+    theta_deg : float
+        Bend angle [deg]; positive curls toward -x (the fabric's back).
+    offset_mm : float
+        Distance from the fabric line toward the thread side [mm] (negative: into the fabric).
+    tolerance_mm : float
+        Maximum chordal error of the polyline [mm].
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        From the clamp (s = 0) to the free end (s = l0).
+    """
+    l0 = check_range("length_mm", length_mm, low=0.0)
+    th = math.radians(check_range("theta_deg", theta_deg))
+    kappa = th / l0
+    radius = abs(1.0 / kappa + offset_mm) if kappa else math.inf
+    s = np.linspace(0.0, l0, _sample_count(th, radius, tolerance_mm) + 1)
+    a = kappa * s
+    # (cos a - 1)/kappa = -s sin(a/2) sinc(a/2);  sin(a)/kappa = s sinc(a); np.sinc(x) = sin(pi x)/(pi x)
+    x = -s * np.sin(a / 2.0) * np.sinc(a / (2.0 * np.pi)) + offset_mm * np.cos(a)
+    z = -s * np.sinc(a / np.pi) - offset_mm * np.sin(a)
+    return np.column_stack([x, z])
+
+
+def _band(length_mm: float, theta_deg: float, lo_mm: float, hi_mm: float) -> np.ndarray:
+    """Closed outline of the region between two offsets."""
+    return np.vstack([bent_line_mm(length_mm, theta_deg, lo_mm), bent_line_mm(length_mm, theta_deg, hi_mm)[::-1]])
+
+
+def _states(panel: SidePanel) -> list[tuple[float, float]]:
+    return [(p, t) for p, t in zip(panel.pressure_kpa, panel.theta_deg) if math.isfinite(t)]
+
+
+def _panel_bounds(panel: SidePanel) -> tuple[float, float, float, float]:
+    pts = [np.array([[-3.0, 4.0], [2.0 * panel.r0_mm + 3.0, 0.0]])]
+    pts += [_band(panel.length_mm, t, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for _, t in _states(panel)]
+    allp = np.vstack(pts)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def _pts(xz: np.ndarray, dx: float, dy: float) -> list[tuple[float, float]]:
+    """Model (x, z) [mm] to SVG user units (mm, y down), shifted, rounded to 1 um."""
+    return [(round(float(x) + dx, 3), round(dy - float(z), 3)) for x, z in xz]
+
+
+def _draw_panel(dwg, parent, panel: SidePanel, dx: float, dy: float, left: float, legend_y: float) -> None:
+    r0 = panel.r0_mm
+    g = dwg.g(**{"class": "panel"})
+    parent.add(g)
+    states = _states(panel)
+    for k, (p, t) in enumerate(states):
+        colour = PALETTE[k % len(PALETTE)]
+        sg = dwg.g(**{"class": "state", "data-pressure-kpa": f"{p:g}", "data-theta-deg": f"{t:.6g}"})
+        g.add(sg)
+        sg.add(dwg.polygon(_pts(_band(panel.length_mm, t, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
+                           stroke=colour, stroke_width=0.25, **{"class": "tube"}))
+        sg.add(dwg.polygon(_pts(_band(panel.length_mm, t, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
+                           stroke=colour, stroke_width=0.3, **{"class": "fabric"}))
+        tip = _pts(bent_line_mm(panel.length_mm, t, r0)[-1:], dx, dy)[0]
+        sg.add(dwg.circle(tip, 1.0, fill=colour))
+        sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
+        y = legend_y + k * _LEGEND_ROW_MM
+        sg.add(dwg.rect((left, y - 3.0), (4.0, 4.0), fill=colour))
+        sg.add(dwg.text(f"{k + 1}: {p:g} kPa, {t:.1f} deg", insert=(left + 5.5, y + 0.6), font_size=3.6))
+    g.add(dwg.rect((dx - 3.0, dy - 4.0), (2.0 * r0 + 6.0, 4.0), fill="#444", **{"class": "clamp"}))
+    g.add(dwg.text(panel.label, insert=(left, dy - 8.0), font_size=4.5, font_weight="bold"))
+
+
+def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side view, clamped top)") -> str:
+    """Side views of one or more actuators, left to right, as an SVG document string.
+
+    Units in the drawing are millimetres (1 user unit = 1 mm, shown at 3 px/mm); a
+    10 mm scale bar is drawn.  Each state is a ``<g class="state">`` carrying
+    ``data-pressure-kpa`` and ``data-theta-deg``.
+    """
+    import svgwrite
+
+    if not panels:
+        raise ParameterError("panels must hold at least one side view")
+    bounds = [_panel_bounds(p) for p in panels]
+    top = max(b[3] for b in bounds) + 22.0
+    bottom = min(b[1] for b in bounds)
+    legend_y = top - bottom + 6.0
+    rows = max(len(_states(p)) for p in panels)
+    x, lefts = _MARGIN_MM, []
+    for b in bounds:
+        lefts.append(x)
+        x += max(b[2] - b[0], _LEGEND_WIDTH_MM) + _PANEL_GAP_MM
+    width = x - _PANEL_GAP_MM + _MARGIN_MM + 20.0
+    height = legend_y + rows * _LEGEND_ROW_MM + _MARGIN_MM
+    dwg = svgwrite.Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+                           viewBox=f"0 0 {width:.3f} {height:.3f}", debug=False)
+    dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
+    root = dwg.g(style=_FONT)
+    dwg.add(root)
+    root.add(dwg.text(title, insert=(_MARGIN_MM, 7.0), font_size=5, font_weight="bold"))
+    for panel, b, left in zip(panels, bounds, lefts):
+        _draw_panel(dwg, root, panel, left - b[0], top, left, legend_y)
+    bar_x, bar_y = width - _MARGIN_MM - 10.0, height - _MARGIN_MM
+    root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
+    root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
+    return dwg.tostring()

@@ -1,0 +1,213 @@
+"""Stitch preview: the plan drawn to scale in millimetres (SVG, svgwrite).
+
+The drawing's user unit is the millimetre (``viewBox`` in mm, ``width``/``height``
+with ``mm`` units), so it prints at 1:1 and measures true in Inkscape.  The plan
+frame has y up; SVG's y points down, so y is negated when drawing.
+
+Layers (``<g id=...>``, bottom to top): ``fabric`` outline, ``corridor`` (tube
+corridor, no needle may land there), ``tube``, ``centerline``, ``rails``,
+``travel`` (jumps, dashed), ``legs`` (thread legs coloured by sewing order, from
+:data:`RAMP` start colour to end colour), ``needle-points``, ``ties``
+(tie-in triangles, tie-off squares), ``stops`` and ``trims`` (labelled marks),
+``scale-bar`` and ``params`` (realised parameters as text).
+
+Examples
+--------
+>>> from embroact.patterns.plan import Command, Role, StitchPlan
+>>> plan = StitchPlan.from_records([
+...     (0, 3.5, Command.STOP, Role.CONTROL), (0, 3.5, Command.STITCH, Role.TIE_IN),
+...     (1, -3.5, Command.STITCH, Role.LEG), (2, 3.5, Command.STITCH, Role.TIE_OFF),
+...     (2, 3.5, Command.TRIM, Role.CONTROL), (2, 3.5, Command.END, Role.CONTROL, -1)])
+>>> import xml.etree.ElementTree as ET
+>>> root = ET.fromstring(plan_svg(plan))
+>>> root.get("width"), root.get("viewBox")
+('55.5mm', '-8 -11.5 55.5 37.8')
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ...patterns.base.errors import check_range
+from ...patterns.plan import Command, Role, StitchPlan
+
+__all__ = ["RAMP", "plan_svg"]
+
+RAMP = ((0x31, 0x36, 0x95), (0x2C, 0x7F, 0xB8), (0x41, 0xB6, 0xC4), (0xFD, 0xAE, 0x61), (0xD7, 0x30, 0x27))
+"""Sewing-order colour ramp, first leg to last (blue -> red)."""
+
+_RAMP_BINS = 24
+_FONT_MM = 2.5
+_TEXT_ROW_MM = 3.6
+_SCALE_CANDIDATES_MM = (1, 2, 5, 10, 20, 50, 100, 200, 500)
+_CHAR_EM = 0.55  # mean glyph advance of a sans-serif font, in font sizes (to size the text area)
+_FONT = "font-family:Helvetica,Arial,sans-serif"
+
+
+def _f(v: float) -> str:
+    s = f"{v:.3f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _pts(xy) -> str:
+    """SVG points/path coordinates, y negated, 3 decimals."""
+    return " ".join(f"{_f(x)},{_f(-y)}" for x, y in np.asarray(xy, dtype=np.float64).reshape(-1, 2))
+
+
+def _ramp(t: float) -> str:
+    t = min(max(t, 0.0), 1.0) * (len(RAMP) - 1)
+    i = min(int(t), len(RAMP) - 2)
+    a, b = np.array(RAMP[i]), np.array(RAMP[i + 1])
+    r, g, bl = np.rint(a + (b - a) * (t - i)).astype(int)
+    return f"#{r:02x}{g:02x}{bl:02x}"
+
+
+def _geom_xy(g) -> list[np.ndarray]:
+    """Coordinate arrays of a shapely (multi)polygon's rings or (multi)line's parts."""
+    parts = getattr(g, "geoms", [g])
+    out = []
+    for p in parts:
+        if p.is_empty:
+            continue
+        if p.geom_type == "Polygon":
+            out += [np.asarray(p.exterior.coords)] + [np.asarray(r.coords) for r in p.interiors]
+        else:
+            out.append(np.asarray(p.coords))
+    return out
+
+
+def _ring_path(rings: list[np.ndarray]) -> str:
+    return " ".join(f"M {_pts(r)} Z" for r in rings)
+
+
+def _param_lines(plan: StitchPlan) -> list[str]:
+    n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
+    lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
+             f"{n_trim} trim{'s' * (n_trim != 1)}"]
+    for a in plan.actuators:
+        r = a.realised
+        angle = f", alpha0 {r.angle_deg:.2f} deg" if a.pattern == "cross" else ""
+        lines.append(
+            f"{a.name} {a.pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
+            f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"
+        )
+    return lines
+
+
+def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float = 0.15,
+             leg_width_mm: float = 0.12, show_points: bool = True) -> str:
+    """Render ``plan`` as an SVG document (a string) drawn to scale in mm.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+    margin_mm : float
+        Fabric margin around the design [mm], in [0, 100].
+    point_radius_mm, leg_width_mm : float
+        Needle-point dot radius and thread stroke width [mm], in (0, 5].
+    show_points : bool
+        Draw a dot at every needle point.
+    """
+    import svgwrite
+
+    margin = check_range("margin_mm", margin_mm, low=0.0, high=100.0, low_inclusive=True, high_inclusive=True)
+    pr = check_range("point_radius_mm", point_radius_mm, low=0.0, high=5.0, high_inclusive=True)
+    lw = check_range("leg_width_mm", leg_width_mm, low=0.0, high=5.0, high_inclusive=True)
+
+    corridors = [a.corridor() for a in plan.actuators]
+    xy = plan.xy_mm
+    boxes = [np.array(c.bounds).reshape(2, 2) for c in corridors if not c.is_empty]
+    if len(xy):
+        boxes.append(np.vstack([xy.min(axis=0), xy.max(axis=0)]))
+    lo, hi = (np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)) if boxes else (
+        np.zeros(2), np.zeros(2))
+    fab_lo, fab_hi = lo - margin, hi + margin
+    texts = _param_lines(plan)
+    pad = 3.0
+    text_w = max(len(t) for t in texts) * _CHAR_EM * _FONT_MM
+    width = max(fab_hi[0] - fab_lo[0], text_w) + 2 * pad
+    text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0
+    height = (fab_hi[1] - fab_lo[1]) + 2 * pad + text_h
+    vx, vy = fab_lo[0] - pad, -fab_hi[1] - pad
+    dwg = svgwrite.Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}",
+                           profile="full", debug=False)
+    dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
+    layer = {name: dwg.add(dwg.g(id=name)) for name in (
+        "fabric", "corridor", "tube", "centerline", "rails", "travel", "legs", "needle-points", "ties", "stops",
+        "trims", "scale-bar", "params")}
+    layer["fabric"].add(dwg.rect((_f(fab_lo[0]), _f(-fab_hi[1])), (_f(fab_hi[0] - fab_lo[0]), _f(fab_hi[1] - fab_lo[1])),
+                                 fill="#f6f1e7", stroke="#9c8f78", stroke_width="0.3"))
+    for a, corr in zip(plan.actuators, corridors):
+        layer["corridor"].add(dwg.path(d=_ring_path(_geom_xy(corr)), fill="#d9d9d9", fill_opacity="0.6", stroke="none"))
+        tube = a.centerline.as_linestring().buffer(a.tube.outer_radius_mm, cap_style="flat")
+        layer["tube"].add(dwg.path(d=_ring_path(_geom_xy(tube)), fill="#b0b0b0", stroke="#707070", stroke_width="0.1"))
+        layer["centerline"].add(dwg.polyline(_pts_list(a.centerline.points_mm), fill="none", stroke="#505050",
+                                             stroke_width="0.1", stroke_dasharray="1,0.6"))
+        for rail in a.rails():
+            layer["rails"].add(dwg.polyline(_pts_list(np.asarray(rail.coords)), fill="none", stroke="#2a9d8f",
+                                            stroke_width="0.1", stroke_dasharray="0.4,0.4"))
+    _draw_records(dwg, layer, plan, pr, lw, show_points)
+    _draw_scale_and_text(dwg, layer, texts, fab_lo[0], -fab_lo[1] + pad + 2.0, fab_hi[0] - fab_lo[0])
+    return dwg.tostring()
+
+
+def _pts_list(xy) -> list[tuple[str, str]]:
+    return [(_f(x), _f(-y)) for x, y in np.asarray(xy, dtype=np.float64).reshape(-1, 2)]
+
+
+def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool) -> None:
+    cmds, xy = plan.commands, plan.xy_mm
+    stitch = cmds == Command.STITCH
+    # legs: consecutive STITCH records, binned by sewing order into one path per colour
+    legs = np.flatnonzero(stitch[1:] & stitch[:-1])
+    if len(legs):
+        bins = np.minimum((np.arange(len(legs)) * _RAMP_BINS) // len(legs), _RAMP_BINS - 1)
+        for b in range(_RAMP_BINS):
+            sel = legs[bins == b]
+            if len(sel) == 0:
+                continue
+            d = " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in sel)
+            layer["legs"].add(dwg.path(d=d, fill="none", stroke=_ramp(b / max(_RAMP_BINS - 1, 1)),
+                                       stroke_width=_f(lw), stroke_linecap="round"))
+    # travel: from the previous record to every JUMP/STOP that moves
+    moves = [i for i in range(1, len(cmds)) if cmds[i] in (Command.JUMP, Command.STOP) and np.any(xy[i] != xy[i - 1])]
+    if moves:
+        d = " ".join(f"M {_pts(xy[i - 1])} L {_pts(xy[i])}" for i in moves)
+        layer["travel"].add(dwg.path(d=d, fill="none", stroke="#888888", stroke_width="0.15", stroke_dasharray="0.8,0.5"))
+    if show_points:
+        for x, y in xy[stitch]:
+            layer["needle-points"].add(dwg.circle((_f(x), _f(-y)), _f(pr), fill="#111111"))
+    s = 0.5
+    for i in np.flatnonzero(stitch & (plan.roles == Role.TIE_IN)):
+        x, y = xy[i]
+        layer["ties"].add(dwg.polygon([(_f(x), _f(-y - s)), (_f(x - s), _f(-y + s)), (_f(x + s), _f(-y + s))],
+                                      fill="none", stroke="#1a9850", stroke_width="0.12", **{"class": "tie-in"}))
+    for i in np.flatnonzero(stitch & (plan.roles == Role.TIE_OFF)):
+        x, y = xy[i]
+        layer["ties"].add(dwg.rect((_f(x - s / 2), _f(-y - s / 2)), (_f(s), _f(s)), fill="none", stroke="#d73027",
+                                   stroke_width="0.12", **{"class": "tie-off"}))
+    names = {k: a.name for k, a in enumerate(plan.actuators)}
+    for n, i in enumerate(np.flatnonzero(cmds == Command.STOP), start=1):
+        x, y = xy[i]
+        k = int(plan.actuator[i])
+        g = layer["stops"].add(dwg.g(**{"class": "stop"}))
+        g.add(dwg.circle((_f(x), _f(-y)), "1.2", fill="none", stroke="#c51b7d", stroke_width="0.25"))
+        g.add(dwg.text(f"STOP {n}: lay tube {names.get(k, f'A{k + 1}')}", insert=(_f(x + 1.6), _f(-y - 1.4)),
+                       font_size=_f(_FONT_MM * 0.8), fill="#c51b7d", style=_FONT))
+    for n, i in enumerate(np.flatnonzero(cmds == Command.TRIM), start=1):
+        x, y = xy[i]
+        g = layer["trims"].add(dwg.g(**{"class": "trim"}))
+        c = 0.8
+        g.add(dwg.path(d=f"M {_f(x - c)},{_f(-y - c)} L {_f(x + c)},{_f(-y + c)} M {_f(x - c)},{_f(-y + c)} "
+                         f"L {_f(x + c)},{_f(-y - c)}", stroke="#542788", stroke_width="0.25", fill="none"))
+        g.add(dwg.text(f"TRIM {n}", insert=(_f(x + 1.2), _f(-y + 2.4)), font_size=_f(_FONT_MM * 0.8),
+                       fill="#542788", style=_FONT))
+
+
+def _draw_scale_and_text(dwg, layer, texts: list[str], x0: float, y0: float, avail: float) -> None:
+    bar = max([c for c in _SCALE_CANDIDATES_MM if c <= max(avail * 0.4, 1)] or [1])
+    g = layer["scale-bar"]
+    g.add(dwg.rect((_f(x0), _f(y0)), (_f(bar), "0.8"), fill="#000000"))
+    g.add(dwg.text(f"{bar} mm", insert=(_f(x0 + bar + 1.0), _f(y0 + 0.9)), font_size=_f(_FONT_MM), style=_FONT))
+    for n, line in enumerate(texts, start=1):
+        layer["params"].add(dwg.text(line, insert=(_f(x0), _f(y0 + 1.0 + n * _TEXT_ROW_MM)), font_size=_f(_FONT_MM),
+                                     style=_FONT))

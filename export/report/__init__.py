@@ -1,0 +1,1 @@
+"""embroact.export.report."""

@@ -1,0 +1,269 @@
+"""Build a design: machine files, worksheet, stitch preview, and whatever later stages add.
+
+Order of work (nothing is written until every output is ready in memory)::
+
+    design --build_plan--> plan --check(design, plan)--> findings --gate--+
+                                                                          |
+        machine files (one per format) <-- encode ------------------------+
+        worksheet.json / worksheet.txt <-- worksheet(plan, findings)      |
+        preview.svg                    <-- plan_svg(plan)                 |
+        stage outputs                  <-- stage(context) for each stage -+
+                                                  |
+                         write every file atomically into out_dir
+
+Plug-in points
+--------------
+``check``
+    ``check(design, plan) -> sequence of Finding``: the design-rule checks.  Any
+    finding whose ``is_error`` is true stops the build with
+    :class:`DesignRuleError` (nothing written) unless ``force=True``.  The
+    findings are listed on the worksheet either way.
+``stages``
+    Callables ``stage(context: BuildContext) -> {file name: str | bytes}`` for the
+    bend chart, side view, 3D model, report...  They run after the built-in
+    outputs and see them in ``context.outputs``; their files are written with the
+    rest.  A stage that raises stops the build before anything is written.
+
+Examples
+--------
+>>> import tempfile, os
+>>> from embroact.patterns.plan import Command, Role, StitchPlan
+>>> plan = StitchPlan.from_records([
+...     (0, 3.5, Command.STOP, Role.CONTROL), (0, 3.5, Command.STITCH, Role.TIE_IN),
+...     (1, -3.5, Command.STITCH, Role.LEG), (1, -3.5, Command.TRIM, Role.CONTROL),
+...     (1, -3.5, Command.END, Role.CONTROL, -1)], name="demo")
+>>> out = tempfile.mkdtemp()
+>>> res = build_plan_outputs(plan, out, formats=("dst", "pes"))
+>>> sorted(os.listdir(out))
+['demo.dst', 'demo.pes', 'preview.svg', 'worksheet.json', 'worksheet.txt']
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Callable, Mapping, Sequence
+
+from ...patterns.base.errors import ExportError, ParameterError, PatternError
+from ...patterns.plan import StitchPlan
+from ..files.atomic import check_writable_dir, write_files_atomic
+from ..machine.formats import FORMATS, WriteResult, encode
+from .worksheet import DEFAULT_SPEED_SPM, worksheet
+
+__all__ = [
+    "DEFAULT_SPEED_SPM",
+    "DesignRuleError",
+    "BuildContext",
+    "BuildResult",
+    "Stage",
+    "parse_formats",
+    "safe_stem",
+    "write_outputs",
+    "build",
+    "build_plan_outputs",
+]
+
+
+class DesignRuleError(PatternError):
+    """The design-rule checks found errors; ``findings`` holds all findings."""
+
+    def __init__(self, findings: Sequence) -> None:
+        errors = [f for f in findings if getattr(f, "is_error", False)]
+        first = errors[0]
+        more = f" (and {len(errors) - 1} more errors)" if len(errors) > 1 else ""
+        super().__init__(
+            f"design-rule error {getattr(first, 'code', '')}: {getattr(first, 'message', first)}{more}; "
+            "nothing written (use --force to write anyway)"
+        )
+        self.findings = tuple(findings)
+
+
+@dataclass(frozen=True, slots=True)
+class BuildContext:
+    """What a stage sees.
+
+    Attributes
+    ----------
+    design : object or None
+    plan : StitchPlan
+    findings : tuple
+    worksheet : Worksheet
+    out_dir : Path
+    outputs : Mapping[str, bytes]
+        Files prepared so far (name -> bytes), read-only view.
+    """
+
+    design: object
+    plan: StitchPlan
+    findings: tuple
+    worksheet: object
+    out_dir: Path
+    outputs: Mapping[str, bytes]
+
+
+Stage = Callable[[BuildContext], Mapping[str, "str | bytes"]]
+
+
+@dataclass(frozen=True, slots=True)
+class BuildResult:
+    """What :func:`build` wrote.
+
+    Attributes
+    ----------
+    out_dir : str
+    files : tuple of str
+        File names written, in order.
+    machine_files : tuple of WriteResult
+    worksheet : Worksheet
+    findings : tuple
+    plan : StitchPlan
+    """
+
+    out_dir: str
+    files: tuple[str, ...]
+    machine_files: tuple[WriteResult, ...]
+    worksheet: object = field(compare=False)
+    findings: tuple = ()
+    plan: StitchPlan | None = field(default=None, compare=False)
+
+    def as_dict(self) -> dict:
+        """JSON-ready summary (unit-suffixed keys inside the worksheet)."""
+        return {
+            "out_dir": self.out_dir,
+            "files": list(self.files),
+            "machine_files": [m.as_dict() for m in self.machine_files],
+            "stitch_count": self.worksheet.stitch_count,
+            "stop_count": self.worksheet.stop_count,
+            "findings": [f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in self.findings],
+            "actuators": self.worksheet.as_dict()["actuators"],
+        }
+
+
+def parse_formats(text: str | Sequence[str]) -> tuple[str, ...]:
+    """``"dst,pes"`` or ``["dst", "pes"]`` -> ``("dst", "pes")``; unknown names list the valid ones.
+
+    Examples
+    --------
+    >>> parse_formats("DST, pes")
+    ('dst', 'pes')
+    """
+    items = text.split(",") if isinstance(text, str) else list(text)
+    out = []
+    for item in items:
+        key = str(item).strip().lower().lstrip(".")
+        if key not in FORMATS:
+            raise ParameterError(f"format must be one of {', '.join(FORMATS)}, got {item!r}")
+        if key not in out:
+            out.append(key)
+    if not out:
+        raise ParameterError(f"format must name at least one of {', '.join(FORMATS)}, got {text!r}")
+    return tuple(out)
+
+
+def safe_stem(name: str) -> str:
+    """A file-name stem from a design name (letters, digits, ``-``, ``_``, ``.``).
+
+    Examples
+    --------
+    >>> safe_stem("paper zigzag / w=7")
+    'paper_zigzag_w_7'
+    """
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._")
+    return stem or "design"
+
+
+def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes"]) -> tuple[str, ...]:
+    """Write prepared files atomically into ``out_dir``; return their names in order.
+
+    Every file is prepared (written and synced to a temporary file) before the first is
+    replaced, so a failure while writing changes none of them
+    (:func:`embroact.export.files.atomic.write_files_atomic`); the error names the file.
+    """
+    d = check_writable_dir(out_dir)
+    write_files_atomic({d / name: data.encode("utf-8") if isinstance(data, str) else data
+                        for name, data in outputs.items()})
+    return tuple(outputs)
+
+
+def build_plan_outputs(
+    plan: StitchPlan,
+    out_dir: str | os.PathLike,
+    *,
+    design=None,
+    formats: Sequence[str] = ("dst",),
+    force: bool = False,
+    split_long: bool = False,
+    speed_spm: float = DEFAULT_SPEED_SPM,
+    check: Callable | None = None,
+    stages: Sequence[Stage] = (),
+) -> BuildResult:
+    """Build the outputs of an existing plan (see the module docstring)."""
+    from ..pictures.stitches import plan_svg
+
+    d = check_writable_dir(out_dir)
+    fmts = parse_formats(formats)
+    findings = tuple(check(design, plan)) if check is not None else ()
+    if not force and any(getattr(f, "is_error", False) for f in findings):
+        raise DesignRuleError(findings)
+    stem = safe_stem(getattr(design, "name", None) or plan.name)
+    outputs: dict[str, bytes] = {}
+    machine = []
+    for fmt in fmts:
+        data, res = encode(plan, fmt, split_long=split_long)
+        name = f"{stem}.{fmt}"
+        outputs[name] = data
+        machine.append(replace(res, path=name))
+    ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings)
+    outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
+    outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
+    outputs["preview.svg"] = plan_svg(plan).encode("utf-8")
+    for stage in stages:
+        ctx = BuildContext(design, plan, findings, ws, d, dict(outputs))
+        for name, data in stage(ctx).items():
+            outputs[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+    files = write_outputs(d, outputs)
+    return BuildResult(str(d), files, tuple(machine), ws, findings, plan)
+
+
+def build(
+    design,
+    out_dir: str | os.PathLike,
+    *,
+    formats: Sequence[str] | None = None,
+    force: bool = False,
+    split_long: bool = False,
+    speed_spm: float | None = None,
+    check: Callable | None = None,
+    stages: Sequence[Stage] = (),
+) -> BuildResult:
+    """Build ``design`` into ``out_dir``: ``<name>.<fmt>`` per format, worksheet, preview, stage outputs.
+
+    Parameters
+    ----------
+    design : Design
+        From :func:`embroact.patterns.design.default_design` or
+        :func:`embroact.export.files.designfile.load_design`.
+    out_dir : path
+        Existing, writable directory (else :class:`ExportError`, nothing written).
+    formats : sequence of str, optional
+        Machine formats; default the design's ``machine.format`` (DST by default).
+    force : bool
+        Write even when ``check`` reports errors.
+    split_long : bool
+        Split legs above a format's per-record limit (see :func:`embroact.export.machine.formats.write`).
+    speed_spm : float, optional
+        Machine speed for the worksheet [stitches/min]; default the design's ``machine.speed_spm``.
+    check, stages
+        Plug-in points (module docstring).
+    """
+    from ...patterns.design import build_plan
+
+    check_writable_dir(out_dir)
+    machine = getattr(design, "machine", None)
+    formats = formats if formats is not None else (getattr(machine, "format", "dst"),)
+    speed_spm = speed_spm if speed_spm is not None else getattr(machine, "speed_spm", DEFAULT_SPEED_SPM)
+    plan = build_plan(design)
+    return build_plan_outputs(plan, out_dir, design=design, formats=formats, force=force, split_long=split_long,
+                              speed_spm=speed_spm, check=check, stages=stages)

@@ -1,0 +1,274 @@
+"""One report per build: ``report.json`` (machine-readable) and a self-contained ``report.html``.
+
+The HTML file needs nothing but itself: the pictures are inline SVG, the style is an
+inline ``<style>``, there is no script, and a Content-Security-Policy forbids any
+external load.  Both files are built from the same plain dict (:func:`report_data`),
+so they always agree.  Same input, same bytes: no time stamps, keys in a fixed order.
+
+Examples
+--------
+>>> from embroact.export.report.report import report_data, report_html, report_json
+>>> data = report_data(title="demo", actuators=[{"name": "A1", "derived": {"r0_mm": 2.58}}],
+...                    findings=[{"code": "E1", "severity": "error", "message": "too close",
+...                               "actuator": "A1", "stitch_index": 3, "xy_mm": [1.0, 2.0], "fix": "widen"}])
+>>> '"r0_mm": 2.58' in report_json(data)
+True
+>>> html = report_html(data, figures={"bend": "<svg></svg>"})
+>>> html.startswith("<!DOCTYPE html>") and "too close" in html and "<script" not in html
+True
+"""
+from __future__ import annotations
+
+import html
+import json
+import math
+from typing import Mapping, Sequence
+
+from .. import __version__
+
+__all__ = ["FIGURES", "report_data", "report_json", "report_html", "finding_dict"]
+
+#: Figure keys report_html knows, in page order, with their headings.
+FIGURES = {
+    "stitches": "Stitch preview",
+    "bend": "Pressure-bend chart",
+    "side": "Bent shape, side view",
+    "shape3d": "3D shape",
+}
+
+_FINDING_KEYS = ("code", "severity", "message", "actuator", "stitch_index", "xy_mm", "fix")
+_CSP = "default-src 'none'; style-src 'unsafe-inline'; img-src data:"
+_STYLE = """
+body{font-family:Helvetica,Arial,sans-serif;margin:24px auto;max-width:1100px;color:#222;padding:0 16px}
+h1{font-size:24px;margin-bottom:4px}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:3px;margin-top:28px}
+.sub{color:#666;margin-top:0}
+figure{margin:8px 0;overflow-x:auto}figure svg{max-width:100%;height:auto;border:1px solid #eee;box-sizing:border-box}
+#stitches svg{width:100%;max-height:80vh}
+summary{cursor:pointer;font-size:14px;margin:6px 0}
+table{border-collapse:collapse;font-size:13px;margin:8px 0}
+th,td{border:1px solid #ddd;padding:3px 8px;text-align:left;vertical-align:top}
+th{background:#f4f4f4}td.num{text-align:right;font-variant-numeric:tabular-nums}
+.error{background:#fde2e2}.warning{background:#fff4d6}.info{background:#e8f1fb}
+.ok{color:#2a7a2a}.note{color:#666;font-size:12px}
+ul.stops{font-size:13px}
+"""
+
+
+def _clean(value):
+    """JSON-safe copy: numpy scalars/arrays to Python, non-finite floats to None, tuples to lists."""
+    if isinstance(value, Mapping):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    if hasattr(value, "tolist"):
+        return _clean(value.tolist())
+    if hasattr(value, "value") and hasattr(value, "name"):  # enums
+        return _clean(value.value)
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    return value
+
+
+def finding_dict(finding) -> dict:
+    """A design-rule finding (``Finding`` object or dict) as a dict with the standard keys."""
+    if hasattr(finding, "as_dict"):
+        d = dict(finding.as_dict())
+    elif isinstance(finding, Mapping):
+        d = dict(finding)
+    else:
+        d = {k: getattr(finding, k, None) for k in _FINDING_KEYS}
+    for k in _FINDING_KEYS:
+        d.setdefault(k, None)
+    return _clean(d)
+
+
+def report_data(
+    *,
+    title: str,
+    actuators: Sequence[Mapping],
+    findings=(),
+    worksheet: Mapping | None = None,
+    mesh: Mapping | None = None,
+    generator: str = f"embroact {__version__}",
+) -> dict:
+    """The report as one plain, JSON-ready dict.
+
+    Parameters
+    ----------
+    title : str
+        Design name.
+    actuators : sequence of mapping
+        Per actuator: ``name``, ``derived`` (``DerivedGeometry.as_dict()``), optionally
+        ``curve`` (``pressure_kpa``, ``theta_deg``, ``status`` lists, ``method``) and
+        ``side_view`` (list of ``{"pressure_kpa", "theta_deg"}``).
+    findings : iterable
+        ``Finding`` objects or dicts (code, severity, message, actuator, stitch_index, xy_mm, fix).
+    worksheet : mapping, optional
+        ``Worksheet.as_dict()``.
+    mesh : mapping, optional
+        3D output facts: file name, pressure, triangle count, tolerance, realised deviation.
+    """
+    return _clean({
+        "title": str(title),
+        "generator": generator,
+        "actuators": [dict(a) for a in actuators],
+        "findings": [finding_dict(f) for f in findings],
+        "worksheet": dict(worksheet) if worksheet is not None else None,
+        "mesh": dict(mesh) if mesh is not None else None,
+    })
+
+
+def report_json(data: Mapping) -> str:
+    """``report.json`` text: indented, keys in insertion order, no NaN (strict JSON)."""
+    return json.dumps(_clean(data), indent=2, allow_nan=False) + "\n"
+
+
+def _e(v) -> str:
+    return html.escape("" if v is None else str(v), quote=True)
+
+
+def _num(v) -> str:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return _e(v)
+    return _e(f"{v:.6g}" if isinstance(v, float) else v)
+
+
+def _cell(v) -> str:
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return f'<td class="num">{_num(v)}</td>'
+    if isinstance(v, list):
+        return f"<td>{_e(', '.join(_num(x) for x in v))}</td>"
+    return f"<td>{_e(v)}</td>"
+
+
+def _derived_table(actuators: Sequence[Mapping]) -> str:
+    rows: list[str] = []
+    for a in actuators:
+        for k in a.get("derived") or {}:
+            if k not in rows:
+                rows.append(k)
+    if not rows:
+        return '<p class="note">no actuators</p>'
+    head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in actuators)
+    body = "".join(
+        f"<tr><th>{_e(k)}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in actuators)}</tr>" for k in rows
+    )
+    return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>"
+
+
+def _findings_table(findings: Sequence[Mapping]) -> str:
+    if not findings:
+        return '<p class="ok">No design-rule findings.</p>'
+    head = "".join(f"<th>{h}</th>" for h in ("severity", "code", "message", "where", "fix"))
+    rows = []
+    for f in findings:
+        where = [str(f["actuator"])] if f.get("actuator") is not None else []
+        if f.get("stitch_index") is not None:
+            where.append(f"stitch {f['stitch_index']}")
+        if f.get("xy_mm") is not None:
+            where.append("at ({:.2f}, {:.2f}) mm".format(*f["xy_mm"]))
+        sev = str(f.get("severity") or "")
+        rows.append(f'<tr class="{_e(sev)}"><td>{_e(sev)}</td><td>{_e(f.get("code"))}</td><td>{_e(f.get("message"))}'
+                    f'</td><td>{_e(", ".join(where))}</td><td>{_e(f.get("fix"))}</td></tr>')
+    return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
+
+
+def _worksheet_html(ws: Mapping | None) -> str:
+    if not ws:
+        return '<p class="note">no worksheet</p>'
+    scalars = [(k, v) for k, v in ws.items() if not isinstance(v, (list, dict))]
+    size = ws.get("size_mm")
+    table = "".join(f"<tr><th>{_e(k)}</th>{_cell(v)}</tr>" for k, v in scalars)
+    if size:
+        table += f"<tr><th>size_mm</th>{_cell(size)}</tr>"
+    out = [f"<table>{table}</table>"]
+    if ws.get("stops"):
+        out.append("<h3>Stop sequence</h3><ul class=\"stops\">" + "".join(f"<li>{_e(s)}</li>" for s in ws["stops"])
+                   + "</ul>")
+    acts = ws.get("actuators") or []
+    if acts:
+        keys = [k for k in acts[0] if k not in ("derived", "name", "adjustments")]
+        head = "".join(f"<th>{_e(k)}</th>" for k in keys)
+        rows = "".join(f"<tr><th>{_e(a.get('name'))}</th>{''.join(_cell(a.get(k)) for k in keys)}</tr>" for a in acts)
+        notes = [f"{a.get('name')}: {s}" for a in acts for s in a.get("adjustments") or []]
+        out.append(f"<h3>Per actuator</h3><table><tr><th>actuator</th>{head}</tr>{rows}</table>")
+        if notes:
+            out.append("<ul class=\"stops\">" + "".join(f"<li>{_e(n)}</li>" for n in notes) + "</ul>")
+    return "".join(out)
+
+
+def _curve_table(actuators: Sequence[Mapping]) -> str:
+    with_curves = [a for a in actuators if a.get("curve")]
+    if not with_curves:
+        return ""
+    pressures = with_curves[0]["curve"]["pressure_kpa"]
+    if any(a["curve"]["pressure_kpa"] != pressures for a in with_curves):
+        return ""
+    head = "".join(f"<th>{_e(a.get('name'))} theta [deg]</th><th>status</th>" for a in with_curves)
+    rows = []
+    for i, p in enumerate(pressures):
+        cells = "".join(_cell(a["curve"]["theta_deg"][i]) + _cell((a["curve"].get("status") or [""] * (i + 1))[i])
+                        for a in with_curves)
+        rows.append(f"<tr>{_cell(p)}{cells}</tr>")
+    return (f"<details><summary>Predicted curve ({len(pressures)} pressures)</summary><table><tr><th>pressure [kPa]</th>"
+            f"{head}</tr>{''.join(rows)}</table></details>")
+
+
+def _mesh_note(mesh: Mapping | None) -> str:
+    if not mesh:
+        return ""
+    parts = [f"{k.replace('_', ' ')}: {_num(v)}" for k, v in mesh.items() if not isinstance(v, (dict, list))]
+    return f'<p class="note">{_e("; ".join(parts))}</p>'
+
+
+def _inline_svg(svg: str) -> str:
+    """SVG text ready to sit inside HTML: any XML declaration or doctype dropped."""
+    start = svg.find("<svg")
+    return svg[start:] if start >= 0 else svg
+
+
+def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> str:
+    """The self-contained ``report.html`` text.
+
+    Parameters
+    ----------
+    data : mapping
+        From :func:`report_data`.
+    figures : mapping, optional
+        SVG texts keyed by the names in :data:`FIGURES`; missing ones are left out.
+    """
+    figures = dict(figures or {})
+    unknown = sorted(set(figures) - set(FIGURES))
+    if unknown:
+        from ...patterns.base.errors import ParameterError
+
+        raise ParameterError(f"figure names must be among {', '.join(FIGURES)}, got {', '.join(unknown)}")
+    acts = data.get("actuators") or []
+    findings = data.get("findings") or []
+    n_err = sum(1 for f in findings if f.get("severity") == "error")
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f'<meta http-equiv="Content-Security-Policy" content="{_CSP}">',
+        '<meta name="viewport" content="width=device-width, initial-scale=1">',
+        f"<title>{_e(data.get('title'))} - embroact report</title>",
+        f"<style>{_STYLE}</style></head><body>",
+        f"<h1>{_e(data.get('title'))}</h1>",
+        f'<p class="sub">{len(acts)} actuator(s); {len(findings)} design-rule finding(s), {n_err} error(s); '
+        f"{_e(data.get('generator'))}</p>",
+    ]
+    for key, heading in FIGURES.items():
+        if key in figures:
+            parts.append(f'<section id="{key}"><h2>{heading}</h2><figure>{_inline_svg(figures[key])}</figure>')
+            if key == "bend":
+                parts.append(_curve_table(acts))
+            if key == "shape3d":
+                parts.append(_mesh_note(data.get("mesh")))
+            parts.append("</section>")
+    parts += [
+        '<section id="derived"><h2>Derived geometry</h2>', _derived_table(acts), "</section>",
+        '<section id="worksheet"><h2>Worksheet</h2>', _worksheet_html(data.get("worksheet")), "</section>",
+        '<section id="findings"><h2>Design-rule findings</h2>', _findings_table(findings), "</section>",
+        "</body></html>",
+    ]
+    return "\n".join(parts) + "\n"

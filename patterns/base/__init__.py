@@ -1,0 +1,1 @@
+"""embroact.patterns.base."""

@@ -1,0 +1,21 @@
+"""Read-only numpy arrays for the frozen values embroact returns.
+
+Examples
+--------
+>>> from embroact.patterns.base.arrays import frozen_array
+>>> a = frozen_array([1, 2])
+>>> a.dtype.name, a.flags.writeable
+('float64', False)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["frozen_array"]
+
+
+def frozen_array(values, dtype=np.float64) -> np.ndarray:
+    """A read-only copy of ``values`` (``dtype=None`` keeps the input's dtype)."""
+    a = np.array(values, dtype=dtype, copy=True)
+    a.setflags(write=False)
+    return a
