@@ -137,6 +137,9 @@ def constraint(theta, geo: Geometry):
     stays accurate (and real) as ``sin(beta) -> 1`` at any angle.
     """
     gt = geo.gamma * theta
+    if not geo.s0.any():  # zigzag rows only: u = 1 + gamma theta, r = r0, beta = 0
+        zero = 0.0 * gt
+        return geo.l0 * (1.0 + gt), geo.r0 + zero, zero, 1.0 + zero
     gs = gt * geo.s0
     gs2 = gs * gs
     den = 1.0 + gs2
@@ -315,8 +318,36 @@ def _energy_of_theta(geo: Geometry, form: str):
     return e
 
 
+def _zigzag_rate_stable(theta, geo: Geometry):
+    """(dE/dtheta, dV/dtheta) of the stable form on zigzag rows (beta0 = 0), the fast path.
+
+    On the zigzag ``r = r0`` (so ``lambda2 = 1`` and ``s = c/r0^2`` are constants),
+    ``m = A - 1 = (r0/l0) theta`` exactly and ``dV/dtheta = pi r0^3``: the bracket's
+    A-derivative of :func:`_gradient_stable` alone, with nothing recomputed.
+    """
+    c, k = geo.c, geo.r0 / geo.l0
+    m = k * theta
+    A = 1.0 + m
+    ia = 1.0 / A
+    ia2 = ia * ia
+    s = c / (geo.r0 * geo.r0)
+    a = 1.0 + 2.0 * m
+    w = m * m * s * ia
+    b = a + w
+    T, sa, sb = _stable_t(a, b, c)
+    hs = 0.5 / (sa + sb)
+    T_a = -T * (0.5 / a + hs / sa)
+    T_b = -T * (0.5 / b + hs / sb)
+    f_a = (c * (1.0 + 2.0 * ia2) + 0.5 * c * m * ia2 * ((2.0 * A - s) - m * (1.0 - s * ia))
+           + 2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2))
+    de = geo.e_scale * k * f_a
+    return np.where(theta == 0.0, 0.0, de), np.full(de.shape, np.pi) * geo.r0 ** 3
+
+
 def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
     """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives."""
+    if form == "stable" and derivative == "analytic" and not geo.s0.any():
+        return _zigzag_rate_stable(theta, geo)
     l, r, sinb, cosb = constraint(theta, geo)
     l_t, r_t = constraint_rates(theta, l, r, sinb, cosb, geo)
     v_l, v_r = volume_gradient(l, r, geo)
