@@ -33,7 +33,7 @@ import numpy as np
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.design import ActuatorSpec, generate_actuator
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
-from embroact.predict.calibration import calibrated_model
+from embroact.predict.calibration import model_for
 from embroact.predict.curve import curve, lockup
 from embroact.predict.derived import derive, derive_from_values
 from embroact.predict.status import status_names
@@ -68,7 +68,8 @@ def derived_geometry(name, params, geometry: str, tube: Tube):
 def prototype(name, params, geometry: str, tube: Tube) -> dict:
     """Geometry, paper calibration and predicted curve of one prototype, as plain data."""
     d = derived_geometry(name, params, geometry, tube)
-    model, cal = calibrated_model(d)  # looked up at the requested width / angle
+    choice = model_for(d)  # looked up at the requested width / angle
+    model, cal = choice.model, choice.calibration
     c = curve(model, PRESSURES_KPA)
     lock_deg, lock_kpa = lockup(model)
     idx = [int(np.flatnonzero(PRESSURES_KPA == p)[0]) for p in REPORT_AT_KPA]

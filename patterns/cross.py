@@ -69,7 +69,7 @@ from .params import CrossParams, StitchOptions, Tube
 from .plan import Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["cross", "cross_stations", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
+__all__ = ["cross", "cross_stations", "cross_realised_params", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
 
 #: Valid values of ``adjust``.
 ADJUST_METHODS = ("auto", "interval", "angle")
@@ -137,6 +137,16 @@ def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") 
     n, s, _, _ = closing(params, adjust)
     span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
     return 2.0 * span / s + n * (2.0 + 2.0 * s / MAX_EDGE_STITCH_MM)  # an outer rail is at most 2x as long
+
+
+def cross_realised_params(params: CrossParams, adjust: str = "auto") -> CrossParams:
+    """The parameters the generator uses: interval or angle adjusted so the pattern closes (:func:`closing`).
+
+    >>> cross_realised_params(CrossParams(7.0, 1.4, 30.0), adjust="angle").angle_deg
+    30.96375653207352
+    """
+    _, s, alpha, _ = closing(params, adjust)
+    return CrossParams(params.width_mm, s, alpha)
 
 
 def cross(

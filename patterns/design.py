@@ -38,10 +38,13 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     rotation_deg = 0.0               # direction of a straight path / rotation of a path
     tie_stitch_mm = 0.7              # lock stitch length
     tie_count = 3                    # lock stitches at each end
-    [actuator.model]                 # optional prediction settings
-    g_mpa = 2.7                      # effective shear modulus G (default: from calibration)
-    p0_kpa = 85.0                    # transition pressure override
-    calibration = "paper-2025"
+    [actuator.model]                 # optional prediction settings (docs/model.md, calibration policy)
+    calibration = "paper-2025"       # a built-in set's name, or a calibration file (relative to this file)
+    # g_mpa = 2.7                    # effective shear modulus G (default: from the calibration set)
+    # p0_kpa = 85.0                  # transition pressure P0 (default: see p0_source)
+    p0_source = "calibration"        # P0 without p0_kpa: "calibration" (the set's fitted P0, the
+                                     # pair G and P0 was fitted as) or "geometry" (the tube law at r0)
+    tube_law = "paper"               # inflation-phase tube law: "paper" or "thick-wall"
 
 A ``path`` is rotated by ``rotation_deg`` about its own (0, 0) and then moved by
 ``origin_mm``.
@@ -72,15 +75,17 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from .centerline import Centerline, as_centerline
+import enum
+
 from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
-from .cross import closing, cross, cross_stations
+from .base.choices import check_choice
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .base.tolerances import DEFAULT_TOLERANCES
+from .centerline import Centerline, as_centerline
+from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
-from .base.tolerances import DEFAULT_TOLERANCES
-from .zigzag import zigzag, zigzag_stations
 
 __all__ = [
     "MachineSettings",
@@ -94,12 +99,23 @@ __all__ = [
     "generate_actuator",
     "build_plan",
     "join_plans",
-    "PATTERN_PARAMS",
+    "P0Source",
+    "TubeLaw",
 ]
 
-#: pattern name -> parameter class
-PATTERN_PARAMS = {"zigzag": ZigzagParams, "cross": CrossParams}
-_GENERATORS = {"zigzag": zigzag, "cross": cross}
+
+class P0Source(str, enum.Enum):
+    """Where an actuator's transition pressure P0 comes from when no ``p0_kpa`` is given."""
+
+    CALIBRATION = "calibration"  #: the calibration set's fitted P0 (fitted together with its G)
+    GEOMETRY = "geometry"  #: the tube law's pressure at the sleeve radius r0 of the generated stitches
+
+
+class TubeLaw(str, enum.Enum):
+    """Inflation-phase law of the tube (docs/model.md, inflation phase)."""
+
+    PAPER = "paper"  #: the paper's fitted Neo-Hookean law with G_e
+    THICK_WALL = "thick-wall"  #: exact thick-walled plane-strain Neo-Hookean tube
 
 
 @dataclass(frozen=True, slots=True)
@@ -163,16 +179,24 @@ class ModelSettings:
     Parameters
     ----------
     g_mpa : float or None
-        Effective shear modulus G [MPa], > 0; None: take it from the calibration.
+        Effective shear modulus G [MPa], > 0; None: from the calibration set.
     p0_kpa : float or None
-        Transition pressure override [kPa], >= 0; None: from the tube law.
+        Transition pressure P0 [kPa], >= 0; None: as ``p0_source`` says.
     calibration : str
-        Name of the calibration set (``embroact.predict.calibration``).
+        Name of the calibration set (``embroact.predict.calibration``; a design file may
+        name a calibration file instead, which the loader reads and replaces by its set's name).
+    p0_source : P0Source or str
+        Without ``p0_kpa``: ``"calibration"`` (default; the set's P0, fitted together with its G)
+        or ``"geometry"`` (the tube law's pressure at the realised sleeve radius r0).
+    tube_law : TubeLaw or str
+        ``"paper"`` (default) or ``"thick-wall"``.
     """
 
     g_mpa: float | None = None
     p0_kpa: float | None = None
     calibration: str = "paper-2025"
+    p0_source: P0Source = P0Source.CALIBRATION
+    tube_law: TubeLaw = TubeLaw.PAPER
 
     def __post_init__(self) -> None:
         if self.g_mpa is not None:
@@ -181,6 +205,8 @@ class ModelSettings:
             check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=1e5)
         if not isinstance(self.calibration, str) or not self.calibration:
             raise ParameterError(f"calibration must be a non-empty name, got {self.calibration!r}")
+        object.__setattr__(self, "p0_source", check_choice("p0_source", self.p0_source, P0Source))
+        object.__setattr__(self, "tube_law", check_choice("tube_law", self.tube_law, TubeLaw))
 
 
 @dataclass(frozen=True, slots=True)
@@ -211,14 +237,18 @@ class ActuatorSpec:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise ParameterError(f"name must be a non-empty string, got {self.name!r}")
-        if not isinstance(self.params, (ZigzagParams, CrossParams)):
-            raise ParameterError(f"params must be ZigzagParams or CrossParams, got {type(self.params).__name__}")
+        PATTERN_KINDS.for_params(self.params)
         object.__setattr__(self, "centerline", as_centerline(self.centerline))
 
     @property
     def pattern(self) -> str:
-        """``"zigzag"`` or ``"cross"``."""
+        """The pattern kind's name (``"zigzag"``, ``"cross"``)."""
         return self.params.pattern
+
+    @property
+    def kind_options(self) -> dict:
+        """The generator options this pattern kind takes (``{"adjust": ...}`` for cross)."""
+        return {key: getattr(self, key) for key in pattern_kind(self.pattern).options}
 
 
 @dataclass(frozen=True, slots=True)
@@ -267,7 +297,9 @@ _ACTUATOR_KEYS = (
     "name", "pattern", "width_mm", "interval_mm", "angle_deg", "adjust", "length_mm", "path",
     "origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count", "model",
 )  # fmt: skip
-_CROSS_ONLY = ("angle_deg", "adjust")
+#: keys that belong to some pattern kinds only
+_KIND_KEYS = {k for kind in PATTERN_KINDS for k in (*kind.param_keys, *kind.options)} - {"width_mm", "interval_mm"}
+_MODEL_CHOICES = {"p0_source": P0Source, "tube_law": TubeLaw}
 
 
 def _names(cls) -> tuple[str, ...]:
@@ -357,19 +389,21 @@ def _actuator(value, i: int) -> ActuatorSpec:
     a = _table(value, path, _ACTUATOR_KEYS, ("name", "pattern", "width_mm", "interval_mm"))
     name = _string(a["name"], f"{path}.name")
     pattern = _string(a["pattern"], f"{path}.pattern")
-    if pattern not in PATTERN_PARAMS:
-        raise DesignFileError(f"{path}.pattern: must be one of {', '.join(map(repr, PATTERN_PARAMS))}, got {pattern!r}")
-    param_keys = ("width_mm", "interval_mm") + (("angle_deg",) if pattern == "cross" else ())
-    if pattern != "cross":
-        for key in _CROSS_ONLY:
-            if key in a:
-                raise DesignFileError(f"{path}.{key}: only allowed with pattern 'cross', got pattern {pattern!r}")
-    else:
-        _table(a, path, _ACTUATOR_KEYS, ("angle_deg",))
-    params = _build(path, PATTERN_PARAMS[pattern], {k: _number(a[k], f"{path}.{k}") for k in param_keys})
+    if pattern not in PATTERN_KINDS.names():
+        valid = ", ".join(map(repr, PATTERN_KINDS.names()))
+        raise DesignFileError(f"{path}.pattern: must be one of {valid}, got {pattern!r}")
+    kind = pattern_kind(pattern)
+    own = set(kind.param_keys) | set(kind.options)
+    for key in _KIND_KEYS - own:
+        if key in a:
+            takers = " or ".join(repr(k.name) for k in PATTERN_KINDS if key in (*k.param_keys, *k.options))
+            raise DesignFileError(f"{path}.{key}: only allowed with pattern {takers}, got pattern {pattern!r}")
+    _table(a, path, _ACTUATOR_KEYS, kind.param_keys)
+    params = _build(path, kind.params, {k: _number(a[k], f"{path}.{k}") for k in kind.param_keys})
     opts = {k: a[k] for k in ("tie_stitch_mm", "tie_count") if k in a}
     options = _build(path, StitchOptions, {k: _number(v, f"{path}.{k}") for k, v in opts.items()})
-    model = _numbers_table(a.get("model", {}), f"{path}.model", ModelSettings, ("calibration",), ("g_mpa", "p0_kpa"))
+    model = _numbers_table(a.get("model", {}), f"{path}.model", ModelSettings, ("calibration", *_MODEL_CHOICES),
+                           ("g_mpa", "p0_kpa"))
     adjust = _string(a.get("adjust", "auto"), f"{path}.adjust")
     return _build(path, ActuatorSpec, dict(name=name, params=params, centerline=_centerline(a, path),
                                            options=options, model=model, adjust=adjust))  # fmt: skip
@@ -414,11 +448,10 @@ def design_to_dict(design: Design) -> dict:
     acts = []
     for a in design.actuators:
         d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
-        if a.pattern == "cross":
-            d["adjust"] = a.adjust
+        d.update(a.kind_options)
         d["path"] = a.centerline.points_mm.tolist()
         d.update(_plain(a.options))
-        d["model"] = {k: v for k, v in _plain(a.model).items() if v is not None}
+        d["model"] = {k: v.value if isinstance(v, enum.Enum) else v for k, v in _plain(a.model).items() if v is not None}
         acts.append(d)
     return {
         "name": design.name,
@@ -432,11 +465,9 @@ def design_to_dict(design: Design) -> dict:
 # ---------------------------------------------------------------------- plans
 def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
     """One actuator's complete plan; errors are prefixed with the actuator's name."""
-    kwargs = {"tube": tube, "options": spec.options, "name": spec.name}
-    if spec.pattern == "cross":
-        kwargs["adjust"] = spec.adjust
+    kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
     try:
-        return _GENERATORS[spec.pattern](spec.centerline, spec.params, **kwargs)
+        return pattern_kind(spec.pattern).generate(spec.centerline, spec.params, **kwargs)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
@@ -492,15 +523,11 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
     The generator's own input checks run first, so a degenerate interval or width is reported
     as such (not as an overflowing count).
     """
-    length = spec.centerline.length_mm
+    kind = pattern_kind(spec.pattern)
     try:
-        if spec.pattern == "cross":
-            _, s, alpha, _ = closing(spec.params, spec.adjust)
-            check_pattern_inputs(spec.centerline, CrossParams(spec.params.width_mm, s, alpha), tube, spec.options)
-            stations = cross_stations(length, spec.params, spec.adjust)
-        else:
-            check_pattern_inputs(spec.centerline, spec.params, tube, spec.options)
-            stations = zigzag_stations(length, spec.params)
+        check_pattern_inputs(spec.centerline, kind.realised_params(spec.params, **spec.kind_options), tube,
+                             spec.options)
+        stations = kind.stations(spec.centerline.length_mm, spec.params, **spec.kind_options)
         return check_record_count(stations, spec.options)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None

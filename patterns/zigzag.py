@@ -41,7 +41,7 @@ from .params import StitchOptions, Tube, ZigzagParams
 from .plan import Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["zigzag", "zigzag_stations", "MIN_LEGS"]
+__all__ = ["zigzag", "zigzag_stations", "zigzag_realised_params", "MIN_LEGS"]
 
 #: Fewest legs a zigzag actuator may have.
 MIN_LEGS = 2
@@ -54,6 +54,15 @@ def zigzag_stations(length_mm: float, params: ZigzagParams) -> int:
     101
     """
     return math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / params.interval_mm) + 1
+
+
+def zigzag_realised_params(params: ZigzagParams) -> ZigzagParams:
+    """The parameters the generator uses: a zigzag realises its request as given.
+
+    >>> zigzag_realised_params(ZigzagParams(7.0, 1.0))
+    ZigzagParams(width_mm=7.0, interval_mm=1.0)
+    """
+    return params
 
 
 def zigzag(

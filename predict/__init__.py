@@ -31,7 +31,10 @@ _EXPORTS = {
     "derive": "derived",
     "derive_from_values": "derived",
     "lookup": "calibration",
-    "calibrated_model": "calibration",
+    "model_for": "calibration",
+    "analyse": "analysis",
+    "DesignAnalysis": "analysis",
+    "ActuatorAnalysis": "analysis",
 }
 
 __all__ = list(_EXPORTS)

@@ -6,8 +6,19 @@ materials (tube, thread, fabric) and on the design.  A :class:`CalibrationSet`
 stores fitted points for one combination of materials; :func:`lookup` turns it into
 the parameters for any zigzag width or cross angle.
 
-The built-in set ``"paper-2025"`` holds the paper's fitted parameters (MODEL.md
-section 5: natural rubber tube, polyester thread, cotton fabric).  Users add their
+The built-in set ``"paper-2025"`` holds the paper's fitted parameters (natural rubber
+tube, polyester thread, cotton fabric; docs/model.md, calibration policy). The paper does
+not give its tube's size, so that set records no tube: with the default tube its G values
+over-predict the bends the paper measured.
+
+Provenance
+----------
+``G`` and the tube's wall constant ``r_f^2 - d_f^2`` enter the energy together, and a
+measured angle depends on how it was measured, so a set records what it was fitted with:
+the tube (:class:`CalibrationTube`, ``None`` when unknown), the tube law, the angle
+measurement (``"whole-strip"`` or a marker layout) and, per point, its pattern coordinate.
+:func:`model_for` is the one place that turns a design's settings into a model; it
+reports where G and P0 came from and notes a tube that differs from the calibrated one.  Users add their
 own sets from :func:`embroact.predict.fit.fit_design` results, either globally with
 :func:`register` or per call with ``lookup(..., sets=[...])``; TOML files are read and
 written by :mod:`embroact.export.files.calibfile`.
@@ -46,12 +57,16 @@ Examples
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Iterable, Mapping
 
+from ..patterns.base.choices import check_choice
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
+from ..patterns.design import ModelSettings, P0Source, TubeLaw
+from ..patterns.kinds import pattern_kind
 
 __all__ = [
     "PATTERNS",
@@ -66,15 +81,14 @@ __all__ = [
     "unregister",
     "get_set",
     "set_names",
-    "P0_SOURCES",
-    "calibrated_model",
-    "settings_model",
+    "CalibrationTube",
+    "ModelChoice",
+    "model_for",
 ]
 
 PATTERNS = ("zigzag", "cross")
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
-P0_SOURCES = ("calibration", "geometry")
 
 _G_MAX_MPA = 1e5
 _P_MAX_KPA = 1e5
@@ -173,6 +187,42 @@ class CalibrationPoint:
 
 
 @dataclass(frozen=True, slots=True)
+class CalibrationTube:
+    """The tube a calibration set was fitted with.
+
+    Parameters
+    ----------
+    outer_radius_mm, inner_radius_mm : float
+        Unpressurised outer and inner radius r_f, d_f [mm].
+    g_e_mpa : float
+        Its inflation-phase modulus G_e [MPa].
+    """
+
+    outer_radius_mm: float
+    inner_radius_mm: float
+    g_e_mpa: float
+
+    def __post_init__(self) -> None:
+        r_f = check_range("outer_radius_mm", self.outer_radius_mm, low=0.0, high=50.0)
+        check_range("inner_radius_mm", self.inner_radius_mm, low=0.0, low_inclusive=True, high=r_f)
+        check_range("g_e_mpa", self.g_e_mpa, low=0.0, high=1e4)
+
+    @classmethod
+    def of(cls, tube) -> "CalibrationTube":
+        """The calibration record of a :class:`~embroact.patterns.params.Tube`."""
+        return cls(tube.outer_radius_mm, tube.inner_radius_mm, tube.g_e_mpa)
+
+    def differences(self, tube) -> tuple[str, ...]:
+        """``key a != b`` for each of r_f, d_f, G_e where ``tube`` differs (relative 1e-9)."""
+        out = []
+        for key in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"):
+            a, b = getattr(self, key), getattr(tube, key)
+            if abs(a - b) > 1e-9 * max(abs(a), abs(b)):
+                out.append(f"{key} {b:g} (calibrated with {a:g})")
+        return tuple(out)
+
+
+@dataclass(frozen=True, slots=True)
 class CalibrationSet:
     """A named collection of calibration points for one combination of materials.
 
@@ -187,12 +237,22 @@ class CalibrationSet:
     materials : mapping or tuple of (key, value) pairs
         e.g. ``{"tube": "natural rubber", "thread": "polyester", "fabric": "cotton"}``;
         stored as a tuple of string pairs.
+    tube : CalibrationTube or None
+        The tube the points were fitted with; ``None``: unknown (the paper's set).
+    tube_law : str
+        Inflation-phase tube law used in the fit (``"paper"`` or ``"thick-wall"``).
+    measurement : str
+        How the fitted angles were measured: ``"whole-strip"`` (the angle between the two
+        ends of the strip) or a marker layout, e.g. ``"markers: 7 per side, 10 mm apart"``.
     """
 
     name: str
     points: tuple[CalibrationPoint, ...]
     description: str = ""
     materials: tuple[tuple[str, str], ...] = field(default=())
+    tube: CalibrationTube | None = None
+    tube_law: str = "paper"
+    measurement: str = "whole-strip"
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name or not set(self.name) <= _NAME_CHARS:
@@ -206,12 +266,31 @@ class CalibrationSet:
         object.__setattr__(self, "points", points)
         object.__setattr__(self, "materials", tuple((str(k), str(v)) for k, v in mats))
         object.__setattr__(self, "description", str(self.description))
+        if self.tube is not None and not isinstance(self.tube, CalibrationTube):
+            raise ParameterError(f"tube must be a CalibrationTube or None, got {type(self.tube).__name__}")
+        object.__setattr__(self, "tube_law", check_choice("tube_law", self.tube_law, TubeLaw).value)
+        if not isinstance(self.measurement, str) or not self.measurement.strip():
+            raise ParameterError(f"measurement must be a non-empty description, got {self.measurement!r}")
 
     def with_points(self, points: Iterable[CalibrationPoint]) -> "CalibrationSet":
         """A copy whose points are merged with ``points`` (a new point replaces an old one of the same design)."""
         new = tuple(points)
         kept = tuple(p for p in self.points if not any(p.same_design(q) for q in new))
-        return CalibrationSet(self.name, kept + new, self.description, self.materials)
+        return dataclasses.replace(self, points=kept + new)
+
+    def coverage(self) -> dict[str, tuple[float, float]]:
+        """Covered pattern coordinate per pattern: ``{"zigzag": (w_min, w_max), "cross": (a_min, a_max)}``.
+
+        Examples
+        --------
+        >>> PAPER_2025.coverage()
+        {'zigzag': (5.0, 9.0), 'cross': (15.0, 60.0)}
+        """
+        out: dict[str, tuple[float, float]] = {}
+        for p in self.points:
+            lo, hi = out.get(p.pattern, (p.coordinate, p.coordinate))
+            out[p.pattern] = (min(lo, p.coordinate), max(hi, p.coordinate))
+        return out
 
 
 @dataclass(frozen=True, slots=True)
@@ -287,8 +366,15 @@ def _paper_2025() -> CalibrationSet:
     return CalibrationSet(
         "paper-2025",
         tuple(points),
-        "Ota & Funabora 2025 (arXiv 2510.23188), fitted parameters of the seven prototypes",
+        "Ota & Funabora 2025 (arXiv 2510.23188), fitted parameters of the seven prototypes. The paper does "
+        "not give the tube's radii, so the set records no tube; G and the tube's wall constant enter the "
+        "model together, and with embroact's default tube these G values bend far more than the paper "
+        "measured (w = 5 mm zigzag: about 2000 deg at 250 kPa against about 155 deg measured at 290 kPa).",
         {"tube": "natural rubber (Hagitec T-2 02-089-01-02)", "thread": "polyester", "fabric": "cotton"},
+        tube=None,
+        tube_law="paper",
+        measurement="markers: the paper's marker sum (7 per side, 10 mm apart); how its fit compared them "
+                    "with the model is not stated",
     )
 
 
@@ -477,100 +563,116 @@ def lookup(
     )
 
 
-def calibrated_model(
-    derived,
-    *,
-    name: str = "paper-2025",
-    sets: Iterable[CalibrationSet] | None = None,
-    branch: str = "loading",
-    extrapolation: str = "clamp",
-    g_mpa: float | None = None,
-    p0_kpa: float | None = None,
-    p0: str = "calibration",
-    tube_law: str = "paper",
-):
-    """The deformation model of a design with G and P0 from a calibration set.
+@dataclass(frozen=True, slots=True)
+class ModelChoice:
+    """The model of one actuator (or segment) and where each of its numbers came from.
+
+    Attributes
+    ----------
+    model : ActuatorModel
+    calibration : Calibration or None
+        The lookup result; ``None`` when neither G nor P0 came from a set.
+    g_source, p0_source : str
+        ``"calibration <label>"``, ``"given"`` or ``"geometry (tube law <law> at r0)"``.
+    notes : tuple of str
+        Mismatches between the design and what the calibration was fitted with (tube).
+    """
+
+    model: object
+    calibration: Calibration | None
+    g_source: str
+    p0_source: str
+    notes: tuple[str, ...] = ()
+
+    def as_dict(self) -> dict:
+        """JSON-ready: G, P0, tube law, tube and the source of each."""
+        m = self.model
+        return {"g_mpa": m.g_mpa, "g_source": self.g_source, "p0_kpa": m.p0_kpa, "p0_source": self.p0_source,
+                "tube_law": m.tube_law, "tube": {"outer_radius_mm": m.outer_radius_mm,
+                                                 "inner_radius_mm": m.inner_radius_mm, "g_e_mpa": m.g_e_mpa},
+                "calibration": None if self.calibration is None else self.calibration.as_dict(),
+                "notes": list(self.notes)}
+
+
+def model_for(derived, settings: ModelSettings | None = None, *,
+              sets: Mapping[str, CalibrationSet] | Iterable[CalibrationSet] | None = None,
+              branch: str = "loading", extrapolation: str = "clamp") -> ModelChoice:
+    """The deformation model of a design under its settings: the one model factory.
+
+    Policy (docs/model.md, calibration policy): G is ``settings.g_mpa`` when given, else
+    the calibration set's; P0 is ``settings.p0_kpa`` when given, else the set's fitted P0
+    (``p0_source="calibration"``, default: the set's G and P0 were fitted as a pair) or the
+    tube law's pressure at the realised sleeve radius (``p0_source="geometry"``). The set is
+    looked up at the design's *requested* pattern coordinate (points are keyed by the design
+    a user asks for); the model uses the geometry realised by the generator.
 
     Parameters
     ----------
     derived : DerivedGeometry
-        The design (``embroact.predict.derived``).  The calibration is looked up at
-        its *requested* width and angle (calibration points are keyed by the design a
-        user asks for, as in the paper's table); the model uses the realised geometry.
-    name, sets, branch, extrapolation
+    settings : ModelSettings, optional
+        Default ``ModelSettings()`` (``paper-2025``, P0 from the set, paper tube law).
+    sets : mapping name -> CalibrationSet, or iterable of sets, optional
+        Sets searched before the registry (e.g. read from calibration files).
+    branch, extrapolation
         As for :func:`lookup`.
-    g_mpa, p0_kpa : float, optional
-        Values that override the calibration (e.g. a design file's ``[actuator.model]``).
-    p0 : str
-        Without ``p0_kpa``: ``"calibration"`` (the set's fitted P0) or ``"geometry"``
-        (the tube law's pressure at r0).
-    tube_law : str
-        Tube law of the inflation phase (``"paper"`` or ``"thick-wall"``); with
-        ``p0="geometry"`` it also gives P0.
 
     Returns
     -------
-    (ActuatorModel, Calibration or None)
-        The model, whose ``calibration`` field names where G and P0 came from, and the
-        lookup result (``None`` when both values were given).
+    ModelChoice
 
     Examples
     --------
+    >>> from embroact.patterns.design import ModelSettings
     >>> from embroact.patterns.params import Tube
     >>> from embroact.predict.derived import derive_from_values
     >>> d = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=40.0,
     ...                        length_mm=100.0, tube=Tube())
-    >>> m, cal = calibrated_model(d)
-    >>> round(m.g_mpa, 4), round(m.p0_kpa, 2), m.calibration
-    (4.8667, 166.67, 'paper-2025 (cross, angle_deg=40, interpolated in [15, 60])')
-    >>> calibrated_model(d, p0="geometry", g_mpa=2.0)[0].calibration
-    'given (g_mpa), p0_kpa from geometry'
+    >>> c = model_for(d)
+    >>> round(c.model.g_mpa, 4), round(c.model.p0_kpa, 2), c.g_source
+    (4.8667, 166.67, 'calibration paper-2025 (cross, angle_deg=40, interpolated in [15, 60])')
+    >>> c = model_for(d, ModelSettings(g_mpa=2.0, p0_source="geometry"))
+    >>> c.g_source, c.p0_source
+    ('given', 'geometry (tube law paper at r0 = 2.581 mm)')
     """
     from .curve import ActuatorModel
+    from .tubelaws import transition_pressure_kpa
 
-    _choice("p0", p0, P0_SOURCES)
-    p0_from_set = p0_kpa is None and p0 == "calibration"
+    settings = ModelSettings() if settings is None else settings
+    law = check_choice("tube_law", settings.tube_law, TubeLaw).value
+    p0_from_set = settings.p0_kpa is None and settings.p0_source is P0Source.CALIBRATION
     cal = None
-    if g_mpa is None or p0_from_set:
-        angle = derived.requested_angle_deg if derived.pattern == "cross" else None
-        cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle, name=name, sets=sets,
-                     branch=branch, extrapolation=extrapolation)
-    given = [k for k, v in (("g_mpa", g_mpa), ("p0_kpa", p0_kpa)) if v is not None]
-    parts = [cal.label] if cal is not None else []
-    if given:
-        parts.append(f"given ({', '.join(given)})")
-    if p0_kpa is None and p0 == "geometry":
-        parts.append("p0_kpa from geometry")
-    model = ActuatorModel.from_derived(
-        derived,
-        g_mpa=cal.g_mpa if g_mpa is None else g_mpa,
-        p0_kpa=cal.p0_kpa if p0_from_set else p0_kpa,
-        calibration=", ".join(parts),
-        tube_law=tube_law,
-    )
-    return model, cal
+    if settings.g_mpa is None or p0_from_set:
+        axis = pattern_kind(derived.pattern).calibration_axis
+        angle = derived.requested_angle_deg if axis == "angle_deg" else None
+        cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle,
+                     name=settings.calibration, sets=_as_sets(sets), branch=branch, extrapolation=extrapolation)
+    tube = derived.tube
+    if settings.p0_kpa is not None:
+        p0, p0_src = float(settings.p0_kpa), "given"
+    elif p0_from_set:
+        p0, p0_src = cal.p0_kpa, f"calibration {cal.label}"
+    else:
+        p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
+        p0_src = f"geometry (tube law {law} at r0 = {derived.r0_mm:.4g} mm)"
+    g, g_src = (float(settings.g_mpa), "given") if settings.g_mpa is not None else (cal.g_mpa, f"calibration {cal.label}")
+    notes: tuple[str, ...] = ()
+    if cal is not None:
+        cset = get_set(settings.calibration, _as_sets(sets))
+        if cset.tube is None:
+            notes = (f"calibration {cset.name!r} records no tube: its G may not carry over to this tube",)
+        else:
+            notes = tuple(f"tube {d}" for d in cset.tube.differences(tube))
+        if cset.tube_law != law:
+            notes += (f"tube law {law} (calibrated with {cset.tube_law})",)
+    label = g_src if g_src == p0_src else f"G {g_src}; P0 {p0_src}"
+    model = ActuatorModel(derived.pattern, length_mm=derived.length_mm, r0_mm=derived.r0_mm,
+                          beta0_deg=derived.beta0_deg, outer_radius_mm=tube.outer_radius_mm,
+                          inner_radius_mm=tube.inner_radius_mm, g_e_mpa=tube.g_e_mpa, g_mpa=g, p0_kpa=p0,
+                          tube_law=law, calibration=label)
+    return ModelChoice(model, cal, g_src, p0_src, notes)
 
 
-def settings_model(derived, settings=None):
-    """``(ActuatorModel, Calibration or None)`` under a design's ``ModelSettings``.
-
-    The design-file semantics: ``g_mpa`` None takes G from the named calibration set,
-    ``p0_kpa`` None takes P0 from the tube law (see ``patterns.design.ModelSettings``).
-    Used by the model-based rules and the build's previews, so both see one model.
-
-    Examples
-    --------
-    >>> from embroact.patterns.params import Tube
-    >>> from embroact.predict.derived import derive_from_values
-    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0,
-    ...                        length_mm=100.0, tube=Tube())
-    >>> m, cal = settings_model(d)
-    >>> m.g_mpa, round(m.p0_kpa, 2)
-    (2.7, 84.45)
-    """
-    if settings is None:
-        from ..patterns.design import ModelSettings
-
-        settings = ModelSettings()
-    return calibrated_model(derived, name=settings.calibration, g_mpa=settings.g_mpa,
-                            p0_kpa=settings.p0_kpa, p0="geometry")
+def _as_sets(sets) -> tuple[CalibrationSet, ...]:
+    if sets is None:
+        return ()
+    return tuple(sets.values()) if isinstance(sets, Mapping) else tuple(sets)

@@ -26,7 +26,7 @@ from ..patterns.base.errors import ParameterError, check_range
 from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
 from ..patterns.sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg
-from .inflation import transition_pressure_kpa
+from .tubelaws import transition_pressure_kpa
 
 __all__ = ["DerivedGeometry", "derive", "derive_from_values"]
 
@@ -134,7 +134,7 @@ def derive_from_values(
         r0_mm=r0,
         beta0_deg=beta0,
         gamma=float(gamma(r0, beta0, l0)),
-        p0_kpa=float(transition_pressure_kpa(r0, tube.outer_radius_mm, tube.g_e_mpa)),
+        p0_kpa=float(transition_pressure_kpa(r0, tube, "paper")),
         neutral_angle_deg=float(neutral_angle_deg(w, tube.outer_radius_mm)),
         tube=tube,
     )

@@ -1,10 +1,9 @@
-"""Model-based design rules (EA4xx) and :func:`check_design`, every rule on a design.
+"""Model-based design rules (EA4xx) and :func:`check_design`, every rule on an analysed design.
 
-For each actuator the model is built from the *realised* geometry
-(:func:`~embroact.predict.derived.derive`) with G from the actuator's
-``ModelSettings`` (or its calibration set) and P0 from the override or the tube
-law; its curve is evaluated from 0 to the working pressure
-``operation.max_pressure_kpa``.
+Each actuator's model is the analysis's (:func:`embroact.predict.analysis.analyse`: realised
+geometry, G and P0 by the calibration policy), its curve the analysis's curve on the standard
+grid from 0 to the working pressure ``operation.max_pressure_kpa`` in 10 kPa steps, the same
+curve the build's chart and report draw.
 
 * EA401: P0 above the working pressure (error).
 * EA402: lock-up: the bend at the working pressure reaches ``lockup_fraction``
@@ -14,14 +13,15 @@ law; its curve is evaluated from 0 to the working pressure
 * EA404: the calibration set was extrapolated for this design.
 * EA405: between P0 and the working pressure the curve leaves the model's domain,
   snaps through (UNSTABLE) or fails; or no model can be built.
-* EA406 (info): the calibration's notes (approximate match, e.g. another cross width).
+* EA406 (info): the calibration's notes (approximate match, e.g. another cross width;
+  a tube other than the calibrated one).
 
 Examples
 --------
->>> from embroact.patterns.design import default_design, build_plan
+>>> from embroact.patterns.design import default_design
+>>> from embroact.predict.analysis import analyse
 >>> from embroact.predict.rules import check_design
->>> design = default_design()
->>> [f.code for f in check_design(design, build_plan(design)) if f.is_error]
+>>> [f.code for f in check_design(analyse(default_design())) if f.is_error]
 []
 """
 from __future__ import annotations
@@ -30,9 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.base.errors import EmbroactError, ParameterError, check_range
+from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding
-from ..patterns.plan import StitchPlan
 from ..patterns.rules import RuleSettings, check_plan, sort_findings
 from .status import Status
 
@@ -53,8 +52,6 @@ class ModelRuleSettings:
         Largest acceptable |bend| at the working pressure [deg] (``operation.max_bend_deg``).
     lockup_fraction : float
         Fraction of the lock-up angle counted as locked, in (0, 1].
-    pressure_samples : int
-        Pressures evaluated from 0 to the working pressure, >= 2.
     method : str
         Model method (``embroact.predict.curve``), default ``"auto"``.
     """
@@ -62,16 +59,12 @@ class ModelRuleSettings:
     max_pressure_kpa: float = 300.0
     max_bend_deg: float = 180.0
     lockup_fraction: float = 0.9
-    pressure_samples: int = 61
     method: str = "auto"
 
     def __post_init__(self) -> None:
         check_range("max_pressure_kpa", self.max_pressure_kpa, low=0.0, high=1e5)
         check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=1e5)
         check_range("lockup_fraction", self.lockup_fraction, low=0.0, high=1.0, high_inclusive=True)
-        n = self.pressure_samples
-        if isinstance(n, bool) or not isinstance(n, int) or n < 2:
-            raise ParameterError(f"pressure_samples must be an integer >= 2, got {n!r}")
 
     @classmethod
     def for_operation(cls, operation, **overrides) -> "ModelRuleSettings":
@@ -81,18 +74,19 @@ class ModelRuleSettings:
         return cls(**base)
 
 
-def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSettings) -> list[Finding]:
-    from .calibration import settings_model
-    from .curve import curve, lockup
+def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Finding]:
+    from .analysis import pressure_grid_kpa
+    from .curve import lockup
 
-    where = dict(actuator=name)
-    try:
-        model, cal = settings_model(derived, model_settings)
-    except EmbroactError as exc:
-        return [RULES.finding("EA405", f"no model for this actuator: {exc}", **where)]
+    where = dict(actuator=act.name)
+    if act.choice is None:
+        return [RULES.finding("EA405", f"no model for this actuator: {act.model_error}", **where)]
+    model, cal = act.model, act.choice.calibration
     out = []
-    if cal is not None and cal.notes:
-        out.append(RULES.finding("EA406", f"calibration {cal.name}: " + "; ".join(cal.notes), **where))
+    notes = (cal.notes if cal is not None else ()) + act.choice.notes
+    if notes:
+        name = cal.name if cal is not None else act.spec.model.calibration
+        out.append(RULES.finding("EA406", f"calibration {name}: " + "; ".join(notes), **where))
     if cal is not None and cal.extrapolated:
         out.append(RULES.finding(
             "EA404", f"calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
@@ -102,8 +96,9 @@ def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSe
         out.append(RULES.finding(
             "EA401", f"P0 {model.p0_kpa:.1f} kPa above the working pressure {p_max:g} kPa", **where))
         return out
-    pressures = np.linspace(0.0, p_max, settings.pressure_samples)
-    c = curve(model, pressures, method=settings.method)
+    pressures = pressure_grid_kpa(p_max)
+    index = analysis.actuators.index(act)
+    c = analysis.curves(pressures, method=settings.method)[index]
     bad = np.flatnonzero(np.isin(c.status, [int(s) for s in _BAD_STATES]))
     if len(bad):
         i = int(bad[0])
@@ -124,44 +119,35 @@ def _actuator_findings(name: str, derived, model_settings, settings: ModelRuleSe
     return out
 
 
-def check_model(plan: StitchPlan, *, design=None, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
-    """The model rules (EA401-EA406) for every actuator of a plan.
+def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
+    """The model rules (EA401-EA406) for every actuator of an analysed design.
 
-    Each actuator's ``ModelSettings`` come from the design's actuator of the same
-    name (defaults without a design). Actuators without a sleeve (r0 <= r_f, EA201)
-    are skipped: the model has no inflation phase to start from.
+    Actuators without a sleeve (r0 <= r_f) are left to EA201: the model has no
+    inflation phase to start from.
     """
-    from .derived import derive
-
-    if settings is None:
-        settings = ModelRuleSettings.for_operation(design.operation) if design is not None else ModelRuleSettings()
-    specs = {a.name: a.model for a in getattr(design, "actuators", ())}
+    settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
     found: list[Finding] = []
-    for act in plan.actuators:
-        derived = derive(act)
-        if derived.has_sleeve:
-            found += _actuator_findings(act.name, derived, specs.get(act.name), settings)
+    for act in analysis.actuators:
+        if act.derived.has_sleeve:
+            found += _actuator_findings(act, analysis, settings)
     return sort_findings(found)
 
 
 def check_design(
-    design,
-    plan: StitchPlan,
+    analysis,
     *,
     format: str | None = None,
     rule_settings: RuleSettings | None = None,
     model_settings: ModelRuleSettings | None = None,
     ignore: tuple[str, ...] = (),
 ) -> tuple[Finding, ...]:
-    """Every design rule on a design and its plan: geometry, pattern, file structure, model.
+    """Every design rule on an analysed design: geometry, pattern, file structure, model.
 
     Parameters
     ----------
-    design : Design
-        Supplies machine limits (``machine``), working pressure and bend limit
-        (``operation``) and each actuator's ``ModelSettings``.
-    plan : StitchPlan
-        ``build_plan(design)``.
+    analysis : DesignAnalysis
+        From :func:`embroact.predict.analysis.analyse`; supplies the design (machine limits,
+        working pressure, bend limit), the plan and each actuator's model.
     format : str, optional
         Target machine format; default ``design.machine.format``.
     rule_settings, model_settings : optional
@@ -173,9 +159,10 @@ def check_design(
     Returns
     -------
     tuple of Finding
-        Worst first. ``build`` refuses to write machine files when any is an error.
+        Worst first. Commands that write machine files refuse when any is an error.
     """
+    design = analysis.design
     skip = {RULES[code].code for code in ignore}
     rs = rule_settings or RuleSettings.for_machine(design.machine, format=format)
-    found = list(check_plan(plan, rs)) + list(check_model(plan, design=design, settings=model_settings))
+    found = list(check_plan(analysis.plan, rs)) + list(check_model(analysis, model_settings))
     return sort_findings(f for f in found if f.code not in skip)

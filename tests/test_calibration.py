@@ -254,9 +254,10 @@ def test_missing_calibration_file(tmp_path):
         read_calibration(tmp_path / "nope.toml")
 
 
-# -- calibrated_model: every prediction names its calibration ----------------------------
+# -- model_for: the one model factory; every prediction names where G and P0 came from --------
+from embroact.patterns.design import ModelSettings  # noqa: E402
 from embroact.patterns.params import Tube  # noqa: E402
-from embroact.predict.calibration import calibrated_model  # noqa: E402
+from embroact.predict.calibration import model_for  # noqa: E402
 from embroact.predict.derived import derive_from_values  # noqa: E402
 
 
@@ -265,17 +266,23 @@ def _derived(pattern="zigzag", width_mm=7.0, angle_deg=0.0):
                               tube=Tube())
 
 
-def test_calibrated_model_sources():
-    m, cal = calibrated_model(_derived())
-    assert (m.g_mpa, m.p0_kpa, m.calibration) == (2.7, 85.0, "paper-2025 (zigzag, width_mm=7)")
-    m, cal = calibrated_model(_derived(width_mm=11.0))
-    assert cal.extrapolated and m.g_mpa == 3.4 and "clamped to [5, 9]" in m.calibration
+def test_model_for_sources():
+    c = model_for(_derived())
+    m = c.model
+    assert (m.g_mpa, m.p0_kpa, m.calibration) == (2.7, 85.0, "calibration paper-2025 (zigzag, width_mm=7)")
+    assert c.g_source == c.p0_source == "calibration paper-2025 (zigzag, width_mm=7)"
+    c = model_for(_derived(width_mm=11.0))
+    assert c.calibration.extrapolated and c.model.g_mpa == 3.4 and "clamped to [5, 9]" in c.g_source
     d = _derived()
-    m, cal = calibrated_model(d, p0="geometry")
-    assert m.p0_kpa == d.p0_kpa and m.calibration.endswith("p0_kpa from geometry") and m.g_mpa == 2.7
-    m, cal = calibrated_model(d, g_mpa=1.5, p0_kpa=60.0)
-    assert cal is None and (m.g_mpa, m.p0_kpa, m.calibration) == (1.5, 60.0, "given (g_mpa, p0_kpa)")
-    m, _ = calibrated_model(_derived("cross", angle_deg=45.0), p0_kpa=100.0)
-    assert (m.g_mpa, m.p0_kpa) == (1.3, 100.0) and m.calibration.endswith("given (p0_kpa)")
-    with pytest.raises(ParameterError, match="p0 must be one of 'calibration', 'geometry'"):
-        calibrated_model(d, p0="fitted")
+    c = model_for(d, ModelSettings(p0_source="geometry"))
+    # the paper's tube law at r0 (hand check: (G_e/2)(x - 1/x)^2 with x = r0/r_f)
+    x = d.r0_mm / 1.5
+    assert c.model.p0_kpa == pytest.approx(0.13 / 2 * (x - 1 / x) ** 2 * 1000, rel=1e-12)
+    assert c.p0_source.startswith("geometry (tube law paper") and c.model.g_mpa == 2.7
+    c = model_for(d, ModelSettings(g_mpa=1.5, p0_kpa=60.0))
+    assert c.calibration is None and (c.model.g_mpa, c.model.p0_kpa, c.model.calibration) == (1.5, 60.0, "given")
+    c = model_for(_derived("cross", angle_deg=45.0), ModelSettings(p0_kpa=100.0))
+    assert (c.model.g_mpa, c.model.p0_kpa) == (1.3, 100.0) and c.p0_source == "given"
+    assert c.notes == ("calibration 'paper-2025' records no tube: its G may not carry over to this tube",)
+    with pytest.raises(ParameterError, match="p0_source must be one of 'calibration', 'geometry'"):
+        ModelSettings(p0_source="fitted")

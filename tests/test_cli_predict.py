@@ -30,8 +30,11 @@ def test_quick_zigzag_json_matches_the_api(capsys):
     assert d["status"][:9] == ["INFLATION"] * 9 and d["status"][9] == "BENDING"
     assert len(d["radius_mm"]) == len(d["length_mm"]) == len(d["beta_deg"]) == len(d["inner_radius_mm"]) == 31
     assert d["method"] == "stable-analytic-trace"
-    assert d["calibration"] == "given (g_mpa, p0_kpa)"
-    assert d["model"] == {"g_mpa": 2.7, "p0_kpa": 85.0, "tube_law": "paper"}
+    assert d["calibration"] == "given"
+    assert d["model"]["g_source"] == d["model"]["p0_source"] == "given"
+    assert {k: d["model"][k] for k in ("g_mpa", "p0_kpa", "tube_law")} == {"g_mpa": 2.7, "p0_kpa": 85.0,
+                                                                        "tube_law": "paper"}
+    assert d["model"]["tube"] == {"outer_radius_mm": 1.5, "inner_radius_mm": 1.0, "g_e_mpa": 0.13}
     assert d["derived"]["r0_mm"] == pytest.approx(2.5814206750769157, rel=1e-12)
     assert d["lockup_theta_deg"] == pytest.approx(1888.7643, abs=1e-3)
 
@@ -40,17 +43,18 @@ def test_quick_cross_uses_the_calibration_set(capsys):
     d = run_json(capsys, "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45",
                  "--pressure-kpa", "100,200,300")
     assert d["model"]["g_mpa"] == 1.3 and d["model"]["p0_kpa"] == 170.0  # paper's fit, MODEL.md section 5
-    assert d["calibration"].startswith("paper-2025")
+    assert d["calibration"].startswith("calibration paper-2025")
+    assert d["model"]["p0_source"] == d["model"]["g_source"] == "calibration paper-2025 (cross, angle_deg=45)"
     assert d["status"] == ["INFLATION", "BENDING", "BENDING"]
     assert d["theta_deg"][1] < 0 and d["theta_deg"][2] < d["theta_deg"][1]  # alpha0 = 45 bends negative
     assert d["lockup_pressure_kpa"] is None  # lock-up is a pole: no finite pressure
 
 
 def test_p0_from_geometry_and_thick_wall_law(capsys):
-    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-from", "geometry",
+    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
                  "--pressure-kpa", "0,40,60")
     assert d["model"]["p0_kpa"] == pytest.approx(84.455, abs=1e-3)
-    t = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-from", "geometry",
+    t = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
                  "--tube-law", "thick-wall", "--pressure-kpa", "0,40,60")
     assert t["model"]["p0_kpa"] == pytest.approx(49.148, abs=1e-3) and t["model"]["tube_law"] == "thick-wall"
     assert t["status"] == ["INFLATION", "INFLATION", "BENDING"]
@@ -97,7 +101,7 @@ def test_design_file(tmp_path, capsys):
     z, x = d["actuators"]
     assert (z["name"], x["name"]) == ("Z", "X")
     assert z["pressure_kpa"] == np.arange(0.0, 201.0, 10.0).tolist()  # default: 0 to max_pressure_kpa
-    assert z["calibration"] == "given (g_mpa, p0_kpa)" and x["calibration"].startswith("paper-2025")
+    assert z["calibration"] == "given" and x["calibration"].startswith("calibration paper-2025")
     assert 72.0 < x["derived"]["length_mm"] <= 80.0  # realised: whole pattern repeats within the path
     assert x["theta_deg"][-1] > 0  # alpha0 = 15 bends positive
     only = run_json(capsys, str(path), "--actuator", "X", "--g-mpa", "5")

@@ -30,10 +30,11 @@ def _check(args):
     With ``--split-long`` the writer splits over-long legs on request, so their
     record-limit finding (EA102) is not an error of the build.
     """
+    from ...predict.analysis import analyse
     from ...predict.rules import check_design
 
     ignore = ("EA102",) if args.split_long else ()
-    return lambda design, plan: check_design(design, plan, ignore=ignore)
+    return lambda design, plan: check_design(analyse(design, plan=plan), ignore=ignore)
 
 
 def _stages(args) -> tuple:

@@ -46,13 +46,13 @@ def add_arguments(parser, name: str) -> None:
 
 
 def _check_design(args):
-    from ...patterns.design import build_plan
     from ...predict.rules import check_design
-    from ..files.designfile import load_design
+    from .target import analyse_target, load_target
 
-    design = load_design(args.input)
+    target = load_target(args, design_path=args.input)
+    design = target.design
     fmt = args.format or design.machine.format
-    findings = check_design(design, build_plan(design), format=fmt)
+    findings = check_design(analyse_target(target), format=fmt)
     return findings, {"kind": "design", "name": design.name, "format": fmt, "actuators": len(design.actuators)}
 
 

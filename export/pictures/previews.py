@@ -128,15 +128,10 @@ def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, design=None, me
     Each actuator's model follows the ``ModelSettings`` of the design's actuator of the
     same name (defaults when there is no design or no such actuator).
     """
-    from ...predict.calibration import settings_model
-    from ...predict.curve import curve
-    from ...predict.derived import derive
+    from ...predict.analysis import analyse
 
-    specs = {a.name: a.model for a in getattr(design, "actuators", ())}
-    derived = tuple(derive(a) for a in plan.actuators)
-    curves = tuple(curve(settings_model(g, specs.get(a.name))[0], pressures_kpa, method=method)
-                   for a, g in zip(plan.actuators, derived))
-    return derived, curves
+    analysis = analyse(design, plan=plan)
+    return tuple(a.derived for a in analysis.actuators), analysis.curves(pressures_kpa, method=method)
 
 
 def _status_list(status) -> list[str]:

@@ -1,0 +1,214 @@
+"""What a command works on: a design file or quick parameters, with model flags, analysed once; the rule gate.
+
+Every command that reads a design goes through :func:`load_target` (design file, or quick
+parameters that become a one-actuator design) and :func:`analyse_target` (the design
+analysed by :func:`embroact.predict.analysis.analyse` after the model flags are applied:
+flag > design file > default). Every command that writes a machine file passes its
+findings through :func:`gate`: errors refuse (exit 1, nothing written) unless ``--force``;
+warnings are summarised in one line with their codes and actuators.
+
+Examples
+--------
+>>> import argparse
+>>> from embroact.export.cli.target import add_model_arguments
+>>> p = argparse.ArgumentParser()
+>>> add_model_arguments(p)
+>>> a = p.parse_args(["--g-mpa", "2", "--p0-source", "geometry"])
+>>> a.g_mpa, a.p0_source, a.calibration
+(2.0, 'geometry', None)
+"""
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from .args import TUBE_FLAGS, add_tube_arguments
+
+__all__ = ["Target", "add_model_arguments", "add_quick_arguments", "load_target", "analyse_target", "gate",
+           "summary_line", "P0_SOURCES", "TUBE_LAWS"]
+
+#: Values of ``--p0-source`` and ``--tube-law`` (the enums' values; a test holds them equal, so
+#: that ``--help`` needs no numpy).
+P0_SOURCES = ("calibration", "geometry")
+TUBE_LAWS = ("paper", "thick-wall")
+#: Quick-parameter defaults: the paper's interval per pattern [mm] and the actuator length [mm].
+DEFAULT_INTERVAL_MM = {"zigzag": 1.0, "cross": 1.4}
+DEFAULT_LENGTH_MM = 100.0
+
+
+@dataclass(frozen=True)
+class Target:
+    """A loaded design and the calibration sets its settings name (read from files).
+
+    Attributes
+    ----------
+    design : Design
+    calibration_sets : tuple of CalibrationSet
+    source : str
+        The design file, or ``"quick parameters"``.
+    quick : bool
+        True when the design came from quick parameters (one actuator).
+    """
+
+    design: object
+    calibration_sets: tuple
+    source: str
+    quick: bool
+
+
+def add_model_arguments(group) -> None:
+    """``--g-mpa``, ``--p0-kpa``, ``--p0-source``, ``--calibration``, ``--tube-law`` (None: the design's)."""
+    group.add_argument("--g-mpa", type=float, help="effective modulus G [MPa] (default: design file, else calibration set)")
+    group.add_argument("--p0-kpa", type=float, help="transition pressure P0 [kPa] (default: see --p0-source)")
+    group.add_argument("--p0-source", choices=P0_SOURCES,
+                       help="P0 when not given: the calibration set's fitted P0 (default) or the tube law's at r0")
+    group.add_argument("--calibration", metavar="NAME|FILE.toml",
+                       help="calibration set: a built-in name or a file written by 'embroact fit' "
+                            "(default: design file's, else paper-2025)")
+    group.add_argument("--tube-law", choices=TUBE_LAWS, help="tube law of the inflation phase (default paper)")
+
+
+def add_quick_arguments(group, *, pattern: str | None, required: bool = False, tube_fields=None) -> None:
+    """Quick-parameter flags: ``--width-mm``, ``--interval-mm``, ``--angle-deg``, ``--adjust``, ``--length-mm``,
+    ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (zigzag/cross commands); None adds
+    the angle and adjust flags for a pattern chosen elsewhere."""
+    group.add_argument("--width-mm", type=float, required=required, help="rail spacing w [mm]")
+    group.add_argument("--interval-mm", type=float,
+                       help="stitch interval s: axial distance between neighbouring needle points / parallel legs [mm] "
+                            "(default: the paper's, 1.0 zigzag, 1.4 cross)")
+    if pattern != "zigzag":
+        group.add_argument("--angle-deg", type=float, required=required and pattern == "cross",
+                           help="cross embroidery angle alpha0 from the perpendicular, (0, 90) [deg]")
+        group.add_argument("--adjust", choices=("auto", "interval", "angle"), default="auto",
+                           help="cross: what to change when s and alpha0 cannot both be met (default auto)")
+    group.add_argument("--length-mm", type=float, default=DEFAULT_LENGTH_MM,
+                       help="straight path length l0 [mm] (default 100; ignored with --path)")
+    group.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm')
+    group.add_argument("--name", default="A1", help="actuator name (default A1)")
+    add_tube_arguments(group, fields=tube_fields or [flag[1] for flag in TUBE_FLAGS])
+
+
+def _quick_design(args, pattern: str):
+    from ...patterns.base.errors import ParameterError, check_range
+    from ...patterns.centerline import Centerline
+    from ...patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings
+    from ...patterns.kinds import pattern_kind
+    from .args import tube_from_args
+
+    kind = pattern_kind(pattern)
+    if args.width_mm is None:
+        raise ParameterError(f"--width-mm is required for a {pattern} design")
+    values = {"width_mm": args.width_mm,
+              "interval_mm": args.interval_mm if args.interval_mm is not None else DEFAULT_INTERVAL_MM[pattern]}
+    if kind.has_angle:
+        if getattr(args, "angle_deg", None) is None:
+            raise ParameterError(f"--angle-deg is required for the {pattern} pattern")
+        values["angle_deg"] = args.angle_deg
+    params = kind.params(**values)
+    if args.path is not None:  # an empty --path is an error, not the default straight path
+        path = Centerline.from_svg_path(args.path)
+    else:
+        path = Centerline.straight(check_range("length_mm", args.length_mm, low=0.0, high=1e5))
+    extra = {k: getattr(args, k) for k in kind.options if getattr(args, k, None) is not None}
+    spec = ActuatorSpec(getattr(args, "name", None) or "A1", params, path, **extra)
+    return Design("quick", tube_from_args(args), MachineSettings(), OperationSettings(), (spec,))
+
+
+def _calibration_file(value: str | None, base: Path) -> tuple[str | None, tuple]:
+    """(set name, (set,)) for a calibration that names a file; (value, ()) for a set name."""
+    if value is None or not (value.endswith(".toml") or "/" in value or "\\" in value):
+        return value, ()
+    from ..files.calibfile import read_calibration
+
+    cset = read_calibration(base / value)
+    return cset.name, (cset,)
+
+
+def _resolve_design_calibrations(design, base: Path):
+    """Replace calibration files named by a design's actuators by their set names; collect the sets."""
+    import dataclasses
+
+    sets, specs = {}, []
+    for spec in design.actuators:
+        name, found = _calibration_file(spec.model.calibration, base)
+        sets.update({s.name: s for s in found})
+        specs.append(dataclasses.replace(spec, model=dataclasses.replace(spec.model, calibration=name)))
+    return dataclasses.replace(design, actuators=tuple(specs)), tuple(sets.values())
+
+
+def load_target(args, *, pattern: str | None = None, design_path: str | None = None) -> Target:
+    """The design a command works on, with the model flags applied.
+
+    ``pattern`` (quick parameters) or ``design_path`` (a TOML file) or neither (the built-in default design).
+    """
+    from ...predict.analysis import with_model_overrides
+
+    if pattern is not None:
+        design, sets, source, quick = _quick_design(args, pattern), (), "quick parameters", True
+    elif design_path is not None:
+        from ..files.designfile import load_design
+
+        design = load_design(design_path)
+        design, sets = _resolve_design_calibrations(design, Path(design_path).parent)
+        source, quick = str(design_path), False
+    else:
+        from ...patterns.design import default_design
+
+        design, sets, source, quick = default_design(), (), "built-in default design", False
+    flag_cal, flag_sets = _calibration_file(getattr(args, "calibration", None), Path.cwd())
+    overrides = {k: getattr(args, k, None) for k in ("g_mpa", "p0_kpa", "p0_source", "tube_law")}
+    design = with_model_overrides(design, calibration=flag_cal, **overrides)
+    merged = {s.name: s for s in sets + flag_sets}
+    return Target(design, tuple(merged.values()), source, quick)
+
+
+def analyse_target(target: Target):
+    """The :class:`~embroact.predict.analysis.DesignAnalysis` of a target."""
+    from ...predict.analysis import analyse
+
+    return analyse(target.design, calibration_sets=target.calibration_sets)
+
+
+def summary_line(findings) -> str:
+    """One line: counts of all findings by severity, and the codes with their actuators.
+
+    Examples
+    --------
+    >>> from embroact.patterns.base.findings import RULES
+    >>> fs = [RULES.finding("EA403", "x", actuator="A1"), RULES.finding("EA403", "y", actuator="A2"),
+    ...       RULES.finding("EA405", "z", actuator="A1")]
+    >>> summary_line(fs)
+    '0 errors, 3 warnings, 0 info: EA403 (A1, A2), EA405 (A1)'
+    """
+    from ...patterns.base.findings import count_by_severity
+
+    counts = count_by_severity(findings)
+    by_code: dict[str, list[str]] = {}
+    for f in findings:
+        names = by_code.setdefault(f.code, [])
+        if f.actuator is not None and f.actuator not in names:
+            names.append(f.actuator)
+    codes = ", ".join(f"{c} ({', '.join(n)})" if n else c for c, n in sorted(by_code.items()))
+    head = f"{counts['error']} errors, {counts['warning']} warnings, {counts['info']} info"
+    return f"{head}: {codes}" if codes else head
+
+
+def gate(findings, *, force: bool, stream=None) -> bool:
+    """The rule gate of every command that writes a machine file.
+
+    Prints the summary line (and each error) to ``stream`` (stderr) when there are findings.
+    Returns True when the command may write: no errors, or ``force``.
+    """
+    stream = sys.stderr if stream is None else stream
+    findings = tuple(findings)
+    if not findings:
+        return True
+    errors = [f for f in findings if f.is_error]
+    print(f"design rules: {summary_line(findings)}", file=stream)
+    for f in errors:
+        print(f"error: {f.code} {f.message} ({f.place()})", file=stream)
+    if errors and not force:
+        print("embroact: error: design-rule errors; nothing written (use --force to write anyway)", file=stream)
+        return False
+    return True

@@ -1,0 +1,143 @@
+"""The pattern kinds embroact knows, in one registry: parameters, generator, record estimate, calibration axis.
+
+Importing this module is light (no numpy, no shapely): a kind names its generator module,
+which loads on first use, so the command line can list the choices in ``--help`` cheaply.
+
+Every place that needs to know "which patterns exist" or "what is special about this one"
+(the design-file schema, the command line's choices, the record-count estimate, the
+calibration lookup) asks :data:`PATTERN_KINDS` instead of branching on a name. A third
+pattern is one new generator module plus one :func:`register` call.
+
+Examples
+--------
+>>> from embroact.patterns.kinds import PATTERN_KINDS, pattern_kind
+>>> PATTERN_KINDS.names()
+('zigzag', 'cross')
+>>> k = pattern_kind("cross")
+>>> k.param_keys, k.calibration_axis, k.options
+(('width_mm', 'interval_mm', 'angle_deg'), 'angle_deg', ('adjust',))
+>>> pattern_kind("zigzag").calibration_axis
+'width_mm'
+>>> try:
+...     pattern_kind("satin")
+... except ValueError as exc:
+...     print(exc)
+pattern must be one of 'zigzag', 'cross', got 'satin'
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, fields
+from typing import Callable
+
+from .base.errors import ParameterError
+from .params import CrossParams, ZigzagParams
+
+__all__ = ["PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+
+
+@dataclass(frozen=True, slots=True)
+class PatternKind:
+    """What embroact needs to know about one pattern kind.
+
+    Attributes
+    ----------
+    name : str
+        The pattern's name in design files and on the command line.
+    params : type
+        Its frozen parameter class (``ZigzagParams``, ``CrossParams``).
+    module : str
+        The generator module inside ``embroact.patterns``; it defines ``<name>`` (the
+        generator), ``<name>_stations`` and ``<name>_realised_params`` (see the properties).
+    calibration_axis : str
+        The parameter a calibration set interpolates over for this pattern.
+    options : tuple of str
+        Extra generator options a design may set (``("adjust",)`` for the cross pattern).
+    """
+
+    name: str
+    params: type
+    module: str
+    calibration_axis: str
+    options: tuple[str, ...] = ()
+
+    def _function(self, suffix: str) -> Callable:
+        module = importlib.import_module(f".{self.module}", __package__)
+        return getattr(module, self.name + suffix)
+
+    @property
+    def generate(self) -> Callable:
+        """``generate(centerline, params, *, tube, options, name, **options) -> StitchPlan``."""
+        return self._function("")
+
+    @property
+    def stations(self) -> Callable:
+        """``stations(length_mm, params, **options) -> float``: upper bound of needle stations, no allocation."""
+        return self._function("_stations")
+
+    @property
+    def realised_params(self) -> Callable:
+        """``realised_params(params, **options) -> params`` the generator really uses (cross: closed)."""
+        return self._function("_realised_params")
+
+    @property
+    def param_keys(self) -> tuple[str, ...]:
+        """The parameter names, in declaration order (``width_mm``, ``interval_mm``, ...)."""
+        return tuple(f.name for f in fields(self.params))
+
+    @property
+    def has_angle(self) -> bool:
+        """True when the pattern has an embroidery angle ``angle_deg``."""
+        return "angle_deg" in self.param_keys
+
+
+class PatternKinds:
+    """Registry of :class:`PatternKind` by name, in registration order."""
+
+    def __init__(self) -> None:
+        self._kinds: dict[str, PatternKind] = {}
+
+    def add(self, kind: PatternKind) -> None:
+        """Register ``kind`` (its name must be new)."""
+        if kind.name in self._kinds:
+            raise ParameterError(f"pattern kind {kind.name!r} is already registered")
+        self._kinds[kind.name] = kind
+
+    def names(self) -> tuple[str, ...]:
+        """Registered names, in order."""
+        return tuple(self._kinds)
+
+    def __getitem__(self, name: object) -> PatternKind:
+        found = self._kinds.get(name) if isinstance(name, str) else None
+        if found is None:
+            raise ParameterError(f"pattern must be one of {', '.join(map(repr, self._kinds))}, got {name!r}")
+        return found
+
+    def __iter__(self):
+        return iter(self._kinds.values())
+
+    def for_params(self, params: object) -> PatternKind:
+        """The kind whose parameter class ``params`` is an instance of."""
+        for kind in self._kinds.values():
+            if isinstance(params, kind.params):
+                return kind
+        valid = " or ".join(k.params.__name__ for k in self._kinds.values())
+        raise ParameterError(f"params must be {valid}, got {type(params).__name__}")
+
+
+PATTERN_KINDS = PatternKinds()
+"""Every pattern kind embroact generates."""
+
+
+def register(kind: PatternKind) -> None:
+    """Add a pattern kind to :data:`PATTERN_KINDS`."""
+    PATTERN_KINDS.add(kind)
+
+
+def pattern_kind(name: object) -> PatternKind:
+    """The registered kind called ``name`` (:class:`ParameterError` listing the valid names otherwise)."""
+    return PATTERN_KINDS[name]
+
+
+register(PatternKind("zigzag", ZigzagParams, "zigzag", "width_mm"))
+register(PatternKind("cross", CrossParams, "cross", "angle_deg", ("adjust",)))

@@ -1,0 +1,230 @@
+"""One analysed design: the plan, and per actuator the realised geometry, the calibration and the model.
+
+:func:`analyse` is the one place where a design becomes numbers. Every command
+(``build``, ``check``, ``predict``, ``fit``, ``preview``, ``zigzag``/``cross``) and the
+Python API call it, so they all see the same plan, the same derived sleeve geometry and
+the same model, computed once per run::
+
+    Design --build_plan--> StitchPlan --derive--> DerivedGeometry --model_for--> ModelChoice
+      |                        |                        \\                      /
+      +------------------------+-------------------> ActuatorAnalysis (frozen) per actuator
+                                                          |
+                                       DesignAnalysis.curves(pressures) -> Curve per actuator
+                                       (computed once per pressure grid and method, then reused)
+
+The policy for G and P0 (what a design's ``[actuator.model]`` means, what command-line
+flags override) is :func:`embroact.predict.calibration.model_for`'s; a command applies its
+flags by changing the design's settings (:func:`with_model_overrides`) before analysing, so
+there is no second way in.
+
+Examples
+--------
+>>> from embroact.patterns.design import default_design
+>>> from embroact.predict.analysis import analyse
+>>> a = analyse(default_design())
+>>> act = a.actuators[0]
+>>> act.name, round(act.derived.r0_mm, 4), act.model.g_mpa, act.model.p0_kpa
+('A1', 2.5814, 2.7, 85.0)
+>>> act.choice.p0_source
+'calibration paper-2025 (zigzag, width_mm=7)'
+>>> c = a.curves([0.0, 100.0, 200.0])[0]
+>>> [round(float(t), 3) for t in c.theta_deg]
+[0.0, 11.539, 102.93]
+>>> a.curves([0.0, 100.0, 200.0])[0] is c   # computed once
+True
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from typing import Iterable, Mapping, Sequence
+
+import numpy as np
+
+from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterError
+from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
+from ..patterns.plan import ActuatorPlan, StitchPlan
+from .calibration import CalibrationSet, ModelChoice, model_for
+from .derived import DerivedGeometry, derive
+
+__all__ = ["ActuatorAnalysis", "DesignAnalysis", "analyse", "with_model_overrides", "PRESSURE_STEP_KPA",
+           "pressure_grid_kpa"]
+
+#: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
+PRESSURE_STEP_KPA = 10.0
+
+
+def pressure_grid_kpa(max_pressure_kpa: float, step_kpa: float = PRESSURE_STEP_KPA) -> tuple[float, ...]:
+    """0 to ``max_pressure_kpa`` in ``step_kpa`` steps, the top pressure always included.
+
+    Examples
+    --------
+    >>> pressure_grid_kpa(25.0)
+    (0.0, 10.0, 20.0, 25.0)
+    """
+    n = int(np.floor(max_pressure_kpa / step_kpa * (1.0 + 1e-12)))
+    grid = tuple(float(v) for v in np.linspace(0.0, n * step_kpa, n + 1))
+    return grid if abs(grid[-1] - max_pressure_kpa) <= 1e-9 * step_kpa else grid + (float(max_pressure_kpa),)
+
+
+@dataclass(frozen=True, slots=True)
+class ActuatorAnalysis:
+    """One actuator: what was asked, what was sewn, and the model of what was sewn.
+
+    Attributes
+    ----------
+    spec : ActuatorSpec
+        The request.
+    plan : ActuatorPlan
+        The generated actuator (realised parameters, centerline, rails).
+    derived : DerivedGeometry
+        Sleeve geometry measured on the generated stitches.
+    choice : ModelChoice or None
+        Model, calibration and the source of G and P0; ``None`` when no model exists
+        (``model_error`` says why, e.g. no sleeve).
+    model_error : str
+        Empty when ``choice`` is set.
+    """
+
+    spec: ActuatorSpec
+    plan: ActuatorPlan
+    derived: DerivedGeometry
+    choice: ModelChoice | None
+    model_error: str = ""
+
+    @property
+    def name(self) -> str:
+        """The actuator's name."""
+        return self.spec.name
+
+    @property
+    def model(self):
+        """The :class:`~embroact.predict.curve.ActuatorModel` (:class:`ModelDomainError` when there is none)."""
+        if self.choice is None:
+            raise ModelDomainError(f"actuator {self.name!r}: {self.model_error}")
+        return self.choice.model
+
+    def as_dict(self) -> dict:
+        """JSON-ready: name, pattern, derived geometry, model with sources (or the model error)."""
+        return {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
+                "model": self.choice.as_dict() if self.choice is not None else None,
+                "model_error": self.model_error or None}
+
+
+@dataclass(frozen=True, slots=True)
+class DesignAnalysis:
+    """A design analysed once: its plan and one :class:`ActuatorAnalysis` per actuator, in sewing order.
+
+    Curves are computed on request and kept: the same pressures and method give the same
+    :class:`~embroact.predict.curve.Curve` objects, so a build's rules, chart, side view,
+    3D shape and report share one evaluation.
+    """
+
+    design: Design
+    plan: StitchPlan
+    actuators: tuple[ActuatorAnalysis, ...]
+    calibration_sets: tuple[CalibrationSet, ...] = ()
+    _curves: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def actuator(self, name: str) -> ActuatorAnalysis:
+        """The actuator called ``name``."""
+        for a in self.actuators:
+            if a.name == name:
+                return a
+        valid = ", ".join(a.name for a in self.actuators)
+        raise ParameterError(f"actuator must be one of {valid}, got {name!r}")
+
+    @property
+    def pressures_kpa(self) -> tuple[float, ...]:
+        """The standard grid: 0 to the design's working pressure in 10 kPa steps."""
+        return pressure_grid_kpa(self.design.operation.max_pressure_kpa)
+
+    def curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
+        """Predicted curve per actuator at ``pressures_kpa`` (default :attr:`pressures_kpa`), memoised.
+
+        Raises
+        ------
+        ModelDomainError
+            An actuator has no model (``model_error``).
+        """
+        from .curve import curve
+
+        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        key = (p, method)
+        if key not in self._curves:
+            self._curves[key] = tuple(curve(a.model, p, method=method) for a in self.actuators)
+        return self._curves[key]
+
+    def as_dict(self) -> dict:
+        """JSON-ready summary of every actuator."""
+        return {"design": self.design.name, "actuators": [a.as_dict() for a in self.actuators]}
+
+
+def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = None, **overrides) -> Design:
+    """``design`` with some :class:`ModelSettings` fields replaced (``None`` values are ignored).
+
+    How command-line flags (``--g-mpa``, ``--p0-kpa``, ``--p0-source``, ``--calibration``,
+    ``--tube-law``) take precedence over a design file: flag > design file > default.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> d = with_model_overrides(default_design(), g_mpa=3.0, p0_kpa=None)
+    >>> d.actuators[0].model.g_mpa, d.actuators[0].model.p0_kpa
+    (3.0, None)
+    """
+    given = {k: v for k, v in overrides.items() if v is not None}
+    unknown = sorted(set(given) - {f.name for f in dataclasses.fields(ModelSettings)})
+    if unknown:
+        raise ParameterError(f"model override must be a ModelSettings field, got {unknown[0]!r}")
+    if not given:
+        return design
+    names = None if actuators is None else set(actuators)
+    specs = tuple(dataclasses.replace(s, model=dataclasses.replace(s.model, **given))
+                  if names is None or s.name in names else s for s in design.actuators)
+    return dataclasses.replace(design, actuators=specs)
+
+
+def _analyse_actuator(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
+    derived = derive(act)
+    if not derived.has_sleeve:
+        return ActuatorAnalysis(spec, act, derived, None,
+                                f"no sleeve: sleeve radius r0 {derived.r0_mm:.4g} mm is not above the tube radius "
+                                f"{derived.tube.outer_radius_mm:g} mm (width_mm {derived.width_mm:.4g} too small)")
+    try:
+        choice = model_for(derived, spec.model, sets=sets)
+    except EmbroactError as exc:
+        return ActuatorAnalysis(spec, act, derived, None, str(exc))
+    return ActuatorAnalysis(spec, act, derived, choice)
+
+
+def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),
+            plan: StitchPlan | None = None) -> DesignAnalysis:
+    """Generate ``design`` and analyse every actuator (the one model factory of every command).
+
+    Parameters
+    ----------
+    design : Design
+    calibration_sets : iterable of CalibrationSet, optional
+        Sets searched before the built-in registry (e.g. read from calibration files).
+    plan : StitchPlan, optional
+        ``build_plan(design)`` when already generated.
+
+    Returns
+    -------
+    DesignAnalysis
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> d = design_from_dict({"actuator": [{"name": "X", "pattern": "cross", "width_mm": 7,
+    ...                       "interval_mm": 1.4, "angle_deg": 30, "length_mm": 100, "adjust": "angle"}]})
+    >>> x = analyse(d).actuators[0]
+    >>> round(x.derived.angle_deg, 2), x.derived.requested_angle_deg, x.model.g_mpa
+    (30.96, 30.0, 12.0)
+    """
+    sets = tuple(calibration_sets.values()) if isinstance(calibration_sets, Mapping) else tuple(calibration_sets)
+    plan = build_plan(design) if plan is None else plan
+    by_name = {a.name: a for a in plan.actuators}
+    acts = tuple(_analyse_actuator(spec, by_name[spec.name], sets) for spec in design.actuators)
+    return DesignAnalysis(design, plan, acts, sets)
