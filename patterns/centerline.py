@@ -9,10 +9,12 @@ segment it is exactly the segment's normal. A vertex that turns by more than
 :data:`MAX_SMOOTH_TURN_DEG` is a *corner*: its curvature radius counts as 0, and
 :meth:`Centerline.check_radius` rejects it with advice to round it.
 
-SVG paths (:meth:`Centerline.from_svg_path`): path units are read as mm and y is
-flipped (SVG's y points down, the plan frame's up), so the drawing looks the same
-on screen as in an SVG viewer. Curves are flattened to a chordal error of at most
-``DEFAULT_TOLERANCES.curve_flatness_mm``.
+SVG paths (:meth:`Centerline.from_svg_path`, parsed by :mod:`embroact.patterns.svgpath`
+with svgelements): path units are read as mm and y is flipped (SVG's y points down, the
+plan frame's up), so the drawing looks the same on screen as in an SVG viewer. Curves are
+flattened to a chordal error of at most ``DEFAULT_TOLERANCES.curve_flatness_mm``; several
+subpaths are joined when each starts where the one before ended, else rejected. SVG
+*files* (units, transforms, ids) are read by :mod:`embroact.export.files.svgfile`.
 
 End points carry the direction of their segment (no extrapolation), so on a coarsely
 sampled curve the frame at the very ends is off by half a chord angle.
@@ -36,7 +38,6 @@ Examples
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -56,14 +57,10 @@ MAX_SMOOTH_TURN_DEG = 10.0
 RADIUS_RTOL = 2e-3
 #: Newton steps used by :meth:`Centerline.project` to invert the smooth-normal frame.
 _PROJECT_STEPS = 6
-#: Largest number of vertices a path may have (also bounds SVG flattening).
+#: Largest number of vertices a path may have.
 _MAX_POINTS = 2_000_000
 #: Largest |coordinate| of a path vertex [mm] (10 km: far beyond any hoop, far below float overflow).
 _MAX_COORD_MM = 1e7
-
-_SVG_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
-_SVG_ARITY = {"M": 2, "L": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "T": 2, "A": 7, "Z": 0}
-_SVG_TOKEN = re.compile(r"([A-Za-z])|([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)|([\s,]+)|(.)")
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -113,11 +110,27 @@ class Centerline:
     def from_svg_path(cls, d: str) -> "Centerline":
         """Path from an SVG path ``d`` string (M L H V C S Q T A Z, absolute and relative).
 
-        Units are mm; y is flipped (SVG y down -> plan y up). One subpath only. Arc flags
-        must be separated from the numbers around them (``a 5 5 0 0 1 10 0``).
+        Units are mm; y is flipped (SVG y down -> plan y up). Subpaths are joined when each
+        starts where the one before ended (:func:`embroact.patterns.svgpath.flatten`).
+
+        Parameters
+        ----------
+        d : str
+            SVG path data in mm, e.g. ``"M 0 0 a5,5 0 01 10,0"``.
+
+        Returns
+        -------
+        Centerline
+            The flattened path in the plan frame.
+
+        Examples
+        --------
+        >>> Centerline.from_svg_path("M 0 0 L 10 0 M 10 0 L 10 5").points_mm.tolist()
+        [[0.0, 0.0], [10.0, 0.0], [10.0, -5.0]]
         """
-        pts = _parse_svg(d)
-        return cls(pts * np.array([1.0, -1.0]) + 0.0)  # + 0.0 turns -0.0 into 0.0
+        from .svgpath import flatten, parse_d, to_plan
+
+        return cls(to_plan(flatten(parse_d(d))))
 
     # ------------------------------------------------------------------ basic geometry
     @property
@@ -322,140 +335,3 @@ def _self_crossing(pts: np.ndarray) -> tuple[float, float]:
     hit = shapely.intersection(segs[i[k[0]]], segs[j[k[0]]]) if k.size else shapely.Point(pts[0])
     p = shapely.get_coordinates(hit)[0]
     return float(p[0]), float(p[1])
-
-
-# ---------------------------------------------------------------------- SVG paths
-def _svg_tokens(d: str):
-    for m in _SVG_TOKEN.finditer(d):
-        cmd, num, _sep, bad = m.groups()
-        if bad is not None or (cmd is not None and cmd not in _SVG_COMMANDS):
-            raise PathError(
-                f"SVG path: unsupported character {(bad or cmd)!r} at position {m.start()}; "
-                f"supported commands: {' '.join(_SVG_COMMANDS)}"
-            )
-        if cmd is not None:
-            yield cmd
-        elif num is not None:
-            yield float(num)
-
-
-def _bezier(ctrl: np.ndarray) -> np.ndarray:
-    """Points of a quadratic/cubic Bezier (control points (k, 2)), excluding the start.
-
-    Uniform parameter steps; n = ceil(sqrt(M / (8 e))) with M a bound on |B''| keeps
-    the chordal error below e = curve_flatness_mm.
-    """
-    deg = len(ctrl) - 1
-    second = deg * (deg - 1) * np.diff(ctrl, n=2, axis=0)
-    m = float(np.max(np.hypot(second[:, 0], second[:, 1])))
-    n = max(1, math.ceil(math.sqrt(m / (8.0 * DEFAULT_TOLERANCES.curve_flatness_mm))))
-    if n > _MAX_POINTS:
-        raise PathError(f"SVG path: curve too large to flatten ({n} points > {_MAX_POINTS})")
-    t = np.linspace(0.0, 1.0, n + 1)[1:, None]
-    coef = [math.comb(deg, k) * (1 - t) ** (deg - k) * t**k for k in range(deg + 1)]
-    return sum(c * p for c, p in zip(coef, ctrl))
-
-
-def _arc(p1: np.ndarray, rx: float, ry: float, phi_deg: float, large: float, sweep: float, p2: np.ndarray) -> np.ndarray:
-    """Points of an SVG elliptical arc from ``p1`` to ``p2`` (excluding ``p1``), SVG 1.1 F.6.5.
-
-    Out-of-range radii are scaled up as the SVG spec says; zero radii give a line.
-    """
-    if large not in (0.0, 1.0) or sweep not in (0.0, 1.0):
-        raise PathError(f"SVG path: arc flags must be 0 or 1 (separated by spaces or commas), got {large:g}, {sweep:g}")
-    rx, ry = abs(rx), abs(ry)
-    if rx == 0.0 or ry == 0.0 or np.array_equal(p1, p2):
-        return p2[None, :].copy()
-    c, s = math.cos(math.radians(phi_deg)), math.sin(math.radians(phi_deg))
-    rot = np.array([[c, -s], [s, c]])
-    x1, y1 = rot.T @ ((p1 - p2) / 2.0)
-    lam = (x1 / rx) ** 2 + (y1 / ry) ** 2
-    if lam > 1.0:
-        rx, ry = rx * math.sqrt(lam), ry * math.sqrt(lam)
-    num = rx**2 * ry**2 - rx**2 * y1**2 - ry**2 * x1**2
-    coef = math.sqrt(max(0.0, num / (rx**2 * y1**2 + ry**2 * x1**2)))
-    coef = -coef if large == sweep else coef
-    cxp, cyp = coef * rx * y1 / ry, -coef * ry * x1 / rx
-    centre = rot @ np.array([cxp, cyp]) + (p1 + p2) / 2.0
-    th1 = math.atan2((y1 - cyp) / ry, (x1 - cxp) / rx)
-    dth = math.atan2((-y1 - cyp) / ry, (-x1 - cxp) / rx) - th1
-    if sweep and dth < 0.0:
-        dth += 2.0 * math.pi
-    elif not sweep and dth > 0.0:
-        dth -= 2.0 * math.pi
-    r = max(rx, ry)
-    step = 2.0 * math.acos(max(-1.0, 1.0 - DEFAULT_TOLERANCES.curve_flatness_mm / r))
-    n = max(1, math.ceil(abs(dth) / step))
-    if n > _MAX_POINTS:
-        raise PathError(f"SVG path: arc too large to flatten ({n} points > {_MAX_POINTS})")
-    th = th1 + dth * np.linspace(0.0, 1.0, n + 1)[1:]
-    pts = centre + np.c_[rx * np.cos(th), ry * np.sin(th)] @ rot.T
-    pts[-1] = p2  # land exactly on the given end point
-    return pts
-
-
-def _parse_svg(d: str) -> np.ndarray:
-    if not isinstance(d, str) or not d.strip():
-        raise PathError(f"SVG path must be a non-empty string, got {d!r}")
-    tokens = list(_svg_tokens(d))
-    out: list[np.ndarray] = []
-    cur = np.zeros(2)
-    start = np.zeros(2)
-    last_ctrl: tuple[str, np.ndarray] | None = None  # ("C"|"Q", control point) for S/T reflection
-    cmd = None
-    i = 0
-    while i < len(tokens):
-        tok = tokens[i]
-        if isinstance(tok, str):
-            cmd, i = tok, i + 1
-            if cmd in "Mm" and out:
-                raise PathError("SVG path: only one subpath is supported (a second 'M' was found)")
-        elif cmd is None:
-            raise PathError("SVG path must start with a command (M), got a number")
-        up = cmd.upper()
-        if not out and up != "M":
-            raise PathError(f"SVG path must start with a move-to (M), got {cmd!r}")
-        k = _SVG_ARITY[up]
-        args = tokens[i : i + k]
-        if len(args) < k or any(isinstance(a, str) for a in args):
-            hint = " (arc flags must be separated: a rx ry rotation 0 1 x y)" if up == "A" else ""
-            raise PathError(f"SVG path: command {cmd!r} needs {k} numbers{hint}")
-        i += k
-        rel = cmd.islower()
-        base = cur if rel else np.zeros(2)
-        a = np.array(args, dtype=np.float64)
-        new_ctrl = None
-        if up == "M":
-            cur = base + a
-            start = cur.copy()
-            out.append(cur[None, :].copy())
-            cmd = "l" if rel else "L"  # further pairs are implicit line-tos
-        elif up in "LHV":
-            if up == "H":
-                cur = np.array([a[0] + (cur[0] if rel else 0.0), cur[1]])
-            elif up == "V":
-                cur = np.array([cur[0], a[0] + (cur[1] if rel else 0.0)])
-            else:
-                cur = base + a
-            out.append(cur[None, :].copy())
-        elif up == "Z":
-            cur = start.copy()
-            out.append(cur[None, :].copy())
-        elif up == "A":
-            end = a[5:7] + base
-            out.append(_arc(cur, a[0], a[1], a[2], a[3], a[4], end))
-            cur = end
-        else:
-            pts = a.reshape(-1, 2) + base
-            if up in "ST":
-                kind = "C" if up == "S" else "Q"
-                refl = 2 * cur - last_ctrl[1] if last_ctrl and last_ctrl[0] == kind else cur.copy()
-                pts = np.vstack([refl, pts])
-            ctrl = np.vstack([cur, pts])
-            out.append(_bezier(ctrl))
-            new_ctrl = ("C" if len(ctrl) == 4 else "Q", ctrl[-2])
-            cur = ctrl[-1].copy()
-        last_ctrl = new_ctrl
-    if not out:
-        raise PathError("SVG path has no points")
-    return np.vstack(out)

@@ -174,15 +174,32 @@ def test_svg_arc_radius_scaled_up_relative_and_ellipse():
     assert line.points_mm.tolist() == [[0.0, 0.0], [20.0, 0.0]]
 
 
+def test_svg_compact_arc_flags_equal_the_spaced_form():
+    # SVG 1.1 grammar: flags are single characters, so "01" is large-arc 0, sweep 1
+    compact = Centerline.from_svg_path("M0,0a5,5 0 01 10,0")
+    spaced = Centerline.from_svg_path("M 0 0 a 5 5 0 0 1 10 0")
+    np.testing.assert_array_equal(compact.points_mm, spaced.points_mm)
+    np.testing.assert_allclose(np.hypot(*(compact.points_mm - [5.0, 0.0]).T), 5.0, atol=1e-12)  # centre (5, 0)
+    assert compact.points_mm[:, 1].max() == pytest.approx(5.0, abs=DEFAULT_TOLERANCES.curve_flatness_mm)
+
+
+def test_svg_subpaths_that_continue_are_joined():
+    joined = Centerline.from_svg_path("M 0 0 L 10 0 M 10 0 L 10 5 m 0 0 l 5 0")  # each starts where the last ended
+    assert joined.points_mm.tolist() == [[0.0, 0.0], [10.0, 0.0], [10.0, -5.0], [15.0, -5.0]]
+    assert Centerline.from_svg_path("M 3 3 M 0 0 L 4 0").points_mm.tolist() == [[0.0, 0.0], [4.0, 0.0]]  # a lone move draws nothing
+
+
 @pytest.mark.parametrize(
     "d, fragment",
     [
         ("M 0 0 R 5 5", "unsupported character 'R'"),
-        ("M 0 0 A 5 5 0 2 1 10 0", "arc flags must be 0 or 1"),
-        ("M 0 0 A 5 5 0 01 10 0", "needs 7 numbers (arc flags must be separated"),
+        ("M 0 0 A 5 5 0 2 1 10 0", "an arc flag is not 0 or 1"),
         ("L 1 1", "must start with a move-to (M)"),
-        ("M 0 0 L 1", "command 'L' needs 2 numbers"),
-        ("M 0 0 L 1 1 M 5 5 L 6 6", "only one subpath"),
+        ("M 0 0 L 1", "a command is missing numbers"),
+        ("M 0 0 L 1 1 M 5 5 L 6 6", "2 subpaths with a gap of 5.657 mm"),
+        ("M 0 0 M 5 5", "draws nothing"),
+        ("M 0 0 L 1e999 0", "finite"),
+        ("drawing.svg#tube1", "looks like an SVG file reference"),
         ("M 0 0 L 10 0 L 10 10 Z", "closed"),
         ("", "non-empty string"),
     ],

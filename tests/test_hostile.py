@@ -187,10 +187,10 @@ CATALOGUE = [
     ("path-too-short", ZZ[:3] + ["--interval-mm", "6", "--length-mm", "10", "-o", "{tmp}/a.dst"], 2,
      "path length_mm must be >= 12 for a zigzag with interval_mm=6 (at least 2 legs), got 10"),
     ("path-two-subpaths", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 100 0 M 0 10 L 100 10"], 2,
-     "SVG path: only one subpath is supported (a second 'M' was found)"),
+     "SVG path has 2 subpaths with a gap of 100.5 mm between them"),
     ("path-bad-command", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 X 5"], 2,
      "SVG path: unsupported character 'X' at position 6; supported commands: M m L l H h V v C c"),
-    ("path-missing-number", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 10"], 2, "SVG path: command 'L' needs 2 numbers"),
+    ("path-missing-number", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 10"], 2, "SVG path 'M 0 0 L 10': a command is missing numbers"),
     ("path-empty", ZZ + ["-o", "{tmp}/a.dst", "--path", ""], 2, "SVG path must be a non-empty string, got ''"),
     ("path-huge-coordinates", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 1e308 0 L -1e308 0"], 2,
      "path coordinates must be in [-1e+07, 1e+07] mm, got 1e+308"),  # bug B4: was an OverflowError traceback

@@ -1,0 +1,207 @@
+"""SVG path data -> polyline points, with the svgelements library (no file I/O).
+
+:func:`parse_d` reads a path ``d`` string (every SVG 1.1 command, absolute and relative,
+compact arc flags such as ``a5,5 0 01 10,0`` included); :func:`flatten` turns a parsed
+path (its coordinates already in mm) into polyline points: lines exactly, Bezier curves
+and elliptical arcs to a chordal error of at most ``DEFAULT_TOLERANCES.curve_flatness_mm``.
+Points stay in SVG's frame (y down); :func:`to_plan` flips them into the plan frame (y up).
+
+Several subpaths: a tube is one piece, so subpaths are joined into one polyline when each
+starts where the one before it ended (within ``DEFAULT_TOLERANCES.length_mm``); a gap
+between them is a :class:`PathError` naming it. Subpaths that draw nothing (a lone move)
+are dropped. Reading SVG *files* (units, viewBox, transforms, choosing a path by id,
+label or layer) is I/O and lives in :mod:`embroact.export.files.svgfile`.
+
+svgelements is imported on first use, so importing this module stays cheap.
+
+Examples
+--------
+>>> from embroact.patterns.svgpath import flatten, parse_d, to_plan
+>>> flatten(parse_d("M 0 0 H 10 V 10")).tolist()
+[[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]
+>>> pts = flatten(parse_d("M0 0 a5,5 0 01 10,0"))  # compact arc flags; over the top (y < 0)
+>>> round(float(pts[:, 1].min()), 9), pts[-1].tolist()
+(-5.0, [10.0, 0.0])
+>>> to_plan(flatten(parse_d("M 0 0 L 3 4 M 3 4 L 6 4"))).tolist()  # joined; y flipped
+[[0.0, 0.0], [3.0, -4.0], [6.0, -4.0]]
+"""
+from __future__ import annotations
+
+import math
+import re
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .base.errors import PathError
+from .base.tolerances import DEFAULT_TOLERANCES
+
+if TYPE_CHECKING:
+    import svgelements
+
+__all__ = ["parse_d", "flatten", "to_plan", "MAX_POINTS"]
+
+#: Largest number of polyline points a flattened path may have.
+MAX_POINTS = 2_000_000
+
+_D_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
+#: Characters an SVG path d string may hold (svgelements silently skips unknown commands).
+_D_BAD_CHAR = re.compile(rf"[^{_D_COMMANDS}0-9eE+\-.,\s]")
+_D_FIRST = re.compile(r"^\s*[Mm]")
+
+
+def parse_d(d: str) -> "svgelements.Path":
+    """Parse an SVG path ``d`` string (coordinates as they stand) into an svgelements Path.
+
+    Parameters
+    ----------
+    d : str
+        Path data: ``M L H V C S Q T A Z`` and their relative forms, starting with a move-to.
+
+    Returns
+    -------
+    svgelements.Path
+        The parsed path, untransformed.
+
+    Raises
+    ------
+    PathError
+        One line: not a string, empty, an unsupported character (with its position), not
+        starting with M, a command missing numbers, an arc flag other than 0 or 1, or a
+        non-finite number.
+
+    Examples
+    --------
+    >>> [type(s).__name__ for s in parse_d("M 0 0 C 1 1 2 1 3 0 a 2 2 0 0 0 4 0")]
+    ['Move', 'CubicBezier', 'Arc']
+    """
+    import svgelements
+
+    if not isinstance(d, str) or not d.strip():
+        raise PathError(f"SVG path must be a non-empty string, got {d!r}")
+    if ".svg" in d.lower():
+        raise PathError(
+            f"SVG path {d!r:.60} looks like an SVG file reference (FILE.svg#id): files are read by "
+            "embroact.export.files.svgfile (design files, --path and --tube-path accept them), not as path data"
+        )
+    bad = _D_BAD_CHAR.search(d)
+    if bad:
+        raise PathError(
+            f"SVG path: unsupported character {bad.group()!r} at position {bad.start()}; "
+            f"supported commands: {' '.join(_D_COMMANDS)}"
+        )
+    if not _D_FIRST.match(d):
+        raise PathError(f"SVG path must start with a move-to (M), got {d.strip()[:1]!r}")
+    try:
+        path = svgelements.Path(d)
+    except (ValueError, TypeError, AttributeError, IndexError):
+        raise PathError(
+            f"SVG path {d!r:.60}: a command is missing numbers or an arc flag is not 0 or 1 "
+            "(arc: a rx ry rotation large-arc-flag sweep-flag x y)"
+        ) from None
+    ends = [s.end for s in path if s.end is not None]
+    if not ends or not all(math.isfinite(p.x) and math.isfinite(p.y) for p in ends):
+        raise PathError(f"SVG path {d!r:.60}: coordinates must be finite numbers")
+    return path
+
+
+def _segment_points(seg: Any) -> np.ndarray:
+    """Points of one drawing segment, its start excluded, to the flatness tolerance."""
+    import svgelements
+
+    tol = DEFAULT_TOLERANCES.curve_flatness_mm
+    if isinstance(seg, (svgelements.Line, svgelements.Close)):
+        return np.array([[seg.end.x, seg.end.y]], dtype=np.float64)
+    if isinstance(seg, (svgelements.QuadraticBezier, svgelements.CubicBezier)):
+        inner = (seg.control,) if isinstance(seg, svgelements.QuadraticBezier) else (seg.control1, seg.control2)
+        ctrl = np.array([[p.x, p.y] for p in (seg.start, *inner, seg.end)], dtype=np.float64)
+        deg = len(ctrl) - 1
+        second = deg * (deg - 1) * np.diff(ctrl, n=2, axis=0)
+        # uniform steps: n = ceil(sqrt(M / (8 tol))), M a bound on |B''|, keeps the chord error <= tol
+        n = max(1, math.ceil(math.sqrt(float(np.max(np.hypot(second[:, 0], second[:, 1]))) / (8.0 * tol))))
+    elif isinstance(seg, svgelements.Arc):
+        r = max(seg.rx, seg.ry)
+        step = 2.0 * math.acos(max(-1.0, 1.0 - tol / r)) if r > 0.0 else math.pi
+        n = max(1, math.ceil(abs(seg.sweep) / step))
+    else:  # pragma: no cover - svgelements has no other drawing segment
+        raise PathError(f"SVG path: unsupported segment {type(seg).__name__}")
+    if n > MAX_POINTS:
+        raise PathError(f"SVG path: curve too large to flatten ({n} points > {MAX_POINTS})")
+    pts = np.asarray(seg.npoint(np.linspace(0.0, 1.0, n + 1)[1:]), dtype=np.float64)
+    pts[-1] = (seg.end.x, seg.end.y)  # land exactly on the given end point
+    return pts
+
+
+def flatten(path: "svgelements.Path") -> np.ndarray:
+    """Polyline points of ``path`` (its units, SVG frame), subpaths joined end to start.
+
+    Parameters
+    ----------
+    path : svgelements.Path
+        A parsed path whose coordinates are already in mm (transforms applied).
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        Points in the path's own frame (y down), first point the first move-to.
+
+    Raises
+    ------
+    PathError
+        If the path draws nothing, or a subpath does not start where the one before ended.
+
+    Examples
+    --------
+    >>> flatten(parse_d("M 0 0 L 10 0 M 20 0 L 30 0"))
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.PathError: SVG path has 2 subpaths with a gap of 10 mm between them (subpath 2 starts at (20, 0), subpath 1 ends at (10, 0)); a tube is one piece: draw one subpath per tube (Inkscape: Path > Break Apart, one path per tube) or join them
+    """
+    import svgelements
+
+    subpaths: list[list[np.ndarray]] = []
+    for seg in path:
+        if isinstance(seg, svgelements.Move):
+            subpaths.append([np.array([[seg.end.x, seg.end.y]], dtype=np.float64)])
+        elif not subpaths:
+            raise PathError("SVG path must start with a move-to (M)")
+        else:
+            subpaths[-1].append(_segment_points(seg))
+    drawn = [np.vstack(s) for s in subpaths if len(s) > 1]
+    if not drawn:
+        raise PathError("SVG path draws nothing (only move-to commands)")
+    for k in range(1, len(drawn)):
+        gap = float(np.hypot(*(drawn[k][0] - drawn[k - 1][-1])))
+        if gap > DEFAULT_TOLERANCES.length_mm:
+            (x0, y0), (x1, y1) = drawn[k][0], drawn[k - 1][-1]
+            raise PathError(
+                f"SVG path has {len(drawn)} subpaths with a gap of {gap:.4g} mm between them (subpath {k + 1} "
+                f"starts at ({x0:.4g}, {y0:.4g}), subpath {k} ends at ({x1:.4g}, {y1:.4g})); a tube is one piece: "
+                "draw one subpath per tube (Inkscape: Path > Break Apart, one path per tube) or join them"
+            )
+        drawn[k] = drawn[k][1:]
+    pts = np.vstack(drawn)
+    if len(pts) > MAX_POINTS:
+        raise PathError(f"SVG path: too many points after flattening ({len(pts)} > {MAX_POINTS})")
+    return pts
+
+
+def to_plan(points_svg: np.ndarray) -> np.ndarray:
+    """SVG-frame points (y down) -> plan-frame points (y up), same units.
+
+    Parameters
+    ----------
+    points_svg : array_like, shape (n, 2)
+        Points with y pointing down.
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        The same points with y negated (no negative zeros).
+
+    Examples
+    --------
+    >>> to_plan([[1.0, 2.0], [3.0, 0.0]]).tolist()
+    [[1.0, -2.0], [3.0, 0.0]]
+    """
+    return np.asarray(points_svg, dtype=np.float64) * np.array([1.0, -1.0]) + 0.0  # + 0.0: -0.0 -> 0.0
