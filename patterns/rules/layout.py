@@ -38,15 +38,15 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import shapely
 
-from .base.arrays import frozen_array
-from .centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
-from .base.errors import ParameterError, PathError, check_range
-from .base.findings import RULES, Finding
-from .limits import format_limit
-from .params import CrossParams
-from .plan import Command, Role, StitchPlan
-from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
-from .base.tolerances import DEFAULT_TOLERANCES, Tolerances
+from ..base.arrays import frozen_array
+from ..centerline import MAX_SMOOTH_TURN_DEG, Centerline, as_centerline
+from ..base.errors import ParameterError, PathError, check_range
+from ..base.findings import RULES, Finding
+from ..limits import format_limit
+from ..params import CrossParams
+from ..plan import Command, Role, StitchPlan
+from ..sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
+from ..base.tolerances import DEFAULT_TOLERANCES, Tolerances
 
 __all__ = [
     "RuleSettings",
