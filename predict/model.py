@@ -228,9 +228,15 @@ def _energy_reference(l, r, geo: Geometry):
     return np.einsum("...ij,i,j->...", density * rho, w_rho, w_phi) * half[..., 0, 0]
 
 
+def _check_form(form: str) -> str:
+    if form not in ENERGY_FORMS:
+        raise ParameterError(f"form must be one of {', '.join(map(repr, ENERGY_FORMS))}, got {form!r}")
+    return form
+
+
 def energy(l, r, geo: Geometry, form: str = "stable"):
-    """Strain energy E_s [N mm] at (l, r); ``form`` is "stable", "printed" or "reference"."""
-    if form == "reference":
+    """Strain energy E_s [N mm] at (l, r); ``form`` is "stable", "printed" or "reference" (others refused)."""
+    if _check_form(form) == "reference":
         return geo.e_scale * _energy_reference(l, r, geo)
     return geo.e_scale * _energy_closed(l, r, geo, form)
 

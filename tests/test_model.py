@@ -222,3 +222,11 @@ def test_radius_stays_accurate_as_beta_approaches_90(beta0_deg):
             lr = ref.l_r(t)
         assert l[0, k] == pytest.approx(float(lr[0]), rel=1e-13)
         assert r[0, k] == pytest.approx(float(lr[1]), rel=1e-12)  # 1 - sin^2 would lose all digits at 89 deg
+
+
+def test_unknown_energy_form_is_refused_not_computed():
+    from embroact.patterns.base.errors import ParameterError
+
+    # the name is checked before any arithmetic, so no geometry is needed to see the refusal
+    with pytest.raises(ParameterError, match="form must be one of 'stable', 'printed', 'reference', got 'bogus'"):
+        M.energy(np.array([100.0]), np.array([2.58]), None, form="bogus")
