@@ -4,7 +4,7 @@ import json
 import os
 
 import numpy as np
-import pyembroidery as pe
+import pystitch as pe
 import pytest
 
 import dst_decoder
@@ -20,7 +20,7 @@ _PE = {Command.STITCH: pe.STITCH, Command.JUMP: pe.JUMP, Command.TRIM: pe.TRIM, 
 
 
 def _dst_with_leg_in_corridor(path, leg_number=55):
-    """The paper zigzag with one leg's needle point moved to 0.3 mm from the axis, written by pyembroidery."""
+    """The paper zigzag with one leg's needle point moved to 0.3 mm from the axis, written by pystitch."""
     plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
     i = int(np.flatnonzero(plan.roles == Role.LEG)[leg_number])
     xy = plan.xy_mm.copy()

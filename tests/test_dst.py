@@ -90,24 +90,28 @@ def test_dst_header_fields(label, plan):
     assert h["PD"] == "******"
 
 
-def test_header_corrects_pyembroidery():
-    """A design entirely below the start (y < 0): pyembroidery swaps +Y/-Y and drops stops from CO."""
+def test_header_corrects_the_library():
+    """A design entirely below the start (y < 0): pystitch still swaps +Y/-Y and ends without 0x1A.
+
+    (pyembroidery 1.5.1 also left stops out of ``CO``; pystitch counts them: that correction is no
+    longer needed, the rewritten header agrees.)
+    """
     import io
 
-    import pyembroidery
+    import pystitch
     from embroact.export.machine.formats import machine_format
     from embroact.export.machine.encode import to_pattern
 
     plan = hand_plan(3)  # A1 at y = -3 +- 3.5 mm, then 20 mm lower each
     mp = to_pattern(plan, machine_format("a.dst"))
     raw = io.BytesIO()
-    pyembroidery.write_dst(mp.pattern, raw, {"encode": False})
+    pystitch.write_dst(mp.pattern, raw, {"encode": False})
     raw_h = dst_decoder.parse_header(raw.getvalue()[:512])
     fixed = dst_decoder.decode(encode(plan, "dst")[0])
     lowest = min(r.y for r in fixed.records)  # machine frame, y up
     assert int(fixed.header["-Y"]) == -lowest == 2 * 200 + 30 + 35  # two 20 mm gaps, origin at -3 mm, half width
-    assert int(raw_h["+Y"]) == -lowest  # pyembroidery puts the downward extent under +Y
-    assert int(raw_h["CO"]) == 0 and int(fixed.header["CO"]) == 3
+    assert int(raw_h["+Y"]) == -lowest  # the library puts the downward extent under +Y
+    assert int(raw_h["CO"]) == int(fixed.header["CO"]) == 3
     assert not raw.getvalue().endswith(b"\xf3\x1a")
 
 

@@ -1,10 +1,10 @@
-"""Checking embroidery files written by pyembroidery against their tubes.
+"""Checking embroidery files written by pystitch against their tubes.
 
 Record indices are located with the test suite's own DST decoder (tests/dst_decoder.py),
-not with pyembroidery's reader that embroact.export.machine.filecheck uses.
+not with pystitch's reader that embroact.export.machine.filecheck uses.
 """
 import numpy as np
-import pyembroidery as pe
+import pystitch as pe
 import pytest
 
 import dst_decoder
@@ -23,7 +23,7 @@ TUBE = tube_layout([(0.0, 0.0), (100.0, 0.0)], name="T")  # file frame: the plan
 
 
 def _write(path, xy_mm, commands):
-    """Plan-frame records (mm, y up) -> pyembroidery (0.1 mm, y down) -> file."""
+    """Plan-frame records (mm, y up) -> pystitch (0.1 mm, y down) -> file."""
     pat = pe.EmbPattern()
     for (x, y), c in zip(xy_mm, commands):
         pat.add_stitch_absolute(_PE[int(c)], round(x * 10), round(-y * 10))
@@ -89,7 +89,7 @@ def test_pes_file_is_checked_too(tmp_path):
     leg = int(np.flatnonzero(plan.roles == Role.LEG)[10])
     xy = plan.xy_mm.copy()
     xy[leg, 1] = 0.0
-    # pyembroidery's PES writer starts with a needle record at the origin, on this tube's axis:
+    # pystitch's PES writer starts with a needle record at the origin, on this tube's axis:
     # start the tube 5 mm in so that only the moved leg is in its corridor
     tube = tube_layout([(5.0, 0.0), (100.0, 0.0)])
     found = check_file(_write(tmp_path / "bad.pes", xy, plan.commands), [tube])

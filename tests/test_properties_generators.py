@@ -4,7 +4,7 @@ For every drawn case (tests/strategies.py): every needle point lies outside the 
 corridor (shapely distance to the path), on a rail; the realised width, interval and
 angle equal the request, or a reported adjustment that is one of the minimal closing
 choices computed here by hand; lock stitches sit on the rails at both ends; and the
-plan survives every machine writer (pyembroidery's readers) and the independent DST
+plan survives every machine writer (pystitch's readers) and the independent DST
 decoder (tests/dst_decoder.py).
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ import math
 import re
 
 import numpy as np
-import pyembroidery as pe
+import pystitch as pe
 import pytest
 import shapely
 from hypothesis import given, note
@@ -132,14 +132,15 @@ def test_cross_spacing_and_angle_as_requested_or_minimally_adjusted(case):
 
 
 # ------------------------------------------------------------------------------ machine files
-_READERS = {f: importlib.import_module(f"pyembroidery.{f.capitalize()}Reader") for f in FORMATS}
+_READERS = {f: importlib.import_module(f"pystitch.{f.capitalize()}Reader") for f in FORMATS}
 
 
-def _read_back(data: bytes, fmt: str) -> np.ndarray:
+def _read_back(data: bytes, fmt: str, origin_mm=(0.0, 0.0)) -> np.ndarray:
+    """Needle points as the format's reader gives them, moved to the plan frame by the file's origin."""
     pattern = pe.EmbPattern()
     _READERS[fmt].read(io.BytesIO(data), pattern, None)
     return np.array([(x, -y) for x, y, c in pattern.stitches if c & pe.COMMAND_MASK == pe.STITCH],
-                    dtype=float).reshape(-1, 2) / 10.0
+                    dtype=float).reshape(-1, 2) / 10.0 + np.array(origin_mm)
 
 
 def _dedup(a):
@@ -221,7 +222,7 @@ def test_plan_round_trips_every_writer_and_the_dst_decoder(case):
                     crossing = 2.0 * grown / math.cos(math.radians(a_deg(case)))
                     assert crossing > f.limit.max_record_mm - 0.1, (crossing, str(exc))
                 continue
-            got = _dedup(_read_back(data, fmt))
+            got = _dedup(_read_back(data, fmt, res.origin_mm))
             assert res.split_legs > 0
             assert _is_subsequence(want, got, GRID_HALF_MM)  # every planned point, in order
             extra = got[~np.any(np.all(np.abs(got[:, None, :] - want[None, :, :]) <= GRID_HALF_MM, axis=2), axis=1)]
@@ -229,7 +230,7 @@ def test_plan_round_trips_every_writer_and_the_dst_decoder(case):
             continue
         data, res = encode(plan, fmt)
         assert data == encode(plan, fmt)[0]  # same plan, same bytes
-        got = _dedup(_read_back(data, fmt))
+        got = _dedup(_read_back(data, fmt, res.origin_mm))
         assert got.shape == want.shape, (fmt, got.shape, want.shape)
         assert np.abs(got - want).max() <= GRID_HALF_MM, fmt
         if fmt == "dst":
@@ -246,7 +247,8 @@ def test_leg_at_the_format_limit_reads_back_as_a_stitch(fmt):
     for d in (lim, -lim):
         plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (d, d, Command.STITCH, Role.LEG),
                                         (0, 0, Command.STITCH, Role.LEG), (0, 0, Command.END, Role.CONTROL, -1)])
-        got = _read_back(encode(plan, fmt)[0], fmt)
+        data, res = encode(plan, fmt)
+        got = _read_back(data, fmt, res.origin_mm)
         np.testing.assert_allclose(got, [(0, 0), (d, d), (0, 0)], atol=GRID_HALF_MM)
     over = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (lim + 0.1, 0, Command.STITCH, Role.LEG),
                                     (0, 0, Command.END, Role.CONTROL, -1)])

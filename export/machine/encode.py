@@ -1,9 +1,11 @@
 """Stitch plan -> machine records: frame, cord stops, trims, threads, long legs.
 
-The plan frame is millimetres with y up; pyembroidery works in 0.1 mm units with
+The plan frame is millimetres with y up; pystitch works in 0.1 mm units with
 y down.  Every position is rounded to the 0.1 mm grid once, in absolute terms, so
 rounding never accumulates along the design.  The plan origin is the machine's
-start point (the first record moves from there).
+start point (the first record moves from there); VP3, which has no frame move
+before its first stitch, is written with its origin 1 mm beside the first needle
+point (home machines place a design by its centre, so nothing is lost).
 
 How plan records become machine records
 ---------------------------------------
@@ -13,32 +15,39 @@ plan      machine
 STITCH    one needle record.  A leg longer than the format's per-record limit
           (per axis) is refused with :class:`LongLegError`; with
           ``split_long=True`` it becomes several needle records whose extra
-          needle points all lie *outside* the tube corridor.
-JUMP      frame move without the needle, split into records of at most the
-          format's jump limit.  Machines read a run of 3 or more jump records
-          as a trim; travel written here only follows a TRIM (or precedes the
-          first stitch), where a trim is wanted anyway.  A longer travel
-          anywhere else is refused.
-STOP      cord in: the frame first moves to the record's point, then, by the
-          format's ``stop_style``:
+          needle points all lie *outside* the tube corridor.  The design's
+          first needle point is reached by a frame move, never a stitch.
+JUMP      a run of plan JUMPs is one travel to the run's end, split into
+          records of at most the format's jump limit.  Machines read a run of
+          3 or more jump records as a trim; travel only follows a TRIM (or
+          precedes the first stitch), where a trim is wanted anyway.  A
+          longer travel anywhere else is refused.
+STOP      cord in, by the format's ``stop_style``:
 
-          * ``"stop"`` (DST, EXP): one stop record per plan STOP.  DST and EXP
-            share the stop and colour-change code, so the header's ``CO`` counts
-            exactly these.
-          * ``"color"`` (PES, PEC, JEF, VP3, XXX): formats with a thread table.
-            The first actuator's stop is implicit (the machine waits for start);
-            every later STOP is one colour change to that actuator's thread,
-            which makes single-needle machines stop, placed at the actuator's
-            first needle point (the frame travels there first).  PEC/PES
-            writers add a zero-length stitch at a colour change after travel:
-            one extra penetration on the first needle point.
+          * ``"stop"`` (DST, EXP): the frame moves to the record's point, then
+            one stop record (two with ``cord_stop="double"``, see
+            :mod:`embroact.patterns.stops`).  A stop before anything else is
+            left out: the machine waits at its start anyway, and readers drop a
+            leading stop record.
+          * ``"color"`` (PES, PEC, JEF, VP3, XXX): no stop code.  The first
+            actuator is laid before start; every later one gets its own colour
+            (thread) and the colour change makes the machine pause.  JEF, VP3
+            and XXX change colour at the actuator's first needle point, after the
+            travel (VP3 starts a colour block there); PEC/PES change colour where
+            the last actuator ended, before the travel, because their writer adds
+            a needle penetration to a colour change that follows a jump.
           * ``"needle_stop"`` (TBF, U01): a needle-set record selecting the
-            actuator's thread (always needle 1) and a separate stop record.
-TRIM      one trim (DST: pyembroidery's run of 3 jumps netting to zero).
+            actuator's thread (always needle 1) and the format's own stop record.
+TRIM      one trim (DST: a run of 3 jumps netting to zero; JEF: 3 zero-length
+          jumps; PEC/PES have no trim code: the trim flag of the next jump, a
+          zero-length one after the last actuator; VP3's end code trims, so the
+          last TRIM is that code).
 END       one end record.
 ========  ==================================================================
 
-The thread list holds one thread per actuator, its description the actuator name.
+The thread list holds one thread per actuator, its description the actuator name as
+:func:`ascii_label` writes it.  Which of these records a file really holds is read back
+from its bytes by :mod:`embroact.export.machine.census`.
 
 Examples
 --------
@@ -48,13 +57,13 @@ Examples
 ...     (0.0, 3.5, Command.STOP, Role.CONTROL), (0.0, 3.5, Command.STITCH, Role.TIE_IN),
 ...     (1.0, -3.5, Command.STITCH, Role.LEG), (1.0, -3.5, Command.TRIM, Role.CONTROL),
 ...     (1.0, -3.5, Command.END, Role.CONTROL, -1)])
->>> mp = to_pattern(plan, machine_format("act.dst"))
->>> import pyembroidery as pe
+>>> mp = to_pattern(plan, machine_format("act.dst"), cord_stop="double")
+>>> import pystitch as pe
 >>> names = {pe.JUMP: "jump", pe.STOP: "stop", pe.STITCH: "stitch", pe.TRIM: "trim", pe.END: "end"}
 >>> [(names[c], x, y) for x, y, c in mp.pattern.stitches]  # 0.1 mm, y down
-[('jump', 0, -35), ('stop', 0, -35), ('stitch', 0, -35), ('stitch', 10, 35), ('trim', 10, 35), ('end', 10, 35)]
->>> mp.stops, mp.trims, mp.split_legs
-(1, 1, 0)
+[('jump', 0, -35), ('stop', 0, -35), ('stop', 0, -35), ('stitch', 0, -35), ('stitch', 10, 35), ('trim', 10, 35), ('end', 10, 35)]
+>>> mp.split_legs
+0
 """
 from __future__ import annotations
 
@@ -67,6 +76,7 @@ import numpy as np
 from ...patterns.base.errors import ExportError, PatternError
 from ...patterns.plan import Command, StitchPlan
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+from ...patterns.stops import CordStop, cord_stop as check_cord_stop
 
 if TYPE_CHECKING:  # pragma: no cover
     from .formats import MachineFormat
@@ -80,14 +90,15 @@ __all__ = [
     "MachinePattern",
     "to_machine_units",
     "find_long_legs",
+    "ascii_label",
     "to_pattern",
 ]
 
 UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
-"""pyembroidery units per millimetre (0.1 mm grid)."""
+"""Machine-file units per millimetre (0.1 mm grid)."""
 
 TRIM_JUMP_RUN = 3
-"""Consecutive jump records a machine (and pyembroidery's DST writer) treat as a trim."""
+"""Consecutive jump records a machine (and the DST writer) treat as a trim."""
 
 THREAD_COLORS = (0x1F77B4, 0xD62728, 0x2CA02C, 0xFF7F0E, 0x9467BD, 0x8C564B, 0xE377C2, 0x17BECF)
 """Thread colours cycled over the actuators (distinct on screen, same thread on the machine)."""
@@ -142,34 +153,31 @@ class LongLegError(PatternError):
 
 @dataclass(frozen=True, slots=True)
 class MachinePattern:
-    """A plan converted for one format, ready for a pyembroidery writer.
+    """A plan converted for one format, ready for a pystitch writer.
 
     Attributes
     ----------
-    pattern : pyembroidery.EmbPattern
+    pattern : pystitch.EmbPattern
         Low-level records (0.1 mm, y down); write with ``encode=False``.
     format : str
-    stops : int
-        Stop records written (colour changes in ``"color"`` formats).
-    trims, jumps : int
-        Trim and jump records written (a DST trim adds its own jumps when written).
     split_legs : int
         Legs split into several stitches (only with ``split_long=True``).
     extra_needle_points : int
         Needle points added by splitting.
+    origin_mm : tuple of float
+        Plan position of the file's origin [mm, y up]: (0, 0) except for formats
+        written from their first needle point (VP3).
     """
 
     pattern: object
     format: str
-    stops: int
-    trims: int
-    jumps: int
     split_legs: int
     extra_needle_points: int
+    origin_mm: tuple[float, float] = (0.0, 0.0)
 
 
 def to_machine_units(xy_mm: np.ndarray) -> np.ndarray:
-    """Plan positions [mm, y up] -> integer pyembroidery units (0.1 mm, y down).
+    """Plan positions [mm, y up] -> integer machine-file units (0.1 mm, y down).
 
     Examples
     --------
@@ -281,20 +289,79 @@ def _next_stitch(plan: StitchPlan, i: int) -> int:
     return i + int(after[0]) if len(after) else i
 
 
+#: Characters NFKD does not reduce to ASCII, spelled out (everything else unknown becomes "_").
+_SPELLED = {
+    "°": "deg", "ø": "o", "Ø": "O", "ß": "ss", "æ": "ae", "Æ": "AE", "œ": "oe", "Œ": "OE",
+    "ł": "l", "Ł": "L", "đ": "d", "Đ": "D", "þ": "th", "Þ": "Th", "µ": "u", "×": "x",
+}
+#: Longest label any format's length byte holds.
+MAX_LABEL_CHARS = 255
+
+
+def ascii_label(text: str, *, max_chars: int = MAX_LABEL_CHARS) -> str:
+    """The label written into machine files: printable ASCII, one byte per character.
+
+    Formats count label lengths in bytes (PES, VP3) or hold fixed ASCII fields (DST, TBF),
+    so every name is transliterated once, the same way for every format: accents are
+    dropped (Unicode NFKD, combining marks removed), a few letters and signs are spelled
+    out (``°`` -> ``deg``, ``ø`` -> ``o``, ``ß`` -> ``ss``, ...), anything else outside
+    printable ASCII becomes ``_``.
+
+    Examples
+    --------
+    >>> ascii_label("cross 45°"), ascii_label("Ümlaut ø"), ascii_label("tube\\tA")
+    ('cross 45deg', 'Umlaut o', 'tube_A')
+    """
+    import unicodedata
+
+    out = []
+    for ch in str(text):
+        if ch in _SPELLED:
+            out.append(_SPELLED[ch])
+            continue
+        base = "".join(c for c in unicodedata.normalize("NFKD", ch) if not unicodedata.combining(c))
+        out.append(base if base and all(32 <= ord(c) < 127 for c in base) else "_")
+    return "".join(out)[:max_chars]
+
+
+#: Offsets [0.1 mm] tried for the first needle point from a file origin set near it (VP3).
+_ORIGIN_OFFSETS = ((10, 10), (13, 17), (17, 13), (19, 23), (23, 19), (29, 31))
+
+
+def _file_origin(plan: StitchPlan, units: np.ndarray) -> np.ndarray:
+    """Origin for a format that cannot move the frame before its first stitch (VP3).
+
+    The first needle point then lies 1 mm (or a little more) from the origin per axis: the
+    first record is a short stitch, not a long move that readers take for a trim.  Readers
+    skip a colour block's start move when one of its coordinates is zero, so the offset is
+    the first one leaving every later actuator's first needle point off both axes.
+    """
+    stitch = np.flatnonzero(plan.commands == Command.STITCH)
+    if not len(stitch):
+        return np.zeros(2, dtype=np.int64)
+    firsts = [stitch[plan.actuator[stitch] == k][0] for k in np.unique(plan.actuator[stitch])]
+    starts = units[firsts[1:]] if len(firsts) > 1 else np.zeros((0, 2), dtype=np.int64)
+    for off in _ORIGIN_OFFSETS:
+        origin = units[stitch[0]] - np.array(off) * np.array([1, -1])
+        if not np.any(starts - origin == 0):
+            return origin
+    return origin
+
+
 class _Builder:
-    """Accumulates low-level records and counts them."""
+    """Accumulates low-level records in the format's own conventions."""
 
     def __init__(self, fmt: "MachineFormat") -> None:
-        import pyembroidery
+        import pystitch
 
-        self.pe = pyembroidery
+        self.pe = pystitch
         self.fmt = fmt
-        self.pattern = pyembroidery.EmbPattern()
+        self.pattern = pystitch.EmbPattern()
         self.pos = np.zeros(2, dtype=np.int64)
         self.jump_ok = True  # at the start or after a trim: a long jump run is harmless
         self.stitched = False  # a needle record has been written
         self.jump_run = 0  # consecutive jump records just written
-        self.stops = self.trims = self.jumps = 0
+        self.waited = False  # a cord-in stop was handled: the first stitch starts where the machine waited
         self.max_jump = round(fmt.limit.max_jump_mm * UNITS_PER_MM)
 
     def add(self, cmd: int, p: np.ndarray | None = None) -> None:
@@ -308,27 +375,26 @@ class _Builder:
             return
         for p in _steps(self.pos, target, self.max_jump):
             self.add(self.pe.JUMP, p)
-            self.jumps += 1
         if self.jump_run >= TRIM_JUMP_RUN and not self.jump_ok:
             raise PatternError(
                 f"travel up to plan record {record} needs {self.jump_run} jump records in a row without a trim "
                 f"before them; machines read {TRIM_JUMP_RUN} or more jumps as a trim: add a TRIM before the travel"
             )
 
-    def stop(self, thread: int) -> None:
+    def stop(self, thread: int, cord: CordStop) -> None:
+        """A cord-in stop at the current position in the format's stop style."""
         pe, style = self.pe, self.fmt.stop_style
-        if style == "stop":
-            self.add(pe.STOP)
-        elif style == "color":
-            self.add(pe.COLOR_CHANGE)
-        else:  # needle_stop
+        if style == "needle_stop":
             self.add(pe.encode_thread_change(pe.NEEDLE_SET, thread, 1))
+        if not self.pattern.stitches or (style == "needle_stop" and len(self.pattern.stitches) == 1):
+            return  # nothing before it: the machine waits at the start anyway (a leading stop is dropped by readers)
+        for _ in range(cord.records_per_stop if style == "stop" else 1):
             self.add(pe.STOP)
-        self.stops += 1
 
 
-def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = False) -> MachinePattern:
-    """Convert ``plan`` to low-level pyembroidery records for ``fmt``.
+def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = False,
+               cord_stop: CordStop | str = CordStop.SEQUENCE) -> MachinePattern:
+    """Convert ``plan`` to low-level pystitch records for ``fmt`` (see the module docstring).
 
     Parameters
     ----------
@@ -338,6 +404,8 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     split_long : bool
         Split legs above the per-record limit into stitches outside the tube
         corridor instead of refusing them.
+    cord_stop : CordStop or str
+        How a stop-code format (DST, EXP) writes a cord-in stop.
 
     Raises
     ------
@@ -348,6 +416,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     ExportError
         More records than the format holds.
     """
+    cord = check_cord_stop(cord_stop)
     legs = find_long_legs(plan, fmt.limit.max_record_mm)
     if legs and not split_long:
         raise LongLegError(legs, fmt.name)
@@ -355,13 +424,44 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     pe = b.pe
     lim = round(fmt.limit.max_record_mm * UNITS_PER_MM)
     units = to_machine_units(plan.xy_mm)
+    origin = _file_origin(plan, units) if fmt.first_at_origin else np.zeros(2, np.int64)
+    units = units - origin
+    commands = plan.commands.tolist()
     split = extra = 0
     threads: dict[int, int] = {}
-    for i, (cmd, p) in enumerate(zip(plan.commands.tolist(), units)):
+    pending: np.ndarray | None = None  # travel target of a run of plan JUMPs, written as one move
+    for i, (cmd, p) in enumerate(zip(commands, units)):
         k = int(plan.actuator[i])
+        if cmd == Command.JUMP:
+            pending = p
+            continue
+        if cmd == Command.STOP:
+            first = k not in threads
+            threads.setdefault(k, len(threads))
+            if fmt.stop_style == "color":
+                if threads[k] > 0 and not fmt.color_after_travel:
+                    b.add(pe.COLOR_CHANGE)  # where the last actuator ended, before the travel
+                target = units[_next_stitch(plan, i)]  # colour formats wait at the first needle point
+                b.travel(target, i)
+                pending = None
+                if threads[k] > 0 and fmt.color_after_travel:
+                    b.add(pe.COLOR_CHANGE)
+                b.waited = True
+                continue
+            if pending is not None:
+                b.travel(pending, i)
+                pending = None
+            b.travel(p, i)
+            if first:
+                b.stop(threads[k], cord)
+            b.waited = True
+            continue
+        if pending is not None:
+            b.travel(pending, i)
+            pending = None
         if cmd == Command.STITCH:
-            if b.jump_ok and b.stops == 0 and not b.stitched:
-                b.travel(p, i)  # first needle point of the design when no stop record precedes it
+            if not b.stitched and b.jump_ok and not b.waited:
+                b.travel(p, i)  # first needle point: a frame move, never a stitch from the origin
             if int(np.abs(p - b.pos).max()) > lim:
                 pts = _split_leg(b.pos, p, lim, _forbidden_t(plan, k, plan.xy_mm[i - 1], plan.xy_mm[i]))
                 split, extra = split + 1, extra + len(pts) - 1
@@ -370,20 +470,13 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
             for q in pts:
                 b.add(pe.STITCH, q)
             b.jump_ok, b.stitched = False, True
-        elif cmd == Command.JUMP:
-            b.travel(p, i)
-        elif cmd == Command.STOP:
-            threads.setdefault(k, len(threads))
-            if fmt.stop_style == "color":
-                if threads[k] == 0:
-                    continue  # implicit first stop: the first stitch travels to its point
-                p = units[_next_stitch(plan, i)]  # colour change where the actuator's first stitch is
-            b.travel(p, i)
-            b.stop(threads[k])
         elif cmd == Command.TRIM:
             b.travel(p, i)
-            b.add(pe.TRIM)
-            b.trims += 1
+            last = i + 1 >= len(commands) or commands[i + 1] == Command.END
+            if not (last and fmt.end_trims):  # VP3 writes a trim with its end code
+                b.add(pe.TRIM)
+                if last and fmt.trim_is_jump:  # PEC/PES trim only at a trim-flagged jump: one of zero length
+                    b.add(pe.JUMP)
             b.jump_ok = True
         elif cmd == Command.END:
             b.add(pe.END)
@@ -396,9 +489,10 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     for k in sorted(threads, key=threads.get) or [0]:
         t = pe.EmbThread()
         t.set_color(*(THREAD_COLORS[len(b.pattern.threadlist) % len(THREAD_COLORS)].to_bytes(3, "big")))
-        t.description = _actuator_name(plan, k)
+        t.description = ascii_label(_actuator_name(plan, k))
         t.catalog_number = f"A{len(b.pattern.threadlist) + 1}"
         t.brand = "embroact"
         b.pattern.add_thread(t)
-    b.pattern.metadata("name", plan.name)
-    return MachinePattern(b.pattern, fmt.name, b.stops, b.trims, b.jumps, split, extra)
+    b.pattern.metadata("name", ascii_label(plan.name))
+    return MachinePattern(b.pattern, fmt.name, split, extra,
+                          (float(origin[0]) / UNITS_PER_MM, -float(origin[1]) / UNITS_PER_MM))

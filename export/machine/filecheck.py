@@ -1,15 +1,15 @@
-"""Check any embroidery file pyembroidery reads against the tube(s) it is meant to couch.
+"""Check any embroidery file pystitch reads against the tube(s) it is meant to couch.
 
 The file's records are read **in the file's own order** (no trims inserted, no
-zero-length jump runs removed: pyembroidery's reader is called with
+zero-length jump runs removed: pystitch's reader is called with
 ``trim_at=None, trim_distance=None, clipping=False``), so a finding's
 ``stitch_index`` is the record number in the file (DST: record ``i`` is bytes
 ``512 + 3 i`` to ``512 + 3 i + 2``).
 
 Frame
 -----
-Positions are those pyembroidery reads, converted to millimetres: ``x_mm = x / 10``,
-``y_mm = y / 10`` with **y pointing down** (pyembroidery's frame; DST stores y up
+Positions are those pystitch reads, converted to millimetres: ``x_mm = x / 10``,
+``y_mm = y / 10`` with **y pointing down** (pystitch's frame; DST stores y up
 and the reader flips it). Tube paths are given in this same frame. For a tube
 drawn in an embroact design (plan frame, y up), negate y:
 plan ``(x, y)`` -> file ``(x, -y)``.
@@ -96,7 +96,7 @@ class FileRecords:
     suffix : str
         Lower-case format suffix without the dot.
     xy_mm : ndarray (n, 2)
-        Positions [mm], pyembroidery's frame (y down); read-only.
+        Positions [mm], pystitch's frame (y down); read-only.
     commands : ndarray of int8
         :class:`Command` per record.
     """
@@ -111,10 +111,10 @@ class FileRecords:
 
 
 def readable_suffixes() -> tuple[str, ...]:
-    """Embroidery suffixes pyembroidery can read, sorted."""
-    import pyembroidery
+    """Embroidery suffixes pystitch can read, sorted."""
+    import pystitch
 
-    return tuple(sorted(f["extension"] for f in pyembroidery.supported_formats()
+    return tuple(sorted(f["extension"] for f in pystitch.supported_formats()
                         if f.get("reader") is not None and f.get("category") == "embroidery"))
 
 
@@ -156,19 +156,19 @@ def _check_jef_end(path: str, data: bytes) -> None:
 
 
 def _read_pattern(path: str, suffix: str, data: bytes):
-    """pyembroidery's reader for ``suffix`` on ``data``; checks magic numbers and end codes first/after."""
-    import pyembroidery
+    """pystitch's reader for ``suffix`` on ``data``; checks magic numbers and end codes first/after."""
+    import pystitch
 
     magic = _MAGIC.get(suffix)
     if magic is not None and not data.startswith(magic):
         raise DesignFileError(f"{path}: not a {suffix.upper()} file: it does not start with {magic.decode()!r}")
     if suffix == "jef":
         _check_jef_end(path, data)
-    reader = next(f["reader"] for f in pyembroidery.supported_formats() if f["extension"] == suffix)
+    reader = next(f["reader"] for f in pystitch.supported_formats() if f["extension"] == suffix)
     if getattr(reader, "READ_FILE_IN_TEXT_MODE", False):
-        return pyembroidery.read(path, dict(_RAW_READ))
+        return pystitch.read(path, dict(_RAW_READ))
     stream = _TrackedBytes(data)
-    pattern = pyembroidery.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+    pattern = pystitch.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
     if suffix in _END_CODED and stream.hit_end:
         raise DesignFileError(
             f"{path}: truncated or garbage {suffix.upper()} file: the data ends before the end-of-design code"
@@ -177,7 +177,7 @@ def _read_pattern(path: str, suffix: str, data: bytes):
 
 
 def _command_map() -> dict[int, Command]:
-    import pyembroidery as pe
+    import pystitch as pe
 
     return {pe.STITCH: Command.STITCH, pe.JUMP: Command.JUMP, pe.TRIM: Command.TRIM, pe.STOP: Command.STOP,
             pe.COLOR_CHANGE: Command.STOP, pe.NEEDLE_SET: Command.STOP, pe.END: Command.END}
@@ -191,7 +191,7 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     DesignFileError
         One line when the file is missing, of an unknown kind, truncated or garbage.
     """
-    import pyembroidery
+    import pystitch
 
     p = str(path)
     suffix = Path(p).suffix.lower().lstrip(".")
@@ -213,11 +213,11 @@ def read_records(path: str | os.PathLike) -> FileRecords:
         raise
     except Exception as exc:  # any reader failure on garbage is unusable input, one line
         raise DesignFileError(f"{p}: unreadable {suffix.upper()} file ({type(exc).__name__}: {exc})") from None
-    if pattern is None or not any(s[2] & pyembroidery.COMMAND_MASK == pyembroidery.STITCH for s in pattern.stitches):
+    if pattern is None or not any(s[2] & pystitch.COMMAND_MASK == pystitch.STITCH for s in pattern.stitches):
         raise DesignFileError(f"{p}: no stitches in this {suffix.upper()} file")
     raw = np.array(pattern.stitches, dtype=np.float64).reshape(-1, 3)
     cmap = _command_map()
-    commands = np.array([cmap.get(int(c) & pyembroidery.COMMAND_MASK, Command.JUMP) for c in raw[:, 2]], dtype=np.int8)
+    commands = np.array([cmap.get(int(c) & pystitch.COMMAND_MASK, Command.JUMP) for c in raw[:, 2]], dtype=np.int8)
     xy = raw[:, :2] / 10.0
     xy.setflags(write=False)
     commands.setflags(write=False)
@@ -318,7 +318,7 @@ def check_file(
     Parameters
     ----------
     path : str or PathLike
-        Any file pyembroidery reads.
+        Any file pystitch reads.
     tubes : sequence of TubeLayout
         Tube paths in the file's frame (mm, y down); see :func:`tube_layout`.
     settings : RuleSettings, optional

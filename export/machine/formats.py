@@ -1,25 +1,39 @@
 """Machine-file writers behind one registry keyed by file suffix.
 
-Every embroidery format pyembroidery writes is here.  The format follows the
-file suffix; ``fmt=`` overrides it; an unknown suffix lists the supported ones.
-Files are encoded in memory (pyembroidery's stream API with ``encode=False``:
-the records come from :mod:`embroact.export.machine.encode`, nothing is re-encoded) and
-written atomically.  The same plan always gives the same bytes: JEF's date field
-is pinned to :data:`FIXED_DATE` and no writer gets a random filler thread.
+Every embroidery format pystitch writes is here.  The format follows the file
+suffix; ``fmt=`` overrides it; an unknown suffix lists the supported ones.  Files
+are encoded in memory (pystitch's stream API with ``encode=False``: the records
+come from :mod:`embroact.export.machine.encode`, nothing is re-encoded) and written
+atomically.  The same plan always gives the same bytes: JEF's date field is pinned
+to :data:`FIXED_DATE` and no writer gets a random filler thread.  What a written
+file holds is counted back from its bytes (:mod:`embroact.export.machine.census`).
 
 ========  ===========  ==================================================
 format    stop style   notes
 ========  ===========  ==================================================
 dst       stop         Tajima; header rewritten by :mod:`embroact.export.machine.dst`
-tbf       needle_stop  Tajima binary: separate stop (0x40) and trim codes
+tbf       needle_stop  Tajima binary: own stop (0x40), trim and needle codes; header extents rewritten
 pes       color        Brother, version 6 (thread table names each actuator)
 pec       color        Brother
 jef       color        Janome; trims written explicitly
-exp       stop         Melco / Bernina
-vp3       color        Pfaff / Husqvarna (thread table names each actuator)
+exp       stop         Melco / Bernina; trim record written without its 0.7 mm offset
+vp3       color        Pfaff / Husqvarna (thread table names each actuator); origin 1 mm beside the first needle point
 xxx       color        Singer
 u01       needle_stop  Barudan
 ========  ===========  ==================================================
+
+Corrections of the library's writers that are still needed (pystitch 1.0.1)
+--------------------------------------------------------------------------
+* DST: ``+Y``/``-Y`` swapped, ``+X``/``-X`` as absolute values of signed bounds, ``ST``
+  counting a trim as one record, no 0x1A after the end record (``CO`` now counts stops:
+  fixed upstream, rewritten with the rest of the header).
+* TBF: the same extent faults as DST (``_tbf_extents``).
+* EXP: a trim written as ``80 80 07 00``, which other readers and a Bernina machine take
+  as a trim *and* a 0.7 mm move (``_exp_trims``): written as ``80 80 00 00``, a trim
+  without a move for every reader.
+* VP3: block offsets truncated from a half-unit design centre (``_vp3_even_center``).
+* Labels: PES and VP3 write a name's character count as its byte count; every label is
+  written as :func:`embroact.export.machine.encode.ascii_label` transliterates it.
 
 Examples
 --------
@@ -37,6 +51,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
@@ -44,7 +59,9 @@ from typing import Callable
 from ...patterns.base.errors import ExportError, ParameterError
 from ...patterns.limits import FORMAT_LIMITS, FormatLimit
 from ...patterns.plan import StitchPlan
+from ...patterns.stops import CordStop
 from ..files.atomic import check_output_dir, write_bytes_atomic
+from .census import NAMED_FORMATS, census
 from .encode import MachinePattern, to_pattern
 
 __all__ = ["FIXED_DATE", "MachineFormat", "WriteResult", "FORMATS", "machine_format", "encode", "write"]
@@ -59,8 +76,43 @@ def _dst_post(data: bytes, mp: MachinePattern) -> bytes:
     return fix_dst(data, label=mp.pattern.get_metadata("name", ""))
 
 
+def _extents(mp: MachinePattern) -> dict[str, int]:
+    """Largest excursion from the start point in each direction, 0.1 mm, machine frame (y up)."""
+    xs = [0] + [int(s[0]) for s in mp.pattern.stitches]
+    ys = [0] + [-int(s[1]) for s in mp.pattern.stitches]
+    return {"+X": max(xs), "-X": -min(xs), "+Y": max(ys), "-Y": -min(ys)}
+
+
+def _tbf_extents(data: bytes, mp: MachinePattern) -> bytes:
+    """Rewrite the TBF header's ``+X -X +Y -Y`` fields (same widths, so no offset moves)."""
+    ext = _extents(mp)
+
+    def field_(m: re.Match) -> bytes:
+        key = m.group(1).decode("ascii")
+        return b"%s:%5d\r" % (key.encode("ascii"), ext[key])
+
+    head = re.sub(rb"([+-][XY]):[ 0-9-]{5}\r", field_, data[:0x376], count=4)
+    if len(head) != 0x376:
+        raise ExportError("TBF header extents do not fit their 5-digit fields")
+    return head + data[0x376:]
+
+
+def _exp_trims(data: bytes, mp: MachinePattern) -> bytes:
+    """EXP trim records ``80 80 07 00`` -> ``80 80 00 00`` (walking the 2- and 4-byte records)."""
+    out = bytearray(data)
+    i = 0
+    while i + 1 < len(out):
+        if out[i] != 0x80:
+            i += 2
+            continue
+        if out[i + 1] == 0x80:
+            out[i + 2 : i + 4] = b"\x00\x00"
+        i += 4
+    return bytes(out)
+
+
 def _vp3_even_center(pattern) -> None:
-    """Make the VP3 design centre whole units (pyembroidery 1.5.1 truncates block offsets from it).
+    """Make the VP3 design centre whole units (the writer truncates block offsets from it).
 
     The VP3 writer stores each colour block's start as ``int(start - centre)`` and
     the reader adds back ``int(centre)``: with a half-unit centre every block after
@@ -68,7 +120,7 @@ def _vp3_even_center(pattern) -> None:
     the writer skips them, only the bounds see them) widen the bounds by one unit
     where the sum of the extremes is odd.
     """
-    import pyembroidery as pe
+    import pystitch as pe
 
     xmin, ymin, xmax, ymax = pattern.bounds()
     if (xmin + xmax) % 2 == 0 and (ymin + ymax) % 2 == 0:
@@ -87,7 +139,7 @@ class MachineFormat:
     name : str
         Lower-case suffix without the dot.
     writer : str
-        pyembroidery writer module (``"DstWriter"``).
+        pystitch writer module (``"DstWriter"``).
     stop_style : str
         ``"stop"``, ``"color"`` or ``"needle_stop"`` (see :mod:`embroact.export.machine.encode`).
     limit : FormatLimit
@@ -98,6 +150,16 @@ class MachineFormat:
         ``(bytes, MachinePattern) -> bytes`` applied after the writer (DST header).
     prepare : callable or None
         ``(EmbPattern) -> None`` applied to the records before the writer (VP3 centre).
+    color_after_travel : bool
+        Colour formats: change colour at the next actuator's first needle point (after
+        the travel) rather than where the last one ended.
+    trim_is_jump : bool
+        The format trims only at a trim-flagged jump (PEC/PES).
+    end_trims : bool
+        The format's end code trims (VP3): no separate trim before it.
+    first_at_origin : bool
+        The format cannot move the frame before its first stitch (VP3): its origin is
+        the first needle point.
     """
 
     name: str
@@ -107,6 +169,10 @@ class MachineFormat:
     settings: tuple[tuple[str, object], ...] = ()
     postprocess: Callable[[bytes, MachinePattern], bytes] | None = field(default=None, compare=False)
     prepare: Callable[[object], None] | None = field(default=None, compare=False)
+    color_after_travel: bool = True
+    trim_is_jump: bool = False
+    end_trims: bool = False
+    first_at_origin: bool = False
 
     @property
     def description(self) -> str:
@@ -114,20 +180,20 @@ class MachineFormat:
         return self.limit.description
 
 
-def _fmt(name: str, writer: str, style: str, settings=(), post=None, prepare=None) -> MachineFormat:
-    return MachineFormat(name, writer, style, FORMAT_LIMITS[name], tuple(settings), post, prepare)
+def _fmt(name: str, writer: str, style: str, settings=(), post=None, prepare=None, **flags) -> MachineFormat:
+    return MachineFormat(name, writer, style, FORMAT_LIMITS[name], tuple(settings), post, prepare, **flags)
 
 
 FORMATS: dict[str, MachineFormat] = {
     f.name: f
     for f in (
         _fmt("dst", "DstWriter", "stop", post=_dst_post),
-        _fmt("tbf", "TbfWriter", "needle_stop"),
-        _fmt("pes", "PesWriter", "color", [("version", 6)]),
-        _fmt("pec", "PecWriter", "color"),
+        _fmt("tbf", "TbfWriter", "needle_stop", post=_tbf_extents),
+        _fmt("pes", "PesWriter", "color", [("version", 6)], color_after_travel=False, trim_is_jump=True),
+        _fmt("pec", "PecWriter", "color", color_after_travel=False, trim_is_jump=True),
         _fmt("jef", "JefWriter", "color", [("trims", True), ("date", FIXED_DATE)]),
-        _fmt("exp", "ExpWriter", "stop"),
-        _fmt("vp3", "Vp3Writer", "color", prepare=_vp3_even_center),
+        _fmt("exp", "ExpWriter", "stop", post=_exp_trims),
+        _fmt("vp3", "Vp3Writer", "color", prepare=_vp3_even_center, end_trims=True, first_at_origin=True),
         _fmt("xxx", "XxxWriter", "color"),
         _fmt("u01", "U01Writer", "needle_stop"),
     )
@@ -155,9 +221,28 @@ def machine_format(path: str | os.PathLike, *, fmt: str | None = None) -> Machin
     return FORMATS[suffix.lstrip(".")]
 
 
+#: What each kind of format cannot hold, said wherever its counts are reported.
+_CANNOT = {
+    "stop": "stop and colour change share one code",
+    "needle_stop": "",
+    "color": "no stop code: the machine pauses at each colour change (one colour per later actuator), "
+             "so tube 1 is laid before start",
+}
+
+
+def _notes(f: MachineFormat, mp: MachinePattern) -> tuple[str, ...]:
+    notes = [] if f.name in NAMED_FORMATS else [f"{f.name}: no thread names (actuator names are not in the file)"]
+    if _CANNOT[f.stop_style]:
+        notes.append(f"{f.name}: {_CANNOT[f.stop_style]}")
+    if f.first_at_origin:
+        notes.append(f"{f.name}: the file's origin is {mp.origin_mm[0]:g}, {mp.origin_mm[1]:g} mm (plan frame), 1 mm "
+                     "beside the first needle point: the format cannot move the frame before its first stitch")
+    return tuple(notes)
+
+
 @dataclass(frozen=True, slots=True)
 class WriteResult:
-    """What a machine-file write produced.
+    """What a machine-file write produced, counted back from the file's bytes.
 
     Attributes
     ----------
@@ -165,28 +250,54 @@ class WriteResult:
         File written (None for :func:`encode`).
     format : str
     size_bytes : int
-    stitches, stops, trims, jumps : int
-        Records written (stitches include split-leg needle points).
+    stitches, jumps, trims, stops, color_changes : int
+        Records the file holds (:mod:`embroact.export.machine.census`).
     split_legs : int
         Legs split because they exceeded the per-record limit.
+    cord_stop : str
+        How cord-in stops were written (:class:`embroact.patterns.stops.CordStop`).
+    pauses_mm : tuple of (float, float)
+        Where the machine waits for the operator, plan frame [mm, y up].
+    thread_names : tuple of str
+        Thread names the file carries (empty where the format has none).
+    origin_mm : tuple of float
+        Plan position of the file's origin [mm] ((0, 0) but for VP3).
+    notes : tuple of str
+        What this format cannot carry.
     """
 
     path: str | None
     format: str
     size_bytes: int
     stitches: int
-    stops: int
-    trims: int
     jumps: int
+    trims: int
+    stops: int
+    color_changes: int
     split_legs: int
+    cord_stop: str = CordStop.SEQUENCE.value
+    pauses_mm: tuple[tuple[float, float], ...] = ()
+    thread_names: tuple[str, ...] = ()
+    origin_mm: tuple[float, float] = (0.0, 0.0)
+    notes: tuple[str, ...] = ()
+
+    @property
+    def pauses(self) -> int:
+        """Times the machine waits for the operator after start."""
+        return len(self.pauses_mm)
 
     def as_dict(self) -> dict:
-        """Plain dict for JSON output."""
-        return {k: getattr(self, k) for k in self.__slots__}
+        """Plain dict for JSON output (lists for tuples)."""
+        out = {}
+        for k in self.__slots__:
+            v = getattr(self, k)
+            out[k] = [list(p) for p in v] if k == "pauses_mm" else list(v) if isinstance(v, tuple) else v
+        return out
 
 
-def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bool = False) -> tuple[bytes, WriteResult]:
-    """Encode ``plan`` as bytes of format ``fmt`` (no file touched).
+def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bool = False,
+           cord_stop: CordStop | str = CordStop.SEQUENCE) -> tuple[bytes, WriteResult]:
+    """Encode ``plan`` as bytes of format ``fmt`` (no file touched); the counts are read back from them.
 
     Examples
     --------
@@ -194,14 +305,14 @@ def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bo
     >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
     ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
     >>> data, res = encode(plan, "dst")
-    >>> len(data), res.stitches
-    (522, 2)
+    >>> len(data), res.stitches, res.stops
+    (522, 2, 0)
     """
     import importlib
 
     f = fmt if isinstance(fmt, MachineFormat) else machine_format("", fmt=fmt)
-    mp = to_pattern(plan, f, split_long=split_long)
-    writer = importlib.import_module(f"pyembroidery.{f.writer}")
+    mp = to_pattern(plan, f, split_long=split_long, cord_stop=cord_stop)
+    writer = importlib.import_module(f"pystitch.{f.writer}")
     if f.prepare is not None:
         f.prepare(mp.pattern)
     settings = {"encode": False, **dict(f.settings)}
@@ -213,8 +324,12 @@ def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bo
     data = buf.getvalue()
     if f.postprocess is not None:
         data = f.postprocess(data, mp)
-    n_stitch = mp.pattern.count_stitch_commands(writer.STITCH)
-    return data, WriteResult(None, f.name, len(data), n_stitch, mp.stops, mp.trims, mp.jumps, mp.split_legs)
+    c = census(data, f.name)
+    ox, oy = mp.origin_mm
+    pauses = tuple((round(x + ox, 1) + 0.0, round(y + oy, 1) + 0.0) for x, y in c.pauses_mm)
+    return data, WriteResult(None, f.name, len(data), c.stitches, c.jumps, c.trims, c.stops, c.color_changes,
+                             mp.split_legs, str(getattr(cord_stop, "value", cord_stop)), pauses, c.thread_names,
+                             mp.origin_mm, _notes(f, mp))
 
 
 def write(
@@ -223,13 +338,14 @@ def write(
     *,
     fmt: str | None = None,
     split_long: bool = False,
+    cord_stop: CordStop | str = CordStop.SEQUENCE,
 ) -> WriteResult:
     """Write ``plan`` to ``path`` atomically in the format of its suffix (or ``fmt``).
 
     Raises
     ------
     ParameterError
-        Unknown suffix/format.
+        Unknown suffix/format or cord-stop mode.
     LongLegError
         A leg exceeds the format's per-record limit and ``split_long`` is false.
     ExportError
@@ -237,6 +353,6 @@ def write(
     """
     f = machine_format(path, fmt=fmt)
     check_output_dir(path)
-    data, res = encode(plan, f, split_long=split_long)
+    data, res = encode(plan, f, split_long=split_long, cord_stop=cord_stop)
     write_bytes_atomic(path, data)
     return replace(res, path=str(path))

@@ -1,0 +1,167 @@
+"""What a machine file holds, counted from its bytes: the numbers embroact reports for it.
+
+Every count and position that a summary line, ``--json``, the worksheet or the report
+gives for a machine file comes from here, read back from the encoded bytes, so what is
+reported is what the file holds.  DST is decoded by :func:`embroact.export.machine.dst.decode_moves`;
+every other format by pystitch's reader for it, with no trims inserted and nothing
+clipped (the file's own records, in order).
+
+How records are counted
+-----------------------
+stitches
+    Needle records (penetrations).
+jumps
+    Frame moves without the needle that are not part of a trim.
+trims
+    Thread cuts: a DST run of 3 jumps netting to zero; a run of consecutive trim
+    records (JEF writes a trim as 3 zero-length jumps, which its reader reads as 3
+    trims); a PEC/PES trim-flagged jump (one record that cuts and moves).
+stops
+    Stop records (DST/EXP: the shared stop / colour-change code; TBF/U01: their own stop
+    code); two in a row (``cord_stop = "double"``) count as two records but one pause.
+color_changes
+    Colour changes of colour formats (PES, PEC, JEF, VP3, XXX) and needle-set records
+    of TBF/U01.
+pauses_mm
+    Where the machine waits for the operator, in order: each run of stop records
+    (stop-code formats) or each colour change (colour formats), in the file frame
+    (mm, y up, origin at the file's start point).
+
+Examples
+--------
+>>> body = bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xC3, 0x00, 0x00, 0xC3, 0x02, 0x00, 0x03, 0x00, 0x00, 0xF3])
+>>> c = census(bytes(512) + body, "dst")
+>>> c.stitches, c.stops, c.pauses_mm, c.needle_points_mm.tolist()
+(2, 2, ((0.1, 0.0),), [[0.1, 0.0], [0.0, 0.0]])
+"""
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...patterns.base.arrays import frozen_array
+from .dst import COLOR_BYTE, END_BYTE, HEADER_SIZE, decode_moves
+
+__all__ = ["Census", "census", "STOP_CODE_FORMATS", "COLOR_FORMATS", "NAMED_FORMATS"]
+
+#: Formats with a stop record (DST and EXP share it with the colour change; TBF and U01 have their own).
+STOP_CODE_FORMATS = frozenset({"dst", "exp", "tbf", "u01"})
+#: Formats without a stop code: the machine pauses at each colour change.
+COLOR_FORMATS = frozenset({"pes", "pec", "jef", "vp3", "xxx"})
+#: Formats whose files carry thread names (the actuator names).
+NAMED_FORMATS = frozenset({"pes", "vp3"})
+_JUMP_BIT = 0x80
+#: Reader settings that keep the file's own records (no trims made from jump runs, nothing clipped).
+_RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Census:
+    """The records of one machine file (see the module docstring for how each is counted).
+
+    Attributes
+    ----------
+    format : str
+    stitches, jumps, trims, stops, color_changes : int
+    needle_points_mm : ndarray (n, 2)
+        Needle points in order [mm], file frame (y up, origin at the start point); read-only.
+    pauses_mm : tuple of (float, float)
+        Where the machine waits for the operator, in order [mm], file frame.
+    thread_names : tuple of str
+        Thread names the file carries (empty for formats without names).
+    """
+
+    format: str
+    stitches: int
+    jumps: int
+    trims: int
+    stops: int
+    color_changes: int
+    needle_points_mm: np.ndarray
+    pauses_mm: tuple[tuple[float, float], ...]
+    thread_names: tuple[str, ...]
+
+
+def _point(x: int, y: int) -> tuple[float, float]:
+    return (round(x / 10.0, 1) + 0.0, round(y / 10.0, 1) + 0.0)
+
+
+def _dst(data: bytes) -> Census:
+    x = y = 0
+    pts, pauses = [], []
+    stitches = jumps = trims = stops = 0
+    run: list[tuple[int, int]] = []  # the jump run being read
+
+    def close_run() -> None:
+        nonlocal jumps, trims
+        if len(run) >= 3 and sum(d[0] for d in run[:3]) == 0 and sum(d[1] for d in run[:3]) == 0:
+            trims += 1
+            jumps += len(run) - 3
+        else:
+            jumps += len(run)
+        run.clear()
+
+    previous = None
+    for dx, dy, b3 in decode_moves(data[HEADER_SIZE:]):
+        kind = "end" if b3 == END_BYTE else "stop" if b3 == COLOR_BYTE else "jump" if b3 & _JUMP_BIT else "stitch"
+        if kind != "jump":
+            close_run()
+        x, y = x + dx, y + dy
+        if kind == "jump":
+            run.append((dx, dy))
+        elif kind == "stitch":
+            stitches += 1
+            pts.append(_point(x, y))
+        elif kind == "stop":
+            stops += 1
+            if previous != "stop":
+                pauses.append(_point(x, y))
+        previous = kind
+    close_run()
+    return Census("dst", stitches, jumps, trims, stops, 0, _array(pts), tuple(pauses), ())
+
+
+def _array(pts) -> np.ndarray:
+    return frozen_array(np.array(pts, dtype=np.float64).reshape(-1, 2))
+
+
+def _read(data: bytes, fmt: str):
+    import pystitch as pe
+
+    reader = next(f["reader"] for f in pe.supported_formats() if f["extension"] == fmt)
+    return pe, pe.EmbPattern.read_embroidery(reader, io.BytesIO(data), dict(_RAW_READ))
+
+
+def census(data: bytes, fmt: str) -> Census:
+    """Count the records of ``data``, a file of format ``fmt`` (see the module docstring)."""
+    if fmt == "dst":
+        return _dst(data)
+    pe, pattern = _read(data, fmt)
+    pts, pauses = [], []
+    stitches = jumps = trims = stops = colors = 0
+    previous = None
+    for x, y, c in pattern.stitches:
+        cmd = c & pe.COMMAND_MASK
+        here = _point(int(round(x)), -int(round(y)))
+        if cmd == pe.STITCH:
+            stitches += 1
+            pts.append(here)
+        elif cmd == pe.JUMP:
+            if previous != pe.TRIM:  # PEC/PES: a trim-flagged jump is read as a trim and its move
+                jumps += 1
+        elif cmd == pe.TRIM:
+            if previous != pe.TRIM:
+                trims += 1
+        elif cmd == pe.STOP or (cmd == pe.COLOR_CHANGE and fmt in STOP_CODE_FORMATS):
+            stops += 1
+            if previous not in (pe.STOP, pe.COLOR_CHANGE):
+                pauses.append(here)
+        elif cmd in (pe.COLOR_CHANGE, pe.NEEDLE_SET):
+            colors += 1
+            if fmt in COLOR_FORMATS:
+                pauses.append(here)
+        previous = cmd
+    names = tuple(t.description or "" for t in pattern.threadlist) if fmt in NAMED_FORMATS else ()
+    return Census(fmt, stitches, jumps, trims, stops, colors, _array(pts), tuple(pauses), names)
