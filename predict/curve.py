@@ -80,6 +80,7 @@ from . import solvers
 from .inflation import KPA_PER_MPA
 from .status import Status, status_names
 from .tubelaws import check_tube_law, pressure_kpa, radius_mm, transition_pressure_kpa
+from .validity import apply_limits
 
 __all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "PRESSURE_FLOOR_PER_G", "MAX_BEND_DEG", "ANGLE_LIMIT_DEG",
            "curve", "pressure_at", "lockup", "sweep"]
@@ -381,7 +382,7 @@ def _states(geo, theta, pressure_mpa, status, models):
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
 
-def _block(models, p, energy, deriv, inverse, rtol):
+def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
     geo = _geometry(models)
     pressure = np.broadcast_to(p, (len(models), p.size))
@@ -390,11 +391,15 @@ def _block(models, p, energy, deriv, inverse, rtol):
     infl = targets <= 0.0
     theta = np.where(infl, 0.0, theta)
     status = np.where(infl, Status.INFLATION, status).astype(np.int8)
-    return (pressure * KPA_PER_MPA, np.degrees(theta), status) + _states(geo, theta, pressure, status, models)
+    states = _states(geo, theta, pressure, status, models)
+    if limits:  # validity limits (validity.py)
+        status = apply_limits(status, theta, states[0], states[1], geo.l0)
+    return (pressure * KPA_PER_MPA, np.degrees(theta), status) + states
 
 
 # -- public API ----------------------------------------------------------------------------
-def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_TOLERANCES.model_rtol) -> Curve:
+def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_TOLERANCES.model_rtol,
+          limits: bool = True) -> Curve:
     """theta(P) for many designs at once: a :class:`Curve` of 2-D arrays, one row per model.
 
     Parameters
@@ -406,6 +411,9 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
         One of :data:`METHODS` (see the module docstring).
     rtol : float
         Relative tolerance of the equilibrium angle (and the accuracy "auto" must meet).
+    limits : bool
+        Report the validity limits (COILED, KINKED, OVERSTRETCHED; :mod:`embroact.predict.validity`);
+        False gives the formula's own statuses, for studies of the formula beyond them.
 
     Examples
     --------
@@ -418,14 +426,14 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
     models = list(models)
     if not models or not all(isinstance(mo, ActuatorModel) for mo in models):
         raise ParameterError("models must be a non-empty sequence of ActuatorModel")
-    return _solve(models, pressures_kpa, method, rtol, squeeze=False)
+    return _solve(models, pressures_kpa, method, rtol, squeeze=False, limits=limits)
 
 
-def _solve(models, pressures_kpa, method, rtol, *, squeeze):
+def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
     check_range("rtol", rtol, low=0.0, high=1.0)
     energy, deriv, inverse = _resolve(method, rtol)
     p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
-    blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol)
+    blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol, limits)
               for k in range(0, len(models), SWEEP_BLOCK)]
     arrays = [parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks)]
     return Curve(*(frozen_array(a, dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
@@ -433,26 +441,30 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze):
 
 
 def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
-          rtol: float = DEFAULT_TOLERANCES.model_rtol) -> Curve:
+          rtol: float = DEFAULT_TOLERANCES.model_rtol, limits: bool = True) -> Curve:
     """Bending angle theta(P) and state at each pressure [kPa] (1-D arrays).
 
     Below P0: ``INFLATION``, theta = 0. Above: the equilibrium on the branch that
     starts straight; pressures past a fold are ``UNSTABLE`` at the fold angle,
     past a lock-up ``LOCKED`` at the lock angle, past the domain or the tracing cap
-    ``OUT_OF_DOMAIN`` at the end angle. See :func:`sweep` for the parameters.
+    ``OUT_OF_DOMAIN`` at the end angle; states beyond a validity limit take that
+    limit's status (COILED, KINKED, OVERSTRETCHED) with the formula's values.
+    See :func:`sweep` for the parameters.
     """
     if not isinstance(model, ActuatorModel):
         raise ParameterError(f"model must be an ActuatorModel, got {type(model).__name__}")
-    return _solve([model], pressures_kpa, method, rtol, squeeze=True)
+    return _solve([model], pressures_kpa, method, rtol, squeeze=True, limits=limits)
 
 
-def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Curve:
+def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:
     """Pressure P(theta) [kPa] holding each bending angle [deg], with the state there.
 
     theta = 0 gives P0 (``INFLATION``). Angles no pressure >= P0 reaches carry the
     fill pressure P0: the wrong bending direction and angles past the domain end
     (``OUT_OF_DOMAIN``), angles at or past lock-up (``LOCKED``). Angles on a falling
-    part of P(theta) are ``UNSTABLE`` with their (real) pressure.
+    part of P(theta) are ``UNSTABLE`` with their (real) pressure. Angles beyond a
+    validity limit take its status and keep the pressure of the status they replace
+    (``limits`` as for :func:`sweep`).
     """
     energy, deriv, inverse = _resolve(method, DEFAULT_TOLERANCES.model_rtol)
     th = np.radians(_values("theta_deg", theta_deg, low=-ANGLE_LIMIT_DEG, high=ANGLE_LIMIT_DEG))[None, :]
@@ -470,7 +482,10 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto") -> Cur
     filled = (status != Status.BENDING) & (status != Status.UNSTABLE)
     p = np.where(filled, geo.p0, p)
     theta = np.where(status == Status.FAILED, 0.0, th)  # other points show the state at the angle asked for
-    arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + _states(geo, theta, p, status, [model])
+    states = _states(geo, theta, p, status, [model])
+    if limits:  # validity limits (validity.py); the pressure keeps the value of the status replaced
+        status = apply_limits(status, theta, states[0], states[1], geo.l0)
+    arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + states
     return Curve(*(frozen_array(a[0], dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=model.calibration)
 

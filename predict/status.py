@@ -1,8 +1,11 @@
-"""Status of each point of a predicted curve (MODEL.md sections 4 and 6).
+"""Status of each point of a predicted curve (docs/model.md: domain, methods, validity limits).
 
 Every public answer of the model carries one :class:`Status` per point; a point
 that has no equilibrium never holds NaN but a documented fill value, and its
-status says why.
+status says why. The last three statuses are limits of *validity*, not of the
+mathematics (:mod:`embroact.predict.validity`): the formula still has an answer
+there, but it no longer describes a real actuator; theta and the state arrays keep
+the formula's values, so a caller can see how far past the limit a point is.
 
 ============== ===== ========================================================================
 name           value meaning; fill values of ``curve`` (theta) and ``pressure_at`` (pressure)
@@ -20,15 +23,29 @@ UNSTABLE       4     dP/dtheta < 0: snap-through. ``curve``: theta = the fold an
                      last stable state before the jump); ``pressure_at``: the real P(theta)
 FAILED         5     the chosen method produced no finite number (a documented failure of
                      that method, e.g. "printed" where B^2 underflows); theta 0, pressure P0
+COILED         6     the strip has closed a full turn (|theta| >= 360 deg), or, in a negative
+                     bend, its tip has landed on the tube where it leaves the clamped end
+KINKED         7     the bend radius l0/|theta| is below the tube's diameter 2 r
+OVERSTRETCHED  8     the thread side is stretched to l/l0 >= 2
 ============== ===== ========================================================================
+
+Precedence: a point gets the first status that applies, in the order FAILED,
+OUT_OF_DOMAIN (their theta is a fill value, not a state), COILED, KINKED,
+OVERSTRETCHED (checked on the state at the point's theta, which for UNSTABLE and
+LOCKED points is the fold or lock angle), then the model's own UNSTABLE, LOCKED,
+BENDING or INFLATION. So a zigzag's fold, thousands of degrees into the coiled region,
+reads COILED. :func:`embroact.predict.validity.limit_flags` gives every limit a point
+exceeds, not only the first.
 
 Examples
 --------
 >>> from embroact.predict.status import Status, status_names
 >>> int(Status.LOCKED), Status(1).name
 (2, 'BENDING')
->>> status_names([0, 1, 4])
-['INFLATION', 'BENDING', 'UNSTABLE']
+>>> status_names([0, 1, 4, 6])
+['INFLATION', 'BENDING', 'UNSTABLE', 'COILED']
+>>> sorted(s.name for s in MODEL_STATES)
+['BENDING', 'INFLATION', 'LOCKED', 'UNSTABLE']
 """
 from __future__ import annotations
 
@@ -36,7 +53,7 @@ import enum
 
 import numpy as np
 
-__all__ = ["Status", "status_names"]
+__all__ = ["Status", "status_names", "VALIDITY_LIMITS", "MODEL_STATES", "is_model_state"]
 
 
 class Status(enum.IntEnum):
@@ -48,6 +65,27 @@ class Status(enum.IntEnum):
     OUT_OF_DOMAIN = 3
     UNSTABLE = 4
     FAILED = 5
+    COILED = 6
+    KINKED = 7
+    OVERSTRETCHED = 8
+
+
+#: Statuses of the validity limits, in order of precedence.
+VALIDITY_LIMITS = (Status.COILED, Status.KINKED, Status.OVERSTRETCHED)
+#: Statuses whose theta is a state the model describes: an equilibrium (INFLATION, BENDING)
+#: or the end of the stable branch the point stops at (LOCKED: lock angle, UNSTABLE: fold angle).
+MODEL_STATES = frozenset((Status.INFLATION, Status.BENDING, Status.LOCKED, Status.UNSTABLE))
+
+
+def is_model_state(codes) -> np.ndarray:
+    """True where a status is one of :data:`MODEL_STATES` (draw the shape; chart it as valid).
+
+    Examples
+    --------
+    >>> is_model_state([0, 1, 3, 6]).tolist()
+    [True, True, False, False]
+    """
+    return np.isin(np.asarray(codes), [int(s) for s in MODEL_STATES])
 
 
 def status_names(codes) -> list[str]:

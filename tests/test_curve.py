@@ -78,7 +78,8 @@ def test_curve_arrays_are_read_only_float64_and_json_safe():
     d = c.as_dict()
     assert set(d) == {"pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg",
                       "inner_radius_mm", "method", "calibration"}
-    assert d["status"][:3] == ["INFLATION", "INFLATION", "BENDING"] and d["status"][-1] == "UNSTABLE"
+    # 700 kPa is past the fold (1888.8 deg), which lies far inside the coiled region
+    assert d["status"][:3] == ["INFLATION", "INFLATION", "BENDING"] and d["status"][-1] == "COILED"
     json.dumps(d, allow_nan=False)
 
 
@@ -110,8 +111,10 @@ def test_bending_states_match_reference():
 
 
 def test_beyond_the_fold_is_unstable_at_the_fold_angle():
-    """Zigzag w = 7 mm: P(theta) peaks (509.3 kPa at 1888.76 deg); higher pressures snap through."""
-    c = curve(model(), [505.0, 600.0, 1e4])
+    """Zigzag w = 7 mm: P(theta) peaks (509.3 kPa at 1888.76 deg); higher pressures snap through.
+    The formula's statuses (limits=False); with the validity limits all these states are coiled."""
+    assert curve(model(), [505.0, 600.0, 1e4]).status.tolist() == [Status.COILED] * 3
+    c = curve(model(), [505.0, 600.0, 1e4], limits=False)
     assert c.status.tolist() == [Status.BENDING, Status.UNSTABLE, Status.UNSTABLE]
     theta_fold, p_fold = lockup(model())
     assert c.theta_deg[1] == c.theta_deg[2] == pytest.approx(theta_fold, abs=1e-6)
@@ -121,13 +124,13 @@ def test_beyond_the_fold_is_unstable_at_the_fold_angle():
         assert p_fold == pytest.approx(float(ZIGZAG7.pressure(ref)) * 1000, rel=1e-12)
         assert float(ZIGZAG7.pressure(mp.radians(c.theta_deg[0]))) * 1000 == pytest.approx(505.0, rel=1e-11)
     # just below the fold (between the last rising grid point and the fold): still answered
-    near = curve(model(), [p_fold - 1e-3, p_fold * (1 - 1e-12)])
+    near = curve(model(), [p_fold - 1e-3, p_fold * (1 - 1e-12)], limits=False)
     assert np.all(near.status == Status.BENDING) and np.all(near.theta_deg < theta_fold)
     with mp.workdps(30):
         for t, p in zip(near.theta_deg, near.pressure_kpa):
             assert float(ZIGZAG7.pressure(mp.radians(t))) * 1000 == pytest.approx(p, rel=1e-12)
     # P(theta) past the fold: real pressures, reported unstable
-    back = pressure_at(model(), [1000.0, 2000.0, 2500.0])
+    back = pressure_at(model(), [1000.0, 2000.0, 2500.0], limits=False)
     assert back.status.tolist() == [Status.BENDING, Status.UNSTABLE, Status.UNSTABLE]
     with mp.workdps(30):
         assert back.pressure_kpa[2] == pytest.approx(float(ZIGZAG7.pressure(mp.radians(2500))) * 1000, rel=1e-11)
@@ -137,8 +140,8 @@ def test_root_finder_misses_the_branch_where_tracing_does_not():
     """Documented failure of per-pressure root finding on a non-monotone P(theta):
     505 kPa is reached twice before the cap (rising, then falling past the fold) and
     P(cap) < 505 kPa, so the bracket [0, cap] has no sign change."""
-    trace = curve(model(), [505.0], method="stable-analytic-trace")
-    root = curve(model(), [505.0], method="stable-analytic-root")
+    trace = curve(model(), [505.0], method="stable-analytic-trace", limits=False)
+    root = curve(model(), [505.0], method="stable-analytic-root", limits=False)
     assert trace.status[0] == Status.BENDING
     assert root.status[0] == Status.OUT_OF_DOMAIN and root.theta_deg[0] == C.MAX_BEND_DEG
 
@@ -170,12 +173,12 @@ def test_cross_lock_up_angle_and_pole():
     assert p == math.inf
     assert theta == pytest.approx(float(mp.degrees(ref.lock_theta(-1))), rel=1e-12)
     # huge pressures approach the lock from the bending side, never beyond
-    c = curve(m, [1e3, 1e5, 1e7])
+    c = curve(m, [1e3, 1e5, 1e7], limits=False)
     assert np.all(c.status == Status.BENDING) and np.all(np.diff(c.theta_deg) < 0)
     gap = c.theta_deg - theta
     assert np.all(gap > 0)
     assert gap[1] / gap[2] == pytest.approx(100.0, rel=0.01)  # simple pole: P - P0 ~ 1/(theta - theta_lock)
-    back = pressure_at(m, [theta + 1.0, theta, theta - 1.0, 10.0])
+    back = pressure_at(m, [theta + 1.0, theta, theta - 1.0, 10.0], limits=False)
     assert back.status.tolist() == [Status.BENDING, Status.LOCKED, Status.LOCKED, Status.OUT_OF_DOMAIN]
     assert np.all(back.pressure_kpa[1:] == 170.0)
 

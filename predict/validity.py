@@ -1,0 +1,285 @@
+"""Where the model stops describing a real actuator (docs/model.md, validity limits).
+
+The deformation model is a formula in theta; it keeps answering past the states a
+sewn actuator can reach. Three limits are checked on every state (bend angle theta,
+thread-side length l, tube outer radius r, fabric-side length l0) and reported as
+statuses (:class:`~embroact.predict.status.Status`, precedence documented there):
+
+``COILED``
+    A uniform bend puts the fabric line on a circle of radius ``R = l0/|theta|``; it
+    closes a full turn at ``|theta| = 2 pi``. In a *negative* bend the tube lies on the
+    inner side: between the fabric line and the centre, with thickness ``2 r``. Where
+    the tube leaves the clamped end it continues straight along the base tangent (into
+    the clamp and the supply line), so it stands inside the circle: at the tangent
+    line's point a distance ``x`` behind the base, the circle is ``R - sqrt(R^2 - x^2)``
+    away from the fabric line. The tip, ``phi = 2 pi - |theta|`` short of a full turn,
+    is at height ``R (1 - cos(phi))`` above the fabric line and a distance
+    ``R sin(phi)`` behind the base; it lands on the tube's top (height ``2 r``) once
+    ``R (1 - cos(phi)) <= 2 r`` with ``pi < |theta| < 2 pi``, i.e. once
+    ``l0 (1 - cos(theta)) <= 2 r |theta|``. In a positive bend the tube is outside the
+    circle and the fabric (of negligible thickness) is the inner side: the limit is the
+    full turn. For ``l0 = 100 mm`` and ``r = 2.58 mm`` a negative bend coils at 315.7 deg.
+``KINKED``
+    The bend radius ``l0/|theta|`` is below the tube's diameter ``2 r``: the tube's
+    inner side would have to pass through the centre of its own bend.
+``OVERSTRETCHED``
+    The thread side's stretch ``l/l0`` reaches :data:`STRETCH_LIMIT` (2). The paper
+    validated the model up to about 155 deg on 100 mm (a stretch near 1.1 for its
+    zigzags); a sleeve twice its length is not a state of a real sleeve. Shortening
+    (negative bends) is bounded by the pattern itself (the cross pattern's lock-up).
+
+For a zigzag (``r = r0``, ``l = l0 + 2 r0 theta``) the kink and the stretch limit fall
+on the same angle, ``theta = l0/(2 r0)``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.predict.validity import limit_flags, coil_angle_deg
+>>> f = limit_flags(np.radians([90.0, 400.0, -320.0]), [104.0, 118.0, 86.0], 2.58, 100.0)
+>>> f.coiled.tolist(), f.kinked.tolist(), f.overstretched.tolist()
+([False, True, True], [False, False, False], [False, False, False])
+>>> round(coil_angle_deg(100.0, 2.58, negative=True), 1), coil_angle_deg(100.0, 2.58, negative=False)
+(315.7, 360.0)
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..patterns.base.errors import check_range
+from .status import Status, is_model_state
+
+__all__ = [
+    "STRETCH_LIMIT",
+    "LimitFlags",
+    "limit_flags",
+    "apply_limits",
+    "coil_angle_deg",
+    "valid_mask",
+    "EndKind",
+    "BranchEnd",
+    "branch_end",
+    "first_limit",
+]
+
+#: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md).
+STRETCH_LIMIT = 2.0
+_FULL_TURN = 2.0 * math.pi
+#: Bisection steps locating the first limit along a branch (angle to ~1e-15 of the branch).
+_LIMIT_BISECTIONS = 60
+#: Grid points along a branch for the first limit.
+_LIMIT_GRID = 257
+
+
+@dataclass(frozen=True, slots=True)
+class LimitFlags:
+    """Which validity limits each state exceeds (boolean arrays of the states' shape)."""
+
+    coiled: np.ndarray
+    kinked: np.ndarray
+    overstretched: np.ndarray
+
+    def names(self) -> list[list[str]]:
+        """Per point (flattened), the names of the limits it exceeds, in precedence order."""
+        rows = zip(*(np.ravel(getattr(self, k)) for k in ("coiled", "kinked", "overstretched")))
+        return [[s.name for s, hit in zip((Status.COILED, Status.KINKED, Status.OVERSTRETCHED), row) if hit]
+                for row in rows]
+
+
+def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
+    """The limits exceeded at states (theta [rad], l, r, l0 [mm]; arrays broadcast).
+
+    Parameters
+    ----------
+    theta_rad : array_like
+        Bend angle (signed, docs/model.md sign convention).
+    length_mm : array_like
+        Thread-side length l.
+    radius_mm : array_like
+        Tube outer radius r at the state.
+    l0_mm : array_like
+        Fabric-side length.
+    """
+    th = np.asarray(theta_rad, dtype=np.float64)
+    l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (length_mm, radius_mm, l0_mm))
+    a = np.abs(th)
+    inner = (th < 0.0) & (a > math.pi) & (l0 * (1.0 - np.cos(th)) <= 2.0 * r * a)
+    coiled = (a >= _FULL_TURN) | inner
+    kinked = 2.0 * r * a > l0
+    over = l >= STRETCH_LIMIT * l0
+    shape = np.broadcast(th, l, r, l0).shape
+    return LimitFlags(*(np.broadcast_to(f, shape).copy() for f in (coiled, kinked, over)))
+
+
+def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm) -> np.ndarray:
+    """Status codes with the validity limits applied (precedence: :mod:`embroact.predict.status`).
+
+    FAILED and OUT_OF_DOMAIN points keep their status (their theta is a fill value);
+    every other point takes the first limit it exceeds.
+    """
+    st = np.asarray(status, dtype=np.int8)
+    f = limit_flags(theta_rad, length_mm, radius_mm, l0_mm)
+    keep = (st == Status.FAILED) | (st == Status.OUT_OF_DOMAIN)
+    out = np.where(f.overstretched, Status.OVERSTRETCHED, st)
+    out = np.where(f.kinked, Status.KINKED, out)
+    out = np.where(f.coiled, Status.COILED, out)
+    return np.where(keep, st, out).astype(np.int8)
+
+
+def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
+    """|theta| [deg] at which a uniform bend coils, for a constant tube radius.
+
+    Positive bends: 360. Negative bends: the root of ``theta + arccos(1 - 2 r theta/l0)
+    = 2 pi`` (module docstring), found by bisection in ``(pi, 2 pi]``; when the bend is
+    kinked before it can coil (``l0 <= pi r``) the full-turn angle is returned.
+    """
+    l0 = check_range("l0_mm", l0_mm, low=0.0)
+    r = check_range("radius_mm", radius_mm, low=0.0)
+    if not negative or l0 <= math.pi * r:
+        return 360.0
+    lo, hi = math.pi, _FULL_TURN  # contact false at pi (no kink: l0 > pi r), true at 2 pi
+    for _ in range(_LIMIT_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if l0 * (1.0 - math.cos(mid)) <= 2.0 * r * mid else (mid, hi)
+    return math.degrees(hi)
+
+
+def valid_mask(curve) -> np.ndarray:
+    """True where a curve's theta is a state the model describes (draw it as valid).
+
+    Equilibria (INFLATION, BENDING) and the branch end a point stops at (LOCKED,
+    UNSTABLE); False for the validity limits and for fill values (OUT_OF_DOMAIN, FAILED).
+    Views and charts call this instead of testing statuses themselves.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, curve
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.04, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=0.8, p0_kpa=50)
+    >>> valid_mask(curve(m, [0, 60, 250])).tolist()
+    [True, True, False]
+    """
+    return is_model_state(curve.status)
+
+
+class EndKind(enum.Enum):
+    """What ends a model's stable bending branch."""
+
+    NONE = "none"  #: no branch: the straight state is already at the end (neutral angle, no sleeve)
+    LOCK_UP = "lock-up"  #: dV/dl = 0: the sleeve locks, P has a pole (cross designs)
+    FOLD = "fold"  #: a maximum of P(theta): the formula folds (zigzag designs, far inside the coiled region)
+    TRACING_CAP = "tracing cap"  #: this implementation's cap MAX_BEND_DEG on a branch that never ends
+
+
+@dataclass(frozen=True, slots=True)
+class BranchEnd:
+    """End of the stable branch of one model, named for what it is.
+
+    Attributes
+    ----------
+    kind : EndKind
+    theta_deg, pressure_kpa : float
+        Where it ends; ``pressure_kpa`` is None at a lock-up (a pole).
+    status : Status
+        The state's status there: a validity limit when the end lies beyond one
+        (a zigzag's fold is COILED), else LOCKED, UNSTABLE, OUT_OF_DOMAIN or INFLATION.
+    """
+
+    kind: EndKind
+    theta_deg: float
+    pressure_kpa: float | None
+    status: Status
+
+    def as_dict(self) -> dict:
+        """JSON-ready: ``kind``, ``theta_deg``, ``pressure_kpa`` (None at a pole), ``status`` name."""
+        return {"kind": self.kind.value, "theta_deg": self.theta_deg, "pressure_kpa": self.pressure_kpa,
+                "status": self.status.name}
+
+
+def branch_end(model) -> BranchEnd:
+    """The end of a model's stable branch (:func:`embroact.predict.curve.lockup`), classified.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> e = branch_end(m)
+    >>> e.kind.value, round(e.theta_deg), e.status.name
+    ('fold', 1889, 'COILED')
+    """
+    from .curve import MAX_BEND_DEG, lockup, pressure_at
+
+    theta, p = lockup(model)
+    if theta == 0.0:
+        kind = EndKind.NONE
+    elif math.isinf(p):
+        kind = EndKind.LOCK_UP
+    elif abs(theta) >= MAX_BEND_DEG:
+        kind = EndKind.TRACING_CAP
+    else:
+        kind = EndKind.FOLD
+    state = pressure_at(model, [theta])
+    status = Status(int(state.status[0]))
+    if kind is EndKind.FOLD and status is Status.BENDING:
+        status = Status.UNSTABLE  # the fold itself: the last stable state
+    elif kind is EndKind.TRACING_CAP and status is Status.BENDING:
+        status = Status.OUT_OF_DOMAIN
+    return BranchEnd(kind, float(theta), None if math.isinf(p) else float(p), status)
+
+
+@dataclass(frozen=True, slots=True)
+class FirstLimit:
+    """The first validity limit along a model's stable branch.
+
+    Attributes
+    ----------
+    status : Status
+        The limit reached (COILED, KINKED or OVERSTRETCHED).
+    theta_deg, pressure_kpa : float
+        Angle and pressure where it is reached.
+    """
+
+    status: Status
+    theta_deg: float
+    pressure_kpa: float
+
+
+def first_limit(model) -> FirstLimit | None:
+    """Where the stable branch first leaves the validity limits; None if it ends before.
+
+    A rule warns when the working pressure reaches ``pressure_kpa``.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
+    >>> f = first_limit(m)
+    >>> f.status.name, round(f.theta_deg, 6)
+    ('COILED', 360.0)
+    """
+    from .curve import pressure_at
+
+    end = branch_end(model)
+    if end.kind is EndKind.NONE:
+        return None
+    grid = np.linspace(0.0, end.theta_deg, _LIMIT_GRID)
+    st = pressure_at(model, grid).status
+    hit = np.flatnonzero(np.isin(st, [Status.COILED, Status.KINKED, Status.OVERSTRETCHED]))
+    if hit.size == 0:
+        return None
+    lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
+    for _ in range(_LIMIT_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if Status(int(pressure_at(model, [mid]).status[0])) in (Status.COILED, Status.KINKED, Status.OVERSTRETCHED):
+            hi = mid
+        else:
+            lo = mid
+    c = pressure_at(model, [hi])
+    return FirstLimit(Status(int(c.status[0])), float(c.theta_deg[0]), float(c.pressure_kpa[0]))

@@ -1,0 +1,153 @@
+"""Validity limits of the model (predict/validity.py): criteria against hand and 50-digit values."""
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+import mpref
+from embroact.patterns.base.errors import ParameterError
+from embroact.patterns.params import Tube
+from embroact.predict import curve as C
+from embroact.predict.curve import ActuatorModel, curve, pressure_at
+from embroact.predict.derived import derive_from_values
+from embroact.predict.status import Status
+from embroact.predict.validity import (STRETCH_LIMIT, EndKind, apply_limits, branch_end, coil_angle_deg,
+                                       first_limit, limit_flags, valid_mask)
+
+L0 = 100.0
+
+
+def zigzag(w=7.0, g=2.7, p0=85.0, l0=100.0):
+    d = derive_from_values("zigzag", width_mm=w, interval_mm=1.0, angle_deg=0.0, length_mm=l0, tube=Tube())
+    return ActuatorModel.from_derived(d, g_mpa=g, p0_kpa=p0)
+
+
+def cross(angle, g, p0):
+    d = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=angle, length_mm=100.0, tube=Tube())
+    return ActuatorModel.from_derived(d, g_mpa=g, p0_kpa=p0)
+
+
+def test_negative_coil_angle_is_where_the_tip_lands_on_the_tube():
+    """Tip phi = 2 pi - |theta| short of a full turn, at height R (1 - cos phi) above the base line:
+    it reaches the tube's top 2 r.  Hand value for l0 = 100 mm, r = 2.58 mm: 315.7 deg."""
+    r = 2.58
+    with mp.workdps(30):
+        root = mp.findroot(lambda t: (L0 / t) * (1 - mp.cos(2 * mp.pi - t)) - 2 * r, 5.5)
+    assert coil_angle_deg(L0, r, negative=True) == pytest.approx(float(mp.degrees(root)), abs=1e-9)
+    assert coil_angle_deg(L0, r, negative=True) == pytest.approx(315.7, abs=0.05)
+    assert coil_angle_deg(L0, r, negative=False) == 360.0
+    a = math.radians(float(mp.degrees(root)))
+    f = limit_flags([-(a - 1e-9), -(a + 1e-9), a + 1e-9], L0, r, L0)
+    assert f.coiled.tolist() == [False, True, False]  # positive bends coil at the full turn only
+
+
+def test_full_turn_and_kink_and_stretch_thresholds():
+    r = 2.0
+    th = np.radians([359.999, 360.0, -360.0])
+    assert limit_flags(th, L0, r, L0).coiled.tolist() == [False, True, True]
+    kink = L0 / (2 * r)  # radius l0/theta = 2 r
+    assert limit_flags([kink * (1 - 1e-12), kink * (1 + 1e-12)], L0, r, L0).kinked.tolist() == [False, True]
+    assert limit_flags([0.1, 0.1], [STRETCH_LIMIT * L0 * (1 - 1e-12), STRETCH_LIMIT * L0], r, L0) \
+        .overstretched.tolist() == [False, True]
+    assert STRETCH_LIMIT == 2.0
+
+
+def test_short_strip_kinks_before_it_coils():
+    """l0 = 20 mm, r = 2.58 mm: kinked at l0/(2 r) = 222 deg, long before a turn; l0 <= pi r never coils early."""
+    f = limit_flags(np.radians([-230.0]), 20.0, 2.58, 20.0)
+    assert f.kinked.tolist() == [True] and f.coiled.tolist() == [False]
+    assert coil_angle_deg(8.0, 2.58, negative=True) == 360.0
+    with pytest.raises(ParameterError, match="l0_mm must be in"):
+        coil_angle_deg(-1.0, 2.0, negative=True)
+
+
+def test_precedence_and_fill_values_kept():
+    st = np.array([Status.BENDING, Status.UNSTABLE, Status.LOCKED, Status.OUT_OF_DOMAIN, Status.FAILED,
+                   Status.BENDING, Status.BENDING], dtype=np.int8)
+    th = np.radians([400.0, 400.0, 400.0, 400.0, 400.0, 100.0, 10.0])
+    l = np.array([250.0, 250.0, 250.0, 250.0, 250.0, 250.0, 101.0])
+    out = apply_limits(st, th, l, 2.5, L0)
+    assert [Status(v).name for v in out] == ["COILED", "COILED", "COILED", "OUT_OF_DOMAIN", "FAILED",
+                                             "OVERSTRETCHED", "BENDING"]
+    f = limit_flags(th, l, 2.5, L0)
+    assert f.names()[0] == ["COILED", "OVERSTRETCHED"] and f.names()[6] == []
+
+
+def test_paper_w5_zigzag_is_coiled_and_overstretched_as_issue_reports():
+    """Built-in set: G = 0.8 MPa, P0 = 50 kPa: 2032 deg at 250 kPa, stretch 2.45, radius 2.8 mm < 2 r0."""
+    m = zigzag(5.0, 0.8, 50.0)
+    c = curve(m, np.arange(100.0, 301.0, 50.0))
+    assert [Status(s).name for s in c.status] == ["BENDING", "BENDING", "COILED", "COILED", "COILED"]
+    assert c.theta_deg[3] == pytest.approx(2032.35, abs=0.01)
+    f = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, m.length_mm)
+    assert f.names()[3] == ["COILED", "KINKED", "OVERSTRETCHED"]
+    assert c.length_mm[3] / m.length_mm == pytest.approx(2.446, abs=1e-3)
+    assert valid_mask(c).tolist() == [True, True, False, False, False]
+    # the formula alone: bending, then unstable past the fold
+    raw = curve(m, np.arange(100.0, 301.0, 50.0), limits=False)
+    assert [Status(s).name for s in raw.status] == ["BENDING"] * 4 + ["UNSTABLE"]
+    np.testing.assert_array_equal(raw.theta_deg, c.theta_deg)
+
+
+def test_zigzag_kink_and_stretch_coincide_at_l0_over_2r0():
+    m = zigzag(9.0, 3.4, 180.0, l0=30.0)  # short: kink before the full turn
+    t = math.degrees(m.length_mm / (2 * m.r0_mm))
+    c = pressure_at(m, [t * (1 - 1e-9), t * (1 + 1e-9)])
+    assert [Status(s).name for s in c.status] == ["BENDING", "KINKED"]
+    f = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, m.length_mm)
+    assert f.overstretched.tolist() == [False, True]
+
+
+def test_branch_end_names_the_zigzag_fold_and_the_cross_lock():
+    e = branch_end(zigzag())
+    assert e.kind is EndKind.FOLD and e.status is Status.COILED
+    assert e.theta_deg == pytest.approx(1888.7643, abs=1e-3) and e.pressure_kpa == pytest.approx(509.3, abs=0.1)
+    x = branch_end(cross(45.0, 1.3, 170.0))
+    ref = mpref.Ref.cross(width_mm=7, angle_deg=45, g_mpa=1.3, p0_kpa=170)
+    assert x.kind is EndKind.LOCK_UP and x.pressure_kpa is None and x.status is Status.LOCKED
+    assert x.theta_deg == pytest.approx(float(mp.degrees(ref.lock_theta(-1))), rel=1e-12)
+    assert x.as_dict() == {"kind": "lock-up", "theta_deg": x.theta_deg, "pressure_kpa": None, "status": "LOCKED"}
+    neutral = ActuatorModel("cross", length_mm=100, r0_mm=2.58, beta0_deg=math.degrees(math.atan(0.5)),
+                            outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.0, p0_kpa=150)
+    assert branch_end(neutral).kind is EndKind.NONE
+
+
+def test_branch_end_at_the_tracing_cap(monkeypatch):
+    monkeypatch.setattr(C, "MAX_BEND_DEG", 90.0)
+    e = branch_end(zigzag())
+    assert e.kind is EndKind.TRACING_CAP and e.theta_deg == 90.0 and e.status is Status.OUT_OF_DOMAIN
+
+
+def test_first_limit_of_a_zigzag_is_the_full_turn_at_the_reference_pressure():
+    m = zigzag()
+    f = first_limit(m)
+    assert f.status is Status.COILED and f.theta_deg == pytest.approx(360.0, abs=1e-9)
+    ref = mpref.Ref.zigzag(width_mm=7, g_mpa=2.7, p0_kpa=85)
+    with mp.workdps(30):
+        assert f.pressure_kpa == pytest.approx(float(ref.pressure(2 * mp.pi)) * 1000, rel=1e-9)
+
+
+def test_first_limit_of_a_negative_cross_bend_is_the_tube_contact():
+    """alpha0 = 60 deg: the pantograph changes r along the bend; at the first limit the contact holds
+    with the state's own r (from the 50-digit reference), l0 (1 - cos theta) = 2 r |theta|."""
+    m = cross(60.0, 2.9, 200.0)
+    f = first_limit(m)
+    if f is None:  # the lock comes first: nothing to check but that the lock state is valid
+        assert branch_end(m).status is Status.LOCKED
+        return
+    ref = mpref.Ref.cross(width_mm=7, angle_deg=60, g_mpa=2.9, p0_kpa=200)
+    th = math.radians(f.theta_deg)
+    with mp.workdps(30):
+        r = float(ref.l_r(mp.mpf(th))[1])
+    if f.status is Status.COILED:
+        assert m.length_mm * (1 - math.cos(th)) == pytest.approx(2 * r * abs(th), rel=1e-9)
+    else:
+        assert f.status is Status.KINKED and 2 * r * abs(th) == pytest.approx(m.length_mm, rel=1e-9)
+
+
+def test_cross_45_locks_before_its_coil_contact():
+    m = cross(45.0, 1.3, 170.0)
+    assert first_limit(m) is None
+    c = curve(m, [200.0, 300.0, 1e4])
+    assert np.all(c.status == Status.BENDING)
