@@ -276,8 +276,12 @@ class ShapeMesh:
         Bend angle the shape was built for [deg].
     tolerance_mm : float
         Requested chordal tolerance [mm].
-    max_deviation_mm : float
-        Realised maximum distance of the exact surface from the mesh (sampled) [mm].
+    max_deviation_mm : float or None
+        Realised maximum distance of the exact surface from the mesh (sampled) [mm];
+        None when not measured (``actuator_mesh(measure=False)``, pictures).
+    section_mm : tuple of float
+        Rail spacing w, sleeve radius r0 and strip width the bodies were swept with [mm]
+        (what :meth:`remeshed` needs).
     """
 
     name: str
@@ -285,7 +289,14 @@ class ShapeMesh:
     bent: BentPath
     theta_deg: float
     tolerance_mm: float
-    max_deviation_mm: float
+    max_deviation_mm: float | None
+    section_mm: tuple[float, float, float]
+
+    def remeshed(self, tolerance_mm: float, *, measure: bool = False) -> "ShapeMesh":
+        """The same shape meshed at another chordal tolerance (a picture's, say)."""
+        w, r0, strip = self.section_mm
+        return actuator_mesh(self.bent.path, self.theta_deg, width_mm=w, r0_mm=r0, strip_width_mm=strip,
+                             tolerance_mm=tolerance_mm, name=self.name, measure=measure)
 
     @property
     def triangle_count(self) -> int:
@@ -337,18 +348,39 @@ def _circle(name: str, centre: tuple[float, float], radius: float, tol: float) -
 
 
 def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
-    """Arc lengths of the rings: per piece, steps whose sagitta stays within tol."""
+    """Arc lengths of the rings: steps whose sagitta stays within tol.
+
+    Each piece uses up ``k length / dphi`` of a step (its rotation over the rotation
+    whose sagitta is ``tol``). Consecutive pieces share one step while their budgets
+    add up to at most 1 (their rotations add, so the step's deviation stays within
+    ``tol``), so the ring count follows the turning, not the number of pieces; a piece
+    that needs more gets ``ceil(budget)`` even steps of its own, and a straight piece one.
+    """
     out = [0.0]
+    used = 0.0  # budget since the last ring
     kb = bent.kappa_b_per_mm
     for s0, length, kp in bent.pieces():
         k = math.hypot(kb, kp)
-        steps = 1
-        if k > 0:
-            # rotation axis in the (u, v) plane: through (kp, -kb)/k^2, direction (kb, kp)/k
-            rho = prof.reach(np.array([kp, -kb]) / k**2, np.array([kb, kp]) / k)
-            dphi = 2.0 * math.acos(max(1.0 - tol / rho, -1.0)) if rho > 0 else math.pi
-            steps = max(1, math.ceil(k * length / dphi))
+        if k == 0:
+            if used > 0:
+                out.append(s0)
+            out.append(s0 + length)
+            used = 0.0
+            continue
+        # rotation axis in the (u, v) plane: through (kp, -kb)/k^2, direction (kb, kp)/k
+        rho = prof.reach(np.array([kp, -kb]) / k**2, np.array([kb, kp]) / k)
+        dphi = 2.0 * math.acos(max(1.0 - tol / rho, -1.0)) if rho > 0 else math.pi
+        need = k * length / dphi
+        if used + need <= 1.0:
+            used += need
+            continue
+        if used > 0:  # close the shared step at this piece's start
+            out.append(s0)
+        steps = math.ceil(need)
         out += (s0 + length * np.arange(1, steps + 1) / steps).tolist()
+        used = 0.0
+    if used > 0:
+        out.append(bent.path.length_mm)
     return np.array(out)
 
 
@@ -396,6 +428,7 @@ def actuator_mesh(
     strip_width_mm: float | None = None,
     tolerance_mm: float = DEFAULT_CHORD_TOLERANCE_MM,
     name: str = "actuator",
+    measure: bool = True,
 ) -> ShapeMesh:
     """Mesh of the actuator bent by ``theta_deg`` (trimesh is used to measure the deviation).
 
@@ -415,6 +448,9 @@ def actuator_mesh(
         Chordal tolerance [mm], in (0, 10].
     name : str
         Actuator name.
+    measure : bool
+        Measure the realised deviation (``max_deviation_mm``; imports trimesh). Pictures,
+        whose tolerance is a fraction of a pixel, skip it.
 
     Returns
     -------
@@ -424,8 +460,9 @@ def actuator_mesh(
     w = check_range("width_mm", width_mm, low=0.0)
     r0 = check_range("r0_mm", r0_mm, low=0.0)
     tol = check_range("tolerance_mm", tolerance_mm, low=0.0, high=10.0, high_inclusive=True)
-    half = check_range("strip_width_mm", strip_width_mm if strip_width_mm is not None else w + 2 * FABRIC_MARGIN_MM,
-                       low=w + RAIL_BAND_WIDTH_MM) / 2.0
+    strip = check_range("strip_width_mm", strip_width_mm if strip_width_mm is not None else w + 2 * FABRIC_MARGIN_MM,
+                        low=w + RAIL_BAND_WIDTH_MM)
+    half = strip / 2.0
     bent = BentPath.from_theta(path, theta_deg)
     rb = RAIL_BAND_WIDTH_MM / 2.0
     profiles = [
@@ -438,9 +475,10 @@ def actuator_mesh(
     for prof, colour in profiles:
         s = _stations(bent, prof, tol / 2.0)
         body = _sweep(bent, prof, s, _COLOURS[colour])
-        dev = max(dev, _deviation(bent, prof, s, body))
+        if measure:
+            dev = max(dev, _deviation(bent, prof, s, body))
         bodies.append(body)
-    return ShapeMesh(name, tuple(bodies), bent, float(theta_deg), tol, dev)
+    return ShapeMesh(name, tuple(bodies), bent, float(theta_deg), tol, dev if measure else None, (w, r0, strip))
 
 
 def shapes_of(shapes) -> tuple[ShapeMesh, ...]:

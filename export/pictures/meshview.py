@@ -4,6 +4,12 @@ Triangles facing away from the camera are dropped (the bodies are closed), the r
 are flat-shaded (ambient + Lambert) and drawn far to near.  Good enough for a report
 or a README; the GLB file is the real 3D output.
 
+The picture is modelled only as finely as it can show: shapes meshed finer than
+``PICTURE_TOLERANCE_PX`` of a pixel at the picture's width are meshed again at that
+tolerance (the GLB keeps the chordal tolerance asked for), and long triangles are
+split for depth sorting to a fraction of the whole drawing, so the number of polygons
+is bounded by the picture's size, not by the design's length or actuator count.
+
 The camera turns the plan frame by ``azimuth_deg`` about +z, then tilts it by
 ``elevation_deg`` about the screen's horizontal axis; the view is along -z' (x' right,
 y' up on screen)::
@@ -34,7 +40,12 @@ import numpy as np
 from ...patterns.base.errors import check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["view_rotation", "mesh_svg"]
+__all__ = ["view_rotation", "mesh_svg", "picture_tolerance_mm", "PICTURE_TOLERANCE_PX"]
+
+#: Chordal tolerance of the picture's mesh, in pixels at the rendered width.
+PICTURE_TOLERANCE_PX = 0.25
+#: Coarsest picture mesh [mm] (the mesh's own upper limit).
+_MAX_TOLERANCE_MM = 10.0
 
 _AMBIENT = 0.45
 _LIGHT = np.array([-0.35, 0.55, 0.75]) / np.linalg.norm([-0.35, 0.55, 0.75])
@@ -58,6 +69,29 @@ def view_rotation(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     toward = np.array([sa * ce, -ca * ce, se])  # el = 90: +z (top view); el = 0: horizontal
     up = np.cross(toward, right)
     return np.vstack([right, up, toward])
+
+
+def _extent_mm(shapes, rot: np.ndarray) -> np.ndarray:
+    """Screen extent (x', y') [mm] of the shapes' vertices seen through ``rot``."""
+    pts = np.concatenate([np.asarray(b.vertices) for s in shapes for b in s.bodies]) @ rot[:2].T
+    return pts.max(axis=0) - pts.min(axis=0)
+
+
+def _scale_px_per_mm(extent_mm: np.ndarray, width_px: float) -> float:
+    return (width_px - 2 * _MARGIN_PX) / max(float(extent_mm[0]), DEFAULT_TOLERANCES.length_mm)
+
+
+def picture_tolerance_mm(shapes, rot: np.ndarray, width_px: float) -> float:
+    """Chordal tolerance [mm] that is ``PICTURE_TOLERANCE_PX`` at the picture's scale.
+
+    Examples
+    --------
+    >>> from embroact.export.pictures.mesh import PlanarPath, actuator_mesh
+    >>> m = actuator_mesh(PlanarPath.straight(1000.0), 0.0, width_mm=7.0, r0_mm=2.58, tolerance_mm=1.0)
+    >>> round(picture_tolerance_mm([m], np.eye(3), 468.0), 3)  # 1000 mm on 444 px: 0.25 px = 0.563 mm
+    0.563
+    """
+    return PICTURE_TOLERANCE_PX / _scale_px_per_mm(_extent_mm(shapes, rot), width_px)
 
 
 def _behind_fabric(shape, body, rot: np.ndarray) -> np.ndarray:
@@ -99,8 +133,11 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     width = check_range("width_px", width_px, low=100.0, low_inclusive=True, high=10000.0)
     rot = view_rotation(azimuth_deg, elevation_deg) @ (_HANGING if hanging else np.eye(3))
     shapes = shapes_of(shape)
-    # long thin triangles defeat depth sorting: split them to a fraction of the shape's size
-    split = _SPLIT_FRACTION * max(s.bent.path.length_mm for s in shapes)
+    tol = min(picture_tolerance_mm(shapes, rot, width), _MAX_TOLERANCE_MM)
+    shapes = tuple(s if s.tolerance_mm >= tol else s.remeshed(tol) for s in shapes)
+    # long thin triangles defeat depth sorting: split them to a fraction of the shape's
+    # size, or of the whole drawing when it holds many shapes
+    split = _SPLIT_FRACTION * max(max(s.bent.path.length_mm for s in shapes), float(_extent_mm(shapes, rot).max()))
     tris, cols, behind = [], [], []
     for s in shapes:
         for b in s.bodies:
@@ -118,7 +155,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     # parts behind the fabric first, then everything far to near
     order = np.lexsort((tri[:, :, 2].mean(axis=1), ~behind))
     lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
-    scale = (width - 2 * _MARGIN_PX) / max(hi[0] - lo[0], DEFAULT_TOLERANCES.length_mm)
+    scale = _scale_px_per_mm(hi - lo, width)
     top = 30.0 if title else _MARGIN_PX
     height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
     dwg = svgwrite.Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}",
