@@ -150,3 +150,67 @@ def test_bad_series_are_one_line_errors(kwargs, match):
 def test_empty_chart_rejected():
     with pytest.raises(ParameterError, match="at least one"):
         bend_chart_svg([])
+
+
+# ----------------------------------------------------------------------------- validity and bands
+def _coiling():
+    """Bends to 100 deg, then the formula's 2000 deg past a validity limit, then a fill value."""
+    return Series("Z", [0, 100, 200, 250, 300], [0.0, 40.0, 100.0, 2000.0, 3600.0],
+                  status=("inflation", "bending", "bending", "coiled", "out_of_domain"))
+
+
+def test_invalid_states_do_not_scale_the_angle_axis():
+    sc = chart_scale([_coiling()])
+    assert (sc.y_min_deg, sc.y_max_deg) == (0.0, 100.0)  # ticks 0..100: the 2000 and 3600 deg are not states
+
+
+def test_beyond_validity_is_dashed_clipped_and_shaded_fill_values_not_drawn():
+    root = _parse(bend_chart_svg([_coiling()]))
+    polys = [e for e in root.iter(SVG + "polyline")]
+    (curve,) = [e for e in polys if e.get("class") == "curve"]
+    (beyond,) = [e for e in polys if e.get("class") == "beyond"]
+    x = lambda p: 64 + 466 * p / 300  # noqa: E731
+    assert _points(curve)[:, 0] == pytest.approx([x(0), x(100), x(200)], abs=0.006)
+    # from the last valid point (200 kPa, 100 deg: the top of the box) to 250 kPa, clipped to the box
+    assert _points(beyond)[0] == pytest.approx([x(200), 46.0], abs=0.006)
+    assert _points(beyond)[:, 0] == pytest.approx([x(200), x(250)], abs=0.006)
+    assert beyond.get("clip-path") == "url(#plot-box)" and beyond.get("stroke-dasharray") == "2,3"
+    (clip,) = [e for e in root.iter(SVG + "clipPath")]
+    assert clip.get("id") == "plot-box"
+    names = [e.get("class").split()[1] for e in root.iter(SVG + "rect") if (e.get("class") or "").startswith("status")]
+    assert names == ["inflation", "bending", "coiled", "out_of_domain"]
+    texts = [t.text for t in root.iter(SVG + "text")]
+    assert "beyond validity: coiled" in texts and "formula past validity" in texts
+
+
+def test_band_polygon_follows_low_then_high_edge_over_drawn_points():
+    s = Series("B", [0, 100, 200, 300], [0.0, 40.0, 80.0, 2000.0], status=("inflation", "bending", "bending", "kinked"),
+               theta_low_deg=[0.0, 30.0, 60.0, 1500.0], theta_high_deg=[0.0, 50.0, 100.0, 2500.0])
+    sc = chart_scale([s])
+    assert (sc.y_min_deg, sc.y_max_deg) == (0.0, 100.0)  # the band's high edge at 200 kPa, not 2500
+    root = _parse(bend_chart_svg([s]))
+    (band,) = [e for e in root.iter(SVG + "polygon") if e.get("class") == "band"]
+    x = lambda p: 64 + 466 * p / 300  # noqa: E731
+    y = lambda a: 46 + 342 * (100 - a) / 100  # noqa: E731
+    want = [(x(0), y(0)), (x(100), y(30)), (x(200), y(60)), (x(200), y(100)), (x(100), y(50)), (x(0), y(0))]
+    assert np.abs(_points(band) - np.array(want)).max() <= 0.006
+    assert "1-sigma band" in [t.text for t in root.iter(SVG + "text")]
+
+
+def test_band_needs_both_edges_of_the_right_length():
+    with pytest.raises(ParameterError, match="theta_low_deg and theta_high_deg must be given together"):
+        Series("B", [0, 1], [0, 1], theta_low_deg=[0, 1])
+    with pytest.raises(ParameterError, match="one value per pressure"):
+        Series("B", [0, 1], [0, 1], theta_low_deg=[0], theta_high_deg=[0])
+
+
+def test_chart_of_a_model_curve_with_validity_statuses():
+    """The paper's w = 5 mm zigzag with the built-in G: the axis stops at the last valid state (< 360 deg)."""
+    from embroact.patterns.params import Tube
+    from embroact.predict.curve import ActuatorModel, curve
+    from embroact.predict.derived import derive_from_values
+
+    d = derive_from_values("zigzag", width_mm=5.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    c = curve(ActuatorModel.from_derived(d, g_mpa=0.8, p0_kpa=50.0), np.arange(0.0, 301.0, 10.0))
+    sc = chart_scale([Series.from_curve(c, label="w5")])
+    assert sc.y_max_deg <= 400.0 and float(np.max(c.theta_deg)) > 2000.0

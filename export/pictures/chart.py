@@ -4,7 +4,16 @@ One or many designs on one chart; each design's transition pressure P0 is a dash
 vertical mark, the model's status regions are shaded (a full-height band for a
 single design, a thin ribbon per design under the plot for several), measured points
 are overlaid as open circles, axes carry 1-2-5 ticks.  The data-to-SVG mapping is
-the small frozen :class:`Scale` value, so callers and tests can locate any point::
+the small frozen :class:`Scale` value, so callers and tests can locate any point.
+
+Valid and invalid states: only the points whose angle is a state the model describes
+(:data:`~embroact.predict.status.MODEL_STATES`: inflation, bending, lock-up, unstable)
+are drawn as the curve and set the angle axis.  Past a validity limit (coiled, kinked,
+over-stretched) the formula's angle is drawn as a thin dashed line clipped to the plot
+box and its pressures are shaded as "beyond validity"; fill values (outside the model,
+method failed) are not drawn.  A series with a band (``theta_low_deg``,
+``theta_high_deg``, e.g. the 1-sigma band of a fitted calibration) gets it shaded in
+its colour over the valid points::
 
      angle [deg]
        |             _____ locked
@@ -37,7 +46,8 @@ import numpy as np
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import ParameterError
 
-__all__ = ["STATUS_STYLE", "Scale", "Series", "nice_ticks", "chart_scale", "bend_chart_svg"]
+__all__ = ["STATUS_STYLE", "DRAWN_STATES", "BEYOND_VALIDITY", "Scale", "Series", "nice_ticks", "chart_scale",
+           "bend_chart_svg"]
 
 #: status name -> (fill colour, legend text).  Names are the lower-case members of
 #: ``embroact.predict.status.Status``.
@@ -48,7 +58,16 @@ STATUS_STYLE: dict[str, tuple[str, str]] = {
     "unstable": ("#f9d4d4", "unstable"),
     "out_of_domain": ("#e6e6e6", "outside model"),
     "failed": ("#cccccc", "no answer (method failed)"),
+    "coiled": ("#f2c4e0", "beyond validity: coiled"),
+    "kinked": ("#e9c8f5", "beyond validity: kinked"),
+    "overstretched": ("#f7d9c4", "beyond validity: over-stretched"),
 }
+#: Statuses whose angle is a state the model describes (the lower-case names of
+#: ``embroact.predict.status.MODEL_STATES``): drawn as the curve, they set the angle axis.
+DRAWN_STATES = frozenset(("inflation", "bending", "locked", "unstable"))
+#: Statuses past a validity limit: the formula's angle is drawn dashed and clipped.
+BEYOND_VALIDITY = frozenset(("coiled", "kinked", "overstretched"))
+_BAND_OPACITY = 0.22
 
 #: Line colours of successive series (colour-blind safe, Okabe-Ito).
 PALETTE = ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000")
@@ -104,6 +123,8 @@ class Series:
         Transition pressure to mark [kPa].
     measured_pressure_kpa, measured_theta_deg : array-like, optional
         Measured points to overlay [kPa], [deg].
+    theta_low_deg, theta_high_deg : array-like, optional
+        An uncertainty band, one value per pressure [deg] (given together).
     """
 
     label: str
@@ -113,6 +134,8 @@ class Series:
     p0_kpa: float | None = None
     measured_pressure_kpa: np.ndarray | None = None
     measured_theta_deg: np.ndarray | None = None
+    theta_low_deg: np.ndarray | None = None
+    theta_high_deg: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         p = _frozen(self.pressure_kpa)
@@ -139,16 +162,41 @@ class Series:
                 )
             object.__setattr__(self, "measured_pressure_kpa", mp)
             object.__setattr__(self, "measured_theta_deg", mt)
+        lo, hi = self.theta_low_deg, self.theta_high_deg
+        if (lo is None) != (hi is None):
+            raise ParameterError("theta_low_deg and theta_high_deg must be given together")
+        if lo is not None:
+            lo, hi = _frozen(lo), _frozen(hi)
+            if len(lo) != len(p) or len(hi) != len(p):
+                raise ParameterError(f"theta_low_deg and theta_high_deg must have one value per pressure ({len(p)}), "
+                                     f"got {len(lo)} and {len(hi)}")
+            object.__setattr__(self, "theta_low_deg", lo)
+            object.__setattr__(self, "theta_high_deg", hi)
 
     @classmethod
-    def from_curve(cls, curve, *, label: str, p0_kpa: float | None = None, measured=None) -> "Series":
+    def from_curve(cls, curve, *, label: str, p0_kpa: float | None = None, measured=None, band=None) -> "Series":
         """Series from a ``predict`` curve (``pressure_kpa``, ``theta_deg``, ``status``).
 
-        ``measured`` is an optional pair (pressure_kpa, theta_deg) of arrays.
+        ``measured`` is an optional pair (pressure_kpa, theta_deg) of arrays; ``band`` an
+        optional object with ``theta_low_deg`` and ``theta_high_deg`` at the curve's pressures
+        (:class:`embroact.predict.uncertainty.Band`).
         """
         mp, mt = (None, None) if measured is None else measured
+        lo, hi = (None, None) if band is None else (band.theta_low_deg, band.theta_high_deg)
         return cls(label, curve.pressure_kpa, curve.theta_deg, status=tuple(curve.status), p0_kpa=p0_kpa,
-                   measured_pressure_kpa=mp, measured_theta_deg=mt)
+                   measured_pressure_kpa=mp, measured_theta_deg=mt, theta_low_deg=lo, theta_high_deg=hi)
+
+    def drawn(self) -> np.ndarray:
+        """True where the angle is a state to draw as the curve (all points without statuses)."""
+        if self.status is None:
+            return np.ones(len(self.pressure_kpa), dtype=bool)
+        return np.array([name in DRAWN_STATES for name in self.status], dtype=bool)
+
+    def beyond_validity(self) -> np.ndarray:
+        """True where the angle is the formula's, past a validity limit."""
+        if self.status is None:
+            return np.zeros(len(self.pressure_kpa), dtype=bool)
+        return np.array([name in BEYOND_VALIDITY for name in self.status], dtype=bool)
 
 
 @dataclass(frozen=True, slots=True)
@@ -228,14 +276,18 @@ def _legend_px(series: Sequence[Series]) -> float:
 def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0) -> Scale:
     """The :class:`Scale` that :func:`bend_chart_svg` uses for these series and sizes.
 
-    The pressure axis starts at 0 kPa and the angle axis always includes 0 deg; the
-    legend column on the right is as wide as its longest label.
+    The pressure axis starts at 0 kPa and the angle axis always includes 0 deg; it spans
+    the drawn states (and their band) and the measured points only, never the formula's
+    angles past a validity limit or fill values. The legend column on the right is as
+    wide as its longest label.
     """
     legend_px = _legend_px(series)
     xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
                                                      if s.measured_pressure_kpa is not None])
-    ys = _finite([s.theta_deg for s in series] + [s.measured_theta_deg for s in series
-                                                  if s.measured_theta_deg is not None])
+    ys = _finite([s.theta_deg[s.drawn()] for s in series]
+                 + [b[s.drawn()] for s in series if s.theta_low_deg is not None for b in (s.theta_low_deg,
+                                                                                          s.theta_high_deg)]
+                 + [s.measured_theta_deg for s in series if s.measured_theta_deg is not None])
     xt = nice_ticks(0.0, float(xs.max()) if xs.size else 1.0)
     yt = nice_ticks(min(0.0, float(ys.min()) if ys.size else 0.0), max(0.0, float(ys.max()) if ys.size else 1.0))
     left, top, bottom = 64.0, 46.0, 52.0 + _ribbons_px(series)
@@ -311,14 +363,36 @@ def _draw_axes(dwg, g, sc: Scale, xt, yt, ribbons_px: float) -> None:
                    transform=f"rotate(-90 16 {_fmt(cy)})"))
 
 
+def _draw_band(dwg, g, k: int, s: Series, sc: Scale) -> None:
+    """The band as one polygon per run of drawn points (low edge forward, high edge back)."""
+    if s.theta_low_deg is None:
+        return
+    order = np.argsort(s.pressure_kpa, kind="stable")
+    p, lo, hi = s.pressure_kpa[order], s.theta_low_deg[order], s.theta_high_deg[order]
+    ok = s.drawn()[order] & np.isfinite(lo) & np.isfinite(hi)
+    for a, b in _runs(ok):
+        xs = np.concatenate([p[a:b], p[a:b][::-1]])
+        ys = np.concatenate([lo[a:b], hi[a:b][::-1]])
+        pts = [(_fmt(x), _fmt(y)) for x, y in zip(sc.x_px(xs), sc.y_px(ys))]
+        g.add(dwg.polygon(pts, fill=PALETTE[k % len(PALETTE)], fill_opacity=_BAND_OPACITY, stroke="none",
+                          **{"class": "band", "data-series": str(k)}))
+
+
 def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
     colour = PALETTE[k % len(PALETTE)]
     order = np.argsort(s.pressure_kpa, kind="stable")
     p, t = s.pressure_kpa[order], s.theta_deg[order]
-    for a, b in _runs(np.isfinite(t)):
+    finite = np.isfinite(t)
+    for a, b in _runs(finite & s.drawn()[order]):
         pts = [(_fmt(x), _fmt(y)) for x, y in zip(sc.x_px(p[a:b]), sc.y_px(t[a:b]))]
         g.add(dwg.polyline(pts, fill="none", stroke=colour, stroke_width=2, stroke_linejoin="round",
                            **{"class": "curve", "data-series": str(k)}))
+    beyond = finite & s.beyond_validity()[order]
+    for a, b in _runs(beyond):  # from the last drawn point before the run, so the line continues
+        a0 = a - 1 if a > 0 and finite[a - 1] and s.drawn()[order][a - 1] else a
+        pts = [(_fmt(x), _fmt(y)) for x, y in zip(sc.x_px(p[a0:b]), sc.y_px(t[a0:b]))]
+        g.add(dwg.polyline(pts, fill="none", stroke=colour, stroke_width=1, stroke_dasharray="2,3",
+                           clip_path="url(#plot-box)", **{"class": "beyond", "data-series": str(k)}))
     if s.p0_kpa is not None and sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa:
         x = _fmt(sc.x_px(s.p0_kpa))
         g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(sc.top_px + sc.height_px)), stroke=colour,
@@ -346,6 +420,15 @@ def _draw_legend(dwg, g, series: Sequence[Series], used: list[str], sc: Scale) -
         g.add(dwg.line((_fmt(x + 11), _fmt(y - 7)), (_fmt(x + 11), _fmt(y + 7)), stroke="#333",
                        stroke_dasharray="5,3"))
         g.add(dwg.text("P0 (transition)", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
+        y += 18.0
+    if any(s.theta_low_deg is not None for s in series):
+        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (22, 12), fill="#333", fill_opacity=_BAND_OPACITY))
+        g.add(dwg.text("1-sigma band", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
+        y += 18.0
+    if any(s.beyond_validity().any() for s in series):
+        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + 22), _fmt(y)), stroke="#333", stroke_width=1,
+                       stroke_dasharray="2,3"))
+        g.add(dwg.text("formula past validity", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
         y += 18.0
     y += 6.0
     for name in used:
@@ -376,7 +459,9 @@ def bend_chart_svg(
     Returns
     -------
     str
-        SVG text; polylines carry ``class="curve"`` and ``data-series="k"``.
+        SVG text; polylines carry ``class="curve"`` (valid states) or ``class="beyond"`` (the
+        formula past a validity limit) and ``data-series="k"``; bands are polygons of
+        ``class="band"``.
     """
     import svgwrite
 
@@ -390,9 +475,13 @@ def bend_chart_svg(
     dwg = svgwrite.Drawing(size=(_fmt(width_px), _fmt(height_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(height_px)}",
                            debug=False)
     dwg.add(dwg.rect((0, 0), (_fmt(width_px), _fmt(height_px)), fill="#fff"))
+    clip = dwg.defs.add(dwg.clipPath(id="plot-box"))
+    clip.add(dwg.rect((_fmt(sc.left_px), _fmt(sc.top_px)), (_fmt(sc.width_px), _fmt(sc.height_px))))
     g = dwg.g(style=_FONT)
     dwg.add(g)
     used = _draw_status(dwg, g, series, sc)
+    for k, s in enumerate(series):
+        _draw_band(dwg, g, k, s, sc)
     _draw_axes(dwg, g, sc, xt, yt, _ribbons_px(series))
     for k, s in enumerate(series):
         _draw_series(dwg, g, k, s, sc)
