@@ -7,8 +7,10 @@ or a README; the GLB file is the real 3D output.
 The picture is modelled only as finely as it can show: shapes meshed finer than
 ``PICTURE_TOLERANCE_PX`` of a pixel at the picture's width are meshed again at that
 tolerance (the GLB keeps the chordal tolerance asked for), and long triangles are
-split for depth sorting to a fraction of the whole drawing, so the number of polygons
-is bounded by the picture's size, not by the design's length or actuator count.
+split for depth sorting to a fraction of the whole drawing.  A scene that would still
+need more than ``PICTURE_MAX_TRIANGLES`` (a long path coiled into a small picture, many
+actuators) is meshed coarser until it fits, so the picture's size is bounded whatever
+the design's length or actuator count.
 
 The camera turns the plan frame by ``azimuth_deg`` about +z, then tilts it by
 ``elevation_deg`` about the screen's horizontal axis; the view is along -z' (x' right,
@@ -44,6 +46,8 @@ __all__ = ["view_rotation", "mesh_svg", "picture_tolerance_mm", "PICTURE_TOLERAN
 
 #: Chordal tolerance of the picture's mesh, in pixels at the rendered width.
 PICTURE_TOLERANCE_PX = 0.25
+#: Triangles the picture's mesh may have (about 1 MB of SVG once back faces are dropped).
+PICTURE_MAX_TRIANGLES = 24_000
 #: Coarsest picture mesh [mm] (the mesh's own upper limit).
 _MAX_TOLERANCE_MM = 10.0
 
@@ -94,6 +98,20 @@ def picture_tolerance_mm(shapes, rot: np.ndarray, width_px: float) -> float:
     return PICTURE_TOLERANCE_PX / _scale_px_per_mm(_extent_mm(shapes, rot), width_px)
 
 
+def _picture_shapes(shapes, tol: float):
+    """The shapes meshed at ``tol`` or coarser, within ``PICTURE_MAX_TRIANGLES`` (when the
+    mesh's own limit allows): the triangle count goes as 1/tol (rings along the path and
+    segments round the tube each as 1/sqrt(tol)), so each retry scales tol by the excess."""
+    out = tuple(s if s.tolerance_mm >= tol else s.remeshed(tol) for s in shapes)
+    for _ in range(4):
+        n = sum(s.triangle_count for s in out)
+        if n <= PICTURE_MAX_TRIANGLES or tol >= _MAX_TOLERANCE_MM:
+            break
+        tol = min(_MAX_TOLERANCE_MM, tol * 1.1 * n / PICTURE_MAX_TRIANGLES)
+        out = tuple(s.remeshed(tol) for s in shapes)
+    return out
+
+
 def _behind_fabric(shape, body, rot: np.ndarray) -> np.ndarray:
     """Per face: True where a thread-side body sits on a stretch of fabric whose thread side faces away.
 
@@ -133,8 +151,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     width = check_range("width_px", width_px, low=100.0, low_inclusive=True, high=10000.0)
     rot = view_rotation(azimuth_deg, elevation_deg) @ (_HANGING if hanging else np.eye(3))
     shapes = shapes_of(shape)
-    tol = min(picture_tolerance_mm(shapes, rot, width), _MAX_TOLERANCE_MM)
-    shapes = tuple(s if s.tolerance_mm >= tol else s.remeshed(tol) for s in shapes)
+    shapes = _picture_shapes(shapes, min(picture_tolerance_mm(shapes, rot, width), _MAX_TOLERANCE_MM))
     # long thin triangles defeat depth sorting: split them to a fraction of the shape's
     # size, or of the whole drawing when it holds many shapes
     split = _SPLIT_FRACTION * max(max(s.bent.path.length_mm for s in shapes), float(_extent_mm(shapes, rot).max()))
