@@ -9,15 +9,18 @@ the body-frame angular velocity ``omega = (0, kappa_b, kappa_p)``:
 
 - ``kappa_p(s)``: the path's own in-plane curvature (positive: turning left);
   a curved-path design keeps bending along its own path;
-- ``kappa_b = theta / l0``: the model's uniform bending curvature; with
-  ``omega = kappa_b N`` the tangent obeys ``dT/ds = -kappa_b B``: positive ``theta``
-  bends toward the back of the fabric (MODEL.md sign convention).
+- ``kappa_b = theta / l0``: the model's bending curvature, uniform along one segment
+  (a segmented actuator has one per segment); with ``omega = kappa_b N`` the tangent
+  obeys ``dT/ds = -kappa_b B``: positive ``theta`` bends toward the back of the fabric
+  (docs/model.md sign convention).
 
 The path is stored as pieces of constant ``kappa_p`` (:class:`PlanarPath`), so on a
-piece ``omega`` is constant and the motion is a rotation about a fixed axis (``omega``
-is perpendicular to ``T``: no pitch).  The frame and the position then have closed
-forms (Rodrigues), integrated exactly piece by piece.  A straight path bends in a
-plane and the angle between its end tangents is ``|theta|`` exactly.
+piece (cut also where the bending segments meet) ``omega`` is constant and the motion is
+a rotation about a fixed axis (``omega`` is perpendicular to ``T``: no pitch).  The frame
+and the position then have closed forms (Rodrigues), integrated exactly piece by piece
+in :mod:`embroact.predict.shape`, the one bent-shape kinematics (the side view uses it
+too).  A straight path bends in a plane and the angle between its end tangents is
+``|theta|`` exactly.
 
 Resolution ("model no more than a scene needs")
 -----------------------------------------------
@@ -58,6 +61,7 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import ExportError, ParameterError, check_range
+from ...predict.shape import BentShape
 from ..files.atomic import write_bytes_atomic
 from .sideview import FABRIC_THICKNESS_MM
 
@@ -157,80 +161,49 @@ class PlanarPath:
         return cls((float(p[0, 0]), float(p[0, 1])), math.degrees(math.atan2(ty, tx)), arr[:, 0], arr[:, 1] / arr[:, 0])
 
 
-def _rodrigues(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
-    """Rotation matrices (n, 3, 3) about unit axes (n, 3) by angles (n,)."""
-    kx = np.zeros((len(axis), 3, 3))
-    kx[:, 0, 1], kx[:, 0, 2], kx[:, 1, 2] = -axis[:, 2], axis[:, 1], -axis[:, 0]
-    kx -= np.transpose(kx, (0, 2, 1))
-    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
-    return np.eye(3) + s * kx + (1.0 - c) * (kx @ kx)
-
-
 @dataclass(frozen=True, slots=True, eq=False)
 class BentPath:
-    """The bent centerline: exact frames at any arc length (see the module docstring).
+    """The bent centerline: exact frames at any arc length, from :class:`embroact.predict.shape.BentShape`.
 
     Attributes
     ----------
     path : PlanarPath
-    kappa_b_per_mm : float
-        Bending curvature theta / l0 [1/mm].
+    shape : BentShape
+        The chain of arcs (the one bent-shape kinematics, shared with the side view).
+    segment_lengths_mm, segment_theta_deg : tuple of float
+        The bending segments along the path and each one's bend [mm, deg] (one segment: uniform).
     """
 
     path: PlanarPath
-    kappa_b_per_mm: float
-    _s0: np.ndarray
-    _x0: np.ndarray
-    _r0: np.ndarray
+    shape: BentShape
+    segment_lengths_mm: tuple[float, ...]
+    segment_theta_deg: tuple[float, ...]
 
     @classmethod
     def from_theta(cls, path: PlanarPath, theta_deg: float) -> "BentPath":
         """Bend ``path`` uniformly by ``theta_deg`` over its length."""
-        kb = math.radians(check_range("theta_deg", theta_deg)) / path.length_mm
-        h = math.radians(path.heading_deg)
-        x = np.array([path.start_mm[0], path.start_mm[1], 0.0])
-        r = np.array([[math.cos(h), -math.sin(h), 0.0], [math.sin(h), math.cos(h), 0.0], [0.0, 0.0, 1.0]])
-        s0, xs, rs = [0.0], [x], [r]
-        for length, kp in zip(path.lengths_mm[:-1], path.kappa_per_mm[:-1]):
-            dx, dr = _step(np.array([kb]), np.array([kp]), np.array([length]))
-            x, r = x + r @ dx[0], r @ dr[0]
-            s0.append(s0[-1] + float(length))
-            xs.append(x)
-            rs.append(r)
-        return cls(path, kb, frozen_array(s0), frozen_array(xs), frozen_array(rs))
+        return cls.from_segments(path, [path.length_mm], [check_range("theta_deg", theta_deg)])
+
+    @classmethod
+    def from_segments(cls, path: PlanarPath, segment_lengths_mm, segment_theta_deg) -> "BentPath":
+        """Bend consecutive segments of ``path`` (lengths adding up to the path's) each by its own angle."""
+        lengths = tuple(float(v) for v in segment_lengths_mm)
+        theta = tuple(float(v) for v in segment_theta_deg)
+        shape = BentShape.chain(lengths, theta, path_lengths_mm=path.lengths_mm, path_kappa_per_mm=path.kappa_per_mm,
+                                start_mm=path.start_mm, heading_deg=path.heading_deg)
+        return cls(path, shape, lengths, theta)
 
     def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
         """Positions (n, 3) and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm``."""
-        s = np.clip(np.asarray(s_mm, dtype=np.float64).reshape(-1), 0.0, self.path.length_mm)
-        i = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
-        kp = self.path.kappa_per_mm[i]
-        dx, dr = _step(np.full(len(s), self.kappa_b_per_mm), kp, s - self._s0[i])
-        r0 = self._r0[i]
-        return self._x0[i] + np.einsum("nij,nj->ni", r0, dx), r0 @ dr
+        return self.shape.frames(s_mm)
 
     def points(self, s_mm, offsets_uv_mm) -> np.ndarray:
         """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``."""
-        x, r = self.frames(s_mm)
-        uv = np.asarray(offsets_uv_mm, dtype=np.float64).reshape(-1, 2)
-        return x[:, None, :] + uv[None, :, 0, None] * r[:, None, :, 1] + uv[None, :, 1, None] * r[:, None, :, 2]
+        return self.shape.points(s_mm, offsets_uv_mm)
 
     def pieces(self):
-        """(s_start, length, kappa_p) of each piece."""
-        return zip(self._s0.tolist(), self.path.lengths_mm.tolist(), self.path.kappa_per_mm.tolist())
-
-
-def _step(kb: np.ndarray, kp: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Body-frame displacement (n, 3) and rotation (n, 3, 3) after arc length h with omega = (0, kb, kp)."""
-    k = np.hypot(kb, kp)
-    safe = np.where(k > 0, k, 1.0)
-    axis = np.column_stack([np.zeros_like(k), np.where(k > 0, kb / safe, 0.0), np.where(k > 0, kp / safe, 1.0)])
-    phi = k * h
-    # int_0^h Rot(a, k t) e1 dt = e1 sin(phi)/k + (a x e1)(1 - cos phi)/k   (a . e1 = 0)
-    a_x_e1 = np.column_stack([np.zeros_like(k), axis[:, 2], -axis[:, 1]])
-    sin_k = h * np.sinc(phi / np.pi)
-    vers_k = h * np.sin(phi / 2.0) * np.sinc(phi / (2.0 * np.pi))
-    dx = sin_k[:, None] * np.array([1.0, 0.0, 0.0]) + vers_k[:, None] * a_x_e1
-    return dx, _rodrigues(axis, phi)
+        """(s_start, length, kappa_b, kappa_p) of each piece of constant bending and path curvature."""
+        return self.shape.pieces()
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -296,7 +269,9 @@ class ShapeMesh:
         """The same shape meshed at another chordal tolerance (a picture's, say)."""
         w, r0, strip = self.section_mm
         return actuator_mesh(self.bent.path, self.theta_deg, width_mm=w, r0_mm=r0, strip_width_mm=strip,
-                             tolerance_mm=tolerance_mm, name=self.name, measure=measure)
+                             tolerance_mm=tolerance_mm, name=self.name, measure=measure,
+                             segment_lengths_mm=self.bent.segment_lengths_mm,
+                             segment_theta_deg=self.bent.segment_theta_deg)
 
     @property
     def triangle_count(self) -> int:
@@ -358,8 +333,7 @@ def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
     """
     out = [0.0]
     used = 0.0  # budget since the last ring
-    kb = bent.kappa_b_per_mm
-    for s0, length, kp in bent.pieces():
+    for s0, length, kb, kp in bent.pieces():
         k = math.hypot(kb, kp)
         if k == 0:
             if used > 0:
@@ -429,6 +403,8 @@ def actuator_mesh(
     tolerance_mm: float = DEFAULT_CHORD_TOLERANCE_MM,
     name: str = "actuator",
     measure: bool = True,
+    segment_lengths_mm=(),
+    segment_theta_deg=(),
 ) -> ShapeMesh:
     """Mesh of the actuator bent by ``theta_deg`` (trimesh is used to measure the deviation).
 
@@ -451,6 +427,9 @@ def actuator_mesh(
     measure : bool
         Measure the realised deviation (``max_deviation_mm``; imports trimesh). Pictures,
         whose tolerance is a fraction of a pixel, skip it.
+    segment_lengths_mm, segment_theta_deg : sequence of float, optional
+        A segmented actuator: each segment's length along the path [mm] and its own bend
+        [deg] (``theta_deg`` is then their sum); default one segment bent uniformly.
 
     Returns
     -------
@@ -463,7 +442,8 @@ def actuator_mesh(
     strip = check_range("strip_width_mm", strip_width_mm if strip_width_mm is not None else w + 2 * FABRIC_MARGIN_MM,
                         low=w + RAIL_BAND_WIDTH_MM)
     half = strip / 2.0
-    bent = BentPath.from_theta(path, theta_deg)
+    bent = (BentPath.from_segments(path, segment_lengths_mm, segment_theta_deg) if len(segment_lengths_mm)
+            else BentPath.from_theta(path, theta_deg))
     rb = RAIL_BAND_WIDTH_MM / 2.0
     profiles = [
         (_rect("fabric", -half, half, -FABRIC_THICKNESS_MM, 0.0), "fabric"),

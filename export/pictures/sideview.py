@@ -17,6 +17,9 @@ With the clamp at the origin, x across, z up, arc length s along the fabric line
     x(s) = (cos(kappa s) - 1) / kappa,    z(s) = -sin(kappa s) / kappa
 
 and a line at distance ``o`` on the thread side is ``(x, z) + o * (cos(kappa s), -sin(kappa s))``.
+The lines come from :class:`embroact.predict.shape.BentShape` (the one bent-shape
+kinematics, shared with the 3D mesh): a segmented actuator is drawn as its chain of arcs
+(``SidePanel.segment_lengths_mm`` / ``segment_theta_deg``), each segment bending by its own angle.
 
 Examples
 --------
@@ -39,9 +42,10 @@ import numpy as np
 
 from ...patterns.base.errors import ParameterError, check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+from ...predict.shape import BentShape
 from .chart import PALETTE
 
-__all__ = ["FABRIC_THICKNESS_MM", "SidePanel", "bent_line_mm", "side_view_svg"]
+__all__ = ["FABRIC_THICKNESS_MM", "SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg"]
 
 #: Drawn thickness of the fabric strip [mm] (woven cotton; for the picture only).
 FABRIC_THICKNESS_MM = 0.4
@@ -68,6 +72,12 @@ class SidePanel:
         Sleeve radius r0 [mm] (the tube is drawn with diameter 2 r0 on the thread side), > 0.
     pressure_kpa, theta_deg : array-like
         Pressures [kPa] and the predicted bend angles there [deg]; NaN angles are skipped.
+    segment_lengths_mm : array-like, optional
+        A segmented actuator: the fabric-side length of each segment [mm] (adding up to
+        ``length_mm``); empty (default) for one uniform segment.
+    segment_theta_deg : array-like, optional
+        With ``segment_lengths_mm``: one row per pressure, the bend of each segment [deg]
+        (``theta_deg`` is then their sum, the total bend).
     """
 
     label: str
@@ -75,6 +85,8 @@ class SidePanel:
     r0_mm: float
     pressure_kpa: tuple[float, ...]
     theta_deg: tuple[float, ...]
+    segment_lengths_mm: tuple[float, ...] = ()
+    segment_theta_deg: tuple[tuple[float, ...], ...] = ()
 
     def __post_init__(self) -> None:
         check_range("length_mm", self.length_mm, low=0.0)
@@ -85,19 +97,47 @@ class SidePanel:
             raise ParameterError(f"theta_deg must have one value per pressure ({len(p)}), got {len(t)}")
         object.__setattr__(self, "pressure_kpa", p)
         object.__setattr__(self, "theta_deg", t)
+        lengths = tuple(float(v) for v in np.asarray(self.segment_lengths_mm, dtype=np.float64).reshape(-1))
+        rows = np.asarray(self.segment_theta_deg, dtype=np.float64).reshape(-1, max(len(lengths), 1)) \
+            if lengths else np.zeros((0, 1))
+        if lengths and (rows.shape[0] != len(p) or abs(sum(lengths) - self.length_mm) > 1e-6):
+            raise ParameterError(f"segment_theta_deg must have one row of {len(lengths)} angles per pressure "
+                                 f"({len(p)}) and segment_lengths_mm must add up to length_mm {self.length_mm:g}")
+        object.__setattr__(self, "segment_lengths_mm", lengths)
+        object.__setattr__(self, "segment_theta_deg", tuple(tuple(float(v) for v in r) for r in rows) if lengths else ())
+
+    def shape(self, k: int) -> BentShape:
+        """The bent line of state ``k`` (a chain of arcs for a segmented actuator)."""
+        if self.segment_lengths_mm:
+            return BentShape.chain(self.segment_lengths_mm, self.segment_theta_deg[k])
+        return BentShape.chain([self.length_mm], [self.theta_deg[k]])
 
 
-def _sample_count(theta_rad: float, radius_mm: float, tol_mm: float) -> int:
-    """Segments so that the sagitta radius*(1 - cos(dphi/2)) stays <= tol_mm."""
-    if theta_rad == 0.0:
-        return 1
-    dphi = 2.0 * math.acos(max(1.0 - tol_mm / radius_mm, -1.0))
-    return max(1, math.ceil(abs(theta_rad) / dphi))
+def shape_line_mm(shape: BentShape, offset_mm: float, *,
+                  tolerance_mm: float = DEFAULT_TOLERANCES.curve_flatness_mm) -> np.ndarray:
+    """Side-view points (x, z) [mm] of a line at ``offset_mm`` on the thread side of a bent straight strip.
+
+    Parameters
+    ----------
+    shape : BentShape
+        The bent fabric line (straight path, clamped at the origin).
+    offset_mm : float
+        Distance from the fabric line toward the thread side [mm] (negative: into the fabric).
+    tolerance_mm : float
+        Maximum chordal error of the polyline [mm].
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        From the clamp to the free end; x = the shape's thread-side axis, z = minus its length axis.
+    """
+    p = shape.points(shape.samples_mm(tolerance_mm, offset_mm), [(0.0, offset_mm)])[:, 0, :]
+    return np.column_stack([p[:, 2], -p[:, 0]])
 
 
 def bent_line_mm(length_mm: float, theta_deg: float, offset_mm: float, *,
                  tolerance_mm: float = DEFAULT_TOLERANCES.curve_flatness_mm) -> np.ndarray:
-    """Side-view points (x, z) [mm] of a line at ``offset_mm`` on the thread side of the bent strip.
+    """Side-view points (x, z) [mm] of a line at ``offset_mm`` on the thread side of the uniformly bent strip.
 
     Parameters
     ----------
@@ -116,29 +156,23 @@ def bent_line_mm(length_mm: float, theta_deg: float, offset_mm: float, *,
         From the clamp (s = 0) to the free end (s = l0).
     """
     l0 = check_range("length_mm", length_mm, low=0.0)
-    th = math.radians(check_range("theta_deg", theta_deg))
-    kappa = th / l0
-    radius = abs(1.0 / kappa + offset_mm) if kappa else math.inf
-    s = np.linspace(0.0, l0, _sample_count(th, radius, tolerance_mm) + 1)
-    a = kappa * s
-    # (cos a - 1)/kappa = -s sin(a/2) sinc(a/2);  sin(a)/kappa = s sinc(a); np.sinc(x) = sin(pi x)/(pi x)
-    x = -s * np.sin(a / 2.0) * np.sinc(a / (2.0 * np.pi)) + offset_mm * np.cos(a)
-    z = -s * np.sinc(a / np.pi) - offset_mm * np.sin(a)
-    return np.column_stack([x, z])
+    return shape_line_mm(BentShape.chain([l0], [check_range("theta_deg", theta_deg)]), offset_mm,
+                         tolerance_mm=tolerance_mm)
 
 
-def _band(length_mm: float, theta_deg: float, lo_mm: float, hi_mm: float) -> np.ndarray:
+def _band(shape: BentShape, lo_mm: float, hi_mm: float) -> np.ndarray:
     """Closed outline of the region between two offsets."""
-    return np.vstack([bent_line_mm(length_mm, theta_deg, lo_mm), bent_line_mm(length_mm, theta_deg, hi_mm)[::-1]])
+    return np.vstack([shape_line_mm(shape, lo_mm), shape_line_mm(shape, hi_mm)[::-1]])
 
 
-def _states(panel: SidePanel) -> list[tuple[float, float]]:
-    return [(p, t) for p, t in zip(panel.pressure_kpa, panel.theta_deg) if math.isfinite(t)]
+def _states(panel: SidePanel) -> list[tuple[float, float, BentShape]]:
+    return [(p, t, panel.shape(k)) for k, (p, t) in enumerate(zip(panel.pressure_kpa, panel.theta_deg))
+            if math.isfinite(t) and (not panel.segment_lengths_mm or all(map(math.isfinite, panel.segment_theta_deg[k])))]
 
 
 def _panel_bounds(panel: SidePanel) -> tuple[float, float, float, float]:
     pts = [np.array([[-3.0, 4.0], [2.0 * panel.r0_mm + 3.0, 0.0]])]
-    pts += [_band(panel.length_mm, t, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for _, t in _states(panel)]
+    pts += [_band(shape, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for _, _, shape in _states(panel)]
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
@@ -154,15 +188,15 @@ def _draw_panel(dwg, parent, panel: SidePanel, dx: float, dy: float, left: float
     g = dwg.g(**{"class": "panel"})
     parent.add(g)
     states = _states(panel)
-    for k, (p, t) in enumerate(states):
+    for k, (p, t, shape) in enumerate(states):
         colour = PALETTE[k % len(PALETTE)]
         sg = dwg.g(**{"class": "state", "data-pressure-kpa": f"{p:g}", "data-theta-deg": f"{t:.6g}"})
         g.add(sg)
-        sg.add(dwg.polygon(_pts(_band(panel.length_mm, t, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
+        sg.add(dwg.polygon(_pts(_band(shape, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
                            stroke=colour, stroke_width=0.25, **{"class": "tube"}))
-        sg.add(dwg.polygon(_pts(_band(panel.length_mm, t, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
+        sg.add(dwg.polygon(_pts(_band(shape, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
                            stroke=colour, stroke_width=0.3, **{"class": "fabric"}))
-        tip = _pts(bent_line_mm(panel.length_mm, t, r0)[-1:], dx, dy)[0]
+        tip = _pts(shape_line_mm(shape, r0)[-1:], dx, dy)[0]
         sg.add(dwg.circle(tip, 1.0, fill=colour))
         sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
         y = legend_y + k * _LEGEND_ROW_MM
