@@ -533,17 +533,37 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
 
+def _travel_records(design: Design) -> int:
+    """Jump records the travel moves will need (from the machine's start point to the first
+    actuator and between consecutive ones), from the paths alone: an upper bound that
+    widens each path end by the pattern's half width (where the first and last needle
+    points can lie), split as :func:`_jumps` splits them."""
+    step = design.machine.max_stitch_mm - DEFAULT_TOLERANCES.machine_grid_mm
+    ends = [(np.zeros(2), 0.0)]
+    total = 0
+    for spec in design.actuators:
+        pts = spec.centerline.points_mm
+        half = spec.params.width_mm / 2.0
+        last, reach = ends[-1]
+        total += max(1, math.ceil((float(np.max(np.abs(pts[0] - last))) + reach + half) / step))
+        ends.append((pts[-1], half))
+    return total
+
+
 def build_plan(design: Design) -> StitchPlan:
     """Generate every actuator of ``design`` and join them (see :func:`join_plans`).
 
-    The records of all actuators together are counted before anything is generated: a
-    design above :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
+    Every record the machine will read is counted before anything is generated, the
+    travel jumps between actuators included: a design above
+    :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
     """
-    total = sum(_records(spec, design.tube) for spec in design.actuators)
-    if total > MAX_RECORDS:
+    stitched = sum(_records(spec, design.tube) for spec in design.actuators)
+    travel = _travel_records(design)
+    if stitched + travel > MAX_RECORDS:
         raise PatternError(
-            f"design would need about {total:.3g} records over {len(design.actuators)} actuators, more than the "
-            f"limit {MAX_RECORDS:,}; use larger interval_mm values, shorter paths or fewer actuators"
+            f"design would need about {stitched + travel:.3g} records ({travel:.3g} of them travel jumps between "
+            f"actuators) over {len(design.actuators)} actuators, more than the limit {MAX_RECORDS:,}; use larger "
+            "interval_mm values, shorter paths, fewer actuators or actuators closer together"
         )
     plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
     return join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)
