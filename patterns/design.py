@@ -20,6 +20,7 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     min_stitch_mm = 0.3
     max_stitch_mm = 12.1
     speed_spm = 600                  # stitches per minute
+    cord_stop = "sequence"           # DST/EXP cord-in stop: "sequence" (one stop code) or "double"
     [operation]
     max_pressure_kpa = 300.0
     max_bend_deg = 180.0
@@ -86,6 +87,7 @@ from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
+from .stops import cord_stop as _cord_stop
 
 __all__ = [
     "MachineSettings",
@@ -132,6 +134,11 @@ class MachineSettings:
         Shortest sensible and longest allowed stitch [mm], 0 <= min < max.
     speed_spm : float
         Sewing speed [stitches/min], > 0 (time estimates).
+    cord_stop : str
+        How a stop-code format (DST, EXP) writes a cord-in stop: ``"sequence"`` (one stop
+        code; a multi-needle machine in manual mode or with stops programmed in its needle
+        sequence) or ``"double"`` (two in a row: stops one in automatic mode too);
+        :class:`embroact.patterns.stops.CordStop`.
     """
 
     format: str = "dst"
@@ -140,11 +147,13 @@ class MachineSettings:
     min_stitch_mm: float = 0.3
     max_stitch_mm: float = 12.1
     speed_spm: float = 600.0
+    cord_stop: str = "sequence"
 
     def __post_init__(self) -> None:
         if not isinstance(self.format, str):
             raise ParameterError(f"format must be a string, got {self.format!r}")
         object.__setattr__(self, "format", format_limit(self.format).name)
+        object.__setattr__(self, "cord_stop", _cord_stop(self.cord_stop).value)
         check_range("hoop_width_mm", self.hoop_width_mm, low=0.0, high=10_000.0)
         check_range("hoop_height_mm", self.hoop_height_mm, low=0.0, high=10_000.0)
         mx = check_range("max_stitch_mm", self.max_stitch_mm, low=0.0, high=1000.0)
@@ -430,7 +439,7 @@ def design_from_dict(d) -> Design:
     return Design(
         name=_string(top.get("name", "design"), "name"),
         tube=_numbers_table(top.get("tube", {}), "tube", Tube),
-        machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format",)),
+        machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format", "cord_stop")),
         operation=_numbers_table(top.get("operation", {}), "operation", OperationSettings),
         actuators=specs,
     )

@@ -41,7 +41,9 @@ def test_counts_sizes_and_tube_lengths():
         assert a.path_length_mm == pytest.approx(40.0)
         assert a.tube_cut_mm == pytest.approx(40.0 + 2 * 30.0)
         assert a.legs_over_tube == 40
-    assert ws.stops[0].startswith("stop 1: lay tube for actuator A1 along its path, 100 mm cut length")
+    assert ws.stops[0].startswith("stop 1: lay tube for actuator A1 (100 mm cut): its axis runs from (5.0, -3.0) "
+                                  "to (45.0, -3.0) mm, leaving the start at 0 deg; from the needle at (5.0, 0.5) mm "
+                                  "its start is 3.5 mm down")
     assert [s.split(":")[0] for s in ws.stops] == ["stop 1", "stop 2", "stop 3"]
 
 
@@ -81,3 +83,62 @@ def test_derived_geometry_and_json():
 def test_bad_speed(spm):
     with pytest.raises(ParameterError, match="speed_spm"):
         worksheet(hand_plan(1), speed_spm=spm)
+
+
+def _three_dst(mode):
+    import dst_decoder
+    from embroact.export.files.designfile import load_design
+    from embroact.export.machine.formats import encode
+    from embroact.patterns.design import build_plan
+
+    design = load_design("examples/three_actuators.toml")
+    plan = build_plan(design)
+    data, res = encode(plan, "dst", cord_stop=mode)
+    return design, plan, res, dst_decoder.decode(data)
+
+
+@pytest.mark.parametrize("mode,entries", [("sequence", 4), ("double", 7)])
+def test_three_actuator_dst_tells_a_multi_needle_operator_what_to_set(mode, entries):
+    design, plan, res, dst = _three_dst(mode)
+    ws = worksheet(plan, design, machine=res)
+    kinds = [r.kind for r in dst.records]
+    stop_codes = kinds.count("stop")
+    assert stop_codes == {"sequence": 3, "double": 6}[mode] == ws.stop_count == entries - 1
+    # pauses where the decoded records stop, in the plan frame: one per actuator
+    waits = []
+    for r, prev in zip(dst.records, [None] + dst.records[:-1]):
+        if r.kind == "stop" and (prev is None or prev.kind != "stop"):
+            waits.append((r.x / 10, r.y / 10))
+    assert [line.split(":")[0] for line in ws.stops] == ["stop 1", "stop 2", "stop 3"]
+    for line, (wx, wy) in zip(ws.stops, waits):
+        assert f"from the needle at ({wx:.1f}, {wy:.1f}) mm" in line
+    text = ws.as_text()
+    multi = next(s for s in ws.setup if s.startswith("multi-needle"))
+    assert f"set all {entries} entries of the needle sequence to needle 1" in multi
+    assert ("manual needle mode" in multi) == (mode == "sequence")
+    assert "connector on the start end" in text and "fabric to hoop   280 x 280 mm" in text
+    assert ws.jump_count == res.jumps == sum(e[3] for e in dst_decoder_events(dst) if e[0] == "travel")
+
+
+def dst_decoder_events(dst):
+    import dst_decoder
+
+    return dst_decoder.events(dst.records)
+
+
+@pytest.mark.parametrize("fmt", ["pes", "vp3", "jef"])
+def test_colour_format_worksheet_lays_tube_one_before_start(fmt):
+    from embroact.export.files.designfile import load_design
+    from embroact.export.machine.formats import encode
+    from embroact.patterns.design import build_plan
+
+    design = load_design("examples/three_actuators.toml")
+    plan = build_plan(design)
+    _, res = encode(plan, fmt)
+    ws = worksheet(plan, design, machine=res)
+    assert ws.stop_count == 0 and ws.color_change_count == 2
+    assert ws.stops[0].startswith("before start: lay tube for actuator narrow zigzag")
+    assert [s.split(":")[0] for s in ws.stops[1:]] == ["stop 1", "stop 2"]
+    assert any("lay tube 1 before pressing start" in s for s in ws.setup)
+    assert any("no stop code" in n for n in ws.notes)
+    assert (ws.stitch_count, ws.trim_count, ws.jump_count) == (res.stitches, res.trims, res.jumps)

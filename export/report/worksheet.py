@@ -22,6 +22,16 @@ Sewing time
     ``(stitches + jumps) / speed_spm`` minutes, plus :data:`TRIM_TIME_S` per trim
     and :data:`STOP_RESTART_S` per stop (machine stop and restart).  Handling
     time at each stop (laying the tube, :data:`LAY_TUBE_S`) is reported separately.
+Fabric to hoop
+    The hoop's sewing field plus :data:`FABRIC_BORDER_MM` on every side (the hoop clamps
+    the fabric outside its field), and never smaller than the tubes with their free ends.
+
+Counts and pauses are those of the machine file when one is given (``machine=``, the
+:class:`~embroact.export.machine.formats.WriteResult` of the written file, whose numbers
+are read back from its bytes); without it they are the plan's.  The set-up section tells
+the operator how to set the machine for that file's kind of stop, which tubes are laid
+before start, where each tube runs relative to the needle waiting for it, which end takes
+the connector and how much fabric to hoop.
 
 Examples
 --------
@@ -55,6 +65,8 @@ __all__ = [
     "STOP_RESTART_S",
     "LAY_TUBE_S",
     "FABRIC_THICKNESS_MM",
+    "FABRIC_BORDER_MM",
+    "machine_setup",
     "over_tube_extra_mm",
     "ActuatorSheet",
     "Worksheet",
@@ -73,6 +85,8 @@ LAY_TUBE_S = 60.0
 """Operator time per stop to lay and tape the tube along its path [s]."""
 FABRIC_THICKNESS_MM = 0.5
 """Default fabric thickness used for the per-penetration thread allowance [mm]."""
+FABRIC_BORDER_MM = 40.0
+"""Fabric beyond the hoop's sewing field on every side, for the hoop to clamp [mm]."""
 
 
 def over_tube_extra_mm(half_span_mm, radius_mm):
@@ -117,6 +131,9 @@ class ActuatorSheet:
     derived : dict
         Realised parameters and derived geometry (``DerivedGeometry.as_dict()``).
     adjustments : tuple of str
+    model : dict or None
+        G, P0, tube and tube law with their sources (``ModelChoice.as_dict()``), when the
+        worksheet was made from an analysis and the actuator has a model.
     """
 
     name: str
@@ -130,6 +147,7 @@ class ActuatorSheet:
     legs_over_tube: int
     derived: dict = field(compare=False)
     adjustments: tuple[str, ...] = ()
+    model: dict | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -150,6 +168,16 @@ class Worksheet:
     sewing_time_s, handling_time_s : float
     findings : tuple of dict
         Design-rule findings passed in (``Finding.as_dict()``).
+    color_change_count : int
+        Colour changes (colour formats) or needle-set records (TBF, U01) in the machine file.
+    machine_format : str or None
+        Format of the machine file the counts come from (None: counted on the plan).
+    setup : tuple of str
+        How to set the machine and hoop the fabric, in plain words.
+    notes : tuple of str
+        What the machine file's format cannot carry.
+    fabric_mm : tuple of float
+        Fabric to cut and hoop, width and height [mm].
     """
 
     name: str
@@ -166,6 +194,11 @@ class Worksheet:
     sewing_time_s: float
     handling_time_s: float
     findings: tuple[dict, ...] = ()
+    color_change_count: int = 0
+    machine_format: str | None = None
+    setup: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+    fabric_mm: tuple[float, float] = (0.0, 0.0)
 
     def as_dict(self) -> dict:
         """JSON-ready dict with unit-suffixed keys (lengths mm, thread also m, times s)."""
@@ -176,6 +209,11 @@ class Worksheet:
             "jump_count": self.jump_count,
             "trim_count": self.trim_count,
             "stop_count": self.stop_count,
+            "color_change_count": self.color_change_count,
+            "machine_format": self.machine_format,
+            "setup": list(self.setup),
+            "notes": list(self.notes),
+            "fabric_mm": [round(v, 1) for v in self.fabric_mm],
             "stops": list(self.stops),
             "top_thread_m": round(self.top_thread_mm / 1000.0, 3),
             "bobbin_thread_m": round(self.bobbin_thread_mm / 1000.0, 3),
@@ -194,6 +232,7 @@ class Worksheet:
                     "top_thread_m": round(a.top_thread_mm / 1000.0, 3),
                     "bobbin_thread_m": round(a.bobbin_thread_mm / 1000.0, 3),
                     "derived": a.derived,
+                    "model": a.model,
                     "adjustments": list(a.adjustments),
                 }
                 for a in self.actuators
@@ -208,11 +247,18 @@ class Worksheet:
             f"PRODUCTION WORKSHEET  {self.name}",
             "",
             f"design size      {self.size_mm[0]:.1f} x {self.size_mm[1]:.1f} mm",
-            f"stitches         {self.stitch_count}   jumps {self.jump_count}   trims {self.trim_count}   stops {self.stop_count}",
+            f"machine file     {self.machine_format or 'none (counts of the stitch plan)'}",
+            f"stitches         {self.stitch_count}   jumps {self.jump_count}   trims {self.trim_count}   stops {self.stop_count}"
+            f"   colour changes {self.color_change_count}",
             f"sewing time      {int(t // 60)} min {t % 60:04.1f} s at {self.speed_spm:g} stitches/min"
             f" (+ {self.handling_time_s / 60:.0f} min laying tubes)",
             f"top thread       {self.top_thread_mm / 1000:.2f} m",
             f"bobbin thread    {self.bobbin_thread_mm / 1000:.2f} m",
+            f"fabric to hoop   {self.fabric_mm[0]:.0f} x {self.fabric_mm[1]:.0f} mm",
+            *[f"note             {n}" for n in self.notes],
+            "",
+            "MACHINE SET-UP",
+            *[f"  {s}" for s in self.setup],
             "",
             "STOP SEQUENCE",
             *[f"  {s}" for s in self.stops],
@@ -224,10 +270,23 @@ class Worksheet:
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
             lines += [f"  {k:<24} {_fmt(v)}" for k, v in a.derived.items() if k != "name"]
+            lines += _model_lines(a.model)
             lines += [f"  adjustment: {s}" for s in a.adjustments]
         lines += ["", "DESIGN-RULE FINDINGS"]
         lines += [f"  {f.get('severity', '')} {f.get('code', '')}: {f.get('message', '')}" for f in self.findings] or ["  none"]
         return "\n".join(lines) + "\n"
+
+
+def _model_lines(model: dict | None) -> list[str]:
+    """The model block of one actuator: G, P0 with their sources, tube law, tube, notes."""
+    if model is None:
+        return []
+    t = model["tube"]
+    return [f"  model G                  {model['g_mpa']:.6g} MPa ({model['g_source']})",
+            f"  model P0                 {model['p0_kpa']:.6g} kPa ({model['p0_source']})",
+            f"  model tube law           {model['tube_law']}",
+            f"  model tube               r_f {t['outer_radius_mm']:g} mm, d_f {t['inner_radius_mm']:g} mm, "
+            f"G_e {t['g_e_mpa']:g} MPa"] + [f"  model note: {n}" for n in model["notes"]]
 
 
 def _fmt(v) -> str:
@@ -243,7 +302,7 @@ def _legs(plan: StitchPlan, k: int):
     return plan.xy_mm[idx], np.flatnonzero(consecutive)
 
 
-def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric: float) -> ActuatorSheet:
+def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric: float, analysed=None) -> ActuatorSheet:
     pts, legs = _legs(plan, k)
     seg = pts[legs + 1] - pts[legs]
     lengths = np.hypot(seg[:, 0], seg[:, 1])
@@ -258,29 +317,91 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
     bobbin = float(lengths.sum() + n * t_fabric)
     if act is None:
         return ActuatorSheet(f"A{k + 1}", "unknown", 0.0, 0.0, 0.0, n, top, bobbin, 0, {})
-    from ...predict.derived import derive
+    if analysed is None:
+        from ...predict.derived import derive
 
+        derived, model = derive(act), None
+    else:
+        derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
     return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,
-                         len(extra), derive(act).as_dict(), tuple(act.adjustments))
+                         len(extra), derived.as_dict(), tuple(act.adjustments), model)
 
 
-def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet]) -> tuple[str, ...]:
+def _side(dx: float, dy: float) -> str:
+    """'3.5 mm right, 1.0 mm up' (plan frame, y up) for a vector from the needle."""
+    parts = [f"{abs(dx):.1f} mm {'right' if dx > 0 else 'left'}" if abs(dx) >= 0.05 else "",
+             f"{abs(dy):.1f} mm {'up' if dy > 0 else 'down'}" if abs(dy) >= 0.05 else ""]
+    return ", ".join(p for p in parts if p) or "at the needle"
+
+
+def _lay_line(a: ActuatorSheet, act: ActuatorPlan | None, needle) -> str:
+    """Where the tube goes relative to the waiting needle, which end takes the connector."""
+    if act is None:
+        return f"lay the tube for actuator {a.name}"
+    pts = act.centerline.points_mm
+    (x0, y0), (x1, y1) = pts[0], pts[-1]
+    d = pts[1] - pts[0]
+    heading = math.degrees(math.atan2(d[1], d[0]))
+    where = f"; from the needle at ({needle[0]:.1f}, {needle[1]:.1f}) mm its start is {_side(x0 - needle[0], y0 - needle[1])}" \
+        if needle is not None else ""
+    return (f"lay tube for actuator {a.name} ({a.tube_cut_mm:.0f} mm cut): its axis runs from ({x0:.1f}, {y0:.1f}) "
+            f"to ({x1:.1f}, {y1:.1f}) mm, leaving the start at {heading:.0f} deg{where}; "
+            f"{a.end_margin_mm:g} mm free at each end, the connector on the start end, the far end sealed; "
+            f"tape both ends")
+
+
+def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], pauses) -> tuple[str, ...]:
+    """One line per actuator: laid before start, or at the pause the machine file makes for it."""
+    ids = sorted(sheets)
+    if pauses is None:  # no machine file: the plan's STOP records
+        stops = np.flatnonzero(plan.commands == Command.STOP)
+        pauses = [tuple(plan.xy_mm[i]) for i in stops]
+    before = len(ids) - len(pauses)  # actuators whose tube is laid before start
     out = []
-    for n, i in enumerate(np.flatnonzero(plan.commands == Command.STOP), start=1):
-        k = int(plan.actuator[i])
-        a = sheets.get(k)
-        x, y = plan.xy_mm[i]
-        if a is None or a.tube_cut_mm == 0.0:
-            out.append(f"stop {n}: lay the tube for actuator A{k + 1}; needle at ({x:.1f}, {y:.1f}) mm")
-            continue
-        out.append(
-            f"stop {n}: lay tube for actuator {a.name} along its path, {a.tube_cut_mm:.0f} mm cut length "
-            f"({a.end_margin_mm:g} mm free at each end); the needle waits at the actuator's start "
-            f"({x:.1f}, {y:.1f}) mm; tape the ends, press start"
-        )
+    for n, k in enumerate(ids):
+        act = plan.actuators[k] if k < len(plan.actuators) else None
+        if n < before:
+            out.append(f"before start: {_lay_line(sheets[k], act, None)}; then press start")
+        else:
+            out.append(f"stop {n - before + 1}: {_lay_line(sheets[k], act, pauses[n - before])}; press start")
     return tuple(out)
+
+
+def machine_setup(machine, n_actuators: int) -> tuple[str, ...]:
+    """Plain-words machine set-up for the machine file ``machine`` (a WriteResult), or none.
+
+    Examples
+    --------
+    >>> from embroact.export.machine.formats import WriteResult
+    >>> res = WriteResult(None, "dst", 0, 10, 0, 3, 6, 0, 0, "double", ((0, 0),) * 3)
+    >>> print(machine_setup(res, 3)[1])
+    multi-needle machine (automatic needle mode is fine): set all 7 entries of the needle sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in automatic mode
+    """
+    if machine is None:
+        return ("no machine file: counts and stops are those of the stitch plan",)
+    fmt, pauses = machine.format, machine.pauses
+    if fmt in ("dst", "exp"):
+        entries = machine.stops + 1
+        single = (f"single-needle machine: it stops at each of the {pauses} cord-in stops; keep the same thread "
+                  "when it asks for a colour")
+        if machine.cord_stop == "double":
+            multi = (f"multi-needle machine (automatic needle mode is fine): set all {entries} entries of the needle "
+                     f"sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in "
+                     f"automatic mode")
+        else:
+            multi = (f"multi-needle machine: switch to manual needle mode, or set all {entries} entries of the needle "
+                     f"sequence to needle 1 and programme a stop at entries 2 to {entries}: in automatic mode a "
+                     f"single stop code only changes needle and sews on (cord_stop = \"double\" stops it anyway)")
+        return (f"{fmt.upper()} file with {machine.stops} stop code(s) for {pauses} cord-in stop(s)", multi, single)
+    if fmt in ("tbf", "u01"):
+        return (f"{fmt.upper()} file: needle 1 for every actuator, and the format's own stop code at each of the "
+                f"{pauses} cord-in stops: the machine stops there in any needle mode",)
+    return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
+            f"{machine.color_changes} colour changes (one per actuator after the first): keep the same thread and "
+            "lay the next tube there",
+            "lay tube 1 before pressing start: the machine starts sewing actuator 1 at once")
 
 
 def worksheet(
@@ -290,6 +411,8 @@ def worksheet(
     speed_spm: float = DEFAULT_SPEED_SPM,
     fabric_thickness_mm: float = FABRIC_THICKNESS_MM,
     findings=(),
+    machine=None,
+    analysis=None,
 ) -> Worksheet:
     """Build the production worksheet of ``plan``.
 
@@ -297,25 +420,39 @@ def worksheet(
     ----------
     plan : StitchPlan
     design : optional
-        The design the plan came from; its ``name`` (if any) titles the sheet.
+        The design the plan came from; its ``name`` (if any) titles the sheet, its
+        ``machine`` hoop sizes the fabric (default 200 x 200 mm).
     speed_spm : float
         Machine speed [stitches/min], in (0, 2000].
     fabric_thickness_mm : float
         For the per-penetration thread allowance [mm], in [0, 10].
     findings : iterable of Finding or dict
         Design-rule findings to list (``Finding.as_dict()`` is called when present).
+    machine : WriteResult, optional
+        The machine file written from ``plan``: counts, pauses and set-up are that file's.
+    analysis : DesignAnalysis, optional
+        The analysis the plan came from: its derived geometry and models (G, P0, tube, tube
+        law and their sources) go on the sheet instead of a second derivation.
     """
     spm = check_range("speed_spm", speed_spm, low=0.0, high=2000.0, high_inclusive=True)
     t_f = check_range("fabric_thickness_mm", fabric_thickness_mm, low=0.0, high=10.0, low_inclusive=True,
                       high_inclusive=True)
     ids = sorted({int(a) for a in plan.actuator.tolist() if a >= 0})
-    sheets = {
-        k: _actuator_sheet(plan, k, plan.actuators[k] if k < len(plan.actuators) else None, t_f) for k in ids
-    }
+    analysed = {a.name: a for a in analysis.actuators} if analysis is not None else {}
+    sheets = {}
+    for k in ids:
+        act = plan.actuators[k] if k < len(plan.actuators) else None
+        sheets[k] = _actuator_sheet(plan, k, act, t_f, analysed.get(act.name) if act is not None else None)
     needles = plan.xy_mm[plan.commands == Command.STITCH]
     size = tuple(float(v) for v in np.ptp(needles, axis=0)) if len(needles) else (0.0, 0.0)
-    n_st, n_j, n_tr, n_sp = (plan.count(c) for c in (Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP))
-    sewing = 60.0 * (n_st + n_j) / spm + n_tr * TRIM_TIME_S + n_sp * STOP_RESTART_S
+    if machine is None:
+        n_st, n_j, n_tr, n_sp = (plan.count(c) for c in (Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP))
+        n_cc, n_wait, pauses = 0, n_sp, None
+    else:
+        n_st, n_j, n_tr, n_sp, n_cc = (machine.stitches, machine.jumps, machine.trims, machine.stops,
+                                       machine.color_changes)
+        n_wait, pauses = machine.pauses, machine.pauses_mm
+    sewing = 60.0 * (n_st + n_j) / spm + n_tr * TRIM_TIME_S + n_wait * STOP_RESTART_S
     name = getattr(design, "name", None) or plan.name
     return Worksheet(
         name=name,
@@ -324,12 +461,36 @@ def worksheet(
         jump_count=n_j,
         trim_count=n_tr,
         stop_count=n_sp,
-        stops=_stop_lines(plan, sheets),
+        stops=_stop_lines(plan, sheets, pauses),
         actuators=tuple(sheets[k] for k in ids),
         top_thread_mm=math.fsum(s.top_thread_mm for s in sheets.values()),
         bobbin_thread_mm=math.fsum(s.bobbin_thread_mm for s in sheets.values()),
         speed_spm=spm,
         sewing_time_s=sewing,
-        handling_time_s=n_sp * LAY_TUBE_S,
+        handling_time_s=len(ids) * LAY_TUBE_S,
         findings=tuple(f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in findings),
+        color_change_count=n_cc,
+        machine_format=None if machine is None else machine.format,
+        setup=machine_setup(machine, len(ids)),
+        notes=() if machine is None else tuple(machine.notes),
+        fabric_mm=_fabric_mm(plan, getattr(design, "machine", None)),
     )
+
+
+def _fabric_mm(plan: StitchPlan, machine) -> tuple[float, float]:
+    """Hoop field plus the clamping border, at least the tubes with their free ends plus the border."""
+    w, h = (getattr(machine, "hoop_width_mm", 200.0), getattr(machine, "hoop_height_mm", 200.0))
+    spans = [np.zeros((0, 2))]
+    for act in plan.actuators:
+        pts = act.centerline.points_mm
+        m = act.tube.end_margin_mm
+        ends = [pts[0] - m * _unit(pts[1] - pts[0]), pts[-1] + m * _unit(pts[-1] - pts[-2])]
+        spans.append(np.vstack([pts, ends]))
+    allp = np.vstack(spans)
+    tw, th = (np.ptp(allp, axis=0) if len(allp) else (0.0, 0.0))
+    return (float(max(w, tw)) + 2 * FABRIC_BORDER_MM, float(max(h, th)) + 2 * FABRIC_BORDER_MM)
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = float(np.hypot(v[0], v[1]))
+    return v / n if n > 0 else v
