@@ -1,4 +1,4 @@
-"""Benchmark: ``embroact zigzag ... -o x.dst`` against importing numpy, shapely and pyembroidery.
+"""Benchmark: ``embroact zigzag ... -o x.dst`` against importing numpy, shapely and pystitch.
 
 Target (issue 3 brief): the command takes at most ~1.3x the bare imports.  Run::
 
@@ -31,7 +31,7 @@ def main():
     ap.add_argument("--runs", type=int, default=15)
     runs = ap.parse_args().runs
     out = Path(tempfile.mkdtemp()) / "x.dst"
-    base = _median_s([sys.executable, "-c", "import numpy, shapely, pyembroidery"], runs)
+    base = _median_s([sys.executable, "-c", "import numpy, shapely, pystitch"], runs)
     cmd = _median_s([sys.executable, "-m", "embroact.export", "zigzag", "--width-mm", "7", "--interval-mm", "1",
                      "--length-mm", "100", "-o", str(out)], runs)
     ratio = cmd / base

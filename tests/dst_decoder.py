@@ -2,7 +2,7 @@
 
 Written from the published description of the ternary record format
 (achatina.de "DST (Tajima) design format"; KDE Liberty wiki "Tajima Ternary"),
-not from pyembroidery's reader or embroact's own header code:
+not from pystitch's reader or embroact's own header code:
 
 * 512-byte ASCII header of ``KEY:value`` fields ending with CR, then 0x1A and
   space padding.
