@@ -32,9 +32,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import charts  # noqa: E402
 import model_bench  # noqa: E402
+import scale_bench  # noqa: E402
 import stability  # noqa: E402
 import stitch_bench  # noqa: E402
 from baseline_scipy import baseline_of  # noqa: E402
+from competitor_numpy import competitor_of  # noqa: E402
 from sample import reference_points, sample_designs  # noqa: E402
 
 from embroact.predict.curve import METHODS, curve  # noqa: E402
@@ -61,27 +63,38 @@ class Config:
     cli_runs: int
     long_path_mm: float
     long_path_runs: int
+    scale_runs: int
 
 
 CONFIGS = {
     "full": Config(n_designs=12, n_pressures=200, time_budget_s=0.25, baseline_designs=4, baseline_points=6,
-                   stability_grid="full", sweep_designs=1000, cli_runs=11, long_path_mm=10_000.0, long_path_runs=3),
+                   stability_grid="full", sweep_designs=1000, cli_runs=11, long_path_mm=10_000.0, long_path_runs=3,
+                   scale_runs=3),
     "quick": Config(n_designs=2, n_pressures=12, time_budget_s=0.0, baseline_designs=1, baseline_points=2,
-                    stability_grid="quick", sweep_designs=8, cli_runs=1, long_path_mm=500.0, long_path_runs=1),
+                    stability_grid="quick", sweep_designs=8, cli_runs=1, long_path_mm=500.0, long_path_runs=1,
+                    scale_runs=0),
 }
 
-#: Targets of issue 7: name -> (unit, comparison, limit).
+#: Targets (issue 17: ratios measured in the same run, sizes, limits): name -> (unit, comparison, limit).
 TARGETS = {
-    "auto_curve_median_ms": ("ms", "<", 1.0),
-    "auto_angle_err_max_deg": ("deg", "<", 1e-6),
+    "auto_angle_err_max_deg": ("deg", "<=", 1e-9),
+    "competitor_angle_err_max_deg": ("deg", "<=", 1e-9),
+    "auto_speedup_vs_competitor": ("x", ">=", 1.5),
+    "auto_over_closed_form_eval": ("x", "<=", 5.0),
+    "one_over_200_pressures": ("ratio", "<=", 0.15),
+    "sweep_speedup_vs_competitor": ("x", ">=", 1.5),
     "auto_speedup_vs_scipy": ("x", ">=", 1000.0),
-    "auto_error_vs_scipy": ("ratio", "<=", 1.0),
-    "sweep_evals_per_s": ("1/s", ">=", 1e6),
-    "zigzag_over_import_floor": ("x", "<=", 1.3),
-    "help_over_python_pass": ("x", "<=", 2.0),
+    "build_over_import_floor": ("x", "<=", 2.5),
+    "check_dst_over_import_floor": ("x", "<=", 1.5),
+    "help_over_argparse": ("x", "<=", 1.5),
     "help_heavy_imports": ("modules", "==", 0),
-    "long_design_total_s": ("s", "<", 2.0),
-    "long_design_peak_rss_mb": ("MB", "<", 200.0),
+    "build_100_over_10_actuators": ("x", "<=", 12.0),
+    "build_100_actuators_peak_mb": ("MB", "<", 300.0),
+    "build_10m_over_1m_path": ("x", "<=", 12.0),
+    "shape3d_10m_mb": ("MB", "<", 2.0),
+    "report_100_actuators_mb": ("MB", "<", 5.0),
+    "build_1000_actuators_ok": ("ok", "==", 1),
+    "far_apart_refused_s": ("s", "<", 5.0),
 }
 
 
@@ -105,6 +118,30 @@ def _methods(cfg: Config, designs, points) -> dict:
              f"angle err {s['angle_err_max_deg']:.2e} deg  P err {s['pressure_err_max_rel']:.2e}"
              + (f"  failed points {s['failed_points']}" if s["failed_points"] else ""))
     return out
+
+
+def _competitor(cfg: Config, designs, points, methods) -> dict:
+    """The numpy competitor, one closed-form evaluation and 1-pressure curves, per design (same timer as methods)."""
+    rows = []
+    auto = {r["design"]: r for r in methods[AUTO]["per_design"]}
+    for d, (p, th) in zip(designs, points):
+        comp = competitor_of(d.model)
+        got, t_comp = model_bench.timed(lambda: comp.theta_deg(p), budget_s=cfg.time_budget_s)
+        _, t_eval = model_bench.timed(lambda: comp.pressure_mpa(np.radians(th)), budget_s=cfg.time_budget_s)
+        _, t_one = model_bench.timed(lambda: curve(d.model, p[-1:]), budget_s=cfg.time_budget_s)
+        rows.append({"design": d.name, "time_s": statistics.median(t_comp), "eval_time_s": statistics.median(t_eval),
+                     "one_pressure_time_s": statistics.median(t_one), "auto_time_s": auto[d.name]["time_s"],
+                     "solved_points": int((th != 0.0).sum()),
+                     "angle_err_deg": float(model_bench.angle_errors(got, th).max())})
+    med = {k: statistics.median(r[k] for r in rows) for k in ("time_s", "eval_time_s", "one_pressure_time_s",
+                                                                  "auto_time_s")}
+    return {"designs": rows, "time_per_curve_ms": med["time_s"] * 1e3, "eval_ms": med["eval_time_s"] * 1e3,
+            "one_pressure_ms": med["one_pressure_time_s"] * 1e3, "auto_ms": med["auto_time_s"] * 1e3,
+            "angle_err_max_deg": max(r["angle_err_deg"] for r in rows),
+            "solved_per_s": sum(r["solved_points"] for r in rows) / sum(r["time_s"] for r in rows),
+            "auto_speedup": med["time_s"] / med["auto_time_s"],
+            "auto_over_eval": med["auto_time_s"] / med["eval_time_s"],
+            "one_over_200": med["one_pressure_time_s"] / med["auto_time_s"]}
 
 
 def _fmt(v, spec: str) -> str:
@@ -192,22 +229,38 @@ def targets(res: dict) -> dict:
     """Measured value and PASS/FAIL of each target in :data:`TARGETS`."""
     auto = res["methods"][AUTO]
     base = res["baseline_scipy"]
+    comp, cli, sc = res["competitor"], res["stitches"]["cli"], res.get("scale")
     values = {
-        "auto_curve_median_ms": auto["time_per_curve_ms"],
         "auto_angle_err_max_deg": auto["angle_err_max_deg"],
+        "competitor_angle_err_max_deg": comp["angle_err_max_deg"],
+        "auto_speedup_vs_competitor": comp["auto_speedup"],
+        "auto_over_closed_form_eval": comp["auto_over_eval"],
+        "one_over_200_pressures": comp["one_over_200"],
+        "sweep_speedup_vs_competitor": res["throughput"]["default_rtol"]["solved_per_s"] / comp["solved_per_s"],
         "auto_speedup_vs_scipy": base["speedup_auto"],
-        "auto_error_vs_scipy": base["auto_angle_err_max_deg"] / base["angle_err_max_deg"]
-        if base["angle_err_max_deg"] > 0 else math.inf,
-        "sweep_evals_per_s": res["throughput"]["default_rtol"]["evals_per_s"],
-        "zigzag_over_import_floor": res["stitches"]["cli"]["zigzag_over_floor"],
-        "help_over_python_pass": res["stitches"]["cli"]["help_over_pass"],
+        "build_over_import_floor": cli["build_over_floor"],
+        "check_dst_over_import_floor": cli["check_dst_over_floor"],
+        "help_over_argparse": cli["help_over_argparse"],
         "help_heavy_imports": len(res["stitches"]["help_heavy_imports"]),
-        "long_design_total_s": res["stitches"]["long_design"]["total_s"],
-        "long_design_peak_rss_mb": res["stitches"]["long_design"]["peak_rss_mb"],
     }
+    if sc:
+        g, m = sc["grid"], sc["meander"]
+        big = g.get("1000")
+        values.update({
+            "build_100_over_10_actuators": g["ratio_100_over_10"],
+            "build_100_actuators_peak_mb": g["100"]["peak_mb"],
+            "build_10m_over_1m_path": m["ratio_10m_over_1m"],
+            "shape3d_10m_mb": m["10m"]["sizes_mb"].get("shape3d.svg"),
+            "report_100_actuators_mb": g["100"]["sizes_mb"].get("report.html"),
+            "build_1000_actuators_ok": None if big is None else int(
+                (big["rc"] == 0 and big["s"] < scale_bench.LIMIT_1000_S and big["peak_mb"] < scale_bench.LIMIT_1000_MB)
+                or (big["rc"] == 2 and big["s"] < scale_bench.LIMIT_1000_S)),
+            "far_apart_refused_s": sc["far_apart"]["s"] if sc["far_apart"]["rc"] == 2 else math.inf,
+        })
     ops = {"<": lambda a, b: a < b, "<=": lambda a, b: a <= b, ">=": lambda a, b: a >= b, "==": lambda a, b: a == b}
-    return {k: {"value": v, "unit": TARGETS[k][0], "target": f"{TARGETS[k][1]} {TARGETS[k][2]:g}",
-                "pass": bool(v is not None and ops[TARGETS[k][1]](v, TARGETS[k][2]))} for k, v in values.items()}
+    return {k: {"value": values.get(k), "unit": TARGETS[k][0], "target": f"{TARGETS[k][1]} {TARGETS[k][2]:g}",
+                "pass": bool(values.get(k) is not None and ops[TARGETS[k][1]](values[k], TARGETS[k][2]))}
+            for k in TARGETS}
 
 
 def _pareto_points(res: dict) -> list[dict]:
@@ -243,7 +296,8 @@ def markdown_targets(res: dict) -> str:
     lines = ["| target | measured | limit | |", "|---|---:|---|---|"]
     for k in TARGETS:
         t = res["targets"][k]
-        lines.append(f"| {k} | {float(t['value']):.4g} {t['unit']} | {t['target']} | "
+        shown = "not run" if t["value"] is None else f"{float(t['value']):.4g} {t['unit']}"
+        lines.append(f"| {k} | {shown} | {t['target']} | "
                      f"{'PASS' if t['pass'] else '**FAIL**'} |")
     return "\n".join(lines)
 
@@ -254,7 +308,27 @@ def markdown_notes(res: dict) -> str:
     st, cli, ld = res["stitches"], res["stitches"]["cli"]["median_s"], res["stitches"]["long_design"]
     rates = ", ".join(f"{r['pattern']} {r['points_per_s']:.3g} needle points/s ({r['needle_points']} points in "
                       f"{r['time_s'] * 1e3:.0f} ms)" for r in st["needle_rate"])
+    c = res["competitor"]
+    sc = res.get("scale")
+    scale_lines = [] if not sc else [
+        f"* Scale (fresh `embroact build` processes): 10 / 100 small zigzags {sc['grid']['10']['s']:.2f} s / "
+        f"{sc['grid']['100']['s']:.2f} s ({sc['grid']['ratio_100_over_10']:.3g} x; peak {sc['grid']['100']['peak_mb']:.0f} MB"
+        f", report.html {sc['grid']['100']['sizes_mb'].get('report.html', 0):.2f} MB, shape3d.svg "
+        f"{sc['grid']['100']['sizes_mb'].get('shape3d.svg', 0):.2f} MB); 1 m / 10 m meander {sc['meander']['1m']['s']:.2f} s / "
+        f"{sc['meander']['10m']['s']:.2f} s ({sc['meander']['ratio_10m_over_1m']:.3g} x; 10 m shape3d.svg "
+        f"{sc['meander']['10m']['sizes_mb'].get('shape3d.svg', 0):.2f} MB)"
+        + ("" if "1000" not in sc["grid"] else
+           f"; 1000 zigzags: exit {sc['grid']['1000']['rc']} in {sc['grid']['1000']['s']:.1f} s, peak "
+           f"{sc['grid']['1000']['peak_mb']:.0f} MB" + (f" ({sc['grid']['1000']['stderr'][0]})" if sc['grid']['1000']['rc']
+                                                       else ""))
+        + f"; 100 tiny actuators +-999,999 mm apart: exit {sc['far_apart']['rc']} in {sc['far_apart']['s']:.2f} s"
+        + (f" (`{sc['far_apart']['stderr'][0]}`)" if sc['far_apart']['stderr'] else "") + "."]
     return "\n".join([
+        f"* `auto` against the numpy competitor (`competitor_numpy.py`: closed form, table + 4 secant steps, "
+        f"{c['angle_err_max_deg']:.1e} deg): {c['auto_ms']:.3g} ms against {c['time_per_curve_ms']:.3g} ms per 200-pressure "
+        f"curve (**{c['auto_speedup']:.3g} x**); one closed-form evaluation at the 200 angles {c['eval_ms']:.3g} ms "
+        f"(auto = {c['auto_over_eval']:.3g} evaluations); a 1-pressure curve {c['one_pressure_ms']:.3g} ms "
+        f"({c['one_over_200']:.2f} of a 200-pressure one).",
         f"* `auto` against the scipy baseline (same {len(b['designs'])} designs): {b['auto_time_per_curve_ms']:.3g} ms "
         f"against {b['time_per_curve_ms'] / 1e3:.3g} s per curve, **{b['speedup_auto']:.3g} times faster**, with a "
         f"maximum angle error of {b['auto_angle_err_max_deg']:.1e} deg against {b['angle_err_max_deg']:.1e} deg.",
@@ -263,7 +337,9 @@ def markdown_notes(res: dict) -> str:
         f"is {pr['error_ratio_to_auto']:.2g} times `auto`'s.",
         f"* Sweeps: `sweep` of {tp['default_rtol']['designs']} designs x {tp['default_rtol']['pressures']} pressures "
         f"in {tp['default_rtol']['time_s'] * 1e3:.0f} ms = **{tp['default_rtol']['evals_per_s']:.3g} design-pressure "
-        f"evaluations/s** ({tp['rtol_1e-6']['evals_per_s']:.3g}/s at rtol 1e-6); "
+        f"evaluations/s** ({tp['rtol_1e-6']['evals_per_s']:.3g}/s at rtol 1e-6); counting only the "
+        f"{tp['default_rtol']['solved_points']} points above P0 (the others need no solve), "
+        f"{tp['default_rtol']['solved_per_s']:.3g} solved points/s against the competitor's {c['solved_per_s']:.3g}/s; "
         f"{tp['vectorised_per_design_ms']:.3g} ms per design against {tp['loop_of_curve_per_design_ms']:.3g} ms in a "
         f"loop of `curve()` ({tp['vectorised_over_loop']:.3g} times).",
         f"* Stitch generation on a {st['needle_rate'][0]['length_mm'] / 1000:g} m curved path: {rates}.",
@@ -272,12 +348,16 @@ def markdown_notes(res: dict) -> str:
         f"written as DST in {ld['write_s'] * 1e3:.0f} ms; peak memory {ld['peak_rss_mb']:.0f} MB for the whole process "
         f"({ld['tracemalloc_peak_mb']:.0f} MB traced allocations of the work itself).",
         f"* Command line (median wall time of fresh processes): `python -c pass` {cli['python_pass'] * 1e3:.0f} ms, "
-        f"`embroact --help` {cli['embroact_help'] * 1e3:.0f} ms; import floor {cli['import_floor'] * 1e3:.0f} ms, "
-        f"`embroact zigzag ... -o x.dst` {cli['embroact_zigzag'] * 1e3:.0f} ms. `--help` loads "
+        f"`python -c 'import argparse'` {cli['python_argparse'] * 1e3:.0f} ms, "
+        f"`embroact --help` {cli['embroact_help'] * 1e3:.0f} ms; import floor (numpy, shapely, "
+        f"{stitch_bench.MACHINE_LIBRARY}) {cli['import_floor'] * 1e3:.0f} ms, "
+        f"`embroact zigzag ... -o x.dst` {cli['embroact_zigzag'] * 1e3:.0f} ms, `embroact check x.dst` "
+        f"{cli['embroact_check_dst'] * 1e3:.0f} ms, `embroact build` (default design, every output) "
+        f"{cli['embroact_build'] * 1e3:.0f} ms. `--help` loads "
         f"{', '.join(st['help_heavy_imports']) or 'none of numpy, shapely, trimesh, scipy'}.",
         f"* Machine: {res['machine']['cpus']} cores, Python {res['machine']['python']}, load average at the start "
         f"{res['machine']['load_average'][0]:.2f} (other jobs were running); whole run {res['elapsed_s']:.0f} s.",
-    ])
+    ] + scale_lines)
 
 
 def update_readme(res: dict, path: Path) -> None:
@@ -329,6 +409,11 @@ def run(cfg: Config, out_dir: Path) -> dict:
     b = res["baseline_scipy"]
     _log(f"  scipy {b['time_per_curve_ms']:.4g} ms/curve (auto {b['auto_time_per_curve_ms']:.3g} ms on the same "
          f"designs: {b['speedup_auto']:.3g}x), angle err {b['angle_err_max_deg']:.2e} deg")
+    _log("numpy competitor (closed form + secant steps), one closed-form evaluation, 1-pressure curves:")
+    res["competitor"] = _competitor(cfg, designs, points, res["methods"])
+    c = res["competitor"]
+    _log(f"  competitor {c['time_per_curve_ms']:.3f} ms/curve (err {c['angle_err_max_deg']:.1e} deg), one evaluation "
+         f"{c['eval_ms']:.3f} ms, auto {c['auto_ms']:.3f} ms, auto 1 pressure {c['one_pressure_ms']:.3f} ms")
     _log("sweep throughput:")
     res["throughput"] = _throughput(cfg)
     tp = res["throughput"]
@@ -338,6 +423,9 @@ def run(cfg: Config, out_dir: Path) -> dict:
     res["stability"] = _stability(cfg)
     _log("stitches, files, command line:")
     res["stitches"] = _stitches(cfg)
+    if cfg.scale_runs:
+        _log("scale (fresh build processes):")
+        res["scale"] = scale_bench.scale(cfg.scale_runs)
     for r in res["stitches"]["needle_rate"]:
         _log(f"  {r['pattern']}: {r['needle_points']} needle points on {r['length_mm']:g} mm in "
              f"{r['time_s'] * 1e3:.1f} ms = {r['points_per_s']:.3g} points/s")

@@ -1,9 +1,10 @@
 """Stitch generation, file writing and the command line, timed.
 
 * Needle points per second of the generators on a long curved path (a meander).
-* ``embroact zigzag ... -o x.dst`` against the import floor
-  ``python -c "import numpy, shapely, pyembroidery"``, and ``embroact --help`` against
-  ``python -c pass``: wall time of subprocesses, median of several runs after one
+* ``embroact zigzag ... -o x.dst``, ``embroact check x.dst`` and the default
+  ``embroact build`` against the import floor ``python -c "import numpy, shapely,
+  pystitch"`` (the machine-file library), and ``embroact --help`` against
+  ``python -c "import argparse"`` (and ``python -c pass``): wall time of subprocesses, median of several runs after one
   warm-up. The subprocesses run with bytecode caching on (in a temporary
   ``PYTHONPYCACHEPREFIX``), as an installed package runs; the shell's
   ``PYTHONDONTWRITEBYTECODE`` would otherwise recompile embroact on every start.
@@ -35,6 +36,8 @@ import numpy as np
 
 __all__ = ["meander", "needle_rate", "cli_timings", "help_imports", "ten_metre", "HEAVY"]
 
+#: The machine-file library the import floor loads with numpy and shapely.
+MACHINE_LIBRARY = "pystitch"
 #: Modules ``embroact --help`` must not import.
 HEAVY = ("numpy", "shapely", "trimesh", "scipy")
 #: Meander: amplitude and wavelength [mm] (curvature radius >= 50 mm, far above the 9 mm rule).
@@ -98,13 +101,18 @@ def _entry() -> list[str]:
 
 
 def cli_timings(runs: int) -> dict:
-    """Median wall times [s] of the four commands (interleaved runs) and the two ratios."""
+    """Median wall times [s] of the commands (interleaved runs) and their ratios to the floors."""
     with tempfile.TemporaryDirectory() as tmp:
+        dst = str(Path(tmp) / "x.dst")
+        (Path(tmp) / "build").mkdir()
         cmds = {
             "python_pass": [sys.executable, "-c", "pass"],
+            "python_argparse": [sys.executable, "-c", "import argparse"],
             "embroact_help": _entry() + ["--help"],
-            "import_floor": [sys.executable, "-c", "import numpy, shapely, pyembroidery"],
-            "embroact_zigzag": _entry() + _ZIGZAG_ARGS + ["-o", str(Path(tmp) / "x.dst")],
+            "import_floor": [sys.executable, "-c", f"import numpy, shapely, {MACHINE_LIBRARY}"],
+            "embroact_zigzag": _entry() + _ZIGZAG_ARGS + ["-o", dst],
+            "embroact_check_dst": _entry() + ["check", dst],
+            "embroact_build": _entry() + ["build", "--out", str(Path(tmp) / "build")],
         }
         env = _env()
         times = {k: [] for k in cmds}
@@ -117,7 +125,10 @@ def cli_timings(runs: int) -> dict:
     med = {k: statistics.median(v) for k, v in times.items()}
     return {"median_s": med, "min_s": {k: min(v) for k, v in times.items()}, "runs": runs,
             "zigzag_over_floor": med["embroact_zigzag"] / med["import_floor"],
-            "help_over_pass": med["embroact_help"] / med["python_pass"]}
+            "check_dst_over_floor": med["embroact_check_dst"] / med["import_floor"],
+            "build_over_floor": med["embroact_build"] / med["import_floor"],
+            "help_over_pass": med["embroact_help"] / med["python_pass"],
+            "help_over_argparse": med["embroact_help"] / med["python_argparse"]}
 
 
 def help_imports() -> list[str]:
