@@ -39,6 +39,11 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     rotation_deg = 0.0               # direction of a straight path / rotation of a path
     tie_stitch_mm = 0.7              # lock stitch length
     tie_count = 3                    # lock stitches at each end
+    # [[actuator.segment]]           # a segmented actuator (patterns/segments.py): instead of
+    # pattern = "zigzag"             # pattern/width_mm/interval_mm/angle_deg/adjust above, one
+    # width_mm = 7.0                 # table per segment in order along the path, each with its
+    # interval_mm = 1.0              # own pattern keys and length_mm; the lengths add up to the
+    # length_mm = 40.0               # path's (without length_mm/path: a straight path of their sum)
     [actuator.model]                 # optional prediction settings (docs/model.md, calibration policy)
     calibration = "paper-2025"       # a built-in set's name, or a calibration file (relative to this file)
     # g_mpa = 2.7                    # effective shear modulus G (default: from the calibration set)
@@ -87,6 +92,7 @@ from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
+from .segments import LENGTH_MATCH_MM, SegmentSpec, segment_stations, segmented
 from .stops import cord_stop as _cord_stop
 
 __all__ = [
@@ -234,6 +240,10 @@ class ActuatorSpec:
     adjust : str
         Cross only: which of interval/angle may change to make the pattern close
         (``"auto"``, ``"interval"``, ``"angle"``; see :mod:`embroact.patterns.cross`).
+    segments : tuple of SegmentSpec
+        A segmented actuator (:mod:`embroact.patterns.segments`): its segments in order
+        along the path, lengths adding up to the path's; ``params`` must then be the first
+        segment's (:meth:`segmented` sets it). Empty (default): one pattern over the path.
     """
 
     name: str
@@ -242,12 +252,41 @@ class ActuatorSpec:
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)
     adjust: str = "auto"
+    segments: tuple[SegmentSpec, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise ParameterError(f"name must be a non-empty string, got {self.name!r}")
         PATTERN_KINDS.for_params(self.params)
         object.__setattr__(self, "centerline", as_centerline(self.centerline))
+        segs = tuple(self.segments)
+        if segs:
+            if not all(isinstance(seg, SegmentSpec) for seg in segs):
+                raise ParameterError("segments must hold SegmentSpec values only")
+            total = sum(seg.length_mm for seg in segs)
+            if abs(total - self.centerline.length_mm) > LENGTH_MATCH_MM:
+                raise ParameterError(f"segment length_mm values must add up to the path length "
+                                     f"{self.centerline.length_mm:.6g} mm, got {total:.6g}")
+            if self.params != segs[0].params:
+                raise ParameterError("params must be the first segment's parameters for a segmented actuator")
+        object.__setattr__(self, "segments", segs)
+
+    @classmethod
+    def segmented(cls, name: str, segments, centerline=None, **kwargs) -> "ActuatorSpec":
+        """A segmented actuator; ``centerline`` defaults to a straight path of the segments' total length.
+
+        >>> from embroact.patterns.segments import SegmentSpec
+        >>> a = ActuatorSpec.segmented("S", [SegmentSpec(ZigzagParams(7.0, 1.0), 30.0),
+        ...                                  SegmentSpec(ZigzagParams(9.0, 1.0), 50.0)])
+        >>> a.centerline.length_mm, a.pattern, len(a.segments)
+        (80.0, 'zigzag', 2)
+        """
+        segs = tuple(segments)
+        if not segs:
+            raise ParameterError("segments must hold at least one SegmentSpec, got none")
+        if centerline is None:
+            centerline = Centerline.straight(sum(seg.length_mm for seg in segs))
+        return cls(name, segs[0].params, centerline, segments=segs, **kwargs)
 
     @property
     def pattern(self) -> str:
@@ -304,8 +343,10 @@ def default_design() -> Design:
 # ---------------------------------------------------------------------- dict -> Design
 _ACTUATOR_KEYS = (
     "name", "pattern", "width_mm", "interval_mm", "angle_deg", "adjust", "length_mm", "path",
-    "origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count", "model",
+    "origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count", "model", "segment",
 )  # fmt: skip
+#: keys of one [[actuator.segment]] table (the pattern keys of its kind, and its length)
+_SEGMENT_KEYS = ("pattern", "width_mm", "interval_mm", "angle_deg", "adjust", "length_mm")
 #: keys that belong to some pattern kinds only
 _KIND_KEYS = {k for kind in PATTERN_KINDS for k in (*kind.param_keys, *kind.options)} - {"width_mm", "interval_mm"}
 _MODEL_CHOICES = {"p0_source": P0Source, "tube_law": TubeLaw}
@@ -393,10 +434,8 @@ def _centerline(a: dict, path: str) -> Centerline:
         raise DesignFileError(f"{path}.path: {exc}") from None
 
 
-def _actuator(value, i: int) -> ActuatorSpec:
-    path = f"actuator[{i}]"
-    a = _table(value, path, _ACTUATOR_KEYS, ("name", "pattern", "width_mm", "interval_mm"))
-    name = _string(a["name"], f"{path}.name")
+def _pattern_params(a: dict, path: str, allowed: tuple[str, ...]):
+    """The pattern parameters and the ``adjust`` option of one actuator or segment table."""
     pattern = _string(a["pattern"], f"{path}.pattern")
     if pattern not in PATTERN_KINDS.names():
         valid = ", ".join(map(repr, PATTERN_KINDS.names()))
@@ -407,15 +446,53 @@ def _actuator(value, i: int) -> ActuatorSpec:
         if key in a:
             takers = " or ".join(repr(k.name) for k in PATTERN_KINDS if key in (*k.param_keys, *k.options))
             raise DesignFileError(f"{path}.{key}: only allowed with pattern {takers}, got pattern {pattern!r}")
-    _table(a, path, _ACTUATOR_KEYS, kind.param_keys)
+    _table(a, path, allowed, kind.param_keys)
     params = _build(path, kind.params, {k: _number(a[k], f"{path}.{k}") for k in kind.param_keys})
+    return params, _string(a.get("adjust", "auto"), f"{path}.adjust")
+
+
+def _segments(value, path: str) -> tuple[SegmentSpec, ...]:
+    if not isinstance(value, list) or not value:
+        raise DesignFileError(f"{path}: must be a non-empty list of tables ([[actuator.segment]]), got {value!r:.60}")
+    out = []
+    for k, table in enumerate(value):
+        where = f"{path}[{k}]"
+        t = _table(table, where, _SEGMENT_KEYS, ("pattern", "width_mm", "interval_mm", "length_mm"))
+        params, adjust = _pattern_params(t, where, _SEGMENT_KEYS)
+        out.append(_build(where, SegmentSpec, {"params": params, "adjust": adjust,
+                                               "length_mm": _number(t["length_mm"], f"{where}.length_mm")}))
+    return tuple(out)
+
+
+def _actuator(value, i: int) -> ActuatorSpec:
+    path = f"actuator[{i}]"
+    if isinstance(value, dict) and "segment" in value:
+        return _segmented_actuator(value, path)
+    a = _table(value, path, _ACTUATOR_KEYS, ("name", "pattern", "width_mm", "interval_mm"))
+    params, adjust = _pattern_params(a, path, _ACTUATOR_KEYS)
+    return _build(path, ActuatorSpec, dict(name=_string(a["name"], f"{path}.name"), params=params,
+                                           centerline=_centerline(a, path), adjust=adjust, **_extras(a, path)))
+
+
+def _segmented_actuator(a: dict, path: str) -> ActuatorSpec:
+    for key in _SEGMENT_KEYS[:-1]:
+        if key in a:
+            raise DesignFileError(f"{path}.{key}: a segmented actuator sets {key} per [[actuator.segment]]")
+    _table(a, path, _ACTUATOR_KEYS, ("name",))
+    segs = _segments(a["segment"], f"{path}.segment")
+    if "length_mm" not in a and "path" not in a:
+        a = {**a, "length_mm": sum(seg.length_mm for seg in segs)}
+    return _build(path, ActuatorSpec, dict(name=_string(a["name"], f"{path}.name"), params=segs[0].params,
+                                           centerline=_centerline(a, path), segments=segs, **_extras(a, path)))
+
+
+def _extras(a: dict, path: str) -> dict:
+    """Lock-stitch options and model settings of an actuator table."""
     opts = {k: a[k] for k in ("tie_stitch_mm", "tie_count") if k in a}
     options = _build(path, StitchOptions, {k: _number(v, f"{path}.{k}") for k, v in opts.items()})
     model = _numbers_table(a.get("model", {}), f"{path}.model", ModelSettings, ("calibration", *_MODEL_CHOICES),
                            ("g_mpa", "p0_kpa"))
-    adjust = _string(a.get("adjust", "auto"), f"{path}.adjust")
-    return _build(path, ActuatorSpec, dict(name=name, params=params, centerline=_centerline(a, path),
-                                           options=options, model=model, adjust=adjust))  # fmt: skip
+    return {"options": options, "model": model}
 
 
 def design_from_dict(d) -> Design:
@@ -456,8 +533,12 @@ def design_to_dict(design: Design) -> dict:
     """
     acts = []
     for a in design.actuators:
-        d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
-        d.update(a.kind_options)
+        if a.segments:
+            d = {"name": a.name, "segment": [{"pattern": seg.pattern, **_plain(seg.params), **seg.kind_options,
+                                              "length_mm": seg.length_mm} for seg in a.segments]}
+        else:
+            d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
+            d.update(a.kind_options)
         d["path"] = a.centerline.points_mm.tolist()
         d.update(_plain(a.options))
         d["model"] = {k: v.value if isinstance(v, enum.Enum) else v for k, v in _plain(a.model).items() if v is not None}
@@ -474,8 +555,10 @@ def design_to_dict(design: Design) -> dict:
 # ---------------------------------------------------------------------- plans
 def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
     """One actuator's complete plan; errors are prefixed with the actuator's name."""
-    kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
     try:
+        if spec.segments:
+            return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
+        kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
         return pattern_kind(spec.pattern).generate(spec.centerline, spec.params, **kwargs)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
@@ -534,6 +617,8 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
     """
     kind = pattern_kind(spec.pattern)
     try:
+        if spec.segments:
+            return check_record_count(segment_stations(spec.segments), spec.options)
         check_pattern_inputs(spec.centerline, kind.realised_params(spec.params, **spec.kind_options), tube,
                              spec.options)
         stations = kind.stations(spec.centerline.length_mm, spec.params, **spec.kind_options)

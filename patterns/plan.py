@@ -98,6 +98,10 @@ class ActuatorPlan:
         Human-readable notes where the generator had to change a request.
     options : StitchOptions
         Lock-stitch settings used.
+    segments : tuple of SegmentPlan
+        A segmented actuator's segments (:mod:`embroact.patterns.segments`), in order along
+        the path; ``params`` and ``realised`` are then the first segment's. Empty for a
+        single-pattern actuator.
     """
 
     name: str
@@ -107,6 +111,7 @@ class ActuatorPlan:
     realised: Realised
     adjustments: tuple[str, ...] = ()
     options: StitchOptions = field(default_factory=StitchOptions)
+    segments: tuple = ()
 
     @property
     def pattern(self) -> str:

@@ -1,0 +1,113 @@
+"""Segmented actuators (patterns/segments.py): one continuous run over several patterns along one tube."""
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from embroact.patterns.base.errors import DesignFileError, ParameterError
+from embroact.patterns.centerline import Centerline
+from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings, build_plan, \
+    design_from_dict, design_to_dict
+from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+from embroact.patterns.plan import Command, Role
+from embroact.patterns.segments import SegmentSpec, segmented
+
+MIXED = (SegmentSpec(ZigzagParams(7.0, 1.0), 40.0), SegmentSpec(CrossParams(7.0, 1.4, 45.0), 60.0),
+         SegmentSpec(ZigzagParams(9.0, 1.0), 30.0))
+
+
+def test_one_run_one_stop_one_trim():
+    plan = segmented(Centerline.straight(130.0), MIXED, name="S")
+    assert plan.count(Command.STOP) == 1 and plan.count(Command.TRIM) == 1
+    assert (plan.commands == Command.JUMP).sum() == 0
+    act = plan.actuators[0]
+    assert [s.pattern for s in act.segments] == ["zigzag", "cross", "zigzag"]
+    assert [s.start_mm for s in act.segments] == [0.0, 40.0, 100.0]
+
+
+def test_realised_per_segment_matches_the_request():
+    act = segmented(Centerline.straight(130.0), MIXED).actuators[0]
+    z1, c, z2 = act.segments
+    assert (z1.realised.width_mm, z1.realised.interval_mm, z1.realised.length_mm) == pytest.approx((7.0, 1.0, 40.0))
+    assert (c.realised.width_mm, c.realised.interval_mm, c.realised.angle_deg) == pytest.approx((7.0, 1.4, 45.0))
+    assert c.realised.passes == 10
+    # a 60 mm cross segment at s = 1.4 mm: 42 intervals = 58.8 mm span, centred (0.6 mm each side)
+    assert c.realised.length_mm == pytest.approx(58.8)
+    assert c.first_leg_mm == pytest.approx(40.6)
+    assert z2.realised.width_mm == pytest.approx(9.0)
+
+
+def test_transitions_run_along_a_rail_and_are_reported():
+    plan = segmented(Centerline.straight(130.0), MIXED)
+    act = plan.actuators[0]
+    s, o = act.centerline.project(plan.xy_mm[plan.commands == Command.STITCH])
+    roles = plan.roles[plan.commands == Command.STITCH]
+    # zigzag 1 ends at 40.0; the cross starts at 40.6 (0.6 mm); the cross span ends at 99.4, zigzag 2 starts at 100
+    assert act.segments[0].transition_mm == pytest.approx(0.6)
+    assert act.segments[1].transition_mm == pytest.approx(0.6)
+    assert act.segments[2].transition_mm == 0.0
+    # the 10-pass cross ends near its start (46.2 mm): the thread runs back along the rail to 100 mm
+    assert act.segments[0].join_run_mm == pytest.approx(0.6)
+    assert act.segments[1].join_run_mm == pytest.approx(100.0 - 46.2)
+    # no needle point of the transitions lies nearer the tube than the narrower rail
+    edge = roles == Role.EDGE
+    assert np.all(np.abs(o[edge]) >= 3.5 - 1e-9)
+    # every stitch arriving at an EDGE point advances at most 3 mm along the path
+    assert np.abs(np.diff(s))[edge[1:]].max() <= 3.0 + 1e-9
+
+
+def test_a_segment_is_mirrored_to_start_on_the_rail_the_last_ended_on():
+    segs = (SegmentSpec(ZigzagParams(7.0, 1.0), 41.0), SegmentSpec(ZigzagParams(7.0, 1.0), 40.0))
+    plan = segmented(Centerline.straight(81.0), segs)
+    a, b = plan.actuators[0].segments
+    # 41 legs end on the right rail (odd count): the next zigzag starts there, mirrored
+    assert b.mirrored and not a.mirrored
+    cl = plan.actuators[0].centerline
+    s, o = cl.project(plan.xy_mm[plan.commands == Command.STITCH])
+    at = np.flatnonzero(np.isclose(s, 41.0))
+    assert np.all(o[at] < 0)
+
+
+def test_corridor_and_stitch_lengths_hold_on_a_curved_path():
+    path = Centerline.from_svg_path("M 0 0 A 60 60 0 0 1 60 60")
+    half = path.length_mm / 2
+    segs = (SegmentSpec(ZigzagParams(7.0, 1.0), half), SegmentSpec(CrossParams(8.0, 1.4, 45.0, ), half))
+    plan = segmented(path, segs, tube=Tube())
+    xy = plan.xy_mm[plan.commands == Command.STITCH]
+    d = shapely.distance(path.as_linestring(), shapely.points(xy))
+    assert d.min() >= Tube().corridor_radius_mm - 1e-6
+    assert np.hypot(*np.diff(xy, axis=0).T).max() <= 12.1
+
+
+def test_lengths_must_add_up():
+    with pytest.raises(ParameterError, match="must add up to the path length 100 mm"):
+        segmented(Centerline.straight(100.0), MIXED[:2] + (SegmentSpec(ZigzagParams(7.0, 1.0), 5.0),))
+
+
+def test_design_file_segments_round_trip_and_errors():
+    d = {"name": "seg", "actuator": [{"name": "S", "segment": [
+        {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
+        {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45, "length_mm": 60}]}]}
+    design = design_from_dict(d)
+    spec = design.actuators[0]
+    assert spec.centerline.length_mm == pytest.approx(100.0) and len(spec.segments) == 2
+    assert design_from_dict(design_to_dict(design)) == design
+    plan = build_plan(design)
+    assert plan.count(Command.STOP) == 1
+    bad = {"actuator": [{**d["actuator"][0], "pattern": "zigzag"}]}
+    with pytest.raises(DesignFileError, match=r"actuator\[0\].pattern: a segmented actuator sets pattern per"):
+        design_from_dict(bad)
+    bad = {"actuator": [{**d["actuator"][0], "length_mm": 90}]}
+    with pytest.raises(DesignFileError, match=r"actuator\[0\]: segment length_mm values must add up"):
+        design_from_dict(bad)
+    bad = {"actuator": [{"name": "S", "segment": [{"pattern": "zigzag", "width_mm": 7, "interval_mm": 1}]}]}
+    with pytest.raises(DesignFileError, match=r"actuator\[0\].segment\[0\].length_mm: missing key"):
+        design_from_dict(bad)
+
+
+def test_single_pattern_actuators_unchanged():
+    spec = ActuatorSpec("A", ZigzagParams(7.0, 1.0), Centerline.straight(100.0))
+    assert spec.segments == ()
+    plan = build_plan(Design("d", Tube(), MachineSettings(), OperationSettings(), (spec,)))
+    assert plan.actuators[0].segments == () and plan.stitch_count == 106
