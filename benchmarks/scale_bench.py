@@ -18,7 +18,7 @@ Examples
 >>> from scale_bench import grid_design
 >>> d = grid_design(4)
 >>> len(d["actuator"]), d["actuator"][3]["origin_mm"]
-(4, [25.0, 25.0])
+(4, [100.0, 25.0])
 """
 from __future__ import annotations
 
@@ -33,8 +33,12 @@ from pathlib import Path
 
 __all__ = ["grid_design", "meander_design", "far_apart_design", "run_build", "scale"]
 
-#: Small zigzag of the actuator grid: length, width, interval, pitch of the grid [mm].
-GRID_LENGTH_MM, GRID_WIDTH_MM, GRID_INTERVAL_MM, GRID_PITCH_MM = 20.0, 5.0, 1.0, 25.0
+#: Small zigzag of the actuator grid: length, width, interval [mm]; grid pitch along and across the tubes
+#: [mm] (room for the tube's end margins in line, for the corridors side by side).
+GRID_LENGTH_MM, GRID_WIDTH_MM, GRID_INTERVAL_MM = 20.0, 5.0, 1.0
+GRID_PITCH_X_MM, GRID_PITCH_Y_MM = 100.0, 25.0
+#: Largest hoop a design may name (exclusive limit 10 m).
+HOOP_MAX_MM = 9_999.0
 #: Limits a build of 1000 actuators must keep (or refuse up front).
 LIMIT_1000_S, LIMIT_1000_MB = 60.0, 1024.0
 
@@ -56,9 +60,9 @@ def grid_design(n: int) -> dict:
     """``n`` small zigzags on a square grid (a design dict as the TOML reader takes it)."""
     side = math.ceil(math.sqrt(n))
     acts = [{"name": f"A{k}", "pattern": "zigzag", "width_mm": GRID_WIDTH_MM, "interval_mm": GRID_INTERVAL_MM,
-             "length_mm": GRID_LENGTH_MM, "origin_mm": [GRID_PITCH_MM * (k % side), GRID_PITCH_MM * (k // side)]}
+             "length_mm": GRID_LENGTH_MM, "origin_mm": [GRID_PITCH_X_MM * (k % side), GRID_PITCH_Y_MM * (k // side)]}
             for k in range(n)]
-    return _design(f"grid-{n}", acts, min(9_000.0, GRID_PITCH_MM * (side + 2) * 2))
+    return _design(f"grid-{n}", acts, min(HOOP_MAX_MM, GRID_PITCH_X_MM * (side + 2) * 2))
 
 
 def meander_design(length_mm: float) -> dict:
@@ -70,14 +74,14 @@ def meander_design(length_mm: float) -> dict:
     span = float(pts[:, 0].max()) + 200.0
     act = {"name": "S", "pattern": "zigzag", "width_mm": 7.0, "interval_mm": 1.0,
            "path": [[round(float(x), 4), round(float(y), 4)] for x, y in pts]}
-    return _design(f"meander-{length_mm:g}", [act], min(9_000.0, 2 * span))
+    return _design(f"meander-{length_mm:g}", [act], min(HOOP_MAX_MM, 2 * span))
 
 
 def far_apart_design(n: int = 100, spread_mm: float = 999_999.0) -> dict:
     """``n`` 10 mm zigzags alternately at -spread and +spread mm (the travel jumps are the records)."""
     acts = [{"name": f"T{k}", "pattern": "zigzag", "width_mm": GRID_WIDTH_MM, "interval_mm": GRID_INTERVAL_MM,
              "length_mm": 10.0, "origin_mm": [spread_mm * (-1) ** k, 0.0]} for k in range(n)]
-    return _design("far-apart", acts, 9_000.0)
+    return _design("far-apart", acts, HOOP_MAX_MM)
 
 
 def _toml(design: dict) -> str:
