@@ -44,10 +44,11 @@ import numpy as np
 from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterError
 from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
 from ..patterns.plan import ActuatorPlan, StitchPlan
+from ..patterns.segments import SegmentPlan
 from .calibration import CalibrationSet, ModelChoice, model_for
 from .derived import DerivedGeometry, derive
 
-__all__ = ["ActuatorAnalysis", "DesignAnalysis", "analyse", "with_model_overrides", "PRESSURE_STEP_KPA",
+__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "DesignAnalysis", "analyse", "with_model_overrides", "PRESSURE_STEP_KPA",
            "pressure_grid_kpa"]
 
 #: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
@@ -68,6 +69,43 @@ def pressure_grid_kpa(max_pressure_kpa: float, step_kpa: float = PRESSURE_STEP_K
 
 
 @dataclass(frozen=True, slots=True)
+class SegmentAnalysis:
+    """One segment of a segmented actuator: what was sewn there and its own model (docs/model.md, segments).
+
+    Attributes
+    ----------
+    plan : SegmentPlan
+        The generated segment (request, realised parameters, where its legs lie).
+    derived : DerivedGeometry
+        Sleeve geometry of the segment (``length_mm``: its legs' extent, the part that bends).
+    choice : ModelChoice or None
+        The segment's model (calibration at its own pattern); ``None`` with ``model_error``.
+    model_error : str
+    """
+
+    plan: SegmentPlan
+    derived: DerivedGeometry
+    choice: ModelChoice | None
+    model_error: str = ""
+
+    @property
+    def model(self):
+        """The segment's :class:`~embroact.predict.curve.ActuatorModel` (:class:`ModelDomainError` when none)."""
+        if self.choice is None:
+            raise ModelDomainError(self.model_error)
+        return self.choice.model
+
+    def as_dict(self) -> dict:
+        """JSON-ready: where the segment lies, its derived geometry and model."""
+        p = self.plan
+        return {"pattern": p.pattern, "start_mm": p.start_mm, "length_mm": p.length_mm,
+                "first_leg_mm": p.first_leg_mm, "transition_mm": p.transition_mm, "join_run_mm": p.join_run_mm,
+                "adjustments": list(p.adjustments), "derived": self.derived.as_dict(),
+                "model": self.choice.as_dict() if self.choice is not None else None,
+                "model_error": self.model_error or None}
+
+
+@dataclass(frozen=True, slots=True)
 class ActuatorAnalysis:
     """One actuator: what was asked, what was sewn, and the model of what was sewn.
 
@@ -84,6 +122,10 @@ class ActuatorAnalysis:
         (``model_error`` says why, e.g. no sleeve).
     model_error : str
         Empty when ``choice`` is set.
+    segments : tuple of SegmentAnalysis
+        A segmented actuator's segments, each with its own model; ``derived`` is then the
+        first segment's and ``choice`` is ``None`` (there is no one model: use
+        :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`). Empty otherwise.
     """
 
     spec: ActuatorSpec
@@ -91,6 +133,28 @@ class ActuatorAnalysis:
     derived: DerivedGeometry
     choice: ModelChoice | None
     model_error: str = ""
+    segments: tuple[SegmentAnalysis, ...] = ()
+
+    def bend_pieces(self) -> tuple[tuple[float, int], ...]:
+        """The fabric line from the clamp as ``(length_mm, segment index)`` pieces; index -1 bends by zero.
+
+        A single-pattern actuator is one piece ``(l0, 0)``. A segmented one covers its
+        path: the unbent lead-in before the first legs, each segment's legs, the
+        transitions between them and the tail after the last legs.
+        """
+        if not self.segments:
+            return ((self.derived.length_mm, 0),)
+        out, at = [], 0.0
+        for k, seg in enumerate(self.segments):
+            start = seg.plan.first_leg_mm
+            if start - at > 1e-9:
+                out.append((start - at, -1))
+            out.append((seg.derived.length_mm, k))
+            at = start + seg.derived.length_mm
+        tail = self.plan.centerline.length_mm - at
+        if tail > 1e-9:
+            out.append((tail, -1))
+        return tuple(out)
 
     @property
     def name(self) -> str:
@@ -105,10 +169,13 @@ class ActuatorAnalysis:
         return self.choice.model
 
     def as_dict(self) -> dict:
-        """JSON-ready: name, pattern, derived geometry, model with sources (or the model error)."""
-        return {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
-                "model": self.choice.as_dict() if self.choice is not None else None,
-                "model_error": self.model_error or None}
+        """JSON-ready: name, pattern, derived geometry, model with sources (or the model error), segments."""
+        d = {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
+             "model": self.choice.as_dict() if self.choice is not None else None,
+             "model_error": self.model_error or None}
+        if self.segments:
+            d["segments"] = [s.as_dict() for s in self.segments]
+        return d
 
 
 @dataclass(frozen=True, slots=True)
@@ -155,6 +222,48 @@ class DesignAnalysis:
             self._curves[key] = tuple(curve(a.model, p, method=method) for a in self.actuators)
         return self._curves[key]
 
+    def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
+        """Per actuator, one predicted curve per segment (a single-pattern actuator: its one curve), memoised.
+
+        Segments decouple (docs/model.md, segmented actuators): each bends by its own
+        ``theta_k(P)``, zero while ``P <= P0_k``.
+
+        Raises
+        ------
+        ModelDomainError
+            A segment (or actuator) has no model.
+        """
+        from .curve import curve
+
+        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        key = ("segments", p, method)
+        if key not in self._curves:
+            self._curves[key] = tuple(
+                tuple(curve(s.model, p, method=method) for s in a.segments) if a.segments
+                else (curve(a.model, p, method=method),) for a in self.actuators)
+        return self._curves[key]
+
+    def shapes(self, name: str, pressures_kpa: Sequence[float], *, method: str = "auto") -> tuple:
+        """The bent fabric line of actuator ``name`` at each pressure: a chain of arcs (straight path frame).
+
+        Returns
+        -------
+        tuple of (BentShape, tuple of float)
+            Per pressure the shape (:class:`~embroact.predict.shape.BentShape`, the
+            profile frame) and the bend of each piece of :meth:`ActuatorAnalysis.bend_pieces` [deg].
+        """
+        from .shape import BentShape
+
+        index = [a.name for a in self.actuators].index(self.actuator(name).name)
+        act, curves = self.actuators[index], self.segment_curves(pressures_kpa, method=method)[index]
+        pieces = act.bend_pieces()
+        lengths = [length for length, _ in pieces]
+        out = []
+        for j in range(len(curves[0].theta_deg)):
+            theta = tuple(float(curves[k].theta_deg[j]) if k >= 0 else 0.0 for _, k in pieces)
+            out.append((BentShape.chain(lengths, theta), theta))
+        return tuple(out)
+
     def as_dict(self) -> dict:
         """JSON-ready summary of every actuator."""
         return {"design": self.design.name, "actuators": [a.as_dict() for a in self.actuators]}
@@ -185,17 +294,35 @@ def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = No
     return dataclasses.replace(design, actuators=specs)
 
 
-def _analyse_actuator(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
-    derived = derive(act)
+def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets) -> tuple[ModelChoice | None, str]:
     if not derived.has_sleeve:
-        return ActuatorAnalysis(spec, act, derived, None,
-                                f"no sleeve: sleeve radius r0 {derived.r0_mm:.4g} mm is not above the tube radius "
-                                f"{derived.tube.outer_radius_mm:g} mm (width_mm {derived.width_mm:.4g} too small)")
+        return None, (f"no sleeve: sleeve radius r0 {derived.r0_mm:.4g} mm is not above the tube radius "
+                      f"{derived.tube.outer_radius_mm:g} mm (width_mm {derived.width_mm:.4g} too small)")
     try:
-        choice = model_for(derived, spec.model, sets=sets)
+        return model_for(derived, settings, sets=sets), ""
     except EmbroactError as exc:
-        return ActuatorAnalysis(spec, act, derived, None, str(exc))
-    return ActuatorAnalysis(spec, act, derived, choice)
+        return None, str(exc)
+
+
+def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
+    segs = []
+    for k, seg in enumerate(act.segments):
+        part = ActuatorPlan(f"{act.name}[{k}]", seg.params, act.tube, act.centerline, seg.realised, seg.adjustments,
+                            act.options)
+        derived = derive(part)
+        choice, error = _model_of(derived, spec.model, sets)
+        segs.append(SegmentAnalysis(seg, derived, choice, f"segment {k}: {error}" if error else ""))
+    return ActuatorAnalysis(spec, act, segs[0].derived, None,
+                            f"segmented actuator with {len(segs)} segments: one model per segment "
+                            f"(ActuatorAnalysis.segments)", tuple(segs))
+
+
+def _analyse_actuator(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
+    if act.segments:
+        return _analyse_segments(spec, act, sets)
+    derived = derive(act)
+    choice, error = _model_of(derived, spec.model, sets)
+    return ActuatorAnalysis(spec, act, derived, choice, error)
 
 
 def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),

@@ -111,3 +111,42 @@ def test_single_pattern_actuators_unchanged():
     assert spec.segments == ()
     plan = build_plan(Design("d", Tube(), MachineSettings(), OperationSettings(), (spec,)))
     assert plan.actuators[0].segments == () and plan.stitch_count == 106
+
+
+def test_each_segment_bends_as_the_same_pattern_alone():
+    """Segments decouple: a segment's curve is that of a single actuator with its pattern and leg length."""
+    from embroact.predict.analysis import analyse
+
+    seg = design_from_dict({"actuator": [{"name": "S", "segment": [
+        {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
+        {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45, "length_mm": 60}]}]})
+    alone = design_from_dict({"actuator": [
+        {"name": "Z", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
+        {"name": "C", "pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45, "length_mm": 58.8,
+         "origin_mm": [0, 30]}]})
+    p = [0.0, 150.0, 250.0]
+    a, b = analyse(seg), analyse(alone)
+    z, c = a.segment_curves(p)[0]
+    assert z.theta_deg == pytest.approx(b.curves(p)[0].theta_deg, abs=1e-9)
+    assert c.theta_deg == pytest.approx(b.curves(p)[1].theta_deg, abs=1e-9)
+    act = a.actuators[0]
+    assert [s.derived.pattern for s in act.segments] == ["zigzag", "cross"]
+    assert act.segments[1].model.g_mpa == b.actuators[1].model.g_mpa == 1.3
+    with pytest.raises(Exception, match="one model per segment"):
+        act.model
+    # the shape: zigzag arc, a 0.6 mm straight transition, the cross arc, a 0.6 mm straight tail
+    pieces = act.bend_pieces()
+    assert [k for _, k in pieces] == [0, -1, 1, -1]
+    assert sum(length for length, _ in pieces) == pytest.approx(100.0)
+    shape, theta = a.shapes("S", [250.0])[0]
+    t0, t1 = float(z.theta_deg[2]), float(c.theta_deg[2])
+    assert theta == pytest.approx((t0, 0.0, t1, 0.0))
+    assert shape.tip_angle_deg == pytest.approx(t0 + t1)
+    lengths = [length for length, _ in pieces]
+    zc = 0j
+    phi = 0.0
+    for length, t_deg in zip(lengths, theta):
+        t = math.radians(t_deg)
+        zc += np.exp(1j * phi) * (length * (np.exp(1j * t) - 1.0) / (1j * t) if t else length)
+        phi += t
+    assert shape.profile_mm([100.0])[0] == pytest.approx([zc.real, zc.imag], abs=1e-9)
