@@ -47,6 +47,7 @@ from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
+from .spatial import corridor_hits
 
 __all__ = ["assemble", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm", "MAX_RECORDS",
            "MIN_TIE_GRID_STEPS"]
@@ -217,9 +218,7 @@ def assemble(
 
 def _check_corridor(cl: Centerline, xy: np.ndarray, tube: Tube) -> None:
     line = cl.as_linestring()
-    shapely.prepare(line)
-    limit = tube.corridor_radius_mm - DEFAULT_TOLERANCES.length_mm
-    bad = np.flatnonzero(shapely.dwithin(line, shapely.points(xy), limit))
+    bad = corridor_hits(line, xy, tube.corridor_radius_mm - DEFAULT_TOLERANCES.length_mm)
     if bad.size:
         x, y = xy[bad[0]]
         d = float(shapely.distance(line, shapely.Point(x, y)))

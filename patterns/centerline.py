@@ -46,6 +46,7 @@ import shapely
 from .base.arrays import frozen_array
 from .base.errors import ParameterError, PathError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
+from .spatial import self_crossings
 
 __all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
 
@@ -319,19 +320,7 @@ def _clean_points(points) -> np.ndarray:
     if np.hypot(*(pts[-1] - pts[0])) <= DEFAULT_TOLERANCES.length_mm:
         raise PathError("path must be open (a tube has two ends), got a closed path")
     if not shapely.LineString(pts).is_simple:
-        x, y = _self_crossing(pts)
+        _, where = self_crossings(pts)
+        x, y = pts[0] if where is None else where
         raise PathError(f"path crosses or touches itself near ({x:.2f}, {y:.2f}) mm; give a path that does not")
     return pts
-
-
-def _self_crossing(pts: np.ndarray) -> tuple[float, float]:
-    """A point where two non-neighbouring segments of the polyline meet."""
-    segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
-    i, j = shapely.STRtree(segs).query(segs, predicate="intersects")
-    k = np.flatnonzero(j > i + 1)
-    if k.size == 0:  # only a degenerate overlap of neighbours (a path doubling back on itself)
-        k = np.flatnonzero(j > i)
-        k = k[shapely.length(shapely.intersection(segs[i[k]], segs[j[k]])) > 0.0][:1]
-    hit = shapely.intersection(segs[i[k[0]]], segs[j[k[0]]]) if k.size else shapely.Point(pts[0])
-    p = shapely.get_coordinates(hit)[0]
-    return float(p[0]), float(p[1])

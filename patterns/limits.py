@@ -1,26 +1,52 @@
-"""Machine-format facts the generators and rules need: per-record travel limits.
+"""Machine-format facts the generators, rules and writers share: the grid, per-record limits, trims.
 
-Values from pyembroidery 1.5.1's writers (EMBROIDERY.md), in mm per axis (not
-Euclidean). A stitch whose |dx| or |dy| exceeds the limit cannot be one record.
-XXX: the writer encodes a stitch of 124 units (12.4 mm) or more per axis with the
-long-move code 0x7D, which every reader takes as a jump, so its stitch limit is
-12.3 mm (frame moves of 12.4 mm are fine).
+A machine file stores every record as a move on the 0.1 mm grid from the previous
+record. The writer rounds each *absolute* position to the grid once
+(:func:`grid_units`), so a record's move is the difference of two rounded
+positions (:func:`record_moves_units`), and a move fits one record when neither
+axis exceeds the format's limit on that grid (:func:`records_needed`). The design
+rule EA102 and the machine writer both judge a stitch with these functions, so a
+leg the writer encodes in one record never trips the rule.
+
+Limits are pyembroidery 1.5.1's writers' (docs/machine.md), in mm per axis (not
+Euclidean). XXX: the writer encodes a stitch of 124 units (12.4 mm) or more per axis
+with the long-move code 0x7D, which every reader takes as a jump, so its stitch
+limit is 12.3 mm (frame moves of 12.4 mm are fine).
 
 Examples
 --------
->>> from embroact.patterns.limits import FORMAT_LIMITS, format_limit
+>>> from embroact.patterns.limits import format_limit, record_moves_units, records_needed
 >>> format_limit("dst").max_record_mm
 12.1
->>> sorted(FORMAT_LIMITS)[:3]
-['dst', 'exp', 'jef']
+>>> moves = record_moves_units([(-0.049, 0.0), (12.149, 0.0)])  # rounds to 0.0 and 12.1 mm
+>>> moves.tolist(), records_needed(moves, 12.1).tolist()
+([[0, 0], [121, 0]], [1, 1])
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .base.errors import ParameterError
+import numpy as np
 
-__all__ = ["FormatLimit", "FORMAT_LIMITS", "format_limit"]
+from .base.errors import ParameterError
+from .base.tolerances import DEFAULT_TOLERANCES
+
+__all__ = [
+    "UNITS_PER_MM",
+    "TRIM_JUMP_RUN",
+    "FormatLimit",
+    "FORMAT_LIMITS",
+    "format_limit",
+    "grid_units",
+    "record_moves_units",
+    "records_needed",
+]
+
+UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
+"""Machine-file units per millimetre (the 0.1 mm grid of every supported format)."""
+
+TRIM_JUMP_RUN = 3
+"""Consecutive jump records a machine (and pyembroidery's DST writer) treat as a trim."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -37,8 +63,8 @@ class FormatLimit:
         Largest jump per axis in one record [mm].
     max_records : int
         Largest number of records the format (or its header field) can hold.
-    separate_stop : bool
-        True when STOP has its own code; False when it shares the colour-change code.
+    trim_as_jumps : bool
+        True when the writer encodes a trim as a run of :data:`TRIM_JUMP_RUN` jumps (DST).
     description : str
     """
 
@@ -46,18 +72,18 @@ class FormatLimit:
     max_record_mm: float
     max_jump_mm: float
     max_records: int
-    separate_stop: bool
+    trim_as_jumps: bool
     description: str
 
 
 FORMAT_LIMITS: dict[str, FormatLimit] = {
     f.name: f
     for f in (
-        FormatLimit("dst", 12.1, 12.1, 9_999_999, False, "Tajima DST (default)"),
-        FormatLimit("tbf", 12.7, 12.7, 9_999_999, True, "Tajima TBF, separate stop and trim codes"),
+        FormatLimit("dst", 12.1, 12.1, 9_999_999, True, "Tajima DST (default)"),
+        FormatLimit("tbf", 12.7, 12.7, 9_999_999, False, "Tajima TBF, separate stop and trim codes"),
         FormatLimit("exp", 12.7, 12.7, 9_999_999, False, "Melco / Bernina EXP"),
         FormatLimit("jef", 12.7, 12.7, 9_999_999, False, "Janome JEF"),
-        FormatLimit("u01", 12.7, 12.7, 9_999_999, True, "Barudan U01"),
+        FormatLimit("u01", 12.7, 12.7, 9_999_999, False, "Barudan U01"),
         FormatLimit("xxx", 12.3, 12.4, 9_999_999, False, "Singer XXX"),
         FormatLimit("pes", 204.7, 204.7, 9_999_999, False, "Brother PES"),
         FormatLimit("pec", 204.7, 204.7, 9_999_999, False, "Brother PEC"),
@@ -72,3 +98,35 @@ def format_limit(name: str) -> FormatLimit:
     if key not in FORMAT_LIMITS:
         raise ParameterError(f"format must be one of {', '.join(FORMAT_LIMITS)}, got {name!r}")
     return FORMAT_LIMITS[key]
+
+
+def grid_units(xy_mm) -> np.ndarray:
+    """Positions [mm] rounded to the machine grid, as int64 units (same frame and axes).
+
+    Examples
+    --------
+    >>> grid_units([(1.0, 2.0), (-0.04, 12.149)]).tolist()
+    [[10, 20], [0, 121]]
+    """
+    u = np.rint(np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2) * UNITS_PER_MM).astype(np.int64)
+    u[u == 0] = 0  # no negative zeros
+    return u
+
+
+def record_moves_units(xy_mm) -> np.ndarray:
+    """Each record's move on the grid [units] from the previous record; the first moves from the origin."""
+    u = grid_units(xy_mm)
+    return np.diff(u, axis=0, prepend=np.zeros((1, 2), dtype=np.int64))
+
+
+def records_needed(moves_units, limit_mm: float) -> np.ndarray:
+    """Records a move needs when no record may exceed ``limit_mm`` per axis (at least 1 per move).
+
+    Examples
+    --------
+    >>> records_needed([[121, 0], [122, 0], [0, -363], [0, 0]], 12.1).tolist()
+    [1, 2, 3, 1]
+    """
+    lim = round(limit_mm * UNITS_PER_MM)
+    reach = np.abs(np.asarray(moves_units, dtype=np.int64).reshape(-1, 2)).max(axis=1)
+    return np.maximum(1, -(-reach // lim))

@@ -25,7 +25,7 @@ import numpy as np
 from ..patterns.base.errors import ParameterError, check_range
 from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
-from ..patterns.sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg
+from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg
 from .tubelaws import transition_pressure_kpa
 
 __all__ = ["DerivedGeometry", "derive", "derive_from_values"]

@@ -14,7 +14,7 @@ import pytest
 
 import mpref
 from embroact.patterns.base.errors import ParameterError
-from embroact.patterns.sleeve import neutral_angle_deg
+from embroact.predict.sleeve import neutral_angle_deg
 from embroact.predict import model as M
 from embroact.predict import curve as C
 from embroact.predict.curve import ACCURACY, METHODS, ActuatorModel, lockup

@@ -8,7 +8,7 @@ import pytest
 import mpref
 from embroact.patterns.base.errors import ModelDomainError, ParameterError
 from embroact.patterns.params import Tube
-from embroact.patterns.sleeve import neutral_angle_deg, thread_angle_deg
+from embroact.predict.sleeve import neutral_angle_deg, thread_angle_deg
 from embroact.predict import model as M
 from embroact.predict.curve import ActuatorModel, curve
 from embroact.predict.derived import derive_from_values

@@ -12,6 +12,7 @@ from embroact.patterns.base.findings import RULES, Finding, Severity, count_by_s
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
 from embroact.patterns.rules import Layout, RuleSettings, TubeLayout, check_layout, check_plan, needle_density
+from embroact.predict import sleeve_rules
 from embroact.patterns.zigzag import zigzag
 
 S, J, T, P = Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP
@@ -142,17 +143,22 @@ def test_ea105_ea106_density():
 
 
 # --------------------------------------------------------------------- EA2xx
+def _check_sleeve(layout, **settings):
+    return sleeve_rules.check_layout(layout, RuleSettings(**settings))
+
+
 def test_ea201_ea202_sleeve():
     # r0 <= r_f iff w <= (pi^2 - 4)/pi * r_f = 2.8025 mm for r_f = 1.5
-    no_sleeve = _check(_layout(_zig(), tubes=(_tube(half_width_mm=1.3),)))
+    no_sleeve = _check_sleeve(_layout(_zig(), tubes=(_tube(half_width_mm=1.3),)))
     assert len(_hits(no_sleeve, "EA201")) == 1 and "needs w > 2.80 mm" in _hits(no_sleeve, "EA201")[0].message
     # w = 3.0: r0 = (3 + 2 sqrt(2.25 + 9)) / (2 pi) = 1.54510, gap 0.045 < 0.1
     r0 = (3.0 + 2 * math.sqrt(2.25 + 9.0)) / (2 * math.pi)
-    tight = _check(_layout(_zig(), tubes=(_tube(half_width_mm=1.5),)))
+    tight = _check_sleeve(_layout(_zig(), tubes=(_tube(half_width_mm=1.5),)))
     assert len(_hits(tight, "EA202")) == 1 and f"{r0:.3f}" in _hits(tight, "EA202")[0].message
     assert not _hits(tight, "EA201")
-    fine = _check(_layout(_zig()))
+    fine = _check_sleeve(_layout(_zig()))
     assert not _hits(fine, "EA201") and not _hits(fine, "EA202")
+    assert not _hits(_check(_layout(_zig(), tubes=(_tube(half_width_mm=1.3),))), "EA201")  # physics: predict's
 
 
 def test_ea203_interval_over_diameter():
@@ -194,8 +200,8 @@ def test_ea206_near_neutral_angle():
     assert abs(neutral - 33.37) < 0.01
 
     def run(angle):
-        return _hits(check_plan(_actuator_plan(CrossParams(7.0, 1.4, angle), Realised(7.0, 1.4, angle, 20.0))),
-                     "EA206")
+        return _hits(sleeve_rules.check_plan(_actuator_plan(CrossParams(7.0, 1.4, angle),
+                                                            Realised(7.0, 1.4, angle, 20.0))), "EA206")
 
     assert len(run(35.0)) == 1 and f"{neutral:.2f}" in run(35.0)[0].message
     assert not run(45.0) and not run(30.0)  # 3.37 deg away, band 3 deg
@@ -323,15 +329,17 @@ def test_findings_are_capped_per_rule():
 def test_corridor_query_matches_brute_force_distance():
     import shapely
 
-    from embroact.patterns.rules import _PathIndex
+    from embroact.patterns.spatial import TubeIndex
 
     t = np.linspace(0.0, 3 * math.pi, 300)
     path = shapely.LineString(np.column_stack([10 * t, 8 * np.sin(t)]))
+    other = shapely.LineString([(0.0, 6.0), (90.0, -6.0)])  # crosses the sine: points near both count twice
     pts = np.random.default_rng(7).uniform([-5, -12], [100, 12], size=(2000, 2))
-    hit, dist = _PathIndex(path).within(pts, 2.0)
-    brute = shapely.distance(path, shapely.points(pts))
-    assert hit.tolist() == np.flatnonzero(brute < 2.0).tolist()
-    assert np.allclose(dist, brute[hit], atol=1e-12)
+    point, tube, dist = TubeIndex([path, other]).within(pts, [2.0, 1.0])
+    for k, (line, radius) in enumerate(((path, 2.0), (other, 1.0))):
+        brute = shapely.distance(line, shapely.points(pts))
+        assert point[tube == k].tolist() == np.flatnonzero(brute < radius).tolist()
+        assert np.allclose(dist[tube == k], brute[point[tube == k]], atol=1e-12)
 
 
 def test_density_matches_brute_force_counts():

@@ -58,8 +58,7 @@ def _check_design(args):
 
 def _check_file(args):
     from ...patterns.base.errors import ParameterError
-    from ...patterns.rules import RuleSettings
-    from ..machine.filecheck import check_file, default_format, load_tube_file, parse_tube_path, read_records, tube_layout
+    from ..machine.filecheck import check_file, file_rule_settings, load_tube_file, parse_tube_path, read_records, tube_layout
 
     if args.tube and args.tube_path:
         raise ParameterError("give either --tube TUBES.toml or --tube-path, not both")
@@ -74,15 +73,16 @@ def _check_file(args):
         )
     records = read_records(args.input)
     own = machine.pop("format", None)
-    fmt = args.format or own or default_format(records)
-    findings = check_file(args.input, tubes, settings=RuleSettings(format=fmt, **machine))
+    settings = file_rule_settings(records, format=args.format or own, **machine)
+    fmt = settings.format
+    findings = check_file(args.input, tubes, settings=settings)
     return findings, {"kind": "embroidery file", "name": args.input, "format": fmt, "tubes": len(tubes),
                       "records": len(records)}
 
 
 def format_table(findings, header: str) -> str:
     """Findings as text: a summary line, then per severity the code, place, message and fix."""
-    from ...patterns.base.findings import RULES, Severity, count_by_severity
+    from ...patterns.base.findings import Severity, count_by_severity
 
     counts = count_by_severity(findings)
     summary = ", ".join(f"{n} {s}{'s' if n != 1 and s != 'info' else ''}" for s, n in counts.items())
@@ -93,7 +93,7 @@ def format_table(findings, header: str) -> str:
             continue
         lines += ["", f"{sev.value.upper()}S" if sev is not Severity.INFO else "INFO"]
         for f in group:
-            lines.append(f"  {f.code}  {RULES[f.code].title}  [{f.place()}]")
+            lines.append(f"  {f.code}  {f.title}  [{f.place()}]")
             lines.append(f"         {f.message}")
             lines.append(f"         fix: {f.fix}")
     return "\n".join(lines)
@@ -102,10 +102,11 @@ def format_table(findings, header: str) -> str:
 def run(args) -> int:
     """Check the input; print the table or JSON; 1 if any error."""
     from ...patterns.base.errors import ParameterError
-    from ...patterns.base.findings import count_by_severity, rules_table_markdown
+    from ...patterns.base.findings import count_by_severity
+    from ...predict.rule_catalogue import rules_table
 
     if args.rules:
-        print(rules_table_markdown(), end="")
+        print(rules_table(), end="")
         return 0
     if args.input is None:
         raise ParameterError("check needs an input: DESIGN.toml or an embroidery file (or --rules)")

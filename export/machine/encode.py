@@ -74,6 +74,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...patterns.base.errors import ExportError, PatternError
+from ...patterns import limits
+from ...patterns.limits import record_moves_units, records_needed
 from ...patterns.plan import Command, StitchPlan
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
 from ...patterns.stops import CordStop, cord_stop as check_cord_stop
@@ -94,10 +96,10 @@ __all__ = [
     "to_pattern",
 ]
 
-UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
+UNITS_PER_MM = limits.UNITS_PER_MM
 """Machine-file units per millimetre (0.1 mm grid)."""
 
-TRIM_JUMP_RUN = 3
+TRIM_JUMP_RUN = limits.TRIM_JUMP_RUN
 """Consecutive jump records a machine (and the DST writer) treat as a trim."""
 
 THREAD_COLORS = (0x1F77B4, 0xD62728, 0x2CA02C, 0xFF7F0E, 0x9467BD, 0x8C564B, 0xE377C2, 0x17BECF)
@@ -208,16 +210,14 @@ def find_long_legs(plan: StitchPlan, limit_mm: float) -> tuple[LongLeg, ...]:
     >>> leg.stitch_index, leg.length_mm
     (1, 13.0)
     """
-    u = to_machine_units(plan.xy_mm)
-    lim = round(limit_mm * UNITS_PER_MM)
-    d = np.diff(u, axis=0, prepend=np.zeros((1, 2), dtype=np.int64))
+    d = record_moves_units(plan.xy_mm)  # plan frame (y up), as the design rule EA102 judges it
     stitch = plan.commands == Command.STITCH
-    bad = np.flatnonzero(stitch & (np.abs(d).max(axis=1) > lim))
+    bad = np.flatnonzero(stitch & (records_needed(d, limit_mm) > 1))
     legs = []
     for i in bad:
         k = int(plan.actuator[i])
         same = (plan.actuator[:i] == k) & stitch[:i]
-        dx, dy = d[i, 0] / UNITS_PER_MM, -d[i, 1] / UNITS_PER_MM
+        dx, dy = d[i, 0] / UNITS_PER_MM, d[i, 1] / UNITS_PER_MM
         legs.append(LongLeg(_actuator_name(plan, k), int(np.count_nonzero(same)), int(i),
                             float(math.hypot(dx, dy)), float(dx), float(dy), float(limit_mm)))
     return tuple(legs)

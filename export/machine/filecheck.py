@@ -58,7 +58,7 @@ from ...patterns.base.findings import Finding
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from ...patterns.plan import Command
-from ...patterns.rules import RuleSettings, TubeLayout, check_layout, layout_from_records
+from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
 from .dst import END_BYTE, HEADER_SIZE
 
 __all__ = [
@@ -70,6 +70,7 @@ __all__ = [
     "check_file",
     "readable_suffixes",
     "default_format",
+    "file_rule_settings",
 ]
 
 #: pyembroidery reader settings that keep the file's own record order.
@@ -307,13 +308,23 @@ def default_format(records: FileRecords) -> str:
     return records.suffix if records.suffix in FORMAT_LIMITS else "dst"
 
 
+def file_rule_settings(records: FileRecords, *, format: str | None = None, **machine) -> RuleSettings:
+    """Rule settings for a file: the default machine's limits and hoop, its own format, ``machine`` overrides.
+
+    ``machine`` holds :class:`RuleSettings` fields (a tube file's ``[machine]`` table).
+    """
+    from ...patterns.design import MachineSettings
+
+    return RuleSettings.for_machine(MachineSettings(), format=format or default_format(records), **machine)
+
+
 def check_file(
     path: str | os.PathLike,
     tubes,
     *,
     settings: RuleSettings | None = None,
 ) -> tuple[Finding, ...]:
-    """Read an embroidery file and run the geometric and file-level rules against ``tubes``.
+    """Read an embroidery file and run the design rules for files against ``tubes``.
 
     Parameters
     ----------
@@ -322,14 +333,17 @@ def check_file(
     tubes : sequence of TubeLayout
         Tube paths in the file's frame (mm, y down); see :func:`tube_layout`.
     settings : RuleSettings, optional
-        Defaults to the file's own format and default machine limits.
+        Defaults to :func:`file_rule_settings`: the file's own format, the default
+        machine's stitch limits and hoop.
 
     Returns
     -------
     tuple of Finding
         Worst first; ``stitch_index`` is the record index in the file.
     """
+    from ...predict.sleeve_rules import check_layout
+
     records = read_records(path)
-    settings = settings or RuleSettings(format=default_format(records))
+    settings = settings or file_rule_settings(records)
     layout = layout_from_records(records.xy_mm, records.commands, tuple(tubes))
     return check_layout(layout, settings)

@@ -1,10 +1,10 @@
-"""Geometry of the thread-and-fabric sleeve (MODEL.md section 2, with its errata).
+"""Geometry of the thread-and-fabric sleeve (docs/model.md).
 
 Vectorised over numpy arrays; lengths in mm, angles in degrees at the interface.
 
 Examples
 --------
->>> from embroact.patterns.sleeve import sleeve_radius_mm, thread_angle_deg, neutral_angle_deg
+>>> from embroact.predict.sleeve import sleeve_radius_mm, thread_angle_deg, neutral_angle_deg
 >>> round(float(sleeve_radius_mm(7.0, 1.5)), 6)
 2.581421
 >>> round(float(thread_angle_deg(7.0, 45.0, 1.5)), 4)

@@ -1,0 +1,231 @@
+"""The rule engine: one :class:`Subject` per check, rules run on it, findings capped and sorted.
+
+A rule's check function (declared with ``RULES.rule``, see
+:mod:`embroact.patterns.base.findings`) takes a :class:`Subject` and returns
+a list of findings or, for rules that flag many records at once, :class:`Hits`
+(record indices and a message per hit), of which the engine builds findings only
+for the first ``max_findings_per_rule`` and summarises the rest in one more.
+
+The subject computes what several rules share once, on first use: record
+displacements, stitch lengths, grid moves, the spatial indexes of the tube axes
+(:class:`~embroact.patterns.spatial.TubeIndex`), the crossings of legs with tubes,
+needle densities.
+
+Examples
+--------
+>>> from embroact.patterns.plan import Command
+>>> from embroact.patterns.rules import Layout, RuleSettings, TubeLayout
+>>> tube = TubeLayout.from_path("A", [(0, 0), (20, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+...                             end_margin_mm=0.0, half_width_mm=3.5)
+>>> lay = Layout.from_points([(2, 3.5), (3, -3.5)], [Command.STITCH] * 2, [0, 0], tubes=(tube,))
+>>> s = Subject(lay, RuleSettings())
+>>> s.needles.tolist(), [round(float(v), 3) for v in s.stitch_lengths_mm]
+([0, 1], [0.0, 7.071])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Callable
+
+import numpy as np
+
+from ..base.findings import RULES, Finding, Inputs, Rule
+from ..limits import record_moves_units
+from ..plan import Command, Role, StitchPlan
+from ..spatial import Crossings, TubeIndex, needle_density
+from .layout import Layout
+from .settings import RuleSettings
+
+__all__ = ["Subject", "Hits", "run_rules", "sort_findings"]
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Hits:
+    """Records that break one rule, found in bulk.
+
+    Attributes
+    ----------
+    index : ndarray of int
+        Layout record per hit, in report order.
+    message : callable
+        ``message(j) -> str`` for hit ``j``.
+    owner : ndarray of int or None
+        Tube index per hit for the finding's actuator (default: the record's owner).
+    """
+
+    index: np.ndarray
+    message: Callable[[int], str]
+    owner: np.ndarray | None = None
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+
+class Subject:
+    """One check: the layout, the settings, the plan (for designs) and the values rules share.
+
+    Parameters
+    ----------
+    layout : Layout
+    settings : RuleSettings
+    plan : StitchPlan or None
+        The design's plan; None for embroidery files (rules for designs only are skipped).
+    """
+
+    def __init__(self, layout: Layout, settings: RuleSettings, plan: StitchPlan | None = None) -> None:
+        self.layout, self.settings, self.plan = layout, settings, plan
+        self._shared: dict = {}
+
+    def shared(self, key: str, compute: Callable):
+        """``compute()`` once per subject under ``key``: a value several rules read."""
+        if key not in self._shared:
+            self._shared[key] = compute()
+        return self._shared[key]
+
+    # ----------------------------------------------------------------- records
+    @cached_property
+    def displacements_mm(self) -> np.ndarray:
+        """Each record's move from the previous one [mm] (0 for the first)."""
+        d = np.zeros_like(self.layout.xy_mm)
+        d[1:] = np.diff(self.layout.xy_mm, axis=0)
+        return d
+
+    @cached_property
+    def moves_units(self) -> np.ndarray:
+        """Each record's move on the machine grid, as the writer encodes it (the first from the origin)."""
+        return record_moves_units(self.layout.xy_mm)
+
+    @cached_property
+    def stitch_lengths_mm(self) -> np.ndarray:
+        """Length of each record's move [mm]."""
+        d = self.displacements_mm
+        return np.hypot(d[:, 0], d[:, 1])
+
+    @cached_property
+    def needles(self) -> np.ndarray:
+        """Indices of the STITCH records (needle points)."""
+        return np.flatnonzero(self.layout.commands == Command.STITCH)
+
+    @cached_property
+    def consecutive(self) -> np.ndarray:
+        """True for a STITCH record right after another STITCH: a leg of thread ends there."""
+        stitch = self.layout.commands == Command.STITCH
+        return stitch & np.concatenate([[False], stitch[:-1]])
+
+    @cached_property
+    def density(self) -> np.ndarray:
+        """Needle points within ``density_radius_mm`` of each needle point, itself included."""
+        return needle_density(self.layout.xy_mm[self.needles], self.settings.density_radius_mm)
+
+    @cached_property
+    def first_needle(self) -> np.ndarray:
+        """Per tube, the first needle record it owns (-1 if none)."""
+        first = np.full(len(self.layout.tubes), -1, dtype=np.int64)
+        owned = self.needles[self.layout.owner[self.needles] >= 0]
+        tubes, at = np.unique(self.layout.owner[owned], return_index=True)
+        first[tubes] = owned[at]
+        return first
+
+    # ----------------------------------------------------------------- tubes
+    @cached_property
+    def axes(self) -> TubeIndex:
+        """Spatial index of every tube's axis (the embroidered path)."""
+        return TubeIndex([t.path for t in self.layout.tubes])
+
+    @cached_property
+    def laid_tubes(self) -> TubeIndex:
+        """Spatial index of every tube's whole laid length (path and end margins)."""
+        return TubeIndex([t.extended_path() for t in self.layout.tubes])
+
+    @cached_property
+    def legs(self) -> np.ndarray:
+        """Records where a leg of thread ends (it starts at the record before)."""
+        return np.flatnonzero(self.consecutive)
+
+    @cached_property
+    def crossings(self) -> Crossings:
+        """Every leg crossing every tube axis (one spatial query); ``leg`` indexes :attr:`legs`."""
+        xy = self.layout.xy_mm
+        return self.axes.crossings(xy[self.legs - 1], xy[self.legs])
+
+    # ----------------------------------------------------------------- plans
+    @cached_property
+    def first_leg(self) -> np.ndarray:
+        """Per plan actuator, the first LEG record (-1 if none)."""
+        plan = self.plan
+        first = np.full(len(plan.actuators), -1, dtype=np.int64)
+        legs = np.flatnonzero((plan.roles == Role.LEG) & (plan.actuator >= 0))
+        acts, at = np.unique(plan.actuator[legs], return_index=True)
+        keep = acts < len(first)
+        first[acts[keep]] = legs[at[keep]]
+        return first
+
+    def actuator_place(self, k: int) -> dict:
+        """``actuator``, ``stitch_index`` and ``xy_mm`` of plan actuator ``k`` (at its first leg)."""
+        i = int(self.first_leg[k])
+        return dict(actuator=self.plan.actuators[k].name, stitch_index=i if i >= 0 else None,
+                    xy_mm=self.plan.xy_mm[i] if i >= 0 else None)
+
+    # ----------------------------------------------------------------- findings
+    def point(self, i: int, code: str, message: str, *, owner: int | None = None) -> Finding:
+        """A finding at layout record ``i`` (actuator: the record's owner, or ``owner``)."""
+        lay = self.layout
+        return RULES.finding(code, message, actuator=lay.name_of(int(lay.owner[i] if owner is None else owner)),
+                             stitch_index=int(lay.index[i]), xy_mm=lay.xy_mm[i])
+
+    def tube_finding(self, k: int, code: str, message: str, xy=None) -> Finding:
+        """A finding on tube ``k``, placed at its first needle point unless ``xy`` is given."""
+        i = int(self.first_needle[k])
+        if xy is None and i >= 0:
+            xy = self.layout.xy_mm[i]
+        return RULES.finding(code, message, actuator=self.layout.tubes[k].name,
+                             stitch_index=None if i < 0 else int(self.layout.index[i]), xy_mm=xy)
+
+
+def _capped(subject: Subject, code: str, found, limit: int) -> list[Finding]:
+    """The first ``limit`` findings of one rule and, if there are more, one finding counting the rest."""
+    if isinstance(found, Hits):
+        n = len(found)
+        owner = (lambda j: None) if found.owner is None else (lambda j: int(found.owner[j]))
+        head = [subject.point(int(found.index[j]), code, found.message(j), owner=owner(j)) for j in range(min(n, limit))]
+        if n <= limit:
+            return head
+        first = subject.point(int(found.index[limit]), code, "", owner=owner(limit))
+    else:
+        found = list(found)
+        n = len(found)
+        head = found[:limit]
+        if n <= limit:
+            return head
+        first = found[limit]
+    more = RULES.finding(code, f"{n - limit} more findings of this rule, from stitch {first.stitch_index} on",
+                         actuator=first.actuator, stitch_index=first.stitch_index, xy_mm=first.xy_mm,
+                         fix=first.fix)
+    return head + [more]
+
+
+def sort_findings(findings) -> tuple[Finding, ...]:
+    """Worst first, then by code and stitch index (deterministic order)."""
+    return tuple(
+        sorted(
+            findings,
+            key=lambda f: (f.severity.rank, f.code, -1 if f.stitch_index is None else f.stitch_index, f.message),
+        )
+    )
+
+
+def applies(rule: Rule, subject: Subject) -> bool:
+    """True when ``rule`` runs on ``subject``: file rules always, design-only rules with a plan."""
+    if rule.check is None:
+        return False
+    return Inputs.FILES in rule.inputs or (subject.plan is not None and Inputs.DESIGNS in rule.inputs)
+
+
+def run_rules(rules, subject: Subject) -> tuple[Finding, ...]:
+    """Every rule of ``rules`` that applies to ``subject``, capped per rule; findings worst first."""
+    found: list[Finding] = []
+    for rule in rules:
+        if applies(rule, subject):
+            found += _capped(subject, rule.code, rule.check(subject), subject.settings.max_findings_per_rule)
+    return sort_findings(found)

@@ -1,0 +1,86 @@
+"""Rules on the stitch pattern as generated (EA203-EA205).
+
+EA203 reads where the legs cross the tube (designs and files); EA204 and EA205
+compare the realised pattern with the request, which only a design has. The
+sleeve rules of the same group (EA201, EA202, EA206) are physics and live in
+:mod:`embroact.predict.sleeve_rules`.
+
+Examples
+--------
+>>> from embroact.patterns.rules.pattern import PATTERN_RULES
+>>> [(r.code, r.inputs_label) for r in PATTERN_RULES]
+[('EA203', 'designs, files'), ('EA204', 'designs'), ('EA205', 'designs')]
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..base.findings import RULES, Finding, Inputs, Severity
+from ..params import CrossParams
+from .engine import Hits, Subject
+
+__all__ = ["PATTERN_RULES"]
+
+
+@RULES.rule("EA203", Severity.WARNING, "stitch interval over tube diameter",
+            "Neighbouring legs cross the tube further apart than its diameter 2 r_f: the tube bulges between "
+            "legs, which the model does not describe.",
+            "Decrease the stitch interval.", Inputs.DESIGNS | Inputs.FILES)
+def interval(s: Subject) -> Hits:
+    """Gaps between neighbouring crossings of a tube by the legs it owns, larger than 2 r_f."""
+    c, owner, legs = s.crossings, s.layout.owner, s.legs
+    end = legs[c.leg]
+    mine = (owner[end] == c.tube) & (owner[end - 1] == c.tube)
+    tube, s_mm, end = c.tube[mine], c.s_mm[mine], end[mine]
+    order = np.lexsort((s_mm, tube))  # by tube, then along it
+    tube, s_mm, end = tube[order], s_mm[order], end[order]
+    same = tube[1:] == tube[:-1]
+    gaps = np.diff(s_mm)
+    limit = 2.0 * np.array([t.outer_radius_mm for t in s.layout.tubes])[tube[1:]] if len(tube) else np.zeros(0)
+    bad = np.flatnonzero(same & (gaps > limit + s.settings.tolerances.length_mm))
+    bad = bad[np.argsort(end[bad + 1], kind="stable")]
+
+    def message(j: int) -> str:
+        g = bad[j]
+        return (f"legs cross the tube of {s.layout.tubes[tube[g + 1]].name} {gaps[g]:.2f} mm apart along its axis, "
+                f"more than the tube diameter {limit[g]:g} mm")
+
+    return Hits(end[bad + 1], message)
+
+
+@RULES.rule("EA204", Severity.WARNING, "leg angle off request",
+            "The realised cross-pattern leg angle differs from the requested alpha0 by more than the angle "
+            "tolerance (patterns/base/tolerances.py).",
+            "Adjust the interval or length so that angle and spacing fit, or accept the realised angle.",
+            Inputs.DESIGNS)
+def angle_off(s: Subject) -> list[Finding]:
+    tol = s.settings.tolerances.angle_deg
+    out = []
+    for k, act in enumerate(s.plan.actuators):
+        real, req = act.realised, act.params
+        if isinstance(req, CrossParams) and abs(real.angle_deg - req.angle_deg) > tol:
+            out.append(RULES.finding(
+                "EA204", f"leg angle {real.angle_deg:.2f} deg realised, {req.angle_deg:g} deg requested "
+                f"(tolerance {tol:g} deg)", **s.actuator_place(k)))
+    return out
+
+
+@RULES.rule("EA205", Severity.WARNING, "stitch interval off request",
+            "The realised stitch interval differs from the request by more than the relative spacing "
+            "tolerance (patterns/base/tolerances.py).",
+            "Adjust the length or the interval so that a whole number of legs fits.", Inputs.DESIGNS)
+def interval_off(s: Subject) -> list[Finding]:
+    tol = s.settings.tolerances.spacing_rel
+    out = []
+    for k, act in enumerate(s.plan.actuators):
+        real, req = act.realised, act.params
+        rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
+        if rel > tol:
+            out.append(RULES.finding(
+                "EA205", f"stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm requested "
+                f"({rel * 100:.1f} % off, tolerance {tol * 100:g} %)", **s.actuator_place(k)))
+    return out
+
+
+PATTERN_RULES = (interval, angle_off, interval_off)
+"""The EA2xx rules of patterns, in code order."""

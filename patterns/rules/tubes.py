@@ -1,0 +1,246 @@
+"""Rules on the tube paths and their placement (EA3xx).
+
+Conventions
+-----------
+* Minimum turning radius (EA301): ``turning_radius_factor`` x the tube's outer
+  diameter (default 3 x 2 r_f = 9 mm for the default tube), against
+  :meth:`Centerline.min_radius_mm` (a vertex turning by more than
+  ``MAX_SMOOTH_TURN_DEG`` is a corner of radius 0, as for the generators).
+* Tube pairs (EA303, EA304) are found with one spatial index over every tube's
+  laid length, so only tubes that come close are compared.
+* The hoop (EA306) is centred on the records' bounding box.
+* Couching (EA307): a leg holds the tube where it lies over it, the stretch of the
+  axis within r_f of the leg's crossing measured along the axis (r_f |cot phi| on
+  each side for a leg at angle phi to the axis, at most the leg's own extent
+  along the axis). Every stretch of the tube path that no leg holds, between two
+  held stretches or between an end of the path and the nearest held stretch, must
+  be at most ``couching_gap_factor`` x the tube's outer diameter (default
+  3 x 3 mm = 9 mm for r_f = 1.5 mm; EA203 warns from one diameter). A generated
+  cross pattern leaves (w/2 - r_f) tan(alpha0) at each end (5.5 mm for w = 7 mm,
+  alpha0 = 70 deg). Every leg of thread counts, whichever actuator it belongs to.
+
+Examples
+--------
+>>> from embroact.patterns.rules.tubes import TUBE_RULES
+>>> [r.code for r in TUBE_RULES]
+['EA301', 'EA302', 'EA303', 'EA304', 'EA305', 'EA306', 'EA307']
+"""
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..base.findings import RULES, Finding, Inputs, Severity
+from ..centerline import MAX_SMOOTH_TURN_DEG
+from ..plan import Command
+from ..spatial import self_crossings
+from .engine import Hits, Subject
+
+__all__ = ["TUBE_RULES", "hoop_window"]
+
+_DF = Inputs.DESIGNS | Inputs.FILES
+
+
+@RULES.rule("EA301", Severity.ERROR, "turn tighter than the tube allows",
+            "The tube path's curvature radius falls below the minimum turning radius "
+            "(turning_radius_factor x tube outer diameter, default 3 x 2 r_f): the tube kinks.",
+            "Smooth the path: larger bend radii.", _DF)
+def turning(s: Subject) -> list[Finding]:
+    cfg = s.settings
+    out = []
+    for k, tube in enumerate(s.layout.tubes):
+        cl = tube.centerline
+        if cl is None:
+            continue  # a path that crosses itself: EA302 reports it
+        r_min = cfg.turning_radius_factor * 2.0 * tube.outer_radius_mm
+        radius = cl.min_radius_mm()
+        if radius >= r_min - cfg.tolerances.length_mm:
+            continue
+        pts = cl.points_mm
+        kappa = np.abs(cl.segment_curvature())
+        worst = pts[1 + int(np.argmax(kappa[1:] + kappa[:-1]))] if len(kappa) > 1 else pts[0]
+        kind = "a corner (turn > %g deg)" % MAX_SMOOTH_TURN_DEG if radius == 0.0 else f"radius {radius:.2f} mm"
+        out.append(s.tube_finding(
+            k, "EA301", f"the tube of {tube.name} turns with {kind}; minimum turning radius {r_min:g} mm "
+            f"({cfg.turning_radius_factor:g} x outer diameter)", xy=worst))
+    return out
+
+
+@RULES.rule("EA302", Severity.ERROR, "tube path crosses itself",
+            "The tube path intersects itself: the tube would be laid over itself.",
+            "Change the path so that it does not cross itself.", _DF)
+def self_intersection(s: Subject) -> list[Finding]:
+    out = []
+    for k, tube in enumerate(s.layout.tubes):
+        if tube.centerline is not None:
+            continue  # a valid centerline is open and simple
+        xy = np.asarray(tube.path.coords, dtype=np.float64)[:, :2]
+        pairs, where = self_crossings(xy)
+        closed = np.hypot(*(xy[-1] - xy[0])) <= s.settings.tolerances.length_mm
+        if len(pairs) == 0 and not closed:
+            continue
+        what = f"crosses itself {len(pairs)} time(s)" if len(pairs) else "is closed (a tube has two ends)"
+        where = xy[0] if where is None else where
+        out.append(s.tube_finding(
+            k, "EA302", f"the tube path of {tube.name} {what}, first at ({where[0]:.2f}, {where[1]:.2f}) mm", xy=where))
+    return out
+
+
+def _close_pairs(s: Subject) -> list[tuple[int, int, float, np.ndarray]]:
+    """Tube pairs (a < b) whose laid lengths come within reach of EA303 or EA304: a, b, gap, closest point."""
+    return s.shared("tube pairs", lambda: _find_close_pairs(s))
+
+
+def _find_close_pairs(s: Subject) -> list[tuple[int, int, float, np.ndarray]]:
+    tubes = s.layout.tubes
+    if len(tubes) < 2:
+        return []
+    laid = [t.extended_path() for t in tubes]
+    corridor = max(t.corridor_radius_mm for t in tubes)
+    half = max((t.half_width_mm or 0.0) for t in tubes)
+    reach = max(2.0 * corridor, 2.0 * half + s.settings.actuator_clearance_mm)
+    a, b = shapely.STRtree(laid).query(laid, predicate="dwithin", distance=reach)
+    keep = a < b
+    a, b = a[keep], b[keep]
+    order = np.lexsort((b, a))
+    a, b = a[order], b[order]
+    ga, gb = np.array(laid, dtype=object)[a], np.array(laid, dtype=object)[b]
+    gap = shapely.distance(ga, gb)
+    where = [shapely.get_coordinates(line)[0] for line in shapely.shortest_line(ga, gb)]
+    return list(zip(a.tolist(), b.tolist(), gap.tolist(), where))
+
+
+@RULES.rule("EA303", Severity.ERROR, "tube corridors overlap",
+            "Two tubes' corridors (r_f + clearance around each path) overlap.",
+            "Move the actuators apart.", _DF)
+def corridors_overlap(s: Subject) -> list[Finding]:
+    tubes, tol = s.layout.tubes, s.settings.tolerances.length_mm
+    out = []
+    for a, b, gap, where in _close_pairs(s):
+        need = tubes[a].corridor_radius_mm + tubes[b].corridor_radius_mm
+        if gap < need - tol:
+            out.append(s.tube_finding(
+                b, "EA303", f"the tubes of {tubes[a].name} and {tubes[b].name} are {gap:.2f} mm apart (axis to axis); "
+                f"their corridors need {need:.2f} mm", xy=where))
+    return out
+
+
+@RULES.rule("EA304", Severity.WARNING, "actuators too close",
+            "The stitched bands (w/2 around each path) of two actuators are closer than "
+            "actuator_clearance_mm.",
+            "Move the actuators apart.", _DF)
+def actuators_close(s: Subject) -> list[Finding]:
+    tubes, cfg = s.layout.tubes, s.settings
+    out = []
+    for a, b, gap, where in _close_pairs(s):
+        ta, tb = tubes[a], tubes[b]
+        if gap < ta.corridor_radius_mm + tb.corridor_radius_mm - cfg.tolerances.length_mm:
+            continue  # EA303 reports it
+        if ta.half_width_mm is None or tb.half_width_mm is None:
+            continue
+        band_gap = float(shapely.distance(ta.path, tb.path)) - ta.half_width_mm - tb.half_width_mm
+        if band_gap < cfg.actuator_clearance_mm - cfg.tolerances.length_mm:
+            out.append(s.tube_finding(
+                b, "EA304", f"stitched bands of {ta.name} and {tb.name} are {band_gap:.2f} mm apart, clearance "
+                f"{cfg.actuator_clearance_mm:g} mm", xy=where))
+    return out
+
+
+def hoop_window(s: Subject):
+    """(low, high) corners of the hoop's sewing field centred on the records [mm], or None without a hoop."""
+    cfg, xy = s.settings, s.layout.xy_mm
+    if cfg.hoop_width_mm is None or cfg.hoop_height_mm is None or len(xy) == 0:
+        return None
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    centre = (lo + hi) / 2.0
+    half = np.array([cfg.hoop_width_mm, cfg.hoop_height_mm]) / 2.0
+    return centre - half, centre + half
+
+
+@RULES.rule("EA305", Severity.WARNING, "tube end margin missing",
+            "The free tube beyond an end (end_margin_mm along the end tangent, for the connector) leaves the "
+            "hoop or runs into needle points.",
+            "Move the actuator inward, shorten it, or reduce tube.end_margin_mm.", _DF)
+def end_margins(s: Subject) -> list[Finding]:
+    window = hoop_window(s)
+    if window is None:
+        return []
+    lo, hi = window
+    cfg, tol = s.settings, s.settings.tolerances.length_mm
+    out = []
+    for k, tube in enumerate(s.layout.tubes):
+        if tube.end_margin_mm <= 0.0:
+            continue
+        ends = np.asarray(tube.extended_path().coords)[[0, -1]]
+        for end, label in zip(ends, ("start", "end")):
+            if np.any(end < lo - tol) or np.any(end > hi + tol):
+                out.append(s.tube_finding(
+                    k, "EA305", f"the {tube.end_margin_mm:g} mm free tube beyond the {label} of {tube.name} reaches "
+                    f"({end[0]:.1f}, {end[1]:.1f}) mm, outside the {cfg.hoop_width_mm:g} x {cfg.hoop_height_mm:g} mm "
+                    "hoop", xy=end))
+    return out
+
+
+@RULES.rule("EA306", Severity.ERROR, "outside the hoop",
+            "A record (stitch, jump or trim excursion) lies outside the hoop's sewing field "
+            "(machine.hoop_width_mm x machine.hoop_height_mm, centred on the design; embroidery files get the "
+            "default machine's 200 x 200 mm hoop unless told otherwise).",
+            "Use a larger hoop or make the design smaller.", _DF)
+def hoop(s: Subject) -> Hits:
+    window = hoop_window(s)
+    xy, cfg = s.layout.xy_mm, s.settings
+    if window is None:
+        return Hits(np.zeros(0, np.int64), str)
+    lo, hi = window
+    tol = cfg.tolerances.length_mm
+    outside = np.flatnonzero(np.any((xy < lo - tol) | (xy > hi + tol), axis=1))
+    size = xy.max(axis=0) - xy.min(axis=0)
+    return Hits(outside, lambda j: (
+        f"{Command(int(s.layout.commands[outside[j]])).name.lower()} record outside the {cfg.hoop_width_mm:g} x "
+        f"{cfg.hoop_height_mm:g} mm hoop; the design spans {size[0]:.1f} x {size[1]:.1f} mm"))
+
+
+def _held_gaps(s_mm: np.ndarray, half_mm: np.ndarray, length_mm: float) -> list[tuple[float, float]]:
+    """Stretches [from, to] of [0, length] not covered by the intervals s +- half [mm], in order."""
+    if len(s_mm) == 0:
+        return [(0.0, length_mm)]
+    lo, hi = s_mm - half_mm, s_mm + half_mm
+    order = np.argsort(lo, kind="stable")
+    lo, reach = lo[order], np.maximum.accumulate(hi[order])
+    starts = np.concatenate([[0.0], reach])
+    stops = np.concatenate([lo, [length_mm]])
+    return [(float(a), float(b)) for a, b in zip(starts, stops) if b > a]
+
+
+@RULES.rule("EA307", Severity.ERROR, "tube not couched",
+            "Legs must cross the tube from one side to the other along its whole embroidered length: no "
+            "stretch of the tube path without a leg over it (between legs, or from an end of the path) may be "
+            "longer than couching_gap_factor x the tube's outer diameter (default 3 x 2 r_f = 9 mm); a tube "
+            "no leg crosses is not held at all (a wrong tube path, or stitches beside the tube).",
+            "Check the tube path against the stitches, or add legs where the tube is not held.", _DF)
+def couching(s: Subject) -> list[Finding]:
+    c, tubes = s.crossings, s.layout.tubes
+    out = []
+    bounds = np.searchsorted(c.tube, np.arange(len(tubes) + 1))
+    for k, tube in enumerate(tubes):
+        mine = slice(bounds[k], bounds[k + 1])
+        length = float(tube.path.length)
+        allowed = s.settings.couching_gap_mm(tube.outer_radius_mm)
+        if bounds[k] == bounds[k + 1]:
+            out.append(s.tube_finding(
+                k, "EA307", f"no leg crosses the tube of {tube.name} ({length:.1f} mm path): it is not held; "
+                "check the tube path against the stitches", xy=np.asarray(tube.path.coords)[0][:2]))
+            continue
+        half = np.minimum(tube.outer_radius_mm * c.cot[mine], c.along_mm[mine])
+        for a, b in _held_gaps(c.s_mm[mine], half, length):
+            if b - a > allowed + s.settings.tolerances.length_mm:
+                where = shapely.get_coordinates(tube.path.interpolate(a))[0]
+                out.append(s.tube_finding(
+                    k, "EA307", f"the tube of {tube.name} is not held for {b - a:.1f} mm, from {a:.1f} to {b:.1f} mm "
+                    f"along its {length:.1f} mm path (longest allowed {allowed:g} mm = "
+                    f"{s.settings.couching_gap_factor:g} x tube diameter)", xy=where))
+    return out
+
+
+TUBE_RULES = (turning, self_intersection, corridors_overlap, actuators_close, end_margins, hoop, couching)
+"""The EA3xx rules, in code order."""

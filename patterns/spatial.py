@@ -1,0 +1,246 @@
+"""Spatial queries that stay linear in the design's size: points and legs against tubes, close pairs.
+
+* :class:`TubeIndex`: every tube's axis segments in one shapely STRtree, so points
+  near any tube, the nearest tube of each point and the legs crossing any tube
+  are found with one bounded query each, whatever the number of tubes.
+* :func:`needle_density`: needle points within a radius of each point, by a grid
+  of buckets one radius wide (numpy only: no scipy import for a few hundred or a
+  few hundred thousand points).
+* :func:`self_crossings`: where a polyline meets itself, for the path check of
+  the generators and the design rule EA302.
+* :func:`corridor_hits`: needle points inside a tube corridor, for the generators'
+  invariant and the design rule EA101.
+
+Examples
+--------
+>>> import numpy as np
+>>> idx = TubeIndex([[(0, 0), (10, 0)], [(0, 5), (10, 5)]])
+>>> point, tube, dist = idx.within([(5, 1), (5, 4.5), (5, 20)], [2.0, 2.0])
+>>> point.tolist(), tube.tolist(), dist.tolist()
+([0, 1], [0, 1], [1.0, 0.5])
+>>> needle_density([(0, 0), (0.3, 0), (0.6, 0), (5, 5)]).tolist()
+[2, 3, 2, 1]
+"""
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from .base.tolerances import DEFAULT_TOLERANCES
+
+__all__ = ["TubeIndex", "Crossings", "needle_density", "self_crossings", "corridor_hits"]
+
+#: Candidate pairs examined at once by :func:`needle_density` (bounds its memory).
+_PAIR_CHUNK = 2_000_000
+
+
+class Crossings:
+    """Where straight legs cross tube axes (one row per leg-tube crossing).
+
+    Attributes
+    ----------
+    leg : ndarray of int64
+        Index of the leg (into the arrays given to :meth:`TubeIndex.crossings`).
+    tube : ndarray of int64
+        Index of the tube crossed.
+    s_mm : ndarray of float
+        Arc length along that tube's axis where the leg crosses it [mm].
+    cot : ndarray of float
+        |cot| of the angle between leg and axis at the crossing (0: the leg is
+        perpendicular to the axis).
+    along_mm : ndarray of float
+        Length of the leg's projection on the axis direction there [mm].
+
+    Rows are sorted by tube, then arc length, then leg.
+    """
+
+    __slots__ = ("leg", "tube", "s_mm", "cot", "along_mm")
+
+    def __init__(self, leg, tube, s_mm, cot, along_mm) -> None:
+        self.leg, self.tube, self.s_mm, self.cot, self.along_mm = leg, tube, s_mm, cot, along_mm
+
+    def __len__(self) -> int:
+        return len(self.leg)
+
+
+class TubeIndex:
+    """Points and legs against the axes of many tubes, through one STRtree of all their segments.
+
+    Parameters
+    ----------
+    paths : sequence of shapely.LineString or (n, 2) arrays
+        Tube axes [mm].
+    """
+
+    __slots__ = ("_a", "_d", "_len", "_s", "_tube", "_tree", "count", "queries")
+
+    def __init__(self, paths) -> None:
+        a, d, tube, s = [], [], [], []
+        for k, path in enumerate(paths):
+            xy = np.asarray(path.coords if isinstance(path, shapely.LineString) else path, dtype=np.float64)[:, :2]
+            dk = np.diff(xy, axis=0)
+            keep = np.hypot(dk[:, 0], dk[:, 1]) > 0.0
+            lk = np.hypot(dk[keep, 0], dk[keep, 1])
+            a.append(xy[:-1][keep])
+            d.append(dk[keep])
+            tube.append(np.full(len(lk), k, dtype=np.int64))
+            s.append(np.concatenate([[0.0], np.cumsum(lk)[:-1]]))
+        self.count = len(a)
+        empty = np.zeros((0, 2))
+        self._a = np.concatenate(a) if a else empty
+        self._d = np.concatenate(d) if d else empty
+        self._len = np.hypot(self._d[:, 0], self._d[:, 1])
+        self._s = np.concatenate(s) if s else np.zeros(0)
+        self._tube = np.concatenate(tube) if tube else np.zeros(0, dtype=np.int64)
+        self._tree = shapely.STRtree(shapely.linestrings(np.stack([self._a, self._a + self._d], axis=1)))
+        self.queries = 0  # tree queries made (each one bounded; the tests count them)
+
+    def within(self, xy_mm, radius_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Point-tube pairs closer than the tube's radius: point index, tube index, distance [mm].
+
+        ``radius_mm`` is one radius per tube. Each pair appears once (its nearest
+        segment), sorted by point, then tube.
+        """
+        p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+        radius = np.asarray(radius_mm, dtype=np.float64).reshape(-1)
+        if len(p) == 0 or len(self._len) == 0:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
+        self.queries += 1
+        i, k = self._tree.query(shapely.points(p), predicate="dwithin", distance=float(radius.max()))
+        r = p[i] - self._a[k]
+        t = np.clip(np.einsum("ij,ij->i", r, self._d[k]) / self._len[k] ** 2, 0.0, 1.0)
+        dist = np.hypot(*(r - t[:, None] * self._d[k]).T)
+        tube = self._tube[k]
+        close = dist < radius[tube]
+        i, tube, dist = i[close], tube[close], dist[close]
+        order = np.lexsort((dist, tube, i))
+        i, tube, dist = i[order], tube[order], dist[order]
+        first = np.ones(len(i), dtype=bool)
+        first[1:] = (np.diff(i) != 0) | (np.diff(tube) != 0)
+        return i[first], tube[first], dist[first]
+
+    def nearest(self, xy_mm, max_distance_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """For each point within ``max_distance_mm`` of some tube: point index, nearest tube, distance [mm]."""
+        p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+        if len(p) == 0 or len(self._len) == 0:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
+        self.queries += 1
+        (i, k), dist = self._tree.query_nearest(shapely.points(p), max_distance=max_distance_mm,
+                                                return_distance=True, all_matches=False)
+        return i, self._tube[k], dist
+
+    def crossings(self, a_mm, b_mm) -> Crossings:
+        """Where straight legs a -> b cross the tube axes (a leg lying along an axis does not cross it)."""
+        a = np.asarray(a_mm, dtype=np.float64).reshape(-1, 2)
+        b = np.asarray(b_mm, dtype=np.float64).reshape(-1, 2)
+        if len(a) == 0 or len(self._len) == 0:
+            z, f = np.zeros(0, np.int64), np.zeros(0)
+            return Crossings(z, z, f, f, f)
+        self.queries += 1
+        j, k = self._tree.query(shapely.linestrings(np.stack([a, b], axis=1)), predicate="intersects")
+        e, d, r = b[j] - a[j], self._d[k], a[j] - self._a[k]
+        cross = e[:, 0] * d[:, 1] - e[:, 1] * d[:, 0]
+        ok = cross != 0.0
+        j, k, e, d, r, cross = j[ok], k[ok], e[ok], d[ok], r[ok], cross[ok]
+        t = np.clip((e[:, 0] * r[:, 1] - e[:, 1] * r[:, 0]) / cross, 0.0, 1.0)
+        dot = np.abs(np.einsum("ij,ij->i", e, d))
+        s_mm, tube = self._s[k] + t * self._len[k], self._tube[k]
+        order = np.lexsort((j, s_mm, tube))
+        return Crossings(j[order], tube[order], s_mm[order], (dot / np.abs(cross))[order],
+                         (dot / self._len[k])[order])
+
+
+def needle_density(xy_mm, radius_mm: float = 0.5) -> np.ndarray:
+    """Needle points within ``radius_mm`` (``<=``) of each point, the point itself included.
+
+    Ink/Stitch's density map counts the same way (a KD-tree ball query). Here the
+    points go into square buckets one radius wide; each point is compared with the
+    points of its own and the 8 neighbouring buckets only (numpy, in chunks), so
+    the work grows with the number of points times their local density.
+
+    Examples
+    --------
+    >>> needle_density([(0, 0), (0.3, 0.4), (5, 5)], 0.5).tolist()  # 0.5 mm apart exactly: counted
+    [2, 2, 1]
+    """
+    xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+    n = len(xy)
+    if n == 0:
+        return np.zeros(0, dtype=np.int64)
+    cell = np.floor((xy - xy.min(axis=0)) / radius_mm).astype(np.int64)
+    rows = int(cell[:, 1].max()) + 3  # an empty row of buckets on each side: neighbour keys never wrap
+    key = (cell[:, 0] + 1) * rows + (cell[:, 1] + 1)
+    order = np.argsort(key, kind="stable")
+    key, pts = key[order], xy[order]  # sorted by bucket: the 3 buckets above each other are one range
+    count = np.zeros(n, dtype=np.int64)
+    for dx in (-1, 0, 1):
+        lo = np.searchsorted(key, key + dx * rows - 1, side="left")
+        hi = np.searchsorted(key, key + dx * rows + 1, side="right")
+        _count_close(pts, lo, hi, radius_mm, count)
+    out = np.empty(n, dtype=np.int64)
+    out[order] = count
+    return out
+
+
+def _count_close(xy, lo, hi, radius_mm, count) -> None:
+    """Add to ``count[i]`` the points ``xy[lo[i]:hi[i]]`` within ``radius_mm`` of point i (in chunks)."""
+    sizes = hi - lo
+    ends = np.cumsum(sizes)
+    start = 0
+    while start < len(xy):
+        stop = max(start + 1, int(np.searchsorted(ends, ends[start] - sizes[start] + _PAIR_CHUNK, side="right")))
+        size = sizes[start:stop]
+        owner = np.repeat(np.arange(start, stop), size)
+        other = np.repeat(lo[start:stop] - (np.cumsum(size) - size), size) + np.arange(len(owner))
+        d = xy[owner] - xy[other]
+        close = np.hypot(d[:, 0], d[:, 1]) <= radius_mm
+        count += np.bincount(owner[close], minlength=len(xy))
+        start = stop
+
+
+def self_crossings(xy_mm) -> tuple[np.ndarray, np.ndarray | None]:
+    """Pairs of segments of a polyline that meet other than at their shared joint, and where the first meets.
+
+    Neighbouring segments count only when they overlap (the path doubles back on
+    itself); a closed polyline (last point on the first) does not count its closing joint.
+
+    Returns
+    -------
+    pairs : ndarray (m, 2) of int64
+        Segment indices ``(i, j)``, ``i < j``, sorted; segment i runs from point i to i + 1.
+    first_xy : ndarray (2,) or None
+        A point where the first pair meets [mm]; None when there is no pair.
+
+    Examples
+    --------
+    >>> pairs, where = self_crossings([(0, 0), (10, 0), (10, 10), (5, 10), (5, -5)])
+    >>> pairs.tolist(), where.tolist()
+    ([[0, 3]], [5.0, 0.0])
+    >>> self_crossings([(0, 0), (10, 0), (4, 0)])[0].tolist()  # doubles back
+    [[0, 1]]
+    """
+    pts = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+    segs = shapely.linestrings(np.stack([pts[:-1], pts[1:]], axis=1))
+    i, j = shapely.STRtree(segs).query(segs, predicate="intersects")
+    closed = np.hypot(*(pts[-1] - pts[0])) <= DEFAULT_TOLERANCES.length_mm
+    keep = (j > i + 1) & ~(closed & (i == 0) & (j == len(segs) - 1))
+    near = np.flatnonzero(j == i + 1)
+    keep[near[shapely.length(shapely.intersection(segs[i[near]], segs[j[near]])) > 0.0]] = True
+    pairs = np.column_stack([i[keep], j[keep]]).astype(np.int64)
+    if len(pairs) == 0:
+        return pairs, None
+    pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+    meet = shapely.intersection(segs[pairs[0, 0]], segs[pairs[0, 1]])
+    return pairs, shapely.get_coordinates(meet)[0]
+
+
+def corridor_hits(path, xy_mm, radius_mm: float) -> np.ndarray:
+    """Indices of the points closer than ``radius_mm`` to ``path`` (a line or (n, 2) points), ascending.
+
+    Examples
+    --------
+    >>> corridor_hits([(0, 0), (10, 0)], [(5, 1.0), (5, 1.9), (12, 0)], 1.8).tolist()
+    [0]
+    """
+    point, _, _ = TubeIndex([path]).within(xy_mm, [radius_mm])
+    return point

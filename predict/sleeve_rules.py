@@ -1,0 +1,109 @@
+"""The sleeve rules (EA201, EA202, EA206) and the geometric checks of designs and files with them.
+
+These rules judge the sleeve the thread makes around the tube (docs/model.md), so
+they live with the model's geometry (:mod:`embroact.predict.sleeve`) rather than
+in :mod:`embroact.patterns`, which knows no physics. They are declared in the same
+registry and run by the same engine as the geometric rules:
+
+* :func:`check_plan`: every geometric, pattern, file-structure and sleeve rule on a
+  design's plan (what ``embroact.predict.rules.check_design`` adds the model rules to);
+* :func:`check_layout`: the same rules for embroidery files (layouts from their records).
+
+Examples
+--------
+>>> from embroact.patterns.design import build_plan, default_design
+>>> from embroact.patterns.rules import RuleSettings
+>>> from embroact.predict.sleeve_rules import DESIGN_RULES, check_plan
+>>> [r.code for r in DESIGN_RULES][:8]
+['EA101', 'EA102', 'EA103', 'EA104', 'EA105', 'EA106', 'EA201', 'EA202']
+>>> check_plan(build_plan(default_design()), RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0))
+()
+"""
+from __future__ import annotations
+
+from ..patterns.base.findings import RULES, Finding, Inputs, Severity
+from ..patterns.params import CrossParams
+from ..patterns.plan import StitchPlan
+from ..patterns import rules as geometry
+from ..patterns.rules import GEOMETRY_RULES, Layout, RuleSettings
+from ..patterns.rules.engine import Subject
+from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
+
+__all__ = ["SLEEVE_RULES", "DESIGN_RULES", "check_plan", "check_layout"]
+
+
+def _sleeve_gaps(s: Subject) -> list[tuple[int, float, float, float]]:
+    """Per tube with a known width: index, width w, sleeve radius r0 and r0 - r_f [mm]."""
+    out = []
+    for k, tube in enumerate(s.layout.tubes):
+        if tube.half_width_mm is not None:
+            w = 2.0 * tube.half_width_mm
+            r0 = float(sleeve_radius_mm(w, tube.outer_radius_mm))
+            out.append((k, w, r0, r0 - tube.outer_radius_mm))
+    return out
+
+
+@RULES.rule("EA201", Severity.ERROR, "no sleeve",
+            "The realised width leaves no sleeve: r0 <= r_f, i.e. w <= (pi^2 - 4)/pi * r_f (docs/model.md); "
+            "the thread squeezes the tube before any pressure and the model has no inflation phase.",
+            "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
+def no_sleeve(s: Subject) -> list[Finding]:
+    out = []
+    for k, w, r0, gap in _sleeve_gaps(s):
+        if gap <= 0.0:
+            rf = s.layout.tubes[k].outer_radius_mm
+            out.append(s.tube_finding(
+                k, "EA201", f"width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f {rf:g} mm "
+                f"(needs w > {float(min_sleeve_width_mm(rf)):.2f} mm)"))
+    return out
+
+
+@RULES.rule("EA202", Severity.WARNING, "sleeve barely wider than the tube",
+            "The sleeve radius r0 exceeds r_f by less than min_sleeve_gap_mm: P0 is tiny and very sensitive "
+            "to the width.",
+            "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
+def tight_sleeve(s: Subject) -> list[Finding]:
+    out = []
+    for k, _, r0, gap in _sleeve_gaps(s):
+        if 0.0 < gap < s.settings.min_sleeve_gap_mm:
+            rf = s.layout.tubes[k].outer_radius_mm
+            out.append(s.tube_finding(
+                k, "EA202", f"sleeve radius r0 {r0:.3f} mm exceeds r_f {rf:g} mm by only {gap:.3f} mm "
+                f"(< {s.settings.min_sleeve_gap_mm:g} mm)"))
+    return out
+
+
+@RULES.rule("EA206", Severity.WARNING, "angle near neutral",
+            "The cross-pattern angle alpha0 lies within neutral_band_deg of the neutral angle "
+            "(tan beta0 = 1/2): the bending direction is ill-conditioned.",
+            "Move alpha0 away from the neutral angle.", Inputs.DESIGNS)
+def near_neutral(s: Subject) -> list[Finding]:
+    band = s.settings.neutral_band_deg
+    out = []
+    for k, act in enumerate(s.plan.actuators):
+        if not isinstance(act.params, CrossParams):
+            continue
+        real = act.realised
+        neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
+        if abs(real.angle_deg - neutral) < band:
+            out.append(RULES.finding(
+                "EA206", f"angle {real.angle_deg:.2f} deg is {abs(real.angle_deg - neutral):.2f} deg from the neutral "
+                f"angle {neutral:.2f} deg (band {band:g} deg)", **s.actuator_place(k)))
+    return out
+
+
+SLEEVE_RULES = (no_sleeve, tight_sleeve, near_neutral)
+"""The sleeve rules, in code order."""
+
+DESIGN_RULES = tuple(sorted(GEOMETRY_RULES + SLEEVE_RULES, key=lambda r: r.code))
+"""Every rule checked on a plan or layout (all but the model rules), in code order."""
+
+
+def check_plan(plan: StitchPlan, settings: RuleSettings | None = None):
+    """Every geometric, pattern, file-structure and sleeve rule on a design's plan; findings worst first."""
+    return geometry.check_plan(plan, settings, rules=DESIGN_RULES)
+
+
+def check_layout(layout: Layout, settings: RuleSettings | None = None):
+    """The same rules for an embroidery file's layout (rules for designs only are skipped)."""
+    return geometry.check_layout(layout, settings, rules=DESIGN_RULES)
