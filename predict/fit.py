@@ -1,19 +1,32 @@
 """Fit the effective modulus G and the transition pressure P0 to measured bend angles.
 
 Measured data are (pressure_kpa, angle_deg) pairs, usually one hysteresis loop:
-pressure rises in steps, then falls (MODEL.md section 8).  The loading and the
-unloading branch are fitted separately (:func:`split_branches`), each by least
-squares in degrees (``scipy.optimize.least_squares``, trust-region reflective with
-bounds), with
+pressure rises in steps, then falls (docs/model.md, how the paper measured bending).
+The loading and the unloading branch are fitted separately (:func:`split_branches`),
+each by least squares in degrees (``scipy.optimize.least_squares``, trust-region
+reflective with bounds), with
 
 * start values from the data: P0 from the onset of bending (and the geometry's P0
   when known), G from a coarse logarithmic scan;
-* standard errors from the Jacobian at the solution, ``cov = inv(J^T J) * s^2`` with
-  ``s^2 = sum(residual^2) / (n - k)`` (k fitted parameters);
+* the covariance of the fitted parameters from the Jacobian at the solution,
+  ``cov = inv(J^T J) * s^2`` with ``s^2 = sum(residual^2) / (n - k)`` (k fitted
+  parameters), and their standard errors; :mod:`embroact.predict.uncertainty` turns the
+  covariance into a band on theta(P);
 * RMSE [deg] and the residuals ``model - data`` [deg] per point.
 
+What the data measured: :func:`fit_design` compares them with the whole-strip angle
+theta, or, given a :class:`~embroact.predict.markers.MarkerLayout`, with what that
+layout's marker sum reads on the model's bend (``reading_deg``: half of theta for the
+paper's 7 markers on 100 mm). Fitting marker data to theta instead overestimates G
+(77 % for the paper's layout).
+
+Tube laws: P0 from the geometry is the tube law's pressure at r0, for the paper's law
+(parameter ``G_e``) or the thick-walled Neo-Hookean tube (parameter ``mu``, fitted under
+the name ``g_e_mpa``); both are linear in their modulus, so P0 is proportional to it.
+The result records the law and its parameters (``tube_law_parameters``).
+
 Which parameters are fitted is a choice among ``g_mpa``, ``p0_kpa``, ``g_e_mpa``.  The
-deformation phase depends on G_e only through P0 = P(r0; G_e) (MODEL.md section 3), so
+deformation phase depends on G_e only through P0 = P(r0; G_e) (docs/model.md), so
 ``g_e_mpa`` can be fitted only when P0 comes from the geometry, never together with
 ``p0_kpa``.
 
@@ -47,8 +60,9 @@ from ..patterns.base.arrays import frozen_array
 from ..patterns.base.errors import ModelDomainError, ParameterError, SolverError
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
-from .inflation import transition_pressure_kpa
-from .status import Status
+from .markers import MarkerLayout, reading_deg
+from .status import VALIDITY_LIMITS, Status
+from .tubelaws import check_tube_law, transition_pressure_kpa
 
 __all__ = [
     "FIT_PARAMETERS",
@@ -56,6 +70,7 @@ __all__ = [
     "MIN_BEND_DEG",
     "FitResult",
     "split_branches",
+    "closure_gap_deg",
     "fit_curve",
     "fit_design",
     "model_predictor",
@@ -68,6 +83,11 @@ _BRANCHES = ("loading", "unloading")
 
 #: Data whose largest |angle| is below this show no deformation phase [deg].
 MIN_BEND_DEG = 1.0
+#: Pressure steps smaller than this fraction of the data's pressure range are holds (no branch change).
+HOLD_FRACTION = 0.01
+#: A loop is reported open when its end angle differs from its start by more than this
+#: fraction of the largest |angle| (and by more than MIN_BEND_DEG).
+CLOSURE_FRACTION = 0.02
 #: A point counts as bent for the onset estimate above this fraction of the largest |angle|.
 _ONSET_FRACTION = 0.05
 #: Coarse scan of G for the start value [MPa], logarithmic.
@@ -115,6 +135,23 @@ class FitResult:
     design : tuple of (str, float) pairs
         Requested design fields (pattern, width_mm, angle_deg, interval_mm, length_mm)
         when known.
+    covariance : tuple of tuples
+        Covariance of the fitted parameters, in the order of ``fitted`` [MPa, kPa units].
+    measurement : MarkerLayout or None
+        The marker layout the data were compared through; None: whole-strip angle.
+    tube_law : str
+        Tube law of P0 from geometry and of the inflation states.
+    tube_law_parameters : tuple of (str, float) pairs
+        That law's parameters: ``outer_radius_mm`` and ``g_e_mpa`` (paper's law) or
+        ``outer_radius_mm``, ``inner_radius_mm`` and ``mu_mpa`` (thick wall).
+    closure_gap_deg : float or None
+        Last minus first measured angle of the data this branch came from, when they
+        end at (or below) the pressure they started at; None when the data stop
+        higher (the loop is not closed).
+    beyond_validity : int
+        Data points where the fitted model's state is past a validity limit.
+    notes : tuple of str
+        Warnings: an open loop, states beyond validity.
     """
 
     branch: str
@@ -134,14 +171,25 @@ class FitResult:
     method: str
     nfev: int
     design: tuple = ()
+    covariance: tuple = ()
+    measurement: MarkerLayout | None = None
+    tube_law: str = "paper"
+    tube_law_parameters: tuple = ()
+    closure_gap_deg: float | None = None
+    beyond_validity: int = 0
+    notes: tuple = ()
 
     def as_dict(self) -> dict:
         """JSON-ready dict with unit-suffixed keys; arrays as lists."""
-        d = {k: getattr(self, k) for k in self.__slots__ if k != "design"}
+        d = {k: getattr(self, k) for k in self.__slots__}
         for k in ("pressure_kpa", "angle_deg", "residuals_deg"):
             d[k] = d[k].tolist()
         d["fitted"] = list(self.fitted)
         d["design"] = dict(self.design)
+        d["covariance"] = [list(row) for row in self.covariance]
+        d["measurement"] = "whole-strip" if self.measurement is None else self.measurement.as_dict()
+        d["tube_law_parameters"] = dict(self.tube_law_parameters)
+        d["notes"] = list(self.notes)
         return d
 
     def to_point(self) -> CalibrationPoint:
@@ -191,8 +239,13 @@ def split_branches(pressure_kpa, angle_deg, labels=None) -> dict[str, tuple[np.n
     pressure_kpa, angle_deg : array_like, shape (n,)
         Measurements in the order they were taken.
     labels : sequence of str, optional
-        ``"loading"`` / ``"unloading"`` per point.  Without labels the loop is split
-        at the (first) maximum pressure, which belongs to both branches.
+        ``"loading"`` / ``"unloading"`` per point.  Without labels each point belongs to
+        the branch of the pressure step that led to it: a rise is loading, a fall
+        unloading, a hold (a step below ``HOLD_FRACTION`` of the pressure range) keeps the
+        previous branch, the first point is loading.  So the top point of a loop is a
+        loading point only (it was reached by a rise), repeated cycles pool their
+        loading and their unloading points, and a loop that stops before it returns
+        (an open loop) has a shorter unloading branch; no point is invented or moved.
 
     Returns
     -------
@@ -203,7 +256,7 @@ def split_branches(pressure_kpa, angle_deg, labels=None) -> dict[str, tuple[np.n
     --------
     >>> br = split_branches([0, 10, 20, 10, 0], [0, 1, 3, 2, 0])
     >>> {k: v[0].tolist() for k, v in br.items()}
-    {'loading': [0.0, 10.0, 20.0], 'unloading': [20.0, 10.0, 0.0]}
+    {'loading': [0.0, 10.0, 20.0], 'unloading': [10.0, 0.0]}
     """
     p, a = _as_data(pressure_kpa, angle_deg)
     if labels is not None:
@@ -214,11 +267,38 @@ def split_branches(pressure_kpa, angle_deg, labels=None) -> dict[str, tuple[np.n
         if bad.size:
             raise ParameterError(f"branch[{bad[0]}] must be one of 'loading', 'unloading', got {labels[bad[0]]!r}")
         return {b: (p[lab == b], a[lab == b]) for b in _BRANCHES if np.any(lab == b)}
-    i = int(np.argmax(p))
-    out = {"loading": (p[: i + 1], a[: i + 1])}
-    if i < p.size - 1:
-        out["unloading"] = (p[i:], a[i:])
+    falling = _falling(p)
+    return {b: (p[sel], a[sel]) for b, sel in (("loading", ~falling), ("unloading", falling)) if np.any(sel)}
+
+
+def _falling(p: np.ndarray) -> np.ndarray:
+    """True for points reached by a pressure fall (holds keep the previous step's direction)."""
+    hold = HOLD_FRACTION * float(np.ptp(p)) if p.size else 0.0
+    step = np.diff(p)
+    direction = np.where(step > hold, 1, np.where(step < -hold, -1, 0))
+    out = np.zeros(p.size, dtype=bool)
+    last = 1
+    for k, d in enumerate(direction, start=1):
+        last = d if d != 0 else last
+        out[k] = last < 0
     return out
+
+
+def closure_gap_deg(pressure_kpa, angle_deg) -> float | None:
+    """Last minus first angle of a loop that ends where it started, else None (docs: open loops).
+
+    "Ends where it started": the last pressure is at most the first plus a hold
+    (``HOLD_FRACTION`` of the range). A residual bend shows as a non-zero gap.
+
+    Examples
+    --------
+    >>> closure_gap_deg([0, 10, 20, 10, 0], [0, 1, 3, 2, 0.5]), closure_gap_deg([0, 20, 10], [0, 3, 2])
+    (0.5, None)
+    """
+    p, a = _as_data(pressure_kpa, angle_deg)
+    if p[-1] > p[0] + HOLD_FRACTION * float(np.ptp(p)):
+        return None
+    return float(a[-1] - a[0])
 
 
 def _check_fit_names(fit: Iterable[str]) -> tuple[str, ...]:
@@ -359,7 +439,8 @@ def fit_curve(
     )
     if res.status <= 0 or not np.all(np.isfinite(res.fun)):
         raise SolverError(f"least squares did not converge on the {branch} branch after {res.nfev} evaluations: {res.message}")
-    se = _standard_errors(res.jac, res.fun, names, branch)
+    cov = _covariance(res.jac, res.fun, names, branch)
+    se = {name: float(math.sqrt(max(cov[i, i], 0.0))) for i, name in enumerate(names)}
     values = params(res.x)
     return FitResult(
         branch=branch,
@@ -378,11 +459,12 @@ def fit_curve(
         residuals_deg=frozen_array(res.fun),
         method=method,
         nfev=int(res.nfev),
+        covariance=tuple(tuple(float(v) for v in row) for row in cov),
     )
 
 
-def _standard_errors(jac, fun, names, branch) -> dict[str, float]:
-    """sqrt(diag(inv(J^T J) * s^2)), via the SVD of J; refuse rank-deficient fits."""
+def _covariance(jac, fun, names, branch) -> np.ndarray:
+    """inv(J^T J) * s^2, via the SVD of J; refuse rank-deficient fits."""
     n, k = jac.shape
     _, sv, vt = np.linalg.svd(np.asarray(jac, dtype=np.float64), full_matrices=False)
     if sv.size < k or sv[-1] <= _RANK_RTOL * sv[0]:
@@ -391,36 +473,43 @@ def _standard_errors(jac, fun, names, branch) -> dict[str, float]:
             f"(Jacobian condition {sv[0] / max(sv[-1], 1e-300):.3g}); fit fewer parameters"
         )
     s2 = float(np.sum(fun**2)) / (n - k)
-    cov = (vt.T / sv**2) @ vt * s2
-    return {name: float(math.sqrt(max(cov[i, i], 0.0))) for i, name in enumerate(names)}
+    return (vt.T / sv**2) @ vt * s2
 
 
-def model_predictor(derived: DerivedGeometry, *, method: str = "auto") -> Callable:
+def model_predictor(derived: DerivedGeometry, *, method: str = "auto", measurement: MarkerLayout | None = None,
+                    tube_law: str = "paper") -> Callable:
     """``predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa)`` for a design, via the model.
 
     ``p0_kpa=None`` means P0 from the geometry with tube modulus ``g_e_mpa`` (the
-    design's tube when that is ``None`` too).  Scalar parameters give one curve
-    (:func:`~embroact.predict.curve.curve`); parameter arrays of shape (m, 1) give m
-    curves at once (:func:`~embroact.predict.curve.sweep`), shape (m, n).  The function's
-    attribute ``last_method`` is the method the model reported for its latest call.
+    design's tube when that is ``None`` too) under ``tube_law``.  Scalar parameters give
+    one curve (:func:`~embroact.predict.curve.curve`); parameter arrays of shape (m, 1)
+    give m curves at once (:func:`~embroact.predict.curve.sweep`), shape (m, n).  With a
+    ``measurement`` layout the angles are what its marker sum reads
+    (:func:`~embroact.predict.markers.reading_deg`), else theta.  The function's
+    attributes ``last_method`` and ``last_status`` are the method and the statuses of
+    its latest call.
     """
     from .curve import ActuatorModel, sweep
 
+    check_tube_law(tube_law)
+
     def predict_deg(pressure_kpa, g_mpa, p0_kpa, g_e_mpa):
         g_e = derived.tube.g_e_mpa if g_e_mpa is None else g_e_mpa
-        p0 = _geometry_p0_kpa(derived, g_e) if p0_kpa is None else p0_kpa
+        p0 = _geometry_p0_kpa(derived, g_e, tube_law) if p0_kpa is None else p0_kpa
         batch = np.ndim(g_mpa) + np.ndim(p0) > 0
         g_col, p0_col = np.broadcast_arrays(np.ravel(g_mpa), np.ravel(p0))
         models = [
-            ActuatorModel.from_derived(derived, g_mpa=float(g), p0_kpa=float(q), calibration="fit")
+            ActuatorModel.from_derived(derived, g_mpa=float(g), p0_kpa=float(q), calibration="fit", tube_law=tube_law)
             for g, q in zip(g_col, p0_col)
         ]
         c = sweep(models, pressure_kpa, method=method)
-        predict_deg.last_method = c.method
+        predict_deg.last_method, predict_deg.last_status = c.method, c.status
         theta = _theta_of(c)
+        if measurement is not None:
+            theta = reading_deg(theta, derived.length_mm, measurement)
         return theta if batch else theta[0]
 
-    predict_deg.last_method = method
+    predict_deg.last_method, predict_deg.last_status = method, None
     return predict_deg
 
 
@@ -436,8 +525,11 @@ def _theta_of(c) -> np.ndarray:
     return np.asarray(c.theta_deg, dtype=np.float64)
 
 
-def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa):
-    return transition_pressure_kpa(derived.r0_mm, derived.tube.outer_radius_mm, g_e_mpa)
+def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa, tube_law: str = "paper"):
+    t = derived.tube
+    tube = tuple(np.broadcast_arrays(np.float64(t.outer_radius_mm), np.float64(t.inner_radius_mm),
+                                     np.asarray(g_e_mpa, dtype=np.float64)))
+    return transition_pressure_kpa(derived.r0_mm, tube, tube_law)
 
 
 def _design_fields(derived: DerivedGeometry) -> tuple:
@@ -474,6 +566,8 @@ def fit_design(
     p0_kpa: float | None = None,
     g_e_mpa: float | None = None,
     method: str = "auto",
+    measurement: MarkerLayout | None = None,
+    tube_law: str = "paper",
 ) -> tuple[FitResult, ...]:
     """Fit the deformation model of one design to measured data, per branch.
 
@@ -482,28 +576,54 @@ def fit_design(
     derived : DerivedGeometry
         The design (``embroact.predict.derived.derive`` or ``derive_from_values``).
     pressure_kpa, angle_deg : array_like, shape (n,)
-        Measurements in the order taken [kPa, deg]; angles signed as MODEL.md section 4.
+        Measurements in the order taken [kPa, deg]; angles signed as docs/model.md.
     fit : iterable of str
         Parameters to fit (``FIT_PARAMETERS``).
     branch : str
         ``"loading"``, ``"unloading"``, ``"both"`` (each branch present, separately) or
         ``"pooled"`` (all points in one fit).
     labels : sequence of str, optional
-        Branch label per point (otherwise split at the maximum pressure).
+        Branch label per point (otherwise by the direction of each pressure step,
+        :func:`split_branches`).
     g_mpa, p0_kpa, g_e_mpa : float, optional
         Fixed values of parameters that are not fitted; without ``p0_kpa`` P0 comes from
-        the geometry and ``g_e_mpa`` (default: the design's tube).  Also used as start
-        values of fitted ones.
+        the geometry and ``g_e_mpa`` (default: the design's tube) under ``tube_law``.
+        Also used as start values of fitted ones.
     method : str
         Model method passed to ``curve``.
+    measurement : MarkerLayout, optional
+        How the angles were measured: a marker layout (the data are compared with its
+        reading of the model's bend), or None for the whole-strip angle theta.
+    tube_law : str
+        ``"paper"`` or ``"thick-wall"`` (its ``mu`` is fitted as ``g_e_mpa``).
 
     Returns
     -------
     tuple of FitResult
         One per fitted branch, loading first.
+
+    Examples
+    --------
+    Marker sums of the paper's layout read half the bend of a 100 mm strip; fitted as
+    such, they give the model's parameters back:
+
+    >>> import numpy as np
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.curve import ActuatorModel, curve
+    >>> from embroact.predict.derived import derive_from_values
+    >>> from embroact.predict.markers import PAPER_LAYOUT, reading_deg
+    >>> d = derive_from_values("zigzag", width_mm=7, interval_mm=1, angle_deg=0, length_mm=100, tube=Tube())
+    >>> p = np.arange(0.0, 301.0, 10.0)
+    >>> seen = reading_deg(curve(ActuatorModel.from_derived(d, g_mpa=2.7, p0_kpa=85.0), p).theta_deg, 100.0)
+    >>> (r,) = fit_design(d, p, seen, branch="loading", measurement=PAPER_LAYOUT)
+    >>> round(r.g_mpa, 6), round(r.p0_kpa, 4), r.measurement.markers_per_side
+    (2.7, 85.0, 7)
     """
     if branch not in BRANCH_CHOICES:
         raise ParameterError(f"branch must be one of {', '.join(map(repr, BRANCH_CHOICES))}, got {branch!r}")
+    if measurement is not None and not isinstance(measurement, MarkerLayout):
+        raise ParameterError(f"measurement must be a MarkerLayout or None (whole-strip angle), got {measurement!r}")
+    check_tube_law(tube_law)
     names = _check_fit_names(fit)
     if "g_mpa" not in names and g_mpa is None:
         raise ParameterError("g_mpa must be given when it is not fitted, got None")
@@ -517,34 +637,57 @@ def fit_design(
             if branch not in parts:
                 raise ParameterError(f"branch {branch!r} has no points in these data (found: {', '.join(parts)})")
             parts = {branch: parts[branch]}
-    predictor = model_predictor(derived, method=method)
+    predictor = model_predictor(derived, method=method, measurement=measurement, tube_law=tube_law)
     fixed = {"g_mpa": g_mpa, "p0_kpa": p0_kpa, "g_e_mpa": g_e_mpa}
     start = dict(fixed)
     if "p0_kpa" in names and p0_kpa is None:
-        start["p0_kpa"] = derived.p0_kpa
+        start["p0_kpa"] = float(_geometry_p0_kpa(derived, derived.tube.g_e_mpa, tube_law))
     if "g_e_mpa" in names and g_e_mpa is None:
-        # P0 is proportional to G_e: start where the geometry's P0 meets the data's onset
+        # P0 is proportional to the law's modulus: start where the geometry's P0 meets the data's onset
         lo, first = _onset_kpa(p, a)
-        geo = float(_geometry_p0_kpa(derived, 1.0))
+        geo = float(_geometry_p0_kpa(derived, 1.0, tube_law))
         start["g_e_mpa"] = 0.5 * (lo + first) / geo if geo > 0 else derived.tube.g_e_mpa
+    context = {"measurement": measurement, "tube_law": tube_law, "closure_gap_deg": closure_gap_deg(p, a)}
     results = []
     for name, (pb, ab) in parts.items():
         r = fit_curve(pb, ab, predictor, fit=names, fixed=fixed, start=start, branch=name, method=method)
-        predictor(pb, r.g_mpa, r.p0_kpa, r.g_e_mpa)  # method actually used at the solution
-        results.append(_complete(r, derived, p0_kpa, predictor.last_method))
+        predictor(pb, r.g_mpa, r.p0_kpa, r.g_e_mpa)  # method and statuses at the solution
+        results.append(_complete(r, derived, p0_kpa, predictor, context, float(np.max(np.abs(a)))))
     return tuple(results)
 
 
-def _complete(r: FitResult, derived: DerivedGeometry, p0_given: float | None, method: str) -> FitResult:
-    """Fill in P0 from geometry (with its error from G_e's), the method and the design."""
-    changes: dict = {"method": method, "design": _design_fields(derived)}
+def _tube_law_parameters(derived: DerivedGeometry, tube_law: str, g_e: float) -> tuple:
+    t = derived.tube
+    if tube_law == "thick-wall":
+        return (("outer_radius_mm", t.outer_radius_mm), ("inner_radius_mm", t.inner_radius_mm), ("mu_mpa", g_e))
+    return (("outer_radius_mm", t.outer_radius_mm), ("g_e_mpa", g_e))
+
+
+def _complete(r: FitResult, derived: DerivedGeometry, p0_given: float | None, predictor, context: dict,
+              largest_deg: float) -> FitResult:
+    """Fill in P0 from geometry (with its error from G_e's), the method, design, tube law and notes."""
+    law = context["tube_law"]
+    g_e = derived.tube.g_e_mpa if r.g_e_mpa is None else r.g_e_mpa
+    beyond = int(np.count_nonzero(np.isin(predictor.last_status, [int(s) for s in VALIDITY_LIMITS])))
+    gap = context["closure_gap_deg"]
+    notes = []
+    if gap is None:
+        notes.append("the loop is not closed: the data end above the pressure they started at")
+    elif abs(gap) > max(MIN_BEND_DEG, CLOSURE_FRACTION * largest_deg):
+        notes.append(f"the loop does not close: it ends {gap:+.3g} deg from where it started (residual bend); "
+                     "the branches are fitted as measured")
+    if beyond:
+        notes.append(f"{beyond} of {r.n_points} points need model states beyond its validity limits "
+                     "(coiled, kinked or over-stretched): the fitted values describe the formula, not a real sleeve")
+    changes: dict = {"method": predictor.last_method, "design": _design_fields(derived), "tube_law": law,
+                     "tube_law_parameters": _tube_law_parameters(derived, law, g_e), "beyond_validity": beyond,
+                     "measurement": context["measurement"], "closure_gap_deg": gap, "notes": tuple(notes)}
     if "p0_kpa" not in r.fitted:
-        g_e = derived.tube.g_e_mpa if r.g_e_mpa is None else r.g_e_mpa
         changes["g_e_mpa"] = g_e
         if p0_given is None:
-            p0 = float(_geometry_p0_kpa(derived, g_e))
+            p0 = float(_geometry_p0_kpa(derived, g_e, law))
             changes["p0_kpa"] = p0
             changes["p0_source"] = "geometry"
-            if r.g_e_mpa_se is not None:  # P0 is proportional to G_e
+            if r.g_e_mpa_se is not None:  # P0 is proportional to the law's modulus
                 changes["p0_kpa_se"] = p0 * r.g_e_mpa_se / g_e
     return dataclasses.replace(r, **changes)

@@ -29,14 +29,17 @@ strip's lateral direction, which a clamp holds fixed) and each joint's signed tu
 angle is taken there, so a 300 deg bend sums without wrapping or flips, and coordinate
 noise across the plane is dropped.
 
+The axis is the direction across which all chords of all frames scatter least (SVD);
+when the chords do not span a plane (every frame straight) it is ``tangent x normal``.
+
 * Signed (``normal`` given: the direction out of the *back* of the fabric at the clamp,
-  the side a positive bend turns toward, docs/model.md sign convention): the axis is
-  ``tangent x normal`` with ``tangent`` the strip's direction at the clamp (clamped end to
-  tip). Without ``tangent`` it is the first chord of the straightest frame: include a
-  frame at or near rest (0 kPa), or pass ``tangent`` when every frame is bent.
-* Unsigned (no ``normal``): the axis is the direction across which all chords of all
-  frames scatter least (SVD), oriented so that the most bent frame reads positive; the
-  other frames keep their signs relative to it.
+  the side a positive bend turns toward, docs/model.md sign convention): the axis points
+  along ``tangent x normal``, with ``tangent`` the strip's direction at the clamp
+  (clamped end to tip). Without ``tangent`` it is the first chord of the straightest
+  frame: include a frame at or near rest (0 kPa), or pass ``tangent`` when every frame
+  is bent far.
+* Unsigned (no ``normal``): the axis is oriented so that the most bent frame reads
+  positive; the other frames keep their signs relative to it.
 
 Noise: the signed in-plane angle of a chord has no bias under isotropic coordinate
 noise, so neither has the reading. The noise itself is estimated from the scatter of
@@ -72,6 +75,8 @@ __all__ = ["MarkerSide", "MarkerLayout", "PAPER_LAYOUT", "reading_deg", "marker_
 
 PAPER_MARKERS_PER_SIDE = 7
 PAPER_SIDES = 2
+#: The chords span a plane when their second singular value exceeds the third by this factor.
+_PLANE_RATIO = 4.0
 
 
 class MarkerSide(str, enum.Enum):
@@ -249,9 +254,10 @@ def _signed_axis(u: np.ndarray, normal, tangent) -> np.ndarray:
     return a / np.linalg.norm(a)
 
 
-def _estimated_axis(u: np.ndarray) -> np.ndarray:
-    chords = u.reshape(-1, 3)
-    return np.linalg.svd(chords, full_matrices=False)[2][-1]
+def _estimated_axis(u: np.ndarray) -> np.ndarray | None:
+    """Least-scatter direction of all chords, None when they do not span a plane (all straight)."""
+    _, sv, vt = np.linalg.svd(u.reshape(-1, 3), full_matrices=False)
+    return vt[-1] if sv[-2] > _PLANE_RATIO * sv[-1] else None
 
 
 def marker_angles(
@@ -307,12 +313,14 @@ def marker_angles(
     chords = np.diff(m, axis=-2)
     u = _unit(chords, "markers")  # (..., sides, k-1, 3)
     signed = normal is not None
-    if signed:
-        axis = _signed_axis(u, normal, tangent)
-    elif tangent is not None:
+    if tangent is not None and not signed:
         raise ParameterError("tangent needs normal (it only orients the signed angles)")
-    else:
-        axis = _estimated_axis(u)
+    axis = _estimated_axis(u)
+    if signed:
+        oriented = _signed_axis(u, normal, tangent)
+        axis = oriented if axis is None else axis * np.sign(axis @ oriented)
+    elif axis is None:
+        axis = np.linalg.svd(u.reshape(-1, 3), full_matrices=False)[2][-1]
     joint = _turning(u, axis)
     side = joint.sum(axis=-1)
     theta = side.mean(axis=-1)

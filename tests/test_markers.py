@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pytest
 
+from markerdata import paper_frame, strip_points
+
 from embroact.patterns.base.errors import ParameterError
 from embroact.predict.markers import (PAPER_LAYOUT, MarkerLayout, bend_angle_deg, marker_angles, marker_positions_mm,
                                       reading_deg)
@@ -110,28 +112,6 @@ def test_bad_input(markers, kwargs, match):
 
 
 # ----------------------------------------------------------------------------- layout and model reading
-def _strip(theta_deg, offsets_mm, l0=100.0):
-    """Points at arc lengths s on a uniform bend of l0 (straight beyond), by hand: base at 0, tangent +x."""
-    t = math.radians(theta_deg)
-    out = []
-    for s in offsets_mm:
-        on = min(s, l0)
-        if t == 0.0:
-            x, y = on, 0.0
-        else:
-            R = l0 / t
-            x, y = R * math.sin(on / R), R * (1 - math.cos(on / R))
-        out.append((x + (s - on) * math.cos(t), y + (s - on) * math.sin(t)))
-    return np.array(out)
-
-
-def _paper_frame(theta_deg, offset=0.0, rot=np.eye(3), lateral=8.0):
-    s = offset + 10.0 * np.arange(7)
-    xy = _strip(theta_deg, s)
-    row = np.concatenate([xy, np.zeros((7, 1))], axis=1)
-    return np.concatenate([row + [0, 0, -lateral], row + [0, 0, lateral]]) @ rot.T
-
-
 @pytest.mark.parametrize("theta", [-300.0, -45.0, 0.0, 30.0, 155.0, 300.0])
 def test_reading_on_the_bent_part_is_n_minus_2_spacings_of_curvature(theta):
     assert reading_deg(theta, 100.0) == pytest.approx(theta * 50.0 / 100.0, abs=1e-9)
@@ -147,12 +127,12 @@ def test_reading_with_markers_past_the_bent_length():
     # all markers on the straight part read nothing
     assert reading_deg(90.0, 100.0, MarkerLayout(offset_mm=100.0)) == pytest.approx(0.0, abs=1e-12)
     # a chord straddling the end of the bend (markers at 95, 105, 115): from the hand-built points
-    p = _strip(90.0, [95.0, 105.0, 115.0])
+    p = strip_points(90.0, [95.0, 105.0, 115.0])
     d1, d2 = p[1] - p[0], p[2] - p[1]
     want = math.degrees(math.atan2(d1[0] * d2[1] - d1[1] * d2[0], d1 @ d2))
     got = reading_deg(90.0, 100.0, MarkerLayout(markers_per_side=3, offset_mm=95.0, rows=1))
     assert got == pytest.approx(want, abs=1e-12) and 0.0 < got < 2.25  # less than the midpoint integral
-    np.testing.assert_allclose(marker_positions_mm(90.0, 100.0, lay), _strip(90.0, [90.0, 100.0, 110.0]),
+    np.testing.assert_allclose(marker_positions_mm(90.0, 100.0, lay), strip_points(90.0, [90.0, 100.0, 110.0]),
                                atol=1e-12)
 
 
@@ -174,10 +154,10 @@ def test_300_degree_bend_reads_with_the_right_sign():
     R = _rotation(11)
     normal = R @ [0.0, 1.0, 0.0]
     for theta in (300.0, -300.0):
-        frame = _paper_frame(theta, rot=R)
+        frame = paper_frame(theta, rot=R)
         assert bend_angle_deg(frame, normal=normal) == pytest.approx(theta / 2, abs=1e-9)
     # markers 40 mm from the clamp: the first chord has turned 135 deg; a rest frame fixes the tangent
-    frames = np.stack([_paper_frame(0.0, 40.0, R), _paper_frame(300.0, 40.0, R), _paper_frame(-300.0, 40.0, R)])
+    frames = np.stack([paper_frame(0.0, 40.0, R), paper_frame(300.0, 40.0, R), paper_frame(-300.0, 40.0, R)])
     got = bend_angle_deg(frames, normal=normal)
     np.testing.assert_allclose(got, [0.0, 150.0, -150.0], atol=1e-9)
     # or the tangent is given
@@ -188,7 +168,7 @@ def test_signed_angles_are_unbiased_under_coordinate_noise_and_report_their_floo
     rng = np.random.default_rng(7)
     sigma, n = 0.2, 4000
     for theta in (0.0, 150.0):
-        clean = _paper_frame(theta)
+        clean = paper_frame(theta)
         frames = clean + rng.normal(0.0, sigma, size=(n,) + clean.shape)
         r = marker_angles(frames, normal=(0.0, 1.0, 0.0), tangent=(1.0, 0.0, 0.0))
         sd = float(np.std(r.theta_deg))
@@ -202,7 +182,7 @@ def test_signed_angles_are_unbiased_under_coordinate_noise_and_report_their_floo
 def test_unsigned_series_has_no_noise_bias_at_zero_bend():
     """The old unsigned mode read +18 deg at zero bend for 0.2 mm noise; the series axis keeps signs."""
     rng = np.random.default_rng(3)
-    frames = np.stack([_paper_frame(0.0)] * 500 + [_paper_frame(150.0)])
+    frames = np.stack([paper_frame(0.0)] * 500 + [paper_frame(150.0)])
     frames = frames + rng.normal(0.0, 0.2, size=frames.shape)
     r = marker_angles(frames)
     assert not r.signed and float(r.theta_deg[-1]) == pytest.approx(75.0, abs=3.0)
