@@ -36,7 +36,10 @@ def test_quick_zigzag_json_matches_the_api(capsys):
                                                                         "tube_law": "paper"}
     assert d["model"]["tube"] == {"outer_radius_mm": 1.5, "inner_radius_mm": 1.0, "g_e_mpa": 0.13}
     assert d["derived"]["r0_mm"] == pytest.approx(2.5814206750769157, rel=1e-12)
-    assert d["lockup_theta_deg"] == pytest.approx(1888.7643, abs=1e-3)
+    # the zigzag's branch ends at a fold of the formula, far inside the coiled region
+    assert d["branch_end"]["kind"] == "fold" and d["branch_end"]["status"] == "COILED"
+    assert d["branch_end"]["theta_deg"] == pytest.approx(1888.7643, abs=1e-3)
+    assert d["limits"][:10] == [[]] * 10
 
 
 def test_quick_cross_uses_the_calibration_set(capsys):
@@ -47,7 +50,7 @@ def test_quick_cross_uses_the_calibration_set(capsys):
     assert d["model"]["p0_source"] == d["model"]["g_source"] == "calibration paper-2025 (cross, angle_deg=45)"
     assert d["status"] == ["INFLATION", "BENDING", "BENDING"]
     assert d["theta_deg"][1] < 0 and d["theta_deg"][2] < d["theta_deg"][1]  # alpha0 = 45 bends negative
-    assert d["lockup_pressure_kpa"] is None  # lock-up is a pole: no finite pressure
+    assert d["branch_end"]["kind"] == "lock-up" and d["branch_end"]["pressure_kpa"] is None  # a pole
 
 
 def test_p0_from_geometry_and_thick_wall_law(capsys):
@@ -144,3 +147,14 @@ def test_parse_pressures_inclusive_stop():
     assert parse_pressures("0:0.95:0.1")[-1] == pytest.approx(0.9)
     with pytest.raises(ParameterError, match="--pressure-kpa"):
         parse_pressures("")
+
+
+def test_paper_w5_zigzag_reports_its_coiled_and_over_stretched_states(capsys):
+    """Built-in calibration (G = 0.8 MPa, P0 = 50 kPa): 2032 deg at 250 kPa is not a valid bend."""
+    d = run_json(capsys, "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50")
+    assert d["status"] == ["BENDING", "BENDING", "COILED", "COILED", "COILED"]
+    assert d["limits"][3] == ["COILED", "KINKED", "OVERSTRETCHED"] and d["limits"][0] == []
+    assert main(["predict", "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50"]) == 0
+    rows = capsys.readouterr().out.splitlines()[2:]
+    assert rows[3].split()[2] == "COILED" and rows[3].endswith("COILED+KINKED+OVERSTRETCHED")
+    assert rows[0].split()[2] == "BENDING" and len(rows[0].split()) == 7

@@ -15,7 +15,7 @@ Examples
 >>> main(["predict", "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85",
 ...       "--pressure-kpa", "0,100,200"])
 A1: zigzag w=7 mm s=1 mm l0=100 mm; r0 2.581 mm; G 2.7 MPa (given), P0 85 kPa (given); tube law paper; method stable-analytic-trace
-pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm
+pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity
      0.000       0.000   INFLATION     100.000  1.5000  0.000     1.0000
    100.000      11.539   BENDING       101.040  2.5814  0.000     2.3281
    200.000     102.930   BENDING       109.275  2.5814  0.000     2.3386
@@ -58,10 +58,22 @@ def _finite(x: float):
     return x if math.isfinite(x) else None
 
 
-def _result(act, c, lock) -> dict:
+def _limits(act, c) -> list[list[str]]:
+    """Every validity limit each point exceeds (its status names only the first)."""
+    import numpy as np
+
+    from ...predict.validity import limit_flags
+
+    return limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, act.model.length_mm).names()
+
+
+def _result(act, c) -> dict:
+    from ...predict.validity import branch_end
+
     out = act.as_dict()
-    out.update({"lockup_theta_deg": lock[0], "lockup_pressure_kpa": _finite(lock[1])})
+    out["branch_end"] = branch_end(act.model).as_dict()  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
+    out["limits"] = _limits(act, c)
     return out
 
 
@@ -76,17 +88,16 @@ def _table(act, c) -> str:
             f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube law {model.tube_law}; "
             f"method {c.method}")
     rows = [head + "".join(f"; note: {n}" for n in choice.notes)]
-    rows.append("pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm")
+    rows.append("pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
     d = c.as_dict()
-    for p, t, s, l, r, b, di in zip(*(d[k] for k in _COLUMNS)):
-        rows.append(f"{p:10.3f}  {t:10.3f}   {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}")
+    for p, t, s, l, r, b, di, lim in zip(*(d[k] for k in _COLUMNS), _limits(act, c)):
+        rows.append(f"{p:10.3f}  {t:10.3f}   {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
 
 
 def run(args) -> int:
     """Predict and print; return the exit code."""
     from ...patterns.base.errors import ParameterError
-    from ...predict.curve import lockup
 
     quick = args.target in ("zigzag", "cross")
     target = load_target(args, pattern=args.target if quick else None, design_path=None if quick else args.target)
@@ -100,7 +111,7 @@ def run(args) -> int:
             names = ", ".join(a.name for a in analysis.actuators)
             raise ParameterError(f"--actuator must be one of {names}, got {args.actuator!r}")
     curves = dict(zip((a.name for a in analysis.actuators), analysis.curves(pressures, method=args.method)))
-    results = [_result(a, curves[a.name], lockup(a.model)) for a in acts]
+    results = [_result(a, curves[a.name]) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
