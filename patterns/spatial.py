@@ -72,7 +72,7 @@ class TubeIndex:
         Tube axes [mm].
     """
 
-    __slots__ = ("_a", "_d", "_len", "_s", "_tube", "_tree", "count", "queries")
+    __slots__ = ("_a", "_d", "_len", "_s", "_tube", "_tree", "queries")
 
     def __init__(self, paths) -> None:
         a, d, tube, s = [], [], [], []
@@ -85,7 +85,6 @@ class TubeIndex:
             d.append(dk[keep])
             tube.append(np.full(len(lk), k, dtype=np.int64))
             s.append(np.concatenate([[0.0], np.cumsum(lk)[:-1]]))
-        self.count = len(a)
         empty = np.zeros((0, 2))
         self._a = np.concatenate(a) if a else empty
         self._d = np.concatenate(d) if d else empty

@@ -134,9 +134,14 @@ class Subject:
         return TubeIndex([t.path for t in self.layout.tubes])
 
     @cached_property
+    def laid_paths(self) -> tuple:
+        """Every tube's whole laid length (path and end margins) as a LineString."""
+        return tuple(t.extended_path() for t in self.layout.tubes)
+
+    @cached_property
     def laid_tubes(self) -> TubeIndex:
-        """Spatial index of every tube's whole laid length (path and end margins)."""
-        return TubeIndex([t.extended_path() for t in self.layout.tubes])
+        """Spatial index of every tube's whole laid length."""
+        return TubeIndex(self.laid_paths)
 
     @cached_property
     def legs(self) -> np.ndarray:

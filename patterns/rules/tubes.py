@@ -95,7 +95,7 @@ def _find_close_pairs(s: Subject) -> list[tuple[int, int, float, np.ndarray]]:
     tubes = s.layout.tubes
     if len(tubes) < 2:
         return []
-    laid = [t.extended_path() for t in tubes]
+    laid = list(s.laid_paths)
     corridor = max(t.corridor_radius_mm for t in tubes)
     half = max((t.half_width_mm or 0.0) for t in tubes)
     reach = max(2.0 * corridor, 2.0 * half + s.settings.actuator_clearance_mm)
@@ -171,7 +171,7 @@ def end_margins(s: Subject) -> list[Finding]:
     for k, tube in enumerate(s.layout.tubes):
         if tube.end_margin_mm <= 0.0:
             continue
-        ends = np.asarray(tube.extended_path().coords)[[0, -1]]
+        ends = np.asarray(s.laid_paths[k].coords)[[0, -1]]
         for end, label in zip(ends, ("start", "end")):
             if np.any(end < lo - tol) or np.any(end > hi + tol):
                 out.append(s.tube_finding(
