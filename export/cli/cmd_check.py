@@ -4,7 +4,8 @@ A ``.toml`` input is an embroact design: it is generated and every rule runs
 (geometry, pattern, file structure, model). Any other input is an embroidery file
 read with pyembroidery, checked against the tube(s) given with ``--tube-path``
 (repeatable, one per tube, ``"x1,y1 x2,y2 ..."`` in mm in the file's frame as
-pyembroidery reads it: 0.1 mm units divided by 10, y down; see
+pyembroidery reads it: 0.1 mm units divided by 10, y down; or ``drawing.svg#tube1``, a
+drawn path in page mm, y down, the frame a design built from that drawing is sewn in; see
 :mod:`embroact.export.machine.filecheck`) or ``--tube TUBES.toml``; findings name the
 record index in the file's own order.
 
@@ -33,8 +34,9 @@ def add_arguments(parser, name: str) -> None:
     parser.add_argument("input", nargs="?", metavar="DESIGN.toml|FILE",
                         help="embroact design (TOML) or any embroidery file")
     tube = parser.add_argument_group("tube (embroidery files only)")
-    tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'",
-                      help="tube axis in mm, file frame (0.1 mm units / 10, y down); repeat for several tubes")
+    tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'|FILE.svg#ID",
+                      help="tube axis in mm, file frame (0.1 mm units / 10, y down), or a path of an SVG drawing "
+                           "(drawing.svg#tube1: page mm, y down); repeat for several tubes")
     add_tube_arguments(tube, fields=("outer_radius_mm", "clearance_mm"))
     tube.add_argument("--end-margin-mm", type=float, default=0.0,
                       help="free tube beyond each end of the path [mm] (default 0)")
@@ -66,8 +68,11 @@ def _check_file(args):
     if args.tube:
         tubes, machine = load_tube_file(args.tube)
     else:
+        from ..files.svgfile import is_svg_ref, read_svg_path
+
         tubes = tuple(
-            tube_layout(parse_tube_path(text), name=f"tube {i + 1}", outer_radius_mm=args.outer_radius_mm,
+            tube_layout(read_svg_path(text).points_mm if is_svg_ref(text) else parse_tube_path(text),
+                        name=f"tube {i + 1}", outer_radius_mm=args.outer_radius_mm,
                         clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
             for i, text in enumerate(args.tube_path)
         )

@@ -33,7 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                        help="what to change when s and alpha0 cannot both be met: the smaller relative "
                             "change (auto), the interval or the angle")
     g.add_argument("--length-mm", type=float, default=100.0, help="straight path length l0 [mm] (default 100; ignored with --path)")
-    g.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm, e.g. "M 0 0 C 30 -20 60 20 90 0"')
+    g.add_argument("--path", metavar="SVG_D|FILE.svg#ID",
+                   help='tube path: an SVG path "d" string in mm (e.g. "M 0 0 C 30 -20 60 20 90 0") or a path of '
+                        "an SVG drawing chosen by id, label or layer (drawing.svg#tube1; real units, transforms applied)")
     g.add_argument("--name", default="A1", help="actuator name for the thread list (default A1)")
     t = parser.add_argument_group("tube")
     add_tube_arguments(t, fields=[flag[1] for flag in TUBE_FLAGS])
@@ -56,7 +58,9 @@ def _plan(args):
 
     tube = tube_from_args(args)
     if args.path is not None:  # an empty --path is an error, not the default straight path
-        path = Centerline.from_svg_path(args.path)
+        from ..files.svgfile import is_svg_ref, svg_centerline
+
+        path = svg_centerline(args.path) if is_svg_ref(args.path) else Centerline.from_svg_path(args.path)
     else:
         path = Centerline.straight(_length(args.length_mm))
     if args.command == "cross":

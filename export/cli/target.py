@@ -84,7 +84,9 @@ def add_quick_arguments(group, *, pattern: str | None, required: bool = False, t
                            help="cross: what to change when s and alpha0 cannot both be met (default auto)")
     group.add_argument("--length-mm", type=float, default=DEFAULT_LENGTH_MM,
                        help="straight path length l0 [mm] (default 100; ignored with --path)")
-    group.add_argument("--path", metavar="SVG_D", help='tube path as an SVG path "d" string in mm')
+    group.add_argument("--path", metavar="SVG_D|FILE.svg#ID",
+                       help='tube path: an SVG path "d" string in mm, or a path of an SVG drawing chosen by id, '
+                            "label or layer (drawing.svg#tube1; real units, transforms applied)")
     group.add_argument("--name", default="A1", help="actuator name (default A1)")
     add_tube_arguments(group, fields=tube_fields or [flag[1] for flag in TUBE_FLAGS])
 
@@ -107,7 +109,9 @@ def _quick_design(args, pattern: str):
         values["angle_deg"] = args.angle_deg
     params = kind.params(**values)
     if args.path is not None:  # an empty --path is an error, not the default straight path
-        path = Centerline.from_svg_path(args.path)
+        from ..files.svgfile import is_svg_ref, svg_centerline
+
+        path = svg_centerline(args.path) if is_svg_ref(args.path) else Centerline.from_svg_path(args.path)
     else:
         path = Centerline.straight(check_range("length_mm", args.length_mm, low=0.0, high=1e5))
     extra = {k: getattr(args, k) for k in kind.options if getattr(args, k, None) is not None}

@@ -52,7 +52,7 @@ from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
 from ...predict.calibration import CalibrationPoint, CalibrationSet
 from .atomic import write_text_atomic
-from .tomltext import toml_key, toml_value
+from .tomltext import dumps
 
 __all__ = [
     "BendData",
@@ -202,13 +202,9 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
 
 def calibration_toml(cset: CalibrationSet) -> str:
     """The TOML text of a calibration set (stable key order, shortest round-trip floats)."""
-    lines = ["# embroact calibration set", f"name = {toml_value(cset.name)}"]
-    lines.append(f"description = {toml_value(cset.description)}")
-    if cset.materials:
-        lines += ["", "[materials]"] + [f"{toml_key(k)} = {toml_value(v)}" for k, v in cset.materials]
-    for p in cset.points:
-        lines += ["", "[[points]]"] + [f"{k} = {toml_value(v)}" for k, v in p.as_dict().items()]
-    return "\n".join(lines) + "\n"
+    doc = {"name": cset.name, "description": cset.description, "materials": dict(cset.materials),
+           "points": [p.as_dict() for p in cset.points]}
+    return "# embroact calibration set\n" + dumps({k: v for k, v in doc.items() if v or k != "materials"})
 
 
 def write_calibration(path, cset: CalibrationSet) -> None:

@@ -1,7 +1,9 @@
 """Design files: TOML in (:func:`load_design`), TOML out (:func:`dumps_design`, :func:`save_design`).
 
-The schema is documented in :mod:`embroact.patterns.design`. Every problem with a
-file (missing, unreadable, not UTF-8, TOML syntax with its line, schema) is one
+The schema is documented in :mod:`embroact.patterns.design`. An actuator's
+``path = "drawing.svg#tube1"`` takes its tube path from an SVG drawing (resolved relative
+to the design file; :mod:`embroact.export.files.svgfile`). Every problem with a file
+(missing, unreadable, not UTF-8, TOML syntax with its line, schema, SVG) is one
 :class:`DesignFileError` line that starts with the file name.
 
 Examples
@@ -28,21 +30,62 @@ import tomllib
 from pathlib import Path
 
 from ...patterns.design import Design, design_from_dict, design_to_dict
-from ...patterns.base.errors import DesignFileError
+from ...patterns.base.errors import DesignFileError, PathError
 from .atomic import write_text_atomic
-from .tomltext import toml_key, toml_value
+from .tomltext import dumps
 
 __all__ = ["load_design", "loads_design", "dumps_design", "save_design"]
 
 
-def loads_design(text: str, *, source: str = "<string>") -> Design:
-    """Parse TOML text into a :class:`Design`; errors start with ``source``."""
+def _svg_paths(data, base_dir) -> object:
+    """``data`` with every actuator ``path = "FILE.svg#name"`` replaced by its points (plan frame)."""
+    from ...patterns.svgpath import to_plan
+    from .svgfile import is_svg_ref, read_svg_path
+
+    acts = data.get("actuator") if isinstance(data, dict) else None
+    if not isinstance(acts, list) or not any(isinstance(a, dict) and is_svg_ref(a.get("path")) for a in acts):
+        return data
+    out = []
+    for i, a in enumerate(acts):
+        if isinstance(a, dict) and is_svg_ref(a.get("path")):
+            try:
+                a = {**a, "path": to_plan(read_svg_path(a["path"], base_dir=base_dir).points_mm).tolist()}
+            except PathError as exc:
+                raise DesignFileError(f"actuator[{i}].path: {exc}") from None
+        out.append(a)
+    return {**data, "actuator": out}
+
+
+def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.PathLike | None = None) -> Design:
+    """Parse TOML text into a :class:`Design`; errors start with ``source``.
+
+    Parameters
+    ----------
+    text : str
+        The design file's TOML text.
+    source : str
+        Name that starts every error message (the file name).
+    base_dir : str or os.PathLike, optional
+        Folder that ``path = "FILE.svg#name"`` references are resolved against (the design
+        file's folder); default: the working directory.
+
+    Returns
+    -------
+    Design
+        The validated design; SVG file paths are read into point lists (plan frame).
+
+    Examples
+    --------
+    >>> loads_design('[[actuator]]\\nname = "A"\\npattern = "zigzag"\\nwidth_mm = 7\\ninterval_mm = 1\\n'
+    ...              'length_mm = 50').actuators[0].centerline.length_mm
+    50.0
+    """
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DesignFileError(f"{source}: TOML syntax error: {exc}") from None
     try:
-        return design_from_dict(data)
+        return design_from_dict(_svg_paths(data, base_dir))
     except DesignFileError as exc:
         raise DesignFileError(f"{source}: {exc}") from None
 
@@ -65,24 +108,12 @@ def load_design(path: str | os.PathLike) -> Design:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise DesignFileError(f"{p}: design file is not UTF-8 text (byte {exc.start})") from None
-    return loads_design(text, source=str(p))
-
-
-def _lines(d: dict) -> list[str]:
-    return [f"{toml_key(k)} = {toml_value(v)}" for k, v in d.items() if not isinstance(v, dict)]
+    return loads_design(text, source=str(p), base_dir=p.parent)
 
 
 def dumps_design(design: Design) -> str:
     """TOML text of ``design`` (paths as point lists), readable by :func:`loads_design`."""
-    d = design_to_dict(design)
-    out = _lines({"name": d["name"]})
-    for table in ("tube", "machine", "operation"):
-        out += ["", f"[{table}]"] + _lines(d[table])
-    for act in d["actuator"]:
-        out += ["", "[[actuator]]"] + _lines(act)
-        if act["model"]:
-            out += ["[actuator.model]"] + _lines(act["model"])
-    return "\n".join(out) + "\n"
+    return dumps(design_to_dict(design))
 
 
 def save_design(design: Design, path: str | os.PathLike) -> None:

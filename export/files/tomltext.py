@@ -1,59 +1,74 @@
-"""TOML text for the files embroact writes (design files, calibration sets): keys and values.
+"""TOML text for the files embroact writes (design files, calibration sets), by tomli-w.
 
-Strings are TOML basic strings: ``"`` and ``\\`` escaped, the control characters
-U+0000-U+001F and U+007F escaped (TOML forbids them raw), everything else kept as UTF-8.
-Floats are written by ``repr`` (shortest round trip; ``inf``/``nan`` are TOML too).
+:func:`dumps` hands tomli-w plain Python values: numpy scalars and arrays become Python
+numbers and lists (``np.int64(3)`` stays the integer 3), tuples become lists. tomli-w
+writes nested tables and arrays of tables, escapes what TOML forbids raw (control
+characters, U+007F) and writes floats as their shortest round-trip ``repr``.
 
 Examples
 --------
->>> from embroact.export.files.tomltext import toml_key, toml_value
->>> toml_value("a\\"b\\n"), toml_value(True), toml_value([1, 0.5])
-('"a\\\\"b\\\\n"', 'true', '[1, 0.5]')
->>> print(toml_value("line\\n" + chr(0x7F)))  # raw control characters are not TOML
-"line\\n\\u007f"
->>> toml_key("width_mm"), toml_key("tube 1")
-('width_mm', '"tube 1"')
+>>> import tomllib
+>>> import numpy as np
+>>> from embroact.export.files.tomltext import dumps
+>>> doc = {"name": 'a"b' + chr(0x7F), "n": np.int64(3), "xy": np.array([0.5, 1.0]),
+...        "actuator": [{"name": "A1", "model": {"g_mpa": 2.7}}]}
+>>> print(dumps({"n": doc["n"], "tube": {"outer_radius_mm": 1.5}}), end="")
+n = 3
+<BLANKLINE>
+[tube]
+outer_radius_mm = 1.5
+>>> tomllib.loads(dumps(doc)) == {"name": 'a"b' + chr(0x7F), "n": 3, "xy": [0.5, 1.0],
+...                               "actuator": [{"name": "A1", "model": {"g_mpa": 2.7}}]}
+True
 """
 from __future__ import annotations
 
-import numbers
-import re
+from typing import Any
+
+import numpy as np
 
 from ...patterns.base.errors import DesignFileError
 
-__all__ = ["toml_key", "toml_value"]
-
-_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
-_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+__all__ = ["dumps"]
 
 
-def _escape(ch: str) -> str:
-    if ch in _ESCAPES:
-        return _ESCAPES[ch]
-    return f"\\u{ord(ch):04x}" if ord(ch) < 0x20 or ord(ch) == 0x7F else ch
+def _plain(value: Any, where: str) -> Any:
+    if isinstance(value, dict):
+        return {str(k): _plain(v, f"{where}.{k}" if where else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain(v, f"{where}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, np.generic):
+        return value.item()
+    if value is None or not isinstance(value, (str, bool, int, float)):
+        raise DesignFileError(f"{where or 'value'}: cannot write {value!r} to TOML (strings, numbers, lists, tables)")
+    return value
 
 
-def toml_value(value) -> str:
-    """TOML text of a string, bool, number or list of them.
+def dumps(data: dict) -> str:
+    """TOML text of a table of strings, booleans, numbers, lists and tables.
+
+    Parameters
+    ----------
+    data : dict
+        The document; numpy values allowed. ``None`` is not TOML.
+
+    Returns
+    -------
+    str
+        The TOML text (tomli-w's layout: keys first, then sub-tables).
 
     Raises
     ------
     DesignFileError
-        Any other type (a table, None, ...).
+        A value TOML cannot hold, naming its key path.
+
+    Examples
+    --------
+    >>> dumps({"model": {"p0_kpa": None}})
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.DesignFileError: model.p0_kpa: cannot write None to TOML (strings, numbers, lists, tables)
     """
-    if isinstance(value, str):
-        return '"' + "".join(_escape(ch) for ch in value) + '"'
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, numbers.Real):
-        return repr(float(value))
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(toml_value(x) for x in value) + "]"
-    raise DesignFileError(f"cannot write value {value!r} to TOML")
+    import tomli_w
 
-
-def toml_key(key: str) -> str:
-    """``key`` bare when it may be, else quoted."""
-    return key if _BARE_KEY.fullmatch(key) else toml_value(key)
+    return tomli_w.dumps(_plain(data, ""))
