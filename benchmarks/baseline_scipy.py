@@ -1,4 +1,4 @@
-"""The straightforward scipy implementation of the model, as a baseline (MODEL.md section 4).
+"""The straightforward scipy implementation of the model, as a baseline (docs/model.md section 4).
 
 What one would write first, with no embroact code: the strain energy by numerical
 double integration of the Neo-Hookean density over the tube wall
@@ -8,7 +8,7 @@ and ``brentq`` per pressure on the bracket [0, theta_max]. Scalar Python through
 
 Energy: ``E = (G l0 / 2) * integral over rho in [d, r], phi in [0, 2 pi] of
 (lambda1^2 + lambda2^2 + (lambda1 lambda2)^-2 - 3) rho``, ``lambda1 = A + B rho sin(phi)``,
-``lambda2 = r / r0`` (the paper's stretches; MODEL.md's closed form is this integral).
+``lambda2 = r / r0`` (the paper's stretches; the closed form of docs/model.md section 4 is this integral).
 
 Examples
 --------

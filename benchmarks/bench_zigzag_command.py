@@ -1,6 +1,6 @@
 """Benchmark: ``embroact zigzag ... -o x.dst`` against importing numpy, shapely and pystitch.
 
-Target (issue 3 brief): the command takes at most ~1.3x the bare imports.  Run::
+Target: the command takes at most ~1.3x the bare imports.  Run::
 
     python benchmarks/bench_zigzag_command.py [--runs 15]
 

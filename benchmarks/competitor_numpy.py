@@ -1,6 +1,6 @@
 """The competitor: the model's closed form in vectorised numpy, written in an afternoon.
 
-What a careful numerical programmer writes from MODEL.md section 4 alone, without
+What a careful numerical programmer writes from docs/model.md section 4 alone, without
 embroact's solver: the strain energy in the rationalised form (the ``T`` term as
 ``2 c / (sqrt(a) sqrt(b) (sqrt(a) + sqrt(b)))`` with ``a = l/l0``,
 ``b = a + B^2 c/A``, so it keeps its digits near theta = 0), its total derivative

@@ -7,7 +7,7 @@ pressures run from 0 to the pressure at ``END_FRACTION`` of its stable branch
 (lock-up, fold or ``MAX_SAMPLE_BEND_DEG``), evenly spaced in angle, so every sampled
 pressure above P0 has a stable equilibrium and the whole branch is covered.
 
-The reference is ``tests/mpref.py`` (MODEL.md re-typed in mpmath, 50 digits), reused
+The reference is ``tests/mpref.py`` (docs/model.md re-typed in mpmath, 50 digits), reused
 here, not copied: each sampled pressure is ``P_ref`` at a grid angle, and its reference
 angle is that grid angle Newton-corrected at 60 digits for the rounding of the pressure
 to float64 (no embroact solver is involved).

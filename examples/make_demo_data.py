@@ -1,6 +1,6 @@
 """Write the small synthetic demo data sets in ``examples/data/`` (fixed seed, same bytes every run).
 
-They imitate the paper's experiment (MODEL.md section 8): pressure up in 10 kPa steps,
+They imitate the paper's experiment (docs/model.md section 11): pressure up in 10 kPa steps,
 then down again, with a hysteresis loop; angles come from embroact's model with known
 parameters plus Gaussian noise, so ``embroact fit`` has a known answer to find.
 

@@ -6,7 +6,7 @@ l0 = 100 mm.  For each one this script
 
 1. generates the stitches and measures the realised width and leg angle, from which
    the sleeve radius r0, thread angle beta0 and the transition pressure P0 follow
-   (MODEL.md sections 2-3; default tube r_f = 1.5 mm, d_f = 1.0 mm, G_e = 0.13 MPa);
+   (docs/model.md sections 2-3; default tube r_f = 1.5 mm, d_f = 1.0 mm, G_e = 0.13 MPa);
 2. takes G and P0 from the calibration set "paper-2025" (the paper's fitted values);
 3. predicts the bend angle from 0 to 300 kPa and reports its direction and lock-up.
 
@@ -41,7 +41,7 @@ from embroact.predict.status import status_names
 LENGTH_MM = 100.0
 PRESSURES_KPA = np.arange(0.0, 301.0, 10.0)
 REPORT_AT_KPA = (200.0, 250.0, 300.0)
-#: The paper's P0 predicted from geometry for its zigzag prototypes [kPa] (MODEL.md section 5).
+#: The paper's P0 predicted from geometry for its zigzag prototypes [kPa] (docs/model.md section 7).
 PAPER_PREDICTED_P0_KPA = {5.0: 25.0, 7.0: 85.0, 9.0: 180.0}
 #: (name, params) of the seven prototypes.
 PROTOTYPES = (

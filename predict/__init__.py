@@ -1,4 +1,4 @@
-"""embroact.predict: the deformation model of MODEL.md, its numerical methods and calibration.
+"""embroact.predict: the deformation model of docs/model.md, its numerical methods and calibration.
 
 No file I/O; scipy is imported only by the functions that need it (root finding,
 fitting). The names below load their module on first use (:mod:`embroact.patterns.base.lazy`), so

@@ -379,7 +379,7 @@ def _paper_2025() -> CalibrationSet:
 
 
 PAPER_2025 = _paper_2025()
-"""The paper's fitted parameters (MODEL.md section 5)."""
+"""The paper's fitted parameters (docs/model.md section 7)."""
 
 _REGISTRY: dict[str, CalibrationSet] = {PAPER_2025.name: PAPER_2025}
 

@@ -33,7 +33,7 @@ __all__ = ["DerivedGeometry", "derive", "derive_from_values"]
 
 @dataclass(frozen=True, slots=True)
 class DerivedGeometry:
-    """Realised pattern parameters and the sleeve they make (MODEL.md sections 2-3).
+    """Realised pattern parameters and the sleeve they make (docs/model.md sections 2-3).
 
     Attributes
     ----------

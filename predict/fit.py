@@ -549,7 +549,7 @@ def _check_direction(derived: DerivedGeometry, a: np.ndarray) -> None:
         want = "positive" if derived.bends_positive else "negative"
         raise ParameterError(
             f"angle_deg: the data bend {'positive' if np.median(big) > 0 else 'negative'} but this "
-            f"{derived.pattern} design bends {want} (theta > 0: thread side longer, MODEL.md section 4); "
+            f"{derived.pattern} design bends {want} (theta > 0: thread side longer, docs/model.md section 5); "
             "check the sign of the measured angles or the design"
         )
 

@@ -1,4 +1,4 @@
-"""Inflation phase (P < P0): the tube fills its sleeve without bending (MODEL.md section 3).
+"""Inflation phase (P < P0): the tube fills its sleeve without bending (docs/model.md section 3).
 
 The paper's fitted law, ``P(r) = (G_e/2) ((r/r_f)^2 + (r_f/r)^2 - 2) = (G_e/2)(x - 1/x)^2``
 with ``x = r/r_f``, and its closed-form inverse. Pressures are MPa inside the model

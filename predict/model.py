@@ -1,4 +1,4 @@
-"""Deformation phase physics (MODEL.md section 4): energy, volume, constraint, P(theta).
+"""Deformation phase physics (docs/model.md section 4): energy, volume, constraint, P(theta).
 
 Equations only, vectorised over numpy arrays that broadcast against a
 :class:`Geometry` (one design per row, shape ``(n, 1)``); no loops. Units inside:
@@ -12,7 +12,7 @@ Notation: ``A = (l + l0)/(2 l0)``, ``B = (l - l0)/(2 r l0)``, ``lambda2 = r/r0``
 Energy forms (``form=``)
 ------------------------
 ``"printed"``
-    ``E_s`` exactly as MODEL.md prints it: ``d^2`` first, then ``r^2 - d^2``,
+    ``E_s`` exactly as the paper prints it (docs/model.md section 4): ``d^2`` first, then ``r^2 - d^2``,
     ``r^4 - d^4`` and ``T = (2A/B^2)(a^-1/2 - b^-1/2)``. Fails near the straight
     state: the difference in ``T`` cancels, losing about ``2 log10(1/(B r))`` digits
     (all of them by ``|theta| ~ 1e-8 rad``) and dividing 0 by 0 at ``B = 0``.

@@ -1,4 +1,4 @@
-"""Tube laws of the inflation phase (MODEL.md section 3): pressure <-> outer radius.
+"""Tube laws of the inflation phase (docs/model.md section 3): pressure <-> outer radius.
 
 ``"paper"``
     The paper's fitted law ``P = (G_e/2)((r/r_f)^2 + (r_f/r)^2 - 2)`` (see

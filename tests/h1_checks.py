@@ -88,7 +88,7 @@ def legs(plan):
 
 
 def assert_valid_plan(plan, *, width_mm: float, interval_mm: float, angle_deg: float, passes: int) -> None:
-    """Record convention, corridor invariant, and the realised values within the card's tolerances
+    """Record convention, corridor invariant, and the realised values within the generators' tolerances
     (angle 0.1 deg, interval and width 1 %)."""
     assert_record_convention(plan)
     assert_outside_corridor(plan)

@@ -1,4 +1,4 @@
-"""50-digit mpmath reference of the deformation model, written from MODEL.md alone.
+"""50-digit mpmath reference of the deformation model, written from the equations of docs/model.md alone.
 
 Independent of ``embroact.predict``: every formula is re-typed here from the spec
 (sections 2-4 and the thick-walled tube law of section 3), evaluated with mpmath at
@@ -30,14 +30,14 @@ __all__ = ["DIGITS", "Ref", "sleeve_radius", "thread_angle", "paper_law", "thick
 
 
 def sleeve_radius(w, rf):
-    """MODEL.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi)."""
+    """docs/model.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi)."""
     with _digits():
         w, rf = mp.mpf(w), mp.mpf(rf)
         return (w + 2 * mp.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * mp.pi)
 
 
 def thread_angle(w, alpha0_deg, rf):
-    """MODEL.md section 2: beta0 [rad] from width, embroidery angle and tube radius."""
+    """docs/model.md section 2: beta0 [rad] from width, embroidery angle and tube radius."""
     with _digits():
         h, t = mp.mpf(w) / 2, mp.tan(mp.radians(mp.mpf(alpha0_deg)))
         return mp.asin(h * t / mp.sqrt((2 * mp.mpf(rf)) ** 2 + h**2 * (1 + t**2)))
@@ -51,7 +51,7 @@ def paper_law(r, rf, ge):
 
 
 def thick_wall_law(r, rf, df, mu):
-    """MODEL.md section 3 closed form: mu (ln(la/lb) + (lb^-2 - la^-2)/2), [MPa]."""
+    """docs/model.md section 3 closed form: mu (ln(la/lb) + (lb^-2 - la^-2)/2), [MPa]."""
     with _digits():
         r, rf, df = mp.mpf(r), mp.mpf(rf), mp.mpf(df)
         a = mp.sqrt(r**2 - (rf**2 - df**2))
@@ -80,7 +80,7 @@ def thick_wall_quad(r, rf, df, mu):
 
 
 class Ref:
-    """One design, every quantity of MODEL.md section 4 at 50 digits."""
+    """One design, every quantity of docs/model.md section 4 at 50 digits."""
 
     def __init__(self, pattern, *, l0, r0, beta0, rf, df, g, p0):
         with _digits():
@@ -122,7 +122,7 @@ class Ref:
         return r**2 - self.c / ((l + self.l0) / (2 * self.l0))
 
     def energy(self, l, r):
-        """E_s(l) exactly as printed in MODEL.md section 4 [N mm]."""
+        """E_s(l) exactly as the paper prints it (docs/model.md section 4) [N mm]."""
         l0 = self.l0
         A = (l + l0) / (2 * l0)
         B = (l - l0) / (2 * r * l0)

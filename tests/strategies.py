@@ -11,7 +11,7 @@ Everything drawn here is *valid by construction* (the generators must accept it)
   smooth spline-like curve) and SVG cubic Bezier splines, each at a random placement
   (origin and rotation);
 - :func:`model_designs`: :class:`ActuatorModel` values from random realistic
-  geometry (MODEL.md section 2 via ``derive_from_values``), G and P0;
+  geometry (docs/model.md section 2 via ``derive_from_values``), G and P0;
 - :func:`design_dicts`: plain design dicts (as parsed from TOML) with one to three
   actuators that ``design_from_dict`` and ``build_plan`` must accept.
 

@@ -1,6 +1,6 @@
 """Calibration sets: the paper's numbers, interpolation, extrapolation flags, user sets.
 
-Expected values are MODEL.md section 5's table and linear interpolation done by hand.
+Expected values are the paper's tables (docs/model.md section 7) and linear interpolation done by hand.
 """
 import dataclasses
 
@@ -18,7 +18,7 @@ from embroact.predict.calibration import (
     unregister,
 )
 
-# MODEL.md section 5, typed from the spec
+# the paper's tables (docs/model.md section 7), typed by hand
 PAPER_ZIGZAG = {5.0: (0.8, 50.0), 7.0: (2.7, 85.0), 9.0: (3.4, 180.0)}
 PAPER_CROSS = {15.0: (2.9, 150.0), 30.0: (12.0, 160.0), 45.0: (1.3, 170.0), 60.0: (2.9, 200.0)}
 

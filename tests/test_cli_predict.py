@@ -45,7 +45,7 @@ def test_quick_zigzag_json_matches_the_api(capsys):
 def test_quick_cross_uses_the_calibration_set(capsys):
     d = run_json(capsys, "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45",
                  "--pressure-kpa", "100,200,300")
-    assert d["model"]["g_mpa"] == 1.3 and d["model"]["p0_kpa"] == 170.0  # paper's fit, MODEL.md section 5
+    assert d["model"]["g_mpa"] == 1.3 and d["model"]["p0_kpa"] == 170.0  # paper's fit, docs/model.md section 7
     assert d["calibration"].startswith("calibration paper-2025")
     assert d["model"]["p0_source"] == d["model"]["g_source"] == "calibration paper-2025 (cross, angle_deg=45)"
     assert d["status"] == ["INFLATION", "BENDING", "BENDING"]

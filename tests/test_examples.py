@@ -1,6 +1,6 @@
 """The example scripts run as a user runs them (a subprocess) and print the paper's facts.
 
-Expected values: MODEL.md section 5 (P0 from geometry within 5 % of 25, 85, 180 kPa;
+Expected values: docs/model.md section 7 (P0 from geometry within 5 % of 25, 85, 180 kPa;
 cross bends positive for alpha0 = 15, 30 deg and negative for 45, 60 deg; neutral
 angle 33.37 deg for w = 7 mm) and the paper's fitted G, P0 typed from that section.
 """
@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-PAPER_FIT = {  # name: (G [MPa], P0 [kPa]), MODEL.md section 5
+PAPER_FIT = {  # name: (G [MPa], P0 [kPa]), docs/model.md section 7
     "zigzag w5": (0.8, 50.0), "zigzag w7": (2.7, 85.0), "zigzag w9": (3.4, 180.0),
     "cross a15": (2.9, 150.0), "cross a30": (12.0, 160.0), "cross a45": (1.3, 170.0), "cross a60": (2.9, 200.0),
 }

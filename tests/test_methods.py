@@ -1,4 +1,4 @@
-"""Every numerical method against the 50-digit mpmath evaluation of MODEL.md.
+"""Every numerical method against the 50-digit mpmath evaluation of docs/model.md section 4.
 
 Regions: near theta = 0 (B -> 0), mid-range, near the neutral angle (dV/dtheta small),
 near lock-up (the pole of P), over several designs and tubes. Each method is held

@@ -1,4 +1,4 @@
-"""Physics of the deformation model against MODEL.md, hand derivations and mpmath (50 digits)."""
+"""Physics of the deformation model against docs/model.md, hand derivations and mpmath (50 digits)."""
 import math
 
 import mpmath as mp
@@ -14,7 +14,7 @@ from embroact.predict.curve import ActuatorModel, curve
 from embroact.predict.derived import derive_from_values
 from embroact.predict.tubelaws import pressure_kpa, radius_mm, thick_wall_limit_kpa, transition_pressure_kpa
 
-# Paper's fitted parameters, MODEL.md section 5
+# Paper's fitted parameters, docs/model.md section 7
 ZIGZAG = [(5.0, 0.8, 50.0), (7.0, 2.7, 85.0), (9.0, 3.4, 180.0)]
 CROSS = [(15.0, 2.9, 150.0), (30.0, 12.0, 160.0), (45.0, 1.3, 170.0), (60.0, 2.9, 200.0)]
 
@@ -41,7 +41,7 @@ def lock(ref):
     return float(ref.lock_theta(1 if s0 < 1 / mp.sqrt(5) else -1)) if s0 > 0 else math.inf
 
 
-# -- identities stated in the brief and MODEL.md ---------------------------------------------
+# -- identities stated in docs/model.md sections 2-4 ---------------------------------------
 @pytest.mark.parametrize("l, r", [(100, 2.5), (37.5, 1.9), (160.25, 4.0), (100.000001, 2.58)])
 def test_a2_minus_b2r2_is_l_over_l0_at_50_digits(l, r):
     with mp.workdps(60):
@@ -131,7 +131,7 @@ def test_neutral_angle_tan_half():
         assert np.sign(curve(m, [400.0]).theta_deg[0]) == sign
 
 
-# -- the paper's facts (MODEL.md section 5) -------------------------------------------------
+# -- the paper's facts (docs/model.md section 7) ---------------------------------------------
 def model_for(pattern, w, angle, g, p0, interval=1.0, **kw):
     d = derive_from_values(pattern, width_mm=w, interval_mm=interval, angle_deg=angle, length_mm=100.0,
                            tube=Tube())

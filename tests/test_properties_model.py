@@ -1,8 +1,8 @@
 """Property tests of the deformation model over random designs, pressures and angles.
 
 Designs come from random realistic geometry (tests/strategies.py: widths, angles and
-tubes through MODEL.md section 2), random G, P0 (or P0 from the tube law) and l0.
-The reference is tests/mpref.py: MODEL.md re-typed in mpmath at 50 digits.
+tubes through docs/model.md section 2), random G, P0 (or P0 from the tube law) and l0.
+The reference is tests/mpref.py: docs/model.md re-typed in mpmath at 50 digits.
 """
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ def _finite(c) -> None:
 
 
 def _branch_sign(m) -> float:
-    """Bending direction from MODEL.md: zigzag positive; cross positive iff tan(beta0) < 1/2."""
+    """Bending direction from docs/model.md section 5: zigzag positive; cross positive iff tan(beta0) < 1/2."""
     return 1.0 if m.pattern == "zigzag" or math.tan(math.radians(m.beta0_deg)) < 0.5 else -1.0
 
 

@@ -111,7 +111,7 @@ def test_report_json_content_against_hand_values(built):
     out, _ = built
     data = json.loads((out / "report.json").read_text())
     (act,) = data["actuators"]
-    # MODEL.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi), w = 7, r_f = 1.5
+    # docs/model.md section 2: r0 = (w + 2 sqrt((w/2)^2 + (2 r_f)^2)) / (2 pi), w = 7, r_f = 1.5
     r0 = (7.0 + 2.0 * math.hypot(3.5, 3.0)) / (2.0 * math.pi)
     assert act["derived"]["r0_mm"] == pytest.approx(r0, rel=1e-12)
     # paper law P0 = (G_e/2) (x - 1/x)^2, x = r0 / r_f, G_e = 0.13 MPa

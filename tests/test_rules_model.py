@@ -22,7 +22,7 @@ def _codes(design):
 
 
 def _paper_p0_kpa(w, rf=1.5, ge=0.13):
-    """MODEL.md sections 2-3 by hand: r0 = (w + 2 sqrt((w/2)^2 + (2 rf)^2)) / (2 pi), P0 = (Ge/2)(x - 1/x)^2."""
+    """docs/model.md sections 2-3 by hand: r0 = (w + 2 sqrt((w/2)^2 + (2 rf)^2)) / (2 pi), P0 = (Ge/2)(x - 1/x)^2."""
     r0 = (w + 2 * math.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * math.pi)
     x = r0 / rf
     return 0.5 * ge * (x - 1 / x) ** 2 * 1000

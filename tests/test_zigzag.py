@@ -120,11 +120,11 @@ def test_derived_r0_matches_model_formula(name):
     plan = zigzag(PATHS[name](), ZigzagParams(7.0, 1.0))
     a = plan.actuators[0]
     w, rf = a.realised.width_mm, 1.5
-    r0 = (w + 2 * math.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * math.pi)  # MODEL.md section 2
+    r0 = (w + 2 * math.sqrt((w / 2) ** 2 + (2 * rf) ** 2)) / (2 * math.pi)  # docs/model.md section 2
     g = derive(a)
     assert g.r0_mm == pytest.approx(r0, rel=1e-12)
     x = r0 / rf
-    assert g.p0_kpa == pytest.approx(0.13 / 2 * (x**2 + 1 / x**2 - 2) * 1000, rel=1e-9)  # MODEL.md section 3
+    assert g.p0_kpa == pytest.approx(0.13 / 2 * (x**2 + 1 / x**2 - 2) * 1000, rel=1e-9)  # docs/model.md section 3
     assert g.beta0_deg == 0.0
 
 
