@@ -1,7 +1,7 @@
 """Fit the effective modulus G and the transition pressure P0 to measured bend angles.
 
 Measured data are (pressure_kpa, angle_deg) pairs, usually one hysteresis loop:
-pressure rises in steps, then falls (docs/model.md, how the paper measured bending).
+pressure rises in steps, then falls (docs/model.md section 11).
 The loading and the unloading branch are fitted separately (:func:`split_branches`),
 each by least squares in degrees (``scipy.optimize.least_squares``, trust-region
 reflective with bounds), with
@@ -26,7 +26,7 @@ the name ``g_e_mpa``); both are linear in their modulus, so P0 is proportional t
 The result records the law and its parameters (``tube_law_parameters``).
 
 Which parameters are fitted is a choice among ``g_mpa``, ``p0_kpa``, ``g_e_mpa``.  The
-deformation phase depends on G_e only through P0 = P(r0; G_e) (docs/model.md), so
+deformation phase depends on G_e only through P0 = P(r0; G_e) (docs/model.md section 3), so
 ``g_e_mpa`` can be fitted only when P0 comes from the geometry, never together with
 ``p0_kpa``.
 
@@ -576,7 +576,7 @@ def fit_design(
     derived : DerivedGeometry
         The design (``embroact.predict.derived.derive`` or ``derive_from_values``).
     pressure_kpa, angle_deg : array_like, shape (n,)
-        Measurements in the order taken [kPa, deg]; angles signed as docs/model.md.
+        Measurements in the order taken [kPa, deg]; angles signed as docs/model.md section 5.
     fit : iterable of str
         Parameters to fit (``FIT_PARAMETERS``).
     branch : str

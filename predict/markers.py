@@ -1,6 +1,6 @@
 """Bending angles measured with markers: from coordinates, and the model's reading of a layout.
 
-The paper (docs/model.md, how the paper measured bending) put seven markers on each side
+The paper (docs/model.md section 11) put seven markers on each side
 of the embroidery, 10 mm apart; the bending angle is the sum of the angles between
 consecutive marker chords, averaged over the two rows::
 
@@ -33,7 +33,7 @@ The axis is the direction across which all chords of all frames scatter least (S
 when the chords do not span a plane (every frame straight) it is ``tangent x normal``.
 
 * Signed (``normal`` given: the direction out of the *back* of the fabric at the clamp,
-  the side a positive bend turns toward, docs/model.md sign convention): the axis points
+  the side a positive bend turns toward, docs/model.md section 5): the axis points
   along ``tangent x normal``, with ``tangent`` the strip's direction at the clamp
   (clamped end to tip). Without ``tangent`` it is the first chord of the straightest
   frame: include a frame at or near rest (0 kPa), or pass ``tangent`` when every frame

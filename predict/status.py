@@ -1,4 +1,4 @@
-"""Status of each point of a predicted curve (docs/model.md: domain, methods, validity limits).
+"""Status of each point of a predicted curve (docs/model.md sections 9 and 12).
 
 Every public answer of the model carries one :class:`Status` per point; a point
 that has no equilibrium never holds NaN but a documented fill value, and its

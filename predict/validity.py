@@ -1,4 +1,4 @@
-"""Where the model stops describing a real actuator (docs/model.md, validity limits).
+"""Where the model stops describing a real actuator (docs/model.md section 12).
 
 The deformation model is a formula in theta; it keeps answering past the states a
 sewn actuator can reach. Three limits are checked on every state (bend angle theta,
@@ -18,7 +18,7 @@ statuses (:class:`~embroact.predict.status.Status`, precedence documented there)
     ``R (1 - cos(phi)) <= 2 r`` with ``pi < |theta| < 2 pi``, i.e. once
     ``l0 (1 - cos(theta)) <= 2 r |theta|``. In a positive bend the tube is outside the
     circle and the fabric (of negligible thickness) is the inner side: the limit is the
-    full turn. For ``l0 = 100 mm`` and ``r = 2.58 mm`` a negative bend coils at 315.7 deg.
+    full turn. For ``l0 = 100 mm`` and ``r = 2.58 mm`` a negative bend coils at 315.70 deg.
 ``KINKED``
     The bend radius ``l0/|theta|`` is below the tube's diameter ``2 r``: the tube's
     inner side would have to pass through the centre of its own bend.
@@ -65,7 +65,7 @@ __all__ = [
     "first_limit",
 ]
 
-#: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md).
+#: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md section 12).
 STRETCH_LIMIT = 2.0
 _FULL_TURN = 2.0 * math.pi
 #: Bisection steps locating the first limit along a branch (angle to ~1e-15 of the branch).
@@ -95,7 +95,7 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
     Parameters
     ----------
     theta_rad : array_like
-        Bend angle (signed, docs/model.md sign convention).
+        Bend angle (signed as docs/model.md section 5).
     length_mm : array_like
         Thread-side length l.
     radius_mm : array_like

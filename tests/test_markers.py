@@ -1,4 +1,4 @@
-"""Marker bend angles (docs/model.md) against hand-computed geometry, and the model's reading of a layout.
+"""Marker bend angles (docs/model.md section 11) against hand-computed geometry, and the model's reading of a layout.
 
 Markers on a circular arc: the chord from marker k to k+1 points along the arc's
 tangent at the chord's mid-angle, so consecutive chords differ by the angular step
