@@ -1,0 +1,139 @@
+"""The repository cites only documents it holds.
+
+Every tracked file is scanned for citations of the model and machine pages that used to
+live outside the repository, and for references to ``docs/<page>.md`` (with an optional
+section number or ``#anchor``); each cited page, section and anchor must exist. README's
+and the docs pages' own Markdown links must resolve too.
+"""
+from __future__ import annotations
+
+import re
+import subprocess
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+#: Folders never scanned when the tree is walked without git (environments, caches, outputs).
+_SKIP_DIRS = {".git", ".venv", ".venv-ci", "__pycache__", ".hypothesis", ".pytest_cache", "build", "dist", "out"}
+_TEXT_SUFFIXES = {".py", ".md", ".toml", ".txt", ".cfg", ".ini", ".sh", ".csv", ".json", ".html", ".svg", ""}
+
+# Spelled in two parts so that this file does not cite them itself.
+_EXTERNAL = re.compile(r"\b(?:" + "MODEL" + r"|" + "EMBROIDERY" + r"|HOUSE-STYLE)\.md\b")
+#: ``docs/model.md``, optionally followed by ``section 4``, ``sections 2-3``, ``sections 10 and 11`` or ``#anchor``.
+_DOC_REF = re.compile(
+    r"docs/(?P<page>[A-Za-z0-9_-]+)\.md"
+    r"(?:#(?P<anchor>[A-Za-z0-9_-]+)"
+    r"|,?\s+sections?\s+(?P<sections>\d+(?:\s*(?:-|,|and)\s*\d+)*))?"
+)
+_LINK = re.compile(r"\]\((?P<target>[^)\s]+)\)")
+
+
+def _tracked_files() -> list[Path]:
+    try:
+        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+        files = [ROOT / p for p in out.decode("utf-8").split("\0") if p]
+    except (OSError, subprocess.CalledProcessError):  # no git (e.g. an unpacked sdist): walk the tree
+        files = [p for p in ROOT.rglob("*") if p.is_file() and not _SKIP_DIRS & set(p.relative_to(ROOT).parts)]
+    return sorted(p for p in files if p.is_file() and p.suffix in _TEXT_SUFFIXES and not p.name.endswith(".egg-info"))
+
+
+@cache
+def _text(path: Path) -> str:
+    return path.read_text(encoding="utf-8", errors="replace")
+
+
+def _slug(heading: str) -> str:
+    """GitHub's anchor for a Markdown heading: lower case, punctuation dropped, spaces to hyphens."""
+    kept = re.sub(r"[^\w\- ]", "", heading.strip().lower())
+    return kept.replace(" ", "-")
+
+
+@cache
+def _headings(page: Path) -> tuple[tuple[str, ...], frozenset[int]]:
+    """(anchors, numbered sections) of a Markdown page; sections are the ``## N.`` headings."""
+    titles = re.findall(r"^#{1,6}\s+(.+?)\s*$", _text(page), flags=re.M)
+    numbers = {int(m.group(1)) for t in titles if (m := re.match(r"(\d+)\.\s", t))}
+    return tuple(_slug(t) for t in titles), frozenset(numbers)
+
+
+def _section_numbers(spec: str) -> set[int]:
+    nums: set[int] = set()
+    for part in re.split(r"\s*(?:,|and)\s*", spec):
+        lo, _, hi = part.partition("-")
+        nums.update(range(int(lo), int(hi or lo) + 1))
+    return nums
+
+
+def _broken_refs(path: Path) -> list[str]:
+    bad = []
+    for m in _DOC_REF.finditer(_text(path)):
+        page = DOCS / f"{m['page']}.md"
+        where = f"{path.relative_to(ROOT)}: {m.group(0)!r}"
+        if not page.is_file():
+            bad.append(f"{where}: no such page")
+            continue
+        anchors, numbers = _headings(page)
+        if m["anchor"] and m["anchor"] not in anchors:
+            bad.append(f"{where}: no heading with anchor #{m['anchor']}")
+        if m["sections"] and not _section_numbers(m["sections"]) <= numbers:
+            bad.append(f"{where}: {page.name} has sections {sorted(numbers)}")
+    return bad
+
+
+def _broken_links(path: Path) -> list[str]:
+    """Relative Markdown links of a .md file whose target file or anchor does not exist."""
+    bad = []
+    for m in _LINK.finditer(_text(path)):
+        target = m["target"]
+        if re.match(r"[a-z]+:", target):  # https:, mailto:
+            continue
+        file_part, _, anchor = target.partition("#")
+        dest = (path.parent / file_part).resolve() if file_part else path
+        if not dest.exists():
+            bad.append(f"{path.relative_to(ROOT)}: link {target!r}: no such file")
+        elif anchor and dest.suffix == ".md" and anchor not in _headings(dest)[0]:
+            bad.append(f"{path.relative_to(ROOT)}: link {target!r}: no such heading")
+    return bad
+
+
+def test_slug_matches_github_anchors():
+    assert _slug("3. Inflation phase (P < P0)") == "3-inflation-phase-p--p0"
+    assert _slug("4. DST (Tajima)") == "4-dst-tajima"
+    assert _section_numbers("2-3") == {2, 3} and _section_numbers("10 and 11") == {10, 11}
+
+
+def test_the_model_and_machine_pages_exist():
+    for name in ("model", "machine"):
+        anchors, numbers = _headings(DOCS / f"{name}.md")
+        assert numbers == set(range(1, max(numbers) + 1)), f"docs/{name}.md sections are not numbered 1..n"
+
+
+def test_no_file_cites_documents_outside_the_repository():
+    files = _tracked_files()
+    assert ROOT / "README.md" in files
+    hits = [f"{p.relative_to(ROOT)}:{n}: {line.strip()}"
+            for p in files for n, line in enumerate(_text(p).splitlines(), 1) if _EXTERNAL.search(line)]
+    assert not hits, "cite docs/model.md or docs/machine.md instead:\n" + "\n".join(hits)
+
+
+def test_every_cited_docs_page_and_section_exists():
+    bad = [b for p in _tracked_files() for b in _broken_refs(p)]
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/model.md", "docs/machine.md", "benchmarks/README.md"])
+def test_markdown_links_resolve(page):
+    path = ROOT / page
+    bad = _broken_links(path)
+    assert not bad, "\n".join(bad)
+
+
+def test_readme_links_to_the_docs_pages():
+    targets = {m["target"].partition("#")[0] for m in _LINK.finditer(_text(ROOT / "README.md"))}
+    assert {"docs/model.md", "docs/machine.md"} <= targets
+    for t in targets:
+        if t.startswith("docs/") and t.endswith(".md"):
+            assert (ROOT / t).is_file(), t
