@@ -31,13 +31,46 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..patterns.base.errors import check_range
-from ..patterns.base.findings import RULES, Finding
-from ..patterns.rules import RuleSettings, check_plan, sort_findings
-from .status import Status
+from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
+from ..patterns.rules import RuleSettings, sort_findings
+from .sleeve_rules import check_plan
+from .status import VALIDITY_LIMITS, Status
 
 __all__ = ["ModelRuleSettings", "check_model", "check_design"]
 
-_BAD_STATES = (Status.OUT_OF_DOMAIN, Status.UNSTABLE, Status.FAILED)
+#: States EA405 reports: outside the model's domain, snap-through, a method failure, or past a
+#: validity limit (coiled, kinked, overstretched: docs/model.md).
+_BAD_STATES = (Status.OUT_OF_DOMAIN, Status.UNSTABLE, Status.FAILED, *VALIDITY_LIMITS)
+
+
+_E, _W, _I = Severity.ERROR, Severity.WARNING, Severity.INFO
+_MODEL = Inputs.DESIGNS | Inputs.MODEL
+
+# The model rules, declared once here: checked together by check_model from one curve per actuator.
+for _rule in (
+    Rule("EA401", _E, "P0 above working pressure",
+         "The predicted transition pressure P0 exceeds operation.max_pressure_kpa: the actuator never "
+         "bends in service.",
+         "Narrow the pattern (smaller r0) or raise the working pressure.", _MODEL),
+    Rule("EA402", _W, "lock-up below working pressure",
+         "The sleeve locks up (no further bending) below operation.max_pressure_kpa.",
+         "Change the angle or width, or lower the working pressure.", _MODEL),
+    Rule("EA403", _W, "bend beyond limit",
+         "The predicted bend at the working pressure exceeds operation.max_bend_deg.",
+         "Shorten the actuator or lower the working pressure.", _MODEL),
+    Rule("EA404", _W, "prediction extrapolated",
+         "The calibration (G, P0) is extrapolated outside the measured designs.",
+         "Measure a sample of this design and fit it ('embroact fit').", _MODEL),
+    Rule("EA405", _W, "model outside its domain",
+         "Between P0 and the working pressure the model leaves its domain, becomes unstable, or passes a "
+         "validity limit (coiled, kinked, over-stretched; docs/model.md); predictions there are not valid.",
+         "Lower the working pressure or change the pattern.", _MODEL),
+    Rule("EA406", _I, "calibration approximate",
+         "The calibration set matches this design only approximately (e.g. a cross width other than the "
+         "calibrated one, or a tube other than the one it was fitted with); its notes are listed.",
+         "Measure a sample of this design and fit it ('embroact fit').", _MODEL),
+):
+    RULES.declare(_rule)
 
 
 @dataclass(frozen=True, slots=True)

@@ -69,7 +69,8 @@ def add_model_arguments(group) -> None:
     group.add_argument("--tube-law", choices=TUBE_LAWS, help="tube law of the inflation phase (default paper)")
 
 
-def add_quick_arguments(group, *, pattern: str | None, required: bool = False, tube_fields=None) -> None:
+def add_quick_arguments(group, *, pattern: str | None, required: bool = False, tube_fields=None,
+                        name_flag: bool = True) -> None:
     """Quick-parameter flags: ``--width-mm``, ``--interval-mm``, ``--angle-deg``, ``--adjust``, ``--length-mm``,
     ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (zigzag/cross commands); None adds
     the angle and adjust flags for a pattern chosen elsewhere."""
@@ -87,7 +88,8 @@ def add_quick_arguments(group, *, pattern: str | None, required: bool = False, t
     group.add_argument("--path", metavar="SVG_D|FILE.svg#ID",
                        help='tube path: an SVG path "d" string in mm, or a path of an SVG drawing chosen by id, '
                             "label or layer (drawing.svg#tube1; real units, transforms applied)")
-    group.add_argument("--name", default="A1", help="actuator name (default A1)")
+    if name_flag:  # embroact fit's --name names the calibration set
+        group.add_argument("--name", default="A1", help="actuator name (default A1)")
     add_tube_arguments(group, fields=tube_fields or [flag[1] for flag in TUBE_FLAGS])
 
 
@@ -179,6 +181,7 @@ def summary_line(findings) -> str:
 
     Examples
     --------
+    >>> import embroact.predict.rules  # declares the model rules
     >>> from embroact.patterns.base.findings import RULES
     >>> fs = [RULES.finding("EA403", "x", actuator="A1"), RULES.finding("EA403", "y", actuator="A2"),
     ...       RULES.finding("EA405", "z", actuator="A1")]
