@@ -11,6 +11,8 @@ Exit codes
 2  unusable input: bad parameter, unreadable or invalid design / embroidery file, usage
 3  an output file could not be written
 4  a numerical method failed (a bug or a design far outside the model; message says which)
+130, 143  interrupted (Ctrl-C) or terminated (SIGTERM); no partial output is left
+141  standard output was closed by its reader (``| head``); the program ends quietly
 
 Examples
 --------
@@ -23,7 +25,12 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import io
+import os
+import signal
 import sys
+import threading
+import warnings
 
 from .. import __version__
 
@@ -41,13 +48,59 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER = 0, 1, 2, 3, 4
+#: Ended by Ctrl-C, SIGTERM, or a closed pipe: the shell's 128 + signal number.
+EXIT_INTERRUPTED, EXIT_TERMINATED, EXIT_BROKEN_PIPE = 130, 143, 141
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse whose usage errors are one line (no usage block), like every other error."""
+    """argparse whose usage errors are one line (no usage block), like every other error.
+
+    Options must be spelled out (no abbreviations: ``--wid`` is not ``--width-mm``), and an
+    unknown option is reported before a missing required one (``--widht-mm 7`` names the
+    typo, with the nearest known option).
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, allow_abbrev=False, **kwargs)
 
     def error(self, message: str):
-        self.exit(EXIT_INPUT, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {_printable(message)} (see '{self.prog} --help')\n")
+
+    def parse_args(self, args=None, namespace=None):
+        required = [a for a in self._actions if a.required]
+        for action in required:  # first pass: unknown options only
+            action.required = False
+        try:
+            _, extras = self.parse_known_args(args, namespace)
+        finally:
+            for action in required:
+                action.required = True
+        if extras:
+            self.error(f"unrecognized arguments: {' '.join(extras)}{self._nearest(extras[0])}")
+        return super().parse_args(args, namespace)
+
+    def _nearest(self, token: str) -> str:
+        import difflib
+
+        known = [s for a in self._actions for s in a.option_strings if s.startswith("--")]
+        close = difflib.get_close_matches(token.split("=", 1)[0], known, n=1)
+        return f" (did you mean {close[0]}?)" if close else ""
+
+
+def _printable(text: str) -> str:
+    """``text`` with control characters and undecodable bytes escaped: one safe terminal line."""
+    return "".join(c if c.isprintable() else c.encode("unicode_escape", "backslashreplace").decode("ascii")
+                   for c in str(text))
+
+
+def _option_like_value(argv: list[str]) -> str | None:
+    """The first ``--flag=--``: argparse drops a bare ``--`` value and hands the command an empty list."""
+    for token in argv:
+        if token == "--":
+            return None
+        if token.startswith("-") and token.endswith("=--") and token.count("=") == 1:
+            return token
+    return None
 
 
 def _top_parser() -> argparse.ArgumentParser:
@@ -75,12 +128,43 @@ def _command_parser(name: str):
     return module, parser
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+def _quiet_stdout() -> None:
+    """After a broken pipe: point stdout at /dev/null so the exit-time flush stays silent."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError, io.UnsupportedOperation):
+        pass
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; return the exit code (see the module docstring)."""
+    """Run the command line; return the exit code (see the module docstring).
+
+    Also: SIGTERM cleans up like Ctrl-C (exit 143, no staged ``.part`` file left); a reader
+    that goes away (``embroact predict ... | head -1``) ends the program quietly with 141,
+    the shell's code for a broken pipe; floating-point RuntimeWarnings are not shown (every
+    result is checked for finiteness where it leaves the model, and a non-finite one
+    becomes a status or a one-line error, so the warning tells a user nothing; ``--debug``
+    shows them); stdout escapes what it cannot encode instead of failing.
+    """
     argv = list(sys.argv[1:] if argv is None else argv)
+    if isinstance(sys.stdout, io.TextIOWrapper):
+        sys.stdout.reconfigure(errors="backslashreplace")
     try:
         top = _top_parser().parse_args(argv)
         module, parser = _command_parser(top.command)
+        bad = _option_like_value(top.args)
+        if bad is not None:
+            flag = bad[:-3]
+            parser.error(f"argument {flag}: expected a value, got '--' (an option, not a value)")
         args = parser.parse_args(top.args)
     except SystemExit as exc:  # argparse: --help (0) or usage error (2)
         return int(exc.code or 0)
@@ -88,8 +172,19 @@ def main(argv: list[str] | None = None) -> int:
     debug = top.debug or args.debug
     from ...patterns.base.errors import EmbroactError, ExportError, SolverError
 
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    old_term = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
     try:
-        return int(module.run(args))
+        with warnings.catch_warnings():
+            if not debug:
+                warnings.simplefilter("ignore", RuntimeWarning)
+            code = int(module.run(args))
+            if sys.stdout is not None:  # None when started with stdout closed (>&-)
+                sys.stdout.flush()
+        return code
+    except BrokenPipeError:
+        _quiet_stdout()
+        return EXIT_BROKEN_PIPE
     except ExportError as exc:
         code, err = EXIT_OUTPUT, exc
     except SolverError as exc:
@@ -98,10 +193,16 @@ def main(argv: list[str] | None = None) -> int:
         code, err = EXIT_INPUT, exc
     except OSError as exc:
         code, err = EXIT_INPUT, f"{exc.filename or ''}: {exc.strerror or exc}".lstrip(": ")
+    except _Terminated:
+        print("embroact: terminated", file=sys.stderr)
+        return EXIT_TERMINATED
     except KeyboardInterrupt:
         print("embroact: interrupted", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
+    finally:
+        if old_term is not None:
+            signal.signal(signal.SIGTERM, old_term)
     if debug:
         raise err if isinstance(err, BaseException) else RuntimeError(err)
-    print(f"embroact: error: {err}", file=sys.stderr)
+    print(f"embroact: error: {_printable(err)}", file=sys.stderr)
     return code

@@ -1,36 +1,79 @@
-"""Atomic file output: a failed write leaves any existing file untouched and no partial file.
+"""Atomic file output: the files of one run are all written, or none is changed.
+
+How, and where the file system sets limits
+------------------------------------------
+1. **Check** every target before anything is written (:func:`prepare_outputs`): its directory
+   exists and is writable, the target is not a directory, and no two outputs name one file
+   (``-o a.dst --preview a.dst``, or two spellings of one path).
+2. **Stage**: each file is written and synced to a hidden temporary file
+   ``.NAME.XXXX.part`` next to its target. A failure here (disk full, I/O error, Ctrl-C,
+   SIGTERM: the command line turns it into an interrupt) removes every staged file and
+   leaves every target untouched.
+3. **Commit**: with SIGINT and SIGTERM held back (they are delivered once the commit is
+   over), each existing target is first hard-linked to a hidden ``.NAME.XXXX.old`` backup,
+   then the staged files are renamed over their targets. If a rename fails (a file of
+   another user in a sticky directory, a full inode table), the ones already renamed are
+   rolled back from their backups (or removed if they are new) and the error is raised.
+   Backups are removed at the end, and each directory is synced.
+
+The commit cannot be all-or-nothing where the file system offers no hard links (FAT, some
+network mounts): a target replaced before the failing one then keeps its new content. A
+power loss during the commit can leave a mix of old and new files (the renames are atomic
+one by one, not together), and a ``kill -9`` can leave ``.part``/``.old`` files behind.
+
+File modes: a new file gets ``0666`` minus the umask, as ``open()`` would create it; a file
+that is rewritten keeps its permission bits (a private ``0600`` file stays private).
 
 Examples
 --------
 >>> import os, tempfile
->>> from embroact.export.files.atomic import write_bytes_atomic
+>>> from embroact.export.files.atomic import write_bytes_atomic, write_files_atomic
 >>> d = tempfile.mkdtemp()
 >>> write_bytes_atomic(os.path.join(d, "a.txt"), b"hello")
 >>> open(os.path.join(d, "a.txt"), "rb").read()
 b'hello'
+>>> try:
+...     write_files_atomic({os.path.join(d, "a.txt"): b"1", os.path.join(d, ".", "a.txt"): b"2"})
+... except ValueError as exc:
+...     print(str(exc).replace(d, "D"))
+two outputs name one file: 'D/a.txt' and 'D/./a.txt'
 """
 from __future__ import annotations
 
+import contextlib
 import os
+import secrets
+import signal
 import tempfile
+import threading
 from pathlib import Path
-from typing import Mapping
+from typing import Iterable, Mapping
 
-from ...patterns.base.errors import ExportError
+from ...patterns.base.errors import ExportError, ParameterError
 
-__all__ = ["write_bytes_atomic", "write_text_atomic", "write_files_atomic", "check_output_dir", "check_writable_dir"]
+__all__ = [
+    "write_bytes_atomic",
+    "write_text_atomic",
+    "write_files_atomic",
+    "prepare_outputs",
+    "check_output_dir",
+    "check_writable_dir",
+]
 
 
 def check_output_dir(path: str | os.PathLike) -> Path:
-    """Return ``path`` as a Path whose parent directory exists and is writable.
+    """Return ``path`` as a Path whose parent directory exists and is writable, and that is no directory.
 
     Raises
     ------
     ExportError
-        One line naming the directory when it is missing or not writable.
+        One line naming the directory when it is missing or not writable, or the target when
+        it is a directory (``--preview .``).
     """
     p = Path(path)
     check_writable_dir(p.parent)
+    if p.is_dir() or os.fspath(path) in ("", ".", "..") or os.fspath(path).endswith(os.sep):
+        raise ExportError(f"cannot write {os.fspath(path)!r}: it is a directory")
     return p
 
 
@@ -42,6 +85,8 @@ def check_writable_dir(path: str | os.PathLike) -> Path:
     ExportError
         One line naming the directory when it is missing, not a directory or not writable.
     """
+    if os.fspath(path) == "":
+        raise ExportError("output directory must be a non-empty path, got ''")
     d = Path(path)
     if not d.is_dir():
         what = "is not a directory" if d.exists() else "does not exist"
@@ -51,14 +96,41 @@ def check_writable_dir(path: str | os.PathLike) -> Path:
     return d
 
 
+def prepare_outputs(paths: Iterable[str | os.PathLike]) -> list[Path]:
+    """Check every output of one run before any is written; return them as Paths.
+
+    Raises
+    ------
+    ExportError
+        A directory is missing or not writable, or a target is a directory.
+    ParameterError
+        Two outputs name one file (after resolving ``.``, ``..`` and symbolic links).
+    """
+    paths = list(paths)
+    targets = [check_output_dir(p) for p in paths]
+    seen: dict[str, int] = {}
+    for i, p in enumerate(targets):
+        key = os.path.realpath(p)
+        if key in seen:
+            raise ParameterError(f"two outputs name one file: {os.fspath(paths[seen[key]])!r} and {os.fspath(paths[i])!r}")
+        seen[key] = i
+    return targets
+
+
 def _cannot_write(p: Path, exc: OSError) -> ExportError:
     return ExportError(f"cannot write {str(p)!r}: {exc.strerror or exc}")
 
 
-def _stage(p: Path, data: bytes) -> str:
+def _new_file_mode() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def _stage(p: Path, data: bytes, mode: int) -> str:
     """Write ``data`` to a synced temporary file next to ``p``; return its name (removed on failure)."""
     try:  # a directory root may not write to (/proc, a read-only mount) passes os.access
-        fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".part", dir=p.parent)
+        fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:200]}.", suffix=".part", dir=p.parent)
     except OSError as exc:
         raise _cannot_write(p, exc) from exc
     try:
@@ -66,7 +138,7 @@ def _stage(p: Path, data: bytes) -> str:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
-        os.chmod(tmp, 0o644)
+        os.chmod(tmp, mode)
     except BaseException as exc:
         _remove(tmp)
         if isinstance(exc, OSError):
@@ -75,33 +147,104 @@ def _stage(p: Path, data: bytes) -> str:
     return tmp
 
 
-def _remove(tmp: str) -> None:
+def _remove(name: str) -> None:
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(name)
+
+
+def _mode(p: Path, new: int) -> int:
     try:
-        os.unlink(tmp)
-    except FileNotFoundError:
-        pass
+        return p.stat().st_mode & 0o7777
+    except OSError:
+        return new
 
 
-def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
-    """Write several files so that a failed run changes none of them, as far as the file system allows.
+def _backup(p: Path) -> str | None:
+    """A hard link to the existing target ``p`` (None if there is none or links are unsupported)."""
+    if not p.exists():
+        return None
+    for _ in range(8):
+        name = str(p.parent / f".{p.name[:200]}.{secrets.token_hex(4)}.old")
+        try:
+            os.link(p, name)
+            return name
+        except FileExistsError:
+            continue
+        except OSError:
+            return None
+    return None
 
-    Every file is first written and synced to a temporary file next to its target; only when
-    all are ready are they renamed over their targets (``os.replace``). A failure while
-    preparing (disk full, I/O error, interrupt) leaves every target untouched and no
-    temporary file; only a failing rename, after the earlier ones, can leave a mix.
-    """
-    targets = [check_output_dir(path) for path in outputs]
-    staged: list[tuple[str, Path]] = []
+
+@contextlib.contextmanager
+def _signals_held():
+    """Hold SIGINT and SIGTERM back while the files are renamed (main thread, POSIX)."""
+    held = {signal.SIGINT, signal.SIGTERM}
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
-        for p, data in zip(targets, outputs.values()):
-            staged.append((_stage(p, data), p))
-        while staged:
-            tmp, p = staged[0]
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def _sync_dirs(dirs: set[Path]) -> None:
+    for d in dirs:
+        with contextlib.suppress(OSError):  # not every file system syncs directories
+            fd = os.open(d, os.O_RDONLY)
+            try:
+                os.fsync(fd)
+            finally:
+                os.close(fd)
+
+
+def _commit(staged: list[tuple[str, Path]]) -> None:
+    """Rename every staged file over its target; on a failure roll back the ones done."""
+    done: list[tuple[Path, str | None]] = []
+    backups: list[str] = []
+    try:
+        for tmp, p in staged:
+            backup = _backup(p)
+            if backup is not None:
+                backups.append(backup)
             try:
                 os.replace(tmp, p)
             except OSError as exc:
                 raise _cannot_write(p, exc) from exc
-            staged.pop(0)
+            done.append((p, backup))
+    except BaseException:
+        for p, backup in reversed(done):
+            with contextlib.suppress(OSError):
+                if backup is not None:
+                    os.rename(backup, p)
+                else:
+                    os.unlink(p)
+        raise
+    finally:
+        for name in backups:
+            _remove(name)
+
+
+def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
+    """Write several files so that a failed run changes none of them (see the module docstring).
+
+    Raises
+    ------
+    ExportError
+        One line naming the file that could not be written or the directory that is missing.
+    ParameterError
+        Two outputs name one file.
+    """
+    targets = prepare_outputs(outputs)
+    new_mode = _new_file_mode()
+    staged: list[tuple[str, Path]] = []
+    try:
+        for p, data in zip(targets, outputs.values()):
+            staged.append((_stage(p, data, _mode(p, new_mode)), p))
+        with _signals_held():
+            _commit(staged)
+        _sync_dirs({p.parent for p in targets})
     finally:
         for tmp, _ in staged:
             _remove(tmp)

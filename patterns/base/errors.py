@@ -14,6 +14,11 @@ Examples
 ... except ParameterError as exc:
 ...     print(exc)
 angle_deg must be in (0, 90), got 95
+>>> try:
+...     check_range("width_mm", 10**320, low=0.0, high=200.0)
+... except ParameterError as exc:
+...     print(exc)
+width_mm must be in (0, 200), got an integer of 321 digits
 """
 from __future__ import annotations
 
@@ -98,7 +103,10 @@ def check_range(
                 raise TypeError
         except (ImportError, TypeError):
             raise ParameterError(f"{name} must be a number in {rng}, got {value!r}") from None
-    v = float(value)
+    try:
+        v = float(value)
+    except OverflowError:  # an int too large for a float (10**320 in a TOML file): out of range
+        raise ParameterError(f"{name} must be in {rng}, got an integer of {len(str(abs(value)))} digits") from None
     if not math.isfinite(v):
         raise ParameterError(f"{name} must be a finite number in {rng}, got {value!r}")
     bad_low = low is not None and (v < low or (v == low and not low_inclusive))

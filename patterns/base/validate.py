@@ -1,0 +1,191 @@
+"""Input limits and the checks every boundary runs before any arithmetic or allocation.
+
+Numbers are checked by :func:`embroact.patterns.base.errors.check_range` (finite, inside
+the bounds; integers too large for a float are out of range, not an ``OverflowError``);
+every reader (command line, design file, calibration and marker CSV, SVG path data,
+embroidery file) calls these checks first, so hostile input ends in one line of the same
+form everywhere::
+
+    <what> must be <allowed>, got <value>
+
+with the value shown by ``repr`` (control characters and undecodable bytes escaped, long
+values cut to :data:`SHOWN_CHARS` characters), never a traceback, a NaN or a huge allocation.
+
+Limits
+------
+The documented sizes, checked before a file is read into memory (:func:`read_limited`
+reads at most ``limit + 1`` bytes, so ``/dev/zero`` or a growing file cannot exhaust
+memory either):
+
+=========================  ==================  =============================================
+limit                      value               applies to
+=========================  ==================  =============================================
+``TEXT_FILE_BYTES``        4 MiB               design and tube TOML files, calibration TOML
+``CSV_FILE_BYTES``         16 MiB              measurement and marker CSV files
+``CSV_ROWS``               50,000              data rows of one CSV file
+``CSV_COLUMNS``            1,000               columns of one CSV row
+``CSV_FIELD_CHARS``        1,000               characters of one CSV field
+``MACHINE_FILE_BYTES``     4 MiB               embroidery files given to ``check``
+``MACHINE_FILE_RECORDS``   500,000             records of an embroidery file (every format)
+``PATH_CHARS``             1,000,000           characters of one SVG path ``d`` string
+``PATH_SEGMENTS``          20,000              drawing commands of one SVG path
+``NAME_CHARS``             200                 design and actuator names
+=========================  ==================  =============================================
+
+An embroidery file of more than ``MACHINE_FILE_RECORDS`` records is far beyond any hoop (a
+200 x 200 mm hoop filled at 0.5 mm holds 160,000 stitches); the byte cap keeps the reader's
+own memory (about 1 KB per record in pystitch) under 500 MB.
+
+Examples
+--------
+>>> from embroact.patterns.base.validate import check_count, check_name
+>>> try:
+...     check_count("markers_per_side", 10**40, low=2, high=1000)
+... except ValueError as exc:
+...     print(exc)
+markers_per_side must be an integer in [2, 1000], got 1e+40
+>>> try:
+...     check_name("name", "A\\x01")
+... except ValueError as exc:
+...     print(exc)
+name must not contain control characters, got 'A\\x01'
+"""
+from __future__ import annotations
+
+import os
+import unicodedata
+
+from .errors import DesignFileError, ParameterError
+
+__all__ = [
+    "TEXT_FILE_BYTES",
+    "CSV_FILE_BYTES",
+    "CSV_ROWS",
+    "CSV_COLUMNS",
+    "CSV_FIELD_CHARS",
+    "MACHINE_FILE_BYTES",
+    "MACHINE_FILE_RECORDS",
+    "PATH_CHARS",
+    "PATH_SEGMENTS",
+    "NAME_CHARS",
+    "SHOWN_CHARS",
+    "shown",
+    "check_count",
+    "check_name",
+    "check_output_name",
+    "read_limited",
+]
+
+TEXT_FILE_BYTES = 4 * 1024 * 1024
+CSV_FILE_BYTES = 16 * 1024 * 1024
+CSV_ROWS = 50_000
+CSV_COLUMNS = 1_000
+CSV_FIELD_CHARS = 1_000
+MACHINE_FILE_BYTES = 4 * 1024 * 1024
+MACHINE_FILE_RECORDS = 500_000
+PATH_CHARS = 1_000_000
+PATH_SEGMENTS = 20_000
+NAME_CHARS = 200
+#: Longest value an error message repeats (longer ones are cut and marked with '...').
+SHOWN_CHARS = 80
+
+
+def shown(value: object) -> str:
+    """``repr`` of ``value`` cut to :data:`SHOWN_CHARS` characters: safe for one terminal line.
+
+    >>> shown("x" * 100)
+    "'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...'"
+    >>> shown("caf\\udce9")
+    "'caf\\\\udce9'"
+    """
+    if isinstance(value, str) and len(value) > SHOWN_CHARS:
+        return repr(value[: SHOWN_CHARS - 2] + "...")
+    text = repr(value)
+    return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 3] + "..."
+
+
+def check_count(name: str, value: object, *, low: int, high: int) -> int:
+    """Return ``value`` as an int in ``[low, high]``, or raise :class:`ParameterError`.
+
+    Counts size allocations (markers, states, rows), so the upper bound is always finite.
+    """
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ParameterError(f"{name} must be an integer in [{low}, {high}], got {shown(value)}")
+    if not low <= value <= high:
+        try:
+            got = f"{float(value):g}" if abs(value) >= 10**6 else str(value)
+        except OverflowError:
+            got = f"an integer of {len(str(abs(value)))} digits"
+        raise ParameterError(f"{name} must be an integer in [{low}, {high}], got {got}")
+    return value
+
+
+def _control(text: str) -> str | None:
+    return next((c for c in text if unicodedata.category(c) in ("Cc", "Cs")), None)
+
+
+def check_name(name: str, value: object, *, max_chars: int = NAME_CHARS) -> str:
+    """Return ``value`` if it is a printable, non-empty string of at most ``max_chars`` characters.
+
+    Names end up in SVG (XML 1.0 allows no control characters), worksheets and the
+    terminal, so control characters (``\\x00``, ``\\x01``, escape sequences) are refused.
+    """
+    if not isinstance(value, str) or not value.strip():
+        raise ParameterError(f"{name} must be a non-empty string, got {shown(value)}")
+    if _control(value) is not None:
+        raise ParameterError(f"{name} must not contain control characters, got {shown(value)}")
+    if len(value) > max_chars:
+        raise ParameterError(f"{name} must be at most {max_chars} characters, got {len(value)}")
+    return value
+
+
+def check_output_name(flag: str, value: object) -> str:
+    """Return ``value`` if it can name an output file: non-empty, not option-like, UTF-8, printable.
+
+    ``-o --preview`` or ``--out=--`` are typos, not file names (write ``./-x`` for a file
+    that starts with ``-``); names that are not UTF-8 (``$'\\xff'`` from a shell) or carry
+    control characters cannot be printed or written into a worksheet faithfully.
+
+    >>> check_output_name("--out", "out")
+    'out'
+    >>> try:
+    ...     check_output_name("--preview", "\\udcff\\udcfe")
+    ... except ValueError as exc:
+    ...     print(exc)
+    --preview must be a UTF-8 file name without control characters, got '\\udcff\\udcfe'
+    """
+    if not isinstance(value, str) or not value:
+        raise ParameterError(f"{flag} must be a non-empty file name, got {shown(value)}")
+    if value.startswith("-"):
+        raise ParameterError(f"{flag} must be a file name, not an option, got {shown(value)} "
+                             f"(write ./{value} for a file starting with '-')")
+    if _control(value) is not None:
+        raise ParameterError(f"{flag} must be a UTF-8 file name without control characters, got {shown(value)}")
+    return value
+
+
+def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
+    """The bytes of ``path``, refusing files larger than ``limit`` without reading them whole.
+
+    Reads at most ``limit + 1`` bytes, so special files (``/dev/zero``) and files that grow
+    while read are bounded too.
+
+    Raises
+    ------
+    DesignFileError
+        ``<path>: <what> must be at most <limit> bytes, got <size>`` (``more than`` when the
+        size is not known in advance).
+    OSError
+        When the file cannot be opened or read (the caller words it).
+    """
+    with open(path, "rb") as fh:
+        try:
+            size = os.fstat(fh.fileno()).st_size
+        except OSError:
+            size = 0
+        if size > limit:
+            raise DesignFileError(f"{os.fsdecode(path)}: {what} must be at most {limit:,} bytes, got {size:,}")
+        data = fh.read(limit + 1)
+    if len(data) > limit:
+        raise DesignFileError(f"{os.fsdecode(path)}: {what} must be at most {limit:,} bytes, got more")
+    return data
