@@ -264,6 +264,27 @@ class DesignAnalysis:
             out.append((BentShape.chain(lengths, theta), theta))
         return tuple(out)
 
+    def bands(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
+        """1-sigma band of theta(P) per actuator (:class:`~embroact.predict.uncertainty.Band`), memoised.
+
+        An actuator gets a band when G and P0 come from one fitted calibration point with a
+        covariance (``embroact fit`` records it); otherwise ``None``: the built-in paper set and
+        interpolated or given values carry no uncertainty, and no band is claimed for them.
+        """
+        from .uncertainty import theta_band
+
+        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        key = ("band", p, method)
+        if key not in self._curves:
+            out = []
+            for a in self.actuators:
+                cal = a.choice.calibration if a.choice is not None else None
+                given = a.spec.model.g_mpa is not None or a.spec.model.p0_kpa is not None
+                usable = cal is not None and cal.covariance and not given and set(cal.fitted) <= {"g_mpa", "p0_kpa"}
+                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method) if usable else None)
+            self._curves[key] = tuple(out)
+        return self._curves[key]
+
     def as_dict(self) -> dict:
         """JSON-ready summary of every actuator."""
         return {"design": self.design.name, "actuators": [a.as_dict() for a in self.actuators]}

@@ -90,6 +90,7 @@ PATTERNS = ("zigzag", "cross")
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
 
+_FITTABLE = ("g_mpa", "p0_kpa", "g_e_mpa")
 _G_MAX_MPA = 1e5
 _P_MAX_KPA = 1e5
 _NAME_CHARS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.")
@@ -133,6 +134,11 @@ class CalibrationPoint:
         Root-mean-square residual of the fit [deg].
     n_points : int, optional
         Number of measured points the fit used.
+    fitted : tuple of str
+        Names of the fitted parameters (``g_mpa``, ``p0_kpa``, ``g_e_mpa``), the order of ``covariance``.
+    covariance : tuple of tuples
+        Covariance of the fitted parameters [MPa, kPa units]; empty when unknown. G and P0 are
+        strongly correlated, so a band from standard errors alone would be wrong.
     """
 
     pattern: str
@@ -148,6 +154,8 @@ class CalibrationPoint:
     g_e_mpa_se: float | None = None
     rmse_deg: float | None = None
     n_points: int | None = None
+    fitted: tuple[str, ...] = ()
+    covariance: tuple[tuple[float, ...], ...] = ()
 
     def __post_init__(self) -> None:
         _choice("pattern", self.pattern, PATTERNS)
@@ -166,6 +174,21 @@ class CalibrationPoint:
         n = self.n_points
         if n is not None and (isinstance(n, bool) or not isinstance(n, int) or n < 1):
             raise ParameterError(f"n_points must be a positive integer, got {n!r}")
+        fitted = tuple(str(f) for f in self.fitted)
+        bad = [f for f in fitted if f not in _FITTABLE]
+        if bad or len(set(fitted)) != len(fitted):
+            raise ParameterError(f"fitted must name distinct parameters of {', '.join(_FITTABLE)}, got {self.fitted!r}")
+        cov = tuple(tuple(float(v) for v in row) for row in self.covariance)
+        k = len(fitted)
+        if cov and (len(cov) != k or any(len(row) != k for row in cov)):
+            raise ParameterError(f"covariance must be {k} x {k} (one row per fitted parameter), got {len(cov)} rows")
+        if cov and (any(not math.isfinite(v) for row in cov for v in row)
+                    or any(cov[i][i] < 0.0 for i in range(k))
+                    or any(abs(cov[i][j] - cov[j][i]) > 1e-9 * (abs(cov[i][j]) + abs(cov[j][i]) + 1e-300)
+                           for i in range(k) for j in range(i))):
+            raise ParameterError("covariance must be finite and symmetric with a non-negative diagonal")
+        object.__setattr__(self, "fitted", fitted)
+        object.__setattr__(self, "covariance", cov)
 
     @property
     def coordinate(self) -> float:
@@ -182,8 +205,13 @@ class CalibrationPoint:
         )
 
     def as_dict(self) -> dict:
-        """Plain dict of the set fields (``None`` fields left out)."""
-        return {k: getattr(self, k) for k in self.__slots__ if getattr(self, k) is not None}
+        """Plain dict of the set fields (``None`` and empty fields left out)."""
+        out = {k: getattr(self, k) for k in self.__slots__ if getattr(self, k) not in (None, ())}
+        if "fitted" in out:
+            out["fitted"] = list(out["fitted"])
+        if "covariance" in out:
+            out["covariance"] = [list(row) for row in out["covariance"]]
+        return out
 
 
 @dataclass(frozen=True, slots=True)
@@ -320,6 +348,9 @@ class Calibration:
         ``"clamp"`` or ``"linear"``: what was done outside the range.
     notes : tuple of str
         Other mismatches (e.g. a cross width different from the calibrated one).
+    fitted, covariance : tuple
+        The fitted parameters and their covariance when the design matches one fitted point
+        exactly (empty when interpolated, averaged or unknown: no band is claimed then).
     """
 
     name: str
@@ -336,6 +367,8 @@ class Calibration:
     extrapolated: bool
     extrapolation: str
     notes: tuple[str, ...] = ()
+    fitted: tuple[str, ...] = ()
+    covariance: tuple[tuple[float, ...], ...] = ()
 
     @property
     def label(self) -> str:
@@ -354,6 +387,8 @@ class Calibration:
         """Plain dict with unit-suffixed keys, plus ``label``."""
         d = {k: getattr(self, k) for k in self.__slots__}
         d["notes"] = list(self.notes)
+        d["fitted"] = list(self.fitted)
+        d["covariance"] = [list(row) for row in self.covariance]
         d["label"] = self.label
         return d
 
@@ -532,9 +567,13 @@ def lookup(
     tol = _coordinate_tolerance(pattern) * (1.0 if pattern == "cross" else value)
     hit = [i for i, x in enumerate(xs) if abs(x - value) <= tol]
     extrapolated = value < xs[0] - tol or value > xs[-1] + tol
+    fitted, cov = (), ()
     if hit:
         i = hit[0]
         g_v, p0_v, ge_v = g[i], p0[i], (ge[i] if ge else None)
+        group = merged[i][1]
+        if len(group) == 1:
+            fitted, cov = group[0].fitted, group[0].covariance
     else:
         g_v = _interpolate(xs, g, value, extrapolation)
         p0_v = _interpolate(xs, p0, value, extrapolation)
@@ -560,6 +599,8 @@ def lookup(
         extrapolated=bool(extrapolated),
         extrapolation=extrapolation,
         notes=tuple(notes),
+        fitted=fitted,
+        covariance=cov,
     )
 
 

@@ -73,7 +73,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ..patterns.base.arrays import frozen_array
-from ..patterns.base.errors import ParameterError, check_range
+from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
 from . import solvers
@@ -159,6 +159,10 @@ class ActuatorModel:
         check_range("inner_radius_mm", self.inner_radius_mm, low=0.0, low_inclusive=True,
                     high=float(self.outer_radius_mm))
         check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=1e6)
+        if not self.r0_mm > self.outer_radius_mm:
+            raise ModelDomainError(
+                f"r0_mm must be > outer_radius_mm={self.outer_radius_mm:g} (no sleeve: the thread squeezes the tube "
+                f"before any pressure, the model has no inflation phase), got {self.r0_mm:g}")
         if self.pattern == "cross":
             check_range("beta0_deg", self.beta0_deg, low=0.0, high=90.0)
         elif self.beta0_deg != 0:

@@ -67,20 +67,23 @@ def _limits(act, c) -> list[list[str]]:
     return limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, act.model.length_mm).names()
 
 
-def _result(act, c) -> dict:
+def _result(act, c, band) -> dict:
     from ...predict.validity import branch_end
 
     out = act.as_dict()
     out["branch_end"] = branch_end(act.model).as_dict()  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
     out["limits"] = _limits(act, c)
+    # 1-sigma band from the calibration's covariance; None when the calibration carries none
+    out["band"] = None if band is None else {k: band.as_dict()[k] for k in (
+        "theta_sd_deg", "theta_low_deg", "theta_high_deg", "parameters", "covariance")}
     return out
 
 
 _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
 
 
-def _table(act, c) -> str:
+def _table(act, c, band) -> str:
     derived, model, choice = act.derived, act.model, act.choice
     angle = f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg" if derived.pattern == "cross" else ""
     head = (f"{act.name}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
@@ -88,6 +91,10 @@ def _table(act, c) -> str:
             f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube law {model.tube_law}; "
             f"method {c.method}")
     rows = [head + "".join(f"; note: {n}" for n in choice.notes)]
+    if band is not None:
+        rows.append("1-sigma band of theta from the calibration's covariance: "
+                    + ", ".join(f"{p:g} kPa +-{s:.3g} deg" for p, s in zip(band.pressure_kpa, band.theta_sd_deg)
+                                if s > 0.0))
     rows.append("pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
     d = c.as_dict()
     for p, t, s, l, r, b, di, lim in zip(*(d[k] for k in _COLUMNS), _limits(act, c)):
@@ -110,12 +117,14 @@ def run(args) -> int:
         if not acts:
             names = ", ".join(a.name for a in analysis.actuators)
             raise ParameterError(f"--actuator must be one of {names}, got {args.actuator!r}")
-    curves = dict(zip((a.name for a in analysis.actuators), analysis.curves(pressures, method=args.method)))
-    results = [_result(a, curves[a.name]) for a in acts]
+    names = [a.name for a in analysis.actuators]
+    curves = dict(zip(names, analysis.curves(pressures, method=args.method)))
+    bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
+    results = [_result(a, curves[a.name], bands[a.name]) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:
-        print("\n\n".join(_table(a, curves[a.name]) for a in acts))
+        print("\n\n".join(_table(a, curves[a.name], bands[a.name]) for a in acts))
     return 0
