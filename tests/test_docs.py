@@ -131,6 +131,36 @@ def test_markdown_links_resolve(page):
     assert not bad, "\n".join(bad)
 
 
+_CODE_PATH = re.compile(r"`((?:patterns|predict|export|benchmarks|examples|tests|docs)/[\w/.-]+\.(?:py|md|toml|svg|csv))`")
+_CODE_NAME = re.compile(r"`((?:patterns|predict|export)(?:\.[A-Za-z_]\w*)+)")
+
+
+def _resolves(dotted: str) -> bool:
+    """True when ``embroact.<dotted>`` is a module or an attribute chain of one."""
+    import importlib
+
+    parts = dotted.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(["embroact", *parts[:cut]]))
+        except ImportError:
+            continue
+        for name in parts[cut:]:
+            if not hasattr(obj, name):
+                return False
+            obj = getattr(obj, name)
+        return True
+    return False
+
+
+@pytest.mark.parametrize("page", ["docs/model.md", "docs/machine.md"])
+def test_code_the_docs_name_exists(page):
+    text = _text(ROOT / page)
+    missing = [p for p in _CODE_PATH.findall(text) if not (ROOT / p).exists()]
+    missing += [n for n in _CODE_NAME.findall(text) if not _resolves(n)]
+    assert not missing, f"{page} names code that does not exist: {missing}"
+
+
 def test_readme_links_to_the_docs_pages():
     targets = {m["target"].partition("#")[0] for m in _LINK.finditer(_text(ROOT / "README.md"))}
     assert {"docs/model.md", "docs/machine.md"} <= targets
