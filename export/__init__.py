@@ -8,4 +8,6 @@ modules you need.
 """
 
 __version__ = "0.1.0"
-"""Shown by ``embroact --version`` and in report.json's ``generator`` (keep equal to pyproject.toml)."""
+"""The package version, written only here: pyproject.toml reads it (``[tool.setuptools.dynamic]``), the
+package metadata and ``embroact.__version__`` carry it, ``embroact --version`` and report.json's
+``generator`` show it."""

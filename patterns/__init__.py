@@ -1,9 +1,11 @@
 """embroact.patterns: tube paths, stitch-pattern generators, plans and design values.
 
-Pure geometry: imports numpy and shapely only (no scipy, no trimesh). The generators are
-imported here (their names equal their modules' names, which a lazy name cannot shadow);
-every other name loads its module on first use (:mod:`embroact.patterns.base.lazy`), so a
-command that never reads a design file does not load one.
+Pure geometry: imports numpy and shapely only (no scipy, no trimesh). Every name below
+loads its module on first use (lazy_loader), so importing one small module
+(``embroact.patterns.base.errors``) loads neither numpy nor shapely, and a command that
+never reads a design file does not load one. The generators ``zigzag``, ``cross`` and
+``measure`` share their modules' names; the package attribute is the function even after
+the module was imported.
 
 Examples
 --------
@@ -12,40 +14,16 @@ Examples
 >>> plan.actuators[0].realised.passes
 1
 """
-from .cross import cross
-from .base.lazy import lazy_exports
-from .measure import measure
-from .zigzag import zigzag
+import lazy_loader
 
-_EXPORTS = {
-    "Centerline": "centerline",
-    "as_centerline": "centerline",
-    "ActuatorSpec": "design",
-    "Design": "design",
-    "MachineSettings": "design",
-    "ModelSettings": "design",
-    "OperationSettings": "design",
-    "build_plan": "design",
-    "default_design": "design",
-    "design_from_dict": "design",
-    "design_to_dict": "design",
-    "generate_actuator": "design",
-    "join_plans": "design",
-    "DesignFileError": "base.errors",
-    "EmbroactError": "base.errors",
-    "ParameterError": "base.errors",
-    "PathError": "base.errors",
-    "PatternError": "base.errors",
-    "CrossParams": "params",
-    "StitchOptions": "params",
-    "Tube": "params",
-    "ZigzagParams": "params",
-    "ActuatorPlan": "plan",
-    "Command": "plan",
-    "Realised": "plan",
-    "Role": "plan",
-    "StitchPlan": "plan",
-}
-
-__all__ = ["zigzag", "cross", "measure", *_EXPORTS]
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "zigzag": ["zigzag"],
+    "cross": ["cross"],
+    "measure": ["measure"],
+    "centerline": ["Centerline", "as_centerline"],
+    "design": ["ActuatorSpec", "Design", "MachineSettings", "ModelSettings", "OperationSettings", "build_plan",
+               "default_design", "design_from_dict", "design_to_dict", "generate_actuator", "join_plans"],
+    "base.errors": ["DesignFileError", "EmbroactError", "ParameterError", "PathError", "PatternError"],
+    "params": ["CrossParams", "StitchOptions", "Tube", "ZigzagParams"],
+    "plan": ["ActuatorPlan", "Command", "Realised", "Role", "StitchPlan"],
+})

@@ -1,7 +1,7 @@
 """embroact.predict: the deformation model of docs/model.md, its numerical methods and calibration.
 
 No file I/O; scipy is imported only by the functions that need it (root finding,
-fitting). The names below load their module on first use (:mod:`embroact.patterns.base.lazy`), so
+fitting). The names below load their module on first use (lazy_loader), so
 importing one small module (``embroact.predict.derived``) does not load the model.
 The function ``curve`` lives in (and is not re-exported over) the module
 :mod:`embroact.predict.curve`: ``from embroact.predict.curve import curve``.
@@ -17,25 +17,12 @@ Examples
 >>> c.as_dict()["status"], c.method
 (['INFLATION', 'BENDING'], 'stable-analytic-trace')
 """
-from ..patterns.base.lazy import lazy_exports
+import lazy_loader
 
-_EXPORTS = {
-    "ActuatorModel": "curve",
-    "Curve": "curve",
-    "pressure_at": "curve",
-    "lockup": "curve",
-    "sweep": "curve",
-    "METHODS": "curve",
-    "Status": "status",
-    "DerivedGeometry": "derived",
-    "derive": "derived",
-    "derive_from_values": "derived",
-    "lookup": "calibration",
-    "model_for": "calibration",
-    "analyse": "analysis",
-    "DesignAnalysis": "analysis",
-    "ActuatorAnalysis": "analysis",
-}
-
-__all__ = list(_EXPORTS)
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "curve": ["ActuatorModel", "Curve", "pressure_at", "lockup", "sweep", "METHODS"],
+    "status": ["Status"],
+    "derived": ["DerivedGeometry", "derive", "derive_from_values"],
+    "calibration": ["lookup", "model_for"],
+    "analysis": ["analyse", "DesignAnalysis", "ActuatorAnalysis"],
+})

@@ -5,7 +5,7 @@ import pkgutil
 
 import pytest
 
-PACKAGES = ["embroact.patterns", "embroact.predict", "embroact.export"]
+PACKAGES = ["embroact", "embroact.patterns", "embroact.predict", "embroact.export"]
 
 
 def _modules():

@@ -28,3 +28,19 @@ def test_help_loads_no_numpy_shapely_trimesh_scipy(argv):
     code = ("import contextlib, io\nfrom embroact.export.cli.main import main\n"
             f"with contextlib.redirect_stdout(io.StringIO()):\n    code = main({argv!r})\nassert code == 0, code")
     assert _loaded_after(code, HEAVY_FOR_HELP) == []
+
+
+@pytest.mark.parametrize("module", ["embroact.patterns.base.errors", "embroact.patterns", "embroact.predict",
+                                    "embroact"])
+def test_package_and_error_imports_load_no_numpy(module):
+    # the packages' names load their modules on first use (lazy_loader)
+    assert _loaded_after(f"import {module}", HEAVY_FOR_HELP) == []
+
+
+def test_generator_names_stay_functions_after_their_modules_load():
+    # zigzag, cross and measure share their modules' names: importing a module that imports
+    # them (design) must not replace the package's function by the module
+    code = ("import embroact.patterns.design, embroact.patterns as p, inspect\n"
+            "from embroact.patterns import zigzag, cross, measure\n"
+            "assert all(inspect.isfunction(f) for f in (zigzag, cross, measure, p.zigzag, p.cross, p.measure))")
+    subprocess.run([sys.executable, "-c", code], check=True)

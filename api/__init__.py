@@ -1,0 +1,65 @@
+"""embroact: CAD tool and stitch generator for embroidery actuators.
+
+The main entry points, loaded on first use (``import embroact`` itself loads no numpy):
+
+==========================  =====================================================
+load and make a design      :func:`load_design`, :func:`save_design`,
+                            :func:`default_design`, :func:`design_from_dict`,
+                            :class:`Design`, :class:`ActuatorSpec`, :func:`svg_centerline`
+generate stitches           :func:`build_plan`, :func:`zigzag`, :func:`cross`,
+                            :class:`Centerline`, :class:`ZigzagParams`, :class:`CrossParams`,
+                            :class:`Tube`, :class:`StitchPlan`
+analyse and predict         :func:`analyse` (-> :class:`DesignAnalysis`), :func:`curve`,
+                            :class:`ActuatorModel`, :class:`Curve`
+check                       :func:`check_design` (design rules; findings with code and fix)
+write                       :func:`write` (one machine file), :func:`build` (every output)
+errors                      :class:`EmbroactError` and its subclasses
+==========================  =====================================================
+
+Subpackages: :mod:`embroact.patterns` (geometry), :mod:`embroact.predict` (model),
+:mod:`embroact.export` (files, pictures, reports, the command line). Units are mm, kPa,
+MPa and degrees at every boundary; every name carries its unit. ``__version__`` is read
+from the installed package's metadata.
+
+Examples
+--------
+>>> import embroact
+>>> analysis = embroact.analyse(embroact.default_design())
+>>> act = analysis.actuators[0]
+>>> act.name, round(act.derived.r0_mm, 3), act.model.g_mpa
+('A1', 2.581, 2.7)
+>>> [round(float(t), 1) for t in analysis.curves([100.0, 200.0])[0].theta_deg]
+[11.5, 102.9]
+>>> embroact.__version__ == __import__("importlib.metadata").metadata.version("embroact")
+True
+"""
+import lazy_loader
+
+__getattr__lazy, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
+    "export.files.designfile": ["load_design", "save_design", "loads_design", "dumps_design"],
+    "export.files.svgfile": ["svg_centerline", "read_svg_path"],
+    "patterns.design": ["Design", "ActuatorSpec", "MachineSettings", "OperationSettings", "ModelSettings",
+                        "default_design", "design_from_dict", "design_to_dict", "build_plan"],
+    "patterns.centerline": ["Centerline"],
+    "patterns.params": ["Tube", "ZigzagParams", "CrossParams", "StitchOptions"],
+    "patterns.plan": ["StitchPlan", "Command", "Role"],
+    "patterns.zigzag": ["zigzag"],
+    "patterns.cross": ["cross"],
+    "predict.analysis": ["analyse", "DesignAnalysis", "ActuatorAnalysis"],
+    "predict.curve": ["curve", "ActuatorModel", "Curve"],
+    "predict.rules": ["check_design"],
+    "export.machine.formats": ["write", "WriteResult"],
+    "export.report.build": ["build", "BuildResult"],
+    "patterns.base.errors": ["EmbroactError", "ParameterError", "PatternError", "PathError", "DesignFileError",
+                             "ModelDomainError", "SolverError", "ExportError"],
+})
+__all__ = [*__all__, "__version__"]
+
+
+def __getattr__(name: str):
+    if name == "__version__":
+        from importlib.metadata import version
+
+        globals()["__version__"] = v = version(__name__)
+        return v
+    return __getattr__lazy(name)
