@@ -115,3 +115,14 @@ def test_mesh_follows_the_chain():
     assert last[[0, 2]] == pytest.approx([x, -y], abs=0.5)
     again = mesh.remeshed(0.2)
     assert again.bent.segment_theta_deg == tuple(thetas)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_planar_fast_path_is_the_same_line(seed):
+    from embroact.predict.shape import planar_chain_mm
+
+    rng = np.random.default_rng(seed)
+    lengths, thetas = rng.uniform(5.0, 40.0, 5), rng.uniform(-200.0, 200.0, 5)
+    s = np.linspace(0.0, lengths.sum(), 77)
+    assert planar_chain_mm(lengths, thetas, s) == pytest.approx(BentShape.chain(lengths, thetas).profile_mm(s),
+                                                                 abs=1e-9)

@@ -1,0 +1,59 @@
+"""Seeded target shapes for the inverse-design round trip: shapes predicted for known segmented designs.
+
+Each target is generated from a random segmented design (2-6 segments, zigzag and cross
+mixed, both bend directions, 80-200 mm long) by the forward model: the fabric line
+embroact predicts for that design at the target pressure, sampled every 0.25 mm. A
+design found for it can therefore match it exactly; the round trip measures how close
+``design_shape`` gets.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings
+from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+from embroact.patterns.segments import SegmentSpec
+from embroact.predict.analysis import analyse
+
+PRESSURE_KPA = 200.0
+_ZIGZAG_WIDTH_MM = (6.6, 8.8)
+_CROSS_NEG_DEG = (38.0, 52.0)
+_CROSS_WIDTH_MM, _CROSS_INTERVAL_MM = 7.0, 1.4
+
+
+def _segment(rng, kind: str):
+    if kind == "zigzag":
+        return ZigzagParams(round(float(rng.uniform(*_ZIGZAG_WIDTH_MM)), 3), 1.0), 12.0
+    a = round(float(rng.uniform(*_CROSS_NEG_DEG)), 3)
+    return CrossParams(_CROSS_WIDTH_MM, _CROSS_INTERVAL_MM, a), 4.0 * _CROSS_WIDTH_MM * math.tan(math.radians(a)) + 3.0
+
+
+def target_design(seed: int) -> Design:
+    """A random segmented design (the same for the same seed)."""
+    rng = np.random.default_rng(seed)
+    while True:
+        n = int(rng.integers(2, 7))
+        kinds = ["zigzag" if rng.random() < 0.55 else "cross" for _ in range(n)]
+        if "zigzag" not in kinds or "cross" not in kinds:
+            kinds[int(rng.integers(0, n))] = "cross" if "cross" not in kinds else "zigzag"
+        parts = [_segment(rng, k) for k in kinds]
+        low = sum(m for _, m in parts)
+        if low <= 195.0:
+            break
+    total = float(rng.uniform(max(80.0, low), 200.0))
+    extra = rng.dirichlet(np.ones(n)) * (total - low)
+    lengths = [round(m + e, 2) for (_, m), e in zip(parts, extra)]
+    segs = tuple(SegmentSpec(p, length, adjust="interval") for (p, _), length in zip(parts, lengths))
+    spec = ActuatorSpec.segmented("T", segs)
+    return Design(f"target-{seed}", Tube(), MachineSettings(), OperationSettings(max_pressure_kpa=PRESSURE_KPA),
+                  (spec,))
+
+
+def target_shape(seed: int, step_mm: float = 0.25) -> tuple[Design, np.ndarray]:
+    """The design and its predicted fabric line at PRESSURE_KPA, points every ``step_mm`` (profile frame)."""
+    design = target_design(seed)
+    shape, _ = analyse(design).shapes("T", [PRESSURE_KPA])[0]
+    s = np.linspace(0.0, shape.length_mm, int(round(shape.length_mm / step_mm)) + 1)
+    return design, shape.profile_mm(s)

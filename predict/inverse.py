@@ -1,0 +1,849 @@
+"""Inverse design: from the bend or the shape a user wants at one pressure to embroidery parameters.
+
+Two questions (docs/model.md, segmented actuators):
+
+* **target bend** (:func:`design_bend`): which single actuator of length ``L`` bends by
+  ``theta*`` at ``P*``? Each pattern has one free parameter inside its calibrated range
+  (zigzag: the width ``w``; cross: the angle ``alpha0`` at the calibrated width), the
+  interval is the calibrated one (cross: the nearest that closes the pattern, so the
+  angle is sewn as asked). ``theta(P*)`` is tabulated over the parameter with the
+  vectorised model (:func:`~embroact.predict.curve.sweep`), every crossing of the target
+  is polished by ``brentq``, and each candidate is generated and analysed like any design
+  (the numbers ``embroact predict`` prints). A candidate must be in a valid model state
+  at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass the
+  design rules without errors.
+* **target shape** (:func:`design_shape`): which segmented actuator bends into a given
+  planar curve at ``P*``? The bent fabric line of a segmented actuator is a chain of
+  circular arcs (segments decouple), so its curvature is piecewise constant. The target's
+  curvature is fitted by ``n`` constant pieces (boundaries and curvatures by least squares
+  on the positions, started from an optimal piecewise-constant split of the target's
+  curvature, ``n = 1 .. max_segments``, the fewest that fit); each piece's bend
+  ``kappa_k L_k`` is then inverted to a pattern parameter at ``P*`` (positive: zigzag
+  width, or a cross angle below the neutral angle when no zigzag reaches it; negative:
+  a cross angle above it), and all parameters are polished together on the predicted
+  shape of the segmented design (legs, transitions and unbent gaps as generated).
+
+Unreachable targets get the best achievable design and a plain ``statement`` of why.
+Everything is deterministic: the same target gives the same design.
+
+Examples
+--------
+>>> from embroact.predict.inverse import design_bend
+>>> r = design_bend(90.0, 150.0, pattern="zigzag")
+>>> r.reached, r.best.pattern, round(r.best.theta_deg, 3)
+(True, 'zigzag', 90.0)
+>>> round(r.best.params.width_mm, 3)
+6.153
+"""
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from dataclasses import dataclass
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from ..patterns.base.errors import EmbroactError, ParameterError, check_range
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
+from ..patterns.centerline import Centerline
+from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
+from ..patterns.params import CrossParams, Tube, ZigzagParams
+from ..patterns.segments import SegmentSpec
+from .status import Status
+
+__all__ = ["PATTERN_CHOICES", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
+           "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature"]
+
+#: Values of ``pattern`` for a target bend.
+PATTERN_CHOICES = ("zigzag", "cross", "any")
+#: Points of the parameter table per pattern.
+_TABLE_POINTS = 121
+#: A candidate's bend must match the target within this after polishing [deg].
+_BEND_TOL_DEG = 1e-3
+#: States in which a segment's prediction is valid.
+_VALID = (int(Status.BENDING), int(Status.INFLATION))
+#: Target shapes are resampled at this many arc-length points.
+_SHAPE_SAMPLES = 201
+#: A curvature fit this close (RMSE) needs no more segments [mm].
+_FIT_GOOD_MM = 0.02
+#: Rounds of the parameter polish (leg extents regenerated between rounds).
+_POLISH_ROUNDS = 6
+#: Curvature fits worse than this (RMSE) are not tried as designs [mm].
+_FIT_PLAUSIBLE_MM = 0.25
+#: A reached design this close (RMSE) ends the search over segment counts [mm].
+_SHAPE_GOOD_MM = 0.1
+#: Shortest segment the curvature fit may make [mm].
+_MIN_SEGMENT_MM = 8.0
+#: Extrapolated design spaces (``allow_extrapolation``) [mm, deg].
+_EXTRAPOLATED = {"zigzag": (4.0, 14.0), "cross": (5.0, 80.0)}
+
+
+@dataclass(frozen=True, slots=True)
+class DesignSpace:
+    """The one free parameter of a pattern and its allowed range.
+
+    Attributes
+    ----------
+    pattern : str
+    parameter : str
+        ``"width_mm"`` (zigzag) or ``"angle_deg"`` (cross).
+    low, high : float
+        Range of the parameter [mm or deg].
+    width_mm, interval_mm : float
+        Cross: the calibrated width and the nominal interval; zigzag: the nominal interval
+        (``width_mm`` unused).
+    calibrated : bool
+        False when the range goes beyond the calibration (``allow_extrapolation``).
+    """
+
+    pattern: str
+    parameter: str
+    low: float
+    high: float
+    width_mm: float
+    interval_mm: float
+    calibrated: bool = True
+
+    def params(self, x: float) -> ZigzagParams | CrossParams:
+        """Pattern parameters at parameter value ``x`` (cross: interval closing the pattern exactly).
+
+        >>> s = DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
+        >>> p = s.params(40.0)
+        >>> round(p.interval_mm, 4), round(2 * 7.0 * math.tan(math.radians(40.0)) / p.interval_mm, 9)
+        (1.4684, 8.0)
+        """
+        if self.pattern == "zigzag":
+            return ZigzagParams(float(x), self.interval_mm)
+        reach = 2.0 * self.width_mm * math.tan(math.radians(x))
+        n = max(1, round(reach / self.interval_mm))
+        return CrossParams(self.width_mm, reach / n, float(x))
+
+    def describe(self) -> str:
+        """``"width_mm 5 to 9 (calibrated)"``."""
+        return f"{self.parameter} {self.low:g} to {self.high:g} ({'calibrated' if self.calibrated else 'extrapolated'})"
+
+
+def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, sets=(), tube: Tube = Tube(),
+                 allow_extrapolation: bool = False) -> DesignSpace:
+    """The range a pattern's free parameter may take: the calibration set's coverage.
+
+    >>> design_space("zigzag").describe(), design_space("cross").describe()
+    ('width_mm 5 to 9 (calibrated)', 'angle_deg 15 to 60 (calibrated)')
+    """
+    from .calibration import get_set
+
+    if pattern not in PATTERN_CHOICES[:2]:
+        raise ParameterError(f"pattern must be one of 'zigzag', 'cross', got {pattern!r}")
+    cset = get_set(settings.calibration, tuple(sets))
+    cover = cset.coverage().get(pattern)
+    points = [p for p in cset.points if p.pattern == pattern]
+    if cover is None or not points:
+        raise ParameterError(f"calibration {cset.name!r} has no {pattern} points; choose another pattern or set")
+    interval = float(np.median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0]))
+    width = float(np.median([p.width_mm for p in points]))
+    param = "width_mm" if pattern == "zigzag" else "angle_deg"
+    low, high = cover
+    if allow_extrapolation:
+        low, high = min(low, _EXTRAPOLATED[pattern][0]), max(high, _EXTRAPOLATED[pattern][1])
+        if pattern == "zigzag":
+            low = max(low, 2.0 * tube.corridor_radius_mm + 0.2)
+    return DesignSpace(pattern, param, float(low), float(high), width, interval, not allow_extrapolation)
+
+
+def _legs(params, length_mm: float) -> tuple[float, float]:
+    """(gap before the legs, legs' length) of a segment of ``length_mm`` on a straight path, nominally.
+
+    The span the generators fill: the largest multiple of the interval, centred. A zigzag's
+    legs cover it exactly; a cross pattern's may end up to a leg short of it where passes
+    turn (:func:`_legs_sewn` generates it).
+    """
+    s = params.interval_mm
+    span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
+    return 0.5 * (length_mm - span), span
+
+
+@functools.lru_cache(maxsize=4096)
+def _legs_sewn(params, length_mm: float) -> tuple[float, float]:
+    """(gap before the legs, legs' length) of a segment as its generator sews it on a straight path."""
+    if params.pattern == "zigzag":
+        return _legs(params, length_mm)
+    from ..patterns.kinds import pattern_kind
+    from ..patterns.plan import Role
+
+    plan = pattern_kind(params.pattern).generate(Centerline.straight(length_mm), params)
+    x = plan.xy_mm[:, 0]
+    legs = np.flatnonzero(plan.roles == Role.LEG)
+    ends = np.union1d(legs, legs - 1)
+    return float(x[ends].min()), float(plan.actuators[0].realised.length_mm)
+
+
+class _Model:
+    """theta(P*) of pattern parameters, through the same derived geometry and model factory as a design."""
+
+    def __init__(self, pressure_kpa: float, tube: Tube, settings: ModelSettings, sets) -> None:
+        self.p, self.tube, self.settings, self.sets = float(pressure_kpa), tube, settings, tuple(sets)
+
+    def model(self, params, l0_mm: float):
+        from .calibration import model_for
+        from .derived import derive_from_values
+
+        d = derive_from_values(params.pattern, width_mm=params.width_mm, interval_mm=params.interval_mm,
+                               angle_deg=getattr(params, "angle_deg", 0.0), length_mm=l0_mm, tube=self.tube)
+        return model_for(d, self.settings, sets=self.sets).model
+
+    def theta(self, params_list, l0_list) -> tuple[np.ndarray, np.ndarray]:
+        """Bend [deg] and status at P* of each (params, l0)."""
+        from .curve import sweep
+
+        c = sweep([self.model(p, l0) for p, l0 in zip(params_list, l0_list)], [self.p])
+        return np.asarray(c.theta_deg)[:, 0], np.asarray(c.status)[:, 0]
+
+    def table(self, space: DesignSpace, length_mm: float, points: int = _TABLE_POINTS):
+        """(x grid, theta, status) of a segment of ``length_mm`` over the space."""
+        x = np.linspace(space.low, space.high, points)
+        params = [space.params(v) for v in x]
+        theta, status = self.theta(params, [_legs(p, length_mm)[1] for p in params])
+        return x, theta, status
+
+
+def _roots(model: _Model, space: DesignSpace, length_mm: float, target_deg: float, table=None) -> list[float]:
+    """Parameter values where the segment bends by ``target_deg`` at P* in a valid state."""
+    from scipy.optimize import brentq
+
+    x, theta, status = table if table is not None else model.table(space, length_mm)
+    ok = np.isin(status, _VALID)
+    f = theta - target_deg
+    out = []
+
+    def g(v):
+        p = space.params(v)
+        t, st = model.theta([p], [_legs(p, length_mm)[1]])
+        return float(t[0]) - target_deg
+
+    for i in range(len(x) - 1):
+        if ok[i] and ok[i + 1] and f[i] * f[i + 1] <= 0.0 and (f[i] != 0.0 or i == 0 or f[i - 1] != 0.0):
+            out.append(float(x[i]) if f[i] == 0.0 else float(brentq(g, x[i], x[i + 1], xtol=1e-10, rtol=1e-12)))
+    return out
+
+
+# ---------------------------------------------------------------------------- target bend
+@dataclass(frozen=True, slots=True)
+class BendCandidate:
+    """One design meeting (or nearest to) a target bend.
+
+    Attributes
+    ----------
+    pattern : str
+    params : ZigzagParams | CrossParams
+        What the design file asks for.
+    design : Design
+        A one-actuator design, ready to write.
+    theta_deg : float
+        Predicted bend at the target pressure, from the generated and analysed design [deg].
+    p0_kpa, g_mpa : float
+        The model's transition pressure and modulus (from the calibration).
+    limit : str
+        The first validity limit or lock-up along the branch (``"COILED at 231.4 kPa"``), or ``"none"``.
+    margin_kpa : float
+        Pressure from the target to that limit [kPa] (``inf``: none).
+    range_margin : float
+        Distance of the parameter from the nearer end of its range, as a fraction of the range.
+    sensitivity_deg_per_0p1mm : float
+        Change of the bend for 0.1 mm more width, G and P0 held (a sewing error) [deg].
+    sensitivity_deg_per_deg : float or None
+        Change of the bend per degree more angle (cross), G and P0 held [deg/deg].
+    binding : str
+        The constraint closest to binding (or that binds, for an unreachable target).
+    warnings : tuple of str
+        Codes of design-rule warnings (no candidate has errors).
+    """
+
+    pattern: str
+    params: ZigzagParams | CrossParams
+    design: Design
+    theta_deg: float
+    p0_kpa: float
+    g_mpa: float
+    limit: str
+    margin_kpa: float
+    range_margin: float
+    sensitivity_deg_per_0p1mm: float
+    sensitivity_deg_per_deg: float | None
+    binding: str
+    warnings: tuple[str, ...] = ()
+
+    def as_dict(self) -> dict:
+        """JSON-ready, units in the keys."""
+        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+                "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
+                "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
+                "range_margin_fraction": self.range_margin,
+                "sensitivity_deg_per_0p1mm_width": self.sensitivity_deg_per_0p1mm,
+                "sensitivity_deg_per_deg_angle": self.sensitivity_deg_per_deg, "binding": self.binding,
+                "warnings": list(self.warnings)}
+
+
+@dataclass(frozen=True, slots=True)
+class BendResult:
+    """The answer to a target bend: the best candidate, the runners-up and whether the target is met."""
+
+    target_deg: float
+    pressure_kpa: float
+    length_mm: float
+    best: BendCandidate
+    runners_up: tuple[BendCandidate, ...]
+    reached: bool
+    statement: str
+
+    def as_dict(self) -> dict:
+        """JSON-ready."""
+        return {"target_deg": self.target_deg, "pressure_kpa": self.pressure_kpa, "length_mm": self.length_mm,
+                "reached": self.reached, "statement": self.statement, "best": self.best.as_dict(),
+                "runners_up": [c.as_dict() for c in self.runners_up]}
+
+
+def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
+                  pressure_kpa: float) -> Design:
+    return Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=max(pressure_kpa, 1.0),
+                                                                     max_bend_deg=720.0),
+                  (ActuatorSpec(name, params, Centerline.straight(length_mm), model=settings),))
+
+
+def _geometry_sensitivity(derived, model, p: float, *, width_mm: float = 0.0, angle_deg: float = 0.0) -> float:
+    """Bend change at P [deg] when the sewn width/angle is off by the given amounts (G, P0 held)."""
+    from .curve import ActuatorModel, curve
+    from .derived import derive_from_values
+
+    def theta(sign: float) -> float:
+        d = derive_from_values(derived.pattern, width_mm=derived.width_mm + sign * width_mm,
+                               interval_mm=derived.interval_mm, angle_deg=derived.angle_deg + sign * angle_deg,
+                               length_mm=derived.length_mm, tube=derived.tube)
+        m = ActuatorModel.from_derived(d, g_mpa=model.g_mpa, p0_kpa=model.p0_kpa, tube_law=model.tube_law)
+        return float(curve(m, [p]).theta_deg[0])
+
+    return 0.5 * (theta(1.0) - theta(-1.0))
+
+
+def _limits(model, p: float) -> tuple[str, float]:
+    from .curve import lockup
+    from .validity import first_limit
+
+    found = []
+    lim = first_limit(model)
+    if lim is not None:
+        found.append((lim.pressure_kpa, f"{lim.status.name} at {lim.pressure_kpa:.1f} kPa ({lim.theta_deg:.1f} deg)"))
+    lock_theta, lock_p = lockup(model)
+    if math.isfinite(lock_p):
+        found.append((lock_p, f"end of the stable branch at {lock_p:.1f} kPa ({lock_theta:.1f} deg)"))
+    elif lock_theta != 0.0:
+        found.append((math.inf, f"lock-up at {lock_theta:.1f} deg"))
+    finite = [f for f in found if math.isfinite(f[0])]
+    if not finite:
+        return (found[0][1] if found else "none"), math.inf
+    p_lim, text = min(finite)
+    return text, p_lim - p
+
+
+def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
+               tube: Tube, settings: ModelSettings, sets, name: str, polish: bool) -> BendCandidate | None:
+    """Generate and analyse the design at x (polishing x on the analysed design); None if it fails the rules."""
+    from .analysis import analyse
+    from .curve import curve
+    from .rules import check_design
+
+    def analysed(v):
+        d = _one_actuator(space.params(v), length_mm, tube, settings, name, pressure_kpa)
+        a = analyse(d, calibration_sets=sets)
+        act = a.actuators[0]
+        if act.choice is None:
+            return d, a, None, None
+        c = curve(act.model, [pressure_kpa])
+        return d, a, float(c.theta_deg[0]), int(c.status[0])
+
+    d, a, theta, status = analysed(x)
+    if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
+        x0, t0 = x, theta
+        x1 = min(max(x + 1e-4 * (space.high - space.low), space.low), space.high)
+        for _ in range(6):
+            if abs(t0 - target_deg) <= _BEND_TOL_DEG:
+                break
+            _, _, t1, _ = analysed(x1)
+            if t1 is None or t1 == t0:
+                break
+            x0, x1, t0 = x1, min(max(x1 - (t1 - target_deg) * (x1 - x0) / (t1 - t0), space.low), space.high), t1
+        x = x0
+        d, a, theta, status = analysed(x)
+    if theta is None or status not in _VALID:
+        return None
+    findings = check_design(a)
+    if any(f.severity.name == "ERROR" for f in findings):
+        return None
+    act = a.actuators[0]
+    model = act.model
+    limit, margin = _limits(model, pressure_kpa)
+    edge = min(x - space.low, space.high - x) / (space.high - space.low)
+    s_w = _geometry_sensitivity(act.derived, model, pressure_kpa, width_mm=0.05) * 2.0  # per 0.1 mm
+    s_a = _geometry_sensitivity(act.derived, model, pressure_kpa, angle_deg=0.5) if space.pattern == "cross" else None
+    range_note = (f"the {space.describe()} range: {space.parameter} {x:.4g} is "
+                  f"{min(x - space.low, space.high - x):.3g} from its end")
+    limit_note = f"{limit} ({margin:.1f} kPa above the target pressure)" if math.isfinite(margin) else limit
+    binding = range_note if edge * pressure_kpa <= (margin if math.isfinite(margin) else math.inf) * 0.5 \
+        else limit_note
+    return BendCandidate(space.pattern, space.params(x), d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
+                         s_w, s_a, binding, tuple(sorted({f.code for f in findings})))
+
+
+def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, table) -> str:
+    x, theta, status = table
+    ok = np.isin(status, _VALID)
+    if not ok.any():
+        return f"{space.pattern}: no valid state at {pressure_kpa:g} kPa anywhere in {space.describe()}"
+    lo, hi = float(theta[ok].min()), float(theta[ok].max())
+    if target_deg > hi:
+        return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at most {hi:+.1f} deg in a valid state over "
+                f"{space.describe()}")
+    return (f"{space.pattern}: at {pressure_kpa:g} kPa its most negative bend in a valid state over "
+            f"{space.describe()} is {lo:+.1f} deg")
+
+
+def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", length_mm: float = 100.0,
+                tube: Tube = Tube(), settings: ModelSettings = ModelSettings(), sets: Iterable = (),
+                allow_extrapolation: bool = False, name: str = "A1") -> BendResult:
+    """The single actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
+
+    Parameters
+    ----------
+    bend_deg : float
+        Target bend [deg], non-zero, |.| <= 720 (negative: toward the thread side).
+    pressure_kpa : float
+        Target pressure [kPa], > 0.
+    pattern : {"zigzag", "cross", "any"}
+    length_mm : float
+        Actuator length [mm], in [10, 1000].
+    tube, settings, sets
+        Tube, model settings (calibration, tube law) and extra calibration sets.
+    allow_extrapolation : bool
+        Search beyond the calibrated range.
+    name : str
+        The actuator's name in the written design.
+
+    Returns
+    -------
+    BendResult
+        ``reached`` False: ``best`` is the nearest achievable design and ``statement`` says why.
+    """
+    target = check_range("bend_deg", bend_deg, low=-720.0, high=720.0, high_inclusive=True, low_inclusive=True)
+    if target == 0.0:
+        raise ParameterError("bend_deg must be non-zero, got 0")
+    p = check_range("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0)
+    length = check_range("length_mm", length_mm, low=10.0, high=1000.0, low_inclusive=True, high_inclusive=True)
+    if pattern not in PATTERN_CHOICES:
+        raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
+    sets = tuple(sets)
+    kinds = PATTERN_CHOICES[:2] if pattern == "any" else (pattern,)
+    model = _Model(p, tube, settings, sets)
+    found, reasons, nearest = [], [], []
+    for kind in kinds:
+        space = design_space(kind, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+        table = model.table(space, length)
+        roots = _roots(model, space, length, target, table)
+        for x in roots:
+            cand = _candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
+                              polish=True)
+            if cand is not None and abs(cand.theta_deg - target) <= 0.05:
+                found.append(cand)
+        if not roots:
+            reasons.append(_why_not(space, target, p, table))
+        x, theta, status = table
+        ok = np.flatnonzero(np.isin(status, _VALID))
+        for i in ok[np.argsort(np.abs(theta[ok] - target), kind="stable")][:3]:
+            nearest.append((abs(float(theta[i]) - target), space, float(x[i])))
+    nearest.sort(key=lambda t: (t[0], t[1].pattern, t[2]))
+    if found:
+        # best: the widest margin to the nearest limit and range end, in that order of concern
+        found.sort(key=lambda c: (-min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern))
+        others = [t for t in nearest if t[1].pattern not in {c.pattern for c in found}]
+        misses = [_candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
+                             polish=False) for _, space, x in others[:1]]
+        return BendResult(target, p, length, found[0], tuple(found[1:]) + tuple(c for c in misses if c), True,
+                          f"met: {found[0].pattern} bends {found[0].theta_deg:.2f} deg at {p:g} kPa"
+                          + (f"; {'; '.join(reasons)}" if reasons else ""))
+    cands = []
+    for _, space, x in nearest:
+        c = _candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
+                       polish=False)
+        if c is not None:
+            cands.append(c)
+    if not cands:
+        raise ParameterError(f"bend_deg {target:g} at pressure_kpa {p:g}: no valid design in any pattern; "
+                             + "; ".join(reasons))
+    cands.sort(key=lambda c: abs(c.theta_deg - target))
+    best = cands[0]
+    statement = (f"not reachable: {'; '.join(reasons)}. Nearest: {best.pattern} with {best.theta_deg:.1f} deg "
+                 f"({best.theta_deg - target:+.1f} deg off)")
+    return BendResult(target, p, length, dataclasses.replace(best, binding="; ".join(reasons)),
+                      tuple(cands[1:3]), False, statement)
+
+
+# ---------------------------------------------------------------------------- target shape
+def _resample(target_xy_mm) -> tuple[np.ndarray, np.ndarray, float]:
+    """Arc lengths and points of the target at _SHAPE_SAMPLES even steps; its length."""
+    xy = np.asarray(target_xy_mm, dtype=np.float64)
+    if xy.ndim != 2 or xy.shape[1] != 2 or len(xy) < 3 or not np.all(np.isfinite(xy)):
+        raise ParameterError(f"target shape must be at least 3 finite (x_mm, y_mm) points, got array of shape "
+                             f"{xy.shape}")
+    xy = xy - xy[0]
+    step = np.hypot(*np.diff(xy, axis=0).T)
+    keep = np.concatenate([[True], step > 1e-9])
+    xy = xy[keep]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
+    length = float(s[-1])
+    check_range("target shape length_mm", length, low=2.0 * _MIN_SEGMENT_MM, high=2000.0)
+    sj = np.linspace(0.0, length, _SHAPE_SAMPLES)
+    return sj, np.column_stack([np.interp(sj, s, xy[:, 0]), np.interp(sj, s, xy[:, 1])]), length
+
+
+def _chain_xy(lengths, theta_deg, s_mm) -> np.ndarray:
+    from .shape import planar_chain_mm
+
+    return planar_chain_mm(lengths, theta_deg, s_mm)
+
+
+def _split(kappa: np.ndarray, n: int, min_len: int) -> list[int]:
+    """Optimal split of a sampled signal into n constant pieces (least squares), as piece start indices."""
+    m = len(kappa)
+    c1 = np.concatenate([[0.0], np.cumsum(kappa)])
+    c2 = np.concatenate([[0.0], np.cumsum(kappa**2)])
+
+    def sse(i, j):  # pieces [i, j) for arrays i, scalar j
+        cnt = j - i
+        tot = c1[j] - c1[i]
+        return c2[j] - c2[i] - tot**2 / np.maximum(cnt, 1)
+
+    cost = np.full((n + 1, m + 1), np.inf)
+    back = np.zeros((n + 1, m + 1), dtype=int)
+    cost[0, 0] = 0.0
+    for k in range(1, n + 1):
+        for j in range(k * min_len, m + 1):
+            i = np.arange((k - 1) * min_len, j - min_len + 1)
+            if len(i) == 0:
+                continue
+            v = cost[k - 1, i] + sse(i, j)
+            best = int(np.argmin(v))
+            cost[k, j], back[k, j] = v[best], i[best]
+    starts, j = [], m
+    for k in range(n, 0, -1):
+        j = back[k, j]
+        starts.append(j)
+    return starts[::-1]
+
+
+def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Piecewise-constant curvature fitted to a planar curve: (lengths_mm, kappa_per_mm, rmse_mm).
+
+    The curve starts at its first point heading +x (its first point is moved to the
+    origin). Boundaries and curvatures minimise the squared position error at
+    evenly spaced arc lengths; the start is the optimal split of the curve's sampled
+    curvature into ``segments`` constant pieces.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from embroact.predict.shape import BentShape
+    >>> s = np.linspace(0.0, 100.0, 2001)
+    >>> xy = BentShape.chain([40.0, 60.0], [90.0, -45.0]).profile_mm(s)
+    >>> lengths, kappa, rmse = fit_curvature(xy, 2)
+    >>> np.round(lengths, 2).tolist(), np.round(np.degrees(kappa * lengths), 2).tolist(), rmse < 1e-3
+    ([40.0, 60.0], [90.0, -45.0], True)
+    """
+    from scipy.optimize import least_squares
+
+    sj, xy, length = _resample(target_xy_mm)
+    n = int(segments)
+    if not 1 <= n <= 20:
+        raise ParameterError(f"segments must be in [1, 20], got {segments!r}")
+    ds = sj[1] - sj[0]
+    phi = np.unwrap(np.arctan2(*np.diff(xy, axis=0).T[::-1]))
+    kappa_est = np.diff(phi) / ds  # at sj[1:-1]
+    min_len = max(1, int(_MIN_SEGMENT_MM / ds))
+    n = min(n, max(1, len(kappa_est) // min_len), max(1, int(length // _MIN_SEGMENT_MM)))
+    starts = _split(kappa_est, n, min_len)
+    edges = np.concatenate([[0.0], [sj[1 + i] for i in starts[1:]], [length]])
+    kappa0 = np.array([kappa_est[a:b].mean() for a, b in zip(starts, starts[1:] + [len(kappa_est)])])
+    free = length - n * _MIN_SEGMENT_MM  # every piece is _MIN_SEGMENT_MM plus a share of the rest
+
+    def unpack(v):
+        share = np.concatenate([v[: n - 1], [1.0]])
+        return _MIN_SEGMENT_MM + free * share / share.sum(), v[n - 1:]
+
+    def residual(v):
+        lengths, k = unpack(v)
+        return (_chain_xy(lengths, np.degrees(k * lengths), sj) - xy).ravel()
+
+    share0 = np.maximum(np.diff(edges) - _MIN_SEGMENT_MM, 1e-3 * max(free, 1e-9))
+    v0 = np.concatenate([share0[:-1] / share0[-1], kappa0])
+    lo = np.concatenate([np.full(n - 1, 1e-6), np.full(n, -np.inf)])
+    v0 = np.maximum(v0, lo + 1e-9)
+    sol = least_squares(residual, v0, bounds=(lo, np.inf), x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                        max_nfev=200 * (2 * n))
+    lengths, k = unpack(sol.x)
+    rmse = float(np.sqrt(np.mean(np.sum(residual(sol.x).reshape(-1, 2) ** 2, axis=1))))
+    return lengths, k, rmse
+
+
+@dataclass(frozen=True, slots=True)
+class ShapeSegment:
+    """One segment of a designed shape: its pattern parameters, length and what it does at P*."""
+
+    params: ZigzagParams | CrossParams
+    length_mm: float
+    theta_deg: float
+    target_kappa_per_mm: float
+    note: str = ""
+
+    @property
+    def pattern(self) -> str:
+        """``"zigzag"`` or ``"cross"``."""
+        return self.params.pattern
+
+    def as_dict(self) -> dict:
+        """JSON-ready."""
+        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+                "length_mm": self.length_mm, "theta_deg": self.theta_deg,
+                "target_kappa_per_mm": self.target_kappa_per_mm, "note": self.note or None}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ShapeResult:
+    """The answer to a target shape.
+
+    Attributes
+    ----------
+    design : Design
+        One segmented actuator (or a single pattern when one segment fits), ready to write.
+    segments : tuple of ShapeSegment
+    pressure_kpa : float
+    target_xy_mm, predicted_xy_mm : ndarray (m, 2)
+        Target and predicted fabric line at the same arc lengths [mm] (profile frame).
+    rmse_mm, max_deviation_mm : float
+        Position error of the prediction against the target at those points [mm].
+    tip_error_mm, tip_angle_error_deg : float
+        Distance between predicted and target tips [mm]; tip angle difference [deg].
+    fit_rmse_mm : float
+        RMSE of the piecewise-constant curvature fit alone [mm] (what any chain of arcs reaches).
+    reached : bool
+        Every segment meets its curvature in a valid state and the design passes the rules.
+    statement : str
+    warnings : tuple of str
+        Codes of design-rule warnings.
+    """
+
+    design: Design
+    segments: tuple[ShapeSegment, ...]
+    pressure_kpa: float
+    target_xy_mm: np.ndarray
+    predicted_xy_mm: np.ndarray
+    rmse_mm: float
+    max_deviation_mm: float
+    tip_error_mm: float
+    tip_angle_error_deg: float
+    fit_rmse_mm: float
+    reached: bool
+    statement: str
+    warnings: tuple[str, ...] = ()
+
+    def as_dict(self) -> dict:
+        """JSON-ready (without the point arrays)."""
+        return {"pressure_kpa": self.pressure_kpa, "reached": self.reached, "statement": self.statement,
+                "rmse_mm": self.rmse_mm, "max_deviation_mm": self.max_deviation_mm,
+                "tip_error_mm": self.tip_error_mm, "tip_angle_error_deg": self.tip_angle_error_deg,
+                "fit_rmse_mm": self.fit_rmse_mm, "segments": [s.as_dict() for s in self.segments],
+                "warnings": list(self.warnings)}
+
+
+def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
+    """(space, x, note) of the pattern parameter bending a segment by theta at P*, or the nearest."""
+    options = []
+    order = ("zigzag", "cross") if theta_deg >= 0.0 else ("cross",)
+    for kind in order:
+        space = spaces[kind]
+        table = model.table(space, length_mm, points=61)
+        x, theta, status = table
+        for r in _roots(model, space, length_mm, theta_deg, table):
+            p = space.params(r)
+            if kind == "cross" and 4.0 * p.width_mm * math.tan(math.radians(r)) > length_mm:
+                continue  # the segment is too short for two leg pitches at this angle
+            slope = abs(float(np.interp(r, x, np.gradient(theta, x))))
+            options.append((order.index(kind), slope, space, r))
+        if options:
+            break
+    if options:
+        options.sort(key=lambda o: (o[0], o[1], o[3]))
+        return options[0][2], options[0][3], ""
+    best = None
+    for kind in order:
+        space = spaces[kind]
+        x, theta, status = model.table(space, length_mm, points=61)
+        for xi, ti, st in zip(x, theta, status):
+            p = space.params(xi)
+            if st in _VALID and not (kind == "cross" and 4.0 * p.width_mm * math.tan(math.radians(xi)) > length_mm):
+                if best is None or abs(ti - theta_deg) < best[0]:
+                    best = (abs(ti - theta_deg), space, float(xi), float(ti))
+    if best is None:
+        raise ParameterError(f"a {length_mm:.1f} mm segment has no valid pattern at this pressure")
+    _, space, xb, tb = best
+    return space, xb, f"{theta_deg:.1f} deg needed, {tb:.1f} deg is the nearest a {space.pattern} reaches"
+
+
+def _nominal_xy(model: _Model, spaces, x, lengths, sj, legs) -> tuple[np.ndarray, np.ndarray]:
+    """Predicted line at arc lengths ``sj`` with the segments' parameters ``x`` and leg extents ``legs``."""
+    params = [sp.params(v) for sp, v in zip(spaces, x)]
+    theta, status = model.theta(params, [l0 for _, l0 in legs])
+    pieces, bends = [], []
+    for (gap, l0), L, t in zip(legs, lengths, theta):
+        pieces += [gap, l0, L - gap - l0]
+        bends += [0.0, float(t), 0.0]
+    keep = np.asarray(pieces) > 1e-9
+    return _chain_xy(np.asarray(pieces)[keep], np.asarray(bends)[keep], sj), status
+
+
+def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tube: Tube = Tube(),
+                 settings: ModelSettings = ModelSettings(), sets: Iterable = (), allow_extrapolation: bool = False,
+                 name: str = "A1") -> ShapeResult:
+    """The segmented actuator whose fabric line bends into ``target_xy_mm`` at ``pressure_kpa``.
+
+    Parameters
+    ----------
+    target_xy_mm : array (m, 2)
+        The curve [mm], from the clamped end (moved to the origin) heading +x there; +y
+        toward the back of the fabric (the side positive bends turn to).
+    pressure_kpa : float
+        Pressure at which the shape is wanted [kPa], > 0.
+    max_segments : int
+        At most this many segments, in [1, 12].
+    tube, settings, sets, allow_extrapolation, name
+        As for :func:`design_bend`.
+
+    Returns
+    -------
+    ShapeResult
+    """
+    p = check_range("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0)
+    if isinstance(max_segments, bool) or not isinstance(max_segments, int) or not 1 <= max_segments <= 12:
+        raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r}")
+    sets = tuple(sets)
+    sj, xy, length = _resample(target_xy_mm)
+    model = _Model(p, tube, settings, sets)
+    spaces = {k: design_space(k, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+              for k in PATTERN_CHOICES[:2]}
+    fits = []
+    for n in range(1, max_segments + 1):
+        fits.append(fit_curvature(xy, n))
+        if fits[-1][2] <= _FIT_GOOD_MM:
+            break
+    # fewest segments first, among fits any chain of arcs could be polished from; the first that is
+    # reached and close wins, else the closest reached one, else the closest
+    plausible = [f for f in fits if f[2] <= max(_FIT_PLAUSIBLE_MM, 1.25 * min(g[2] for g in fits))]
+    results, failures = [], []
+    for lengths, kappa, rmse_fit in plausible:
+        try:
+            r = _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name, p)
+        except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
+            failures.append(f"{len(lengths)} segments: {exc}")
+            continue
+        results.append(r)
+        if r.reached and r.rmse_mm <= _SHAPE_GOOD_MM:
+            return r
+    if not results:
+        raise ParameterError(f"target shape at pressure_kpa {p:g}: no design found; " + "; ".join(failures))
+    reached = [r for r in results if r.reached]
+    return min(reached or results, key=lambda r: (r.rmse_mm, len(r.segments)))
+
+
+def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,
+                   p) -> ShapeResult:
+    """Design for one curvature fit: choose each segment's pattern, polish the parameters, analyse."""
+    from scipy.optimize import least_squares
+
+    from ..patterns.rules import RuleSettings, check_plan
+    from .analysis import analyse
+
+    lengths = np.round(lengths, 2)
+    lengths[-1] = round(length - float(lengths[:-1].sum()), 2)
+    chosen = []
+    for L, k in zip(lengths, kappa):
+        gap, l0 = _legs(ZigzagParams(7.0, spaces["zigzag"].interval_mm), L)
+        chosen.append(_choose(model, spaces, float(L), math.degrees(k * l0)))
+    seg_spaces = [c[0] for c in chosen]
+    x0 = np.array([c[1] for c in chosen])
+    def residual(v, legs):
+        pred, _ = _nominal_xy(model, seg_spaces, v, lengths, sj, legs)
+        return (pred - xy).ravel()
+
+    lo = np.array([sp.low for sp in seg_spaces])
+    hi = np.array([sp.high for sp in seg_spaces])
+    for i, (sp, x, L) in enumerate(zip(seg_spaces, x0, lengths)):
+        if sp.pattern == "cross":  # a cross stays on its side of the neutral angle and fits two leg pitches
+            neutral = _neutral_deg(sp, tube)
+            fits = math.degrees(math.atan(float(L) / (4.0 * sp.width_mm))) - 1e-3
+            lo[i], hi[i] = (sp.low, min(neutral, sp.high, fits)) if x < neutral else (max(neutral, sp.low),
+                                                                                       min(sp.high, fits))
+    x = np.clip(x0, lo + 1e-9, hi - 1e-9)
+    best = None
+    for _ in range(_POLISH_ROUNDS):  # the sewn leg extents change in steps with the parameters: hold them per round
+        legs = [_legs_sewn(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths)]
+        cost = float(np.sum(residual(x, legs) ** 2))  # x as sewn: its own leg extents
+        if best is None or cost < best[0]:
+            best = (cost, x)
+        x = least_squares(residual, x, bounds=(lo, hi), x_scale="jac", diff_step=1e-7, xtol=1e-10, ftol=1e-12,
+                          max_nfev=60 * len(x), args=(legs,)).x
+        if legs == [_legs_sewn(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths)]:
+            best = (0.0, x)
+            break
+    x = np.round(best[1], 4)
+    segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
+    if len(segs) == 1:
+        spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)
+    else:
+        spec = ActuatorSpec.segmented(name, segs, Centerline.straight(float(lengths.sum())), model=settings)
+    design = Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=p, max_bend_deg=720.0),
+                    (spec,))
+    a = analyse(design, calibration_sets=sets)
+    shape, theta = a.shapes(name, [p])[0]
+    act = a.actuators[0]
+    seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]
+    curves = a.segment_curves([p])[0]
+    bad = [i for i, c in enumerate(curves) if int(c.status[0]) not in _VALID]
+    pred = shape.profile_mm(sj)
+    dev = np.hypot(*(pred - xy).T)
+    t_tgt = math.degrees(math.atan2(*(xy[-1] - xy[-2])[::-1]))
+    t_pred = math.degrees(math.atan2(*(pred[-1] - pred[-2])[::-1]))
+    angle_err = (t_pred - t_tgt + 180.0) % 360.0 - 180.0
+    findings = check_plan(a.plan, RuleSettings.for_machine(design.machine))
+    errors = sorted({f.code for f in findings if f.severity.name == "ERROR"})
+    notes = [c[2] for c in chosen if c[2]]
+    out_segs = tuple(ShapeSegment(sg.params, sg.length_mm, t, float(k), note)
+                     for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[2] for c in chosen]))
+    rmse = float(np.sqrt(np.mean(dev**2)))
+    reached = not notes and not bad and not errors
+    why = []
+    if notes:
+        why.append("; ".join(f"segment {i}: {c[2]}" for i, c in enumerate(chosen) if c[2]))
+    if bad:
+        why.append(f"segments {bad} leave the valid model states at {p:g} kPa")
+    if errors:
+        why.append(f"design-rule errors {', '.join(errors)}")
+    statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm" if reached else
+                 f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
+    return ShapeResult(design, out_segs, p, xy, pred, rmse, float(dev.max()), float(dev[-1]), float(angle_err),
+                       float(rmse_fit), reached, statement, tuple(sorted({f.code for f in findings})))
+
+
+def _neutral_deg(space: DesignSpace, tube: Tube) -> float:
+    """The cross angle with tan(beta0) = 1/2 at the space's width (from the derived geometry)."""
+    from .derived import derive_from_values
+
+    return derive_from_values("cross", width_mm=space.width_mm, interval_mm=space.interval_mm, angle_deg=45.0,
+                              length_mm=100.0, tube=tube).neutral_angle_deg
