@@ -7,6 +7,7 @@ and the docs pages' own Markdown links must resolve too.
 """
 from __future__ import annotations
 
+import math
 import re
 import subprocess
 from functools import cache
@@ -167,3 +168,65 @@ def test_readme_links_to_the_docs_pages():
     for t in targets:
         if t.startswith("docs/") and t.endswith(".md"):
             assert (ROOT / t).is_file(), t
+
+
+# -- the pages' numbers are the code's -----------------------------------------------------
+def _fenced(page: str, lang: str) -> list[str]:
+    """Bodies of the page's fenced code blocks whose info string is ``lang`` ("" for plain fences)."""
+    blocks, body, info = [], None, ""
+    for line in _text(ROOT / page).splitlines():
+        if line.startswith("```"):
+            if body is None:
+                body, info = [], line[3:].strip()
+            else:
+                if info == lang:
+                    blocks.append("\n".join(body) + "\n")
+                body = None
+        elif body is not None:
+            body.append(line)
+    return blocks
+
+
+def test_model_worked_example_snippet_agrees_with_embroact(capsys):
+    """The page's plain-Python P(90 deg) (printed form, central differences) against pressure_at."""
+    from embroact.predict.curve import ActuatorModel, pressure_at
+
+    (snippet,) = _fenced("docs/model.md", "python")
+    exec(compile(snippet, "docs/model.md", "exec"), {})
+    by_hand = float(capsys.readouterr().out)
+    m = ActuatorModel("zigzag", length_mm=100.0, r0_mm=(7 + 2 * math.hypot(3.5, 3.0)) / (2 * math.pi), beta0_deg=0.0,
+                      outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85.0)
+    assert by_hand == 187.65
+    assert float(pressure_at(m, [90.0]).pressure_kpa[0]) == pytest.approx(by_hand, abs=0.005)
+
+
+def test_model_worked_example_table_is_what_predict_prints(capsys):
+    from embroact.export.cli.main import main
+
+    command = next(c for c in _fenced("docs/model.md", "sh") if "--width-mm 7" in c).strip()
+    assert main(command.split()[1:]) == 0
+    printed = [" ".join(line.split()) for line in capsys.readouterr().out.splitlines()]
+    table = next(b for b in _fenced("docs/model.md", "") if b.lstrip().startswith("pressure_kpa"))
+    header, *rows = [" ".join(line.split()) for line in table.strip().splitlines()]
+    assert any(line.startswith(header) for line in printed), (header, printed)  # later columns may be added
+    assert rows and all(row in printed for row in rows), (rows, printed)
+
+
+def test_model_page_headline_numbers():
+    """P0 from geometry, the neutral angle, the thick-wall ceiling and the paper set's w = 5 mm bend."""
+    from embroact.patterns.params import Tube
+    from embroact.predict import tubelaws
+    from embroact.predict.calibration import model_for
+    from embroact.predict.curve import curve
+    from embroact.predict.derived import derive_from_values
+    from embroact.predict.sleeve import neutral_angle_deg, sleeve_radius_mm
+
+    text = _text(DOCS / "model.md")
+    p0 = [float(tubelaws.pressure_kpa(sleeve_radius_mm(w, 1.5), Tube())) for w in (5, 7, 9)]
+    assert "25.3 / 84.5 / 172.1 kPa" in text and [round(v, 1) for v in p0] == [25.3, 84.5, 172.1]
+    assert "**33.37 deg**" in text and round(float(neutral_angle_deg(7, 1.5)), 2) == 33.37
+    assert "**52.71 kPa**" in text and round(float(tubelaws.thick_wall_limit_kpa(Tube())), 2) == 52.71
+    d = derive_from_values("zigzag", width_mm=5, interval_mm=1, angle_deg=0, length_mm=100, tube=Tube())
+    c = curve(model_for(d).model, [250.0])
+    assert "**2032.4 deg** at 250 kPa, status `COILED`" in text
+    assert (round(float(c.theta_deg[0]), 1), c.as_dict()["status"]) == (2032.4, ["COILED"])
