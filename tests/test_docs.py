@@ -230,3 +230,23 @@ def test_model_page_headline_numbers():
     c = curve(model_for(d).model, [250.0])
     assert "**2032.4 deg** at 250 kPa, status `COILED`" in text
     assert (round(float(c.theta_deg[0]), 1), c.as_dict()["status"]) == (2032.4, ["COILED"])
+
+
+def test_model_page_paper_set_numbers():
+    """The zigzag folds and the G the paper's w = 5 mm measurement would need with the default tube."""
+    from embroact.patterns.params import Tube
+    from embroact.predict.calibration import model_for
+    from embroact.predict.curve import lockup, pressure_at
+    from embroact.predict.derived import derive_from_values
+
+    text = " ".join(_text(DOCS / "model.md").split())
+    models = {w: model_for(derive_from_values("zigzag", width_mm=w, interval_mm=1, angle_deg=0, length_mm=100,
+                                              tube=Tube())).model for w in (5, 7, 9)}
+    folds = {w: lockup(m) for w, m in models.items()}
+    assert [(round(t), round(p, 1)) for t, p in folds.values()] == [(2430, 250.7), (1889, 509.3), (1532, 538.8)]
+    assert "at 2430 deg (250.7 kPa) for `w = 5 mm`, 1889 deg (509.3 kPa) for 7 mm, 1532 deg (538.8 kPa)" in text
+    m = models[5]
+    # P - P0 is proportional to G: the G that puts theta at 290 kPa
+    need = [(290.0 - m.p0_kpa) * m.g_mpa / (float(pressure_at(m, [t]).pressure_kpa[0]) - m.p0_kpa) for t in (155, 310)]
+    assert [round(g, 2) for g in need] == [3.10, 1.85]
+    assert "`G` = 3.10 MPa if it were a whole-strip angle" in text and "or 1.85 MPa if it were the" in text
