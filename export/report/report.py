@@ -137,7 +137,7 @@ def _cell(v) -> str:
     if isinstance(v, (int, float)) and not isinstance(v, bool):
         return f'<td class="num">{_num(v)}</td>'
     if isinstance(v, list):
-        return f"<td>{_e(', '.join(_num(x) for x in v))}</td>"
+        return f"<td>{', '.join(_num(x) for x in v)}</td>"  # _num escapes each item once
     return f"<td>{_e(v)}</td>"
 
 
