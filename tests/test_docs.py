@@ -37,8 +37,9 @@ def _tracked_files() -> list[Path]:
         out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
         files = [ROOT / p for p in out.decode("utf-8").split("\0") if p]
     except (OSError, subprocess.CalledProcessError):  # no git (e.g. an unpacked sdist): walk the tree
-        files = [p for p in ROOT.rglob("*") if p.is_file() and not _SKIP_DIRS & set(p.relative_to(ROOT).parts)]
-    return sorted(p for p in files if p.is_file() and p.suffix in _TEXT_SUFFIXES and not p.name.endswith(".egg-info"))
+        files = [p for p in ROOT.rglob("*") if p.is_file() and not any(
+            part in _SKIP_DIRS or part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)]
+    return sorted(p for p in files if p.is_file() and p.suffix in _TEXT_SUFFIXES)
 
 
 @cache
