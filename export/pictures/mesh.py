@@ -94,6 +94,10 @@ _SAMPLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75)  # of a cell, along and across: where
 _MAX_MEASURED_STEPS = 2048  # steps along the path whose cells the deviation is measured on
 _M_PER_MM = 1e-3
 _MIN_TUBE_SEGMENTS = 8
+#: Most triangles one actuator's mesh may have: building, measuring and writing it then stays
+#: within about 300 MB (the deviation measure costs ~4 KB per triangle). A smaller
+#: ``tolerance_mm`` is refused before anything is allocated, naming the smallest that fits.
+MESH_MAX_TRIANGLES = 60_000
 _COLOURS = {"fabric": (225, 214, 190, 255), "tube": (70, 130, 200, 255), "rails": (200, 60, 60, 255)}
 
 
@@ -323,6 +327,40 @@ def _circle(name: str, centre: tuple[float, float], radius: float, tol: float) -
                     centre, radius)
 
 
+def _triangle_bound(bent: BentPath, r0: float, extent: float, tol: float) -> float:
+    """Upper bound on the tube body's triangles at ``tol``, from the pieces alone (no allocation).
+
+    Segments round the tube as :func:`_circle` makes them; rings as :func:`_stations` makes
+    them, with every piece's reach taken as its bend radius plus ``extent`` (the profile's
+    largest distance from the path), which only shortens the allowed step.
+    """
+    half = tol / 2.0
+    a = math.acos(max(1.0 - half / r0, -1.0))
+    if a == 0.0:
+        return math.inf
+    rings = 1.0
+    for _, length, kb, kp in bent.pieces():
+        k = math.hypot(kb, kp)
+        rings += 1.0
+        if k > 0.0:
+            d = 2.0 * math.acos(max(1.0 - half / (1.0 / k + extent), -1.0))
+            rings += math.inf if d == 0.0 else k * length / d
+    return 2.0 * rings * max(_MIN_TUBE_SEGMENTS, math.pi / a + 1.0)
+
+
+def _check_triangles(bent: BentPath, r0: float, extent: float, tol: float, name: str) -> None:
+    """Refuse a tolerance whose mesh would exceed :data:`MESH_MAX_TRIANGLES` (one line)."""
+    n = _triangle_bound(bent, r0, extent, tol)
+    if n <= MESH_MAX_TRIANGLES:
+        return
+    fit = tol  # the count goes as 1/tol (rings and segments each as 1/sqrt(tol))
+    while _triangle_bound(bent, r0, extent, fit) > MESH_MAX_TRIANGLES and fit < 10.0:
+        fit = min(10.0, fit * 1.25 * min(_triangle_bound(bent, r0, extent, fit) / MESH_MAX_TRIANGLES, 1e12))
+    about = "more than 1e308" if math.isinf(n) else f"about {n:.3g}"
+    raise ParameterError(f"tolerance_mm={tol:g} would make {about} triangles for {name!r}, more than "
+                         f"the limit {MESH_MAX_TRIANGLES:,}; use tolerance_mm >= {fit:.2g}")
+
+
 def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
     """Arc lengths of the rings: steps whose sagitta stays within tol.
 
@@ -452,6 +490,7 @@ def actuator_mesh(
     half = strip / 2.0
     bent = (BentPath.from_segments(path, segment_lengths_mm, segment_theta_deg) if len(segment_lengths_mm)
             else BentPath.from_theta(path, theta_deg))
+    _check_triangles(bent, r0, max(half, 2.0 * r0), tol, name)
     rb = RAIL_BAND_WIDTH_MM / 2.0
     profiles = [
         (_rect("fabric", -half, half, -FABRIC_THICKNESS_MM, 0.0), "fabric"),
