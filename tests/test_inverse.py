@@ -35,19 +35,17 @@ def test_target_bend_is_met(bend, pressure, pattern):
 
 
 def test_sensitivity_is_a_derivative():
-    r = design_bend(90.0, 150.0, pattern="zigzag")
-    w = r.best.params.width_mm
-    wider = design_bend(90.0, 150.0, pattern="zigzag").best.design  # same design: check by hand below
-    from embroact.patterns.design import ActuatorSpec
+    """The reported sensitivity: the bend of the same design sewn 0.1 mm wider, G and P0 held."""
     import dataclasses
+
     from embroact.patterns.params import ZigzagParams
-    spec = wider.actuators[0]
-    # G and P0 held at the candidate's, the sewn width 0.1 mm wider
-    moved = dataclasses.replace(wider, actuators=(dataclasses.replace(
-        spec, params=ZigzagParams(w + 0.1, 1.0), model=dataclasses.replace(spec.model, g_mpa=r.best.g_mpa,
-                                                                          p0_kpa=r.best.p0_kpa)),))
-    assert isinstance(spec, ActuatorSpec)
-    assert _bend_of(moved, 150.0) - 90.0 == pytest.approx(r.best.sensitivity_deg_per_0p1mm, rel=0.02)
+
+    r = design_bend(90.0, 150.0, pattern="zigzag")
+    design, spec = r.best.design, r.best.design.actuators[0]
+    held = dataclasses.replace(spec.model, g_mpa=r.best.g_mpa, p0_kpa=r.best.p0_kpa)
+    wider = dataclasses.replace(design, actuators=(dataclasses.replace(
+        spec, params=ZigzagParams(r.best.params.width_mm + 0.1, 1.0), model=held),))
+    assert _bend_of(wider, 150.0) - 90.0 == pytest.approx(r.best.sensitivity_deg_per_0p1mm, rel=0.02)
 
 
 def test_unreachable_bend_gets_the_nearest_and_says_why():

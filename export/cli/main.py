@@ -45,6 +45,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "predict": ("cmd_predict", "predict pressure-to-bend curves for a design or quick parameters"),
     "fit": ("cmd_fit", "fit G and P0 to measured (pressure, angle) data"),
     "preview": ("cmd_preview", "render a single preview (stitches, bend chart, side view, 3D)"),
+    "design": ("cmd_design", "inverse design: the design that bends as wanted (a bend or a shape at a pressure)"),
 }
 
 EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER = 0, 1, 2, 3, 4

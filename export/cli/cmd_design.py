@@ -1,0 +1,195 @@
+r"""``embroact design``: from the bend or the shape wanted at a pressure to a design file.
+
+Target bend (one actuator)::
+
+    embroact design --bend-deg 90 --at-kpa 150 [--pattern zigzag|cross|any] [--length-mm 100] -o design.toml
+
+Target shape (a segmented actuator)::
+
+    embroact design --target-shape SHAPE.csv --at-kpa 200 [--max-segments 6] -o design.toml [--svg FILE]
+
+``SHAPE`` is a CSV of ``x_mm,y_mm`` points (header row ``x_mm,y_mm``) or an SVG drawing's
+path (``drawing.svg`` or ``drawing.svg#id``, real units, y up after reading): the fabric line
+wanted at ``--at-kpa``, from the clamped end (moved to the origin) heading +x there, +y toward
+the back of the fabric (where positive bends turn). The overlay of the predicted shape on the
+target goes to ``--svg`` (default ``<design stem>-shape.svg``). The search is
+:mod:`embroact.predict.inverse`; the answer names the design's predicted bend or shape error,
+and for a target it cannot reach, the nearest design and why. Both files are written
+atomically; the same target writes the same bytes.
+
+Examples
+--------
+>>> import os, tempfile
+>>> from embroact.export.cli.main import main
+>>> out = os.path.join(tempfile.mkdtemp(), "d.toml")
+>>> main(["design", "--bend-deg", "90", "--at-kpa", "150", "--pattern", "zigzag", "-o", out])  # doctest: +ELLIPSIS
+target 90 deg at 150 kPa, l0 100 mm: met: zigzag bends 90.00 deg at 150 kPa
+best: zigzag width_mm=6.1529 interval_mm=1 -> 90.000 deg; P0 ... kPa, G ... MPa
+...
+0
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from .args import add_tube_arguments, tube_from_args
+from .target import P0_SOURCES
+
+__all__ = ["add_arguments", "run", "read_target_shape"]
+
+_PATTERNS = ("zigzag", "cross", "any")
+_TUBE_LAWS = ("paper", "thick-wall")
+
+
+def add_arguments(parser, name: str) -> None:
+    """Options of ``embroact design``."""
+    target = parser.add_argument_group("target (a bend, or a shape)")
+    what = target.add_mutually_exclusive_group(required=True)
+    what.add_argument("--bend-deg", type=float, help="bend wanted at --at-kpa [deg] (negative: toward the thread side)")
+    what.add_argument("--target-shape", metavar="SHAPE.csv|SHAPE.svg[#ID]",
+                      help="fabric line wanted at --at-kpa: x_mm,y_mm points or an SVG path")
+    target.add_argument("--at-kpa", type=float, required=True, help="pressure of the target [kPa]")
+    space = parser.add_argument_group("design space")
+    space.add_argument("--pattern", choices=_PATTERNS, default="any", help="target bend: pattern to use (default any)")
+    space.add_argument("--length-mm", type=float, default=100.0, help="target bend: actuator length [mm] (default 100)")
+    space.add_argument("--max-segments", type=int, default=6, help="target shape: at most this many segments (default 6)")
+    space.add_argument("--allow-extrapolation", action="store_true",
+                       help="search beyond the calibrated range (predictions there are extrapolated)")
+    space.add_argument("--name", default="A1", help="actuator name in the written design (default A1)")
+    add_tube_arguments(space)
+    model = parser.add_argument_group("model")
+    model.add_argument("--calibration", metavar="NAME|FILE.toml", default="paper-2025",
+                       help="calibration set: a built-in name or a file written by 'embroact fit' (default paper-2025)")
+    model.add_argument("--p0-source", choices=P0_SOURCES, default="calibration",
+                       help="P0: the calibration set's fitted P0 (default) or the tube law's at r0")
+    model.add_argument("--tube-law", choices=_TUBE_LAWS, default="paper", help="tube law of the inflation phase")
+    out = parser.add_argument_group("output")
+    out.add_argument("-o", "--output", required=True, metavar="DESIGN.toml", help="design file to write")
+    out.add_argument("--svg", metavar="FILE.svg", help="target shape: predicted shape over the target "
+                                                       "(default <DESIGN stem>-shape.svg)")
+    out.add_argument("--json", action="store_true", help="machine-readable result on stdout")
+
+
+def read_target_shape(ref: str):
+    """Points (n, 2) [mm] of a target shape file: CSV ``x_mm,y_mm`` or an SVG path reference.
+
+    Raises
+    ------
+    DesignFileError
+        Unreadable file, missing header, a row that is not two numbers (named by line).
+    """
+    import csv
+
+    import numpy as np
+
+    from ...patterns.base.errors import DesignFileError
+
+    path = Path(ref.split("#", 1)[0])
+    if path.suffix.lower() == ".svg":
+        from ..files.svgfile import svg_centerline
+
+        return np.asarray(svg_centerline(ref).points_mm, dtype=np.float64)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise DesignFileError(f"target shape {str(path)!r}: cannot read ({exc.__class__.__name__})") from None
+    rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
+    if not rows or [c.strip() for c in rows[0][:2]] != ["x_mm", "y_mm"]:
+        raise DesignFileError(f"target shape {str(path)!r}: the first row must be the header x_mm,y_mm")
+    points = []
+    for line, row in enumerate(rows[1:], start=2):
+        try:
+            x, y = (float(c) for c in row[:2])
+        except ValueError:
+            raise DesignFileError(f"target shape {str(path)!r} row {line}: x_mm,y_mm must be two numbers, "
+                                  f"got {','.join(row)[:40]!r}") from None
+        points.append((x, y))
+    return np.array(points, dtype=np.float64).reshape(-1, 2)
+
+
+def _settings(args):
+    from ...patterns.design import ModelSettings
+    from .target import _calibration_file
+
+    name, sets = _calibration_file(args.calibration, Path.cwd())
+    return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
+
+
+def _params_text(params) -> str:
+    return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
+
+
+def _bend(args, tube, settings, sets) -> tuple[dict, object, list[str]]:
+    from ...predict.inverse import design_bend
+
+    r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
+                    settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name)
+    lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
+    for label, c in [("best", r.best)] + [(f"runner-up {i + 1}", c) for i, c in enumerate(r.runners_up)]:
+        miss = c.theta_deg - r.target_deg
+        lines.append(f"{label}: {c.pattern} {_params_text(c.params)} -> {c.theta_deg:.3f} deg"
+                     + (f" (misses the target by {miss:+.1f} deg)" if abs(miss) > 0.05 else "")
+                     + f"; P0 {c.p0_kpa:.1f} kPa, G {c.g_mpa:.4g} MPa")
+        margin = "" if c.margin_kpa == float("inf") else f" ({c.margin_kpa:.1f} kPa above the target pressure)"
+        sens = f"{c.sensitivity_deg_per_0p1mm:+.2f} deg per 0.1 mm width"
+        if c.sensitivity_deg_per_deg is not None:
+            sens += f", {c.sensitivity_deg_per_deg:+.2f} deg per deg angle"
+        lines += [f"  limit: {c.limit}{margin}", f"  sensitivity: {sens}", f"  binding: {c.binding}"]
+        if c.warnings:
+            lines.append(f"  rule findings: {', '.join(c.warnings)}")
+    return r.as_dict(), r.best.design, lines
+
+
+def _shape(args, tube, settings, sets) -> tuple[dict, object, list[str], str]:
+    import numpy as np
+
+    from ...predict.inverse import design_shape
+    from ..pictures.shapefit import shape_overlay_svg
+
+    r = design_shape(read_target_shape(args.target_shape), args.at_kpa, max_segments=args.max_segments, tube=tube,
+                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name)
+    lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
+             f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
+             f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
+    for i, s in enumerate(r.segments):
+        note = f"  ({s.note})" if s.note else ""
+        lines.append(f"segment {i}: {s.pattern} {_params_text(s.params)} length_mm={s.length_mm:g} -> "
+                     f"{s.theta_deg:+.2f} deg{note}")
+    if r.warnings:
+        lines.append(f"rule findings: {', '.join(r.warnings)}")
+    bounds = np.cumsum([s.length_mm for s in r.segments])[:-1]
+    caption = [f"{r.statement} at {r.pressure_kpa:g} kPa; tip {r.tip_error_mm:.2f} mm off"]
+    caption += [f"segment {i}: {s.pattern} {_params_text(s.params)} length_mm={s.length_mm:g} ({s.theta_deg:+.1f} deg)"
+                for i, s in enumerate(r.segments)]
+    svg = shape_overlay_svg(r.target_xy_mm, r.predicted_xy_mm, bounds.tolist(), caption=caption,
+                            title=f"Predicted shape over the target at {r.pressure_kpa:g} kPa")
+    return r.as_dict(), r.design, lines, svg
+
+
+def run(args) -> int:
+    """Search, print, write the design (and the overlay SVG for a shape)."""
+    from ..files.atomic import prepare_outputs, write_files_atomic
+    from ..files.designfile import dumps_design
+
+    tube = tube_from_args(args)
+    settings, sets = _settings(args)
+    out = Path(args.output)
+    if args.bend_deg is not None:
+        result, design, lines = _bend(args, tube, settings, sets)
+        files = {out: dumps_design(design).encode("utf-8")}
+    else:
+        result, design, lines, svg = _shape(args, tube, settings, sets)
+        svg_path = Path(args.svg) if args.svg else out.with_name(f"{out.stem}-shape.svg")
+        files = {out: dumps_design(design).encode("utf-8"), svg_path: svg.encode("utf-8")}
+        result["svg"] = str(svg_path)
+    prepare_outputs(list(files))
+    write_files_atomic(files)
+    result["design_file"] = str(out)
+    if args.json:
+        json.dump(result, sys.stdout, indent=2, sort_keys=True, allow_nan=False)
+        sys.stdout.write("\n")
+    else:
+        print("\n".join(lines + [f"wrote {', '.join(str(p) for p in files)}"]))
+    return 0

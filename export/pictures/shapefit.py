@@ -1,0 +1,94 @@
+"""Predicted shape over a target shape (SVG): how well an inverse design matches the curve asked for.
+
+Both curves are in the profile frame of a target shape (docs/model.md, segmented
+actuators): the clamped end at the origin heading +x, +y toward positive bends. Drawn in
+millimetres (1 user unit = 1 mm, y up on the page as in the frame), with the segment
+boundaries of the design marked on the predicted line and a 10 mm scale bar.
+
+Examples
+--------
+>>> import numpy as np
+>>> from embroact.export.pictures.shapefit import shape_overlay_svg
+>>> s = np.linspace(0.0, 1.0, 11)[:, None]
+>>> svg = shape_overlay_svg(np.hstack([100 * s, 0 * s]), np.hstack([100 * s, 0.1 * s]), [50.0],
+...                         title="flat")
+>>> svg.startswith("<svg") and 'class="target"' in svg and 'class="boundary"' in svg
+True
+"""
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+from ...patterns.base.errors import ParameterError
+
+__all__ = ["shape_overlay_svg"]
+
+_PX_PER_MM = 3.0
+_MARGIN_MM = 10.0
+_HEADER_MM = 16.0
+_TARGET, _PREDICTED = "#888888", "#d62728"
+_FONT = "font-family:Helvetica,Arial,sans-serif"
+
+
+def _points(xy: np.ndarray, x0: float, y1: float) -> list[tuple[float, float]]:
+    return [(round(float(x) - x0, 3), round(y1 - float(y), 3)) for x, y in xy]
+
+
+def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[float] = (), *,
+                      title: str = "Predicted shape over the target", caption: Sequence[str] = ()) -> str:
+    """SVG document: the target (grey, wide) and the predicted line (red) with segment boundaries.
+
+    Parameters
+    ----------
+    target_xy_mm, predicted_xy_mm : array (n, 2)
+        The curves [mm], profile frame; the predicted one sampled at the same arc lengths.
+    boundaries_mm : sequence of float
+        Arc lengths of the segment boundaries along the predicted line [mm] (ticks).
+    title : str
+    caption : sequence of str
+        Lines printed under the drawing (errors, the design).
+    """
+    import svgwrite
+
+    target = np.asarray(target_xy_mm, dtype=np.float64).reshape(-1, 2)
+    pred = np.asarray(predicted_xy_mm, dtype=np.float64).reshape(-1, 2)
+    if len(target) < 2 or len(pred) < 2:
+        raise ParameterError("target_xy_mm and predicted_xy_mm must hold at least 2 points each")
+    both = np.vstack([target, pred])
+    lo, hi = both.min(axis=0) - _MARGIN_MM, both.max(axis=0) + _MARGIN_MM
+    width = max(float(hi[0] - lo[0]), 90.0)
+    body = float(hi[1] - lo[1])
+    height = _HEADER_MM + body + 6.0 * (len(caption) + 1) + _MARGIN_MM
+    top = _HEADER_MM + float(hi[1])  # page y = top - plan y (y up on the page)
+    dwg = svgwrite.Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+                           viewBox=f"0 0 {width:.3f} {height:.3f}", debug=False)
+    dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
+    root = dwg.g(style=_FONT)
+    dwg.add(root)
+    root.add(dwg.text(title, insert=(4.0, 7.0), font_size=5, font_weight="bold"))
+    x0 = float(lo[0])
+    root.add(dwg.polyline(_points(target, x0, top), fill="none", stroke=_TARGET, stroke_width=1.6,
+                          stroke_linecap="round", stroke_linejoin="round", **{"class": "target"}))
+    root.add(dwg.polyline(_points(pred, x0, top), fill="none", stroke=_PREDICTED, stroke_width=0.5,
+                          stroke_linejoin="round", **{"class": "predicted"}))
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pred, axis=0).T))])
+    for b in boundaries_mm:
+        x, y = np.interp(b, s, pred[:, 0]), np.interp(b, s, pred[:, 1])
+        root.add(dwg.circle(_points([[x, y]], x0, top)[0], 1.2, fill="#fff", stroke=_PREDICTED, stroke_width=0.4,
+                            **{"class": "boundary", "data-s-mm": f"{b:g}"}))
+    root.add(dwg.circle(_points(pred[:1], x0, top)[0], 1.5, fill="#444", **{"class": "clamp"}))
+    legend_y = 12.0
+    for k, (colour, text, w) in enumerate(((_TARGET, "target", 1.6), (_PREDICTED, "predicted", 0.5))):
+        x = 4.0 + 32.0 * k
+        root.add(dwg.line((x, legend_y), (x + 8.0, legend_y), stroke=colour, stroke_width=w))
+        root.add(dwg.text(text, insert=(x + 10.0, legend_y + 1.2), font_size=3.6))
+    y = _HEADER_MM + body + 6.0
+    for line in caption:
+        root.add(dwg.text(line, insert=(4.0, y), font_size=3.6))
+        y += 6.0
+    bar_x, bar_y = width - _MARGIN_MM - 10.0, legend_y
+    root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
+    root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
+    return dwg.tostring()

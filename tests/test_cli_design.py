@@ -1,0 +1,73 @@
+"""``embroact design``: target bends checked by ``embroact predict`` on the written file, target shapes, errors."""
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from embroact.export.cli.main import main
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from inverse_targets import PRESSURE_KPA, target_shape  # noqa: E402
+
+
+def _json(capsys, argv):
+    capsys.readouterr()
+    assert main(argv + ["--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("bend, pressure, pattern", [(90.0, 150.0, "zigzag"), (-40.0, 250.0, "cross"),
+                                                     (30.0, 220.0, "cross")])
+def test_target_bend_met_as_predict_reads_the_file(tmp_path, capsys, bend, pressure, pattern):
+    out = tmp_path / "d.toml"
+    res = _json(capsys, ["design", "--bend-deg", str(bend), "--at-kpa", str(pressure), "--pattern", pattern,
+                         "-o", str(out)])
+    assert res["reached"] and res["best"]["pattern"] == pattern
+    pred = _json(capsys, ["predict", str(out), "--pressure-kpa", str(pressure)])
+    theta = pred["actuators"][0]["theta_deg"][0]
+    assert abs(theta - bend) <= 0.5
+    assert pred["actuators"][0]["status"] == ["BENDING"]
+    first = out.read_bytes()
+    assert main(["design", "--bend-deg", str(bend), "--at-kpa", str(pressure), "--pattern", pattern, "-o",
+                 str(out)]) == 0
+    assert out.read_bytes() == first  # deterministic, byte for byte
+
+
+def test_target_shape_from_csv(tmp_path, capsys):
+    _, xy = target_shape(6, step_mm=0.5)
+    csv = tmp_path / "shape.csv"
+    csv.write_text("x_mm,y_mm\n" + "".join(f"{x:.5f},{y:.5f}\n" for x, y in xy))
+    out = tmp_path / "s.toml"
+    res = _json(capsys, ["design", "--target-shape", str(csv), "--at-kpa", str(PRESSURE_KPA), "-o", str(out)])
+    assert res["reached"] and res["rmse_mm"] < 0.5
+    svg = Path(res["svg"]).read_text()
+    assert 'class="target"' in svg and 'class="predicted"' in svg
+    assert svg.count('class="boundary"') == len(res["segments"]) - 1
+    from embroact.export.files.designfile import load_design
+    design = load_design(out)
+    assert len(design.actuators[0].segments) == len(res["segments"])
+    assert design.actuators[0].centerline.length_mm == pytest.approx(np.hypot(*np.diff(xy, axis=0).T).sum(), abs=0.01)
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["--bend-deg", "90", "--at-kpa", "-5"], "pressure_kpa must be in"),
+    (["--bend-deg", "90", "--at-kpa", "150", "--length-mm", "5"], "length_mm must be in"),
+    (["--bend-deg", "90", "--at-kpa", "150", "--pattern", "satin"], "invalid choice"),
+])
+def test_bad_input_is_one_line(tmp_path, capsys, argv, needle):
+    assert main(["design", *argv, "-o", str(tmp_path / "x.toml")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert needle in err and "\n" not in err
+    assert not (tmp_path / "x.toml").exists()
+
+
+def test_bad_shape_file(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("x,y\n0,0\n")
+    assert main(["design", "--target-shape", str(bad), "--at-kpa", "200", "-o", str(tmp_path / "x.toml")]) == 2
+    assert "header x_mm,y_mm" in capsys.readouterr().err
+    bad.write_text("x_mm,y_mm\n0,0\n1,oops\n")
+    assert main(["design", "--target-shape", str(bad), "--at-kpa", "200", "-o", str(tmp_path / "x.toml")]) == 2
+    assert "row 3" in capsys.readouterr().err
