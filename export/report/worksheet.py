@@ -434,7 +434,7 @@ def worksheet(
         The analysis the plan came from: its derived geometry and models (G, P0, tube, tube
         law and their sources) go on the sheet instead of a second derivation.
     """
-    spm = check_range("speed_spm", speed_spm, low=0.0, high=2000.0, high_inclusive=True)
+    spm = check_range("speed_spm", speed_spm, low=1.0, low_inclusive=True, high=2000.0, high_inclusive=True)
     t_f = check_range("fabric_thickness_mm", fabric_thickness_mm, low=0.0, high=10.0, low_inclusive=True,
                       high_inclusive=True)
     ids = sorted({int(a) for a in plan.actuator.tolist() if a >= 0})
