@@ -8,7 +8,7 @@ Two questions (docs/model.md, segmented actuators):
   interval is the calibrated one (cross: the nearest that closes the pattern, so the
   angle is sewn as asked). ``theta(P*)`` is tabulated over the parameter with the
   vectorised model (:func:`~embroact.predict.curve.sweep`), every crossing of the target
-  is polished by ``brentq``, and each candidate is generated and analysed like any design
+  is polished by regula falsi, and each candidate is generated and analysed like any design
   (the numbers ``embroact predict`` prints). A candidate must be in a valid model state
   at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass the
   design rules without errors.
@@ -209,23 +209,30 @@ class _Model:
 
 
 def _roots(model: _Model, space: DesignSpace, length_mm: float, target_deg: float, table=None) -> list[float]:
-    """Parameter values where the segment bends by ``target_deg`` at P* in a valid state."""
-    from scipy.optimize import brentq
+    """Parameter values where the segment bends by ``target_deg`` at P* in a valid state.
+
+    Every sign change of the tabulated bend between two valid points brackets a root;
+    all brackets are polished at once by the vectorised Illinois method of
+    :mod:`embroact.predict.solvers` (no scipy import: a target bend answers in well under
+    the command's start-up time).
+    """
+    from .solvers import illinois
 
     x, theta, status = table if table is not None else model.table(space, length_mm)
     ok = np.isin(status, _VALID)
     f = theta - target_deg
-    out = []
+    exact = [float(x[i]) for i in range(len(x)) if ok[i] and f[i] == 0.0]
+    i = np.flatnonzero(ok[:-1] & ok[1:] & (f[:-1] * f[1:] < 0.0))
+    if i.size == 0:
+        return exact
 
-    def g(v):
-        p = space.params(v)
-        t, st = model.theta([p], [_legs(p, length_mm)[1]])
-        return float(t[0]) - target_deg
+    def residual(v, idx):
+        params = [space.params(float(u)) for u in v]
+        t, _ = model.theta(params, [_legs(p, length_mm)[1] for p in params])
+        return t - target_deg
 
-    for i in range(len(x) - 1):
-        if ok[i] and ok[i + 1] and f[i] * f[i + 1] <= 0.0 and (f[i] != 0.0 or i == 0 or f[i - 1] != 0.0):
-            out.append(float(x[i]) if f[i] == 0.0 else float(brentq(g, x[i], x[i + 1], xtol=1e-10, rtol=1e-12)))
-    return out
+    found = illinois(residual, x[i], x[i + 1], f[i], f[i + 1], rtol=1e-12, atol=1e-10)
+    return sorted(exact + [float(v) for v in found])
 
 
 # ---------------------------------------------------------------------------- target bend

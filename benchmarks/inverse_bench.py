@@ -1,0 +1,93 @@
+"""Benchmark: inverse design from the command line, start-up included.
+
+Target shapes: ``embroact design --target-shape T.csv --at-kpa 200`` on >= 20 seeded round-trip
+targets (:mod:`inverse_targets`: shapes predicted for known segmented designs, 2-6 segments,
+zigzag and cross mixed, both bend directions, 80-200 mm); per target the RMSE and maximum
+deviation of the written design's prediction against the target and the wall time. Target
+bends: ``embroact design --bend-deg B --at-kpa P --pattern K`` for each pattern, then
+``embroact predict`` on the written file reads the bend back. The import floor
+(``python -c "import numpy, scipy.optimize, shapely"``) is measured in the same run and the
+times are printed as ratios to it as well as against the limits (0.5 s per bend, 5 s per
+shape, RMSE 0.5 mm, bend 0.5 deg). Run::
+
+    python benchmarks/inverse_bench.py [--targets 24] [--runs 5]
+
+Exits 1 when a limit is missed.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from inverse_targets import PRESSURE_KPA, target_shape  # noqa: E402
+
+SHAPE_LIMIT_S, BEND_LIMIT_S, RMSE_LIMIT_MM, BEND_LIMIT_DEG = 5.0, 0.5, 0.5, 0.5
+BENDS = (("zigzag", 90.0, 150.0), ("cross", -40.0, 250.0), ("cross", 25.0, 220.0))
+_EMBROACT = [sys.executable, "-m", "embroact.export"]
+
+
+def _timed(argv) -> tuple[float, str]:
+    t0 = time.perf_counter()
+    done = subprocess.run(argv, check=True, capture_output=True, text=True)
+    return time.perf_counter() - t0, done.stdout
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--targets", type=int, default=24)
+    ap.add_argument("--runs", type=int, default=5, help="runs per target bend (median)")
+    args = ap.parse_args()
+    tmp = Path(tempfile.mkdtemp())
+    floor = statistics.median(_timed([sys.executable, "-c", "import numpy, scipy.optimize, shapely"])[0]
+                              for _ in range(5))
+    print(f"import floor (numpy, scipy.optimize, shapely): {floor * 1000:.0f} ms")
+    ok = True
+    rows = []
+    for seed in range(args.targets):
+        truth, xy = target_shape(seed, step_mm=0.5)
+        csv = tmp / f"t{seed}.csv"
+        csv.write_text("x_mm,y_mm\n" + "".join(f"{x:.5f},{y:.5f}\n" for x, y in xy))
+        wall, out = _timed(_EMBROACT + ["design", "--target-shape", str(csv), "--at-kpa", str(PRESSURE_KPA),
+                                        "-o", str(tmp / f"t{seed}.toml"), "--json"])
+        res = json.loads(out)
+        rows.append((seed, len(truth.actuators[0].segments), len(res["segments"]), res["rmse_mm"],
+                     res["max_deviation_mm"], res["reached"], wall))
+    print(f"\ntarget shapes at {PRESSURE_KPA:g} kPa ({len(rows)} seeded round trips)")
+    print("seed  segments(true/found)  rmse_mm  max_dev_mm  reached  wall_s")
+    for seed, nt, nf, rmse, dev, reached, wall in rows:
+        print(f"{seed:4d}  {nt:>8d} / {nf:<8d}  {rmse:7.3f}  {dev:10.3f}  {str(reached):7s}  {wall:6.2f}")
+    rmse = np.array([r[3] for r in rows])
+    walls = np.array([r[6] for r in rows])
+    print(f"RMSE median {np.median(rmse):.3f} mm, max {rmse.max():.3f} mm (limit {RMSE_LIMIT_MM} mm: "
+          f"max/limit {rmse.max() / RMSE_LIMIT_MM:.2f}); reached {sum(r[5] for r in rows)}/{len(rows)}")
+    print(f"wall median {np.median(walls):.2f} s, max {walls.max():.2f} s (limit {SHAPE_LIMIT_S} s: max/limit "
+          f"{walls.max() / SHAPE_LIMIT_S:.2f}; median/import floor {np.median(walls) / floor:.1f})")
+    ok &= bool(rmse.max() < RMSE_LIMIT_MM and walls.max() < SHAPE_LIMIT_S and all(r[5] for r in rows))
+    print("\ntarget bends (embroact predict reads the written file back)")
+    for pattern, bend, p in BENDS:
+        out_file = tmp / f"b-{pattern}-{bend:g}.toml"
+        times = [_timed(_EMBROACT + ["design", "--bend-deg", str(bend), "--at-kpa", str(p), "--pattern", pattern,
+                                     "-o", str(out_file)])[0] for _ in range(args.runs)]
+        _, pred = _timed(_EMBROACT + ["predict", str(out_file), "--pressure-kpa", str(p), "--json"])
+        theta = json.loads(pred)["actuators"][0]["theta_deg"][0]
+        wall = statistics.median(times)
+        err = abs(theta - bend)
+        print(f"{pattern:6s} {bend:+6.1f} deg at {p:g} kPa: predict reads {theta:+.4f} deg (off {err:.2e}, limit "
+              f"{BEND_LIMIT_DEG}); wall median {wall:.2f} s (limit {BEND_LIMIT_S} s: ratio {wall / BEND_LIMIT_S:.2f}; "
+              f"import floor x{wall / floor:.1f})")
+        ok &= bool(err <= BEND_LIMIT_DEG and wall <= BEND_LIMIT_S)
+    print("\nPASS" if ok else "\nFAIL: a limit is missed (see above)")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
