@@ -97,9 +97,11 @@ def test_errors_are_one_line_and_write_nothing(tmp_path, capsys, argv, code, mes
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("kind, loads", [("bend", False), ("shape", False), ("mesh", True)])
-def test_trimesh_only_for_mesh(tmp_path, kind, loads):
-    out = tmp_path / ("x.glb" if kind == "mesh" else "x.svg")
+@pytest.mark.parametrize("kind, suffix, loads", [("bend", ".svg", False), ("shape", ".svg", False),
+                                                 ("mesh", ".glb", False), ("mesh", ".stl", True)])
+def test_trimesh_only_for_mesh(tmp_path, kind, suffix, loads):
+    """trimesh only for the mesh formats it writes (STL, OBJ, PLY); GLB is written without it."""
+    out = tmp_path / f"x{suffix}"
     code = ("import sys; from embroact.export.cli.main import main; "
             f"rc = main(['preview', '{kind}', '-o', r'{out}', '--pressure-kpa', '0:300:100']); "
             "print(rc, 'trimesh' in sys.modules)")

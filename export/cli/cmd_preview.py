@@ -7,7 +7,7 @@ KIND is one of
 - ``shape``: side views of the bent strip at a few pressures (SVG);
 - ``mesh``: the 3D shape at one pressure; the suffix of FILE picks the format
   (``.glb``, ``.stl``, ``.obj``, ``.ply``, or ``.svg`` for a flat-shaded picture).
-  Only this kind imports trimesh.
+  Only this kind with ``.stl``, ``.obj`` or ``.ply`` imports trimesh.
 
 Without DESIGN the built-in default design is used (the paper's zigzag actuator).
 Pressures are given as ``START:STOP:STEP`` (inclusive) or a comma list, in kPa.

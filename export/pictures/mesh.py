@@ -63,7 +63,9 @@ from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import ExportError, ParameterError, check_range
 from ...predict.shape import BentShape
 from ..files.atomic import write_bytes_atomic
+from .glb import GlbMesh, glb_bytes
 from .sideview import FABRIC_THICKNESS_MM
+from .triangles import point_triangle_distance
 
 __all__ = [
     "DEFAULT_CHORD_TOLERANCE_MM",
@@ -420,8 +422,6 @@ def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> flo
     the last (the steps of a piece are alike: the measurement stays representative and
     its cost bounded, where measuring all of a 10 m path took 19 s).
     """
-    from trimesh.triangles import closest_point
-
     m, f = body.ring_size, np.array(_SAMPLE_FRACTIONS)
     steps = np.unique(np.linspace(0, len(s) - 2, min(len(s) - 1, _MAX_MEASURED_STEPS)).round().astype(np.int64))
     i, j, fs, gs = (x.reshape(-1) for x in np.meshgrid(steps, np.arange(m), f, f, indexing="ij"))
@@ -435,7 +435,7 @@ def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> flo
     best = np.full(len(pts), np.inf)
     for tri in ((a, b, c), (a, c, d)):
         tris = np.stack([v[tri[0]], v[tri[1]], v[tri[2]]], axis=1)
-        best = np.minimum(best, np.linalg.norm(closest_point(tris, pts) - pts, axis=1))
+        best = np.minimum(best, point_triangle_distance(tris, pts))
     return float(best.max())
 
 
@@ -452,7 +452,7 @@ def actuator_mesh(
     segment_lengths_mm=(),
     segment_theta_deg=(),
 ) -> ShapeMesh:
-    """Mesh of the actuator bent by ``theta_deg`` (trimesh is used to measure the deviation).
+    """Mesh of the actuator bent by ``theta_deg``, with its realised deviation measured.
 
     Parameters
     ----------
@@ -471,7 +471,7 @@ def actuator_mesh(
     name : str
         Actuator name.
     measure : bool
-        Measure the realised deviation (``max_deviation_mm``; imports trimesh). Pictures,
+        Measure the realised deviation (``max_deviation_mm``). Pictures,
         whose tolerance is a fraction of a pixel, skip it.
     segment_lengths_mm, segment_theta_deg : sequence of float, optional
         A segmented actuator: each segment's length along the path [mm] and its own bend
@@ -517,6 +517,11 @@ def shapes_of(shapes) -> tuple[ShapeMesh, ...]:
 
 
 def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
+    if kind == "glb":  # written without trimesh (glb.py): the default build's file
+        # glTF: metres, Y up.  Plan frame (x, y, z_thread) -> (x, z_thread, -y) / 1000.
+        to_gltf = np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], dtype=float) * _M_PER_MM
+        return glb_bytes(GlbMesh(f"{shape.name}.{b.name}", np.asarray(b.vertices) @ to_gltf.T, b.faces, b.colour)
+                         for shape in shapes for b in shape.bodies)
     import trimesh
 
     meshes = []
@@ -525,16 +530,6 @@ def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
             mesh = trimesh.Trimesh(vertices=np.array(b.vertices), faces=np.array(b.faces), process=False)
             mesh.visual.face_colors = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
             meshes.append((f"{shape.name}.{b.name}", mesh))
-    if kind == "glb":
-        # glTF: metres, Y up.  Plan frame (x, y, z_thread) -> (x, z_thread, -y) / 1000.
-        to_gltf = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
-        to_gltf[:3, :3] *= _M_PER_MM
-        scene = trimesh.Scene()
-        for name, mesh in meshes:
-            mesh = mesh.copy()
-            mesh.apply_transform(to_gltf)
-            scene.add_geometry(mesh, geom_name=name, node_name=name)
-        return scene.export(file_type="glb")
     joined = trimesh.util.concatenate([m for _, m in meshes])
     data = joined.export(file_type=kind)
     return data.encode("utf-8") if isinstance(data, str) else data

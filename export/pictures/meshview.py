@@ -144,9 +144,9 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
         Caption drawn in the top-left corner.
     """
     import svgwrite
-    from trimesh.remesh import subdivide_to_size
 
     from .mesh import shapes_of
+    from .triangles import subdivide_to_size
 
     width = check_range("width_px", width_px, low=100.0, low_inclusive=True, high=10000.0)
     rot = view_rotation(azimuth_deg, elevation_deg) @ (_HANGING if hanging else np.eye(3))
@@ -158,7 +158,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     tris, cols, behind = [], [], []
     for s in shapes:
         for b in s.bodies:
-            v, f, parent = subdivide_to_size(np.asarray(b.vertices), np.asarray(b.faces), split, return_index=True)
+            v, f, parent = subdivide_to_size(b.vertices, b.faces, split)
             tris.append(v[f] @ rot.T)
             cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(f), 1)))
             behind.append(_behind_fabric(s, b, rot)[parent])

@@ -159,7 +159,7 @@ def side_panels(plan, derived, curves, *, count: int = DEFAULT_SIDE_STATES) -> l
 
 
 def shape_meshes(plan, derived, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
-    """3D shape per actuator at ``pressure_kpa`` (default the highest predicted); imports trimesh."""
+    """3D shape per actuator at ``pressure_kpa`` (default the highest predicted)."""
     from .mesh import DEFAULT_CHORD_TOLERANCE_MM, PlanarPath, actuator_mesh
 
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
@@ -240,7 +240,8 @@ def render_previews(
     shape_pressure_kpa : float, optional
         Pressure of the 3D shape [kPa]; default the highest predicted pressure.
     mesh_suffix : str or None
-        ``".glb"`` (default), ``".stl"``, ``".obj"``, ``".ply"``; None: no 3D (trimesh not imported).
+        ``".glb"`` (default; written without trimesh), ``".stl"``, ``".obj"``, ``".ply"`` (these import
+        trimesh); None: no 3D.
     tolerance_mm : float, optional
         Chordal tolerance of the mesh [mm]; default ``mesh.DEFAULT_CHORD_TOLERANCE_MM``.
     """

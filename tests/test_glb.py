@@ -1,0 +1,114 @@
+"""GLB writer and triangle geometry without trimesh, checked against trimesh (an independent implementation)."""
+import json
+import struct
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from embroact.export.pictures.glb import GlbMesh, glb_bytes
+from embroact.export.pictures.mesh import PlanarPath, actuator_mesh, mesh_bytes
+from embroact.export.pictures.triangles import point_triangle_distance, subdivide_to_size
+
+trimesh = pytest.importorskip("trimesh")
+
+R0, W = 2.5814206750769157, 7.0
+
+
+def _chunks(data):
+    """(JSON document, BIN bytes) of a GLB file, read by the specification's layout."""
+    magic, version, length = struct.unpack("<4sII", data[:12])
+    assert (magic, version, length) == (b"glTF", 2, len(data))
+    n_json, kind = struct.unpack("<I4s", data[12:20])
+    assert kind == b"JSON" and n_json % 4 == 0
+    n_bin, kind = struct.unpack("<I4s", data[20 + n_json:28 + n_json])
+    assert kind == b"BIN\x00" and n_bin % 4 == 0 and 28 + n_json + n_bin == len(data)
+    return json.loads(data[20:20 + n_json]), data[28 + n_json:]
+
+
+def test_glb_geometry_equals_trimesh_scene_of_the_same_bodies():
+    """The file trimesh wrote before (one node per body, metres, Y up) and ours hold the same triangles."""
+    m = actuator_mesh(PlanarPath.from_centerline(_arc()), 120.0, width_mm=W, r0_mm=R0, name="A1")
+    ours = trimesh.load(trimesh.util.wrap_as_stream(mesh_bytes(m, ".glb")), file_type="glb")
+    to_gltf = np.array([[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
+    to_gltf[:3, :3] *= 1e-3
+    assert sorted(ours.geometry) == sorted(f"A1.{b.name}" for b in m.bodies)
+    for b in m.bodies:
+        ref = trimesh.Trimesh(np.array(b.vertices), np.array(b.faces), process=False)
+        ref.apply_transform(to_gltf)
+        got = ours.geometry[f"A1.{b.name}"]
+        assert np.array_equal(got.faces, b.faces)
+        assert np.array_equal(got.vertices, ref.vertices.astype(np.float32))  # float32, as glTF stores them
+        assert np.abs(got.vertices - ref.vertices).max() <= 0.5 * np.spacing(np.float32(0.2))  # < 1e-5 mm
+        assert tuple(got.visual.material.baseColorFactor) == b.colour
+
+
+def _arc():
+    from embroact.patterns.centerline import Centerline
+
+    t = np.linspace(0.0, np.pi / 2, 60)
+    return Centerline(np.column_stack([40 * np.cos(t), 40 * np.sin(t)]))
+
+
+def test_glb_layout_accessors_and_materials():
+    tri = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    faces = np.array([[0, 1, 2], [0, 3, 1]])
+    data = glb_bytes([GlbMesh("a", tri, faces, (10, 20, 30, 255)), GlbMesh("b", tri + 2.0, faces, (10, 20, 30, 255))])
+    doc, blob = _chunks(data)
+    assert doc["asset"]["version"] == "2.0" and [n["name"] for n in doc["nodes"]] == ["a", "b"]
+    assert len(doc["materials"]) == 1 and doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] == [
+        10 / 255, 20 / 255, 30 / 255, 1.0]
+    prims = [mesh["primitives"][0] for mesh in doc["meshes"]]
+    assert prims[0]["indices"] == prims[1]["indices"]  # equal triangles stored once
+    pos = doc["accessors"][prims[1]["attributes"]["POSITION"]]
+    view = doc["bufferViews"][pos["bufferView"]]
+    xyz = np.frombuffer(blob, dtype="<f4", count=pos["count"] * 3, offset=view["byteOffset"]).reshape(-1, 3)
+    assert xyz.tolist() == (tri + 2.0).tolist() and pos["min"] == [2.0] * 3 and pos["max"] == [3.0] * 3
+    idx = doc["accessors"][prims[0]["indices"]]
+    view = doc["bufferViews"][idx["bufferView"]]
+    assert np.frombuffer(blob, dtype="<u4", count=idx["count"], offset=view["byteOffset"]).tolist() == [0, 1, 2, 0,
+                                                                                                          3, 1]
+    assert glb_bytes([GlbMesh("a", tri, faces, (10, 20, 30, 255))]) == glb_bytes([GlbMesh("a", tri, faces,
+                                                                                         (10, 20, 30, 255))])
+
+
+def test_point_triangle_distance_matches_trimesh_closest_point():
+    from trimesh.triangles import closest_point
+
+    rng = np.random.default_rng(20251201)
+    tri = rng.normal(size=(5000, 3, 3))
+    pts = rng.normal(size=(5000, 3)) * 2.0
+    ref = np.linalg.norm(closest_point(tri, pts) - pts, axis=1)
+    assert point_triangle_distance(tri, pts) == pytest.approx(ref, abs=1e-12)
+
+
+def test_point_triangle_distance_hand_values():
+    tri = np.array([[[0.0, 0, 0], [4, 0, 0], [0, 3, 0]]] * 4)
+    # above the face; beyond vertex B; beyond the hypotenuse (3-4-5: distance (3*4+... )); below edge AB
+    pts = np.array([[1.0, 1, 2], [6.0, -1, 0], [4.0, 3, 0], [2.0, -2, 1]])
+    d = point_triangle_distance(tri, pts)
+    # hypotenuse x/4 + y/3 = 1: distance of (4, 3) is (4/4 + 3/3 - 1) / sqrt(1/16 + 1/9) = 12/5
+    assert d == pytest.approx([2.0, np.hypot(2.0, 1.0), 12.0 / 5.0, np.hypot(2.0, 1.0)], abs=1e-14)
+
+
+@pytest.mark.parametrize("max_edge", [0.08, 0.3, 1.5])
+def test_subdivide_to_size_matches_trimesh(max_edge):
+    from trimesh.remesh import subdivide_to_size as reference
+
+    sphere = trimesh.creation.icosphere(subdivisions=1)
+    v0, f0, p0 = reference(sphere.vertices, sphere.faces, max_edge, return_index=True)
+    v, f, parent = subdivide_to_size(sphere.vertices, sphere.faces, max_edge)
+    assert np.array_equal(v0[f0], v[f]) and np.array_equal(p0, parent)
+    edges = v[f[:, [1, 2, 0]]] - v[f]
+    assert np.linalg.norm(edges, axis=2).max() <= max_edge
+    assert trimesh.Trimesh(v, f).is_watertight  # shared midpoints: no cracks
+
+
+def test_glb_and_measured_mesh_load_no_trimesh(tmp_path):
+    code = ("import sys; from embroact.export.pictures.mesh import PlanarPath, actuator_mesh, mesh_bytes; "
+            "from embroact.export.pictures.meshview import mesh_svg; "
+            f"m = actuator_mesh(PlanarPath.straight(50.0), 40.0, width_mm={W}, r0_mm={R0}); mesh_bytes(m, '.glb'); "
+            "mesh_svg(m); print(m.max_deviation_mm <= 0.05, [k for k in ('trimesh', 'scipy') if k in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split("\n")[0] == "True []"
