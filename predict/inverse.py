@@ -488,6 +488,9 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
                              + "; ".join(reasons))
     cands.sort(key=lambda c: abs(c.theta_deg - target))
     best = cands[0]
+    if not reasons:
+        reasons = [f"the designs bending by {target:g} deg at {p:g} kPa leave the valid model states or fail the "
+                   f"design rules"]
     statement = (f"not reachable: {'; '.join(reasons)}. Nearest: {best.pattern} with {best.theta_deg:.1f} deg "
                  f"({best.theta_deg - target:+.1f} deg off)")
     return BendResult(target, p, length, dataclasses.replace(best, binding="; ".join(reasons)),

@@ -58,7 +58,8 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
         raise ParameterError("target_xy_mm and predicted_xy_mm must hold at least 2 points each")
     both = np.vstack([target, pred])
     lo, hi = both.min(axis=0) - _MARGIN_MM, both.max(axis=0) + _MARGIN_MM
-    width = max(float(hi[0] - lo[0]), 90.0)
+    text_mm = max([0.55 * 5.0 * len(title) + 8.0, 90.0] + [0.5 * 3.6 * len(line) + 8.0 for line in caption])
+    width = max(float(hi[0] - lo[0]), text_mm)  # room for the title and the caption (Helvetica ~0.5 em/char)
     body = float(hi[1] - lo[1])
     height = _HEADER_MM + body + 6.0 * (len(caption) + 1) + _MARGIN_MM
     top = _HEADER_MM + float(hi[1])  # page y = top - plan y (y up on the page)
