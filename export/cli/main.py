@@ -46,6 +46,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "fit": ("cmd_fit", "fit G and P0 to measured (pressure, angle) data"),
     "preview": ("cmd_preview", "render a single preview (stitches, bend chart, side view, 3D)"),
     "design": ("cmd_design", "inverse design: the design that bends as wanted (a bend or a shape at a pressure)"),
+    "studio": ("cmd_studio", "designer in the browser: edit a design, see stitches and predicted bend live"),
 }
 
 EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER = 0, 1, 2, 3, 4

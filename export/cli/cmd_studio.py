@@ -1,0 +1,56 @@
+"""``embroact studio [DESIGN.toml] --out DIR``: the designer in the browser.
+
+Starts a local web server on 127.0.0.1 only, prints its address with a secret token made
+for this run and opens a browser (unless ``--no-browser``). The page edits the design
+(default: the paper's zigzag actuator) and shows the stitches, the bend chart, the side and
+3D views at a pressure, the design-rule findings and the worksheet figures; it saves the
+design and builds machine files into DIR only. Needs the optional web server:
+``pip install 'embroact[studio]'``.
+
+Exit codes: 0 stopped with Ctrl-C; 2 bad design or option, port in use, extra not installed;
+3 output directory missing or not writable.
+
+Examples
+--------
+>>> from embroact.export.cli.main import main
+>>> main(["studio", "--out", "out", "--port", "99999"])  # doctest: +SKIP
+embroact: error: port must be an integer in [0, 65535], got 99999
+2
+"""
+from __future__ import annotations
+
+import argparse
+
+from .target import add_model_arguments
+
+__all__ = ["add_arguments", "run", "EXTRA_HINT"]
+
+EXTRA_HINT = "embroact studio needs the web server of the studio extra: pip install 'embroact[studio]'"
+
+
+def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
+    """Options of ``embroact studio``."""
+    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
+    parser.add_argument("--out", required=True, help="existing output directory: the only place the studio writes")
+    parser.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default 0: any free port)")
+    parser.add_argument("--no-browser", action="store_true", help="print the address only; open no browser")
+
+
+def run(args) -> int:
+    """Check the options and the extra, load the design, serve until Ctrl-C."""
+    import importlib.util
+
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.base.validate import check_output_name
+    from ..files.atomic import check_writable_dir
+    from .target import load_target
+
+    out = check_writable_dir(check_output_name("--out", args.out))
+    if any(importlib.util.find_spec(m) is None for m in ("starlette", "uvicorn")):
+        raise ParameterError(EXTRA_HINT)
+    from ..studio.serve import serve
+    from ..studio.session import Studio
+
+    target = load_target(args, design_path=args.design)
+    return serve(Studio(target.design, out, target.calibration_sets), port=args.port, browser=not args.no_browser)

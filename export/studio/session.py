@@ -1,0 +1,208 @@
+"""One studio session: the design being edited, its analysis, and what the page may ask of it.
+
+:class:`Studio` knows no web framework (the server in :mod:`.app` is a thin layer over it,
+and the benchmark and tests call it directly). It keeps the last *valid* design: an edit
+that the design file would refuse raises :class:`~embroact.export.studio.form.FieldError`
+and changes nothing, so the page keeps its last good views. Analyses are kept per design
+(the last few), so moving the pressure slider re-analyses nothing.
+
+Examples
+--------
+>>> import tempfile
+>>> from embroact.patterns.design import default_design
+>>> s = Studio(default_design(), tempfile.mkdtemp())
+>>> v = s.edit({"actuator[0].width_mm": 8.0}, pressure_kpa=200.0)
+>>> v["actuators"][0]["derived"]["width_mm"], round(v["actuators"][0]["theta_deg"], 2)
+(8.0, 55.18)
+>>> s.save("wide.toml")["file"]
+'wide.toml'
+"""
+from __future__ import annotations
+
+import json
+import threading
+from collections import OrderedDict
+from pathlib import Path
+
+from ...patterns.base.errors import EmbroactError, ParameterError, check_range
+from .form import FieldError, apply_edits, design_form, fields
+from .outputs import output_path
+
+__all__ = ["Studio", "CACHED_ANALYSES"]
+
+#: Analysed designs kept (undo-like back-and-forth edits and the slider reuse them).
+CACHED_ANALYSES = 8
+
+
+def _number(name: str, value, *, low: float, high: float, inclusive: bool = True) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ParameterError(f"{name} must be a number, got {value!r:.40}")
+    try:
+        number = float(value)
+    except ValueError:
+        raise ParameterError(f"{name} must be a number, got {value!r:.40}") from None
+    return check_range(name, number, low=low, high=high, low_inclusive=inclusive, high_inclusive=inclusive)
+
+
+class Studio:
+    """The studio's state: design form, last valid design, output directory.
+
+    Parameters
+    ----------
+    design : Design
+        The design to start from (validated).
+    out_dir : path
+        The only directory the studio writes into.
+    calibration_sets : tuple of CalibrationSet
+        Sets the design's calibrations name besides the built-in ones (read from files).
+    """
+
+    def __init__(self, design, out_dir, calibration_sets: tuple = ()) -> None:
+        self.out_dir = Path(out_dir)
+        self.calibration_sets = tuple(calibration_sets)
+        self._names = tuple(s.name for s in self.calibration_sets)
+        self.form = design_form(design)
+        self.design = design
+        self._lock = threading.Lock()
+        self._cache: OrderedDict = OrderedDict()
+
+    # -------------------------------------------------------------- analysis
+    def _analysed(self, design, form):
+        """(analysis, findings, stitch preview, worksheet) of ``design`` (from ``form``), kept for the last few."""
+        key = json.dumps(form, sort_keys=True)
+        if key in self._cache:
+            self._cache.move_to_end(key)
+            return self._cache[key]
+        from ...predict.analysis import analyse
+        from ...predict.rules import check_design
+        from ..report.worksheet import worksheet
+        from .views import stitches_svg
+
+        analysis = analyse(design, calibration_sets=self.calibration_sets)
+        findings = check_design(analysis)
+        ws = worksheet(analysis.plan, design, speed_spm=design.machine.speed_spm, findings=findings,
+                       analysis=analysis)
+        entry = (analysis, findings, stitches_svg(analysis.plan, findings), ws)
+        self._cache[key] = entry
+        while len(self._cache) > CACHED_ANALYSES:
+            self._cache.popitem(last=False)
+        return entry
+
+    def pressure(self, value) -> float:
+        """``value`` checked against the design's pressure range [0, max_pressure_kpa] (None: 2/3 of it)."""
+        top = self.design.operation.max_pressure_kpa
+        if value is None:
+            return float(round(top * 2.0 / 3.0))
+        return _number("pressure_kpa", value, low=0.0, high=top)
+
+    def views(self, pressure_kpa=None) -> dict:
+        """Everything the page shows except the 3D picture (:meth:`shape3d`), as JSON-ready data."""
+        from ..cli.target import summary_line
+        from .views import bend_at, chart_svg, side_svg, worksheet_figures
+
+        with self._lock:
+            design, form = self.design, self.form
+            p = self.pressure(pressure_kpa)
+            analysis, findings, stitches, ws = self._analysed(design, form)
+            bends = bend_at(analysis, p)
+            return {
+                "design": design.name,
+                "out_dir": str(self.out_dir),
+                "pressure_kpa": p,
+                "max_pressure_kpa": design.operation.max_pressure_kpa,
+                "fields": [f.as_dict() for f in fields(form, self._names)],
+                "stitches_svg": stitches,
+                "chart_svg": chart_svg(analysis, bends, p),
+                "side_svg": side_svg(analysis, bends, p),
+                "actuators": [{**a.as_dict(), **b} for a, b in zip(analysis.actuators, bends)],
+                "findings": [f.as_dict() for f in findings],
+                "summary": summary_line(findings),
+                "worksheet": worksheet_figures(ws),
+            }
+
+    def shape3d(self, pressure_kpa=None) -> dict:
+        """The 3D picture at ``pressure_kpa`` (a separate request: it takes longest to draw)."""
+        from .views import bend_at, shape3d_svg
+
+        with self._lock:
+            p = self.pressure(pressure_kpa)
+            analysis = self._analysed(self.design, self.form)[0]
+            return {"pressure_kpa": p, "svg": shape3d_svg(analysis, bend_at(analysis, p), p)}
+
+    # -------------------------------------------------------------- edits
+    def edit(self, values, pressure_kpa=None) -> dict:
+        """Apply ``values`` (field key -> value); the views of the new design.
+
+        Raises
+        ------
+        FieldError
+            The design file would refuse the edited design (nothing changes).
+        ParameterError
+            A key that is not a field, or a bad pressure.
+        """
+        with self._lock:
+            form, design = apply_edits(self.form, values, self._names)
+            try:  # a design that cannot be generated fails here, before it is kept
+                self._analysed(design, form)
+            except FieldError:
+                raise
+            except EmbroactError as exc:
+                raise FieldError(next(iter(values)), str(exc)) from None
+            self.form, self.design = form, design
+        if pressure_kpa is not None:  # the slider follows a lowered working pressure
+            pressure_kpa = min(_number("pressure_kpa", pressure_kpa, low=0.0, high=1e5),
+                               design.operation.max_pressure_kpa)
+        return self.views(pressure_kpa)
+
+    # -------------------------------------------------------------- outputs
+    def save(self, name) -> dict:
+        """Write the design as TOML (:func:`~embroact.export.files.designfile.save_design`) into the output directory."""
+        from ..files.designfile import save_design
+
+        with self._lock:
+            path = output_path(self.out_dir, name, ".toml")
+            save_design(self.design, path)
+        return {"file": path.name, "out_dir": str(self.out_dir)}
+
+    def build(self, *, force: bool = False) -> dict:
+        """``embroact build`` of the design into the output directory (machine files, worksheet, previews, report).
+
+        Raises
+        ------
+        DesignRuleError
+            The rules found errors and ``force`` is false (nothing written).
+        """
+        from ..pictures.previews import previews_stage
+        from ..report.build import build
+
+        if not isinstance(force, bool):
+            raise ParameterError(f"force must be true or false, got {force!r:.40}")
+        with self._lock:
+            analysis = self._analysed(self.design, self.form)[0]
+            res = build(self.design, self.out_dir, force=force, analysis=analysis, stages=(previews_stage(),))
+        return {"files": list(res.files), "out_dir": res.out_dir, "stitch_count": res.worksheet.stitch_count}
+
+    def inverse(self, bend_deg, pressure_kpa, *, pattern="any", actuator=0) -> dict:
+        """Inverse design (:func:`embroact.predict.inverse.design_bend`) for one straight actuator of the design.
+
+        Returns the result and ``values``: the field edits that give the actuator the best
+        candidate's pattern parameters (the page applies them as any edit).
+        """
+        from ...predict.inverse import design_bend
+
+        with self._lock:
+            design = self.design
+            index = actuator if isinstance(actuator, int) and not isinstance(actuator, bool) else -1
+            if not 0 <= index < len(design.actuators):
+                raise ParameterError(f"actuator must be an index in [0, {len(design.actuators) - 1}], got {actuator!r:.40}")
+            spec = design.actuators[index]
+            if spec.segments:
+                raise ParameterError(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
+            result = design_bend(_number("bend_deg", bend_deg, low=-720.0, high=720.0),
+                                 _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False),
+                                 pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
+                                 settings=spec.model, sets=self.calibration_sets, name=spec.name)
+        best = result.best
+        values = {f"actuator[{index}].pattern": best.pattern}
+        values.update({f"actuator[{index}].{k}": float(getattr(best.params, k)) for k in best.params.__slots__})
+        return {**result.as_dict(), "values": values}

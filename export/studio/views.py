@@ -1,0 +1,168 @@
+"""What the studio page shows for an analysed design at the slider's pressure, rendered by the CLI's own code.
+
+Every picture comes from :mod:`embroact.export.pictures` and every number from the
+analysis (:func:`embroact.predict.analysis.analyse`), its memoised curves and the rules
+(:func:`embroact.predict.rules.check_design`), the same calls ``embroact build``,
+``predict`` and ``check`` make. This module only adds what a live view needs on top:
+the findings marked on the stitch preview (one ``<circle class="finding">`` per
+finding with a place, ``data-finding`` = its index in the list), the slider's pressure
+marked on the bend chart, and one-pressure side and 3D views.
+
+Examples
+--------
+>>> from embroact.patterns.design import default_design
+>>> from embroact.predict.analysis import analyse
+>>> a = analyse(default_design())
+>>> [round(x["theta_deg"], 3) for x in bend_at(a, 200.0)]
+[102.93]
+>>> bend_at(a, 200.0)[0]["status"]
+'BENDING'
+"""
+from __future__ import annotations
+
+import re
+from xml.sax.saxutils import escape
+
+import numpy as np
+
+from ...patterns.base.errors import EmbroactError
+
+__all__ = ["bend_at", "stitches_svg", "chart_svg", "side_svg", "shape3d_svg", "message_svg", "worksheet_figures",
+           "SHAPE3D_WIDTH_PX", "SHAPE3D_TOLERANCE_MM"]
+
+#: Width of the live 3D picture [px] and the mesh's chordal tolerance [mm] (the picture remeshes
+#: at a fraction of a pixel anyway; the deviation is not measured: no file is written).
+SHAPE3D_WIDTH_PX = 420.0
+SHAPE3D_TOLERANCE_MM = 0.2
+_VIEWBOX = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
+
+
+def message_svg(text: str, *, width_px: int = 420, height_px: int = 80) -> str:
+    """A small SVG that says ``text`` (where a view cannot be drawn, e.g. no model)."""
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" class="message">'
+            f'<rect width="100%" height="100%" fill="#fff7e6" stroke="#d9a441"/>'
+            f'<text x="10" y="{height_px // 2}" font-size="13" font-family="Helvetica,Arial,sans-serif">'
+            f"{escape(text[:160])}</text></svg>")
+
+
+def bend_at(analysis, pressure_kpa: float) -> list[dict]:
+    """Per actuator: bend [deg] and status at ``pressure_kpa`` (per segment too), or why there is none."""
+    from ...predict.status import Status
+
+    try:
+        per = analysis.segment_curves((float(pressure_kpa),))
+    except EmbroactError as exc:
+        return [{"name": a.name, "theta_deg": None, "status": None, "segment_theta_deg": [],
+                 "model_error": a.model_error or str(exc)} for a in analysis.actuators]
+    out = []
+    for a, curves in zip(analysis.actuators, per):
+        thetas = [float(c.theta_deg[0]) for c in curves]
+        statuses = [Status(int(c.status[0])).name for c in curves]
+        worst = next((s for s in statuses if s not in ("BENDING", "INFLATION")), statuses[0])
+        out.append({"name": a.name, "theta_deg": float(np.sum(thetas)), "status": worst,
+                    "segment_theta_deg": thetas if a.segments else [], "model_error": None})
+    return out
+
+
+def stitches_svg(plan, findings) -> str:
+    """The stitch preview (:func:`~embroact.export.pictures.stitches.plan_svg`) with every placed finding circled."""
+    from ..pictures.stitches import plan_svg
+
+    svg = plan_svg(plan)
+    box = _VIEWBOX.search(svg)
+    if box is None or not findings:
+        return svg
+    size = max(float(box.group(3)), float(box.group(4)))
+    r = max(1.0, 0.015 * size)
+    marks = []
+    for k, f in enumerate(findings):
+        if f.xy_mm is None:
+            continue
+        x, y = f.xy_mm
+        marks.append(f'<circle class="finding {f.severity.value}" data-finding="{k}" cx="{x:.3f}" cy="{-y:.3f}" '
+                     f'r="{r:.3f}" fill="none" stroke-width="{r / 4:.3f}"><title>{escape(f.code)} '
+                     f"{escape(f.message)}</title></circle>")
+    layer = '<g id="studio-findings">' + "".join(marks) + "</g>"
+    return svg[: svg.rfind("</svg>")] + layer + "</svg>"
+
+
+def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
+    """The build's bend chart (:func:`~embroact.export.pictures.previews.bend_chart`) with the slider's
+    pressure as a vertical line and each actuator's bend there as a dot."""
+    from ..pictures import previews as pv
+    from ..pictures.chart import chart_scale
+
+    try:
+        curves = analysis.curves()
+        svg = pv.bend_chart(analysis, curves)
+    except EmbroactError as exc:
+        return message_svg(f"no bend chart: {exc}")
+    sc = chart_scale(pv.bend_series(analysis, curves))
+    if not sc.x_min_kpa <= pressure_kpa <= sc.x_max_kpa:
+        return svg
+    x = sc.x_px(pressure_kpa)
+    parts = [f'<line x1="{x:.2f}" x2="{x:.2f}" y1="{sc.top_px:.2f}" y2="{sc.top_px + sc.height_px:.2f}" '
+             f'stroke="#c0392b" stroke-width="1.2" stroke-dasharray="4,3"/>']
+    for b in bends:
+        t = b["theta_deg"]
+        if t is not None and np.isfinite(t) and sc.y_min_deg <= t <= sc.y_max_deg:
+            parts.append(f'<circle class="pressure-dot" cx="{x:.2f}" cy="{sc.y_px(t):.2f}" r="4.5" fill="#c0392b"/>')
+    layer = f'<g id="pressure-marker" data-pressure-kpa="{pressure_kpa:g}">' + "".join(parts) + "</g>"
+    return svg[: svg.rfind("</svg>")] + layer + "</svg>"
+
+
+def _pieces(act, bend: dict) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Piece lengths along the fabric line and each piece's bend at the slider's pressure."""
+    pieces = act.bend_pieces()
+    thetas = bend["segment_theta_deg"] or [bend["theta_deg"]]
+    return (tuple(length for length, _ in pieces), tuple(thetas[k] if k >= 0 else 0.0 for _, k in pieces))
+
+
+def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
+    """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure."""
+    from ..pictures.sideview import SidePanel, side_view_svg
+
+    if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
+        return message_svg("no side view: " + "; ".join(b["model_error"] or f"{b['name']}: no finite bend"
+                                                        for b in bends if b["theta_deg"] is None))
+    panels = []
+    for a, b in zip(analysis.actuators, bends):
+        lengths, thetas = _pieces(a, b)
+        states = (0.0, pressure_kpa) if pressure_kpa > 0 else (0.0,)
+        rows = [[0.0] * len(lengths), list(thetas)][: len(states)]
+        panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=a.derived.r0_mm, pressure_kpa=states,
+                                theta_deg=[0.0, b["theta_deg"]][: len(states)], segment_lengths_mm=lengths,
+                                segment_theta_deg=rows))
+    return side_view_svg(panels, title=f"Side view at {pressure_kpa:g} kPa")
+
+
+def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
+    """The 3D picture (:func:`~embroact.export.pictures.meshview.mesh_svg`) of every actuator at the slider's pressure."""
+    from ..pictures.mesh import PlanarPath, actuator_mesh
+    from ..pictures.meshview import mesh_svg
+    from ..pictures.previews import shape3d_title
+
+    if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
+        return message_svg("no 3D view: the model gives no finite bend here")
+    shapes = []
+    for a, b in zip(analysis.actuators, bends):
+        segs = {}
+        if a.segments:
+            lengths, thetas = _pieces(a, b)
+            segs = {"segment_lengths_mm": lengths, "segment_theta_deg": thetas}
+        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), b["theta_deg"],
+                                    width_mm=a.derived.width_mm, r0_mm=a.derived.r0_mm,
+                                    tolerance_mm=SHAPE3D_TOLERANCE_MM, name=a.name, measure=False, **segs))
+    return mesh_svg(shapes, width_px=SHAPE3D_WIDTH_PX,
+                    title=shape3d_title({a.name: pressure_kpa for a in analysis.actuators}))
+
+
+def worksheet_figures(ws) -> dict:
+    """The worksheet's production figures (counts, thread, time, fabric, tube to cut per actuator)."""
+    d = ws.as_dict()
+    keep = ("stitch_count", "jump_count", "trim_count", "stop_count", "top_thread_m", "bobbin_thread_m",
+            "sewing_time_s", "handling_time_s", "size_mm", "fabric_mm")
+    out = {k: d[k] for k in keep if k in d}
+    out["actuators"] = [{"name": a.name, "tube_cut_mm": a.tube_cut_mm, "stitches": a.stitches,
+                         "legs_over_tube": a.legs_over_tube} for a in ws.actuators]
+    return out

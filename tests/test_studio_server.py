@@ -1,0 +1,288 @@
+"""embroact studio's server, through Starlette's test client: refusals, validation, agreement with the CLI.
+
+Expected values come from outside the studio: design-file messages from
+``design_from_dict`` on hand-written dicts, bends from ``analyse`` of independently built
+designs and from ``embroact predict --json``, written files through ``load_design`` and
+``embroact build``.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip("starlette")
+pytest.importorskip("httpx2")
+
+from starlette.testclient import TestClient  # noqa: E402
+
+from embroact.export.cli.main import main  # noqa: E402
+from embroact.export.files.designfile import load_design  # noqa: E402
+from embroact.export.studio.app import create_app  # noqa: E402
+from embroact.export.studio.session import Studio  # noqa: E402
+from embroact.patterns.base.errors import DesignFileError  # noqa: E402
+from embroact.patterns.design import default_design, design_from_dict  # noqa: E402
+from embroact.predict.analysis import analyse  # noqa: E402
+
+TOKEN = "test-token-123"
+PORT = 8123
+BASE = f"http://127.0.0.1:{PORT}"
+AUTH = {"X-Embroact-Token": TOKEN}
+
+
+def paper_dict(**actuator) -> dict:
+    """The default design written out by hand (the paper's zigzag), with actuator keys replaced."""
+    a = {"name": "A1", "pattern": "zigzag", "width_mm": 7.0, "interval_mm": 1.0, "length_mm": 100.0, **actuator}
+    return {"name": "paper-zigzag", "actuator": [a]}
+
+
+def design_file_message(d: dict) -> str:
+    with pytest.raises(DesignFileError) as exc:
+        design_from_dict(d)
+    return str(exc.value)
+
+
+@pytest.fixture
+def out_dir(tmp_path):
+    d = tmp_path / "out"
+    d.mkdir()
+    return d
+
+
+@pytest.fixture
+def client(out_dir):
+    app = create_app(Studio(default_design(), out_dir), token=TOKEN, port=PORT)
+    return TestClient(app, base_url=BASE)
+
+
+def edit(client, values, pressure_kpa=None):
+    body = {"values": values} if pressure_kpa is None else {"values": values, "pressure_kpa": pressure_kpa}
+    return client.post("/api/edit", json=body, headers=AUTH)
+
+
+# ------------------------------------------------------------------ refusals
+@pytest.mark.parametrize("method,path", [("GET", "/"), ("GET", "/api/views"), ("GET", "/static/studio.js"),
+                                         ("GET", "/api/shape3d"), ("POST", "/api/save"), ("POST", "/api/build")])
+def test_a_request_without_the_token_is_refused(client, out_dir, method, path):
+    r = client.request(method, path, json={"name": "x.toml"} if method == "POST" else None)
+    assert r.status_code == 403
+    assert "token" in r.json()["error"]
+    r = client.request(method, path + "?token=wrong-token", json={"name": "x.toml"} if method == "POST" else None)
+    assert r.status_code == 403
+    assert list(out_dir.iterdir()) == []
+
+
+def test_the_token_is_accepted_in_the_query_or_the_header(client):
+    assert client.get(f"/api/views?token={TOKEN}").status_code == 200
+    assert client.get("/api/views", headers=AUTH).status_code == 200
+    page = client.get(f"/?token={TOKEN}")
+    assert page.status_code == 200 and f"static/studio.js?token={TOKEN}" in page.text
+    assert client.get(f"/static/studio.js?token={TOKEN}").headers["content-type"].startswith("text/javascript")
+
+
+@pytest.mark.parametrize("host", ["evil.example", f"evil.example:{PORT}", "127.0.0.1:9999", "127.0.0.1",
+                                  f"192.168.1.5:{PORT}", f"localhost.evil.example:{PORT}"])
+def test_a_request_for_another_host_is_refused(client, host):
+    r = client.get("/api/views", headers={**AUTH, "Host": host})
+    assert r.status_code == 403
+    assert "Host" in r.json()["error"]
+
+
+def test_localhost_with_the_port_is_this_host(client):
+    assert client.get("/api/views", headers={**AUTH, "Host": f"localhost:{PORT}"}).status_code == 200
+
+
+def test_a_post_from_another_site_is_refused(client, out_dir):
+    r = client.post("/api/save", json={"name": "x.toml"}, headers={**AUTH, "Origin": "http://evil.example"})
+    assert r.status_code == 403
+    assert list(out_dir.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["../escape.toml", "/tmp/escape.toml", "sub/escape.toml", "..\\escape.toml",
+                                  ".hidden.toml", "..", "", "escape.dst", "a\x00.toml", " x.toml", 7, None])
+def test_a_write_outside_the_output_directory_is_refused(client, out_dir, name):
+    before = sorted(os.listdir(out_dir.parent))
+    r = client.post("/api/save", json={"name": name}, headers=AUTH)
+    assert r.status_code == 403, r.text
+    assert "name must" in r.json()["error"]
+    assert sorted(os.listdir(out_dir.parent)) == before and list(out_dir.iterdir()) == []
+
+
+def test_a_symbolic_link_out_of_the_output_directory_is_refused(client, out_dir, tmp_path):
+    outside = tmp_path / "outside.toml"
+    (out_dir / "link.toml").symlink_to(outside)
+    r = client.post("/api/save", json={"name": "link.toml"}, headers=AUTH)
+    assert r.status_code == 403
+    assert not outside.exists()
+
+
+# ------------------------------------------------------------------ validation
+@pytest.mark.parametrize("key,value,actuator", [
+    ("actuator[0].width_mm", -1, {"width_mm": -1}),
+    ("actuator[0].width_mm", "abc", {"width_mm": "abc"}),
+    ("actuator[0].interval_mm", 0, {"interval_mm": 0}),
+    ("actuator[0].length_mm", 1e7, {"length_mm": 1e7}),
+    ("actuator[0].pattern", "spiral", {"pattern": "spiral"}),
+    ("actuator[0].model.g_mpa", -2, {"model": {"g_mpa": -2}}),
+])
+def test_an_invalid_value_gets_the_design_files_message_and_changes_nothing(client, key, value, actuator):
+    before = client.get("/api/views?pressure_kpa=150", headers=AUTH).json()
+    r = edit(client, {key: value}, 150)
+    assert r.status_code == 200
+    body = r.json()
+    assert body["applied"] is False
+    assert body["error"] == design_file_message(paper_dict(**actuator))
+    assert "\n" not in body["error"]
+    assert body["key"] == key
+    after = client.get("/api/views?pressure_kpa=150", headers=AUTH).json()
+    assert after == before
+
+
+def test_a_tube_value_names_its_field(client):
+    body = edit(client, {"tube.outer_radius_mm": 0}).json()
+    d = paper_dict()
+    d["tube"] = {"outer_radius_mm": 0}
+    assert (body["key"], body["error"]) == ("tube.outer_radius_mm", design_file_message(d))
+
+
+@pytest.mark.parametrize("key", ["actuator[0].colour_mm", "actuator[3].width_mm", "actuator[0].path", "__class__",
+                                 "tube", "actuator[0].model.calibration.name", "actuator[0].angle_deg"])
+def test_an_unknown_parameter_is_refused(client, key):
+    r = edit(client, {key: 1.0})
+    assert r.status_code == 400
+    assert "unknown design parameter" in r.json()["error"]
+
+
+def test_bad_request_bodies_are_one_line_errors(client):
+    for body in (b"not json", b"[1, 2]", b'{"values": []}', b'{"values": {}}'):
+        r = client.post("/api/edit", content=body, headers=AUTH)
+        assert r.status_code == 400 and "\n" not in r.json()["error"]
+    r = client.get("/api/views?pressure_kpa=900", headers=AUTH)
+    assert r.status_code == 400 and "pressure_kpa must be in [0, 300]" in r.json()["error"]
+
+
+# ------------------------------------------------------------------ agreement with the CLI
+def test_an_edit_shows_what_analyse_and_embroact_predict_give(client, capsys):
+    v = edit(client, {"actuator[0].width_mm": "8.5"}, 180).json()
+    a = analyse(design_from_dict(paper_dict(width_mm=8.5)))
+    expected = float(a.curves([180.0])[0].theta_deg[0])
+    act = v["actuators"][0]
+    assert act["theta_deg"] == pytest.approx(expected, rel=1e-12)
+    assert act["derived"]["width_mm"] == pytest.approx(8.5)
+    assert act["model"]["p0_kpa"] == pytest.approx(a.actuators[0].model.p0_kpa)
+    assert main(["predict", "zigzag", "--width-mm", "8.5", "--pressure-kpa", "180", "--json"]) == 0
+    cli = json.loads(capsys.readouterr().out)
+    assert cli["pressure_kpa"] == [180.0]
+    assert cli["theta_deg"][0] == pytest.approx(act["theta_deg"], rel=1e-12)
+    # the stitch preview is the build's plan_svg of the same plan, with the findings circled on top
+    from embroact.export.pictures.stitches import plan_svg
+
+    plain = plan_svg(a.plan)
+    assert v["stitches_svg"].startswith(plain[: plain.rfind("</svg>")])
+    assert v["stitches_svg"].count('class="finding') == sum(f["xy_mm"] is not None for f in v["findings"])
+
+
+def test_the_findings_are_check_designs(client):
+    from embroact.predict.rules import check_design
+
+    v = edit(client, {"actuator[0].width_mm": 4.0, "actuator[0].interval_mm": 0.4}).json()
+    expected = check_design(analyse(design_from_dict(paper_dict(width_mm=4.0, interval_mm=0.4))))
+    assert [(f["code"], f["xy_mm"]) for f in v["findings"]] == [(f.code, list(f.xy_mm) if f.xy_mm else None)
+                                                                 for f in expected]
+    assert "EA105" in v["summary"]  # needle points dense: placed, so circled on the preview
+    assert v["stitches_svg"].count('class="finding warning"') == sum(f.code == "EA105" for f in expected)
+
+
+def test_switching_the_pattern_brings_the_cross_keys(client):
+    v = edit(client, {"actuator[0].pattern": "cross", "actuator[0].interval_mm": 1.4}).json()
+    keys = [f["key"] for f in v["fields"]]
+    assert "actuator[0].angle_deg" in keys and "actuator[0].adjust" in keys
+    expected = analyse(design_from_dict(paper_dict(pattern="cross", interval_mm=1.4, angle_deg=45.0)))
+    assert v["actuators"][0]["derived"]["angle_deg"] == pytest.approx(expected.actuators[0].derived.angle_deg)
+    v = edit(client, {"actuator[0].pattern": "zigzag"}).json()
+    assert "actuator[0].angle_deg" not in [f["key"] for f in v["fields"]]
+
+
+def test_a_lower_working_pressure_pulls_the_slider_down(client):
+    v = edit(client, {"operation.max_pressure_kpa": 120}, 250).json()
+    assert v["pressure_kpa"] == 120 and v["max_pressure_kpa"] == 120
+
+
+# ------------------------------------------------------------------ outputs
+def test_save_writes_a_design_that_embroact_build_accepts(client, out_dir, tmp_path):
+    edit(client, {"actuator[0].width_mm": 8.0, "name": "wide one"})
+    r = client.post("/api/save", json={"name": "wide.toml"}, headers=AUTH)
+    assert r.status_code == 200 and r.json()["file"] == "wide.toml"
+    saved = load_design(out_dir / "wide.toml")
+    assert saved == design_from_dict({**paper_dict(width_mm=8.0), "name": "wide one"})
+    other = tmp_path / "built"
+    other.mkdir()
+    assert main(["build", str(out_dir / "wide.toml"), "--out", str(other), "--no-previews"]) == 0
+    assert (other / "wide_one.dst").exists()
+
+
+def test_build_writes_what_embroact_build_writes(client, out_dir, tmp_path):
+    r = client.post("/api/build", json={}, headers=AUTH)
+    assert r.status_code == 200, r.text
+    other = tmp_path / "cli"
+    other.mkdir()
+    assert main(["build", "--out", str(other)]) == 0
+    assert sorted(r.json()["files"]) == sorted(os.listdir(other)) == sorted(os.listdir(out_dir))
+    assert (out_dir / "paper-zigzag.dst").read_bytes() == (other / "paper-zigzag.dst").read_bytes()
+
+
+def test_build_refuses_on_rule_errors_and_writes_nothing(client, out_dir):
+    edit(client, {"machine.max_stitch_mm": 5.0})  # 7 mm legs: EA103 stitch over machine maximum (error)
+    r = client.post("/api/build", json={"force": False}, headers=AUTH)
+    assert r.status_code == 409 and r.json()["error"].startswith("design-rule error EA103")
+    assert list(out_dir.iterdir()) == []
+    assert client.post("/api/build", json={"force": True}, headers=AUTH).status_code == 200
+    assert (out_dir / "paper-zigzag.dst").exists()
+
+
+def test_inverse_design_gives_edits_that_reach_the_target(client):
+    r = client.post("/api/inverse", json={"bend_deg": 90, "pressure_kpa": 150, "pattern": "zigzag"}, headers=AUTH)
+    assert r.status_code == 200, r.text
+    res = r.json()
+    assert res["reached"] is True
+    v = edit(client, res["values"], 150).json()
+    width = res["values"]["actuator[0].width_mm"]
+    theta = float(analyse(design_from_dict(paper_dict(width_mm=width))).curves([150.0])[0].theta_deg[0])
+    assert v["actuators"][0]["theta_deg"] == pytest.approx(theta, rel=1e-12)
+    assert theta == pytest.approx(90.0, abs=0.05)
+    bad = client.post("/api/inverse", json={"bend_deg": "x", "pressure_kpa": 150}, headers=AUTH)
+    assert bad.status_code == 400 and bad.json()["error"] == "bend_deg must be a number, got 'x'"
+
+
+def test_the_3d_view_is_the_mesh_picture(client):
+    r = client.get("/api/shape3d?pressure_kpa=200", headers=AUTH).json()
+    assert r["svg"].startswith("<svg") and 'class="mesh"' in r["svg"] and "A1: 200 kPa" in r["svg"]
+
+
+# ------------------------------------------------------------------ the command
+def test_the_core_loads_no_web_framework():
+    code = ("import sys, embroact.export.cli.main as m\n"
+            "try:\n    m.main(['--help'])\nexcept SystemExit:\n    pass\n"
+            "print(sorted(k for k in sys.modules if k.split('.')[0] in ('starlette', 'uvicorn', 'httpx', 'anyio')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip().splitlines()[-1] == "[]"
+    out = subprocess.run([sys.executable, "-m", "embroact.export", "studio", "--help"], capture_output=True, text=True)
+    assert out.returncode == 0 and "--no-browser" in out.stdout
+
+
+def test_studio_options_are_checked_first(tmp_path, capsys):
+    assert main(["studio", "--out", str(tmp_path / "missing"), "--no-browser"]) == 3
+    assert "does not exist" in capsys.readouterr().err
+    assert main(["studio", "--out", str(tmp_path), "--port", "70000", "--no-browser"]) == 2
+    assert capsys.readouterr().err.strip() == "embroact: error: port must be an integer in [0, 65535], got 70000"
+
+
+def test_a_design_that_cannot_be_sewn_is_refused_at_its_field(client):
+    from embroact.patterns.base.errors import EmbroactError
+    from embroact.patterns.design import build_plan
+
+    with pytest.raises(EmbroactError) as exc:
+        build_plan(design_from_dict(paper_dict(width_mm=3.0)))
+    body = edit(client, {"actuator[0].width_mm": 3}).json()
+    assert (body["applied"], body["key"], body["error"]) == (False, "actuator[0].width_mm", str(exc.value))
