@@ -107,39 +107,39 @@ class ModelRuleSettings:
         return cls(**base)
 
 
-def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Finding]:
+def _model_findings(choice, model_error: str, curve_of, calibration: str, settings: ModelRuleSettings, *,
+                    where: dict, prefix: str = "", bend_limit: bool = True) -> list[Finding]:
+    """EA401-EA406 of one model (an actuator's, or one segment's: ``prefix`` names it)."""
     from .analysis import pressure_grid_kpa
     from .curve import lockup
 
-    where = dict(actuator=act.name)
-    if act.choice is None:
-        return [RULES.finding("EA405", f"no model for this actuator: {act.model_error}", **where)]
-    model, cal = act.model, act.choice.calibration
+    if choice is None:
+        return [RULES.finding("EA405", f"{prefix}no model: {model_error}", **where)]
+    model, cal = choice.model, choice.calibration
     out = []
-    notes = (cal.notes if cal is not None else ()) + act.choice.notes
+    notes = (cal.notes if cal is not None else ()) + choice.notes
     if notes:
-        name = cal.name if cal is not None else act.spec.model.calibration
-        out.append(RULES.finding("EA406", f"calibration {name}: " + "; ".join(notes), **where))
+        name = cal.name if cal is not None else calibration
+        out.append(RULES.finding("EA406", f"{prefix}calibration {name}: " + "; ".join(notes), **where))
     if cal is not None and cal.extrapolated:
         out.append(RULES.finding(
-            "EA404", f"calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
+            "EA404", f"{prefix}calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
             f"range [{cal.range_low:g}, {cal.range_high:g}]", **where))
     p_max = settings.max_pressure_kpa
     if model.p0_kpa > p_max:
         out.append(RULES.finding(
-            "EA401", f"P0 {model.p0_kpa:.1f} kPa above the working pressure {p_max:g} kPa", **where))
+            "EA401", f"{prefix}P0 {model.p0_kpa:.1f} kPa above the working pressure {p_max:g} kPa", **where))
         return out
     pressures = pressure_grid_kpa(p_max)
-    index = analysis.actuators.index(act)
-    c = analysis.curves(pressures, method=settings.method)[index]
+    c = curve_of(pressures)
     bad = np.flatnonzero(np.isin(c.status, [int(s) for s in _BAD_STATES]))
     if len(bad):
         i = int(bad[0])
         out.append(RULES.finding(
-            "EA405", f"model state {Status(int(c.status[i])).name} from {pressures[i]:.0f} kPa on, below the "
-            f"working pressure {p_max:g} kPa", **where))
+            "EA405", f"{prefix}model state {Status(int(c.status[i])).name} from {pressures[i]:.0f} kPa on, below "
+            f"the working pressure {p_max:g} kPa", **where))
     theta = float(c.theta_deg[-1])
-    if abs(theta) > settings.max_bend_deg:
+    if bend_limit and abs(theta) > settings.max_bend_deg:
         out.append(RULES.finding(
             "EA403", f"bend {theta:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
     lock_theta, lock_p = lockup(model)
@@ -147,8 +147,39 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
         np.isinf(lock_p) and lock_theta != 0.0 and abs(theta) >= settings.lockup_fraction * abs(lock_theta))
     if locked:
         out.append(RULES.finding(
-            "EA402", f"bend {theta:.1f} deg at {p_max:g} kPa is {abs(theta / lock_theta) * 100:.0f} % of the "
-            f"lock-up angle {lock_theta:.1f} deg", **where))
+            "EA402", f"{prefix}bend {theta:.1f} deg at {p_max:g} kPa is {abs(theta / lock_theta) * 100:.0f} % of "
+            f"the lock-up angle {lock_theta:.1f} deg", **where))
+    return out
+
+
+def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Finding]:
+    """The model rules of one actuator; a segmented one per segment, the bend limit on its total bend."""
+    from .curve import curve
+
+    where = dict(actuator=act.name)
+    index = analysis.actuators.index(act)
+    calibration = act.spec.model.calibration
+    if not act.segments:
+        return _model_findings(act.choice, act.model_error,
+                               lambda p: analysis.curves(p, method=settings.method)[index], calibration, settings,
+                               where=where)
+    from .analysis import pressure_grid_kpa
+
+    out, total = [], 0.0
+    p_max = settings.max_pressure_kpa
+    pressures = pressure_grid_kpa(p_max)
+    for k, seg in enumerate(act.segments):
+        if not seg.derived.has_sleeve:
+            continue  # EA201 reports it
+        bends = seg.choice is not None and seg.model.p0_kpa <= p_max
+        c = curve(seg.model, pressures, method=settings.method) if bends else None
+        out += _model_findings(seg.choice, seg.model_error, lambda p, c=c: c, calibration, settings, where=where,
+                               prefix=f"segment {k}: ", bend_limit=False)
+        total += float(c.theta_deg[-1]) if c is not None else 0.0
+    if abs(total) > settings.max_bend_deg:
+        out.append(RULES.finding(
+            "EA403", f"total bend of the {len(act.segments)} segments {total:.1f} deg at {p_max:g} kPa, limit "
+            f"{settings.max_bend_deg:g} deg", **where))
     return out
 
 

@@ -12,6 +12,7 @@ from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, Oper
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import Command, Role
 from embroact.patterns.segments import SegmentSpec, segmented
+from embroact.predict.curve import curve
 
 MIXED = (SegmentSpec(ZigzagParams(7.0, 1.0), 40.0), SegmentSpec(CrossParams(7.0, 1.4, 45.0), 60.0),
          SegmentSpec(ZigzagParams(9.0, 1.0), 30.0))
@@ -150,3 +151,23 @@ def test_each_segment_bends_as_the_same_pattern_alone():
         zc += np.exp(1j * phi) * (length * (np.exp(1j * t) - 1.0) / (1j * t) if t else length)
         phi += t
     assert shape.profile_mm([100.0])[0] == pytest.approx([zc.real, zc.imag], abs=1e-9)
+
+
+def test_model_rules_run_per_segment():
+    """EA401 names the segment whose P0 is above the working pressure; EA403 reads the total bend."""
+    from embroact.predict.analysis import analyse
+    from embroact.predict.rules import check_model
+
+    d = design_from_dict({"operation": {"max_pressure_kpa": 160.0, "max_bend_deg": 30.0}, "actuator": [
+        {"name": "S", "segment": [
+            {"pattern": "zigzag", "width_mm": 6, "interval_mm": 1, "length_mm": 50},
+            {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+    a = analyse(d)
+    found = check_model(a)
+    codes = {(f.code, f.message.split(":")[0]) for f in found}
+    # the paper's set: w = 9 mm has P0 = 180 kPa > 160 kPa; w = 6 mm bends
+    assert ("EA401", "segment 1") in codes
+    seg0 = float(curve(a.actuators[0].segments[0].model, [160.0]).theta_deg[0])
+    assert seg0 > 30.0
+    ea403 = [f for f in found if f.code == "EA403"]
+    assert len(ea403) == 1 and f"{seg0:.1f} deg" in ea403[0].message
