@@ -11,6 +11,7 @@ Examples
 """
 from __future__ import annotations
 
+import contextlib
 import secrets
 import socket
 import sys
@@ -19,7 +20,7 @@ import time
 
 from ...patterns.base.errors import ParameterError
 
-__all__ = ["studio_url", "listen", "serve", "HOST"]
+__all__ = ["studio_url", "listen", "serve", "background", "HOST"]
 
 HOST = "127.0.0.1"
 
@@ -52,8 +53,8 @@ def _open_browser(server, url: str) -> None:
         webbrowser.open(url)
 
 
-def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
-    """Serve ``studio`` until interrupted; print its address first. Returns 0."""
+def _server(studio, port: int):
+    """(uvicorn server, bound socket, address) for ``studio`` on ``127.0.0.1:port``, with a new token."""
     import uvicorn
 
     from .app import create_app
@@ -61,10 +62,14 @@ def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
     sock = listen(port)
     port = sock.getsockname()[1]
     token = secrets.token_urlsafe(24)
-    url = studio_url(port, token)
     config = uvicorn.Config(create_app(studio, token=token, port=port), log_level="warning", lifespan="off",
                             access_log=False)
-    server = uvicorn.Server(config)
+    return uvicorn.Server(config), sock, studio_url(port, token)
+
+
+def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
+    """Serve ``studio`` until interrupted; print its address first. Returns 0."""
+    server, sock, url = _server(studio, port)
     stream = sys.stdout if stream is None else stream
     print(f"embroact studio: {url}\nwrites into {studio.out_dir}; Ctrl-C stops it", file=stream, flush=True)
     if browser:
@@ -74,3 +79,22 @@ def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
     finally:
         sock.close()
     return 0
+
+
+@contextlib.contextmanager
+def background(studio, *, port: int = 0, timeout_s: float = 20.0):
+    """Serve ``studio`` from a thread while the block runs (tests, benchmarks, screenshots); yields the address."""
+    server, sock, url = _server(studio, port)
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + timeout_s
+    while not server.started:
+        if not thread.is_alive() or time.monotonic() > deadline:
+            raise RuntimeError("the studio server did not start")
+        time.sleep(0.02)
+    try:
+        yield url
+    finally:
+        server.should_exit = True
+        thread.join(timeout_s)
+        sock.close()
