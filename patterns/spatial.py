@@ -155,34 +155,39 @@ def needle_density(xy_mm, radius_mm: float = 0.5) -> np.ndarray:
     Ink/Stitch's density map counts the same way (a KD-tree ball query). Here the
     points go into square buckets one radius wide; each point is compared with the
     points of its own and the 8 neighbouring buckets only (numpy, in chunks), so
-    the work grows with the number of points times their local density.
+    the work grows with the number of points times their local density. Coincident
+    points are counted once with their multiplicity, so points on a machine grid (0.1 mm:
+    at most about 80 positions within 0.5 mm) cost the same however many are piled on
+    one spot (a mutated file with 10^5 stitches in one place).
 
     Examples
     --------
     >>> needle_density([(0, 0), (0.3, 0.4), (5, 5)], 0.5).tolist()  # 0.5 mm apart exactly: counted
     [2, 2, 1]
     """
-    xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
-    n = len(xy)
-    if n == 0:
+    xy_all = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+    if len(xy_all) == 0:
         return np.zeros(0, dtype=np.int64)
+    xy, where, weight = np.unique(xy_all, axis=0, return_inverse=True, return_counts=True)
+    n = len(xy)
     cell = np.floor((xy - xy.min(axis=0)) / radius_mm).astype(np.int64)
     rows = int(cell[:, 1].max()) + 3  # an empty row of buckets on each side: neighbour keys never wrap
     key = (cell[:, 0] + 1) * rows + (cell[:, 1] + 1)
     order = np.argsort(key, kind="stable")
-    key, pts = key[order], xy[order]  # sorted by bucket: the 3 buckets above each other are one range
+    key, pts, w = key[order], xy[order], weight[order]  # sorted by bucket: 3 buckets above each other are one range
     count = np.zeros(n, dtype=np.int64)
     for dx in (-1, 0, 1):
         lo = np.searchsorted(key, key + dx * rows - 1, side="left")
         hi = np.searchsorted(key, key + dx * rows + 1, side="right")
-        _count_close(pts, lo, hi, radius_mm, count)
+        _count_close(pts, w, lo, hi, radius_mm, count)
     out = np.empty(n, dtype=np.int64)
     out[order] = count
-    return out
+    return out[where.reshape(-1)]
 
 
-def _count_close(xy, lo, hi, radius_mm, count) -> None:
-    """Add to ``count[i]`` the points ``xy[lo[i]:hi[i]]`` within ``radius_mm`` of point i (in chunks)."""
+def _count_close(xy, weight, lo, hi, radius_mm, count) -> None:
+    """Add to ``count[i]`` the weights of the points ``xy[lo[i]:hi[i]]`` within ``radius_mm`` of point i
+    (in chunks)."""
     sizes = hi - lo
     ends = np.cumsum(sizes)
     start = 0
@@ -193,7 +198,7 @@ def _count_close(xy, lo, hi, radius_mm, count) -> None:
         other = np.repeat(lo[start:stop] - (np.cumsum(size) - size), size) + np.arange(len(owner))
         d = xy[owner] - xy[other]
         close = np.hypot(d[:, 0], d[:, 1]) <= radius_mm
-        count += np.bincount(owner[close], minlength=len(xy))
+        count += np.bincount(owner[close], weights=weight[other[close]], minlength=len(xy)).astype(np.int64)
         start = stop
 
 

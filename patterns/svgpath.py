@@ -35,6 +35,7 @@ import numpy as np
 
 from .base.errors import PathError
 from .base.tolerances import DEFAULT_TOLERANCES
+from .base.validate import PATH_CHARS, PATH_SEGMENTS
 
 if TYPE_CHECKING:
     import svgelements
@@ -48,6 +49,12 @@ _D_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
 #: Characters an SVG path d string may hold (svgelements silently skips unknown commands).
 _D_BAD_CHAR = re.compile(rf"[^{_D_COMMANDS}0-9eE+\-.,\s]")
 _D_FIRST = re.compile(r"^\s*[Mm]")
+_D_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+#: Most numbers one drawing command takes (an arc: rx ry rotation flags x y; flags may be compact).
+_NUMBERS_PER_SEGMENT = 7
+#: Arc radii beyond these are handled by :func:`_arc_radii` (their squares over- or underflow).
+_HUGE_RADIUS_MM, _TINY_RADIUS_MM = 1e150, 1e-150
+_PATH_CLASS = None
 
 
 def parse_d(d: str) -> "svgelements.Path":
@@ -92,17 +99,79 @@ def parse_d(d: str) -> "svgelements.Path":
         )
     if not _D_FIRST.match(d):
         raise PathError(f"SVG path must start with a move-to (M), got {d.strip()[:1]!r}")
+    if len(d) > PATH_CHARS:
+        raise PathError(f"SVG path must be at most {PATH_CHARS:,} characters, got {len(d):,}")
+    numbers = len(_D_NUMBER.findall(d))
+    if numbers > _NUMBERS_PER_SEGMENT * PATH_SEGMENTS:
+        raise PathError(f"SVG path must have at most {PATH_SEGMENTS:,} segments, got {numbers:,} numbers "
+                        f"(at least {-(-numbers // _NUMBERS_PER_SEGMENT):,} segments)")
     try:
-        path = svgelements.Path(d)
+        path = _path_class()(d)
+    except PathError:
+        raise
     except (ValueError, TypeError, AttributeError, IndexError):
         raise PathError(
             f"SVG path {d!r:.60}: a command is missing numbers or an arc flag is not 0 or 1 "
             "(arc: a rx ry rotation large-arc-flag sweep-flag x y)"
         ) from None
+    if len(path) > PATH_SEGMENTS:
+        raise PathError(f"SVG path must have at most {PATH_SEGMENTS:,} segments, got {len(path):,}")
     ends = [s.end for s in path if s.end is not None]
     if not ends or not all(math.isfinite(p.x) and math.isfinite(p.y) for p in ends):
         raise PathError(f"SVG path {d!r:.60}: coordinates must be finite numbers")
     return path
+
+
+def _arc_radii(rx: float, ry: float, chord: float) -> tuple[float, float] | None:
+    """Radii svgelements can compute with, for the same arc; None where the arc is a straight line.
+
+    SVG scales radii too small for the chord up until they fit; only the ratio rx/ry matters
+    then, so radii whose squares would underflow (1e-300) are scaled to a quarter of the
+    chord, still too small, giving the same arc. An ellipse with a radius of 0 is a straight
+    line (SVG's rule), and so, to far below a nanometre, is the short arc of a radius whose
+    square overflows (1e308: sagitta chord^2 / (8 r)).
+    """
+    big, small = max(rx, ry), min(rx, ry)
+    if small == 0.0 or chord == 0.0:
+        return rx, ry
+    if big > _HUGE_RADIUS_MM:
+        return None
+    if small < _TINY_RADIUS_MM and big <= chord / 4.0:
+        scale = chord / 4.0 / big
+        rx, ry = rx * scale, ry * scale
+        return (rx, ry) if min(rx, ry) >= _TINY_RADIUS_MM else None
+    return rx, ry
+
+
+def _path_class():
+    """svgelements.Path whose arcs get :func:`_arc_radii` (made once, on first use)."""
+    global _PATH_CLASS
+    if _PATH_CLASS is None:
+        import svgelements
+
+        class _Path(svgelements.Path):
+            def arc(self, *arc_args, relative=False, **kwargs):
+                for i in range(0, len(arc_args), 6):
+                    rx, ry, rotation, large, sweep, end = arc_args[i:i + 6]
+                    start = self.current_point
+                    if end in ("z", "Z"):
+                        end = self.z_point
+                    end = svgelements.Point(end)
+                    absolute = end + start if relative and start is not None else end
+                    chord = abs(absolute - start) if start is not None else 0.0
+                    radii = _arc_radii(abs(rx), abs(ry), chord) if math.isfinite(chord) else (rx, ry)
+                    if radii is None and not large:
+                        self.append(svgelements.Line(start, end, relative=relative))
+                        continue
+                    if radii is None:
+                        raise PathError(f"SVG path: an arc of radius {max(abs(rx), abs(ry)):g} mm taking the large "
+                                        f"way round (large-arc-flag 1) leaves the coordinate range [-1e+07, 1e+07] mm")
+                    self.append(svgelements.Arc(start, radii[0], radii[1], rotation, large, sweep, end,
+                                                relative=relative))
+                return self
+
+        _PATH_CLASS = _Path
+    return _PATH_CLASS
 
 
 def _segment_points(seg: Any) -> np.ndarray:

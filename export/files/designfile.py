@@ -31,6 +31,7 @@ from pathlib import Path
 
 from ...patterns.design import Design, design_from_dict, design_to_dict
 from ...patterns.base.errors import DesignFileError, PathError
+from ...patterns.base.validate import TEXT_FILE_BYTES, read_limited
 from .atomic import write_text_atomic
 from .tomltext import dumps
 
@@ -96,12 +97,13 @@ def load_design(path: str | os.PathLike) -> Design:
     Raises
     ------
     DesignFileError
-        One line naming the file: cannot read, not UTF-8, TOML syntax error (with line and
-        column), or a schema error (with the key path).
+        One line naming the file: cannot read, larger than
+        :data:`~embroact.patterns.base.validate.TEXT_FILE_BYTES`, not UTF-8, TOML syntax
+        error (with line and column), or a schema error (with the key path).
     """
     p = Path(path)
     try:
-        raw = p.read_bytes()
+        raw = read_limited(p, TEXT_FILE_BYTES, "design file")
     except OSError as exc:
         raise DesignFileError(f"{p}: cannot read design file: {exc.strerror or exc}") from None
     try:

@@ -55,6 +55,7 @@ import numpy as np
 
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
+from ...patterns.base.validate import MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, TEXT_FILE_BYTES, read_limited
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from ...patterns.plan import Command
@@ -201,7 +202,7 @@ def read_records(path: str | os.PathLike) -> FileRecords:
             f"{p}: cannot read '.{suffix}' embroidery files; readable: {', '.join(readable_suffixes())}"
         )
     try:
-        data = Path(p).read_bytes()
+        data = read_limited(p, MACHINE_FILE_BYTES, "embroidery file")
     except OSError as exc:
         raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
     if not data:
@@ -216,6 +217,9 @@ def read_records(path: str | os.PathLike) -> FileRecords:
         raise DesignFileError(f"{p}: unreadable {suffix.upper()} file ({type(exc).__name__}: {exc})") from None
     if pattern is None or not any(s[2] & pystitch.COMMAND_MASK == pystitch.STITCH for s in pattern.stitches):
         raise DesignFileError(f"{p}: no stitches in this {suffix.upper()} file")
+    if len(pattern.stitches) > MACHINE_FILE_RECORDS:
+        raise DesignFileError(f"{p}: embroidery file must have at most {MACHINE_FILE_RECORDS:,} records, "
+                              f"got {len(pattern.stitches):,}")
     raw = np.array(pattern.stitches, dtype=np.float64).reshape(-1, 3)
     cmap = _command_map()
     commands = np.array([cmap.get(int(c) & pystitch.COMMAND_MASK, Command.JUMP) for c in raw[:, 2]], dtype=np.int8)
@@ -279,7 +283,7 @@ def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dic
     """Tubes and machine settings (a dict of :class:`RuleSettings` fields) from a tube TOML file."""
     p = str(path)
     try:
-        doc = tomllib.loads(Path(p).read_text(encoding="utf-8"))
+        doc = tomllib.loads(read_limited(p, TEXT_FILE_BYTES, "tube file").decode("utf-8"))
     except OSError as exc:
         raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:

@@ -25,16 +25,17 @@ limit                      value               applies to
 ``CSV_ROWS``               50,000              data rows of one CSV file
 ``CSV_COLUMNS``            1,000               columns of one CSV row
 ``CSV_FIELD_CHARS``        1,000               characters of one CSV field
-``MACHINE_FILE_BYTES``     4 MiB               embroidery files given to ``check``
+``MACHINE_FILE_BYTES``     1.5 MiB             embroidery files given to ``check`` (520,000 DST records)
 ``MACHINE_FILE_RECORDS``   500,000             records of an embroidery file (every format)
 ``PATH_CHARS``             1,000,000           characters of one SVG path ``d`` string
 ``PATH_SEGMENTS``          20,000              drawing commands of one SVG path
-``NAME_CHARS``             200                 design and actuator names
+``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
 =========================  ==================  =============================================
 
 An embroidery file of more than ``MACHINE_FILE_RECORDS`` records is far beyond any hoop (a
-200 x 200 mm hoop filled at 0.5 mm holds 160,000 stitches); the byte cap keeps the reader's
-own memory (about 1 KB per record in pystitch) under 500 MB.
+200 x 200 mm hoop filled at 0.5 mm holds 160,000 stitches). Both caps keep ``check``
+under 500 MB: pystitch decodes about 0.3 KB per record, and 500,000 records (a 1 MB EXP
+file) take 270 MB and 4.5 s to check.
 
 Examples
 --------
@@ -81,11 +82,11 @@ CSV_FILE_BYTES = 16 * 1024 * 1024
 CSV_ROWS = 50_000
 CSV_COLUMNS = 1_000
 CSV_FIELD_CHARS = 1_000
-MACHINE_FILE_BYTES = 4 * 1024 * 1024
+MACHINE_FILE_BYTES = 1536 * 1024
 MACHINE_FILE_RECORDS = 500_000
 PATH_CHARS = 1_000_000
 PATH_SEGMENTS = 20_000
-NAME_CHARS = 200
+NAME_CHARS = 1_000
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
 SHOWN_CHARS = 80
 
