@@ -1,5 +1,6 @@
 """``build()`` and ``embroact build``: outputs, plug-in points, errors."""
 import json
+from pathlib import Path
 import os
 
 import numpy as np
@@ -52,7 +53,7 @@ def test_same_bytes_twice(tmp_path):
 
 def test_rule_gate_and_force(tmp_path):
     bad = RULES.finding("EA101", "needle point 0.4 mm from the tube axis", stitch_index=7)
-    check = lambda design, plan: [bad]  # noqa: E731
+    check = lambda analysis: [bad]  # noqa: E731
     with pytest.raises(DesignRuleError, match="EA101.*--force"):
         build(default_design(), tmp_path, check=check)
     assert os.listdir(tmp_path) == []
@@ -126,15 +127,35 @@ def test_cli_build_errors(tmp_path, capsys, argv, code, needle):
     assert os.listdir(tmp_path / "OUT") == []
 
 
-def test_cli_build_rule_errors_exit_1(tmp_path, capsys, monkeypatch):
-    import embroact.export.cli.cmd_build as cmd
+def test_cli_build_rule_errors_exit_1(tmp_path, capsys):
+    """A design that leaves the hoop: refused with codes (not enum reprs), written with --force."""
+    design = tmp_path / "long.toml"
+    design.write_text('[[actuator]]\nname = "L"\npattern = "zigzag"\nwidth_mm = 7.0\ninterval_mm = 1.0\n'
+                      'length_mm = 300.0\n', encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    assert main(["build", str(design), "--out", str(out), "--no-previews"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("design rules: ") and "EA306 (L)" in err.splitlines()[0]
+    assert "error: EA306 " in err and "Severity" not in err and os.listdir(out) == []
+    assert main(["build", str(design), "--out", str(out), "--no-previews", "--force"]) == 0
+    assert "EA306" in capsys.readouterr().err and "EA306" in (out / "worksheet.txt").read_text()
 
-    bad = RULES.finding("EA101", "needle point 0.4 mm from the tube axis", stitch_index=7)
-    monkeypatch.setattr(cmd, "_check", lambda args: lambda design, plan: [bad])
-    assert main(["build", "--out", str(tmp_path), "--no-previews"]) == 1
-    assert "EA101" in capsys.readouterr().err and os.listdir(tmp_path) == []
-    assert main(["build", "--out", str(tmp_path), "--no-previews", "--force"]) == 0
-    assert "EA101" in (tmp_path / "worksheet.txt").read_text()
+
+def test_cli_build_prints_its_warnings_in_one_line(tmp_path, capsys):
+    """examples/three_actuators.toml: the warnings the rules find are summarised with codes and actuators."""
+    from embroact.predict.analysis import analyse
+    from embroact.predict.rules import check_design
+    from embroact.export.files.designfile import load_design
+    from embroact.export.cli.target import summary_line
+
+    example = Path(__file__).resolve().parent.parent / "examples" / "three_actuators.toml"
+    assert main(["build", str(example), "--out", str(tmp_path), "--no-previews"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    findings = check_design(analyse(load_design(example)))
+    warned = sorted({f.code for f in findings if f.severity.value == "warning"})
+    assert warned and err == [f"design rules: {summary_line(findings)}"]
+    assert all(code in err[0] for code in warned)
 
 
 def test_cli_build_real_gate_refuses_misplaced_design(tmp_path, capsys):

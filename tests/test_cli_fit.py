@@ -189,3 +189,91 @@ def test_unsigned_markers_take_the_design_direction(capsys, tmp_path):
     (f,) = doc["fits"]
     assert "negative bending direction" in doc["note"]
     assert all(a <= 0 for a in f["angle_deg"]) and f["g_mpa"] == pytest.approx(1.3, rel=0.05)
+
+
+# ----------------------------------------------------------------------------- calibration round trip
+def _cross30_truth(g_mpa, p0_kpa, pressures, noise_deg=0.0, seed=0):
+    """Angles of the cross alpha0 = 30 deg design as the generator sews it.
+
+    For w = 7 mm, s = 1.4 mm the generator cannot meet 30 deg with whole passes and sews
+    tan(alpha0) = 3 s / w = 0.6 (30.964 deg); the data are made with that angle, derived by
+    hand, and the plan's length.
+    """
+    import math
+
+    import numpy as np
+
+    from embroact.patterns.params import Tube
+    from embroact.predict.curve import ActuatorModel, curve
+    from embroact.predict.derived import derive_from_values
+    from embroact.predict.analysis import analyse
+    from embroact.patterns.design import design_from_dict
+
+    alpha = math.degrees(math.atan(0.6))
+    plan_act = analyse(design_from_dict({"actuator": [{"name": "A1", "pattern": "cross", "width_mm": 7,
+                                                       "interval_mm": 1.4, "angle_deg": 30,
+                                                       "length_mm": 100}]})).actuators[0]
+    assert plan_act.derived.angle_deg == pytest.approx(alpha, abs=1e-9)  # the generator adjusted it
+    d = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=alpha,
+                           length_mm=plan_act.derived.length_mm, tube=Tube())
+    theta = np.asarray(curve(ActuatorModel.from_derived(d, g_mpa=g_mpa, p0_kpa=p0_kpa), pressures).theta_deg)
+    return theta + np.random.default_rng(seed).normal(0.0, noise_deg, theta.shape)
+
+
+CROSS30 = ["--pattern", "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "30"]
+
+
+def _csv(tmp_path, pressures, theta, name):
+    path = tmp_path / name
+    path.write_text("pressure_kpa,angle_deg\n" + "".join(f"{p:g},{float(t)!r}\n" for p, t in zip(pressures, theta)))
+    return str(path)
+
+
+def test_fit_of_an_adjusted_cross_recovers_g_and_p0_within_their_errors(capsys, tmp_path):
+    pressures = [float(p) for p in range(0, 301, 10)]
+    data = _csv(tmp_path, pressures, _cross30_truth(2.0, 120.0, pressures, noise_deg=0.5, seed=3), "noisy.csv")
+    (fit,) = _fit_json(capsys, data, *CROSS30)["fits"]
+    assert abs(fit["g_mpa"] - 2.0) < 3 * fit["g_mpa_se"] and fit["g_mpa_se"] < 0.05
+    assert abs(fit["p0_kpa"] - 120.0) < 3 * fit["p0_kpa_se"] and fit["p0_kpa_se"] < 3.0
+    assert fit["design"]["angle_deg"] == 30.0  # the point is keyed by the requested angle
+
+
+def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
+    pressures = [float(p) for p in range(0, 301, 10)]
+    truth = _cross30_truth(2.0, 120.0, pressures)
+    cal = tmp_path / "lab.toml"
+    assert main(["fit", _csv(tmp_path, pressures, truth, "clean.csv"), *CROSS30, "-o", str(cal)]) == 0
+    capsys.readouterr()
+    cset = read_calibration(cal)
+    assert cset.tube is not None and (cset.tube.outer_radius_mm, cset.tube.inner_radius_mm, cset.tube.g_e_mpa) == (
+        1.5, 1.0, 0.13)
+    assert cset.tube_law == "paper" and cset.measurement == "whole-strip"
+    assert cset.coverage() == {"cross": (30.0, 30.0)}
+    grid = ",".join(f"{p:g}" for p in pressures)
+    assert main(["predict", "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "30",
+                 "--calibration", str(cal), "--pressure-kpa", grid, "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["model"]["g_source"].startswith("calibration lab (cross, angle_deg=30")
+    assert max(abs(a - b) for a, b in zip(doc["theta_deg"], truth)) < 1e-6
+    # the same file named by a design, relative to the design file
+    sub = tmp_path / "designs"
+    sub.mkdir()
+    (sub / "d.toml").write_text('[[actuator]]\nname = "C"\npattern = "cross"\nwidth_mm = 7.0\ninterval_mm = 1.4\n'
+                                'angle_deg = 30.0\nlength_mm = 100.0\n[actuator.model]\ncalibration = "../lab.toml"\n')
+    assert main(["predict", str(sub / "d.toml"), "--pressure-kpa", grid, "--json"]) == 0
+    (act,) = json.loads(capsys.readouterr().out)["actuators"]
+    assert max(abs(a - b) for a, b in zip(act["theta_deg"], truth)) < 1e-6
+    assert main(["check", str(sub / "d.toml"), "--json"]) in (0, 1)
+    assert "calibration must be one of" not in capsys.readouterr().err
+    # and the API, with the set read from the file
+    from embroact.export.files.designfile import load_design
+    from embroact.predict.analysis import analyse
+
+    design = load_design(sub / "d.toml")
+    import dataclasses
+
+    spec = design.actuators[0]
+    design = dataclasses.replace(design, actuators=(dataclasses.replace(
+        spec, model=dataclasses.replace(spec.model, calibration="lab")),))
+    (c,) = analyse(design, calibration_sets=[cset]).curves(pressures)
+    assert max(abs(a - b) for a, b in zip(c.theta_deg, truth)) < 1e-6

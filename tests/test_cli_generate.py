@@ -54,7 +54,9 @@ def test_worksheet_and_preview(tmp_path, capsys):
     assert main(ZZ + ["-o", str(out), "--worksheet", "--preview", str(svg)]) == 0
     ws = json.loads((tmp_path / "act.worksheet.json").read_text())
     assert ws["actuators"][0]["tube_cut_mm"] == 160.0
-    assert "stop 1: lay tube for actuator A1 along its path, 160 mm cut length" in (tmp_path / "act.worksheet.txt").read_text()
+    text = (tmp_path / "act.worksheet.txt").read_text()
+    assert "stop 1: lay tube for actuator A1 (160 mm cut): its axis runs from (0.0, 0.0) to (100.0, 0.0) mm" in text
+    assert ws["machine_format"] == "dst" and ws["stop_count"] == 1
     assert svg.read_text().startswith("<svg")
 
 
@@ -99,9 +101,9 @@ def test_unknown_suffix_lists_formats(tmp_path, capsys):
 def test_long_legs_refused_then_split(tmp_path, capsys):
     out = tmp_path / "wide.dst"
     argv = ["zigzag", "--width-mm", "14", "--interval-mm", "1", "--length-mm", "20", "-o", str(out)]
-    assert main(argv) == 2
+    assert main(argv) == 1  # refused by the rule gate: EA102, legs over the DST record limit
     err = capsys.readouterr().err
-    assert "actuator 'A1'" in err and "12.1 mm" in err and "--split-long" in err
+    assert "EA102 (A1)" in err.splitlines()[0] and "12.1 mm per axis" in err and "--force" in err
     assert not out.exists()
     assert main(argv + ["--split-long", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["split_legs"] == 20

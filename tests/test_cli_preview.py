@@ -128,12 +128,12 @@ def test_measured_points_overlay_at_their_coordinates(tmp_path):
     got = np.array([[float(c.get("cx")), float(c.get("cy"))] for c in circles])
     # the same chart scale, rebuilt from the series the command drew
     from embroact.export.pictures import previews as pv
-    from embroact.patterns.design import build_plan, default_design
+    from embroact.patterns.design import default_design
+    from embroact.predict.analysis import analyse
 
-    design = default_design()
-    plan = build_plan(design)
-    derived, curves = pv.predict_curves(plan, parse_pressures("0:300:50"), design=design)
-    sc = chart_scale(pv.bend_series(plan, derived, curves, {"A1": ([0, 150, 300, 150], [0, 40, 120, 60])}))
+    analysis = analyse(default_design())
+    curves = analysis.curves(parse_pressures("0:300:50"))
+    sc = chart_scale(pv.bend_series(analysis, curves, {"A1": ([0, 150, 300, 150], [0, 40, 120, 60])}))
     want = np.column_stack([sc.x_px([0, 150, 300, 150]), sc.y_px([0, 40, 120, 60])])
     assert np.abs(got - want).max() <= 0.006
     assert sc.y_max_deg >= 120.0
@@ -146,5 +146,9 @@ def test_json_output_names_file_kind_and_counts(tmp_path, capsys):
     assert main(["preview", "bend", "-o", str(out), "--pressure-kpa", "0:300:100", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["file"] == str(out) and doc["kind"] == "bend"
-    assert doc["pressure_kpa"] == [0.0, 100.0, 200.0, 300.0] and doc["actuators"] == ["A1"]
+    assert doc["pressure_kpa"] == [0.0, 100.0, 200.0, 300.0] and [a["name"] for a in doc["actuators"]] == ["A1"]
+    (act,) = doc["actuators"]
+    assert (act["model"]["g_mpa"], act["model"]["p0_kpa"]) == (2.7, 85.0)  # paper-2025, zigzag w = 7 mm
+    assert act["model"]["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"
+    assert act["curve"]["status"][0] == "INFLATION" and act["curve"]["pressure_kpa"] == doc["pressure_kpa"]
     assert out.exists()

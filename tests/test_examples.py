@@ -35,7 +35,7 @@ def test_seven_prototypes_with_paper_parameters(prototypes):
     for name, (g, p0) in PAPER_FIT.items():
         p = prototypes[name]
         assert (p["g_mpa"], p["p0_fitted_kpa"]) == (g, p0)
-        assert p["calibration"].startswith("paper-2025")
+        assert p["calibration"].startswith("calibration paper-2025")
         assert len(p["curve"]["theta_deg"]) == len(p["curve"]["pressure_kpa"]) == 31
 
 

@@ -11,8 +11,7 @@ import numpy as np
 import pytest
 
 from embroact.export.report.build import build
-from embroact.export.pictures.previews import (Previews, previews_stage, pressures_for, render_previews, shape_theta_deg,
-                                      side_pressures)
+from embroact.export.pictures.previews import Previews, previews_stage, render_previews, shape_theta_deg, side_pressures
 from embroact.export.report.report import FIGURES, finding_dict, report_data, report_html, report_json
 from embroact.patterns.design import default_design
 from embroact.patterns.base.errors import ParameterError
@@ -88,8 +87,9 @@ def test_side_pressures_and_shape_theta():
 
 
 def test_pressures_follow_the_design():
-    d = default_design()
-    assert pressures_for(d) == tuple(float(p) for p in range(0, 301, 10))
+    from embroact.predict.analysis import analyse
+
+    assert analyse(default_design()).pressures_kpa == tuple(float(p) for p in range(0, 301, 10))
 
 
 # ----------------------------------------------------------------------------- the build stage
@@ -118,8 +118,13 @@ def test_report_json_content_against_hand_values(built):
     x = r0 / 1.5
     assert act["derived"]["p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
     curve = act["curve"]
-    assert curve["pressure_kpa"][:3] == [0.0, 10.0, 20.0] and curve["status"][0] == "inflation"
-    assert curve["theta_deg"][0] == 0.0 and curve["calibration"].startswith("paper-2025")
+    assert curve["pressure_kpa"][:3] == [0.0, 10.0, 20.0] and curve["status"][0] == "INFLATION"
+    assert curve["theta_deg"][0] == 0.0 and curve["calibration"] == "calibration paper-2025 (zigzag, width_mm=7)"
+    # the model and where each number came from: the paper's fitted pair for w = 7 mm
+    model = act["model"]
+    assert (model["g_mpa"], model["p0_kpa"], model["tube_law"]) == (2.7, 85.0, "paper")
+    assert model["g_source"] == model["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"
+    assert model["tube"] == {"outer_radius_mm": 1.5, "inner_radius_mm": 1.0, "g_e_mpa": 0.13}
     assert data["mesh"]["theta_deg"]["A1"] == pytest.approx(curve["theta_deg"][-1])
     assert 0 < data["mesh"]["max_deviation_mm"] <= data["mesh"]["tolerance_mm"] == 0.05
     assert data["worksheet"]["stitch_count"] == 106
@@ -137,19 +142,17 @@ def test_report_html_holds_every_section(built):
 
 
 def test_render_is_deterministic_and_mesh_optional(built):
-    from embroact.export.pictures.previews import predict_curves
-    from embroact.patterns.design import build_plan
+    from embroact.predict.analysis import analyse
 
-    design = default_design()
-    plan = build_plan(design)
-    derived, curves = predict_curves(plan, [0.0, 100.0, 200.0], design=design)
-    a = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=".stl")
-    b = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=".stl")
+    analysis = analyse(default_design())
+    curves = analysis.curves([0.0, 100.0, 200.0])
+    a = render_previews(analysis, curves, stitch_svg="<svg/>", mesh_suffix=".stl")
+    b = render_previews(analyse(default_design()), curves, stitch_svg="<svg/>", mesh_suffix=".stl")
     assert isinstance(a, Previews) and a.files == b.files and "shape.stl" in a.files
-    none = render_previews(plan=plan, derived=derived, curves=curves, stitch_svg="<svg/>", mesh_suffix=None)
+    none = render_previews(analysis, curves, stitch_svg="<svg/>", mesh_suffix=None)
     assert set(none.files) == {"bend.svg", "shape.svg", "report.json", "report.html"} and none.mesh is None
-    with pytest.raises(ParameterError, match="one derived geometry and one curve per actuator"):
-        render_previews(plan=plan, derived=derived, curves=(), stitch_svg="<svg/>")
+    with pytest.raises(ParameterError, match="need one curve per actuator"):
+        render_previews(analysis, (), stitch_svg="<svg/>")
 
 
 # ----------------------------------------------------------------------------- headless browser

@@ -22,27 +22,16 @@ import argparse
 import json
 import sys
 
+from .target import add_model_arguments, add_placement_argument
+
 __all__ = ["add_arguments", "run"]
-
-def _check(args):
-    """The design-rule gate ``check(design, plan) -> findings`` (see ``embroact check``).
-
-    With ``--split-long`` the writer splits over-long legs on request, so their
-    record-limit finding (EA102) is not an error of the build.
-    """
-    from ...predict.analysis import analyse
-    from ...predict.rules import check_design
-
-    ignore = ("EA102",) if args.split_long else ()
-    return lambda design, plan: check_design(analyse(design, plan=plan), ignore=ignore)
-
 
 def _stages(args) -> tuple:
     """The preview stage (bend chart, side view, 3D, report) unless ``--no-previews``."""
     if args.no_previews:
         return ()
-    from .args import parse_pressures
     from ..pictures.previews import previews_stage
+    from .args import parse_pressures
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else None
     suffix = None if args.mesh_format == "none" else f".{args.mesh_format}"
@@ -53,11 +42,17 @@ def _stages(args) -> tuple:
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact build``."""
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("--out", required=True, help="existing output directory")
     parser.add_argument("--format", help="machine formats, comma separated (default: the design's machine.format, dst)")
     parser.add_argument("--force", action="store_true", help="write even if the design-rule checks find errors")
     parser.add_argument("--split-long", action="store_true",
                         help="split legs longer than a format allows into stitches outside the tube corridor")
+    parser.add_argument("--cord-stop", choices=("sequence", "double"),
+                        help="how DST/EXP write a cord-in stop: one stop code (sequence: manual needle mode or "
+                             "stops programmed in the needle sequence) or two in a row (double: stops a "
+                             "multi-needle machine in automatic mode too); default: the design's, sequence")
+    add_placement_argument(parser)
     parser.add_argument("--speed-spm", type=float,
                         help="machine speed for the worksheet [stitches/min] (default: the design's, 600)")
     parser.add_argument("--pressure-kpa", help="pressures for the bend chart, 'start:stop:step' or a list "
@@ -74,37 +69,48 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args) -> int:
-    """Load (or default) the design, build, report."""
+    """Load (or default) the design, analyse it once, gate on its rules, build, report."""
+    from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
+    from .target import analyse_target, gate, load_target, summary_line
 
     formats = parse_formats(args.format) if args.format is not None else None
-    check_writable_dir(args.out)
-    if args.design:
-        from ..files.designfile import load_design
-
-        design = load_design(args.design)
-    else:
-        from ...patterns.design import default_design
-
-        design = default_design()
+    check_writable_dir(check_output_name("--out", args.out))
+    target = load_target(args, design_path=args.design)
+    analysis = analyse_target(target)
     try:
-        res = build(design, args.out, formats=formats, force=args.force, split_long=args.split_long,
-                    speed_spm=args.speed_spm, check=_check(args), stages=_stages(args))
+        res = build(target.design, args.out, formats=formats, force=args.force, split_long=args.split_long,
+                    cord_stop=args.cord_stop,
+                    speed_spm=args.speed_spm, analysis=analysis, stages=_stages(args))
     except DesignRuleError as exc:
         if args.json:
-            print(json.dumps({"written": False, "findings": [f.as_dict() for f in exc.findings]}, indent=2))
-        else:
-            for f in exc.findings:
-                print(f"{getattr(f, 'severity', '')}: {getattr(f, 'code', '')} {getattr(f, 'message', f)}",
-                      file=sys.stderr)
-            print(f"embroact: error: {exc}", file=sys.stderr)
+            print(json.dumps({"written": False, "summary": summary_line(exc.findings),
+                              "findings": [f.as_dict() for f in exc.findings]}, indent=2))
+        gate(exc.findings, force=False)
         return 1
     if args.json:
-        print(json.dumps(res.as_dict(), indent=2, sort_keys=True))
+        print(json.dumps({"written": True, "summary": summary_line(res.findings), **res.as_dict(),
+                          "model": [a.as_dict() for a in analysis.actuators]}, indent=2, sort_keys=True))
     else:
+        if res.findings:
+            gate(res.findings, force=True)
         ws = res.worksheet
         print(f"wrote {len(res.files)} files to {res.out_dir}: {', '.join(res.files)}")
         print(f"{ws.stitch_count} stitches, {ws.stop_count} stop(s); tube to cut: "
               + ", ".join(f"{a.name} {a.tube_cut_mm:.0f} mm" for a in ws.actuators))
+        print(_models_line(analysis))
     return 0
+
+
+def _models_line(analysis) -> str:
+    """Per actuator: G and P0 with their sources (one line each)."""
+    lines = []
+    for a in analysis.actuators:
+        if a.choice is None:
+            lines.append(f"{a.name}: no model ({a.model_error})")
+            continue
+        m, c = a.model, a.choice
+        lines.append(f"{a.name}: G {m.g_mpa:.4g} MPa ({c.g_source}), P0 {m.p0_kpa:.4g} kPa ({c.p0_source}); "
+                     f"tube law {m.tube_law}")
+    return "\n".join(lines)

@@ -16,7 +16,7 @@ Noise-free angles from the model (G = 2.7 MPa, P0 = 85 kPa) come back as they we
 >>> with open(path, "w") as fh:
 ...     _ = fh.write("pressure_kpa,angle_deg\n" + "".join(f"{a},{t:.4f}\n" for a, t in zip(p, theta)))
 >>> main(["fit", path, "--pattern", "zigzag", "--width-mm", "7"])
-fit of zigzag w=7 mm s=1 mm l0=100 mm; model method stable-analytic-trace
+fit of zigzag w=7 mm s=1 mm l0=100 mm (as generated); model method stable-analytic-trace
 branch        n  G [MPa]            P0 [kPa]                 RMSE [deg]
 loading      16  2.7 +- ...         85 +- ... fitted ...
 0
@@ -28,12 +28,15 @@ import os
 import re
 import sys
 
-from .args import add_tube_arguments, tube_from_args
+from .target import add_quick_arguments
 
 __all__ = ["add_arguments", "run"]
 
 _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa"}
-_PAPER_INTERVAL_MM = {"zigzag": 1.0, "cross": 1.4}
+#: Pattern names (the keys of the quick-parameter defaults; no numpy for --help).
+PATTERNS = ("zigzag", "cross")
+#: Tube law of the fitted model (embroact.predict.fit models the inflation phase with the paper's law).
+_TUBE_LAW = "paper"
 
 
 def add_arguments(parser, name: str) -> None:
@@ -44,12 +47,8 @@ def add_arguments(parser, name: str) -> None:
         "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
     )
     design.add_argument("--actuator", metavar="NAME", help="actuator name in the design file")
-    design.add_argument("--pattern", choices=("zigzag", "cross"), help="pattern of the measured sample")
-    design.add_argument("--width-mm", type=float, help="embroidery width w [mm]")
-    design.add_argument("--interval-mm", type=float, help="stitch interval s [mm] (default: paper's 1.0 zigzag, 1.4 cross)")
-    design.add_argument("--angle-deg", type=float, help="cross embroidery angle alpha0 [deg]")
-    design.add_argument("--length-mm", type=float, default=100.0, help="embroidered length l0 [mm] (default 100)")
-    add_tube_arguments(design)
+    design.add_argument("--pattern", choices=PATTERNS, help="pattern of the measured sample")
+    add_quick_arguments(design, pattern=None, name_flag=False)
     fit = parser.add_argument_group("fit")
     fit.add_argument("--fit", default="g,p0", help="parameters to fit: g, p0, g_e (comma-separated; default g,p0)")
     fit.add_argument(
@@ -77,6 +76,9 @@ def add_arguments(parser, name: str) -> None:
     out.add_argument("--description", default="", help="calibration set description")
     out.add_argument("--material", action="append", default=[], metavar="KEY=VALUE", help="e.g. tube=silicone (repeatable)")
     out.add_argument("--append", action="store_true", help="merge into an existing calibration file instead of replacing it")
+    out.add_argument("--measurement", default="whole-strip",
+                     help="how the angles in DATA.csv were measured, recorded in the set (default whole-strip: "
+                          "the angle between the strip's two ends)")
     out.add_argument("--json", action="store_true", help="machine-readable output")
 
 
@@ -90,42 +92,28 @@ def _fit_names(text: str) -> tuple[str, ...]:
     return tuple(_ALIASES.get(n, n) for n in names)
 
 
-def _derived(args):
+def _actuator(args):
+    """The measured actuator, analysed as every command analyses it (realised geometry).
+
+    Quick parameters generate the actuator (``embroact predict`` does the same), so the fit
+    models the angle, interval and length the generator realised, not the requested ones.
+    """
+    import argparse
+
     from ...patterns.base.errors import ParameterError
-    from ...predict.derived import derive_from_values
+    from .target import analyse_target, load_target
 
     if args.design:
-        return _derived_from_design(args.design, args.actuator)
+        acts = analyse_target(load_target(args, design_path=args.design)).actuators
+        found = [a for a in acts if args.actuator is None or a.name == args.actuator]
+        if not found:
+            names = ", ".join(repr(a.name) for a in acts)
+            raise ParameterError(f"--actuator must be one of {names}, got {args.actuator!r}")
+        return found[0]
     if args.pattern is None or args.width_mm is None:
         raise ParameterError("give the design: --pattern and --width-mm (and --angle-deg for cross), or --design FILE")
-    if args.pattern == "cross" and args.angle_deg is None:
-        raise ParameterError("--angle-deg is required for a cross design")
-    tube = tube_from_args(args)
-    return derive_from_values(
-        args.pattern,
-        width_mm=args.width_mm,
-        interval_mm=args.interval_mm if args.interval_mm is not None else _PAPER_INTERVAL_MM[args.pattern],
-        angle_deg=args.angle_deg if args.pattern == "cross" else 0.0,
-        length_mm=args.length_mm,
-        tube=tube,
-    )
-
-
-def _derived_from_design(path, actuator_name):
-    """Derived geometry of one actuator of a design file, measured on its generated stitches."""
-    from ...patterns.design import generate_actuator
-    from ...patterns.base.errors import ParameterError
-    from ...predict.derived import derive
-    from ..files.designfile import load_design
-
-    design = load_design(path)
-    specs = design.actuators
-    if actuator_name is not None:
-        specs = [a for a in specs if a.name == actuator_name]
-        if not specs:
-            names = ", ".join(repr(a.name) for a in design.actuators)
-            raise ParameterError(f"--actuator must be one of {names}, got {actuator_name!r}")
-    return derive(generate_actuator(specs[0], design.tube).actuators[0])
+    quick = argparse.Namespace(**{**vars(args), "name": None})  # --name names the calibration set here
+    return analyse_target(load_target(quick, pattern=args.pattern)).actuators[0]
 
 
 def _data(args, derived):
@@ -167,21 +155,34 @@ def _materials(items):
     return out
 
 
-def _write_set(args, results):
+def _measurement(args) -> str:
+    """How the fitted angles were measured, for the calibration set."""
+    if args.markers:
+        return f"markers: {args.sides} rows of {args.markers_per_side}, bend angles by embroact's marker analysis"
+    return args.measurement
+
+
+def _write_set(args, act, results):
+    """Write (or merge into) the calibration file: the points plus the tube and tube law the fit used."""
     from ...patterns.base.errors import ParameterError
-    from ...predict.calibration import CalibrationSet
+    from ...predict.calibration import CalibrationSet, CalibrationTube
     from ..files.calibfile import read_calibration, write_calibration
 
     points = tuple(r.to_point() for r in results)
+    tube = CalibrationTube.of(act.derived.tube)
     stem = os.path.splitext(os.path.basename(args.output))[0]
     name = args.name or re.sub(r"[^A-Za-z0-9._-]", "-", stem)
     if args.append and os.path.exists(args.output):
         old = read_calibration(args.output)
         if args.name and args.name != old.name:
             raise ParameterError(f"--name {args.name!r} differs from the set {old.name!r} in {args.output!r}")
+        if old.tube is not None and old.tube.differences(act.derived.tube):
+            raise ParameterError(f"tube differs from the one of the set in {args.output!r}: "
+                                 + "; ".join(old.tube.differences(act.derived.tube)))
         cset = old.with_points(points)
     else:
-        cset = CalibrationSet(name, points, args.description, _materials(args.material))
+        cset = CalibrationSet(name, points, args.description, _materials(args.material), tube=tube,
+                              tube_law=_TUBE_LAW, measurement=_measurement(args))
     write_calibration(args.output, cset)
     return cset
 
@@ -192,10 +193,10 @@ def _pm(value, se, digits=4) -> str:
 
 def _table(derived, results, note, cset, path) -> str:
     d = derived
-    design = f"{d.pattern} w={d.width_mm:g} mm s={d.interval_mm:g} mm l0={d.length_mm:g} mm"
+    design = f"{d.pattern} w={d.width_mm:.4g} mm s={d.interval_mm:.4g} mm l0={d.length_mm:.4g} mm"
     if d.pattern == "cross":
-        design += f" alpha0={d.angle_deg:g} deg"
-    lines = [f"fit of {design}; model method {results[0].method}" + (f"; {note}" if note else "")]
+        design += f" alpha0={d.angle_deg:.4g} deg"
+    lines = [f"fit of {design} (as generated); model method {results[0].method}" + (f"; {note}" if note else "")]
     lines.append(f"{'branch':<10} {'n':>4}  {'G [MPa]':<18} {'P0 [kPa]':<24} {'RMSE [deg]':>10}")
     for r in results:
         p0 = f"{_pm(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
@@ -209,9 +210,14 @@ def _table(derived, results, note, cset, path) -> str:
 
 def run(args) -> int:
     """Read the data, fit, print, write the calibration set; return the exit code."""
+    from ...patterns.base.validate import check_output_name
     from ...predict.fit import fit_design
+    from ..files.atomic import check_output_dir
 
-    derived = _derived(args)
+    if args.output is not None:
+        check_output_dir(check_output_name("--output", args.output))
+    act = _actuator(args)
+    derived = act.derived
     pressure, angle, labels, note = _data(args, derived)
     results = fit_design(
         derived,
@@ -224,13 +230,14 @@ def run(args) -> int:
         p0_kpa=args.p0_kpa,
         method=args.method,
     )
-    cset = _write_set(args, results) if args.output else None
+    cset = _write_set(args, act, results) if args.output else None
     if args.json:
         doc = {
             "design": derived.as_dict(),
             "note": note,
             "fits": [r.as_dict() for r in results],
-            "calibration": None if cset is None else {"name": cset.name, "path": args.output, "points": len(cset.points)},
+            "calibration": None if cset is None else {"name": cset.name, "path": args.output, "points": len(cset.points),
+                                                      "tube_law": cset.tube_law, "measurement": cset.measurement},
         }
         json.dump(doc, sys.stdout, indent=1, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")

@@ -35,9 +35,6 @@ from .target import add_model_arguments, add_quick_arguments, analyse_target, lo
 
 __all__ = ["add_arguments", "run", "parse_pressures"]
 
-_DEFAULT_STEP_KPA = 10.0
-
-
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact predict``."""
     parser.add_argument("target", metavar="zigzag|cross|DESIGN.toml",
@@ -50,7 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     m.add_argument("--method", default="auto", help="model method, e.g. stable-analytic-trace (default auto)")
     o = parser.add_argument_group("output")
     o.add_argument("--pressure-kpa", metavar="START:STOP:STEP|P1,P2,...",
-                   help="pressures [kPa] (default 0:MAX:10, MAX = design's max_pressure_kpa, 300 for quick)")
+                   help="pressures [kPa] (default 0 to MAX in 10 kPa steps and MAX itself, MAX = the design's "
+                        "max_pressure_kpa, 300 for quick parameters)")
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
 
 
@@ -109,8 +107,8 @@ def run(args) -> int:
     quick = args.target in ("zigzag", "cross")
     target = load_target(args, pattern=args.target if quick else None, design_path=None if quick else args.target)
     analysis = analyse_target(target)
-    default = f"0:{target.design.operation.max_pressure_kpa:g}:{_DEFAULT_STEP_KPA:g}"
-    pressures = parse_pressures(args.pressure_kpa if args.pressure_kpa is not None else default)
+    # default: the design's standard grid, the one build, check and preview use (working pressure included)
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else analysis.pressures_kpa
     acts = analysis.actuators
     if args.actuator is not None:
         acts = tuple(a for a in acts if a.name == args.actuator)

@@ -28,6 +28,7 @@ import json
 from pathlib import Path
 
 from .args import parse_pressures
+from .target import add_model_arguments
 
 __all__ = ["KINDS", "add_arguments", "run", "measured_points"]
 
@@ -45,6 +46,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
                         help="; ".join(f"{k}: {v}" for k, v in KINDS.items()))
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("-o", "--output", required=True, help="output file")
     parser.add_argument("--pressure-kpa", default=None,
                         help="pressures for bend/shape, START:STOP:STEP or a list [kPa] "
@@ -58,16 +60,6 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                         help="bend chart: overlay measured points from a bend CSV (pressure_kpa,angle_deg), "
                              "on the named actuator or the first one; repeatable")
     parser.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
-
-
-def _design(path):
-    if path:
-        from ..files.designfile import load_design
-
-        return load_design(path)
-    from ...patterns.design import default_design
-
-    return default_design()
 
 
 def measured_points(specs, names) -> dict:
@@ -94,13 +86,15 @@ def _svg_only(kind: str, out: Path) -> None:
 
 
 def run(args) -> int:
-    """Load (or default) the design, render the view, write it atomically, report."""
+    """Load (or default) the design, analyse it once, render the view, write it atomically, report."""
+    from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_output_dir
+    from .target import analyse_target, load_target
 
-    out = check_output_dir(args.output)
+    out = check_output_dir(check_output_name("--output", args.output))
     if args.kind != "mesh":
         _svg_only(args.kind, out)
-    text, info = _render(args, out, _design(args.design))
+    text, info = _render(args, out, analyse_target(load_target(args, design_path=args.design)))
     if args.json:
         print(json.dumps({"file": str(out), "kind": args.kind, **info}, indent=2, sort_keys=True))
     else:
@@ -108,12 +102,11 @@ def run(args) -> int:
     return 0
 
 
-def _render(args, out: Path, design) -> tuple[str, dict]:
+def _render(args, out: Path, analysis) -> tuple[str, dict]:
     """Write the view; return a one-line summary and its JSON fields."""
-    from ...patterns.design import build_plan
     from ..files.atomic import write_text_atomic
 
-    plan = build_plan(design)
+    plan = analysis.plan
     if args.kind == "stitches":
         from ..pictures.stitches import plan_svg
 
@@ -121,27 +114,25 @@ def _render(args, out: Path, design) -> tuple[str, dict]:
         return f"stitch plan, {plan.stitch_count} stitches", {"stitch_count": plan.stitch_count}
     from ..pictures import previews as pv
 
-    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else pv.pressures_for(design)
-    derived, curves = pv.predict_curves(plan, pressures, design=design)
-    info = {"actuators": [a.name for a in plan.actuators], "pressure_kpa": [float(p) for p in pressures]}
+    pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else analysis.pressures_kpa
+    curves = analysis.curves(pressures)
+    info = {"actuators": [pv.actuator_entry(a, c) for a, c in zip(analysis.actuators, curves)],
+            "pressure_kpa": [float(p) for p in pressures]}
     if args.kind == "bend":
-        from ..pictures.chart import bend_chart_svg
-
         measured = measured_points(args.measured, [a.name for a in plan.actuators])
-        write_text_atomic(out, bend_chart_svg(pv.bend_series(plan, derived, curves, measured),
-                                              title=f"{plan.name}: predicted bend angle"))
+        write_text_atomic(out, pv.bend_chart(analysis, curves, measured))
         return f"bend chart, {len(curves)} actuator(s), {len(pressures)} pressures", info
     if args.kind == "shape":
         from ..pictures.sideview import side_view_svg
 
         pv.check_side_states(args.states, name="states")
-        write_text_atomic(out, side_view_svg(pv.side_panels(plan, derived, curves, count=args.states)))
+        write_text_atomic(out, side_view_svg(pv.side_panels(analysis, curves, count=args.states)))
         return f"side views, {len(curves)} actuator(s)", info
-    text, mesh_info = _write_mesh(out, plan, derived, curves, args)
+    text, mesh_info = _write_mesh(out, analysis, curves, args)
     return text, {**info, **mesh_info}
 
 
-def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
+def _write_mesh(out: Path, analysis, curves, args) -> tuple[str, dict]:
     from ...patterns.base.errors import ParameterError
     from ..files.atomic import write_text_atomic
     from ..pictures.mesh import MESH_FORMATS, write_mesh
@@ -149,10 +140,10 @@ def _write_mesh(out: Path, plan, derived, curves, args) -> tuple[str, dict]:
     suffix = out.suffix.lower()
     if suffix != ".svg" and suffix not in MESH_FORMATS:
         raise ParameterError(f"output of preview mesh must end in one of {', '.join(MESH_FORMATS)}, .svg, "
-                          f"got {out.name!r}")
+                             f"got {out.name!r}")
     from ..pictures.previews import shape3d_title, shape_meshes
 
-    shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=args.shape_pressure_kpa,
+    shapes, pressures = shape_meshes(analysis, curves, pressure_kpa=args.shape_pressure_kpa,
                                      tolerance_mm=args.tolerance_mm)
     if suffix == ".svg":
         from ..pictures.meshview import mesh_svg

@@ -25,8 +25,8 @@ from pathlib import Path
 
 from .args import TUBE_FLAGS, add_tube_arguments
 
-__all__ = ["Target", "add_model_arguments", "add_quick_arguments", "load_target", "analyse_target", "gate",
-           "summary_line", "P0_SOURCES", "TUBE_LAWS"]
+__all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "load_target",
+           "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS"]
 
 #: Values of ``--p0-source`` and ``--tube-law`` (the enums' values; a test holds them equal, so
 #: that ``--help`` needs no numpy).
@@ -91,6 +91,23 @@ def add_quick_arguments(group, *, pattern: str | None, required: bool = False, t
     if name_flag:  # embroact fit's --name names the calibration set
         group.add_argument("--name", default="A1", help="actuator name (default A1)")
     add_tube_arguments(group, fields=tube_fields or [flag[1] for flag in TUBE_FLAGS])
+
+
+def add_placement_argument(group) -> None:
+    """``--placement-line``: sew a running stitch along each tube axis before its cord-in stop
+    (the design setting ``machine.placement_line``, turned on)."""
+    group.add_argument("--placement-line", action="store_true",
+                       help="sew a placement line (running stitch along each tube axis) before its cord-in stop, "
+                            "so the operator sees where to lay the tube (design: machine.placement_line)")
+
+
+def _with_placement(design, args):
+    """``design`` with ``machine.placement_line`` on when ``--placement-line`` was given."""
+    if not getattr(args, "placement_line", False):
+        return design
+    import dataclasses
+
+    return dataclasses.replace(design, machine=dataclasses.replace(design.machine, placement_line=True))
 
 
 def _quick_design(args, pattern: str):
@@ -164,7 +181,7 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
         design, sets, source, quick = default_design(), (), "built-in default design", False
     flag_cal, flag_sets = _calibration_file(getattr(args, "calibration", None), Path.cwd())
     overrides = {k: getattr(args, k, None) for k in ("g_mpa", "p0_kpa", "p0_source", "tube_law")}
-    design = with_model_overrides(design, calibration=flag_cal, **overrides)
+    design = _with_placement(with_model_overrides(design, calibration=flag_cal, **overrides), args)
     merged = {s.name: s for s in sets + flag_sets}
     return Target(design, tuple(merged.values()), source, quick)
 

@@ -13,18 +13,29 @@ the maximum pressure.  Marker CSV: ``pressure_kpa[,branch]`` plus ``m1_x,m1_y,m1
 ... for every marker (``m1``-``m7`` side 1 from base to tip, ``m8``-``m14`` side 2 for
 the paper's layout; ``_z`` columns may be left out for 2-D data).
 
-Calibration TOML::
+Calibration TOML (what the set was fitted with, then one table per fitted point)::
 
     name = "mylab"
     description = "..."
+    tube_law = "paper"               # inflation-phase tube law of the fit
+    measurement = "whole-strip"      # how the angles were measured
+    # covers: zigzag width_mm 7
+    [tube]                           # the tube of the fitted samples (left out: unknown)
+    outer_radius_mm = 1.5
+    inner_radius_mm = 1.0
+    g_e_mpa = 0.13
     [materials]
     tube = "silicone"
     [[points]]
     pattern = "zigzag"
+    coordinate = "width_mm"          # the key interpolated over for this pattern
     width_mm = 7.0
     g_mpa = 2.7
     p0_kpa = 85.0
     branch = "loading"
+
+Files written before ``tube``, ``tube_law``, ``measurement`` and ``coordinate`` existed are
+read with the defaults (tube unknown, paper law, whole-strip angles).
 
 Every problem is one line naming the file, the line or point, the column or key and
 the value; files are written atomically and byte-for-byte reproducibly.
@@ -50,7 +61,8 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
-from ...predict.calibration import CalibrationPoint, CalibrationSet
+from ...patterns.kinds import pattern_kind
+from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from .atomic import write_text_atomic
 from .tomltext import dumps
 
@@ -64,8 +76,9 @@ __all__ = [
     "calibration_toml",
 ]
 
-_SET_KEYS = ("name", "description", "materials", "points")
+_SET_KEYS = ("name", "description", "tube_law", "measurement", "tube", "materials", "points")
 _POINT_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationPoint))
+_TUBE_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationTube))
 _AXES = ("x", "y", "z")
 
 
@@ -200,11 +213,25 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     return MarkerData(frozen_array(values[:, 0]), frozen_array(markers), _branches(path, columns, rows))
 
 
+def _coverage_comment(cset: CalibrationSet) -> str:
+    parts = []
+    for pattern, (lo, hi) in cset.coverage().items():
+        span = f"{lo:g}" if lo == hi else f"{lo:g}-{hi:g}"
+        parts.append(f"{pattern} {pattern_kind(pattern).calibration_axis} {span}")
+    return "# covers: " + ", ".join(parts)
+
+
 def calibration_toml(cset: CalibrationSet) -> str:
     """The TOML text of a calibration set (stable key order, shortest round-trip floats)."""
-    doc = {"name": cset.name, "description": cset.description, "materials": dict(cset.materials),
-           "points": [p.as_dict() for p in cset.points]}
-    return "# embroact calibration set\n" + dumps({k: v for k, v in doc.items() if v or k != "materials"})
+    doc: dict = {"name": cset.name, "description": cset.description, "tube_law": cset.tube_law,
+                 "measurement": cset.measurement}
+    if cset.tube is not None:
+        doc["tube"] = {k: getattr(cset.tube, k) for k in _TUBE_KEYS}
+    if cset.materials:
+        doc["materials"] = dict(cset.materials)
+    doc["points"] = [{"pattern": p.pattern, "coordinate": pattern_kind(p.pattern).calibration_axis,
+                      **{k: v for k, v in p.as_dict().items() if k != "pattern"}} for p in cset.points]
+    return f"# embroact calibration set\n{_coverage_comment(cset)}\n{dumps(doc)}"
 
 
 def write_calibration(path, cset: CalibrationSet) -> None:
@@ -240,17 +267,42 @@ def read_calibration(path) -> CalibrationSet:
     materials = doc.get("materials", {})
     if not isinstance(materials, dict) or not all(isinstance(v, str) for v in materials.values()):
         raise DesignFileError(f"{str(path)!r}: [materials] must map names to strings")
-    parsed = []
-    for i, p in enumerate(points):
-        _unknown(path, f"points[{i}]", p, _POINT_KEYS)
-        try:
-            parsed.append(CalibrationPoint(**p))
-        except TypeError:
-            missing = [k for k in ("pattern", "width_mm", "g_mpa", "p0_kpa") if k not in p]
-            raise DesignFileError(f"{str(path)!r}: points[{i}] is missing key {missing[0]!r}") from None
-        except EmbroactError as exc:
-            raise DesignFileError(f"{str(path)!r}: points[{i}]: {exc}") from None
+    parsed = [_point(path, i, p) for i, p in enumerate(points)]
     try:
-        return CalibrationSet(doc.get("name"), tuple(parsed), doc.get("description", ""), materials)
+        return CalibrationSet(doc.get("name"), tuple(parsed), doc.get("description", ""), materials,
+                              tube=_tube(path, doc.get("tube")), tube_law=doc.get("tube_law", "paper"),
+                              measurement=doc.get("measurement", "whole-strip"))
     except EmbroactError as exc:
         raise DesignFileError(f"{str(path)!r}: {exc}") from None
+
+
+def _tube(path, table) -> CalibrationTube | None:
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise DesignFileError(f"{str(path)!r}: [tube] must be a table of {', '.join(_TUBE_KEYS)}")
+    _unknown(path, "[tube]", table, _TUBE_KEYS)
+    missing = [k for k in _TUBE_KEYS if k not in table]
+    if missing:
+        raise DesignFileError(f"{str(path)!r}: [tube] is missing key {missing[0]!r}")
+    try:
+        return CalibrationTube(**table)
+    except EmbroactError as exc:
+        raise DesignFileError(f"{str(path)!r}: [tube]: {exc}") from None
+
+
+def _point(path, i: int, table: dict) -> CalibrationPoint:
+    _unknown(path, f"points[{i}]", table, ("coordinate",) + _POINT_KEYS)
+    fields = {k: v for k, v in table.items() if k != "coordinate"}
+    try:
+        point = CalibrationPoint(**fields)
+    except TypeError:
+        missing = [k for k in ("pattern", "width_mm", "g_mpa", "p0_kpa") if k not in table]
+        raise DesignFileError(f"{str(path)!r}: points[{i}] is missing key {missing[0]!r}") from None
+    except EmbroactError as exc:
+        raise DesignFileError(f"{str(path)!r}: points[{i}]: {exc}") from None
+    axis = pattern_kind(point.pattern).calibration_axis
+    if table.get("coordinate", axis) != axis:
+        raise DesignFileError(f"{str(path)!r}: points[{i}]: coordinate must be {axis!r} for the {point.pattern} "
+                              f"pattern, got {table['coordinate']!r}")
+    return point

@@ -12,16 +12,15 @@ predicts every actuator's curve and renders, in memory:
 ``report.html``  the same, self-contained, with the stitch preview
 ================ =========================================================
 
-:func:`render_previews` does the rendering for given curves; :func:`predict_curves`
-makes the curves (each actuator's ``ModelSettings``: G from the calibration set unless given).
+:func:`render_previews` renders an analysed design (:func:`embroact.predict.analysis.analyse`)
+with its curves: every picture and the report use the analysis's derived geometry, model and
+memoised curves, so they agree with ``embroact predict`` and the model rules to the last digit.
 
 Examples
 --------
 >>> from embroact.export.pictures.previews import side_pressures
 >>> side_pressures([0.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0], [0, 0, 5, 20, 40, 60, 80], count=4)
 (0.0, 100.0, 200.0, 300.0)
->>> pressures_for()[:3], pressures_for()[-1]
-((0.0, 10.0, 20.0), 300.0)
 """
 from __future__ import annotations
 
@@ -37,17 +36,17 @@ from .sideview import SidePanel, side_view_svg
 
 __all__ = [
     "OUTPUT_NAMES",
-    "DEFAULT_PRESSURES_KPA",
     "Previews",
     "side_pressures",
     "shape_theta_deg",
-    "pressures_for",
-    "predict_curves",
+    "model_caption",
     "bend_series",
+    "bend_chart",
     "side_panels",
     "shape_meshes",
     "shape3d_title",
     "check_side_states",
+    "actuator_entry",
     "render_previews",
     "previews_stage",
 ]
@@ -61,9 +60,6 @@ OUTPUT_NAMES = {
     "json": "report.json",
     "html": "report.html",
 }
-#: Pressures of the predicted curves unless told otherwise: 0, 10, ..., 300 kPa.
-DEFAULT_PRESSURES_KPA = tuple(float(p) for p in range(0, 301, 10))
-PRESSURE_STEP_KPA = 10.0
 DEFAULT_SIDE_STATES = 5
 MAX_SIDE_STATES = 12
 
@@ -97,77 +93,100 @@ def side_pressures(pressure_kpa, theta_deg, *, count: int = DEFAULT_SIDE_STATES)
     return tuple(sorted({float(p[np.argmin(np.abs(p - t))]) for t in targets}))
 
 
+def _valid(curve) -> np.ndarray:
+    """States a view may draw as the actuator's shape (all, for a curve without statuses)."""
+    from ...predict.validity import valid_mask
+
+    if getattr(curve, "status", None) is None:
+        return np.ones(len(curve.pressure_kpa), dtype=bool)
+    return valid_mask(curve)
+
+
 def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
-    """(pressure, theta) for a drawn shape: the highest sampled pressure with a finite angle,
-    or the curve interpolated linearly at ``pressure_kpa`` (which must lie in its range)."""
+    """(pressure, theta) for a drawn shape: the highest sampled pressure whose state the model
+    describes (not coiled, kinked or over-stretched: :func:`embroact.predict.validity.valid_mask`),
+    or the curve interpolated linearly at ``pressure_kpa`` (which must lie in that valid range)."""
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
-    ok = np.isfinite(t)
+    ok = np.isfinite(t) & _valid(curve)
     if not ok.any():
-        raise ParameterError("the curve has no finite angle to draw a shape from")
+        raise ParameterError("the curve has no state the model describes to draw a shape from")
     order = np.argsort(p[ok], kind="stable")
     p, t = p[ok][order], t[ok][order]
     if pressure_kpa is None:
         return float(p[-1]), float(t[-1])
     if not p[0] <= pressure_kpa <= p[-1]:
-        raise ParameterError(f"shape_pressure_kpa must be in [{p[0]:g}, {p[-1]:g}] (the predicted range), "
+        raise ParameterError(f"shape_pressure_kpa must be in [{p[0]:g}, {p[-1]:g}] (the predicted range the model "
+                             "describes), "
                              f"got {pressure_kpa:g}")
     return float(pressure_kpa), float(np.interp(pressure_kpa, p, t))
 
 
-def pressures_for(design=None, *, step_kpa: float = PRESSURE_STEP_KPA) -> tuple[float, ...]:
-    """0 to the design's ``operation.max_pressure_kpa`` in ``step_kpa`` steps (default 0..300 kPa)."""
-    top = float(design.operation.max_pressure_kpa) if design is not None else DEFAULT_PRESSURES_KPA[-1]
-    n = int(np.floor(top / step_kpa + 0.5))
-    return tuple(float(v) for v in np.linspace(0.0, n * step_kpa, n + 1)) + (() if n * step_kpa >= top else (top,))
+def _label(act) -> str:
+    """Legend of one actuator: name, pattern, width, and the model's G and P0 with their sources."""
+    d = act.derived
+    if act.choice is None:
+        return f"{act.name} ({d.pattern}, w {d.width_mm:.1f} mm; no model)"
+    return (f"{act.name} ({d.pattern}, w {d.width_mm:.1f} mm; G {act.model.g_mpa:.4g} MPa, "
+            f"P0 {act.model.p0_kpa:.4g} kPa)")
 
 
-def predict_curves(plan, pressures_kpa=DEFAULT_PRESSURES_KPA, *, design=None, method: str = "auto") -> tuple[tuple, tuple]:
-    """(derived geometry, curve) per actuator of ``plan``.
+def model_caption(analysis) -> str:
+    """Where each actuator's G and P0 came from, one clause per distinct source (for chart titles).
 
-    Each actuator's model follows the ``ModelSettings`` of the design's actuator of the
-    same name (defaults when there is no design or no such actuator).
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> model_caption(analyse(default_design()))
+    'G, P0: calibration paper-2025 (zigzag, width_mm=7); tube law paper'
     """
-    from ...predict.analysis import analyse
+    parts: list[str] = []
+    for act in analysis.actuators:
+        if act.choice is None:
+            continue
+        c = act.choice
+        text = (f"G, P0: {c.g_source}" if c.g_source == c.p0_source
+                else f"G: {c.g_source}; P0: {c.p0_source}") + f"; tube law {act.model.tube_law}"
+        if text not in parts:
+            parts.append(text)
+    return " | ".join(parts)
 
-    analysis = analyse(design, plan=plan)
-    return tuple(a.derived for a in analysis.actuators), analysis.curves(pressures_kpa, method=method)
 
-
-def _status_list(status) -> list[str]:
-    from ...predict.status import status_names
-
-    return [n.lower() for n in status_names(status)]
-
-
-def bend_series(plan, derived, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
+def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
     """Chart series, one per actuator; ``measured`` maps actuator name -> (pressure_kpa, theta_deg)."""
     measured = dict(measured or {})
-    return [Series.from_curve(c, label=f"{a.name} ({g.pattern}, w {g.width_mm:.1f} mm)", p0_kpa=g.p0_kpa,
-                              measured=measured.get(a.name))
-            for a, g, c in zip(plan.actuators, derived, curves)]
+    return [Series.from_curve(c, label=_label(a), p0_kpa=a.model.p0_kpa, measured=measured.get(a.name))
+            for a, c in zip(analysis.actuators, curves)]
 
 
-def side_panels(plan, derived, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:
+def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None) -> str:
+    """The bend chart SVG of an analysed design: legend with G and P0, title with their sources."""
+    caption = model_caption(analysis)
+    title = f"{analysis.plan.name}: predicted bend angle" + (f" ({caption})" if caption else "")
+    return bend_chart_svg(bend_series(analysis, curves, measured), title=title)
+
+
+def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:
     """Side-view panels, one per actuator, at up to ``count`` of the curve's pressures."""
     panels = []
-    for a, g, c in zip(plan.actuators, derived, curves):
-        picks = side_pressures(c.pressure_kpa, c.theta_deg, count=count)
-        panels.append(SidePanel(a.name, length_mm=g.length_mm, r0_mm=g.r0_mm, pressure_kpa=picks,
+    for a, c in zip(analysis.actuators, curves):
+        picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
+        panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
                                 theta_deg=[shape_theta_deg(c, p)[1] for p in picks]))
     return panels
 
 
-def shape_meshes(plan, derived, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
+def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
     """3D shape per actuator at ``pressure_kpa`` (default the highest predicted)."""
     from .mesh import DEFAULT_CHORD_TOLERANCE_MM, PlanarPath, actuator_mesh
 
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
     shapes, pressures = [], {}
-    for a, g, c in zip(plan.actuators, derived, curves):
+    for a, c in zip(analysis.actuators, curves):
         p, theta = shape_theta_deg(c, pressure_kpa)
-        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.centerline), theta, width_mm=g.width_mm,
-                                    r0_mm=g.r0_mm, tolerance_mm=tol, name=a.name))
+        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=a.derived.width_mm,
+                                    r0_mm=a.derived.r0_mm, tolerance_mm=tol, name=a.name))
         pressures[a.name] = p
     return shapes, pressures
 
@@ -196,19 +215,24 @@ def check_side_states(value, *, name: str = "side_states") -> int:
     return value
 
 
-def _check_inputs(plan, derived, curves, side_states) -> None:
-    n = len(plan.actuators)
-    if not n or not (n == len(derived) == len(curves)):
-        raise ParameterError(f"need one derived geometry and one curve per actuator ({n}), "
-                             f"got {len(derived)} and {len(curves)}")
+def _check_inputs(analysis, curves, side_states) -> None:
+    n = len(analysis.actuators)
+    if not n or n != len(curves):
+        raise ParameterError(f"need one curve per actuator ({n}), got {len(curves)}")
     check_side_states(side_states)
 
 
+def actuator_entry(act, curve) -> dict:
+    """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
+    tube law and their sources) and the curve as ``Curve.as_dict`` gives it (status names as in
+    ``embroact predict --json``)."""
+    return {**act.as_dict(), "curve": curve.as_dict()}
+
+
 def render_previews(
+    analysis,
+    curves: Sequence | None = None,
     *,
-    plan,
-    derived: Sequence,
-    curves: Sequence,
     findings=(),
     worksheet=None,
     measured: Mapping[str, tuple] | None = None,
@@ -222,19 +246,18 @@ def render_previews(
 
     Parameters
     ----------
-    plan : StitchPlan
-        The generated plan; ``plan.actuators[k]`` gives actuator k's name and centerline.
-    derived : sequence of DerivedGeometry
-        One per actuator, same order.
-    curves : sequence of Curve
-        Predicted curve per actuator (``pressure_kpa``, ``theta_deg``, ``status``, ``method``).
+    analysis : DesignAnalysis
+        The analysed design (:func:`embroact.predict.analysis.analyse`): plan, derived
+        geometry and model of every actuator.
+    curves : sequence of Curve, optional
+        Predicted curve per actuator; default ``analysis.curves()`` (the standard grid).
     findings : iterable
         Design-rule findings (``Finding`` or dicts).
     worksheet : Worksheet or dict, optional
     measured : mapping, optional
         Actuator name -> (pressure_kpa, theta_deg) arrays of measured points to overlay.
     stitch_svg : str, optional
-        Stitch preview SVG; default ``export.preview.plan_svg(plan)``.
+        Stitch preview SVG; default ``plan_svg(analysis.plan)``.
     side_states : int
         Number of pressures drawn in the side view, in [1, 12].
     shape_pressure_kpa : float, optional
@@ -245,12 +268,11 @@ def render_previews(
     tolerance_mm : float, optional
         Chordal tolerance of the mesh [mm]; default ``mesh.DEFAULT_CHORD_TOLERANCE_MM``.
     """
-    _check_inputs(plan, derived, curves, side_states)
-    title = getattr(plan, "name", "embroact")
-    panels = side_panels(plan, derived, curves, count=side_states)
-    figures = {"bend": bend_chart_svg(bend_series(plan, derived, curves, measured),
-                                      title=f"{title}: predicted bend angle"),
-               "side": side_view_svg(panels)}
+    curves = analysis.curves() if curves is None else tuple(curves)
+    _check_inputs(analysis, curves, side_states)
+    plan = analysis.plan
+    panels = side_panels(analysis, curves, count=side_states)
+    figures = {"bend": bend_chart(analysis, curves, measured), "side": side_view_svg(panels)}
     files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
     mesh_info = None
     if mesh_suffix is not None:
@@ -259,8 +281,7 @@ def render_previews(
 
         if str(mesh_suffix).lower() not in MESH_FORMATS:
             raise ExportError(f"mesh suffix must be one of {', '.join(MESH_FORMATS)}, got {mesh_suffix!r}")
-        shapes, pressures = shape_meshes(plan, derived, curves, pressure_kpa=shape_pressure_kpa,
-                                         tolerance_mm=tolerance_mm)
+        shapes, pressures = shape_meshes(analysis, curves, pressure_kpa=shape_pressure_kpa, tolerance_mm=tolerance_mm)
         name = OUTPUT_NAMES["mesh"] + str(mesh_suffix).lower()
         files[name] = mesh_bytes(shapes, mesh_suffix)
         figures["shape3d"] = mesh_svg(shapes, title=shape3d_title(pressures))
@@ -273,13 +294,11 @@ def render_previews(
 
         stitch_svg = plan_svg(plan)
     figures["stitches"] = stitch_svg
-    entries = [{"name": a.name, "derived": g.as_dict(),
-                "curve": {"pressure_kpa": c.pressure_kpa, "theta_deg": c.theta_deg, "status": _status_list(c.status),
-                          "method": getattr(c, "method", None), "calibration": getattr(c, "calibration", None)},
+    entries = [{**actuator_entry(a, c),
                 "side_view": [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(s.pressure_kpa, s.theta_deg)]}
-               for a, g, c, s in zip(plan.actuators, derived, curves, panels)]
+               for a, c, s in zip(analysis.actuators, curves, panels)]
     ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
-    data = report_data(title=title, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
+    data = report_data(title=plan.name, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
     files[OUTPUT_NAMES["json"]] = report_json(data)
     files[OUTPUT_NAMES["html"]] = report_html(data, figures=figures)
     return Previews(files, mesh_info)
@@ -296,18 +315,16 @@ def previews_stage(
 ):
     """The build stage: ``stage(context) -> {file name: contents}`` (see :mod:`embroact.export.report.build`).
 
-    It predicts the curves at ``pressures_kpa`` (default :func:`pressures_for` the
-    design) with each actuator's model settings (:func:`predict_curves`), takes the
+    It renders the build's own analysis (``context.analysis``) with its memoised curves at
+    ``pressures_kpa`` (default the design's standard grid, the one the model rules use), takes the
     stitch preview from ``context.outputs["preview.svg"]`` when present, the worksheet
     and findings from the context, and returns :attr:`Previews.files`.
     """
     def stage(context) -> dict:
-        pressures = pressures_for(context.design) if pressures_kpa is None else pressures_kpa
-        derived, curves = predict_curves(context.plan, pressures, design=context.design)
+        curves = context.analysis.curves(pressures_kpa)
         svg = context.outputs.get("preview.svg")
         return render_previews(
-            plan=context.plan, derived=derived, curves=curves, findings=context.findings,
-            worksheet=context.worksheet, measured=measured,
+            context.analysis, curves, findings=context.findings, worksheet=context.worksheet, measured=measured,
             stitch_svg=svg.decode("utf-8") if isinstance(svg, bytes) else svg, side_states=side_states,
             shape_pressure_kpa=shape_pressure_kpa, mesh_suffix=mesh_suffix, tolerance_mm=tolerance_mm).files
 

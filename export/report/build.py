@@ -2,22 +2,28 @@
 
 Order of work (nothing is written until every output is ready in memory)::
 
-    design --build_plan--> plan --check(design, plan)--> findings --gate--+
-                                                                          |
-        machine files (one per format) <-- encode ------------------------+
-        worksheet.json / worksheet.txt <-- worksheet(plan, findings)      |
-        preview.svg                    <-- plan_svg(plan)                 |
-        stage outputs                  <-- stage(context) for each stage -+
+    design --analyse--> DesignAnalysis (plan, derived geometry, models, memoised curves)
+                              |
+                              +--check(analysis)--> findings --gate--+
+                                                                     |
+        machine files (one per format) <-- encode(plan) -------------+
+        worksheet.json / worksheet.txt <-- worksheet(plan, findings, models)
+        preview.svg                    <-- plan_svg(plan)            |
+        stage outputs                  <-- stage(context) for each stage (context.analysis)
                                                   |
                          write every file atomically into out_dir
+
+The design is analysed once (:func:`embroact.predict.analysis.analyse`); the rules, the
+worksheet and every stage read that one analysis and its curves, so a build never derives
+or predicts an actuator twice.
 
 Plug-in points
 --------------
 ``check``
-    ``check(design, plan) -> sequence of Finding``: the design-rule checks.  Any
-    finding whose ``is_error`` is true stops the build with
-    :class:`DesignRuleError` (nothing written) unless ``force=True``.  The
-    findings are listed on the worksheet either way.
+    ``check(analysis) -> sequence of Finding``: the design-rule checks (default
+    :func:`embroact.predict.rules.check_design`).  Any finding whose ``is_error`` is
+    true stops the build with :class:`DesignRuleError` (nothing written) unless
+    ``force=True``.  The findings are listed on the worksheet either way.
 ``stages``
     Callables ``stage(context: BuildContext) -> {file name: str | bytes}`` for the
     bend chart, side view, 3D model, report...  They run after the built-in
@@ -54,6 +60,7 @@ from .worksheet import DEFAULT_SPEED_SPM, worksheet
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
+    "SPLIT_LONG_IGNORES",
     "DesignRuleError",
     "BuildContext",
     "BuildResult",
@@ -66,17 +73,21 @@ __all__ = [
 ]
 
 
+#: Rules left out when the writer splits over-long legs on request (``split_long``): the split
+#: pieces stay within the format's per-record limit (EA102) and so within a machine maximum
+#: stitch (EA103) that is not below it.
+SPLIT_LONG_IGNORES = ("EA102", "EA103")
+
+
 class DesignRuleError(PatternError):
     """The design-rule checks found errors; ``findings`` holds all findings."""
 
     def __init__(self, findings: Sequence) -> None:
-        errors = [f for f in findings if getattr(f, "is_error", False)]
+        errors = [f for f in findings if f.is_error]
         first = errors[0]
         more = f" (and {len(errors) - 1} more errors)" if len(errors) > 1 else ""
-        super().__init__(
-            f"design-rule error {getattr(first, 'code', '')}: {getattr(first, 'message', first)}{more}; "
-            "nothing written (use --force to write anyway)"
-        )
+        super().__init__(f"design-rule error {first.code}: {first.message}{more}; "
+                         "nothing written (use --force to write anyway)")
         self.findings = tuple(findings)
 
 
@@ -88,6 +99,8 @@ class BuildContext:
     ----------
     design : object or None
     plan : StitchPlan
+    analysis : DesignAnalysis or None
+        The build's one analysis (None for :func:`build_plan_outputs` of a bare plan).
     findings : tuple
     worksheet : Worksheet
     out_dir : Path
@@ -97,6 +110,7 @@ class BuildContext:
 
     design: object
     plan: StitchPlan
+    analysis: object
     findings: tuple
     worksheet: object
     out_dir: Path
@@ -119,6 +133,7 @@ class BuildResult:
     worksheet : Worksheet
     findings : tuple
     plan : StitchPlan
+    analysis : DesignAnalysis or None
     """
 
     out_dir: str
@@ -127,6 +142,7 @@ class BuildResult:
     worksheet: object = field(compare=False)
     findings: tuple = ()
     plan: StitchPlan | None = field(default=None, compare=False)
+    analysis: object = field(default=None, compare=False)
 
     def as_dict(self) -> dict:
         """JSON-ready summary (unit-suffixed keys inside the worksheet)."""
@@ -136,7 +152,7 @@ class BuildResult:
             "machine_files": [m.as_dict() for m in self.machine_files],
             "stitch_count": self.worksheet.stitch_count,
             "stop_count": self.worksheet.stop_count,
-            "findings": [f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in self.findings],
+            "findings": [f.as_dict() for f in self.findings],
             "actuators": self.worksheet.as_dict()["actuators"],
         }
 
@@ -163,15 +179,23 @@ def parse_formats(text: str | Sequence[str]) -> tuple[str, ...]:
 
 
 def safe_stem(name: str) -> str:
-    """A file-name stem from a design name (letters, digits, ``-``, ``_``, ``.``).
+    """A file-name stem from a design name (letters, digits, ``-``, ``_``, ``.``), at most
+    :data:`STEM_CHARS` characters (file systems allow 255 bytes per name, with room left
+    for the suffix and the hidden staging name).
 
     Examples
     --------
     >>> safe_stem("paper zigzag / w=7")
     'paper_zigzag_w_7'
+    >>> len(safe_stem("n" * 300))
+    100
     """
-    stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._")
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name)[:STEM_CHARS].strip("._")
     return stem or "design"
+
+
+#: Longest file-name stem :func:`safe_stem` makes from a design name.
+STEM_CHARS = 100
 
 
 def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes"]) -> tuple[str, ...]:
@@ -192,39 +216,49 @@ def build_plan_outputs(
     out_dir: str | os.PathLike,
     *,
     design=None,
+    analysis=None,
+    findings: Sequence = (),
     formats: Sequence[str] = ("dst",),
     force: bool = False,
     split_long: bool = False,
     speed_spm: float = DEFAULT_SPEED_SPM,
-    check: Callable | None = None,
     stages: Sequence[Stage] = (),
+    cord_stop: str | None = None,
 ) -> BuildResult:
-    """Build the outputs of an existing plan (see the module docstring)."""
+    """Build the outputs of an existing plan and its findings (see the module docstring).
+
+    ``analysis`` (when the plan came from one) gives the worksheet its models and the stages
+    their curves.  ``cord_stop`` (default: the design's ``machine.cord_stop``, else
+    ``"sequence"``) says how DST/EXP write a cord-in stop; the worksheet's counts, pauses and
+    machine set-up are those of the first machine file, read back from its bytes.
+    """
     from ..pictures.stitches import plan_svg
 
     d = check_writable_dir(out_dir)
     fmts = parse_formats(formats)
-    findings = tuple(check(design, plan)) if check is not None else ()
-    if not force and any(getattr(f, "is_error", False) for f in findings):
+    findings = tuple(findings)
+    if not force and any(f.is_error for f in findings):
         raise DesignRuleError(findings)
     stem = safe_stem(getattr(design, "name", None) or plan.name)
     outputs: dict[str, bytes] = {}
     machine = []
+    if cord_stop is None:
+        cord_stop = getattr(getattr(design, "machine", None), "cord_stop", "sequence")
     for fmt in fmts:
-        data, res = encode(plan, fmt, split_long=split_long)
+        data, res = encode(plan, fmt, split_long=split_long, cord_stop=cord_stop)
         name = f"{stem}.{fmt}"
         outputs[name] = data
         machine.append(replace(res, path=name))
-    ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings)
+    ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings, analysis=analysis, machine=machine[0])
     outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
     outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
     outputs["preview.svg"] = plan_svg(plan).encode("utf-8")
     for stage in stages:
-        ctx = BuildContext(design, plan, findings, ws, d, dict(outputs))
+        ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))
         for name, data in stage(ctx).items():
             outputs[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
     files = write_outputs(d, outputs)
-    return BuildResult(str(d), files, tuple(machine), ws, findings, plan)
+    return BuildResult(str(d), files, tuple(machine), ws, findings, plan, analysis)
 
 
 def build(
@@ -235,8 +269,11 @@ def build(
     force: bool = False,
     split_long: bool = False,
     speed_spm: float | None = None,
+    calibration_sets: Sequence = (),
+    analysis=None,
     check: Callable | None = None,
     stages: Sequence[Stage] = (),
+    cord_stop: str | None = None,
 ) -> BuildResult:
     """Build ``design`` into ``out_dir``: ``<name>.<fmt>`` per format, worksheet, preview, stage outputs.
 
@@ -255,15 +292,33 @@ def build(
         Split legs above a format's per-record limit (see :func:`embroact.export.machine.formats.write`).
     speed_spm : float, optional
         Machine speed for the worksheet [stitches/min]; default the design's ``machine.speed_spm``.
-    check, stages
+    calibration_sets : sequence of CalibrationSet
+        Sets the design's calibrations may name (e.g. read from calibration files).
+    analysis : DesignAnalysis, optional
+        ``analyse(design, calibration_sets=...)`` when already made.
+    check : callable, optional
+        ``check(analysis) -> findings``; default :func:`embroact.predict.rules.check_design`
+        for every format (:data:`SPLIT_LONG_IGNORES` left out with ``split_long``).
+    stages
         Plug-in points (module docstring).
     """
-    from ...patterns.design import build_plan
+    from ...predict.analysis import analyse
 
     check_writable_dir(out_dir)
     machine = getattr(design, "machine", None)
-    formats = formats if formats is not None else (getattr(machine, "format", "dst"),)
+    formats = parse_formats(formats if formats is not None else (getattr(machine, "format", "dst"),))
     speed_spm = speed_spm if speed_spm is not None else getattr(machine, "speed_spm", DEFAULT_SPEED_SPM)
-    plan = build_plan(design)
-    return build_plan_outputs(plan, out_dir, design=design, formats=formats, force=force, split_long=split_long,
-                              speed_spm=speed_spm, check=check, stages=stages)
+    analysis = analyse(design, calibration_sets=calibration_sets) if analysis is None else analysis
+    if check is None:
+        from ...predict.rules import check_design
+
+        ignore = SPLIT_LONG_IGNORES if split_long else ()
+        from ...patterns.rules import sort_findings
+
+        findings = sort_findings(dict.fromkeys(f for fmt in formats for f in check_design(analysis, format=fmt,
+                                                                                          ignore=ignore)))
+    else:
+        findings = tuple(check(analysis))
+    return build_plan_outputs(analysis.plan, out_dir, design=design, analysis=analysis, findings=findings,
+                              formats=formats, force=force, split_long=split_long, speed_spm=speed_spm, stages=stages,
+                              cord_stop=cord_stop)
