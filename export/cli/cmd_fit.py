@@ -37,6 +37,9 @@ _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa"}
 PATTERNS = ("zigzag", "cross")
 #: Tube law of the fitted model (embroact.predict.fit models the inflation phase with the paper's law).
 _TUBE_LAW = "paper"
+#: Marker layout bounds: a marker CSV then has at most 3 rows * 100 markers * 3 axes
+#: coordinate columns (within :data:`embroact.patterns.base.validate.CSV_COLUMNS`).
+MAX_MARKERS_PER_SIDE, MAX_MARKER_ROWS = 100, 3
 
 
 def add_arguments(parser, name: str) -> None:
@@ -121,6 +124,7 @@ def _data(args, derived):
     import numpy as np
 
     from ...patterns.base.errors import ParameterError
+    from ...patterns.base.validate import check_count
     from ...predict.markers import marker_angles
     from ..files.calibfile import read_bend_csv, read_marker_csv
 
@@ -133,6 +137,8 @@ def _data(args, derived):
             normal = [float(t) for t in args.normal.split(",")]
         except ValueError:
             raise ParameterError(f"--normal must be 2 or 3 comma-separated numbers, got {args.normal!r}") from None
+    check_count("markers_per_side", args.markers_per_side, low=3, high=MAX_MARKERS_PER_SIDE)
+    check_count("sides", args.sides, low=1, high=MAX_MARKER_ROWS)
     m = read_marker_csv(args.data, n_markers=args.markers_per_side * args.sides)
     angles = marker_angles(m.markers_mm, markers_per_side=args.markers_per_side, sides=args.sides, normal=normal)
     theta = np.asarray(angles.theta_deg)

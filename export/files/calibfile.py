@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import io
 import tomllib
 from dataclasses import dataclass
 
@@ -61,6 +62,7 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
+from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_limited
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from .atomic import write_text_atomic
@@ -115,21 +117,44 @@ class MarkerData:
 
 
 def _read_rows(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
-    """Header -> column index, and (line number, cells) of each data row."""
+    """Header -> column index, and (line number, cells) of each data row.
+
+    The limits of :mod:`embroact.patterns.base.validate` hold before anything is parsed:
+    file size (``CSV_FILE_BYTES``, read no further), data rows (``CSV_ROWS``), columns
+    (``CSV_COLUMNS``) and characters per field (``CSV_FIELD_CHARS``).
+    """
     try:
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            lines = [(i, line) for i, line in enumerate(fh, start=1) if line.strip() and not line.lstrip().startswith("#")]
+        raw = read_limited(path, CSV_FILE_BYTES, "CSV file")
     except OSError as exc:
         raise DesignFileError(f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise DesignFileError(f"{str(path)!r} is not a UTF-8 text (CSV) file") from None
+    lines = [(i, line) for i, line in enumerate(io.StringIO(text, newline=""), start=1)
+             if line.strip() and not line.lstrip().startswith("#")]
     if not lines:
         raise DesignFileError(f"{str(path)!r} is empty: expected a header line and data rows")
-    rows = list(csv.reader(line for _, line in lines))
+    if len(lines) - 1 > CSV_ROWS:
+        raise DesignFileError(f"{str(path)!r} must have at most {CSV_ROWS:,} data rows, got {len(lines) - 1:,}")
+    rows: list[list[str]] = []
+    old_limit = csv.field_size_limit(CSV_FIELD_CHARS)
+    try:
+        for row in csv.reader(line for _, line in lines):
+            if len(row) > CSV_COLUMNS:
+                raise DesignFileError(f"{str(path)!r} line {lines[len(rows)][0]}: a row must have at most "
+                                      f"{CSV_COLUMNS:,} columns, got {len(row):,}")
+            rows.append(row)
+    except csv.Error as exc:
+        raise DesignFileError(f"{str(path)!r} line {lines[min(len(rows), len(lines) - 1)][0]}: not CSV: {exc} "
+                              f"(at most {CSV_FIELD_CHARS:,} characters per field)") from None
+    finally:
+        csv.field_size_limit(old_limit)
     header = [h.strip().lower() for h in rows[0]]
-    dup = sorted({h for h in header if header.count(h) > 1})
-    if dup:
-        raise DesignFileError(f"{str(path)!r}: column {dup[0]!r} appears more than once in the header")
+    seen: set[str] = set()
+    dup = next((h for h in header if h in seen or seen.add(h)), None)
+    if dup is not None:
+        raise DesignFileError(f"{str(path)!r}: column {dup!r} appears more than once in the header")
     if len(rows) == 1:
         raise DesignFileError(f"{str(path)!r} has a header but no data rows")
     return {h: i for i, h in enumerate(header)}, [(n, r) for (n, _), r in zip(lines[1:], rows[1:])]
@@ -205,6 +230,7 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     DesignFileError
         As :func:`read_bend_csv`, naming the first missing marker column.
     """
+    check_count("n_markers", n_markers, low=1, high=CSV_COLUMNS // len(_AXES))
     columns, rows = _read_rows(path)
     axes = _AXES if "m1_z" in columns else _AXES[:2]
     names = [f"m{i}_{ax}" for i in range(1, n_markers + 1) for ax in axes]
