@@ -56,6 +56,8 @@ MAX_SMOOTH_TURN_DEG = 10.0
 #: radius R, turning by up to MAX_SMOOTH_TURN_DEG per vertex, has a curvature radius up
 #: to turn^2/24 (0.13 %) smaller than R, so an arc of exactly the limit still passes.
 RADIUS_RTOL = 2e-3
+#: Shortest straight path [mm] (1 um: far below the machine grid; 5e-324 is a typo, not a tube).
+MIN_LENGTH_MM = 1e-3
 #: Newton steps used by :meth:`Centerline.project` to invert the smooth-normal frame.
 _PROJECT_STEPS = 6
 #: Largest number of vertices a path may have.
@@ -97,7 +99,7 @@ class Centerline:
         cls, length_mm: float, *, origin_mm: tuple[float, float] = (0.0, 0.0), rotation_deg: float = 0.0
     ) -> "Centerline":
         """Straight path of ``length_mm`` from ``origin_mm``, direction ``rotation_deg`` from +x (CCW)."""
-        length = check_range("length_mm", length_mm, low=0.0, high=1e6)
+        length = check_range("length_mm", length_mm, low=MIN_LENGTH_MM, low_inclusive=True, high=1e6)
         ox, oy = _xy("origin_mm", origin_mm)
         a = math.radians(check_range("rotation_deg", rotation_deg, low=-3600.0, high=3600.0))
         return cls(np.array([[ox, oy], [ox + length * math.cos(a), oy + length * math.sin(a)]]))

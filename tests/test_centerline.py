@@ -81,8 +81,10 @@ def test_as_centerline_accepts_all_forms():
 
 
 def test_straight_rejects_bad_values():
-    with pytest.raises(ParameterError, match=r"length_mm must be in \(0, 1e\+06\), got -1"):
+    with pytest.raises(ParameterError, match=r"length_mm must be in \[0.001, 1e\+06\), got -1"):
         Centerline.straight(-1.0)
+    with pytest.raises(ParameterError, match=r"length_mm must be in \[0.001, 1e\+06\), got 4.94066e-324"):
+        Centerline.straight(5e-324)  # the smallest subnormal: refused, not a 1-point path
     with pytest.raises(ParameterError, match="origin_mm must be a pair"):
         Centerline.straight(1.0, origin_mm=(1.0,))
 
