@@ -85,7 +85,7 @@ class _Parser(argparse.ArgumentParser):
         import difflib
 
         known = [s for a in self._actions for s in a.option_strings if s.startswith("--")]
-        close = difflib.get_close_matches(token.split("=", 1)[0], known, n=1)
+        close = difflib.get_close_matches(token.split("=", 1)[0], known, n=1, cutoff=0.75)
         return f" (did you mean {close[0]}?)" if close else ""
 
 

@@ -322,8 +322,16 @@ def _rect(name: str, u0: float, u1: float, v0: float, v1: float) -> _Profile:
     return _Profile(name, np.array([[u0, v0], [u1, v0], [u1, v1], [u0, v1]]))
 
 
+def _half_chord_angle(tol: float, radius: float) -> float:
+    """Half the angle of a chord whose sagitta on a circle of ``radius`` is ``tol``:
+    ``acos(1 - tol / radius)``, written as ``2 asin(sqrt(x / 2))`` so that it stays accurate
+    (and non-zero) when ``tol / radius`` is far below the float epsilon (a nearly straight
+    piece of an S-curve, a subnormal tolerance)."""
+    return 2.0 * math.asin(math.sqrt(min(tol / radius, 2.0) / 2.0))
+
+
 def _circle(name: str, centre: tuple[float, float], radius: float, tol: float) -> _Profile:
-    n = max(_MIN_TUBE_SEGMENTS, math.ceil(math.pi / math.acos(max(1.0 - tol / radius, -1.0))))
+    n = max(_MIN_TUBE_SEGMENTS, math.ceil(math.pi / _half_chord_angle(tol, radius)))
     ang = 2.0 * np.pi * np.arange(n) / n
     return _Profile(name, np.column_stack([centre[0] + radius * np.cos(ang), centre[1] + radius * np.sin(ang)]),
                     centre, radius)
@@ -337,7 +345,7 @@ def _triangle_bound(bent: BentPath, r0: float, extent: float, tol: float) -> flo
     largest distance from the path), which only shortens the allowed step.
     """
     half = tol / 2.0
-    a = math.acos(max(1.0 - half / r0, -1.0))
+    a = _half_chord_angle(half, r0)
     if a == 0.0:
         return math.inf
     rings = 1.0
@@ -345,7 +353,7 @@ def _triangle_bound(bent: BentPath, r0: float, extent: float, tol: float) -> flo
         k = math.hypot(kb, kp)
         rings += 1.0
         if k > 0.0:
-            d = 2.0 * math.acos(max(1.0 - half / (1.0 / k + extent), -1.0))
+            d = 2.0 * _half_chord_angle(half, 1.0 / k + extent)
             rings += math.inf if d == 0.0 else k * length / d
     return 2.0 * rings * max(_MIN_TUBE_SEGMENTS, math.pi / a + 1.0)
 
@@ -384,7 +392,7 @@ def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
             continue
         # rotation axis in the (u, v) plane: through (kp, -kb)/k^2, direction (kb, kp)/k
         rho = prof.reach(np.array([kp, -kb]) / k**2, np.array([kb, kp]) / k)
-        dphi = 2.0 * math.acos(max(1.0 - tol / rho, -1.0)) if rho > 0 else math.pi
+        dphi = 2.0 * _half_chord_angle(tol, rho) if rho > 0 else math.pi
         need = k * length / dphi
         if used + need <= 1.0:
             used += need
