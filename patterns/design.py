@@ -21,6 +21,8 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     max_stitch_mm = 12.1
     speed_spm = 600                  # stitches per minute
     cord_stop = "sequence"           # DST/EXP cord-in stop: "sequence" (one stop code) or "double"
+    placement_line = false           # sew a running stitch along each tube axis before its cord-in stop
+    placement_stitch_mm = 2.5        # its longest stitch, within [min_stitch_mm, max_stitch_mm]
     [operation]
     max_pressure_kpa = 300.0
     max_bend_deg = 180.0
@@ -93,6 +95,7 @@ from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import Command, Role, StitchPlan
 from .segments import LENGTH_MATCH_MM, SegmentSpec, segment_stations, segmented
+from .placement import placement_records, with_placement
 from .stops import cord_stop as _cord_stop
 
 __all__ = [
@@ -145,6 +148,12 @@ class MachineSettings:
         code; a multi-needle machine in manual mode or with stops programmed in its needle
         sequence) or ``"double"`` (two in a row: stops one in automatic mode too);
         :class:`embroact.patterns.stops.CordStop`.
+    placement_line : bool
+        Sew a placement line (:mod:`embroact.patterns.placement`) along each actuator's tube
+        axis before its cord-in stop, so the operator sees where to lay the tube.
+    placement_stitch_mm : float
+        Longest running stitch of the placement line [mm]; with ``placement_line`` it must lie
+        in [min_stitch_mm, max_stitch_mm].
     """
 
     format: str = "dst"
@@ -154,6 +163,8 @@ class MachineSettings:
     max_stitch_mm: float = 12.1
     speed_spm: float = 600.0
     cord_stop: str = "sequence"
+    placement_line: bool = False
+    placement_stitch_mm: float = 2.5
 
     def __post_init__(self) -> None:
         if not isinstance(self.format, str):
@@ -165,6 +176,12 @@ class MachineSettings:
         mx = check_range("max_stitch_mm", self.max_stitch_mm, low=0.0, high=1000.0)
         check_range("min_stitch_mm", self.min_stitch_mm, low=0.0, low_inclusive=True, high=mx)
         check_range("speed_spm", self.speed_spm, low=0.0, high=10_000.0)
+        if not isinstance(self.placement_line, bool):
+            raise ParameterError(f"placement_line must be true or false, got {self.placement_line!r}")
+        check_range("placement_stitch_mm", self.placement_stitch_mm, low=0.0, high=1000.0, high_inclusive=True)
+        if self.placement_line:
+            check_range("placement_stitch_mm", self.placement_stitch_mm, low=self.min_stitch_mm, low_inclusive=True,
+                        high=mx, high_inclusive=True)
 
 
 @dataclass(frozen=True, slots=True)
@@ -380,6 +397,12 @@ def _number(value, where: str) -> float | int:
     return value
 
 
+def _flag(value, where: str) -> bool:
+    if not isinstance(value, bool):
+        raise DesignFileError(f"{where}: must be true or false, got {value!r}")
+    return value
+
+
 def _string(value, where: str) -> str:
     if not isinstance(value, str):
         raise DesignFileError(f"{where}: must be a string, got {value!r}")
@@ -400,7 +423,8 @@ def _build(path: str, cls, kwargs: dict):
         raise DesignFileError(f"{path}: {exc}") from None
 
 
-def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optional: tuple[str, ...] = ()):
+def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optional: tuple[str, ...] = (),
+                   flags: tuple[str, ...] = ()):
     keys = _names(cls)
     table = _table(value, path, keys)
     kwargs = {}
@@ -408,6 +432,8 @@ def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optiona
         where = _where(path, key)
         if key in strings:
             kwargs[key] = _string(v, where)
+        elif key in flags:
+            kwargs[key] = _flag(v, where)
         elif not (key in optional and v is None):
             kwargs[key] = _number(v, where)
     return _build(path, cls, kwargs)
@@ -516,7 +542,8 @@ def design_from_dict(d) -> Design:
     return Design(
         name=_string(top.get("name", "design"), "name"),
         tube=_numbers_table(top.get("tube", {}), "tube", Tube),
-        machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format", "cord_stop")),
+        machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format", "cord_stop"),
+                                flags=("placement_line",)),
         operation=_numbers_table(top.get("operation", {}), "operation", OperationSettings),
         actuators=specs,
     )
@@ -627,11 +654,20 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
 
+def _placement_records(design: Design) -> int:
+    """Records the placement lines will add (none unless ``machine.placement_line``)."""
+    m = design.machine
+    if not m.placement_line:
+        return 0
+    return sum(placement_records(spec.centerline.length_mm, m.placement_stitch_mm, spec.options.tie_count,
+                                 spec.params.width_mm / 2.0) for spec in design.actuators)
+
+
 def _travel_records(design: Design) -> int:
     """Jump records the travel moves will need (from the machine's start point to the first
     actuator and between consecutive ones), from the paths alone: an upper bound that
     widens each path end by the pattern's half width (where the first and last needle
-    points can lie), split as :func:`_jumps` splits them."""
+    points can lie; a placement line starts at the path's end), split as :func:`_jumps` splits them."""
     step = design.machine.max_stitch_mm - DEFAULT_TOLERANCES.machine_grid_mm
     ends = [(np.zeros(2), 0.0)]
     total = 0
@@ -639,19 +675,21 @@ def _travel_records(design: Design) -> int:
         pts = spec.centerline.points_mm
         half = spec.params.width_mm / 2.0
         last, reach = ends[-1]
-        total += max(1, math.ceil((float(np.max(np.abs(pts[0] - last))) + reach + half) / step))
+        first = pts[-1] if design.machine.placement_line else pts[0]
+        total += max(1, math.ceil((float(np.max(np.abs(first - last))) + reach + half) / step))
         ends.append((pts[-1], half))
     return total
 
 
 def build_plan(design: Design) -> StitchPlan:
-    """Generate every actuator of ``design`` and join them (see :func:`join_plans`).
+    """Generate every actuator of ``design`` and join them (see :func:`join_plans`); with
+    ``machine.placement_line`` each actuator's placement line comes before its cord-in stop.
 
     Every record the machine will read is counted before anything is generated, the
     travel jumps between actuators included: a design above
     :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
     """
-    stitched = sum(_records(spec, design.tube) for spec in design.actuators)
+    stitched = sum(_records(spec, design.tube) for spec in design.actuators) + _placement_records(design)
     travel = _travel_records(design)
     if stitched + travel > MAX_RECORDS:
         raise PatternError(
@@ -660,4 +698,6 @@ def build_plan(design: Design) -> StitchPlan:
             "interval_mm values, shorter paths, fewer actuators or actuators closer together"
         )
     plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
+    if design.machine.placement_line:
+        plans = [with_placement(p, design.machine.placement_stitch_mm) for p in plans]
     return join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)

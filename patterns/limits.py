@@ -30,6 +30,7 @@ import numpy as np
 
 from .base.errors import ParameterError
 from .base.tolerances import DEFAULT_TOLERANCES
+from .plan import Command
 
 __all__ = [
     "UNITS_PER_MM",
@@ -40,6 +41,7 @@ __all__ = [
     "grid_units",
     "record_moves_units",
     "records_needed",
+    "framed_first",
 ]
 
 UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
@@ -130,3 +132,21 @@ def records_needed(moves_units, limit_mm: float) -> np.ndarray:
     lim = round(limit_mm * UNITS_PER_MM)
     reach = np.abs(np.asarray(moves_units, dtype=np.int64).reshape(-1, 2)).max(axis=1)
     return np.maximum(1, -(-reach // lim))
+
+
+def framed_first(commands) -> np.ndarray:
+    """Mask of the record the writer reaches by a frame move although it is a needle record: the
+    first STITCH when only JUMP records come before it (a placement line starts a design that
+    way); its move from the start point is travel, not a stitch.
+
+    Examples
+    --------
+    >>> framed_first([1, 1, 0, 0]).tolist(), framed_first([3, 0, 0]).tolist()
+    ([False, False, True, False], [False, False, False])
+    """
+    cmds = np.asarray(commands).reshape(-1)
+    out = np.zeros(len(cmds), dtype=bool)
+    other = np.flatnonzero(cmds != Command.JUMP)
+    if len(other) and cmds[other[0]] == Command.STITCH:
+        out[other[0]] = True
+    return out

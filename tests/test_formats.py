@@ -55,16 +55,22 @@ def _expected(plan, fmt, cord_stop="sequence"):
         exp.update(stops=stops * (2 if cord_stop == "double" else 1), color_changes=0)
     elif fmt in ("tbf", "u01"):
         exp.update(stops=stops, color_changes=plan.count(C.STOP))
-    else:
-        exp.update(stops=0, color_changes=n_act - 1)
+    else:  # a colour change wherever a tube is laid after something was sewn (later actuators, placement lines)
+        sewn = np.cumsum(plan.commands == C.STITCH)
+        exp.update(stops=0, color_changes=int(np.count_nonzero((plan.commands == C.STOP) & (sewn > 0))))
     return exp
 
 
 def _plans():
+    from dataclasses import replace
+
     from embroact.export.files.designfile import load_design
     from embroact.patterns.design import build_plan
 
-    return [(os.path.basename(p), build_plan(load_design(p))) for p in EXAMPLES] + [("hand-3", hand_plan(3))]
+    designs = [(os.path.basename(p), load_design(p)) for p in EXAMPLES]
+    placed = [(f"{label}+placement", replace(d, machine=replace(d.machine, placement_line=True)))
+              for label, d in designs if label in ("three_actuators.toml", "curved.toml")]
+    return [(label, build_plan(d)) for label, d in designs + placed] + [("hand-3", hand_plan(3))]
 
 
 PLANS = _plans()

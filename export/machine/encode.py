@@ -31,7 +31,10 @@ STOP      cord in, by the format's ``stop_style``:
             leading stop record.
           * ``"color"`` (PES, PEC, JEF, VP3, XXX): no stop code.  The first
             actuator is laid before start; every later one gets its own colour
-            (thread) and the colour change makes the machine pause.  JEF, VP3
+            (thread) and the colour change makes the machine pause.  With a
+            placement line (:mod:`embroact.patterns.placement`) the first
+            actuator's line is a colour block of its own (thread
+            ``"<name> placement"``), so the machine pauses for tube 1 too.  JEF, VP3
             and XXX change colour at the actuator's first needle point, after the
             travel (VP3 starts a colour block there); PEC/PES change colour where
             the last actuator ended, before the travel, because their writer adds
@@ -75,7 +78,7 @@ import numpy as np
 
 from ...patterns.base.errors import ExportError, PatternError
 from ...patterns import limits
-from ...patterns.limits import record_moves_units, records_needed
+from ...patterns.limits import framed_first, record_moves_units, records_needed
 from ...patterns.plan import Command, StitchPlan
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
 from ...patterns.stops import CordStop, cord_stop as check_cord_stop
@@ -212,7 +215,7 @@ def find_long_legs(plan: StitchPlan, limit_mm: float) -> tuple[LongLeg, ...]:
     """
     d = record_moves_units(plan.xy_mm)  # plan frame (y up), as the design rule EA102 judges it
     stitch = plan.commands == Command.STITCH
-    bad = np.flatnonzero(stitch & (records_needed(d, limit_mm) > 1))
+    bad = np.flatnonzero(stitch & ~framed_first(plan.commands) & (records_needed(d, limit_mm) > 1))
     legs = []
     for i in bad:
         k = int(plan.actuator[i])
@@ -339,8 +342,9 @@ def _file_origin(plan: StitchPlan, units: np.ndarray) -> np.ndarray:
     stitch = np.flatnonzero(plan.commands == Command.STITCH)
     if not len(stitch):
         return np.zeros(2, dtype=np.int64)
-    firsts = [stitch[plan.actuator[stitch] == k][0] for k in np.unique(plan.actuator[stitch])]
-    starts = units[firsts[1:]] if len(firsts) > 1 else np.zeros((0, 2), dtype=np.int64)
+    # a colour block starts at the first needle point after each stop that follows sewing
+    stops = [int(i) for i in np.flatnonzero(plan.commands == Command.STOP) if i > stitch[0]]
+    starts = units[stops + [_next_stitch(plan, i) for i in stops]].reshape(-1, 2)
     for off in _ORIGIN_OFFSETS:
         origin = units[stitch[0]] - np.array(off) * np.array([1, -1])
         if not np.any(starts - origin == 0):
@@ -429,6 +433,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     commands = plan.commands.tolist()
     split = extra = 0
     threads: dict[int, int] = {}
+    lead_block = False  # colour formats: the first actuator's placement line is a colour block of its own
     pending: np.ndarray | None = None  # travel target of a run of plan JUMPs, written as one move
     for i, (cmd, p) in enumerate(zip(commands, units)):
         k = int(plan.actuator[i])
@@ -439,12 +444,14 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
             first = k not in threads
             threads.setdefault(k, len(threads))
             if fmt.stop_style == "color":
-                if threads[k] > 0 and not fmt.color_after_travel:
-                    b.add(pe.COLOR_CHANGE)  # where the last actuator ended, before the travel
-                target = units[_next_stitch(plan, i)]  # colour formats wait at the first needle point
-                b.travel(target, i)
+                pause = b.stitched  # a later actuator, or after a placement line (the first gets its own colour)
+                lead_block = lead_block or (pause and threads[k] == 0)
+                if pause and not fmt.color_after_travel:
+                    b.add(pe.COLOR_CHANGE)  # where the last actuator (or the placement line) ended, before the travel
+                if not np.array_equal(b.pos, p):  # a placement line ends at the stop: the tie-in stitches from there
+                    b.travel(units[_next_stitch(plan, i)], i)  # else colour formats wait at the first needle point
                 pending = None
-                if threads[k] > 0 and fmt.color_after_travel:
+                if pause and fmt.color_after_travel:
                     b.add(pe.COLOR_CHANGE)
                 b.waited = True
                 continue
@@ -486,10 +493,11 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         raise ExportError(
             f"design needs {len(b.pattern.stitches)} records; {fmt.name} holds at most {fmt.limit.max_records}"
         )
-    for k in sorted(threads, key=threads.get) or [0]:
+    labels = [_actuator_name(plan, k) for k in sorted(threads, key=threads.get) or [0]]
+    for label in ([f"{labels[0]} placement"] if lead_block else []) + labels:
         t = pe.EmbThread()
         t.set_color(*(THREAD_COLORS[len(b.pattern.threadlist) % len(THREAD_COLORS)].to_bytes(3, "big")))
-        t.description = ascii_label(_actuator_name(plan, k))
+        t.description = ascii_label(label)
         t.catalog_number = f"A{len(b.pattern.threadlist) + 1}"
         t.brand = "embroact"
         b.pattern.add_thread(t)

@@ -31,7 +31,8 @@ Counts and pauses are those of the machine file when one is given (``machine=``,
 are read back from its bytes); without it they are the plan's.  The set-up section tells
 the operator how to set the machine for that file's kind of stop, which tubes are laid
 before start, where each tube runs relative to the needle waiting for it, which end takes
-the connector and how much fabric to hoop.
+the connector and how much fabric to hoop.  With placement lines
+(:mod:`embroact.patterns.placement`) every tube is laid at a pause that follows its line.
 
 Examples
 --------
@@ -56,7 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...patterns.base.errors import check_range
-from ...patterns.plan import ActuatorPlan, Command, StitchPlan
+from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
@@ -294,22 +295,23 @@ def _fmt(v) -> str:
 
 
 def _legs(plan: StitchPlan, k: int):
-    """Needle points of actuator ``k`` and the index pairs of consecutive stitches (legs)."""
+    """Needle points of actuator ``k``, the index pairs of consecutive stitches (legs) and
+    which legs belong to a placement line (sewn before the tube: they cross nothing)."""
     m = (plan.actuator == k) & (plan.commands == Command.STITCH)
     idx = np.flatnonzero(m)
     # a leg joins two needle points with no trim, stop or jump between them
-    consecutive = np.diff(idx) == 1
-    return plan.xy_mm[idx], np.flatnonzero(consecutive)
+    legs = np.flatnonzero(np.diff(idx) == 1)
+    return plan.xy_mm[idx], legs, plan.roles[idx[legs + 1]] == Role.PLACEMENT
 
 
 def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric: float, analysed=None) -> ActuatorSheet:
-    pts, legs = _legs(plan, k)
+    pts, legs, placement = _legs(plan, k)
     seg = pts[legs + 1] - pts[legs]
     lengths = np.hypot(seg[:, 0], seg[:, 1])
     extra = np.zeros(0)
     if act is not None:
         _, off = act.centerline.project(pts)
-        crossing = np.sign(off[legs]) * np.sign(off[legs + 1]) < 0
+        crossing = (np.sign(off[legs]) * np.sign(off[legs + 1]) < 0) & ~placement
         extra = over_tube_extra_mm(lengths[crossing] / 2.0, act.tube.outer_radius_mm)
     n = len(pts)
     tails = 1 + int(np.count_nonzero((plan.actuator == k) & (plan.commands == Command.TRIM)))
@@ -352,25 +354,36 @@ def _lay_line(a: ActuatorSheet, act: ActuatorPlan | None, needle) -> str:
             f"tape both ends")
 
 
+def _placed(plan: StitchPlan) -> set[int]:
+    """Actuators with a placement line."""
+    return {int(a) for a in np.unique(plan.actuator[plan.roles == Role.PLACEMENT])}
+
+
 def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], pauses) -> tuple[str, ...]:
-    """One line per actuator: laid before start, or at the pause the machine file makes for it."""
+    """One line per actuator: laid before start, or at the pause the machine file makes for it
+    (after its placement line, if it has one)."""
     ids = sorted(sheets)
     if pauses is None:  # no machine file: the plan's STOP records
         stops = np.flatnonzero(plan.commands == Command.STOP)
         pauses = [tuple(plan.xy_mm[i]) for i in stops]
     before = len(ids) - len(pauses)  # actuators whose tube is laid before start
+    placed = _placed(plan)
     out = []
     for n, k in enumerate(ids):
         act = plan.actuators[k] if k < len(plan.actuators) else None
         if n < before:
             out.append(f"before start: {_lay_line(sheets[k], act, None)}; then press start")
-        else:
-            out.append(f"stop {n - before + 1}: {_lay_line(sheets[k], act, pauses[n - before])}; press start")
+            continue
+        first = (f"the machine sews the placement line of {sheets[k].name} along its tube axis and stops; "
+                 "lay the tube over that line: ") if k in placed else ""
+        out.append(f"stop {n - before + 1}: {first}{_lay_line(sheets[k], act, pauses[n - before])}; press start")
     return tuple(out)
 
 
-def machine_setup(machine, n_actuators: int) -> tuple[str, ...]:
-    """Plain-words machine set-up for the machine file ``machine`` (a WriteResult), or none.
+def machine_setup(machine, n_actuators: int, *, placement: bool = False) -> tuple[str, ...]:
+    """Plain-words machine set-up for the machine file ``machine`` (a WriteResult), or none;
+    ``placement``: the actuators have placement lines (sewn first, then the machine stops for
+    each tube).
 
     Examples
     --------
@@ -379,8 +392,10 @@ def machine_setup(machine, n_actuators: int) -> tuple[str, ...]:
     >>> print(machine_setup(res, 3)[1])
     multi-needle machine (automatic needle mode is fine): set all 7 entries of the needle sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in automatic mode
     """
+    first = ("hoop the fabric without any tube: each actuator's placement line is sewn first (a running stitch "
+             "along its tube axis) and the machine then stops for its tube",) if placement else ()
     if machine is None:
-        return ("no machine file: counts and stops are those of the stitch plan",)
+        return ("no machine file: counts and stops are those of the stitch plan",) + first
     fmt, pauses = machine.format, machine.pauses
     if fmt in ("dst", "exp"):
         entries = machine.stops + 1
@@ -394,10 +409,14 @@ def machine_setup(machine, n_actuators: int) -> tuple[str, ...]:
             multi = (f"multi-needle machine: switch to manual needle mode, or set all {entries} entries of the needle "
                      f"sequence to needle 1 and programme a stop at entries 2 to {entries}: in automatic mode a "
                      f"single stop code only changes needle and sews on (cord_stop = \"double\" stops it anyway)")
-        return (f"{fmt.upper()} file with {machine.stops} stop code(s) for {pauses} cord-in stop(s)", multi, single)
+        return (f"{fmt.upper()} file with {machine.stops} stop code(s) for {pauses} cord-in stop(s)", multi, single) + first
     if fmt in ("tbf", "u01"):
         return (f"{fmt.upper()} file: needle 1 for every actuator, and the format's own stop code at each of the "
-                f"{pauses} cord-in stops: the machine stops there in any needle mode",)
+                f"{pauses} cord-in stops: the machine stops there in any needle mode",) + first
+    if placement:
+        return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
+                f"{machine.color_changes} colour changes (one after each placement line): keep the same thread and "
+                "lay that actuator's tube there",) + first
     return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
             f"{machine.color_changes} colour changes (one per actuator after the first): keep the same thread and "
             "lay the next tube there",
@@ -471,7 +490,7 @@ def worksheet(
         findings=tuple(f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in findings),
         color_change_count=n_cc,
         machine_format=None if machine is None else machine.format,
-        setup=machine_setup(machine, len(ids)),
+        setup=machine_setup(machine, len(ids), placement=bool(_placed(plan))),
         notes=() if machine is None else tuple(machine.notes),
         fabric_mm=_fabric_mm(plan, getattr(design, "machine", None)),
     )

@@ -145,8 +145,10 @@ class Subject:
 
     @cached_property
     def legs(self) -> np.ndarray:
-        """Records where a leg of thread ends (it starts at the record before)."""
-        return np.flatnonzero(self.consecutive)
+        """Records where a leg of thread ends (it starts at the record before); legs of a placement
+        line, sewn before their tube was laid (``Layout.before_tube``), hold no tube and are left out."""
+        early = self.layout.before_tube
+        return np.flatnonzero(self.consecutive & ~early & ~np.concatenate([[False], early[:-1]]))
 
     @cached_property
     def crossings(self) -> Crossings:

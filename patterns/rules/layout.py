@@ -27,7 +27,7 @@ from ..base.arrays import frozen_array
 from ..base.errors import ParameterError, PathError, check_range
 from ..base.tolerances import DEFAULT_TOLERANCES
 from ..centerline import Centerline, as_centerline
-from ..plan import Command, StitchPlan
+from ..plan import Command, Role, StitchPlan
 from ..spatial import TubeIndex
 
 __all__ = ["TubeLayout", "Layout", "layout_from_plan", "layout_from_records", "FILE_REACH_MM"]
@@ -109,6 +109,9 @@ class Layout:
     tubes : tuple of TubeLayout
     index : ndarray of int64
         Stitch index to report per record (plan index, or file record index).
+    before_tube : ndarray of bool
+        True for a record sewn before its own tube was laid (a placement line): it can neither
+        pierce nor hold that tube.
     """
 
     xy_mm: np.ndarray
@@ -116,10 +119,12 @@ class Layout:
     owner: np.ndarray
     tubes: tuple[TubeLayout, ...]
     index: np.ndarray
+    before_tube: np.ndarray
 
     @classmethod
-    def from_points(cls, xy_mm, commands, owner, *, tubes, index=None) -> "Layout":
-        """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1."""
+    def from_points(cls, xy_mm, commands, owner, *, tubes, index=None, before_tube=None) -> "Layout":
+        """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1,
+        ``before_tube`` to all False."""
         xy = frozen_array(xy_mm).reshape(-1, 2)
         n = len(xy)
         arrays = [
@@ -127,6 +132,7 @@ class Layout:
             frozen_array(commands, np.int8).reshape(-1),
             frozen_array(owner, np.int16).reshape(-1),
             frozen_array(np.arange(n) if index is None else index, np.int64).reshape(-1),
+            frozen_array(np.zeros(n, bool) if before_tube is None else before_tube, bool).reshape(-1),
         ]
         for a in arrays:
             if len(a) != n:
@@ -134,7 +140,7 @@ class Layout:
         tubes = tuple(tubes)
         if n and not (-1 <= arrays[2].min() and arrays[2].max() < len(tubes)):
             raise ParameterError(f"owner must be in [-1, {len(tubes)}) (tube indices), got {arrays[2].max()}")
-        return cls(arrays[0], arrays[1], arrays[2], tubes, arrays[3])
+        return cls(arrays[0], arrays[1], arrays[2], tubes, arrays[3], arrays[4])
 
     def __len__(self) -> int:
         return len(self.xy_mm)
@@ -145,7 +151,8 @@ class Layout:
 
 
 def layout_from_plan(plan: StitchPlan) -> Layout:
-    """The layout of a stitch plan: tubes from its actuators, half width from the realised width."""
+    """The layout of a stitch plan: tubes from its actuators, half width from the realised width;
+    placement-line records (:attr:`~embroact.patterns.plan.Role.PLACEMENT`) come before their tube."""
     tubes = tuple(
         TubeLayout(
             name=a.name,
@@ -159,7 +166,7 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
         for a in plan.actuators
     )
     owner = np.where(plan.actuator < len(tubes), plan.actuator, -1)
-    return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes=tubes)
+    return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes=tubes, before_tube=plan.roles == Role.PLACEMENT)
 
 
 def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_MM, index=None) -> Layout:
@@ -169,6 +176,12 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
     none); each tube's ``half_width_mm`` becomes the median distance of its needle
     points from its axis (the measured w/2) unless already set. One spatial query
     over every tube's axis assigns all needle points.
+
+    A file carries no roles, so which needle points came before their tube is read from the
+    order of its records: the stops split a tube's needle points into stretches, and the
+    stretches before the first one whose points lie mostly (median) outside the tube's corridor
+    run along its axis: a placement line, sewn before the tube was laid at the stop that ends it.
+    A tube laid before start, or whose first stretch couches it, has none.
 
     Parameters
     ----------
@@ -191,9 +204,29 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
     hit, tube, dist = TubeIndex([t.path for t in tubes]).nearest(xy[needles], reach_mm)
     owner[needles[hit]] = tube
     order = np.argsort(tube, kind="stable")
-    groups = np.split(dist[order], np.searchsorted(tube[order], np.arange(1, len(tubes))))
+    cuts = np.searchsorted(tube[order], np.arange(1, len(tubes)))
+    groups = np.split(dist[order], cuts)
     out = tuple(
         replace(t, half_width_mm=float(np.median(mine))) if t.half_width_mm is None and len(mine) else t
         for t, mine in zip(tubes, groups)
     )
-    return Layout.from_points(xy, cmds, owner, tubes=out, index=index)
+    before = _before_tube(len(xy), np.flatnonzero(cmds == Command.STOP), np.split(needles[hit][order], cuts), groups,
+                          tubes)
+    return Layout.from_points(xy, cmds, owner, tubes=out, index=index, before_tube=before)
+
+
+def _before_tube(n: int, stops: np.ndarray, records, dists, tubes) -> np.ndarray:
+    """Records sewn before their tube was laid (see :func:`layout_from_records`), of ``n``.
+
+    ``records`` and ``dists``: per tube, its needle records and their distances from its axis.
+    """
+    before = np.zeros(n, dtype=bool)
+    if not len(stops):
+        return before
+    for t, rec, d in zip(tubes, records, dists):
+        stretch = np.searchsorted(stops, rec)
+        for k in np.unique(stretch):
+            if np.median(d[stretch == k]) >= t.corridor_radius_mm:
+                before[rec[stretch < k]] = True  # the stretches before the first that couches the tube
+                break
+    return before

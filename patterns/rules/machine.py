@@ -90,7 +90,7 @@ def _owned_moves(s: Subject) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def missing_stop(s: Subject) -> Hits:
     a, b, between = _owned_moves(s)
     lay = s.layout
-    bad = (lay.owner[a] != lay.owner[b]) & (between == 0)
+    bad = (lay.owner[a] != lay.owner[b]) & (between == 0) & ~lay.before_tube[b]  # a placement line's stop follows it
     j, i = a[bad], b[bad]
     return Hits(i, lambda k: (f"sewing moves from {lay.name_of(int(lay.owner[j[k]]))} to "
                               f"{lay.name_of(int(lay.owner[i[k]]))} without a stop"))
@@ -102,7 +102,7 @@ def missing_stop(s: Subject) -> Hits:
 def unexpected_stop(s: Subject) -> Hits:
     a, b, between = _owned_moves(s)
     lay = s.layout
-    j = a[(lay.owner[a] == lay.owner[b]) & (between > 0)]
+    j = a[(lay.owner[a] == lay.owner[b]) & (between > 0) & ~lay.before_tube[a]]  # after a placement line: cord in
     stop_idx = np.flatnonzero(lay.commands == Command.STOP)
     at = stop_idx[np.searchsorted(stop_idx, j)] if len(j) else np.zeros(0, np.int64)
     owner = lay.owner[j]

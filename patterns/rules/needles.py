@@ -11,6 +11,9 @@ Conventions
   needle point within ``density_radius_mm`` (``<=``) **including the point itself**.
 * The tube extends ``end_margin_mm`` beyond each end of its path along the end
   tangent (connector room); needle points there pierce it too (EA101).
+* A placement line (:mod:`embroact.patterns.placement`) is sewn along the tube axis
+  before the tube is laid: EA101 does not count its needle points in their own tube's
+  corridor (they are checked against every other tube).
 
 Examples
 --------
@@ -23,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..base.findings import RULES, Inputs, Severity
-from ..limits import UNITS_PER_MM, format_limit, records_needed
+from ..limits import UNITS_PER_MM, format_limit, framed_first, records_needed
 from ..plan import Command
 from .engine import Hits, Subject
 
@@ -40,13 +43,16 @@ def needle_corridor(s: Subject) -> Hits:
     tubes = s.layout.tubes
     tol = s.settings.tolerances.length_mm
     point, tube, dist = s.laid_tubes.within(s.layout.xy_mm[s.needles], [t.corridor_radius_mm - tol for t in tubes])
+    record = s.needles[point]
+    there = ~(s.layout.before_tube[record] & (s.layout.owner[record] == tube))  # a placement line: no tube yet
+    record, tube, dist = record[there], tube[there], dist[there]
 
     def message(j: int) -> str:
         t = tubes[tube[j]]
         return (f"needle point {dist[j]:.2f} mm from the tube axis of {t.name}, inside its "
                 f"{t.corridor_radius_mm:.2f} mm corridor (r_f {t.outer_radius_mm:g} + clearance {t.clearance_mm:g})")
 
-    return Hits(s.needles[point], message)
+    return Hits(record, message)
 
 
 @RULES.rule("EA102", Severity.ERROR, "record over format limit",
@@ -57,7 +63,8 @@ def needle_corridor(s: Subject) -> Hits:
 def record_limit(s: Subject) -> Hits:
     lim = format_limit(s.settings.format)
     moves = s.moves_units
-    over = np.flatnonzero((s.layout.commands == Command.STITCH) & (records_needed(moves, lim.max_record_mm) > 1))
+    stitch = (s.layout.commands == Command.STITCH) & ~framed_first(s.layout.commands)  # that one is travel
+    over = np.flatnonzero(stitch & (records_needed(moves, lim.max_record_mm) > 1))
 
     def message(j: int) -> str:
         dx, dy = np.abs(moves[over[j]]) / UNITS_PER_MM

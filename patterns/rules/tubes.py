@@ -17,7 +17,8 @@ Conventions
   be at most ``couching_gap_factor`` x the tube's outer diameter (default
   3 x 3 mm = 9 mm for r_f = 1.5 mm; EA203 warns from one diameter). A generated
   cross pattern leaves (w/2 - r_f) tan(alpha0) at each end (5.5 mm for w = 7 mm,
-  alpha0 = 70 deg). Every leg of thread counts, whichever actuator it belongs to.
+  alpha0 = 70 deg). Every leg of thread counts, whichever actuator it belongs to,
+  except a placement line's (sewn along the axis before the tube is laid: it holds nothing).
 
 Examples
 --------
