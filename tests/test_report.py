@@ -133,8 +133,10 @@ def test_report_json_content_against_hand_values(built):
 def test_report_html_holds_every_section(built):
     out, _ = built
     html = (out / "report.html").read_text()
-    for key in list(FIGURES) + ["derived", "worksheet", "findings"]:
+    for key in list(FIGURES) + ["model", "derived", "worksheet", "findings"]:
         assert f'<section id="{key}">' in html
+    model = html[html.index('<section id="model">'):html.index('<section id="derived">')]
+    assert "<td>calibration paper-2025 (zigzag, width_mm=7)</td>" in model and ">2.7<" in model and ">85<" in model
     assert html.count("<svg") == 4
     assert (out / "preview.svg").read_text()[(out / "preview.svg").read_text().find("<svg"):] in html
     scan = _scan(html)

@@ -14,7 +14,7 @@ Examples
 >>> from embroact.export.cli.main import main
 >>> main(["predict", "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85",
 ...       "--pressure-kpa", "0,100,200"])
-A1: zigzag w=7 mm s=1 mm l0=100 mm; r0 2.581 mm; G 2.7 MPa (given), P0 85 kPa (given); tube law paper; method stable-analytic-trace
+A1: zigzag w=7 mm s=1 mm l0=100 mm; r0 2.581 mm; G 2.7 MPa (given), P0 85 kPa (given); tube r_f 1.5 mm, d_f 1 mm, G_e 0.13 MPa; tube law paper; method stable-analytic-trace
 pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity
      0.000       0.000   INFLATION     100.000  1.5000  0.000     1.0000
    100.000      11.539   BENDING       101.040  2.5814  0.000     2.3281
@@ -86,7 +86,8 @@ def _table(act, c, band) -> str:
     angle = f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg" if derived.pattern == "cross" else ""
     head = (f"{act.name}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
             f"l0={derived.length_mm:.4g} mm{angle}; r0 {derived.r0_mm:.4g} mm; G {model.g_mpa:.4g} MPa "
-            f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube law {model.tube_law}; "
+            f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube r_f {model.outer_radius_mm:g} mm, "
+            f"d_f {model.inner_radius_mm:g} mm, G_e {model.g_e_mpa:g} MPa; tube law {model.tube_law}; "
             f"method {c.method}")
     rows = [head + "".join(f"; note: {n}" for n in choice.notes)]
     if band is not None:

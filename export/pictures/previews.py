@@ -122,35 +122,45 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     return float(pressure_kpa), float(np.interp(pressure_kpa, p, t))
 
 
+def _short_source(source: str, choice) -> str:
+    """'given', 'geometry', or the calibration set's name (flagged when extrapolated)."""
+    if source.startswith("calibration") and choice.calibration is not None:
+        cal = choice.calibration
+        return cal.name + (" extrapolated" if cal.extrapolated else "")
+    return source.split(" ", 1)[0]
+
+
 def _label(act) -> str:
-    """Legend of one actuator: name, pattern, width, and the model's G and P0 with their sources."""
+    """Legend of one actuator: name, width, and the model's G and P0 with where they came from."""
     d = act.derived
     if act.choice is None:
         return f"{act.name} ({d.pattern}, w {d.width_mm:.1f} mm; no model)"
-    return (f"{act.name} ({d.pattern}, w {d.width_mm:.1f} mm; G {act.model.g_mpa:.4g} MPa, "
-            f"P0 {act.model.p0_kpa:.4g} kPa)")
+    m, c = act.model, act.choice
+    g_src, p0_src = _short_source(c.g_source, c), _short_source(c.p0_source, c)
+    values = (f"G {m.g_mpa:.4g} MPa, P0 {m.p0_kpa:.4g} kPa ({g_src})" if g_src == p0_src
+              else f"G {m.g_mpa:.4g} MPa ({g_src}), P0 {m.p0_kpa:.4g} kPa ({p0_src})")
+    return f"{act.name}, w {d.width_mm:.1f} mm: {values}"
 
 
 def model_caption(analysis) -> str:
-    """Where each actuator's G and P0 came from, one clause per distinct source (for chart titles).
+    """The tube law(s) and tube(s) of the models, for the chart title (the legend names G and P0).
 
     Examples
     --------
     >>> from embroact.patterns.design import default_design
     >>> from embroact.predict.analysis import analyse
     >>> model_caption(analyse(default_design()))
-    'G, P0: calibration paper-2025 (zigzag, width_mm=7); tube law paper'
+    'paper law, r_f 1.5, d_f 1 mm, G_e 0.13 MPa'
     """
     parts: list[str] = []
     for act in analysis.actuators:
         if act.choice is None:
             continue
-        c = act.choice
-        text = (f"G, P0: {c.g_source}" if c.g_source == c.p0_source
-                else f"G: {c.g_source}; P0: {c.p0_source}") + f"; tube law {act.model.tube_law}"
+        m = act.model
+        text = f"{m.tube_law} law, r_f {m.outer_radius_mm:g}, d_f {m.inner_radius_mm:g} mm, G_e {m.g_e_mpa:g} MPa"
         if text not in parts:
             parts.append(text)
-    return " | ".join(parts)
+    return "; ".join(parts)
 
 
 def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
@@ -161,9 +171,10 @@ def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None) -
 
 
 def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None) -> str:
-    """The bend chart SVG of an analysed design: legend with G and P0, title with their sources."""
+    """The bend chart SVG of an analysed design: the legend gives each actuator's G and P0 and where they
+    came from, the title the tube law and tube."""
     caption = model_caption(analysis)
-    title = f"{analysis.plan.name}: predicted bend angle" + (f" ({caption})" if caption else "")
+    title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
     return bend_chart_svg(bend_series(analysis, curves, measured), title=title)
 
 

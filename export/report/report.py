@@ -99,8 +99,9 @@ def report_data(
         Design name.
     actuators : sequence of mapping
         Per actuator: ``name``, ``derived`` (``DerivedGeometry.as_dict()``), optionally
-        ``curve`` (``pressure_kpa``, ``theta_deg``, ``status`` lists, ``method``) and
-        ``side_view`` (list of ``{"pressure_kpa", "theta_deg"}``).
+        ``model`` (``ModelChoice.as_dict()``: G, P0, tube, tube law and their sources),
+        ``curve`` (``Curve.as_dict()``: ``pressure_kpa``, ``theta_deg``, ``status`` lists,
+        ``method``) and ``side_view`` (list of ``{"pressure_kpa", "theta_deg"}``).
     findings : iterable
         ``Finding`` objects or dicts (code, severity, message, actuator, stitch_index, xy_mm, fix).
     worksheet : mapping, optional
@@ -154,6 +155,24 @@ def _derived_table(actuators: Sequence[Mapping]) -> str:
         f"<tr><th>{_e(k)}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in actuators)}</tr>" for k in rows
     )
     return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>"
+
+
+def _model_table(actuators: Sequence[Mapping]) -> str:
+    """G, P0, tube and tube law per actuator, each with where it came from."""
+    with_model = [a for a in actuators if a.get("model")]
+    if not with_model:
+        return '<p class="note">no model</p>'
+    rows = []
+    for a in with_model:
+        m, t = a["model"], a["model"].get("tube") or {}
+        tube = (f"r_f {_num(t.get('outer_radius_mm'))} mm, d_f {_num(t.get('inner_radius_mm'))} mm, "
+                f"G_e {_num(t.get('g_e_mpa'))} MPa")
+        rows.append(f"<tr><th>{_e(a.get('name'))}</th>{_cell(m.get('g_mpa'))}<td>{_e(m.get('g_source'))}</td>"
+                    f"{_cell(m.get('p0_kpa'))}<td>{_e(m.get('p0_source'))}</td><td>{_e(m.get('tube_law'))}</td>"
+                    f"<td>{_e(tube)}</td><td>{_e('; '.join(m.get('notes') or []))}</td></tr>")
+    head = "".join(f"<th>{h}</th>" for h in ("actuator", "G [MPa]", "G from", "P0 [kPa]", "P0 from", "tube law",
+                                               "tube", "notes"))
+    return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
 def _findings_table(findings: Sequence[Mapping]) -> str:
@@ -266,6 +285,7 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
                 parts.append(_mesh_note(data.get("mesh")))
             parts.append("</section>")
     parts += [
+        '<section id="model"><h2>Model</h2>', _model_table(acts), "</section>",
         '<section id="derived"><h2>Derived geometry</h2>', _derived_table(acts), "</section>",
         '<section id="worksheet"><h2>Worksheet</h2>', _worksheet_html(data.get("worksheet")), "</section>",
         '<section id="findings"><h2>Design-rule findings</h2>', _findings_table(findings), "</section>",
