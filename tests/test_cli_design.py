@@ -71,3 +71,18 @@ def test_bad_shape_file(tmp_path, capsys):
     bad.write_text("x_mm,y_mm\n0,0\n1,oops\n")
     assert main(["design", "--target-shape", str(bad), "--at-kpa", "200", "-o", str(tmp_path / "x.toml")]) == 2
     assert "row 3" in capsys.readouterr().err
+
+
+def test_target_shape_from_an_svg_path(tmp_path, capsys):
+    """An SVG drawing's path in real units is a target (y flipped to y up, like every SVG path)."""
+    from embroact.predict.shape import BentShape
+
+    xy = BentShape.chain([40.0, 50.0], [40.0, -30.0]).profile_mm(np.linspace(0.0, 90.0, 181))
+    d = "M " + " L ".join(f"{x:.4f} {-y:.4f}" for x, y in xy)
+    svg = tmp_path / "t.svg"
+    svg.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" viewBox="0 0 200 200">'
+                   f'<path id="target" d="{d}" fill="none" stroke="black"/></svg>')
+    res = _json(capsys, ["design", "--target-shape", f"{svg}#target", "--at-kpa", "250", "-o",
+                         str(tmp_path / "s.toml")])
+    assert res["reached"] and res["rmse_mm"] < 0.5
+    assert [s["pattern"] for s in res["segments"]] == ["zigzag", "cross"]
