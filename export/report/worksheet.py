@@ -270,12 +270,17 @@ class Worksheet:
                       f" = {a.path_length_mm:.1f} mm path + 2 x {a.end_margin_mm:g} mm end margin",
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
-            lines += [f"  {k:<24} {_fmt(v)}" for k, v in a.derived.items() if k != "name"]
+            lines += [f"  {_DERIVED_LABELS.get(k, k):<24} {_fmt(v)}" for k, v in a.derived.items() if k != "name"]
             lines += _model_lines(a.model)
             lines += [f"  adjustment: {s}" for s in a.adjustments]
         lines += ["", "DESIGN-RULE FINDINGS"]
         lines += [f"  {f.get('severity', '')} {f.get('code', '')}: {f.get('message', '')}" for f in self.findings] or ["  none"]
         return "\n".join(lines) + "\n"
+
+
+#: Derived-geometry keys relabelled on the text sheet: the tube law's P0 at r0 is not the model's P0
+#: (which by default is the calibration set's, listed under "model P0").
+_DERIVED_LABELS = {"p0_kpa": "p0_tube_law_kpa"}
 
 
 def _model_lines(model: dict | None) -> list[str]:
