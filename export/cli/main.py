@@ -195,6 +195,8 @@ def main(argv: list[str] | None = None) -> int:
         code, err = EXIT_INPUT, exc
     except OSError as exc:
         code, err = EXIT_INPUT, f"{exc.filename or ''}: {exc.strerror or exc}".lstrip(": ")
+    except MemoryError:  # past the documented input limits; one line, not a traceback
+        code, err = EXIT_INPUT, "out of memory: the input is too large for this machine"
     except _Terminated:
         print("embroact: terminated", file=sys.stderr)
         return EXIT_TERMINATED
