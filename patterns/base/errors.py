@@ -19,6 +19,11 @@ angle_deg must be in (0, 90), got 95
 ... except ParameterError as exc:
 ...     print(exc)
 width_mm must be in (0, 200), got an integer of 321 digits
+>>> try:
+...     check_range("width_mm", math.nextafter(200.0, math.inf), low=0.0, high=200.0)
+... except ParameterError as exc:
+...     print(exc)
+width_mm must be in (0, 200), got 200.00000000000003
 """
 from __future__ import annotations
 
@@ -112,5 +117,8 @@ def check_range(
     bad_low = low is not None and (v < low or (v == low and not low_inclusive))
     bad_high = high is not None and (v > high or (v == high and not high_inclusive))
     if bad_low or bad_high:
-        raise ParameterError(f"{name} must be in {rng}, got {_fmt(v)}")
+        got = _fmt(v)
+        if v not in (low, high) and got in (_fmt(low) if low is not None else None, _fmt(high) if high is not None else None):
+            got = repr(v)  # just past a bound: 200.00000000000003, not "200"
+        raise ParameterError(f"{name} must be in {rng}, got {got}")
     return v
