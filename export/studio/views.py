@@ -37,12 +37,16 @@ SHAPE3D_TOLERANCE_MM = 0.2
 _VIEWBOX = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
 
 
-def message_svg(text: str, *, width_px: int = 420, height_px: int = 80) -> str:
-    """A small SVG that says ``text`` (where a view cannot be drawn, e.g. no model)."""
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height_px}" class="message">'
+def message_svg(text: str, *, width_px: int = 480, chars_per_line: int = 70) -> str:
+    """A small SVG that says ``text``, wrapped (where a view cannot be drawn, e.g. no model)."""
+    import textwrap
+
+    lines = textwrap.wrap(text[:600], chars_per_line) or [""]
+    height = 16 * len(lines) + 20
+    rows = "".join(f'<tspan x="10" dy="{16 if k else 0}">{escape(line)}</tspan>' for k, line in enumerate(lines))
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width_px}" height="{height}" class="message">'
             f'<rect width="100%" height="100%" fill="#fff7e6" stroke="#d9a441"/>'
-            f'<text x="10" y="{height_px // 2}" font-size="13" font-family="Helvetica,Arial,sans-serif">'
-            f"{escape(text[:160])}</text></svg>")
+            f'<text x="10" y="22" font-size="13" font-family="Helvetica,Arial,sans-serif">{rows}</text></svg>')
 
 
 def bend_at(analysis, pressure_kpa: float) -> list[dict]:

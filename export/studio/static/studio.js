@@ -165,6 +165,17 @@ function showWorksheet(ws) {
   $("worksheet").replaceChildren(table(rows));
 }
 
+function zoomStitches() {
+  // the preview is drawn in mm (width="...mm"); zoom keeps its proportions and its scale bar
+  const svg = document.querySelector("#stitches svg");
+  if (!svg) return;
+  const zoom = $("zoom").value;
+  if (!svg.dataset.widthMm) svg.dataset.widthMm = String(parseFloat(svg.getAttribute("width")));
+  svg.classList.toggle("fit", zoom === "fit");
+  svg.style.width = zoom === "fit" ? "" : `${Number(svg.dataset.widthMm) * Number(zoom)}mm`;
+  svg.style.height = zoom === "fit" ? "" : "auto";
+}
+
 function highlight(k) {
   for (const el of document.querySelectorAll("#finding-list li, circle.finding")) {
     el.classList.toggle("active", el.dataset.finding === String(k));
@@ -201,6 +212,7 @@ function showViews(v) {
   $("pressure-value").textContent = fmt(v.pressure_kpa, 0);
   showFields(v.fields);
   $("stitches").innerHTML = v.stitches_svg;
+  zoomStitches();
   $("chart").innerHTML = v.chart_svg;
   $("side").innerHTML = v.side_svg;
   showNumbers(v);
@@ -294,6 +306,7 @@ async function inverse() {
 
 function start() {
   $("pressure").addEventListener("input", slide);
+  $("zoom").addEventListener("change", zoomStitches);
   $("fields").addEventListener("submit", (ev) => ev.preventDefault());
   $("save").addEventListener("click", save);
   $("build").addEventListener("click", build);
