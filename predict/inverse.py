@@ -72,8 +72,8 @@ _FIT_GOOD_MM = 0.02
 _POLISH_ROUNDS = 6
 #: Curvature fits worse than this (RMSE) are not tried as designs [mm].
 _FIT_PLAUSIBLE_MM = 0.25
-#: A reached design this close (RMSE) ends the search over segment counts [mm].
-_SHAPE_GOOD_MM = 0.1
+#: A reached design this close (RMSE) ends the search over segment counts (fewer segments win) [mm].
+_SHAPE_GOOD_MM = 0.2
 #: Shortest segment the curvature fit may make [mm].
 _MIN_SEGMENT_MM = 8.0
 #: Extrapolated design spaces (``allow_extrapolation``) [mm, deg].
@@ -673,38 +673,49 @@ class ShapeResult:
                 "warnings": list(self.warnings)}
 
 
+def _branch(x: np.ndarray, theta: np.ndarray, ok: np.ndarray, at: float) -> tuple[float, float]:
+    """The stretch of the table around ``at`` where the bend is valid and monotone in the parameter."""
+    i = int(np.clip(np.searchsorted(x, at) - 1, 0, len(x) - 2))
+    rising = theta[i + 1] >= theta[i]
+    lo = i
+    while lo > 0 and ok[lo - 1] and (theta[lo] >= theta[lo - 1]) == rising:
+        lo -= 1
+    hi = i + 1
+    while hi < len(x) - 1 and ok[hi + 1] and (theta[hi + 1] >= theta[hi]) == rising:
+        hi += 1
+    return float(x[lo]), float(x[hi])
+
+
 def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
-    """(space, x, note) of the pattern parameter bending a segment by theta at P*, or the nearest."""
-    options = []
+    """(space, x, (low, high), note): the pattern parameter bending a segment by theta at P*, or the nearest.
+
+    ``(low, high)`` is the monotone branch of the bend around ``x`` (within the segment's
+    length limit for a cross pattern: two leg pitches, ``4 w tan(alpha0) <= L``), where the
+    joint polish may move it.
+    """
+    options, near = [], None
     order = ("zigzag", "cross") if theta_deg >= 0.0 else ("cross",)
-    for kind in order:
+    for rank, kind in enumerate(order):
         space = spaces[kind]
-        table = model.table(space, length_mm, points=61)
-        x, theta, status = table
-        for r in _roots(model, space, length_mm, theta_deg, table):
-            p = space.params(r)
-            if kind == "cross" and 4.0 * p.width_mm * math.tan(math.radians(r)) > length_mm:
-                continue  # the segment is too short for two leg pitches at this angle
+        x, theta, status = model.table(space, length_mm, points=61)
+        fits = np.array([kind != "cross" or 4.0 * space.params(v).width_mm * math.tan(math.radians(v)) <= length_mm
+                         for v in x])
+        ok = np.isin(status, _VALID) & fits
+        for r in _roots(model, space, length_mm, theta_deg, (x, theta, np.where(ok, status, -1))):
             slope = abs(float(np.interp(r, x, np.gradient(theta, x))))
-            options.append((order.index(kind), slope, space, r))
+            options.append((rank, slope, r, space, _branch(x, theta, ok, r)))
+        for xi, ti in zip(x[ok], theta[ok]):
+            if near is None or abs(ti - theta_deg) < near[0]:
+                near = (abs(ti - theta_deg), space, float(xi), float(ti), _branch(x, theta, ok, float(xi)))
         if options:
             break
     if options:
-        options.sort(key=lambda o: (o[0], o[1], o[3]))
-        return options[0][2], options[0][3], ""
-    best = None
-    for kind in order:
-        space = spaces[kind]
-        x, theta, status = model.table(space, length_mm, points=61)
-        for xi, ti, st in zip(x, theta, status):
-            p = space.params(xi)
-            if st in _VALID and not (kind == "cross" and 4.0 * p.width_mm * math.tan(math.radians(xi)) > length_mm):
-                if best is None or abs(ti - theta_deg) < best[0]:
-                    best = (abs(ti - theta_deg), space, float(xi), float(ti))
-    if best is None:
+        _, _, r, space, branch = min(options, key=lambda o: (o[0], o[1], o[2]))
+        return space, r, branch, ""
+    if near is None:
         raise ParameterError(f"a {length_mm:.1f} mm segment has no valid pattern at this pressure")
-    _, space, xb, tb = best
-    return space, xb, f"{theta_deg:.1f} deg needed, {tb:.1f} deg is the nearest a {space.pattern} reaches"
+    _, space, xb, tb, branch = near
+    return space, xb, branch, f"{theta_deg:.1f} deg needed, {tb:.1f} deg is the nearest a {space.pattern} reaches"
 
 
 def _nominal_xy(model: _Model, spaces, x, lengths, sj, legs) -> tuple[np.ndarray, np.ndarray]:
@@ -792,14 +803,10 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
         pred, _ = _nominal_xy(model, seg_spaces, v, lengths, sj, legs)
         return (pred - xy).ravel()
 
-    lo = np.array([sp.low for sp in seg_spaces])
-    hi = np.array([sp.high for sp in seg_spaces])
-    for i, (sp, x, L) in enumerate(zip(seg_spaces, x0, lengths)):
-        if sp.pattern == "cross":  # a cross stays on its side of the neutral angle and fits two leg pitches
-            neutral = _neutral_deg(sp, tube)
-            fits = math.degrees(math.atan(float(L) / (4.0 * sp.width_mm))) - 1e-3
-            lo[i], hi[i] = (sp.low, min(neutral, sp.high, fits)) if x < neutral else (max(neutral, sp.low),
-                                                                                       min(sp.high, fits))
+    lo = np.array([c[2][0] for c in chosen])
+    hi = np.array([c[2][1] for c in chosen])
+    lo, hi = np.minimum(lo, x0), np.maximum(hi, x0)
+    hi = np.where(hi - lo > 1e-9, hi, lo + 1e-9)
     x = np.clip(x0, lo + 1e-9, hi - 1e-9)
     best = None
     for _ in range(_POLISH_ROUNDS):  # the sewn leg extents change in steps with the parameters: hold them per round
@@ -807,8 +814,8 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
         cost = float(np.sum(residual(x, legs) ** 2))  # x as sewn: its own leg extents
         if best is None or cost < best[0]:
             best = (cost, x)
-        x = least_squares(residual, x, bounds=(lo, hi), x_scale="jac", diff_step=1e-7, xtol=1e-10, ftol=1e-12,
-                          max_nfev=60 * len(x), args=(legs,)).x
+        x = least_squares(residual, x, bounds=(lo, hi), x_scale="jac", diff_step=1e-7, xtol=1e-8, ftol=1e-10,
+                          max_nfev=30 * len(x), args=(legs,)).x
         if legs == [_legs_sewn(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths)]:
             best = (0.0, x)
             break
@@ -833,14 +840,14 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     angle_err = (t_pred - t_tgt + 180.0) % 360.0 - 180.0
     findings = check_plan(a.plan, RuleSettings.for_machine(design.machine))
     errors = sorted({f.code for f in findings if f.severity.name == "ERROR"})
-    notes = [c[2] for c in chosen if c[2]]
+    notes = [c[3] for c in chosen if c[3]]
     out_segs = tuple(ShapeSegment(sg.params, sg.length_mm, t, float(k), note)
-                     for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[2] for c in chosen]))
+                     for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[3] for c in chosen]))
     rmse = float(np.sqrt(np.mean(dev**2)))
     reached = not notes and not bad and not errors
     why = []
     if notes:
-        why.append("; ".join(f"segment {i}: {c[2]}" for i, c in enumerate(chosen) if c[2]))
+        why.append("; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3]))
     if bad:
         why.append(f"segments {bad} leave the valid model states at {p:g} kPa")
     if errors:
@@ -849,11 +856,3 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
     return ShapeResult(design, out_segs, p, xy, pred, rmse, float(dev.max()), float(dev[-1]), float(angle_err),
                        float(rmse_fit), reached, statement, tuple(sorted({f.code for f in findings})))
-
-
-def _neutral_deg(space: DesignSpace, tube: Tube) -> float:
-    """The cross angle with tan(beta0) = 1/2 at the space's width (from the derived geometry)."""
-    from .derived import derive_from_values
-
-    return derive_from_values("cross", width_mm=space.width_mm, interval_mm=space.interval_mm, angle_deg=45.0,
-                              length_mm=100.0, tube=tube).neutral_angle_deg
