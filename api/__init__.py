@@ -19,7 +19,9 @@ errors                      :class:`EmbroactError` and its subclasses
 Subpackages: :mod:`embroact.patterns` (geometry), :mod:`embroact.predict` (model),
 :mod:`embroact.export` (files, pictures, reports, the command line). Units are mm, kPa,
 MPa and degrees at every boundary; every name carries its unit. ``__version__`` is read
-from the installed package's metadata.
+from the installed package's metadata. In Jupyter a design or stitch plan shows its stitch
+preview, an analysis its actuator table and pictures, a curve its bend chart and a bent
+shape its side view (drawn by :mod:`embroact.export.pictures.display` when first shown).
 
 Examples
 --------
@@ -54,6 +56,20 @@ __getattr__lazy, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
                              "ModelDomainError", "SolverError", "ExportError"],
 })
 __all__ = [*__all__, "__version__"]
+
+# Rich display in Jupyter: which export function draws each value class (imported when first shown).
+from .patterns.base.display import register as _register  # noqa: E402  (light: no numpy)
+
+for _cls, _mime, _target in (
+    ("embroact.patterns.design.Design", "image/svg+xml", "embroact.export.pictures.display:design_svg"),
+    ("embroact.patterns.plan.StitchPlan", "image/svg+xml", "embroact.export.pictures.stitches:plan_svg"),
+    ("embroact.predict.analysis.DesignAnalysis", "text/html", "embroact.export.pictures.display:analysis_html"),
+    ("embroact.predict.analysis.ActuatorAnalysis", "text/html", "embroact.export.pictures.display:actuator_html"),
+    ("embroact.predict.curve.Curve", "image/svg+xml", "embroact.export.pictures.display:curve_svg"),
+    ("embroact.predict.shape.BentShape", "image/svg+xml", "embroact.export.pictures.display:shape_svg"),
+):
+    _register(_cls, _mime, _target)
+del _cls, _mime, _target, _register
 
 
 def __getattr__(name: str):

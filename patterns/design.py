@@ -87,6 +87,7 @@ import enum
 
 from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
 from .base.choices import check_choice
+from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 from .centerline import Centerline, as_centerline
@@ -344,6 +345,9 @@ class Design:
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             raise ParameterError(f"actuator names must be unique, got {dup[0]!r} {names.count(dup[0])} times")
+
+    #: Stitch preview in Jupyter (generated when shown; registered by ``embroact``).
+    _repr_svg_ = repr_svg
 
 
 def default_design() -> Design:

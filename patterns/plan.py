@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Iterable
 import numpy as np
 
 from .base.arrays import frozen_array
+from .base.display import repr_svg
 from .params import CrossParams, PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -231,15 +232,15 @@ class StitchPlan:
         lo, hi = self.xy_mm.min(axis=0), self.xy_mm.max(axis=0)
         return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
-    def _repr_svg_(self) -> str:
-        """Stitch preview for Jupyter (:func:`embroact.export.pictures.stitches.plan_svg`).
+    def __repr__(self) -> str:
+        x0, y0, x1, y1 = self.bounds_mm()
+        names = ", ".join(a.name for a in self.actuators)
+        return (f"StitchPlan({self.name!r}: {len(self)} records, {self.stitch_count} stitches, "
+                f"{len(self.actuators)} actuator{'s' * (len(self.actuators) != 1)}"
+                f"{f' ({names})' if names else ''}, extent {x1 - x0:.1f} x {y1 - y0:.1f} mm)")
 
-        The one documented exception to the import direction (patterns never imports
-        export): the renderer is imported lazily, only when a notebook asks for it.
-        """
-        from ..export.pictures.stitches import plan_svg
-
-        return plan_svg(self)
+    #: Stitch preview in Jupyter (:func:`embroact.export.pictures.stitches.plan_svg`, registered by ``embroact``).
+    _repr_svg_ = repr_svg
 
     def select(self, index: int) -> "StitchPlan":
         """Records of one actuator only (its STOP/TRIM included)."""

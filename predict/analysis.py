@@ -41,6 +41,7 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
+from ..patterns.base.display import repr_html
 from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterError
 from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
 from ..patterns.plan import ActuatorPlan, StitchPlan
@@ -177,6 +178,20 @@ class ActuatorAnalysis:
             d["segments"] = [s.as_dict() for s in self.segments]
         return d
 
+    def __repr__(self) -> str:
+        d = self.derived
+        if self.segments:
+            model = f"{len(self.segments)} segments"
+        elif self.choice is None:
+            model = f"no model: {self.model_error}"
+        else:
+            model = f"G {self.model.g_mpa:.4g} MPa, P0 {self.model.p0_kpa:.4g} kPa"
+        return (f"ActuatorAnalysis({self.name!r}: {d.pattern}, w {d.width_mm:.4g} mm, l0 {d.length_mm:.4g} mm, "
+                f"r0 {d.r0_mm:.4g} mm; {model})")
+
+    #: Table row and bend chart in Jupyter (registered by ``embroact``).
+    _repr_html_ = repr_html
+
 
 @dataclass(frozen=True, slots=True)
 class DesignAnalysis:
@@ -288,6 +303,13 @@ class DesignAnalysis:
     def as_dict(self) -> dict:
         """JSON-ready summary of every actuator."""
         return {"design": self.design.name, "actuators": [a.as_dict() for a in self.actuators]}
+
+    def __repr__(self) -> str:
+        inner = "; ".join(repr(a)[len("ActuatorAnalysis("):-1] for a in self.actuators)
+        return f"DesignAnalysis({self.design.name!r}: {inner})"
+
+    #: Actuator table, stitch preview, bend chart and side view in Jupyter (registered by ``embroact``).
+    _repr_html_ = repr_html
 
 
 def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = None, **overrides) -> Design:

@@ -73,6 +73,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ..patterns.base.arrays import frozen_array
+from ..patterns.base.display import repr_svg
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
@@ -214,6 +215,18 @@ class Curve:
     inner_radius_mm: np.ndarray
     method: str
     calibration: str
+
+    def __repr__(self) -> str:
+        p = self.pressure_kpa
+        shape = " x ".join(str(n) for n in self.theta_deg.shape)
+        span = f"{float(np.min(p)):g}-{float(np.max(p)):g} kPa" if p.size else "no pressures"
+        names = status_names(self.status.reshape(-1))
+        counts = ", ".join(f"{name} {names.count(name)}" for name in dict.fromkeys(names))
+        return (f"Curve({shape} pressure{'s' * (p.size != 1)}, {span}, method {self.method}, "
+                f"calibration {self.calibration!r}; {counts or 'no statuses'})")
+
+    #: Bend chart in Jupyter (registered by ``embroact``).
+    _repr_svg_ = repr_svg
 
     def as_dict(self) -> dict:
         """Plain dict (lists, status names) with unit-suffixed keys, for JSON."""

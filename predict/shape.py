@@ -48,6 +48,7 @@ from typing import Sequence
 import numpy as np
 
 from ..patterns.base.arrays import frozen_array
+from ..patterns.base.display import repr_svg
 from ..patterns.base.errors import ParameterError, check_range
 
 __all__ = ["BentShape", "planar_chain_mm", "rotation_step", "sample_count"]
@@ -213,6 +214,15 @@ class BentShape:
     def length_mm(self) -> float:
         """Total length [mm]."""
         return float(self.lengths_mm.sum())
+
+    def __repr__(self) -> str:
+        n = len(self.lengths_mm)
+        curved = bool(np.any(self.kappa_p_per_mm != 0.0))
+        return (f"BentShape({n} piece{'s' * (n != 1)}, {self.length_mm:.4g} mm, turning {self.turning_deg:.4g} deg"
+                f"{', curved path' if curved else ''})")
+
+    #: Side view in Jupyter (registered by ``embroact``).
+    _repr_svg_ = repr_svg
 
     def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
         """Positions (n, 3) [mm] and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm`` (clipped)."""

@@ -71,7 +71,8 @@ class SidePanel:
     r0_mm : float
         Sleeve radius r0 [mm] (the tube is drawn with diameter 2 r0 on the thread side), > 0.
     pressure_kpa, theta_deg : array-like
-        Pressures [kPa] and the predicted bend angles there [deg]; NaN angles are skipped.
+        Pressures [kPa] and the predicted bend angles there [deg]; NaN angles are skipped, a
+        NaN pressure (a shape not tied to one) is left out of the legend.
     segment_lengths_mm : array-like, optional
         A segmented actuator: the fabric-side length of each segment [mm] (adding up to
         ``length_mm``); empty (default) for one uniform segment.
@@ -201,7 +202,8 @@ def _draw_panel(dwg, parent, panel: SidePanel, dx: float, dy: float, left: float
         sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
         y = legend_y + k * _LEGEND_ROW_MM
         sg.add(dwg.rect((left, y - 3.0), (4.0, 4.0), fill=colour))
-        sg.add(dwg.text(f"{k + 1}: {p:g} kPa, {t:.1f} deg", insert=(left + 5.5, y + 0.6), font_size=3.6))
+        legend = f"{k + 1}: {p:g} kPa, {t:.1f} deg" if math.isfinite(p) else f"{k + 1}: {t:.1f} deg"
+        sg.add(dwg.text(legend, insert=(left + 5.5, y + 0.6), font_size=3.6))
     g.add(dwg.rect((dx - 3.0, dy - 4.0), (2.0 * r0 + 6.0, 4.0), fill="#444", **{"class": "clamp"}))
     g.add(dwg.text(panel.label, insert=(left, dy - 8.0), font_size=4.5, font_weight="bold"))
 
