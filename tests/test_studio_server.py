@@ -286,3 +286,34 @@ def test_a_design_that_cannot_be_sewn_is_refused_at_its_field(client):
         build_plan(design_from_dict(paper_dict(width_mm=3.0)))
     body = edit(client, {"actuator[0].width_mm": 3}).json()
     assert (body["applied"], body["key"], body["error"]) == (False, "actuator[0].width_mm", str(exc.value))
+
+
+def test_a_true_false_setting_is_a_choice(client):
+    v = edit(client, {"machine.placement_line": "true"}).json()
+    field = next(f for f in v["fields"] if f["key"] == "machine.placement_line")
+    assert (field["kind"], field["value"]) == ("bool", True)
+    body = edit(client, {"machine.placement_line": "maybe"}).json()
+    d = paper_dict()
+    d["machine"] = {"placement_line": "maybe"}
+    assert (body["key"], body["error"]) == ("machine.placement_line", design_file_message(d))
+
+
+def test_the_command_prints_its_address_serves_it_and_stops_on_ctrl_c(tmp_path):
+    import signal
+
+    import httpx2
+
+    proc = subprocess.Popen([sys.executable, "-m", "embroact.export", "studio", "--out", str(tmp_path),
+                             "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        head, url = proc.stdout.readline().strip().split(": ", 1)
+        assert head == "embroact studio" and url.startswith("http://127.0.0.1:") and "/?token=" in url
+        base, token = url.split("/?token=")
+        assert len(token) >= 32
+        assert httpx2.get(url).status_code == 200
+        assert httpx2.get(f"{base}/api/views").status_code == 403
+        assert httpx2.get(f"{base}/api/views", headers={"X-Embroact-Token": token}).json()["design"] == "paper-zigzag"
+    finally:
+        proc.send_signal(signal.SIGINT)
+        code = proc.wait(20)
+    assert code == 130 and proc.stderr.read().strip() == "embroact: interrupted"

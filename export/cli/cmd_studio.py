@@ -7,8 +7,9 @@ for this run and opens a browser (unless ``--no-browser``). The page edits the d
 design and builds machine files into DIR only. Needs the optional web server:
 ``pip install 'embroact[studio]'``.
 
-Exit codes: 0 stopped with Ctrl-C; 2 bad design or option, port in use, extra not installed;
-3 output directory missing or not writable.
+Exit codes: 130 stopped with Ctrl-C (143 by SIGTERM), like every command interrupted;
+2 bad design or option, port in use, extra not installed; 3 output directory missing or
+not writable.
 
 Examples
 --------
@@ -38,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args) -> int:
-    """Check the options and the extra, load the design, serve until Ctrl-C."""
+    """Check the options and the extra, load the design, serve until Ctrl-C (then main's exit code 130)."""
     import importlib.util
 
     from ...patterns.base.errors import ParameterError
