@@ -144,3 +144,33 @@ def test_saving_writes_a_design_embroact_build_accepts(studio_page, tmp_path):
     assert not (out.parent / "outside.toml").exists()
     # a refused save is a 403 answer; the browser reports that resource status, nothing else went wrong
     assert [p for p in problems if "status of 403" not in p] == []
+
+
+def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_page):
+    page, url, out, problems = studio_page
+    version = page.get_attribute("body", "data-version")
+    page.fill("#f-actuator-0--interval_mm", "0.4")
+    page.press("#f-actuator-0--interval_mm", "Enter")
+    wait_for_update(page, version)
+    placed = page.locator("#stitches circle.finding")
+    assert placed.count() > 0  # EA105: needle points dense, each circled where it is
+    k = placed.first.get_attribute("data-finding")
+    page.click(f"#finding-list li[data-finding='{k}']")
+    assert "active" in placed.first.get_attribute("class")
+    assert page.inner_text(f"#finding-list li[data-finding='{k}']").startswith("EA105")
+    # inverse design: 90 deg at 150 kPa with a zigzag, applied to the actuator as an edit
+    page.fill("#inv-bend", "90")
+    page.fill("#inv-pressure", "150")
+    page.select_option("#inv-pattern", "zigzag")
+    page.click("#inv-run")
+    page.wait_for_selector("#inv-apply:not([hidden])", timeout=60_000)
+    assert page.inner_text("#inv-result").startswith("met: zigzag bends 90.00 deg at 150 kPa")
+    version = page.get_attribute("body", "data-version")
+    page.click("#inv-apply")
+    wait_for_update(page, version)
+    from embroact.predict.inverse import design_bend
+
+    width = design_bend(90.0, 150.0, pattern="zigzag").best.params.width_mm
+    assert float(page.input_value("#f-actuator-0--width_mm")) == pytest.approx(width, rel=1e-12)
+    assert page.input_value("#f-actuator-0--interval_mm") == "1"
+    assert [p for p in problems if "status of 403" not in p] == []
