@@ -265,15 +265,12 @@ def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
     assert max(abs(a - b) for a, b in zip(act["theta_deg"], truth)) < 1e-6
     assert main(["check", str(sub / "d.toml"), "--json"]) in (0, 1)
     assert "calibration must be one of" not in capsys.readouterr().err
-    # and the API, with the set read from the file
+    # and the API: the design's calibration file resolved relative to the design, as the commands do
+    from embroact.export.files.calibfile import resolve_calibration_files
     from embroact.export.files.designfile import load_design
     from embroact.predict.analysis import analyse
 
-    design = load_design(sub / "d.toml")
-    import dataclasses
-
-    spec = design.actuators[0]
-    design = dataclasses.replace(design, actuators=(dataclasses.replace(
-        spec, model=dataclasses.replace(spec.model, calibration="lab")),))
-    (c,) = analyse(design, calibration_sets=[cset]).curves(pressures)
+    design, sets = resolve_calibration_files(load_design(sub / "d.toml"), sub)
+    assert sets == (cset,) and design.actuators[0].model.calibration == "lab"
+    (c,) = analyse(design, calibration_sets=sets).curves(pressures)
     assert max(abs(a - b) for a, b in zip(c.theta_deg, truth)) < 1e-6

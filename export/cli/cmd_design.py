@@ -111,9 +111,9 @@ def read_target_shape(ref: str):
 
 def _settings(args):
     from ...patterns.design import ModelSettings
-    from .target import _calibration_file
+    from ..files.calibfile import calibration_reference
 
-    name, sets = _calibration_file(args.calibration, Path.cwd())
+    name, sets = calibration_reference(args.calibration, Path.cwd())
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
 

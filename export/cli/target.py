@@ -138,28 +138,6 @@ def _quick_design(args, pattern: str):
     return Design("quick", tube_from_args(args), MachineSettings(), OperationSettings(), (spec,))
 
 
-def _calibration_file(value: str | None, base: Path) -> tuple[str | None, tuple]:
-    """(set name, (set,)) for a calibration that names a file; (value, ()) for a set name."""
-    if value is None or not (value.endswith(".toml") or "/" in value or "\\" in value):
-        return value, ()
-    from ..files.calibfile import read_calibration
-
-    cset = read_calibration(base / value)
-    return cset.name, (cset,)
-
-
-def _resolve_design_calibrations(design, base: Path):
-    """Replace calibration files named by a design's actuators by their set names; collect the sets."""
-    import dataclasses
-
-    sets, specs = {}, []
-    for spec in design.actuators:
-        name, found = _calibration_file(spec.model.calibration, base)
-        sets.update({s.name: s for s in found})
-        specs.append(dataclasses.replace(spec, model=dataclasses.replace(spec.model, calibration=name)))
-    return dataclasses.replace(design, actuators=tuple(specs)), tuple(sets.values())
-
-
 def load_target(args, *, pattern: str | None = None, design_path: str | None = None) -> Target:
     """The design a command works on, with the model flags applied.
 
@@ -172,14 +150,19 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
     elif design_path is not None:
         from ..files.designfile import load_design
 
-        design = load_design(design_path)
-        design, sets = _resolve_design_calibrations(design, Path(design_path).parent)
+        from ..files.calibfile import resolve_calibration_files
+
+        design, sets = resolve_calibration_files(load_design(design_path), Path(design_path).parent)
         source, quick = str(design_path), False
     else:
         from ...patterns.design import default_design
 
         design, sets, source, quick = default_design(), (), "built-in default design", False
-    flag_cal, flag_sets = _calibration_file(getattr(args, "calibration", None), Path.cwd())
+    flag_cal, flag_sets = (getattr(args, "calibration", None), ())
+    if flag_cal is not None:
+        from ..files.calibfile import calibration_reference
+
+        flag_cal, flag_sets = calibration_reference(flag_cal, Path.cwd())
     overrides = {k: getattr(args, k, None) for k in ("g_mpa", "p0_kpa", "p0_source", "tube_law")}
     design = _with_placement(with_model_overrides(design, calibration=flag_cal, **overrides), args)
     merged = {s.name: s for s in sets + flag_sets}

@@ -57,6 +57,7 @@ import dataclasses
 import io
 import tomllib
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -76,6 +77,9 @@ __all__ = [
     "read_calibration",
     "write_calibration",
     "calibration_toml",
+    "is_calibration_file",
+    "calibration_reference",
+    "resolve_calibration_files",
 ]
 
 _SET_KEYS = ("name", "description", "tube_law", "measurement", "tube", "materials", "points")
@@ -258,6 +262,60 @@ def calibration_toml(cset: CalibrationSet) -> str:
     doc["points"] = [{"pattern": p.pattern, "coordinate": pattern_kind(p.pattern).calibration_axis,
                       **{k: v for k, v in p.as_dict().items() if k != "pattern"}} for p in cset.points]
     return f"# embroact calibration set\n{_coverage_comment(cset)}\n{dumps(doc)}"
+
+
+def is_calibration_file(value: str) -> bool:
+    """True when a calibration setting names a file (``.toml`` or a path) rather than a set.
+
+    Examples
+    --------
+    >>> is_calibration_file("paper-2025"), is_calibration_file("lab.toml"), is_calibration_file("cal/lab")
+    (False, True, True)
+    """
+    return value.endswith(".toml") or "/" in value or "\\" in value
+
+
+def calibration_reference(value: str | None, base_dir) -> tuple[str | None, tuple[CalibrationSet, ...]]:
+    """(set name, (set,)) for a calibration setting that names a file (read relative to ``base_dir``);
+    (value, ()) for a set name or None."""
+    if value is None or not is_calibration_file(value):
+        return value, ()
+    cset = read_calibration(Path(base_dir) / value)
+    return cset.name, (cset,)
+
+
+def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[CalibrationSet, ...]]:
+    """``design`` with every calibration file its actuators name replaced by the set's name, and the sets.
+
+    What ``embroact predict/build/check DESIGN.toml`` do with ``[actuator.model] calibration =
+    "lab.toml"`` (``base_dir``: the design file's folder); pass the sets on to
+    :func:`embroact.predict.analysis.analyse`.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+    >>> folder = tempfile.mkdtemp()
+    >>> write_calibration(os.path.join(folder, "lab.toml"),
+    ...                   CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.0, 90.0),)))
+    >>> d = design_from_dict({"actuator": [{"name": "A1", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1,
+    ...                                     "length_mm": 100, "model": {"calibration": "lab.toml"}}]})
+    >>> d, sets = resolve_calibration_files(d, folder)
+    >>> d.actuators[0].model.calibration, [s.name for s in sets]
+    ('lab', ['lab'])
+    >>> m = analyse(d, calibration_sets=sets).actuators[0].model
+    >>> m.g_mpa, m.p0_kpa
+    (2.0, 90.0)
+    """
+    sets: dict[str, CalibrationSet] = {}
+    specs = []
+    for spec in design.actuators:
+        name, found = calibration_reference(spec.model.calibration, base_dir)
+        sets.update({s.name: s for s in found})
+        specs.append(dataclasses.replace(spec, model=dataclasses.replace(spec.model, calibration=name)))
+    return dataclasses.replace(design, actuators=tuple(specs)), tuple(sets.values())
 
 
 def write_calibration(path, cset: CalibrationSet) -> None:
