@@ -184,7 +184,7 @@ CATALOGUE = [
     ("path-too-tight", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 C 4 0 4 4 0 4"], 2,
      "path curvature radius must be >= width_mm/2 = 3.5 mm, got 1.5 mm"),
     ("cross-subnormal-interval", CR[:3] + ["--angle-deg", "45", "--interval-mm", "1e-320", "-o", "{tmp}/a.dst"], 2,
-     "interval_mm is too small to close the cross pattern (2*w*tan(angle)/interval_mm overflows), got 9.99989e-321"),
+     "interval_mm must be in (0, 100) and not subnormal (0 or of size >= 2.22507e-308), got 9.99989e-321"),
     ("path-too-short", ZZ[:3] + ["--interval-mm", "6", "--length-mm", "10", "-o", "{tmp}/a.dst"], 2,
      "path length_mm must be >= 12 for a zigzag with interval_mm=6 (at least 2 legs), got 10"),
     ("path-two-subpaths", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 100 0 M 0 10 L 100 10"], 2,

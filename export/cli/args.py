@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures"]
+__all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures",
+           "check_shape_flags"]
 
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
@@ -92,3 +93,21 @@ def parse_pressures(text: str, flag: str = "--pressure-kpa"):
     if not values or len(values) > MAX_PRESSURES:
         raise ParameterError(f"{flag} must list 1 to {MAX_PRESSURES} pressures, got {text!r}")
     return np.array(values)
+
+
+def check_shape_flags(args) -> None:
+    """``--shape-pressure-kpa`` and ``--tolerance-mm``, where a command has them, checked before any work.
+
+    >>> import argparse
+    >>> check_shape_flags(argparse.Namespace(shape_pressure_kpa=1e308))
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: shape_pressure_kpa must be in [0, 100000], got 1e+308
+    """
+    from ...patterns.base.errors import check_range
+
+    if getattr(args, "shape_pressure_kpa", None) is not None:
+        check_range("shape_pressure_kpa", args.shape_pressure_kpa, low=0.0, low_inclusive=True,
+                    high=MAX_PRESSURE_KPA, high_inclusive=True)
+    if getattr(args, "tolerance_mm", None) is not None:
+        check_range("tolerance_mm", args.tolerance_mm, low=0.0, high=10.0, high_inclusive=True)

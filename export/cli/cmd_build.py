@@ -71,12 +71,18 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 def run(args) -> int:
     """Load (or default) the design, analyse it once, gate on its rules, build, report."""
     from ...patterns.base.validate import check_output_name
+    from .args import check_shape_flags
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
     from .target import analyse_target, gate, load_target, summary_line
 
     formats = parse_formats(args.format) if args.format is not None else None
     check_writable_dir(check_output_name("--out", args.out))
+    check_shape_flags(args)
+    if args.speed_spm is not None:
+        from ..report.worksheet import check_speed_spm
+
+        check_speed_spm(args.speed_spm)
     target = load_target(args, design_path=args.design)
     analysis = analyse_target(target)
     try:

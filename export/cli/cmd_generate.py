@@ -76,6 +76,10 @@ def run(args) -> int:
     from ..report.build import SPLIT_LONG_IGNORES
     from .target import analyse_target, gate, load_target
 
+    if args.speed_spm is not None:
+        from ..report.worksheet import check_speed_spm
+
+        check_speed_spm(args.speed_spm)
     out = Path(check_output_name("--output", args.output))
     fmt = machine_format(out, fmt=args.format)
     sheets = [out.with_name(out.stem + ".worksheet.txt"), out.with_name(out.stem + ".worksheet.json")]

@@ -88,10 +88,12 @@ def _svg_only(kind: str, out: Path) -> None:
 def run(args) -> int:
     """Load (or default) the design, analyse it once, render the view, write it atomically, report."""
     from ...patterns.base.validate import check_output_name
+    from .args import check_shape_flags
     from ..files.atomic import check_output_dir
     from .target import analyse_target, load_target
 
     out = check_output_dir(check_output_name("--output", args.output))
+    check_shape_flags(args)
     if args.kind != "mesh":
         _svg_only(args.kind, out)
     text, info = _render(args, out, analyse_target(load_target(args, design_path=args.design)))

@@ -61,6 +61,7 @@ from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
+    "check_speed_spm",
     "TAIL_MM",
     "TRIM_TIME_S",
     "STOP_RESTART_S",
@@ -428,6 +429,15 @@ def machine_setup(machine, n_actuators: int, *, placement: bool = False) -> tupl
             "lay tube 1 before pressing start: the machine starts sewing actuator 1 at once")
 
 
+def check_speed_spm(speed_spm: float) -> float:
+    """The worksheet's machine speed [stitches/min] if in [1, 2000]; commands call it before any work.
+
+    >>> check_speed_spm(600)
+    600.0
+    """
+    return check_range("speed_spm", speed_spm, low=1.0, low_inclusive=True, high=2000.0, high_inclusive=True)
+
+
 def worksheet(
     plan: StitchPlan,
     design=None,
@@ -447,7 +457,7 @@ def worksheet(
         The design the plan came from; its ``name`` (if any) titles the sheet, its
         ``machine`` hoop sizes the fabric (default 200 x 200 mm).
     speed_spm : float
-        Machine speed [stitches/min], in (0, 2000].
+        Machine speed [stitches/min], in [1, 2000] (:func:`check_speed_spm`).
     fabric_thickness_mm : float
         For the per-penetration thread allowance [mm], in [0, 10].
     findings : iterable of Finding or dict
@@ -458,7 +468,7 @@ def worksheet(
         The analysis the plan came from: its derived geometry and models (G, P0, tube, tube
         law and their sources) go on the sheet instead of a second derivation.
     """
-    spm = check_range("speed_spm", speed_spm, low=1.0, low_inclusive=True, high=2000.0, high_inclusive=True)
+    spm = check_speed_spm(speed_spm)
     t_f = check_range("fabric_thickness_mm", fabric_thickness_mm, low=0.0, high=10.0, low_inclusive=True,
                       high_inclusive=True)
     ids = sorted({int(a) for a in plan.actuator.tolist() if a >= 0})

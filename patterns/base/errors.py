@@ -28,6 +28,7 @@ width_mm must be in (0, 200), got 200.00000000000003
 from __future__ import annotations
 
 import math
+import sys
 
 __all__ = [
     "EmbroactError",
@@ -97,6 +98,9 @@ def check_range(
         The value to check; bools and non-numbers are rejected.
     low, high : float, optional
         Bounds; open unless ``low_inclusive``/``high_inclusive``.
+
+    Subnormal numbers (``5e-324``: below ``sys.float_info.min`` in size, not zero) are refused
+    whatever the bounds: they carry a few bits of precision and their reciprocals overflow.
     """
     lo_b, hi_b = ("[" if low_inclusive else "("), ("]" if high_inclusive else ")")
     rng = f"{lo_b}{_fmt(low) if low is not None else '-inf'}, {_fmt(high) if high is not None else 'inf'}{hi_b}"
@@ -121,4 +125,7 @@ def check_range(
         if v not in (low, high) and got in (_fmt(low) if low is not None else None, _fmt(high) if high is not None else None):
             got = repr(v)  # just past a bound: 200.00000000000003, not "200"
         raise ParameterError(f"{name} must be in {rng}, got {got}")
+    if v != 0.0 and abs(v) < sys.float_info.min:  # subnormal: precision lost, and 1/v overflows
+        raise ParameterError(f"{name} must be in {rng} and not subnormal (0 or of size >= {sys.float_info.min:g}), "
+                             f"got {v:g}")
     return v
