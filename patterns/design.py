@@ -33,7 +33,7 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     interval_mm = 1.0                # required: stitch interval s
     # angle_deg = 45.0               # cross only (required there): alpha0
     # adjust = "auto"                # cross only: "auto", "interval" or "angle"
-    length_mm = 100.0                # straight path of this length ...
+    length_mm = 100.0                # one of length_mm or path is required: a straight path ...
     # path = "M 0 0 A 40 40 0 0 1 40 40"  # ... or an SVG path d (M L H V C S Q T A Z;
     #                                      mm, y down as in SVG; flipped to the plan) ...
     # path = [[0, 0], [50, 10], ...] # ... or points (mm, plan frame, y up)
@@ -90,6 +90,7 @@ from .base.choices import check_choice
 from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
+from .base.validate import check_name, shown
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
@@ -143,7 +144,7 @@ class MachineSettings:
     min_stitch_mm, max_stitch_mm : float
         Shortest sensible and longest allowed stitch [mm], 0 <= min < max.
     speed_spm : float
-        Sewing speed [stitches/min], > 0 (time estimates).
+        Sewing speed [stitches/min], >= 1 (time estimates).
     cord_stop : str
         How a stop-code format (DST, EXP) writes a cord-in stop: ``"sequence"`` (one stop
         code; a multi-needle machine in manual mode or with stops programmed in its needle
@@ -176,7 +177,7 @@ class MachineSettings:
         check_range("hoop_height_mm", self.hoop_height_mm, low=0.0, high=10_000.0)
         mx = check_range("max_stitch_mm", self.max_stitch_mm, low=0.0, high=1000.0)
         check_range("min_stitch_mm", self.min_stitch_mm, low=0.0, low_inclusive=True, high=mx)
-        check_range("speed_spm", self.speed_spm, low=0.0, high=10_000.0)
+        check_range("speed_spm", self.speed_spm, low=1.0, low_inclusive=True, high=10_000.0)
         if not isinstance(self.placement_line, bool):
             raise ParameterError(f"placement_line must be true or false, got {self.placement_line!r}")
         check_range("placement_stitch_mm", self.placement_stitch_mm, low=0.0, high=1000.0, high_inclusive=True)
@@ -273,8 +274,7 @@ class ActuatorSpec:
     segments: tuple[SegmentSpec, ...] = ()
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name.strip():
-            raise ParameterError(f"name must be a non-empty string, got {self.name!r}")
+        check_name("name", self.name)
         PATTERN_KINDS.for_params(self.params)
         object.__setattr__(self, "centerline", as_centerline(self.centerline))
         segs = tuple(self.segments)
@@ -338,6 +338,7 @@ class Design:
     actuators: tuple[ActuatorSpec, ...]
 
     def __post_init__(self) -> None:
+        check_name("name", self.name)
         object.__setattr__(self, "actuators", tuple(self.actuators))
         if not self.actuators:
             raise ParameterError("actuators must hold at least one actuator, got none")
@@ -395,8 +396,12 @@ def _table(value, path: str, allowed: tuple[str, ...], required: tuple[str, ...]
 
 def _number(value, where: str) -> float | int:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise DesignFileError(f"{where}: must be a number, got {value!r}")
-    if not math.isfinite(value):
+        raise DesignFileError(f"{where}: must be a number, got {shown(value)}")
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:  # a TOML integer too large for a float (10**320)
+        raise DesignFileError(f"{where}: must be a finite number, got an integer of {len(str(abs(value)))} digits") from None
+    if not finite:
         raise DesignFileError(f"{where}: must be a finite number, got {value!r}")
     return value
 
@@ -544,7 +549,7 @@ def design_from_dict(d) -> Design:
             raise DesignFileError(f"actuator[{i}].name: duplicate actuator name {spec.name!r} (also actuator[{seen[spec.name]}])")
         seen[spec.name] = i
     return Design(
-        name=_string(top.get("name", "design"), "name"),
+        name=_build("name", check_name, {"name": "name", "value": _string(top.get("name", "design"), "name")}),
         tube=_numbers_table(top.get("tube", {}), "tube", Tube),
         machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format", "cord_stop"),
                                 flags=("placement_line",)),
