@@ -59,8 +59,8 @@ from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Realised, Role, StitchPlan
 
-__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "segment_stations", "MAX_TRANSITION_STITCH_MM",
-           "LENGTH_MATCH_MM"]
+__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "segment_stations", "pattern_parts",
+           "MAX_TRANSITION_STITCH_MM", "LENGTH_MATCH_MM"]
 
 #: Longest stitch of a transition between segments, along the path [mm].
 MAX_TRANSITION_STITCH_MM = 3.0
@@ -150,6 +150,23 @@ class SegmentPlan:
     def requested_angle_deg(self) -> float:
         """alpha0 asked for (0 for zigzag) [deg]."""
         return getattr(self.params, "angle_deg", 0.0) if pattern_kind(self.pattern).has_angle else 0.0
+
+
+def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised], ...]:
+    """``(label, requested parameters, realised)`` of an actuator's patterns: one per segment of a segmented one.
+
+    Rules comparing the request with what was sewn loop over these; ``label`` is ``""`` for a
+    single-pattern actuator and ``"segment k: "`` for a segment (a message prefix).
+
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> segs = (SegmentSpec(ZigzagParams(7.0, 1.0), 30.0), SegmentSpec(ZigzagParams(9.0, 1.0), 30.0))
+    >>> act = segmented(Centerline.straight(60.0), segs).actuators[0]
+    >>> [(label, p.width_mm, round(r.width_mm, 6)) for label, p, r in pattern_parts(act)]
+    [('segment 0: ', 7.0, 7.0), ('segment 1: ', 9.0, 9.0)]
+    """
+    if act.segments:
+        return tuple((f"segment {k}: ", seg.params, seg.realised) for k, seg in enumerate(act.segments))
+    return (("", act.params, act.realised),)
 
 
 def _check_lengths(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:

@@ -24,6 +24,7 @@ from __future__ import annotations
 from ..patterns.base.findings import RULES, Finding, Inputs, Severity
 from ..patterns.params import CrossParams
 from ..patterns.plan import StitchPlan
+from ..patterns.segments import pattern_parts
 from ..patterns import rules as geometry
 from ..patterns.rules import GEOMETRY_RULES, Layout, RuleSettings
 from ..patterns.rules.engine import Subject
@@ -81,14 +82,14 @@ def near_neutral(s: Subject) -> list[Finding]:
     band = s.settings.neutral_band_deg
     out = []
     for k, act in enumerate(s.plan.actuators):
-        if not isinstance(act.params, CrossParams):
-            continue
-        real = act.realised
-        neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
-        if abs(real.angle_deg - neutral) < band:
-            out.append(RULES.finding(
-                "EA206", f"angle {real.angle_deg:.2f} deg is {abs(real.angle_deg - neutral):.2f} deg from the neutral "
-                f"angle {neutral:.2f} deg (band {band:g} deg)", **s.actuator_place(k)))
+        for label, req, real in pattern_parts(act):
+            if not isinstance(req, CrossParams):
+                continue
+            neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
+            if abs(real.angle_deg - neutral) < band:
+                out.append(RULES.finding(
+                    "EA206", f"{label}angle {real.angle_deg:.2f} deg is {abs(real.angle_deg - neutral):.2f} deg from "
+                    f"the neutral angle {neutral:.2f} deg (band {band:g} deg)", **s.actuator_place(k)))
     return out
 
 

@@ -171,3 +171,21 @@ def test_model_rules_run_per_segment():
     assert seg0 > 30.0
     ea403 = [f for f in found if f.code == "EA403"]
     assert len(ea403) == 1 and f"{seg0:.1f} deg" in ea403[0].message
+
+
+def test_request_rules_run_per_segment():
+    """EA204 (angle off request) and EA206 (near neutral) name the segment they are about."""
+    from embroact.predict.analysis import analyse
+    from embroact.predict.rules import check_design
+
+    d = design_from_dict({"actuator": [{"name": "S", "segment": [
+        {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
+        {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 30, "adjust": "angle", "length_mm": 60},
+        {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 33.4, "adjust": "interval",
+         "length_mm": 60}]}]})
+    found = check_design(analyse(d))
+    msgs = {f.code: [g.message for g in found if g.code == f.code] for f in found}
+    # segment 1: closing the cross at 30 deg moves it to 30.96 deg (> the 0.5 deg tolerance)
+    assert any(m.startswith("segment 1: leg angle 30.96 deg realised") for m in msgs["EA204"])
+    # segment 2: 33.4 deg is within the neutral band of 33.37 deg
+    assert any(m.startswith("segment 2: angle 33.40 deg") for m in msgs["EA206"])

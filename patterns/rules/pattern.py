@@ -17,6 +17,7 @@ import numpy as np
 
 from ..base.findings import RULES, Finding, Inputs, Severity
 from ..params import CrossParams
+from ..segments import pattern_parts
 from .engine import Hits, Subject
 
 __all__ = ["PATTERN_RULES"]
@@ -57,11 +58,11 @@ def angle_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.angle_deg
     out = []
     for k, act in enumerate(s.plan.actuators):
-        real, req = act.realised, act.params
-        if isinstance(req, CrossParams) and abs(real.angle_deg - req.angle_deg) > tol:
-            out.append(RULES.finding(
-                "EA204", f"leg angle {real.angle_deg:.2f} deg realised, {req.angle_deg:g} deg requested "
-                f"(tolerance {tol:g} deg)", **s.actuator_place(k)))
+        for label, req, real in pattern_parts(act):
+            if isinstance(req, CrossParams) and abs(real.angle_deg - req.angle_deg) > tol:
+                out.append(RULES.finding(
+                    "EA204", f"{label}leg angle {real.angle_deg:.2f} deg realised, {req.angle_deg:g} deg requested "
+                    f"(tolerance {tol:g} deg)", **s.actuator_place(k)))
     return out
 
 
@@ -73,12 +74,12 @@ def interval_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.spacing_rel
     out = []
     for k, act in enumerate(s.plan.actuators):
-        real, req = act.realised, act.params
-        rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
-        if rel > tol:
-            out.append(RULES.finding(
-                "EA205", f"stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm requested "
-                f"({rel * 100:.1f} % off, tolerance {tol * 100:g} %)", **s.actuator_place(k)))
+        for label, req, real in pattern_parts(act):
+            rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
+            if rel > tol:
+                out.append(RULES.finding(
+                    "EA205", f"{label}stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm "
+                    f"requested ({rel * 100:.1f} % off, tolerance {tol * 100:g} %)", **s.actuator_place(k)))
     return out
 
 
