@@ -85,7 +85,8 @@ class _Parser(argparse.ArgumentParser):
         import difflib
 
         known = [s for a in self._actions for s in a.option_strings if s.startswith("--")]
-        close = difflib.get_close_matches(token.split("=", 1)[0], known, n=1, cutoff=0.75)
+        flag = token.split("=", 1)[0]
+        close = [k for k in known if k.startswith(flag)][:1] or difflib.get_close_matches(flag, known, n=1, cutoff=0.75)
         return f" (did you mean {close[0]}?)" if close else ""
 
 
