@@ -317,3 +317,27 @@ def test_the_command_prints_its_address_serves_it_and_stops_on_ctrl_c(tmp_path):
         proc.send_signal(signal.SIGINT)
         code = proc.wait(20)
     assert code == 130 and proc.stderr.read().strip() == "embroact: interrupted"
+
+
+def test_a_segmented_actuator_shows_each_segments_bend(out_dir):
+    import xml.etree.ElementTree as ET
+
+    def seg_dict(w1):
+        return {"name": "seg", "actuator": [{"name": "S", "segment": [
+            {"pattern": "zigzag", "width_mm": 8.0, "interval_mm": 1.0, "length_mm": 40.0},
+            {"pattern": "zigzag", "width_mm": w1, "interval_mm": 1.0, "length_mm": 50.0}]}]}
+
+    client = TestClient(create_app(Studio(design_from_dict(seg_dict(6.0)), out_dir), token=TOKEN, port=PORT),
+                        base_url=BASE)
+    v = edit(client, {"actuator[0].segment[1].width_mm": 7.0}, 200)
+    v = v.json()
+    per = analyse(design_from_dict(seg_dict(7.0))).segment_curves([200.0])[0]
+    expected = [float(c.theta_deg[0]) for c in per]
+    act = v["actuators"][0]
+    assert act["segment_theta_deg"] == pytest.approx(expected, rel=1e-12)
+    assert act["theta_deg"] == pytest.approx(sum(expected), rel=1e-12)
+    chart = ET.fromstring(v["chart_svg"])
+    series = {e.get("data-series") for e in chart.iter("{http://www.w3.org/2000/svg}polyline")
+              if e.get("class") == "curve"}
+    assert series == {"0", "1"}  # one curve per segment
+    assert "segment 1" in v["chart_svg"] and v["side_svg"].startswith("<svg")

@@ -90,25 +90,47 @@ def stitches_svg(plan, findings) -> str:
     return svg[: svg.rfind("</svg>")] + layer + "</svg>"
 
 
+def _segment_series(analysis):
+    """Chart series and title of a design with segmented actuators: one series per segment
+    (:meth:`~embroact.predict.analysis.DesignAnalysis.segment_curves`; a single-pattern actuator: its curve)."""
+    from ..pictures.chart import Series
+
+    series = []
+    for a, curves in zip(analysis.actuators, analysis.segment_curves()):
+        parts = a.segments or (a,)
+        for k, (part, c) in enumerate(zip(parts, curves)):
+            d = part.derived
+            name = f"{a.name} segment {k}" if a.segments else a.name
+            series.append(Series.from_curve(c, label=f"{name} ({d.pattern}, w {d.width_mm:.1f} mm; G {part.model.g_mpa:.4g}"
+                                                     f" MPa, P0 {part.model.p0_kpa:.4g} kPa)", p0_kpa=part.model.p0_kpa))
+    return series, f"{analysis.plan.name}: predicted bend per segment"
+
+
 def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """The build's bend chart (:func:`~embroact.export.pictures.previews.bend_chart`) with the slider's
-    pressure as a vertical line and each actuator's bend there as a dot."""
+    pressure as a vertical line and each actuator's bend there as a dot; a design with segmented
+    actuators gets one curve (and dot) per segment."""
     from ..pictures import previews as pv
-    from ..pictures.chart import chart_scale
+    from ..pictures.chart import bend_chart_svg, chart_scale
 
     try:
-        curves = analysis.curves()
-        svg = pv.bend_chart(analysis, curves)
+        if any(a.segments for a in analysis.actuators):
+            series, title = _segment_series(analysis)
+            svg = bend_chart_svg(series, title=title)
+            thetas = [t for b in bends for t in (b["segment_theta_deg"] or [b["theta_deg"]])]
+        else:
+            curves = analysis.curves()
+            series, svg = pv.bend_series(analysis, curves), pv.bend_chart(analysis, curves)
+            thetas = [b["theta_deg"] for b in bends]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")
-    sc = chart_scale(pv.bend_series(analysis, curves))
+    sc = chart_scale(series)
     if not sc.x_min_kpa <= pressure_kpa <= sc.x_max_kpa:
         return svg
     x = sc.x_px(pressure_kpa)
     parts = [f'<line x1="{x:.2f}" x2="{x:.2f}" y1="{sc.top_px:.2f}" y2="{sc.top_px + sc.height_px:.2f}" '
              f'stroke="#c0392b" stroke-width="1.2" stroke-dasharray="4,3"/>']
-    for b in bends:
-        t = b["theta_deg"]
+    for t in thetas:
         if t is not None and np.isfinite(t) and sc.y_min_deg <= t <= sc.y_max_deg:
             parts.append(f'<circle class="pressure-dot" cx="{x:.2f}" cy="{sc.y_px(t):.2f}" r="4.5" fill="#c0392b"/>')
     layer = f'<g id="pressure-marker" data-pressure-kpa="{pressure_kpa:g}">' + "".join(parts) + "</g>"

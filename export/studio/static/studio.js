@@ -149,6 +149,11 @@ function showNumbers(v) {
       ["neutral angle [deg]", fmt(d.neutral_angle_deg, 2)],
     ];
     if (m) rows.push(["G, P0 from", m.g_source === m.p0_source ? m.g_source : `${m.g_source}; ${m.p0_source}`]);
+    (a.segment_theta_deg || []).forEach((t, k) => {
+      const seg = a.segments[k];
+      rows.push([`segment ${k} (${seg.pattern}) bend [deg]`, fmt(t, 2), `angle-${i}-${k}`]);
+      if (seg.model) rows.push([`segment ${k}: G [MPa], P0 [kPa]`, `${fmt(seg.model.g_mpa, 4)}, ${fmt(seg.model.p0_kpa, 2)}`]);
+    });
     box.append(h, table(rows));
   });
 }
