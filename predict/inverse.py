@@ -265,6 +265,10 @@ class BendCandidate:
         The constraint closest to binding (or that binds, for an unreachable target).
     warnings : tuple of str
         Codes of design-rule warnings (no candidate has errors).
+    theta_sd_deg : float or None
+        1-sigma uncertainty of the bend from the calibration's covariance
+        (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`); None when the calibration
+        claims none for this design (interpolated or published values).
     """
 
     pattern: str
@@ -280,6 +284,7 @@ class BendCandidate:
     sensitivity_deg_per_deg: float | None
     binding: str
     warnings: tuple[str, ...] = ()
+    theta_sd_deg: float | None = None
 
     def as_dict(self) -> dict:
         """JSON-ready, units in the keys."""
@@ -289,7 +294,7 @@ class BendCandidate:
                 "range_margin_fraction": self.range_margin,
                 "sensitivity_deg_per_0p1mm_width": self.sensitivity_deg_per_0p1mm,
                 "sensitivity_deg_per_deg_angle": self.sensitivity_deg_per_deg, "binding": self.binding,
-                "warnings": list(self.warnings)}
+                "warnings": list(self.warnings), "theta_sd_deg": self.theta_sd_deg}
 
 
 @dataclass(frozen=True, slots=True)
@@ -390,7 +395,8 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     act = a.actuators[0]
     model = act.model
     limit, margin = _limits(model, pressure_kpa)
-    edge = min(x - space.low, space.high - x) / (space.high - space.low)
+    span = space.high - space.low
+    edge = min(x - space.low, space.high - x) / span if span > 0.0 else 0.0  # a one-point calibration: no room
     s_w = _geometry_sensitivity(act.derived, model, pressure_kpa, width_mm=0.05) * 2.0  # per 0.1 mm
     s_a = _geometry_sensitivity(act.derived, model, pressure_kpa, angle_deg=0.5) if space.pattern == "cross" else None
     range_note = (f"the {space.describe()} range: {space.parameter} {x:.4g} is "
@@ -398,8 +404,10 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     limit_note = f"{limit} ({margin:.1f} kPa above the target pressure)" if math.isfinite(margin) else limit
     binding = range_note if edge * pressure_kpa <= (margin if math.isfinite(margin) else math.inf) * 0.5 \
         else limit_note
+    band = a.bands([pressure_kpa])[0]
     return BendCandidate(space.pattern, space.params(x), d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
-                         s_w, s_a, binding, tuple(sorted({f.code for f in findings})))
+                         s_w, s_a, binding, tuple(sorted({f.code for f in findings})),
+                         None if band is None else float(band.theta_sd_deg[0]))
 
 
 def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, table) -> str:
@@ -410,6 +418,9 @@ def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, table) 
     lo, hi = float(theta[ok].min()), float(theta[ok].max())
     if target_deg > hi:
         return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at most {hi:+.1f} deg in a valid state over "
+                f"{space.describe()}")
+    if lo > 0.0:
+        return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at least {lo:+.1f} deg in a valid state over "
                 f"{space.describe()}")
     return (f"{space.pattern}: at {pressure_kpa:g} kPa its most negative bend in a valid state over "
             f"{space.describe()} is {lo:+.1f} deg")
@@ -465,6 +476,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
             reasons.append(_why_not(space, target, p, table))
         x, theta, status = table
         ok = np.flatnonzero(np.isin(status, _VALID))
+        ok = ok[np.unique(x[ok], return_index=True)[1]]  # one entry per parameter value (one-point ranges)
         for i in ok[np.argsort(np.abs(theta[ok] - target), kind="stable")][:3]:
             nearest.append((abs(float(theta[i]) - target), space, float(x[i])))
     nearest.sort(key=lambda t: (t[0], t[1].pattern, t[2]))

@@ -136,7 +136,10 @@ def _bend(args, tube, settings, sets) -> tuple[dict, object, list[str]]:
         sens = f"{c.sensitivity_deg_per_0p1mm:+.2f} deg per 0.1 mm width"
         if c.sensitivity_deg_per_deg is not None:
             sens += f", {c.sensitivity_deg_per_deg:+.2f} deg per deg angle"
-        lines += [f"  limit: {c.limit}{margin}", f"  sensitivity: {sens}", f"  binding: {c.binding}"]
+        band = ("none claimed (the calibration records no covariance for this design)" if c.theta_sd_deg is None
+                else f"+-{c.theta_sd_deg:.2f} deg (1 sigma, from the calibration's covariance)")
+        lines += [f"  limit: {c.limit}{margin}", f"  uncertainty: {band}", f"  sensitivity: {sens}",
+                  f"  binding: {c.binding}"]
         if c.warnings:
             lines.append(f"  rule findings: {', '.join(c.warnings)}")
     return r.as_dict(), r.best.design, lines
