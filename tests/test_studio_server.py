@@ -341,3 +341,21 @@ def test_a_segmented_actuator_shows_each_segments_bend(out_dir):
               if e.get("class") == "curve"}
     assert series == {"0", "1"}  # one curve per segment
     assert "segment 1" in v["chart_svg"] and v["side_svg"].startswith("<svg")
+
+
+HOSTILE = ["nan", "inf", "-inf", "1e999", "abc", "", "  ", "0x10", "\x00", "7" * 400, -1e308]
+
+
+def test_hostile_values_in_every_field_are_one_line_answers(client):
+    fields = client.get("/api/views", headers=AUTH).json()["fields"]
+    before = client.get("/api/views", headers=AUTH).json()
+    for f in fields:
+        for value in HOSTILE:
+            r = edit(client, {f["key"]: value})
+            assert r.status_code in (200, 400), (f["key"], value, r.text)
+            body = r.json()
+            if body.get("applied") is False or r.status_code == 400:
+                assert "\n" not in body["error"] and body["error"], (f["key"], value)
+            else:  # accepted (a name, an empty optional value): put the design back
+                edit(client, {f["key"]: f["value"] if f["value"] is not None else ""})
+    assert client.get("/api/views", headers=AUTH).json() == before
