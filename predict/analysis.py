@@ -127,6 +127,9 @@ class ActuatorAnalysis:
         A segmented actuator's segments, each with its own model; ``derived`` is then the
         first segment's and ``choice`` is ``None`` (there is no one model: use
         :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`). Empty otherwise.
+    first_leg_mm : float
+        A single-pattern actuator: arc length where its legs start [mm] (the path before
+        them bends by zero; a segment's is :attr:`SegmentPlan.first_leg_mm`).
     """
 
     spec: ActuatorSpec
@@ -135,23 +138,23 @@ class ActuatorAnalysis:
     choice: ModelChoice | None
     model_error: str = ""
     segments: tuple[SegmentAnalysis, ...] = ()
+    first_leg_mm: float = 0.0
 
     def bend_pieces(self) -> tuple[tuple[float, int], ...]:
         """The fabric line from the clamp as ``(length_mm, segment index)`` pieces; index -1 bends by zero.
 
-        A single-pattern actuator is one piece ``(l0, 0)``. A segmented one covers its
-        path: the unbent lead-in before the first legs, each segment's legs, the
-        transitions between them and the tail after the last legs.
+        The pieces cover the path: the unbent lead-in before the first legs, the legs
+        (``l0``, index 0) of a single-pattern actuator or each segment's legs with the
+        transitions between them, and the tail after the last legs.
         """
-        if not self.segments:
-            return ((self.derived.length_mm, 0),)
+        spans = ([(self.first_leg_mm, self.derived.length_mm)] if not self.segments
+                 else [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.segments])
         out, at = [], 0.0
-        for k, seg in enumerate(self.segments):
-            start = seg.plan.first_leg_mm
+        for k, (start, length) in enumerate(spans):
             if start - at > 1e-9:
                 out.append((start - at, -1))
-            out.append((seg.derived.length_mm, k))
-            at = start + seg.derived.length_mm
+            out.append((length, k))
+            at = start + length
         tail = self.plan.centerline.length_mm - at
         if tail > 1e-9:
             out.append((tail, -1))
@@ -360,12 +363,22 @@ def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAn
                             f"(ActuatorAnalysis.segments)", tuple(segs))
 
 
-def _analyse_actuator(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
+def _first_leg_mm(plan: StitchPlan, index: int) -> float:
+    """Arc length where actuator ``index`` of ``plan`` starts its legs (both ends of every LEG stitch) [mm]."""
+    from ..patterns.plan import Role
+
+    legs = np.flatnonzero((plan.actuator == index) & (plan.roles == Role.LEG))
+    s, _ = plan.actuators[index].centerline.project(plan.xy_mm[np.concatenate([legs - 1, legs])])
+    return float(s.min())
+
+
+def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
+    act = plan.actuators[index]
     if act.segments:
         return _analyse_segments(spec, act, sets)
     derived = derive(act)
     choice, error = _model_of(derived, spec.model, sets)
-    return ActuatorAnalysis(spec, act, derived, choice, error)
+    return ActuatorAnalysis(spec, act, derived, choice, error, first_leg_mm=_first_leg_mm(plan, index))
 
 
 def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),
@@ -395,6 +408,6 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     """
     sets = tuple(calibration_sets.values()) if isinstance(calibration_sets, Mapping) else tuple(calibration_sets)
     plan = build_plan(design) if plan is None else plan
-    by_name = {a.name: a for a in plan.actuators}
-    acts = tuple(_analyse_actuator(spec, by_name[spec.name], sets) for spec in design.actuators)
+    index = {a.name: i for i, a in enumerate(plan.actuators)}
+    acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets) for spec in design.actuators)
     return DesignAnalysis(design, plan, acts, sets)
