@@ -189,3 +189,15 @@ def test_request_rules_run_per_segment():
     assert any(m.startswith("segment 1: leg angle 30.96 deg realised") for m in msgs["EA204"])
     # segment 2: 33.4 deg is within the neutral band of 33.37 deg
     assert any(m.startswith("segment 2: angle 33.40 deg") for m in msgs["EA206"])
+
+
+def test_single_actuator_pieces_cover_the_path():
+    """A single cross actuator's legs (58.8 mm on a 60 mm path, centred) with the unbent ends around them."""
+    from embroact.predict.analysis import analyse
+
+    d = design_from_dict({"actuator": [{"name": "C", "pattern": "cross", "width_mm": 7, "interval_mm": 1.4,
+                                        "angle_deg": 45, "length_mm": 60}]})
+    act = analyse(d).actuators[0]
+    assert [(round(length, 9), k) for length, k in act.bend_pieces()] == [(0.6, -1), (58.8, 0), (0.6, -1)]
+    shape, theta = analyse(d).shapes("C", [250.0])[0]
+    assert shape.length_mm == pytest.approx(60.0) and theta[0] == theta[2] == 0.0
