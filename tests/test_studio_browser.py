@@ -174,3 +174,13 @@ def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_pa
     assert float(page.input_value("#f-actuator-0--width_mm")) == pytest.approx(width, rel=1e-12)
     assert page.input_value("#f-actuator-0--interval_mm") == "1"
     assert [p for p in problems if "status of 403" not in p] == []
+
+
+def test_the_launcher_page_forwards_to_the_studio(studio_page, tmp_path):
+    from embroact.export.studio.serve import launcher_page
+
+    page, url, out, problems = studio_page
+    page.goto(launcher_page(url, tmp_path).as_uri())
+    page.wait_for_url(url, timeout=30_000)
+    page.wait_for_selector("body[data-ready='1']", timeout=30_000)
+    assert page.inner_text("#design-name") == "paper-zigzag"

@@ -359,3 +359,20 @@ def test_hostile_values_in_every_field_are_one_line_answers(client):
             else:  # accepted (a name, an empty optional value): put the design back
                 edit(client, {f["key"]: f["value"] if f["value"] is not None else ""})
     assert client.get("/api/views", headers=AUTH).json() == before
+
+
+def test_the_browser_is_given_a_private_launcher_page_not_the_token(tmp_path, monkeypatch):
+    import stat
+    import types
+    import webbrowser
+
+    from embroact.export.studio import serve
+
+    opened = []
+    monkeypatch.setattr(webbrowser, "open", opened.append)
+    url = "http://127.0.0.1:4321/?token=SECRET-token"
+    page = serve.launcher_page(url, tmp_path)
+    assert stat.S_IMODE(page.stat().st_mode) == 0o600
+    assert f'http-equiv="refresh" content="0;url={url}"' in page.read_text()
+    serve._open_browser(types.SimpleNamespace(started=True, should_exit=False), page)
+    assert opened == [page.as_uri()] and "SECRET" not in opened[0]

@@ -2,7 +2,8 @@
 
 The socket is bound before the server starts, so ``port=0`` (any free port) is known when
 the address is printed and the Host check is set up. uvicorn serves the app; Ctrl-C stops
-it cleanly.
+it cleanly. The browser is opened on a private launcher page (:func:`launcher_page`), so
+the token never appears on a command line.
 
 Examples
 --------
@@ -12,15 +13,20 @@ Examples
 from __future__ import annotations
 
 import contextlib
+import html
+import os
 import secrets
+import shutil
 import socket
 import sys
+import tempfile
 import threading
 import time
+from pathlib import Path
 
 from ...patterns.base.errors import ParameterError
 
-__all__ = ["studio_url", "listen", "serve", "background", "HOST"]
+__all__ = ["studio_url", "listen", "launcher_page", "serve", "background", "HOST"]
 
 HOST = "127.0.0.1"
 
@@ -46,13 +52,26 @@ def listen(port: int) -> socket.socket:
     return sock
 
 
-def _open_browser(server, url: str) -> None:
+def launcher_page(url: str, folder: str | os.PathLike) -> Path:
+    """A page only its owner can read that forwards the browser to ``url``.
+
+    The browser is started with this file's name, not the address: a command line is visible
+    to every user of the machine (``ps``), the token must not be.
+    """
+    fd, name = tempfile.mkstemp(prefix="embroact-studio-", suffix=".html", dir=folder)  # mode 0600
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write(f'<!DOCTYPE html><meta charset="utf-8"><meta http-equiv="refresh" content="0;url={html.escape(url)}">'
+                 f'<title>embroact studio</title><a href="{html.escape(url)}">embroact studio</a>\n')
+    return Path(name)
+
+
+def _open_browser(server, page: Path) -> None:
     import webbrowser
 
     while not server.started and not server.should_exit:
         time.sleep(0.05)
     if server.started:
-        webbrowser.open(url)
+        webbrowser.open(page.as_uri())
 
 
 def _server(studio, port: int):
@@ -74,12 +93,14 @@ def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
     server, sock, url = _server(studio, port)
     stream = sys.stdout if stream is None else stream
     print(f"embroact studio: {url}\nwrites into {studio.out_dir}; Ctrl-C stops it", file=stream, flush=True)
-    if browser:
-        threading.Thread(target=_open_browser, args=(server, url), daemon=True).start()
+    folder = tempfile.mkdtemp(prefix="embroact-studio-")  # mode 0700
     try:
+        if browser:
+            threading.Thread(target=_open_browser, args=(server, launcher_page(url, folder)), daemon=True).start()
         server.run(sockets=[sock])
     finally:
         sock.close()
+        shutil.rmtree(folder, ignore_errors=True)
     return 0
 
 
