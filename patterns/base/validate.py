@@ -28,7 +28,7 @@ limit                      value               applies to
 ``MACHINE_FILE_BYTES``     1.5 MiB             embroidery files given to ``check`` (520,000 DST records)
 ``MACHINE_FILE_RECORDS``   500,000             records of an embroidery file (every format)
 ``PATH_CHARS``             1,000,000           characters of one SVG path ``d`` string
-``PATH_SEGMENTS``          20,000              drawing commands of one SVG path
+``PATH_SEGMENTS``          5,000               drawing commands of one SVG path (check: 4 s)
 ``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
 =========================  ==================  =============================================
 
@@ -85,7 +85,7 @@ CSV_FIELD_CHARS = 1_000
 MACHINE_FILE_BYTES = 1536 * 1024
 MACHINE_FILE_RECORDS = 500_000
 PATH_CHARS = 1_000_000
-PATH_SEGMENTS = 20_000
+PATH_SEGMENTS = 5_000
 NAME_CHARS = 1_000
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
 SHOWN_CHARS = 80
