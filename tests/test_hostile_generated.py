@@ -263,6 +263,9 @@ def test_size_bombs_for_every_reader(tmp_path):
     seg = "M 0 0 " + " ".join(f"L {i * 0.01:.2f} {(i % 2) * 0.01}" for i in range(1, lim.PATH_SEGMENTS + 1))
     (t / "segments.toml").write_text(design.format(seg))
     n_numbers = 2 + 2 * (lim.PATH_SEGMENTS * 7 // 2 + 1)
+    big_svg = _sparse(t / "big.svg", lim.TEXT_FILE_BYTES + 1)
+    (t / "many.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
+                                f'viewBox="0 0 200 200"><path id="t" d="{seg} L 0 5"/></svg>')
     cases = [
         ("design-bytes", ["check", str(big_toml)], f"{big_toml}: design file must be at most "
                                                     f"{lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
@@ -288,6 +291,10 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("path-segments", ["check", f"{t}/segments.toml"],  # a move-to and PATH_SEGMENTS lines
          f"{t}/segments.toml: actuator[0].path: SVG path must have at most {lim.PATH_SEGMENTS:,} segments, "
          f"got {lim.PATH_SEGMENTS + 1:,}"),
+        ("svg-bytes", ZZ + ["-o", f"{t}/a.dst", "--path", str(big_svg)],
+         f"{big_svg}: SVG file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
+        ("svg-segments", ZZ + ["-o", f"{t}/a.dst", "--path", f"{t}/many.svg#t"],  # a move-to and the lines
+         f"{t}/many.svg#t: SVG path must have at most {lim.PATH_SEGMENTS:,} segments, got {lim.PATH_SEGMENTS + 2:,}"),
     ]
     for suffix in readable_suffixes():
         f = _sparse(t / f"big.{suffix}", lim.MACHINE_FILE_BYTES + 1)

@@ -42,7 +42,8 @@ from typing import Any
 import numpy as np
 
 from ...patterns.base.arrays import frozen_array
-from ...patterns.base.errors import PathError
+from ...patterns.base.errors import DesignFileError, PathError
+from ...patterns.base.validate import PATH_SEGMENTS, TEXT_FILE_BYTES, read_limited
 from ...patterns.centerline import Centerline
 
 __all__ = ["SvgPath", "is_svg_ref", "split_ref", "read_svg_path", "svg_centerline"]
@@ -215,7 +216,9 @@ def read_svg_path(ref: str | os.PathLike, *, base_dir: str | os.PathLike | None 
     file, name = split_ref(os.fspath(ref))
     p = Path(file) if base_dir is None else Path(base_dir) / file
     try:
-        data = p.read_bytes()
+        data = read_limited(p, TEXT_FILE_BYTES, "SVG file")
+    except DesignFileError as exc:
+        raise PathError(str(exc)) from None
     except OSError as exc:
         raise PathError(f"{p}: cannot read SVG file: {exc.strerror or exc}") from None
     try:
@@ -229,6 +232,8 @@ def read_svg_path(ref: str | os.PathLike, *, base_dir: str | os.PathLike | None 
         from ...patterns.svgpath import flatten
 
         shape = svgelements.Path(found.shape) * svgelements.Matrix.scale(MM_PER_PX)
+        if len(shape) > PATH_SEGMENTS:
+            raise PathError(f"SVG path must have at most {PATH_SEGMENTS:,} segments, got {len(shape):,}")
         shape.reify()
         pts = flatten(shape)
     except PathError as exc:
