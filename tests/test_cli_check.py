@@ -141,3 +141,20 @@ def test_rules_table_and_missing_input(capsys):
     assert out.startswith("| code | severity | rule |") and out.count("\n") == len(RULES) + 2
     assert main(["check"]) == 2
     assert "check needs an input" in capsys.readouterr().err
+
+
+def test_summary_counts_every_finding_shown_or_not(tmp_path, capsys):
+    """alpha0 = 0.785 deg (radians by mistake): more findings than any rule lists; the counts take them all."""
+    design = tmp_path / "radians.toml"
+    design.write_text('[[actuator]]\nname = "C"\npattern = "cross"\nwidth_mm = 7.0\ninterval_mm = 1.4\n'
+                      'angle_deg = 0.785\nlength_mm = 100.0\n', encoding="utf-8")
+    assert main(["check", str(design), "--json"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    capped = [f for f in doc["findings"] if f["count"] > 1]
+    assert capped and all("more findings of this rule" in f["message"] for f in capped)
+    for severity in ("error", "warning", "info"):
+        assert doc["counts"][severity] == sum(f["count"] for f in doc["findings"] if f["severity"] == severity)
+    assert sum(doc["counts"].values()) > len(doc["findings"])
+    assert main(["check", str(design)]) == 1
+    head = capsys.readouterr().out.splitlines()[0]
+    assert f"{doc['counts']['error']} errors, {doc['counts']['warning']} warnings" in head

@@ -125,3 +125,42 @@ def test_same_bytes_twice(tmp_path):
     a, b = tmp_path / "a.vp3", tmp_path / "b.vp3"
     assert main(ZZ + ["-o", str(a)]) == 0 and main(ZZ + ["-o", str(b)]) == 0
     assert a.read_bytes() == b.read_bytes()
+
+
+# ----------------------------------------------------------------------------- the rule gate
+GATED = [
+    # outside the 200 x 200 mm hoop
+    (["zigzag", "--width-mm", "7", "--interval-mm", "1", "--length-mm", "300"], "EA306"),
+    # w = 14 mm: legs of 14 mm, over the DST record limit and the machine's longest stitch
+    (["zigzag", "--width-mm", "14", "--interval-mm", "1"], "EA102"),
+    # alpha0 = 0.785 deg (radians by mistake): the interval shrinks to 0.19 mm, the fabric tears
+    (["cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "0.785"], "EA106"),
+]
+
+
+@pytest.mark.parametrize("argv, code", GATED, ids=["outside-hoop", "wide", "radians"])
+def test_rule_errors_refuse_and_force_writes(tmp_path, capsys, argv, code):
+    out = tmp_path / "x.dst"
+    assert main(argv + ["-o", str(out), "--worksheet"]) == 1
+    err = capsys.readouterr().err
+    summary = err.splitlines()[0]
+    assert summary.startswith("design rules: ") and f"{code} (A1)" in summary
+    assert f"error: {code} " in err and "nothing written" in err
+    assert list(tmp_path.iterdir()) == []
+    assert main(argv + ["-o", str(out), "--worksheet", "--force", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert out.exists() and doc["written"] and code in {f["code"] for f in doc["findings"]}
+    sheet = json.loads((tmp_path / "x.worksheet.json").read_text())
+    assert sheet["findings"] == doc["findings"]
+
+
+def test_warnings_are_one_line_and_json_has_the_model(tmp_path, capsys):
+    """The paper's zigzag bends past 180 deg at 300 kPa (EA403): written, with one summary line on stderr."""
+    assert main(ZZ + ["-o", str(tmp_path / "a.dst"), "--json"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err.splitlines() == [line for line in captured.err.splitlines()
+                                         if line.startswith("design rules: 0 errors")]
+    assert len(captured.err.splitlines()) == 1 and "EA403 (A1)" in captured.err
+    doc = json.loads(captured.out)
+    assert (doc["model"]["g_mpa"], doc["model"]["p0_kpa"]) == (2.7, 85.0)
+    assert doc["model"]["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"

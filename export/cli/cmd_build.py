@@ -45,7 +45,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("--out", required=True, help="existing output directory")
     parser.add_argument("--format", help="machine formats, comma separated (default: the design's machine.format, dst)")
-    parser.add_argument("--force", action="store_true", help="write even if the design-rule checks find errors")
+    parser.add_argument("--force", action="store_true",
+                        help="write even if the design-rule checks find errors (legs over a format's record limit "
+                             "are then split as with --split-long)")
     parser.add_argument("--split-long", action="store_true",
                         help="split legs longer than a format allows into stitches outside the tube corridor")
     parser.add_argument("--cord-stop", choices=("sequence", "double"),

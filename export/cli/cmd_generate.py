@@ -33,7 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     o = parser.add_argument_group("output")
     o.add_argument("-o", "--output", required=True, help="machine file; the suffix picks the format (.dst .pes ...)")
     o.add_argument("--format", help="format overriding the suffix: dst, tbf, pes, pec, jef, exp, vp3, xxx, u01")
-    o.add_argument("--force", action="store_true", help="write even if the design-rule checks find errors")
+    o.add_argument("--force", action="store_true",
+                   help="write even if the design-rule checks find errors (legs over the format's record limit "
+                        "are then split as with --split-long)")
     o.add_argument("--cord-stop", choices=("sequence", "double"), default="sequence",
                    help="how DST/EXP write the cord-in stop: one stop code (sequence, default) or two in a row "
                         "(double: stops a multi-needle machine in automatic needle mode too)")
@@ -73,7 +75,7 @@ def run(args) -> int:
     from ...patterns.base.validate import check_output_name
     from ..files.atomic import prepare_outputs, write_files_atomic
     from ..machine.formats import encode, machine_format
-    from ..report.build import SPLIT_LONG_IGNORES
+    from ..report.build import SPLIT_LONG_IGNORES, forced_split
     from .target import analyse_target, gate, load_target
 
     if args.speed_spm is not None:
@@ -92,7 +94,8 @@ def run(args) -> int:
         if args.json:
             print(json.dumps({"written": False, "findings": [f.as_dict() for f in findings]}, indent=2))
         return 1
-    data, res = encode(plan, fmt, split_long=args.split_long, cord_stop=args.cord_stop)
+    data, res = encode(plan, fmt, split_long=args.split_long or forced_split(findings, args.force),
+                       cord_stop=args.cord_stop)
     outputs = {out: data}
     if args.worksheet:
         from ..report.worksheet import DEFAULT_SPEED_SPM, worksheet

@@ -61,6 +61,7 @@ from .worksheet import DEFAULT_SPEED_SPM, worksheet
 __all__ = [
     "DEFAULT_SPEED_SPM",
     "SPLIT_LONG_IGNORES",
+    "forced_split",
     "DesignRuleError",
     "BuildContext",
     "BuildResult",
@@ -77,6 +78,21 @@ __all__ = [
 #: pieces stay within the format's per-record limit (EA102) and so within a machine maximum
 #: stitch (EA103) that is not below it.
 SPLIT_LONG_IGNORES = ("EA102", "EA103")
+
+
+def forced_split(findings, force: bool) -> bool:
+    """True when ``force`` writes a design whose legs exceed a format's record limit (EA102 errors):
+    the writer then splits them as ``split_long`` does (stitches outside the tube corridor) instead
+    of refusing, so that ``--force`` writes what the rules refused.
+
+    Examples
+    --------
+    >>> from embroact.patterns.base.findings import RULES
+    >>> import embroact.patterns.rules  # declares EA102
+    >>> forced_split([RULES.finding("EA102", "leg 14 mm")], True), forced_split([], True)
+    (True, False)
+    """
+    return force and any(f.code == "EA102" and f.is_error for f in findings)
 
 
 class DesignRuleError(PatternError):
@@ -244,6 +260,7 @@ def build_plan_outputs(
     machine = []
     if cord_stop is None:
         cord_stop = getattr(getattr(design, "machine", None), "cord_stop", "sequence")
+    split_long = split_long or forced_split(findings, force)
     for fmt in fmts:
         data, res = encode(plan, fmt, split_long=split_long, cord_stop=cord_stop)
         name = f"{stem}.{fmt}"

@@ -264,7 +264,8 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
         raise ParameterError(f"figure names must be among {', '.join(FIGURES)}, got {', '.join(unknown)}")
     acts = data.get("actuators") or []
     findings = data.get("findings") or []
-    n_err = sum(1 for f in findings if f.get("severity") == "error")
+    n_all = sum(f.get("count") or 1 for f in findings)  # a capped rule's last finding counts the rest
+    n_err = sum(f.get("count") or 1 for f in findings if f.get("severity") == "error")
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -273,7 +274,7 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
         f"<title>{_e(data.get('title'))} - embroact report</title>",
         f"<style>{_STYLE}</style></head><body>",
         f"<h1>{_e(data.get('title'))}</h1>",
-        f'<p class="sub">{len(acts)} actuator(s); {len(findings)} design-rule finding(s), {n_err} error(s); '
+        f'<p class="sub">{len(acts)} actuator(s); {n_all} design-rule finding(s), {n_err} error(s); '
         f"{_e(data.get('generator'))}</p>",
     ]
     for key, heading in FIGURES.items():

@@ -144,6 +144,10 @@ class Finding:
         Suggested fix.
     title : str
         The rule's title.
+    count : int
+        How many findings this one stands for: 1, or for the finding that closes a capped
+        rule ("N more findings of this rule"), N. Summaries count findings by it, so they
+        count every finding, shown or not.
     """
 
     code: str
@@ -154,6 +158,7 @@ class Finding:
     xy_mm: tuple[float, float] | None = None
     fix: str = ""
     title: str = ""
+    count: int = 1
 
     @property
     def is_error(self) -> bool:
@@ -183,6 +188,7 @@ class Finding:
             "stitch_index": self.stitch_index,
             "xy_mm": None if self.xy_mm is None else [self.xy_mm[0], self.xy_mm[1]],
             "fix": self.fix,
+            "count": self.count,
         }
 
 
@@ -242,6 +248,7 @@ class RuleRegistry:
         stitch_index: int | None = None,
         xy_mm=None,
         fix: str | None = None,
+        count: int = 1,
     ) -> Finding:
         """A :class:`Finding` of rule ``code`` with the rule's severity, title and default fix."""
         rule = self[code]
@@ -254,6 +261,7 @@ class RuleRegistry:
             xy_mm=None if xy_mm is None else (round(float(xy_mm[0]), 4), round(float(xy_mm[1]), 4)),
             fix=rule.fix if fix is None else fix,
             title=rule.title,
+            count=int(count),
         )
 
     def markdown_table(self) -> str:
@@ -282,7 +290,8 @@ def rules_table_markdown(rules=RULES) -> str:
 
 
 def count_by_severity(findings) -> dict[str, int]:
-    """``{"error": n, "warning": n, "info": n}`` for a sequence of findings.
+    """``{"error": n, "warning": n, "info": n}`` for a sequence of findings, each counted by its ``count``
+    (a capped rule's closing finding stands for the findings it does not list).
 
     Examples
     --------
@@ -292,5 +301,5 @@ def count_by_severity(findings) -> dict[str, int]:
     """
     counts = {s.value: 0 for s in Severity}
     for f in findings:
-        counts[f.severity.value] += 1
+        counts[f.severity.value] += f.count
     return counts

@@ -208,7 +208,7 @@ def _capped(subject: Subject, code: str, found, limit: int) -> list[Finding]:
         first = found[limit]
     more = RULES.finding(code, f"{n - limit} more findings of this rule, from stitch {first.stitch_index} on",
                          actuator=first.actuator, stitch_index=first.stitch_index, xy_mm=first.xy_mm,
-                         fix=first.fix)
+                         fix=first.fix, count=n - limit)
     return head + [more]
 
 
