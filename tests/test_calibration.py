@@ -225,6 +225,34 @@ def test_toml_round_trip_is_exact_and_stable(tmp_path):
     assert calibration_toml(PAPER_2025).count("[[points]]") == 7
 
 
+def test_provenance_round_trips_and_old_files_still_read(tmp_path):
+    from embroact.predict.calibration import CalibrationTube
+
+    fitted = CalibrationSet("lab", (CalibrationPoint("cross", 7.0, 2.0, 120.0, angle_deg=30.0, branch="loading"),),
+                            tube=CalibrationTube(1.6, 0.9, 0.2), tube_law="thick-wall",
+                            measurement="markers: 2 rows of 7, 10 mm apart")
+    path = tmp_path / "lab.toml"
+    write_calibration(path, fitted)
+    text = path.read_text()
+    assert "# covers: cross angle_deg 30\n" in text and 'coordinate = "angle_deg"' in text
+    assert "[tube]\nouter_radius_mm = 1.6\ninner_radius_mm = 0.9\ng_e_mpa = 0.2\n" in text
+    assert read_calibration(path) == fitted
+    # a file written before the provenance keys: no tube, the paper's law, whole-strip angles
+    old = tmp_path / "old.toml"
+    old.write_text('name = "old"\ndescription = ""\n\n[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\n'
+                   'g_mpa = 2.7\np0_kpa = 85.0\nbranch = "loading"\n')
+    back = read_calibration(old)
+    assert (back.tube, back.tube_law, back.measurement) == (None, "paper", "whole-strip")
+    assert back.points == (CalibrationPoint("zigzag", 7.0, 2.7, 85.0, branch="loading"),)
+    wrong = tmp_path / "wrong.toml"
+    wrong.write_text(text.replace('coordinate = "angle_deg"', 'coordinate = "width_mm"'))
+    with pytest.raises(DesignFileError, match=r"points\[0\]: coordinate must be 'angle_deg' for the cross pattern"):
+        read_calibration(wrong)
+    (tmp_path / "notube.toml").write_text(text.replace("g_e_mpa = 0.2\n", ""))
+    with pytest.raises(DesignFileError, match=r"\[tube\] is missing key 'g_e_mpa'"):
+        read_calibration(tmp_path / "notube.toml")
+
+
 @pytest.mark.parametrize(
     "text, match",
     [
