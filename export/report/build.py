@@ -9,6 +9,7 @@ Order of work (nothing is written until every output is ready in memory)::
         machine files (one per format) <-- encode(plan) -------------+
         worksheet.json / worksheet.txt <-- worksheet(plan, findings, models)
         preview.svg                    <-- plan_svg(plan)            |
+        template.svg                   <-- template_svg(plan, hoop)  |
         stage outputs                  <-- stage(context) for each stage (context.analysis)
                                                   |
                          write every file atomically into out_dir
@@ -41,7 +42,7 @@ Examples
 >>> out = tempfile.mkdtemp()
 >>> res = build_plan_outputs(plan, out, formats=("dst", "pes"))
 >>> sorted(os.listdir(out))
-['demo.dst', 'demo.pes', 'preview.svg', 'worksheet.json', 'worksheet.txt']
+['demo.dst', 'demo.pes', 'preview.svg', 'template.svg', 'worksheet.json', 'worksheet.txt']
 """
 from __future__ import annotations
 
@@ -249,6 +250,7 @@ def build_plan_outputs(
     machine set-up are those of the first machine file, read back from its bytes.
     """
     from ..pictures.stitches import plan_svg
+    from ..pictures.template import template_svg
 
     d = check_writable_dir(out_dir)
     fmts = parse_formats(formats)
@@ -270,6 +272,7 @@ def build_plan_outputs(
     outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
     outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
     outputs["preview.svg"] = plan_svg(plan).encode("utf-8")
+    outputs["template.svg"] = template_svg(plan, getattr(design, "machine", None)).encode("utf-8")  # 1:1 layout
     for stage in stages:
         ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))
         for name, data in stage(ctx).items():

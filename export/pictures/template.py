@@ -1,0 +1,161 @@
+"""Layout template: a printable 1:1 drawing of where each tube goes on the hooped fabric (SVG).
+
+The operator prints it at actual size (100 %, no "fit to page"), lays it on the hooped
+fabric (or tapes it under a thin one) and lays each tube along its drawing.  The user unit
+is the millimetre: ``viewBox`` in mm and ``width``/``height`` in ``mm``, so one unit prints
+as one millimetre; the 10 mm scale bar checks the print.  Plan frame (y up), drawn with y
+negated, so the template shows the fabric as the machine sees it from above.
+
+Layers (``<g id=...>``): ``hoop`` (the sewing field, machine.hoop_width_mm x
+hoop_height_mm, centred on the design as the hoop rule EA306 centres it, with ``centre``
+marks: a cross at its centre and ticks at the middle of each side), ``start`` (the machine's
+start point), ``tubes`` (per actuator a group with its ``axis``, the embroidered stretch
+outlined at the tube's diameter, the ``free-end`` margins of ``end_margin_mm`` along the end
+tangents dashed, the ``connector`` end marked, the far end marked sealed, the sewing order and name),
+``scale-bar`` and ``notes``.
+
+Examples
+--------
+>>> import xml.etree.ElementTree as ET
+>>> from embroact.patterns.centerline import Centerline
+>>> from embroact.patterns.params import ZigzagParams
+>>> from embroact.patterns.zigzag import zigzag
+>>> svg = template_svg(zigzag(Centerline.straight(100.0), ZigzagParams(7.0, 1.0), name="A1"))
+>>> root = ET.fromstring(svg)
+>>> root.get("width"), root.get("height"), root.get("viewBox")   # the 200 x 200 mm hoop and its border
+('210mm', '237.6mm', '-55 -105 210 237.6')
+>>> [e.get("points") for e in root.iter("{http://www.w3.org/2000/svg}polyline") if e.get("class") == "axis"]
+['0,0 100,0']
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ...patterns.plan import StitchPlan
+from .stitches import _f, _pts_list
+
+__all__ = ["template_svg", "SCALE_BAR_MM"]
+
+SCALE_BAR_MM = 10.0
+"""Length of the scale bar that checks the print [mm]."""
+_BORDER_MM = 5.0
+_FONT_MM = 3.0
+_ROW_MM = 4.4
+_TICK_MM = 6.0
+_FONT = "font-family:Helvetica,Arial,sans-serif"
+_INK = "#000000"
+_TUBE = "#1f4e9a"
+_DEFAULT_HOOP_MM = (200.0, 200.0)
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / float(np.hypot(v[0], v[1]))
+
+
+def _laid(act) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tube's path and its two free ends (start margin, end margin) as point arrays [mm]."""
+    pts = act.centerline.points_mm
+    m = act.tube.end_margin_mm
+    head = pts[0] + m * _unit(pts[0] - pts[1])
+    tail = pts[-1] + m * _unit(pts[-1] - pts[-2])
+    return pts, np.vstack([head, pts[0]]), np.vstack([pts[-1], tail])
+
+
+def _hoop_box(plan: StitchPlan, hoop_mm: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """The hoop's sewing field centred on the records' bounding box (as EA306 places it)."""
+    xy = plan.xy_mm
+    centre = (xy.min(axis=0) + xy.max(axis=0)) / 2.0 if len(xy) else np.zeros(2)
+    half = np.array(hoop_mm, dtype=np.float64) / 2.0
+    return centre - half, centre + half
+
+
+def template_svg(plan: StitchPlan, machine=None) -> str:
+    """Render the 1:1 layout template of ``plan`` (see the module docstring) as an SVG string.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+    machine : MachineSettings, optional
+        Its ``hoop_width_mm`` x ``hoop_height_mm`` is the hoop drawn (default 200 x 200 mm).
+    """
+    import svgwrite
+
+    hoop = (getattr(machine, "hoop_width_mm", _DEFAULT_HOOP_MM[0]), getattr(machine, "hoop_height_mm",
+                                                                          _DEFAULT_HOOP_MM[1]))
+    h_lo, h_hi = _hoop_box(plan, hoop)
+    laid = [_laid(a) for a in plan.actuators]
+    every = np.vstack([h_lo, h_hi, np.zeros(2)] + [np.vstack(parts) for parts in laid])
+    lo, hi = every.min(axis=0) - _BORDER_MM, every.max(axis=0) + _BORDER_MM
+    notes = [f"{plan.name}: layout template, print at actual size (100 %, no scaling)",
+             f"hoop field {hoop[0]:g} x {hoop[1]:g} mm; the bar above must measure {SCALE_BAR_MM:g} mm",
+             "outlined: the embroidered stretch of each tube (numbered in sewing order); shaded: its free ends"]
+    text_h = _ROW_MM * (len(notes) + 1) + 2 * _BORDER_MM
+    width, height = hi[0] - lo[0], hi[1] - lo[1] + text_h
+    vx, vy = lo[0], -hi[1]
+    dwg = svgwrite.Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"),
+                           viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}", profile="full", debug=False)
+    dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
+    layer = {name: dwg.add(dwg.g(id=name)) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
+    _draw_hoop(dwg, layer["hoop"], h_lo, h_hi)
+    _cross(dwg, layer["start"], np.zeros(2), 3.0, "#c51b7d", "start")
+    for k, (a, parts) in enumerate(zip(plan.actuators, laid)):
+        _draw_tube(dwg, layer["tubes"], a, parts, k)
+    x0, y0 = lo[0] + _BORDER_MM, -lo[1] + _BORDER_MM
+    g = layer["scale-bar"]
+    g.add(dwg.rect((_f(x0), _f(y0)), (_f(SCALE_BAR_MM), "1"), fill=_INK, id="scale-bar-10mm"))
+    g.add(dwg.text(f"{SCALE_BAR_MM:g} mm", insert=(_f(x0 + SCALE_BAR_MM + 1.5), _f(y0 + 1.1)),
+                   font_size=_f(_FONT_MM), style=_FONT))
+    for n, line in enumerate(notes, start=1):
+        layer["notes"].add(dwg.text(line, insert=(_f(x0), _f(y0 + 1.0 + n * _ROW_MM)), font_size=_f(_FONT_MM),
+                                    style=_FONT))
+    return dwg.tostring()
+
+
+def _cross(dwg, group, p: np.ndarray, size: float, colour: str, label: str) -> None:
+    x, y = p
+    g = group.add(dwg.g(**{"class": "mark"}))
+    g.add(dwg.path(d=f"M {_f(x - size)},{_f(-y - size)} L {_f(x + size)},{_f(-y + size)} "
+                     f"M {_f(x - size)},{_f(-y + size)} L {_f(x + size)},{_f(-y - size)}",
+                   stroke=colour, stroke_width="0.3", fill="none"))
+    g.add(dwg.text(label, insert=(_f(x + size + 0.8), _f(-y + size + 2.0)), font_size=_f(_FONT_MM * 0.8),
+                   fill=colour, style=_FONT))
+
+
+def _draw_hoop(dwg, group, lo: np.ndarray, hi: np.ndarray) -> None:
+    size = hi - lo
+    group.add(dwg.rect((_f(lo[0]), _f(-hi[1])), (_f(size[0]), _f(size[1])), fill="none", stroke="#555555",
+                       stroke_width="0.4", stroke_dasharray="4,2", **{"class": "hoop-field"}))
+    c = (lo + hi) / 2.0
+    marks = group.add(dwg.g(id="centre", stroke=_INK, stroke_width="0.3", fill="none"))
+    marks.add(dwg.path(d=f"M {_f(c[0] - _TICK_MM)},{_f(-c[1])} H {_f(c[0] + _TICK_MM)} "
+                         f"M {_f(c[0])},{_f(-c[1] - _TICK_MM)} V {_f(-c[1] + _TICK_MM)}", **{"class": "centre-cross"}))
+    t = _TICK_MM
+    ticks = (f"M {_f(c[0])},{_f(-hi[1])} v {_f(t)} M {_f(c[0])},{_f(-lo[1])} v {_f(-t)} "
+             f"M {_f(lo[0])},{_f(-c[1])} h {_f(t)} M {_f(hi[0])},{_f(-c[1])} h {_f(-t)}")
+    marks.add(dwg.path(d=ticks, **{"class": "centre-ticks"}))
+
+
+def _draw_tube(dwg, group, act, parts, k: int) -> None:
+    pts, head, tail = parts
+    r = act.tube.outer_radius_mm
+    g = group.add(dwg.g(id=f"tube-{k + 1}", **{"class": "tube"}))
+    g.set_desc(title=f"tube of {act.name}")
+    outline = act.centerline.as_linestring().buffer(r, cap_style="flat")
+    ring = np.asarray(outline.exterior.coords) if outline.geom_type == "Polygon" else None
+    if ring is not None:
+        g.add(dwg.polygon(_pts_list(ring), fill="none", stroke=_TUBE, stroke_width="0.35", **{"class": "tube-outline"}))
+    g.add(dwg.polyline(_pts_list(pts), fill="none", stroke=_TUBE, stroke_width="0.25", **{"class": "axis"}))
+    for end in (head, tail):
+        g.add(dwg.polyline(_pts_list(end), fill="none", stroke=_TUBE, stroke_width=_f(2 * r), stroke_opacity="0.25",
+                           stroke_dasharray="3,1.5", **{"class": "free-end"}))
+    for label, p, q in (("connector", head[0], head[1]), ("sealed", tail[1], tail[0])):
+        n = _unit(np.array([-(q - p)[1], (q - p)[0]]))  # left of the tube, beside its end
+        at = p + n * (r + 2.0)
+        g.add(dwg.circle((_f(p[0]), _f(-p[1])), _f(r), fill="none", stroke=_INK, stroke_width="0.3",
+                         **{"class": f"{label}-end"}))
+        g.add(dwg.text(label, insert=(_f(at[0]), _f(-at[1])), font_size=_f(_FONT_MM * 0.8), style=_FONT,
+                       text_anchor="middle"))
+    side = _unit(np.array([-(pts[1] - pts[0])[1], (pts[1] - pts[0])[0]]))
+    at = pts[0] + side * (r + 3.5)
+    g.add(dwg.text(f"{k + 1}: {act.name}", insert=(_f(at[0]), _f(-at[1])), font_size=_f(_FONT_MM * 1.2), style=_FONT,
+                   fill=_TUBE, **{"class": "name"}))
