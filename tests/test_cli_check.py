@@ -158,3 +158,17 @@ def test_summary_counts_every_finding_shown_or_not(tmp_path, capsys):
     assert main(["check", str(design)]) == 1
     head = capsys.readouterr().out.splitlines()[0]
     assert f"{doc['counts']['error']} errors, {doc['counts']['warning']} warnings" in head
+
+
+def test_model_flags_reach_the_model_rules(tmp_path, capsys):
+    """check takes the model flags predict and build take: the same P0 in the rules as in the prediction."""
+    design = os.path.join(os.path.dirname(__file__), "..", "examples", "paper_zigzag.toml")
+    assert main(["check", design, "--json"]) == 0
+    assert "EA401" not in {f["code"] for f in json.loads(capsys.readouterr().out)["findings"]}
+    assert main(["check", design, "--p0-kpa", "400", "--json"]) == 1
+    (hit,) = [f for f in json.loads(capsys.readouterr().out)["findings"] if f["code"] == "EA401"]
+    assert hit["message"].startswith("P0 400.0 kPa above the working pressure 300 kPa")
+    assert main(["predict", design, "--p0-kpa", "400", "--pressure-kpa", "300", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["actuators"][0]["model"]["p0_kpa"] == 400.0
+    assert main(["check", str(tmp_path / "x.dst"), "--g-mpa", "2"]) == 2
+    assert "--g-mpa applies to design files" in capsys.readouterr().err

@@ -30,9 +30,12 @@ def add_arguments(parser, name: str) -> None:
     """Options of ``embroact check``."""
     from ...patterns.limits import FORMAT_LIMITS
     from .args import add_tube_arguments
+    from .target import add_model_arguments
 
     parser.add_argument("input", nargs="?", metavar="DESIGN.toml|FILE",
                         help="embroact design (TOML) or any embroidery file")
+    add_model_arguments(parser.add_argument_group("model (design files only; overrides the design's "
+                                                  "[actuator.model], as for predict and build)"))
     tube = parser.add_argument_group("tube (embroidery files only)")
     tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'|FILE.svg#ID",
                       help="tube axis in mm, file frame (0.1 mm units / 10, y down), or a path of an SVG drawing "
@@ -45,6 +48,10 @@ def add_arguments(parser, name: str) -> None:
                         help="target machine format (default: the design's machine.format, or the file's own)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     parser.add_argument("--rules", action="store_true", help="print the table of every rule (Markdown) and exit")
+
+
+#: Model flags (target.add_model_arguments) that only a design file uses.
+_MODEL_FLAGS = ("g_mpa", "p0_kpa", "p0_source", "calibration", "tube_law")
 
 
 def _check_design(args):
@@ -118,6 +125,10 @@ def run(args) -> int:
     is_design = args.input.lower().endswith(".toml")
     if is_design and (args.tube_path or args.tube):
         raise ParameterError("--tube-path and --tube apply to embroidery files; a design file carries its tubes")
+    model_flags = [f"--{k.replace('_', '-')}" for k in _MODEL_FLAGS if getattr(args, k, None) is not None]
+    if not is_design and model_flags:
+        raise ParameterError(f"{model_flags[0]} applies to design files (the model rules); an embroidery file "
+                             "is checked without a model")
     findings, info = _check_design(args) if is_design else _check_file(args)
     counts = count_by_severity(findings)
     if args.json:
