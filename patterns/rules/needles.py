@@ -37,7 +37,8 @@ _DF = Inputs.DESIGNS | Inputs.FILES
 
 @RULES.rule("EA101", Severity.ERROR, "needle in tube corridor",
             "A needle point lies closer to the tube axis than r_f + clearance (the tube extended by its "
-            "end margins included): the needle would pierce the tube.",
+            "end margins included): the needle would pierce the tube. A placement line, sewn along the axis "
+            "before its tube is laid, pierces nothing.",
             "Widen the pattern or move the needle point out of the corridor.", _DF)
 def needle_corridor(s: Subject) -> Hits:
     tubes = s.layout.tubes

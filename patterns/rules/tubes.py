@@ -217,7 +217,8 @@ def _held_gaps(s_mm: np.ndarray, half_mm: np.ndarray, length_mm: float) -> list[
             "Legs must cross the tube from one side to the other along its whole embroidered length: no "
             "stretch of the tube path without a leg over it (between legs, or from an end of the path) may be "
             "longer than couching_gap_factor x the tube's outer diameter (default 3 x 2 r_f = 9 mm); a tube "
-            "no leg crosses is not held at all (a wrong tube path, or stitches beside the tube).",
+            "no leg crosses is not held at all (a wrong tube path, or stitches beside the tube). A placement "
+            "line, sewn before the tube is laid, holds nothing.",
             "Check the tube path against the stitches, or add legs where the tube is not held.", _DF)
 def couching(s: Subject) -> list[Finding]:
     c, tubes = s.crossings, s.layout.tubes
