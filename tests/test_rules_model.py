@@ -5,7 +5,7 @@ import pytest
 
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.design import (ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings,
-                                      build_plan, default_design)
+                                      default_design)
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
 from embroact.predict.analysis import analyse

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from .target import add_model_arguments, add_placement_argument
 

@@ -53,7 +53,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from ...patterns.base.errors import ExportError, ParameterError, PatternError
+from ...patterns.base.errors import ParameterError, PatternError
 from ...patterns.plan import StitchPlan
 from ..files.atomic import check_writable_dir, write_files_atomic
 from ..machine.formats import FORMATS, WriteResult, encode
