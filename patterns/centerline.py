@@ -74,6 +74,12 @@ class Centerline:
     ----------
     points_mm : ndarray, shape (n, 2)
         Polyline vertices [mm], read-only, no repeated points, n >= 2.
+
+    Examples
+    --------
+    >>> c = Centerline.from_points([(0, 0), (30, 0), (30, 40)])
+    >>> c.length_mm, c
+    (70.0, Centerline(n_points=3, length_mm=70))
     """
 
     points_mm: np.ndarray
@@ -98,7 +104,26 @@ class Centerline:
     def straight(
         cls, length_mm: float, *, origin_mm: tuple[float, float] = (0.0, 0.0), rotation_deg: float = 0.0
     ) -> "Centerline":
-        """Straight path of ``length_mm`` from ``origin_mm``, direction ``rotation_deg`` from +x (CCW)."""
+        """Straight path of ``length_mm`` from ``origin_mm``, direction ``rotation_deg`` from +x (CCW).
+
+        Parameters
+        ----------
+        length_mm : float
+            Length [mm], in [1e-3, 1e6].
+        origin_mm : (float, float)
+            Start point [mm].
+        rotation_deg : float
+            Direction [deg, counter-clockwise from +x], in (-3600, 3600).
+
+        Returns
+        -------
+        Centerline
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0, origin_mm=(5.0, 0.0), rotation_deg=90.0).points_mm.round(9).tolist()
+        [[5.0, 0.0], [5.0, 10.0]]
+        """
         length = check_range("length_mm", length_mm, low=MIN_LENGTH_MM, low_inclusive=True, high=1e6)
         ox, oy = _xy("origin_mm", origin_mm)
         a = math.radians(check_range("rotation_deg", rotation_deg, low=-3600.0, high=3600.0))
@@ -106,7 +131,22 @@ class Centerline:
 
     @classmethod
     def from_points(cls, points) -> "Centerline":
-        """Path through ``points`` (sequence or array of (x, y) in mm); exact repeats are dropped."""
+        """Path through ``points`` (sequence or array of (x, y) in mm); exact repeats are dropped.
+
+        Parameters
+        ----------
+        points : array-like, shape (n, 2)
+            Vertices [mm], at least two distinct, finite.
+
+        Returns
+        -------
+        Centerline
+
+        Examples
+        --------
+        >>> Centerline.from_points([(0, 0), (0, 0), (3, 4)]).points_mm.tolist()
+        [[0.0, 0.0], [3.0, 4.0]]
+        """
         return cls(points)
 
     @classmethod
@@ -147,11 +187,31 @@ class Centerline:
         return self._s
 
     def segment_curvature(self) -> np.ndarray:
-        """Signed curvature per segment [1/mm] (> 0 turning left); :meth:`curvature_at` looks it up."""
+        """Signed curvature per segment [1/mm] (> 0 turning left); :meth:`curvature_at` looks it up.
+
+        Returns
+        -------
+        ndarray, shape (n - 1,)
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).segment_curvature().tolist()
+        [0.0]
+        """
         return np.diff(self._theta) / np.diff(self._s)
 
     def as_linestring(self) -> shapely.LineString:
-        """The path as a shapely LineString."""
+        """The path as a shapely LineString.
+
+        Returns
+        -------
+        shapely.LineString
+
+        Examples
+        --------
+        >>> Centerline.from_points([(0, 0), (3, 4)]).as_linestring().length
+        5.0
+        """
         return shapely.LineString(self.points_mm)
 
     def _angle_at(self, s_mm):
@@ -159,22 +219,84 @@ class Centerline:
         return s, np.interp(s, self._s, self._theta)
 
     def point_at(self, s_mm) -> np.ndarray:
-        """Point(s) at arc length ``s_mm`` (clipped to [0, length]) [mm], shape (..., 2)."""
+        """Point(s) at arc length ``s_mm`` (clipped to [0, length]) [mm], shape (..., 2).
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+
+        Returns
+        -------
+        ndarray, shape (..., 2)
+
+        Examples
+        --------
+        >>> Centerline.from_points([(0, 0), (10, 0), (10, 10)]).point_at([5.0, 15.0, 99.0]).tolist()
+        [[5.0, 0.0], [10.0, 5.0], [10.0, 10.0]]
+        """
         s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
         return np.stack([np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1])], axis=-1)
 
     def tangent_at(self, s_mm) -> np.ndarray:
-        """Unit tangent(s) at arc length ``s_mm``, smooth along dense curves, shape (..., 2)."""
+        """Unit tangent(s) at arc length ``s_mm``, smooth along dense curves, shape (..., 2).
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+
+        Returns
+        -------
+        ndarray, shape (..., 2)
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0, rotation_deg=90.0).tangent_at(2.0).round(9).tolist()
+        [0.0, 1.0]
+        """
         _, th = self._angle_at(s_mm)
         return np.stack([np.cos(th), np.sin(th)], axis=-1)
 
     def normal_at(self, s_mm) -> np.ndarray:
-        """Unit LEFT normal(s) (tangent turned +90 deg), shape (..., 2)."""
+        """Unit LEFT normal(s) (tangent turned +90 deg), shape (..., 2).
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+
+        Returns
+        -------
+        ndarray, shape (..., 2)
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).normal_at(2.0).tolist()
+        [-0.0, 1.0]
+        """
         _, th = self._angle_at(s_mm)
         return np.stack([-np.sin(th), np.cos(th)], axis=-1)
 
     def offset_point_at(self, s_mm, offset_mm) -> np.ndarray:
-        """``point_at(s) + offset * normal_at(s)`` (offset > 0 to the left) [mm]."""
+        """``point_at(s) + offset * normal_at(s)`` (offset > 0 to the left) [mm].
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+        offset_mm : float or array-like
+            Distance along the left normal [mm] (negative: to the right).
+
+        Returns
+        -------
+        ndarray, shape (..., 2)
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).offset_point_at(4.0, -3.5).tolist()
+        [4.0, -3.5]
+        """
         off = np.asarray(offset_mm, dtype=np.float64)[..., None]
         return self.point_at(s_mm) + off * self.normal_at(s_mm)
 
@@ -183,6 +305,20 @@ class Centerline:
 
         Piecewise constant per segment; corners are included at their share of the turn
         (use :meth:`min_radius_mm` to detect them).
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+
+        Returns
+        -------
+        ndarray
+
+        Examples
+        --------
+        >>> float(Centerline.straight(10.0).curvature_at(5.0))
+        0.0
         """
         kappa = self.segment_curvature()
         s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
@@ -200,13 +336,44 @@ class Centerline:
         return r
 
     def min_radius_mm(self) -> float:
-        """Smallest curvature radius along the path [mm]; ``inf`` if straight, 0 at a corner."""
+        """Smallest curvature radius along the path [mm]; ``inf`` if straight, 0 at a corner.
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).min_radius_mm(), Centerline.from_points([(0, 0), (10, 0), (10, 10)]).min_radius_mm()
+        (inf, 0.0)
+        """
         return float(self._radii().min())
 
     def check_radius(self, min_radius_mm: float, name: str) -> None:
         """Raise :class:`PathError` if the path bends tighter than ``min_radius_mm``.
 
-        ``name`` says where the limit comes from (``"width_mm/2"``).
+        Parameters
+        ----------
+        min_radius_mm : float
+            Smallest allowed curvature radius [mm].
+        name : str
+            Where the limit comes from (``"width_mm/2"``), named in the message.
+
+        Returns
+        -------
+        None
+
+        Raises
+        ------
+        PathError
+            A corner, or a bend tighter than the limit (the message gives where).
+
+        Examples
+        --------
+        >>> Centerline.from_points([(0, 0), (10, 0), (10, 10)]).check_radius(3.5, "width_mm/2")
+        Traceback (most recent call last):
+        ...
+        embroact.patterns.base.errors.PathError: path has a corner at (10.00, 0.00) mm (turn 90.0 deg > ...
         """
         corner = np.flatnonzero(np.abs(self._turn) > math.radians(MAX_SMOOTH_TURN_DEG))
         if corner.size:
@@ -227,7 +394,24 @@ class Centerline:
             )
 
     def offset_curves(self, distance_mm: float) -> tuple[shapely.LineString, shapely.LineString]:
-        """The two rails at +-``distance_mm`` along the smooth normal: (left, right) LineStrings."""
+        """The two rails at +-``distance_mm`` along the smooth normal: (left, right) LineStrings.
+
+        Parameters
+        ----------
+        distance_mm : float
+            Offset of each rail from the path [mm], >= 0.
+
+        Returns
+        -------
+        (shapely.LineString, shapely.LineString)
+            Left and right rail.
+
+        Examples
+        --------
+        >>> left, right = Centerline.straight(10.0).offset_curves(3.5)
+        >>> left.coords[0], right.coords[-1]
+        ((0.0, 3.5), (10.0, -3.5))
+        """
         d = check_range("distance_mm", distance_mm, low=0.0, low_inclusive=True)
         s = np.empty(2 * len(self._s) - 1)  # vertices and midpoints, interleaved (sorted: _s increases)
         s[0::2], s[1::2] = self._s, 0.5 * (self._s[1:] + self._s[:-1])
@@ -238,6 +422,22 @@ class Centerline:
 
         The exact inverse of :meth:`offset_point_at` near the path: starts at the closest
         point of the polyline (shapely STRtree over its segments) and solves ``(p - c(s)) . t(s) = 0`` by Newton steps.
+
+        Parameters
+        ----------
+        xy_mm : array-like, shape (n, 2) or (2,)
+            Points [mm].
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            Arc length ``s`` [mm] and signed offset [mm] of each point.
+
+        Examples
+        --------
+        >>> s, off = Centerline.straight(10.0).project([(4.0, -3.5)])
+        >>> s.tolist(), off.tolist()
+        ([4.0], [-3.5])
         """
         p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
         s = self._closest_s(p)
@@ -261,7 +461,24 @@ class Centerline:
         return self._s[seg] + np.clip(u, 0.0, 1.0) * np.diff(self._s)[seg]
 
     def transformed(self, *, origin_mm=(0.0, 0.0), rotation_deg: float = 0.0) -> "Centerline":
-        """This path rotated by ``rotation_deg`` about (0, 0), then moved by ``origin_mm``."""
+        """This path rotated by ``rotation_deg`` about (0, 0), then moved by ``origin_mm``.
+
+        Parameters
+        ----------
+        origin_mm : (float, float)
+            Translation [mm], applied after the rotation.
+        rotation_deg : float
+            Rotation [deg, counter-clockwise], in (-3600, 3600).
+
+        Returns
+        -------
+        Centerline
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).transformed(origin_mm=(1.0, 2.0), rotation_deg=180.0).points_mm.round(9).tolist()
+        [[1.0, 2.0], [-9.0, 2.0]]
+        """
         ox, oy = _xy("origin_mm", origin_mm)
         a = math.radians(check_range("rotation_deg", rotation_deg, low=-3600.0, high=3600.0))
         rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])

@@ -176,6 +176,19 @@ def cross(
     ParameterError, PathError, PatternError
         As for :func:`embroact.patterns.zigzag.zigzag`; the minimum path length is
         ``4 w tan(alpha0)`` (two leg pitches of each family) and at least ``tie_stitch_mm``.
+
+    Returns
+    -------
+    StitchPlan
+        One :class:`ActuatorPlan`; its ``realised`` parameters say what the pattern closed with.
+
+    Examples
+    --------
+    >>> from embroact.patterns.centerline import Centerline
+    >>> plan = cross(Centerline.straight(100.0), CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0))
+    >>> r = plan.actuators[0].realised
+    >>> plan.stitch_count, round(r.interval_mm, 3), round(r.angle_deg, 3)
+    (148, 1.4, 45.0)
     """
     if not isinstance(params, CrossParams):
         raise ParameterError(f"params must be CrossParams, got {type(params).__name__}")

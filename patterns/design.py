@@ -156,6 +156,15 @@ class MachineSettings:
     placement_stitch_mm : float
         Longest running stitch of the placement line [mm]; with ``placement_line`` it must lie
         in [min_stitch_mm, max_stitch_mm].
+
+    Examples
+    --------
+    >>> MachineSettings(format="EXP", cord_stop="double").format
+    'exp'
+    >>> MachineSettings(min_stitch_mm=20.0)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: min_stitch_mm must be in [0, 12.1), got 20
     """
 
     format: str = "dst"
@@ -196,6 +205,11 @@ class OperationSettings:
         Highest supply pressure [kPa], > 0.
     max_bend_deg : float
         Largest bend the application needs [deg], in (0, 720].
+
+    Examples
+    --------
+    >>> OperationSettings(max_pressure_kpa=250.0)
+    OperationSettings(max_pressure_kpa=250.0, max_bend_deg=180.0)
     """
 
     max_pressure_kpa: float = 300.0
@@ -224,6 +238,12 @@ class ModelSettings:
         or ``"geometry"`` (the tube law's pressure at the realised sleeve radius r0).
     tube_law : TubeLaw or str
         ``"paper"`` (default) or ``"thick-wall"``.
+
+    Examples
+    --------
+    >>> m = ModelSettings(g_mpa=2.0, p0_source="geometry")
+    >>> m.p0_source is P0Source.GEOMETRY, m.tube_law.value
+    (True, 'paper')
     """
 
     g_mpa: float | None = None
@@ -263,6 +283,12 @@ class ActuatorSpec:
         A segmented actuator (:mod:`embroact.patterns.segments`): its segments in order
         along the path, lengths adding up to the path's; ``params`` must then be the first
         segment's (:meth:`segmented` sets it). Empty (default): one pattern over the path.
+
+    Examples
+    --------
+    >>> a = ActuatorSpec("A1", ZigzagParams(width_mm=7.0, interval_mm=1.0), Centerline.straight(100.0))
+    >>> a.pattern, a.centerline.length_mm, a.model.calibration
+    ('zigzag', 100.0, 'paper-2025')
     """
 
     name: str
@@ -293,6 +319,23 @@ class ActuatorSpec:
     def segmented(cls, name: str, segments, centerline=None, **kwargs) -> "ActuatorSpec":
         """A segmented actuator; ``centerline`` defaults to a straight path of the segments' total length.
 
+        Parameters
+        ----------
+        name : str
+        segments : sequence of SegmentSpec
+            At least one, in order from the path's start; lengths add up to the path's.
+        centerline : Centerline, optional
+            The tube path (anything :func:`~embroact.patterns.centerline.as_centerline` takes).
+        **kwargs
+            The other :class:`ActuatorSpec` fields (``options``, ``model``, ``adjust``).
+
+        Returns
+        -------
+        ActuatorSpec
+            ``params`` is the first segment's.
+
+        Examples
+        --------
         >>> from embroact.patterns.segments import SegmentSpec
         >>> a = ActuatorSpec.segmented("S", [SegmentSpec(ZigzagParams(7.0, 1.0), 30.0),
         ...                                  SegmentSpec(ZigzagParams(9.0, 1.0), 50.0)])
@@ -329,6 +372,16 @@ class Design:
     operation : OperationSettings
     actuators : tuple of ActuatorSpec
         At least one; names unique.
+
+    Examples
+    --------
+    >>> d = default_design()
+    >>> d.name, [a.name for a in d.actuators], d.tube.outer_radius_mm
+    ('paper-zigzag', ['A1'], 1.5)
+    >>> Design("two", Tube(), MachineSettings(), OperationSettings(), d.actuators * 2)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: actuator names must be unique, got 'A1' 2 times
     """
 
     name: str
@@ -352,7 +405,18 @@ class Design:
 
 
 def default_design() -> Design:
-    """The paper's zigzag actuator: w = 7 mm, s = 1.0 mm, l0 = 100 mm, default tube."""
+    """The paper's zigzag actuator: w = 7 mm, s = 1.0 mm, l0 = 100 mm, default tube.
+
+    Returns
+    -------
+    Design
+        Named ``"paper-zigzag"``, one actuator ``"A1"``.
+
+    Examples
+    --------
+    >>> default_design().actuators[0].params
+    ZigzagParams(width_mm=7.0, interval_mm=1.0)
+    """
     return Design(
         name="paper-zigzag",
         tube=Tube(),
@@ -533,10 +597,27 @@ def _extras(a: dict, path: str) -> dict:
 def design_from_dict(d) -> Design:
     """Validate a plain dict (parsed TOML) into a :class:`Design`.
 
+    Parameters
+    ----------
+    d : mapping
+        The design file's tables: ``name``, ``tube``, ``machine``, ``operation`` and the
+        ``actuator`` list (schema in the module docstring).
+
+    Returns
+    -------
+    Design
+
     Raises
     ------
     DesignFileError
         One line starting with the key path (``actuator[1].widht_mm: unknown key; allowed: ...``).
+
+    Examples
+    --------
+    >>> d = design_from_dict({"name": "c", "actuator": [{"name": "C1", "pattern": "cross", "width_mm": 7.0,
+    ...                       "interval_mm": 1.4, "angle_deg": 45.0, "length_mm": 100}]})
+    >>> d.actuators[0].params
+    CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0)
     """
     top = _table(d, "", ("name", "tube", "machine", "operation", "actuator"), ("actuator",))
     acts = top["actuator"]
@@ -566,6 +647,20 @@ def design_to_dict(design: Design) -> dict:
     """Plain dict (TOML/JSON-ready) that :func:`design_from_dict` turns back into ``design``.
 
     Paths are written as point lists in the plan frame; ``None`` model values are left out.
+
+    Parameters
+    ----------
+    design : Design
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> d = design_to_dict(default_design())
+    >>> d["actuator"][0]["path"], design_from_dict(d) == default_design()
+    ([[0.0, 0.0], [100.0, 0.0]], True)
     """
     acts = []
     for a in design.actuators:
@@ -697,6 +792,26 @@ def build_plan(design: Design) -> StitchPlan:
     Every record the machine will read is counted before anything is generated, the
     travel jumps between actuators included: a design above
     :data:`~embroact.patterns.assemble.MAX_RECORDS` is refused without allocating.
+
+    Parameters
+    ----------
+    design : Design
+
+    Returns
+    -------
+    StitchPlan
+        Every actuator in order, travel jumps between them, one END.
+
+    Raises
+    ------
+    PatternError
+        Too many records, or an actuator its generator refuses (the message names it).
+
+    Examples
+    --------
+    >>> plan = build_plan(default_design())
+    >>> [a.name for a in plan.actuators], plan.stitch_count
+    (['A1'], 106)
     """
     stitched = sum(_records(spec, design.tube) for spec in design.actuators) + _placement_records(design)
     travel = _travel_records(design)

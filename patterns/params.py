@@ -40,6 +40,16 @@ class Tube:
         The tube corridor is ``|distance to centerline| < r_f + clearance``.
     end_margin_mm : float
         Free tube length left at each end for connectors [mm], >= 0 (paper: 30 mm).
+
+    Examples
+    --------
+    >>> t = Tube()                      # the paper's tube: r_f 1.5 mm, d_f 1.0 mm
+    >>> t.corridor_radius_mm, t.wall_constant_mm2
+    (1.8, 1.25)
+    >>> Tube(inner_radius_mm=2.0)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: inner_radius_mm must be in [0, outer_radius_mm=1.5), got 2
     """
 
     outer_radius_mm: float = 1.5
@@ -83,6 +93,15 @@ class StitchOptions:
         of a short path gets the longest stitch it holds.
     tie_count : int
         Number of lock stitches at each end, in [2, 10].
+
+    Examples
+    --------
+    >>> StitchOptions()
+    StitchOptions(tie_stitch_mm=0.7, tie_count=3)
+    >>> StitchOptions(tie_count=1)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: tie_count must be an integer in [2, 10], got 1
     """
 
     tie_stitch_mm: float = 0.7
@@ -104,6 +123,11 @@ class ZigzagParams:
         Rail spacing w [mm], > 0 (the generator also requires w/2 > corridor radius).
     interval_mm : float
         Stitch interval s: axial advance between neighbouring needle points [mm], > 0.
+
+    Examples
+    --------
+    >>> ZigzagParams(width_mm=7.0, interval_mm=1.0).pattern
+    'zigzag'
     """
 
     pattern: ClassVar[str] = "zigzag"
@@ -127,6 +151,15 @@ class CrossParams:
         Spacing s between neighbouring parallel legs, measured along the path [mm], > 0.
     angle_deg : float
         Embroidery angle alpha0 from the line perpendicular to the tube [deg], in (0, 90).
+
+    Examples
+    --------
+    >>> CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0).pattern
+    'cross'
+    >>> CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=90.0)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: angle_deg must be in (0, 90), got 90
     """
 
     pattern: ClassVar[str] = "cross"

@@ -34,7 +34,13 @@ __all__ = ["Command", "Role", "Realised", "ActuatorPlan", "StitchPlan"]
 
 
 class Command(IntEnum):
-    """What the machine does at a record."""
+    """What the machine does at a record.
+
+    Examples
+    --------
+    >>> Command.TRIM, int(Command.STOP)
+    (<Command.TRIM: 2>, 3)
+    """
 
     STITCH = 0
     JUMP = 1
@@ -44,7 +50,13 @@ class Command(IntEnum):
 
 
 class Role(IntEnum):
-    """What a record is for in the actuator."""
+    """What a record is for in the actuator.
+
+    Examples
+    --------
+    >>> Role(1).name
+    'LEG'
+    """
 
     TIE_IN = 0
     LEG = 1
@@ -152,6 +164,15 @@ class StitchPlan:
         Index into ``actuators`` per record, -1 for design-level records (END).
     actuators : tuple of ActuatorPlan
     name : str
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> plan = build_plan(default_design())
+    >>> plan
+    StitchPlan('paper-zigzag': 109 records, 106 stitches, 1 actuator (A1), extent 100.0 x 7.0 mm)
+    >>> plan.xy_mm.shape, plan.count(Command.STOP)
+    ((109, 2), 1)
     """
 
     xy_mm: np.ndarray
@@ -179,7 +200,27 @@ class StitchPlan:
         actuators: tuple[ActuatorPlan, ...] = (),
         name: str = "embroact",
     ) -> "StitchPlan":
-        """Build from ``(x_mm, y_mm, command, role[, actuator])`` tuples."""
+        """Build from ``(x_mm, y_mm, command, role[, actuator])`` tuples.
+
+        Parameters
+        ----------
+        records : iterable of tuple
+            ``(x_mm, y_mm, command, role)`` or with the owning actuator's index last (default 0).
+        actuators : tuple of ActuatorPlan
+            The actuators the indices refer to.
+        name : str
+            The plan's (design's) name.
+
+        Returns
+        -------
+        StitchPlan
+
+        Examples
+        --------
+        >>> p = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 0, Command.END, Role.CONTROL, -1)])
+        >>> p.commands.tolist(), p.actuator.tolist()
+        ([0, 4], [0, -1])
+        """
         rows = [tuple(r) + ((0,) if len(r) == 4 else ()) for r in records]
         if not rows:
             return cls(np.zeros((0, 2)), [], [], [], actuators, name)
@@ -204,7 +245,25 @@ class StitchPlan:
     __hash__ = None  # type: ignore[assignment]
 
     def isclose(self, other: "StitchPlan", *, atol_mm: float = 1e-9) -> bool:
-        """Same records with positions equal within ``atol_mm``."""
+        """Same records with positions equal within ``atol_mm``.
+
+        Parameters
+        ----------
+        other : StitchPlan
+        atol_mm : float
+            Largest allowed difference of any coordinate [mm].
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> a = StitchPlan.from_records([(0.0, 0.0, Command.STITCH, Role.LEG)])
+        >>> b = StitchPlan.from_records([(0.0, 1e-12, Command.STITCH, Role.LEG)])
+        >>> a == b, a.isclose(b)
+        (False, True)
+        """
         return (
             len(self) == len(other)
             and np.array_equal(self.commands, other.commands)
@@ -218,15 +277,50 @@ class StitchPlan:
         return int(np.count_nonzero(self.commands == Command.STITCH))
 
     def count(self, command: Command) -> int:
-        """Number of records with the given command."""
+        """Number of records with the given command.
+
+        Parameters
+        ----------
+        command : Command
+
+        Returns
+        -------
+        int
+
+        Examples
+        --------
+        >>> StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (0, 0, Command.TRIM, Role.CONTROL)]).count(Command.TRIM)
+        1
+        """
         return int(np.count_nonzero(self.commands == command))
 
     def needle_mask(self) -> np.ndarray:
-        """Boolean mask of records where the needle goes through the fabric (STITCH)."""
+        """Boolean mask of records where the needle goes through the fabric (STITCH).
+
+        Returns
+        -------
+        ndarray of bool, shape (n,)
+
+        Examples
+        --------
+        >>> StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (5, 0, Command.JUMP, Role.TRAVEL)]).needle_mask().tolist()
+        [True, False]
+        """
         return self.commands == Command.STITCH
 
     def bounds_mm(self) -> tuple[float, float, float, float]:
-        """(xmin, ymin, xmax, ymax) over all records [mm]."""
+        """(xmin, ymin, xmax, ymax) over all records [mm].
+
+        Returns
+        -------
+        (float, float, float, float)
+            All zero for an empty plan.
+
+        Examples
+        --------
+        >>> StitchPlan.from_records([(0, 1, Command.STITCH, Role.LEG), (5, -2, Command.STITCH, Role.LEG)]).bounds_mm()
+        (0.0, -2.0, 5.0, 1.0)
+        """
         if len(self) == 0:
             return (0.0, 0.0, 0.0, 0.0)
         lo, hi = self.xy_mm.min(axis=0), self.xy_mm.max(axis=0)
@@ -243,6 +337,22 @@ class StitchPlan:
     _repr_svg_ = repr_svg
 
     def select(self, index: int) -> "StitchPlan":
-        """Records of one actuator only (its STOP/TRIM included)."""
+        """Records of one actuator only (its STOP/TRIM included).
+
+        Parameters
+        ----------
+        index : int
+            Position of the actuator in :attr:`actuators` (sewing order).
+
+        Returns
+        -------
+        StitchPlan
+
+        Examples
+        --------
+        >>> p = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG, 0), (9, 0, Command.STITCH, Role.LEG, 1)])
+        >>> p.select(1).xy_mm.tolist()
+        [[9.0, 0.0]]
+        """
         m = self.actuator == index
         return StitchPlan(self.xy_mm[m], self.commands[m], self.roles[m], self.actuator[m], self.actuators, self.name)

@@ -95,6 +95,18 @@ def zigzag(
         Path bends tighter than w/2, crosses itself, or comes back into the corridor.
     PatternError
         Path shorter than ``MIN_LEGS`` legs, or too many records.
+
+    Returns
+    -------
+    StitchPlan
+        Tie-in, legs, tie-off, then the STOP/TRIM/END records; one :class:`ActuatorPlan`.
+
+    Examples
+    --------
+    >>> from embroact.patterns.centerline import Centerline
+    >>> plan = zigzag(Centerline.straight(50.0), ZigzagParams(width_mm=7.0, interval_mm=1.0), name="Z1")
+    >>> plan.actuators[0].name, plan.stitch_count, round(plan.actuators[0].realised.length_mm, 6)
+    ('Z1', 56, 50.0)
     """
     if not isinstance(params, ZigzagParams):
         raise ParameterError(f"params must be ZigzagParams, got {type(params).__name__}")

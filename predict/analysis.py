@@ -130,6 +130,13 @@ class ActuatorAnalysis:
     first_leg_mm : float
         A single-pattern actuator: arc length where its legs start [mm] (the path before
         them bends by zero; a segment's is :attr:`SegmentPlan.first_leg_mm`).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> act = analyse(default_design()).actuators[0]
+    >>> act.name, act.plan.pattern, act.model.g_mpa
+    ('A1', 'zigzag', 2.7)
     """
 
     spec: ActuatorSpec
@@ -146,6 +153,16 @@ class ActuatorAnalysis:
         The pieces cover the path: the unbent lead-in before the first legs, the legs
         (``l0``, index 0) of a single-pattern actuator or each segment's legs with the
         transitions between them, and the tail after the last legs.
+
+        Returns
+        -------
+        tuple of (float, int)
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> [(round(length, 6), k) for length, k in analyse(default_design()).actuators[0].bend_pieces()]
+        [(100.0, 0)]
         """
         spans = ([(self.first_leg_mm, self.derived.length_mm)] if not self.segments
                  else [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.segments])
@@ -173,7 +190,19 @@ class ActuatorAnalysis:
         return self.choice.model
 
     def as_dict(self) -> dict:
-        """JSON-ready: name, pattern, derived geometry, model with sources (or the model error), segments."""
+        """JSON-ready: name, pattern, derived geometry, model with sources (or the model error), segments.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> d = analyse(default_design()).actuators[0].as_dict()
+        >>> d["name"], d["pattern"], d["model_error"]
+        ('A1', 'zigzag', None)
+        """
         d = {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
              "model": self.choice.as_dict() if self.choice is not None else None,
              "model_error": self.model_error or None}
@@ -203,6 +232,13 @@ class DesignAnalysis:
     Curves are computed on request and kept: the same pressures and method give the same
     :class:`~embroact.predict.curve.Curve` objects, so a build's rules, chart, side view,
     3D shape and report share one evaluation.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> a = analyse(default_design())
+    >>> a.curves() is a.curves(), len(a.pressures_kpa)
+    (True, 31)
     """
 
     design: Design
@@ -212,7 +248,29 @@ class DesignAnalysis:
     _curves: dict = field(default_factory=dict, compare=False, repr=False)
 
     def actuator(self, name: str) -> ActuatorAnalysis:
-        """The actuator called ``name``."""
+        """The actuator called ``name``.
+
+        Parameters
+        ----------
+        name : str
+
+        Returns
+        -------
+        ActuatorAnalysis
+
+        Raises
+        ------
+        ParameterError
+            No actuator has that name (the message lists them).
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> analyse(default_design()).actuator("B")
+        Traceback (most recent call last):
+        ...
+        embroact.patterns.base.errors.ParameterError: actuator must be one of A1, got 'B'
+        """
         for a in self.actuators:
             if a.name == name:
                 return a
@@ -226,6 +284,24 @@ class DesignAnalysis:
 
     def curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
         """Predicted curve per actuator at ``pressures_kpa`` (default :attr:`pressures_kpa`), memoised.
+
+        Parameters
+        ----------
+        pressures_kpa : sequence of float, optional
+            Pressures [kPa], >= 0.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Returns
+        -------
+        tuple of Curve
+            One per actuator, in sewing order.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> [round(float(t), 1) for t in analyse(default_design()).curves([100.0, 200.0])[0].theta_deg]
+        [11.5, 102.9]
 
         Raises
         ------
@@ -246,6 +322,24 @@ class DesignAnalysis:
         Segments decouple (docs/model.md, segmented actuators): each bends by its own
         ``theta_k(P)``, zero while ``P <= P0_k``.
 
+        Parameters
+        ----------
+        pressures_kpa : sequence of float, optional
+            Pressures [kPa], >= 0; default :attr:`pressures_kpa`.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Returns
+        -------
+        tuple of tuple of Curve
+            Per actuator, one curve per segment.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> [len(c) for c in analyse(default_design()).segment_curves([200.0])]
+        [1]
+
         Raises
         ------
         ModelDomainError
@@ -263,6 +357,22 @@ class DesignAnalysis:
 
     def shapes(self, name: str, pressures_kpa: Sequence[float], *, method: str = "auto") -> tuple:
         """The bent fabric line of actuator ``name`` at each pressure: a chain of arcs (straight path frame).
+
+        Parameters
+        ----------
+        name : str
+            The actuator.
+        pressures_kpa : sequence of float
+            Pressures [kPa], >= 0.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> shape, pieces = analyse(default_design()).shapes("A1", [200.0])[0]
+        >>> shape
+        BentShape(1 piece, 100 mm, turning 102.9 deg)
 
         Returns
         -------
@@ -288,6 +398,24 @@ class DesignAnalysis:
         An actuator gets a band when G and P0 come from one fitted calibration point with a
         covariance (``embroact fit`` records it); otherwise ``None``: the built-in paper set and
         interpolated or given values carry no uncertainty, and no band is claimed for them.
+
+        Parameters
+        ----------
+        pressures_kpa : sequence of float, optional
+            Pressures [kPa], >= 0; default :attr:`pressures_kpa`.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Returns
+        -------
+        tuple of (Band or None)
+            One per actuator.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> analyse(default_design()).bands([100.0])   # the built-in set has no covariance
+        (None,)
         """
         from .uncertainty import theta_band
 
@@ -304,7 +432,19 @@ class DesignAnalysis:
         return self._curves[key]
 
     def as_dict(self) -> dict:
-        """JSON-ready summary of every actuator."""
+        """JSON-ready summary of every actuator.
+
+        Returns
+        -------
+        dict
+            ``design`` (the name) and ``actuators`` (:meth:`ActuatorAnalysis.as_dict` each).
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> analyse(default_design()).as_dict()["design"]
+        'paper-zigzag'
+        """
         return {"design": self.design.name, "actuators": [a.as_dict() for a in self.actuators]}
 
     def __repr__(self) -> str:

@@ -139,6 +139,18 @@ class ActuatorModel:
         Where ``g_mpa`` and ``p0_kpa`` came from; carried into every result.
     """
 
+    Examples
+    --------
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> m.calibration, m.tube_law
+    ('given', 'paper')
+    >>> ActuatorModel("zigzag", length_mm=100, r0_mm=1.4, beta0_deg=0, outer_radius_mm=1.5,
+    ...               inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ModelDomainError: r0_mm must be > outer_radius_mm=1.5 (no sleeve: ...
+
     pattern: str
     length_mm: float
     r0_mm: float
@@ -177,7 +189,32 @@ class ActuatorModel:
     def from_derived(cls, derived, *, g_mpa, p0_kpa=None, calibration="given", tube_law="paper"):
         """Model of a :class:`~embroact.predict.derived.DerivedGeometry` with G (and P0).
 
-        ``p0_kpa=None`` takes P0 from the geometry: the tube law's pressure at r0.
+        Parameters
+        ----------
+        derived : DerivedGeometry
+            Sleeve geometry measured on generated stitches (:func:`embroact.predict.derived.derive`).
+        g_mpa : float
+            Effective modulus G [MPa].
+        p0_kpa : float, optional
+            Transition pressure [kPa]; ``None`` takes it from the geometry: the tube law's
+            pressure at r0.
+        calibration : str
+            Where G and P0 came from.
+        tube_law : str
+            ``"paper"`` or ``"thick-wall"``.
+
+        Returns
+        -------
+        ActuatorModel
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> from embroact.predict.analysis import analyse
+        >>> d = analyse(default_design()).actuators[0].derived
+        >>> m = ActuatorModel.from_derived(d, g_mpa=2.7)
+        >>> m.r0_mm == d.r0_mm, m.p0_kpa == d.p0_kpa
+        (True, True)
         """
         t = derived.tube
         if p0_kpa is None:
@@ -206,6 +243,15 @@ class Curve:
         Method used (resolved from "auto") and where G/P0 came from.
     """
 
+    Examples
+    --------
+    >>> c = curve(ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+    ...                     inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85), [0, 100, 200])
+    >>> c
+    Curve(3 pressures, 0-200 kPa, method stable-analytic-trace, calibration 'given'; INFLATION 1, BENDING 2)
+    >>> c.theta_deg.flags.writeable
+    False
+
     pressure_kpa: np.ndarray
     theta_deg: np.ndarray
     status: np.ndarray
@@ -229,7 +275,20 @@ class Curve:
     _repr_svg_ = repr_svg
 
     def as_dict(self) -> dict:
-        """Plain dict (lists, status names) with unit-suffixed keys, for JSON."""
+        """Plain dict (lists, status names) with unit-suffixed keys, for JSON.
+
+        Returns
+        -------
+        dict
+            One key per field; arrays as lists, ``status`` as names.
+
+        Examples
+        --------
+        >>> c = curve(ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+        ...                     inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85), [0, 100])
+        >>> c.as_dict()["status"], c.as_dict()["method"]
+        (['INFLATION', 'BENDING'], 'stable-analytic-trace')
+        """
         out = {}
         for f in fields(self):
             v = getattr(self, f.name)
@@ -466,7 +525,31 @@ def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
     past a lock-up ``LOCKED`` at the lock angle, past the domain or the tracing cap
     ``OUT_OF_DOMAIN`` at the end angle; states beyond a validity limit take that
     limit's status (COILED, KINKED, OVERSTRETCHED) with the formula's values.
-    See :func:`sweep` for the parameters.
+
+    Parameters
+    ----------
+    model : ActuatorModel
+    pressures_kpa : array_like
+        Pressures [kPa], >= 0.
+    method, rtol, limits
+        As for :func:`sweep`.
+
+    Returns
+    -------
+    Curve
+        1-D arrays, one value per pressure.
+
+    Raises
+    ------
+    ParameterError
+        A negative or non-finite pressure, an unknown method, an rtol out of range.
+
+    Examples
+    --------
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> [round(float(t), 1) for t in curve(m, [50, 100, 200]).theta_deg]
+    [0.0, 11.5, 102.9]
     """
     if not isinstance(model, ActuatorModel):
         raise ParameterError(f"model must be an ActuatorModel, got {type(model).__name__}")

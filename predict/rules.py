@@ -224,6 +224,15 @@ def check_design(
     -------
     tuple of Finding
         Worst first. Commands that write machine files refuse when any is an error.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> [(f.code, f.severity.value) for f in check_design(analyse(default_design()))]
+    [('EA403', 'warning'), ('EA406', 'info')]
+    >>> [f.code for f in check_design(analyse(default_design()), ignore=("EA403",))]
+    ['EA406']
     """
     design = analysis.design
     skip = {RULES[code].code for code in ignore}

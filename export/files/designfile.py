@@ -94,6 +94,21 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
 def load_design(path: str | os.PathLike) -> Design:
     """Read and validate a TOML design file.
 
+    Parameters
+    ----------
+    path : path-like
+        The file; relative paths inside it (SVG drawings, calibration files) are read from
+        its folder.
+
+    Returns
+    -------
+    Design
+
+    Examples
+    --------
+    >>> load_design("examples/paper_cross.toml").actuators[0].params.angle_deg
+    45.0
+
     Raises
     ------
     DesignFileError
@@ -114,10 +129,46 @@ def load_design(path: str | os.PathLike) -> Design:
 
 
 def dumps_design(design: Design) -> str:
-    """TOML text of ``design`` (paths as point lists), readable by :func:`loads_design`."""
+    """TOML text of ``design`` (paths as point lists), readable by :func:`loads_design`.
+
+    Parameters
+    ----------
+    design : Design
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> text = dumps_design(default_design())
+    >>> text.splitlines()[0], loads_design(text) == default_design()
+    ('name = "paper-zigzag"', True)
+    """
     return dumps(design_to_dict(design))
 
 
 def save_design(design: Design, path: str | os.PathLike) -> None:
-    """Write ``design`` as TOML to ``path`` atomically."""
+    """Write ``design`` as TOML to ``path`` atomically.
+
+    Parameters
+    ----------
+    design : Design
+    path : path-like
+        The file to write (replaced whole, or left as it was on an error).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> path = os.path.join(tempfile.mkdtemp(), "zigzag.toml")
+    >>> save_design(default_design(), path)
+    >>> load_design(path) == default_design()
+    True
+    """
     write_text_atomic(path, dumps_design(design))

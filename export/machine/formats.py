@@ -264,6 +264,13 @@ class WriteResult:
         Plan position of the file's origin [mm] ((0, 0) but for VP3).
     notes : tuple of str
         What this format cannot carry.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> _, res = encode(build_plan(default_design()), "dst")
+    >>> res.path, res.format, res.stitches, res.pauses
+    (None, 'dst', 106, 1)
     """
 
     path: str | None
@@ -287,7 +294,19 @@ class WriteResult:
         return len(self.pauses_mm)
 
     def as_dict(self) -> dict:
-        """Plain dict for JSON output (lists for tuples)."""
+        """Plain dict for JSON output (lists for tuples).
+
+        Returns
+        -------
+        dict
+            One key per field.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import build_plan, default_design
+        >>> encode(build_plan(default_design()), "dst")[1].as_dict()["pauses_mm"]
+        [[0.7, 3.5]]
+        """
         out = {}
         for k in self.__slots__:
             v = getattr(self, k)
@@ -341,6 +360,31 @@ def write(
     cord_stop: CordStop | str = CordStop.SEQUENCE,
 ) -> WriteResult:
     """Write ``plan`` to ``path`` atomically in the format of its suffix (or ``fmt``).
+
+    Parameters
+    ----------
+    plan : StitchPlan
+    path : path-like
+        The file to write; its suffix names the format unless ``fmt`` is given.
+    fmt : str, optional
+        Format name (``"dst"``, ``"exp"``, ...), overriding the suffix.
+    split_long : bool
+        Split legs above the format's per-record limit instead of refusing.
+    cord_stop : CordStop or str
+        ``"sequence"`` or ``"double"`` (:class:`embroact.patterns.stops.CordStop`).
+
+    Returns
+    -------
+    WriteResult
+        Counted back from the written bytes.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> res = write(build_plan(default_design()), os.path.join(tempfile.mkdtemp(), "a1.exp"))
+    >>> res.format, res.stitches, res.stops, os.path.getsize(res.path) == res.size_bytes
+    ('exp', 106, 1, True)
 
     Raises
     ------

@@ -151,6 +151,14 @@ class BuildResult:
     findings : tuple
     plan : StitchPlan
     analysis : DesignAnalysis or None
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> res = build(default_design(), tempfile.mkdtemp())
+    >>> res.files[0], [m.format for m in res.machine_files], res.plan.stitch_count
+    ('paper-zigzag.dst', ['dst'], 106)
     """
 
     out_dir: str
@@ -162,7 +170,22 @@ class BuildResult:
     analysis: object = field(default=None, compare=False)
 
     def as_dict(self) -> dict:
-        """JSON-ready summary (unit-suffixed keys inside the worksheet)."""
+        """JSON-ready summary (unit-suffixed keys inside the worksheet).
+
+        Returns
+        -------
+        dict
+            ``out_dir``, ``files``, ``machine_files``, ``stitch_count``, ``stop_count``,
+            ``findings`` and ``actuators``.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> d = build(default_design(), tempfile.mkdtemp()).as_dict()
+        >>> d["stitch_count"], d["stop_count"], [f["code"] for f in d["findings"]]
+        (106, 1, ['EA403', 'EA406'])
+        """
         return {
             "out_dir": self.out_dir,
             "files": list(self.files),
@@ -321,6 +344,29 @@ def build(
         for every format (:data:`SPLIT_LONG_IGNORES` left out with ``split_long``).
     stages
         Plug-in points (module docstring).
+    cord_stop : str, optional
+        ``"sequence"`` or ``"double"``; default the design's ``machine.cord_stop``.
+
+    Returns
+    -------
+    BuildResult
+        The files written (atomically, all or none) and what went into them.
+
+    Raises
+    ------
+    DesignRuleError
+        ``check`` found errors and ``force`` is false (nothing written).
+    ExportError
+        ``out_dir`` missing or not writable.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> out = tempfile.mkdtemp()
+    >>> res = build(default_design(), out, formats=["dst", "exp"])
+    >>> [f for f in res.files if f.startswith("paper-zigzag")], os.path.isfile(os.path.join(out, "worksheet.txt"))
+    (['paper-zigzag.dst', 'paper-zigzag.exp'], True)
     """
     from ...predict.analysis import analyse
 
