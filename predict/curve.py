@@ -69,6 +69,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from functools import lru_cache
 
 import numpy as np
 
@@ -137,7 +138,6 @@ class ActuatorModel:
         "paper" or "thick-wall": tube radius below P0 (see :mod:`embroact.predict.tubelaws`).
     calibration : str
         Where ``g_mpa`` and ``p0_kpa`` came from; carried into every result.
-    """
 
     Examples
     --------
@@ -150,6 +150,7 @@ class ActuatorModel:
     Traceback (most recent call last):
     ...
     embroact.patterns.base.errors.ModelDomainError: r0_mm must be > outer_radius_mm=1.5 (no sleeve: ...
+    """
 
     pattern: str
     length_mm: float
@@ -241,7 +242,6 @@ class Curve:
         Thread-side length l, tube outer radius r, thread angle beta, inner radius d.
     method, calibration : str
         Method used (resolved from "auto") and where G/P0 came from.
-    """
 
     Examples
     --------
@@ -251,6 +251,7 @@ class Curve:
     Curve(3 pressures, 0-200 kPa, method stable-analytic-trace, calibration 'given'; INFLATION 1, BENDING 2)
     >>> c.theta_deg.flags.writeable
     False
+    """
 
     pressure_kpa: np.ndarray
     theta_deg: np.ndarray
@@ -417,6 +418,65 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
     return th, np.where(beyond, kind, np.where(unstable, Status.UNSTABLE, Status.BENDING))
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class _Branch:
+    """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry,
+    branch end, rate and slope, tube laws, and the trace inverse's memo (its tabulation, fold and zooms)."""
+
+    geo: _m.Geometry
+    full: np.ndarray
+    kind: np.ndarray
+    rate: object
+    slope: object
+    ptol: np.ndarray
+    pole: np.ndarray
+    laws: list
+    memo: dict
+
+
+#: Models whose branches are kept (the studio and inverse design ask one model many times); each
+#: holds at most one tabulation per zoom the calls needed (~3 KB each, at most TRACE_POINTS of them).
+BRANCH_CACHE = 64
+_FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
+_INFLATION, _BENDING, _UNSTABLE, _FAILED = (int(s) for s in (Status.INFLATION, Status.BENDING, Status.UNSTABLE,
+                                                              Status.FAILED))  # hot paths: no enum lookups
+
+
+def _branch(model: ActuatorModel, rtol: float) -> _Branch:
+    """The cached branch of ``model`` (keyed also by the module settings it depends on)."""
+    return _cached_branch(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
+
+
+@lru_cache(maxsize=BRANCH_CACHE)
+def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
+    geo = _geometry([model])
+    full, kind = _branch_end(geo)
+    return _Branch(geo, full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]),
+                   PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, _tube_laws(geo, [model]), {})
+
+
+def _solve_cached(br: _Branch, targets, rtol):
+    """theta (1, m) and status of one model's targets on its cached branch (the "auto" fast path).
+
+    The trace inverse of :func:`_solve_theta` with its tables kept in the branch's memo: the
+    same answers, without tabulating again.
+    """
+    theta = np.zeros(targets.shape)
+    status = np.full(targets.shape, br.kind[0, 0], dtype=np.int8)
+    bend = np.flatnonzero(targets[0] > 0.0)  # the others are inflation points: no solve
+    if br.full[0, 0] == 0.0 or bend.size == 0:
+        return theta, status
+    th, where, _, _ = solvers.trace_inverse(br.rate, br.full, targets[:, bend], slope=br.slope,
+                                            grid_points=TRACE_POINTS, rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
+                                            ptol=br.ptol, pole_at_end=br.pole, memo=br.memo)
+    th = np.where(where == 1, br.full, th)[0]
+    bad = ~np.isfinite(th)
+    theta[0, bend] = np.where(bad, 0.0, th)
+    status[0, bend] = np.where(bad, _FAILED, np.where(where[0] == 2, _UNSTABLE,
+                                                      np.where(where[0] == 1, br.kind[0, 0], _BENDING)))
+    return theta, status
+
+
 def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
     """theta (n, m) for P - P0 = targets > 0 (other entries ignored) and the status per point."""
     full, kind = _branch_end(geo)
@@ -434,23 +494,30 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
     return theta, status
 
 
-def _states(geo, theta, pressure_mpa, status, models):
-    """State arrays (l, r, beta, d) at each point; inflation points from the tube law.
+def _tube_laws(geo, models):
+    """Per tube law of the models: (rows, law, tube (r_f, d_f, G_e) columns, r0 met, pressure at r0 [kPa])."""
+    out = []
+    for law in dict.fromkeys(mo.tube_law for mo in models):
+        sel = np.array([mo.tube_law == law for mo in models])
+        tube = tuple(np.array([[getattr(mo, k)] for mo in models])[sel]
+                     for k in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"))
+        r0 = np.maximum(geo.r0[sel], tube[0])
+        out.append((sel, law, tube, r0, pressure_kpa(r0, tube, law)))  # below the thick-wall limit: r0 is finite
+    return out
+
+
+def _states(geo, theta, pressure_mpa, status, laws):
+    """State arrays (l, r, beta, d) at each point; inflation points from the tube law (``_tube_laws``).
 
     Below P0 the free tube follows its law until it meets the sleeve (r = r0): a P0
     given above the law's pressure at r0 leaves the tube at r0 in between.
     """
     l, r, sinb, _ = _m.constraint(theta, geo)
     d2 = _m.inner_radius_sq(l, r, geo)
-    infl = status == Status.INFLATION
+    infl = status == _INFLATION
     if infl.any():
         r_law = np.empty_like(theta)
-        for law in {mo.tube_law for mo in models}:
-            sel = np.array([mo.tube_law == law for mo in models])
-            tube = tuple(np.array([[getattr(mo, k)] for mo in models])[sel]
-                         for k in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"))
-            r0 = np.maximum(geo.r0[sel], tube[0])
-            p_sleeve = pressure_kpa(r0, tube, law)  # below the thick-wall limit: r0 is finite
+        for sel, law, tube, r0, p_sleeve in laws:
             p = np.minimum(pressure_mpa[sel] * KPA_PER_MPA, p_sleeve)
             r_law[sel] = np.where(p >= p_sleeve, r0, radius_mm(p, tube, law))
         r = np.where(infl, np.minimum(r_law, geo.r0), r)  # a sleeve narrower than the tube squeezes it
@@ -460,14 +527,18 @@ def _states(geo, theta, pressure_mpa, status, models):
 
 def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
-    geo = _geometry(models)
+    cached = _branch(models[0], rtol) if len(models) == 1 and (energy, deriv, inverse) == _FAST else None
+    geo = _geometry(models) if cached is None else cached.geo
     pressure = np.broadcast_to(p, (len(models), p.size))
     targets = pressure - geo.p0
-    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
+    if cached is None:
+        theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
+    else:
+        theta, status = _solve_cached(cached, targets, rtol)
     infl = targets <= 0.0
     theta = np.where(infl, 0.0, theta)
-    status = np.where(infl, Status.INFLATION, status).astype(np.int8)
-    states = _states(geo, theta, pressure, status, models)
+    status = np.where(infl, _INFLATION, status).astype(np.int8)
+    states = _states(geo, theta, pressure, status, _tube_laws(geo, models) if cached is None else cached.laws)
     if limits:  # validity limits (validity.py)
         status = apply_limits(status, theta, states[0], states[1], geo.l0)
     return (pressure * KPA_PER_MPA, np.degrees(theta), status) + states
@@ -512,8 +583,16 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
     blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol, limits)
               for k in range(0, len(models), SWEEP_BLOCK)]
     arrays = [parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks)]
-    return Curve(*(frozen_array(a, dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+    return Curve(*(_frozen(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    """``a`` read-only, without a copy where it owns a fresh buffer (not a view of a shared input)."""
+    if isinstance(a, np.ndarray) and a.flags.writeable and (a.base is None or a.base.flags.owndata):
+        a.setflags(write=False)
+        return a
+    return frozen_array(a, dtype=None)
 
 
 def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
@@ -582,7 +661,7 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits
     filled = (status != Status.BENDING) & (status != Status.UNSTABLE)
     p = np.where(filled, geo.p0, p)
     theta = np.where(status == Status.FAILED, 0.0, th)  # other points show the state at the angle asked for
-    states = _states(geo, theta, p, status, [model])
+    states = _states(geo, theta, p, status, _tube_laws(geo, [model]))
     if limits:  # validity limits (validity.py); the pressure keeps the value of the status replaced
         status = apply_limits(status, theta, states[0], states[1], geo.l0)
     arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + states

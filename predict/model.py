@@ -98,6 +98,8 @@ class Geometry:
     gamma, r_c0, r_slope, e_scale : ndarray
         Derived once: 2 r0/(l0 c0) [1/rad], r0/c0 [mm], r0 s0/(l0 c0) [-] and the
         energy's factor pi G l0/2 [N].
+    s0sq, c0sq : ndarray
+        sin^2(beta0), cos^2(beta0) (the fused rate's constants).
     """
 
     l0: np.ndarray
@@ -111,6 +113,8 @@ class Geometry:
     r_c0: np.ndarray
     r_slope: np.ndarray
     e_scale: np.ndarray
+    s0sq: np.ndarray
+    c0sq: np.ndarray
 
     @classmethod
     def from_values(cls, *, beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa) -> "Geometry":
@@ -120,7 +124,7 @@ class Geometry:
         beta0, l0, r0, c, g, p0 = (np.ascontiguousarray(v.reshape(-1, 1)) for v in cols)
         s0, c0 = np.sin(beta0), np.cos(beta0)
         return cls(l0=l0, r0=r0, s0=s0, c0=c0, c=c, g=g, p0=p0, gamma=2.0 * r0 / (l0 * c0), r_c0=r0 / c0,
-                   r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0)
+                   r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0, s0sq=s0 * s0, c0sq=c0 * c0)
 
     def take(self, rows) -> "Geometry":
         """The designs at ``rows`` (index array or boolean mask)."""
@@ -350,10 +354,60 @@ def _zigzag_rate_stable(theta, geo: Geometry):
     return np.where(theta == 0.0, 0.0, de), np.full(de.shape, np.pi) * geo.r0 ** 3
 
 
+def _cross_rate_stable(theta, geo: Geometry):
+    """(dE/dtheta, dV/dtheta) of the stable form with the analytic derivative, fused (any beta0), the fast path.
+
+    :func:`constraint`, :func:`constraint_rates`, :func:`volume_gradient` and
+    :func:`_gradient_stable` written out once in the variables of the constraint:
+    ``A = (1 + u)/2``, ``m = A - 1 = (u - 1)/2`` taken without cancellation as
+    ``(g S - g^2 s0^2)/(2 den)``, ``lambda2^2 = cos^2(beta)/c0^2``, ``s = c/r^2``;
+    no intermediate is computed twice (real theta only).
+    """
+    c, s0s, c0s = geo.c, geo.s0sq, geo.c0sq
+    gt = geo.gamma * theta
+    gs2 = gt * gt * s0s
+    den = 1.0 + gs2
+    gS = gt * np.sqrt(c0s + gs2)
+    u = (1.0 + gS) / den
+    x = c0s + gs2 * (1.0 + s0s)
+    y = (2.0 * s0s) * gS
+    cos2 = np.where(gt >= 0.0, (c0s * c0s) / (x + y), (x - y) / (den * den))
+    cosb = np.sqrt(cos2)
+    r = geo.r_c0 * cosb
+    # constraint rates: -dr/dl = r_slope tan(beta), dl/dtheta = r/(1/2 + theta (-dr/dl))
+    r_l = geo.r_slope * (u * geo.s0) / cosb
+    l_t = r / (0.5 + theta * r_l)
+    r_t = -r_l * l_t
+    A = 0.5 * (1.0 + u)
+    m = (gS - gs2) / (2.0 * den)
+    ia = 1.0 / A
+    ia2 = ia * ia
+    ir = 1.0 / r
+    s = c * ir * ir
+    lam2 = cos2 / c0s
+    il2 = 1.0 / lam2
+    w = m * m * s * ia
+    b = u + w
+    sa, sb = np.sqrt(u), np.sqrt(b)
+    ssum = sa + sb
+    T = 2.0 * c / (sa * sb * ssum)
+    hs = 0.5 / ssum
+    T_a = -T * (0.5 / u + hs / sa)
+    T_b = -T * (0.5 / b + hs / sb)
+    cm = 0.5 * c * m * ia2
+    f_a = (c * (1.0 - (lam2 - 3.0) * ia2) + cm * ((2.0 * A - s) - m * (1.0 - s * ia))
+           + (2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2)) * il2)
+    f_r = (2.0 * c * lam2 * ia + cm * m * s - 2.0 * (T_b * w + T) * il2) * ir
+    l_sum = geo.l0 * (1.0 + u)  # l + l0
+    de = geo.e_scale * (f_a * (0.5 / geo.l0) * l_t + f_r * r_t)
+    dv = np.pi * r * (0.5 * r * l_t + l_sum * r_t)
+    return np.where(theta == 0.0, 0.0, de), dv
+
+
 def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
     """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives."""
-    if form == "stable" and derivative == "analytic" and not geo.s0.any():
-        return _zigzag_rate_stable(theta, geo)
+    if form == "stable" and derivative == "analytic" and not np.iscomplexobj(theta):
+        return _cross_rate_stable(theta, geo) if geo.s0.any() else _zigzag_rate_stable(theta, geo)
     l, r, sinb, cosb = constraint(theta, geo)
     l_t, r_t = constraint_rates(theta, l, r, sinb, cosb, geo)
     v_l, v_r = volume_gradient(l, r, geo)

@@ -158,7 +158,7 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
 
 
 def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, atol, ptol=0.0,
-                  pole_at_end=False):
+                  pole_at_end=False, memo=None):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
@@ -184,6 +184,10 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
         P(theta) can be; a target below the floor would otherwise chase noise).
     pole_at_end : bool or ndarray (n, 1)
         True where ``theta_end`` is a lock-up (P -> +inf there).
+    memo : dict, optional
+        One design only (n = 1): keeps the tabulation, the located fold and each zoom
+        (by the grid point it reaches) for the next call with the same arguments, which
+        then only polishes; the answers are those of a call without it.
 
     Returns
     -------
@@ -203,41 +207,32 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     tabulated again on the part up to the highest target (a zoom), so that the cubic
     start of the polish is accurate without a finer grid everywhere.
     """
-    grid = theta_end * np.linspace(0.0, 1.0, grid_points)
-    de, dv = rate(grid)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p = de / dv
-    p[:, 0] = 0.0
-    p[:, -1] = np.where(np.ravel(np.broadcast_to(pole_at_end, theta_end.shape)) | ~np.isfinite(p[:, -1]),
-                        np.inf, p[:, -1])
-    rising = p[:, 1:] > p[:, :-1]
-    first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
+    memo = {} if memo is None else memo
+    if "table" not in memo:
+        memo["table"] = _tabulate(rate, theta_end, grid_points, pole_at_end)
+    grid, de, dv, p, first_fall = memo["table"]
     rows = np.arange(grid.shape[0])
     theta_stop = grid[rows, first_fall]
     p_stop = p[rows, first_fall]
     top = targets.max(axis=1) if targets.shape[1] else np.full(rows.size, np.inf)
     folded = np.flatnonzero((first_fall < grid_points - 1) & (top > p[rows, np.maximum(first_fall - 1, 0)]))
     if folded.size:  # locate the fold: the root of the slope around the last rising point
-        lo = grid[folded, np.maximum(first_fall[folded] - 1, 0)]
-        hi = grid[folded, first_fall[folded] + 1]
-        s_lo, s_hi = slope(lo, folded), slope(hi, folded)
-        ok = np.sign(s_lo) != np.sign(s_hi)
-        sel = folded[ok]
-        t_fold = illinois(lambda x, k: slope(x, sel[k]), lo[ok], hi[ok], s_lo[ok], s_hi[ok], rtol=rtol, atol=atol)
-        e, v = rate(t_fold, sel)
-        theta_stop[sel], p_stop[sel] = t_fold, e / v
+        key = ("fold", folded.tobytes())
+        if key not in memo:
+            memo[key] = _fold(rate, slope, grid, first_fall, folded, rtol, atol)
+        sel, t_fold, p_fold = memo[key]
+        theta_stop[sel], p_stop[sel] = t_fold, p_fold
     theta_stop, p_stop = theta_stop[:, None], p_stop[:, None]
     # the stable part ends at the last grid point before the fold (the fold may precede grid[ff])
     last = first_fall - (np.abs(grid[rows, first_fall]) > np.abs(theta_stop[:, 0]))
     reach = np.array([np.searchsorted(p[k, :last[k] + 1], top[k]) for k in rows])  # first point >= top
     zoom = np.flatnonzero((reach + 1) * ZOOM < last)
     if zoom.size:
-        grid[zoom] = grid[zoom, reach[zoom] + 1][:, None] * np.linspace(0.0, 1.0, grid_points)
-        de[zoom], dv[zoom] = rate(grid[zoom], zoom)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            p[zoom] = de[zoom] / dv[zoom]
-        p[zoom, 0] = 0.0
-        last[zoom] = grid_points - 1
+        key = ("zoom", zoom.tobytes(), reach[zoom].tobytes())
+        if key not in memo:
+            memo[key] = _zoom(rate, grid, de, dv, p, zoom, reach[zoom], grid_points)
+        grid, de, dv, p = memo[key]
+        last = np.where(np.isin(rows, zoom), grid_points - 1, last)
     beyond = targets > p_stop
     where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
     theta = np.where(beyond, theta_stop, 0.0)
@@ -256,6 +251,43 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     if solve[0].size:
         theta[solve] = _polish(rate, grid, de, dv, i[solve], solve[0], targets[solve], (rtol, atol, floor))
     return theta, where, theta_stop, p_stop
+
+
+def _tabulate(rate, theta_end, grid_points, pole_at_end):
+    """(grid, E', V', P - P0, first fall) of each branch on ``grid_points`` points; P is 0 at the start, inf at a pole."""
+    grid = theta_end * np.linspace(0.0, 1.0, grid_points)
+    de, dv = rate(grid)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = de / dv
+    p[:, 0] = 0.0
+    p[:, -1] = np.where(np.ravel(np.broadcast_to(pole_at_end, theta_end.shape)) | ~np.isfinite(p[:, -1]),
+                        np.inf, p[:, -1])
+    rising = p[:, 1:] > p[:, :-1]
+    first_fall = np.where(rising.all(axis=1), grid_points - 1, np.argmin(rising, axis=1))
+    return grid, de, dv, p, first_fall
+
+
+def _fold(rate, slope, grid, first_fall, folded, rtol, atol):
+    """(rows located, fold angle, P - P0 there): the root of the slope around each row's last rising point."""
+    lo = grid[folded, np.maximum(first_fall[folded] - 1, 0)]
+    hi = grid[folded, first_fall[folded] + 1]
+    s_lo, s_hi = slope(lo, folded), slope(hi, folded)
+    ok = np.sign(s_lo) != np.sign(s_hi)
+    sel = folded[ok]
+    t_fold = illinois(lambda x, k: slope(x, sel[k]), lo[ok], hi[ok], s_lo[ok], s_hi[ok], rtol=rtol, atol=atol)
+    e, v = rate(t_fold, sel)
+    return sel, t_fold, e / v
+
+
+def _zoom(rate, grid, de, dv, p, zoom, reach, grid_points):
+    """Copies of the tables with the rows ``zoom`` tabulated again from 0 to their grid point ``reach + 1``."""
+    grid, de, dv, p = grid.copy(), de.copy(), dv.copy(), p.copy()
+    grid[zoom] = grid[zoom, reach + 1][:, None] * np.linspace(0.0, 1.0, grid_points)
+    de[zoom], dv[zoom] = rate(grid[zoom], zoom)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p[zoom] = de[zoom] / dv[zoom]
+    p[zoom, 0] = 0.0
+    return grid, de, dv, p
 
 
 def _floored(e, v, t, ptol):
@@ -277,40 +309,56 @@ def _residual_fn(rate, rows, t, ptol):
 _CUBIC = np.linalg.inv(np.vander(np.arange(4.0), 4, increasing=True))
 
 
-def _polish(rate, grid, de, dv, i, rows, t, tols):
-    """Roots of R = dE - t dV between grid points i and i + 1 of each entry's row (1-D).
+def _cubics(de, dv, rows, i):
+    """Power-basis cubics of E' and V' through the four grid points around interval i of each entry.
 
-    A cubic through the four tabulated residuals around the bracket gives the start
-    (its root) and the slope; Newton steps on the true residual finish. Entries whose
-    step leaves the bracket, or that still move after ``NEWTON_STEPS``, go to Illinois.
+    Returns ``(ce, cv, j)``: coefficients (k, 4) in ``u = (theta - grid_j)/h`` and the window's first point j.
+    """
+    j = np.clip(i - 1, 0, de.shape[1] - 4)
+    window = (rows[:, None], j[:, None] + np.arange(4))
+    return de[window] @ _CUBIC.T, dv[window] @ _CUBIC.T, j
+
+
+def _polish(rate, grid, de, dv, i, rows, t, tols):
+    """Roots of R = dE - t dV between grid points i and i + 1 of each entry's row (1-D), see :func:`_newton`."""
+    ce, cv, j = _cubics(de, dv, rows, i)
+    return _newton(rate, (grid[rows, i], grid[rows, i + 1], grid[rows, j], grid[rows, 1] - grid[rows, 0], i - j),
+                   (de[rows, i], dv[rows, i], de[rows, i + 1], dv[rows, i + 1]), ce, cv, rows, t, tols)
+
+
+def _newton(rate, interval, ends, ce, cv, rows, t, tols):
+    """Root of R = E' - t V' in each entry's bracket: a cubic's root to start, Newton on the model to finish.
+
+    ``interval`` is (theta_a, theta_b, base, h, u_a): the bracket, the cubic window's first grid
+    point and spacing and the bracket's start in ``u = (theta - base)/h``; ``ends`` the
+    tabulated (E', V') at both ends; ``ce``, ``cv`` the cubics of E' and V' (:func:`_cubics`).
+    The cubic ``ce - t cv`` through the four tabulated residuals gives the start (its root)
+    and the slope; Newton steps on the true residual finish. Entries whose step leaves the
+    bracket, or that still move after ``NEWTON_STEPS``, go to Illinois.
     """
     rtol, atol, floor = tols
-    n_grid = grid.shape[1]
-    ta, tb = grid[rows, i], grid[rows, i + 1]
-    ra, rb = de[rows, i] - t * dv[rows, i], de[rows, i + 1] - t * dv[rows, i + 1]
+    ta, tb, base, h, u_a = interval
+    ra, rb = ends[0] - t * ends[1], ends[2] - t * ends[3]
     x = np.where(ra == 0.0, ta, tb)  # exact grid hits, and no sign change (target at the end)
     todo = np.flatnonzero((np.sign(ra) != np.sign(rb)) & (ra != 0.0))
     if todo.size == 0:
         return x
-    rows_t, t_t, i_t = rows[todo], t[todo], i[todo]
-    h = grid[rows_t, 1] - grid[rows_t, 0]
-    j = np.clip(i_t - 1, 0, n_grid - 4)
-    window = j[:, None] + np.arange(4)
-    coef = (de[rows_t[:, None], window] - t_t[:, None] * dv[rows_t[:, None], window]) @ _CUBIC.T
+    if todo.size < x.size:
+        ta, tb, base, h, u_a, ra, rb, ce, cv, rows, t = (a[todo] for a in (ta, tb, base, h, u_a, ra, rb, ce, cv,
+                                                                           rows, t))
+    coef = ce - t[:, None] * cv
     c0, c1, c2, c3 = coef[:, 0], coef[:, 1], coef[:, 2], coef[:, 3]
     d2, d3 = 2.0 * c2, 3.0 * c3
-    u_lo = (i_t - j).astype(np.float64)
-    ra_t, rb_t = ra[todo], rb[todo]
+    u_lo = u_a.astype(np.float64)
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = u_lo + ra_t / (ra_t - rb_t)
-        for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1], u = (x - grid_j)/h
+        u = u_lo + ra / (ra - rb)
+        for _ in range(CUBIC_NEWTON_STEPS):  # root of the cubic in [u_lo, u_lo + 1]
             u = u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (d2 + u * d3))
             u = np.minimum(np.maximum(u, u_lo), u_lo + 1.0)  # nan (flat cubic) goes on to Illinois
-    base = grid[rows_t, j]
-    lo, hi = np.minimum(ta[todo], tb[todo]), np.maximum(ta[todo], tb[todo])
+    lo, hi = np.minimum(ta, tb), np.maximum(ta, tb)
     xt = base + h * u
     # Newton on the model's residual; the working arrays shrink to the unconverged entries
-    work = [np.arange(todo.size), xt.copy(), rows_t, t_t, base, h, c1, d2, d3, lo, hi, floor[rows_t]]
+    work = [np.arange(xt.size), xt.copy(), rows, t, base, h, c1, d2, d3, lo, hi, floor[rows]]
     stuck = []
     for _ in range(NEWTON_STEPS):
         idx, xw, rw, tw, bw, hw, c1w, d2w, d3w, low, hiw, fw = work
@@ -326,6 +374,10 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
             left = step * (9.0 * np.abs(d3w) + np.abs(d2w + 3.0 * d3w * uu) * step / hw) / np.abs(r_u)
         ok = (xn >= low) & (xn <= hiw)
         done = ok & ((np.minimum(step, left) <= rtol * np.abs(xn) + atol) | (fx == 0.0))
+        if done.all():
+            xt[idx] = xn
+            act = idx[:0]
+            break
         xt[idx] = np.where(ok, xn, xw)
         stuck.append(idx[~ok])
         keep = ok & ~done
@@ -336,11 +388,11 @@ def _polish(rate, grid, de, dv, i, rows, t, tols):
         work[1] = xn[keep]
     else:
         act = work[0]  # still moving after NEWTON_STEPS
-    stuck = np.concatenate(stuck + [act])
+    stuck = np.concatenate(stuck + [act]) if stuck else act
     if stuck.size:
-        r_s = rows_t[stuck]
-        xt[stuck] = illinois(_residual_fn(rate, r_s, t_t[stuck], floor[r_s]), ta[todo][stuck], tb[todo][stuck],
-                             ra_t[stuck], rb_t[stuck], rtol=rtol, atol=atol)
+        r_s = rows[stuck]
+        xt[stuck] = illinois(_residual_fn(rate, r_s, t[stuck], floor[r_s]), ta[stuck], tb[stuck],
+                             ra[stuck], rb[stuck], rtol=rtol, atol=atol)
     x[todo] = xt
     return x
 
