@@ -176,6 +176,10 @@ def analyse_target(target: Target):
     return analyse(target.design, calibration_sets=target.calibration_sets)
 
 
+#: Actuators the summary line names per rule code (the rest are counted: the line stays one line).
+SUMMARY_NAMES = 5
+
+
 def summary_line(findings) -> str:
     """One line: counts of all findings by severity, and the codes with their actuators.
 
@@ -187,16 +191,23 @@ def summary_line(findings) -> str:
     ...       RULES.finding("EA405", "z", actuator="A1")]
     >>> summary_line(fs)
     '0 errors, 3 warnings, 0 info: EA403 (A1, A2), EA405 (A1)'
+    >>> summary_line([RULES.finding("EA403", "x", actuator=f"A{k}") for k in range(1000)])
+    '0 errors, 1000 warnings, 0 info: EA403 (A0, A1, A2, A3, A4 and 995 more)'
     """
     from ...patterns.base.findings import count_by_severity
 
     counts = count_by_severity(findings)
-    by_code: dict[str, list[str]] = {}
+    by_code: dict[str, dict[str, None]] = {}
     for f in findings:
-        names = by_code.setdefault(f.code, [])
-        if f.actuator is not None and f.actuator not in names:
-            names.append(f.actuator)
-    codes = ", ".join(f"{c} ({', '.join(n)})" if n else c for c, n in sorted(by_code.items()))
+        names = by_code.setdefault(f.code, {})
+        if f.actuator is not None:
+            names[f.actuator] = None
+
+    def named(names) -> str:
+        shown = ", ".join(list(names)[:SUMMARY_NAMES])
+        return shown if len(names) <= SUMMARY_NAMES else f"{shown} and {len(names) - SUMMARY_NAMES} more"
+
+    codes = ", ".join(f"{c} ({named(n)})" if n else c for c, n in sorted(by_code.items()))
     head = f"{counts['error']} errors, {counts['warning']} warnings, {counts['info']} info"
     return f"{head}: {codes}" if codes else head
 
