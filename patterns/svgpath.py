@@ -54,6 +54,8 @@ _D_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _NUMBERS_PER_SEGMENT = 7
 #: Arc radii beyond these are handled by :func:`_arc_radii` (their squares over- or underflow).
 _HUGE_RADIUS_MM, _TINY_RADIUS_MM = 1e150, 1e-150
+#: Largest coordinate a path may use [mm] (as :class:`embroact.patterns.centerline.Centerline`).
+_MAX_COORD_MM = 1e7
 _PATH_CLASS = None
 
 
@@ -122,25 +124,36 @@ def parse_d(d: str) -> "svgelements.Path":
     return path
 
 
-def _arc_radii(rx: float, ry: float, chord: float) -> tuple[float, float] | None:
+def _arc_radii(rx: float, ry: float, chord: float, large: bool) -> tuple[float, float] | None:
     """Radii svgelements can compute with, for the same arc; None where the arc is a straight line.
 
     SVG scales radii too small for the chord up until they fit; only the ratio rx/ry matters
     then, so radii whose squares would underflow (1e-300) are scaled to a quarter of the
     chord, still too small, giving the same arc. An ellipse with a radius of 0 is a straight
-    line (SVG's rule), and so, to far below a nanometre, is the short arc of a radius whose
-    square overflows (1e308: sagitta chord^2 / (8 r)).
+    line (SVG's rule), and so are an arc between points closer than
+    ``DEFAULT_TOLERANCES.length_mm`` and, to far below a nanometre, the short arc of a radius
+    whose square overflows (1e308: sagitta chord^2 / (8 r)); the long way round on such a
+    radius leaves the coordinate range (a PathError).
     """
     big, small = max(rx, ry), min(rx, ry)
-    if small == 0.0 or chord == 0.0:
-        return rx, ry
+    if small == 0.0 or chord < DEFAULT_TOLERANCES.length_mm:
+        return None
     if big > _HUGE_RADIUS_MM:
+        if large:
+            raise PathError(f"SVG path: an arc of radius {big:g} mm taking the large way round (large-arc-flag 1) "
+                            f"leaves the coordinate range [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm")
         return None
     if small < _TINY_RADIUS_MM and big <= chord / 4.0:
         scale = chord / 4.0 / big
         rx, ry = rx * scale, ry * scale
-        return (rx, ry) if min(rx, ry) >= _TINY_RADIUS_MM else None
-    return rx, ry
+    return (rx, ry) if min(rx, ry) >= _TINY_RADIUS_MM else None
+
+
+def _check_coordinates(point) -> None:
+    """Refuse a point outside [-_MAX_COORD_MM, _MAX_COORD_MM] mm (before arithmetic on it)."""
+    worst = max(abs(point.x), abs(point.y))
+    if not worst <= _MAX_COORD_MM:
+        raise PathError(f"path coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {worst:g}")
 
 
 def _path_class():
@@ -158,16 +171,14 @@ def _path_class():
                         end = self.z_point
                     end = svgelements.Point(end)
                     absolute = end + start if relative and start is not None else end
+                    _check_coordinates(absolute)
                     chord = abs(absolute - start) if start is not None else 0.0
-                    radii = _arc_radii(abs(rx), abs(ry), chord) if math.isfinite(chord) else (rx, ry)
-                    if radii is None and not large:
-                        self.append(svgelements.Line(start, end, relative=relative))
-                        continue
+                    radii = _arc_radii(abs(rx), abs(ry), chord, bool(large))
                     if radii is None:
-                        raise PathError(f"SVG path: an arc of radius {max(abs(rx), abs(ry)):g} mm taking the large "
-                                        f"way round (large-arc-flag 1) leaves the coordinate range [-1e+07, 1e+07] mm")
-                    self.append(svgelements.Arc(start, radii[0], radii[1], rotation, large, sweep, end,
-                                                relative=relative))
+                        self.append(svgelements.Line(start, end, relative=relative))
+                    else:
+                        self.append(svgelements.Arc(start, radii[0], radii[1], rotation, large, sweep, end,
+                                                    relative=relative))
                 return self
 
         _PATH_CLASS = _Path
@@ -191,6 +202,9 @@ def _segment_points(seg: Any) -> np.ndarray:
     elif isinstance(seg, svgelements.Arc):
         r = max(seg.rx, seg.ry)
         step = 2.0 * math.acos(max(-1.0, 1.0 - tol / r)) if r > 0.0 else math.pi
+        if not (math.isfinite(seg.sweep) and step > 0.0):
+            raise PathError(f"SVG path: an arc of radii {seg.rx:g}, {seg.ry:g} mm cannot be computed "
+                            "(radii or their ratio out of range)")
         n = max(1, math.ceil(abs(seg.sweep) / step))
     else:  # pragma: no cover - svgelements has no other drawing segment
         raise PathError(f"SVG path: unsupported segment {type(seg).__name__}")

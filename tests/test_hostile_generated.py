@@ -412,6 +412,20 @@ def test_tiny_tolerances_refused_with_a_tolerance_that_works(tmp_path):
     check_clean({**results, **again}, "mesh tolerance")
 
 
+# ------------------------------------------------------------------------------ hypothesis properties
+def test_hostile_properties_under_the_ceiling():
+    """tests/hostile_props.py: check_range, SVG arcs and output names on generated extreme values."""
+    import hostile_props
+
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    proc = subprocess.run([sys.executable, str(Path(hostile_props.__file__)), str(CEILING_BYTES)],
+                          capture_output=True, text=True, timeout=300, env=env)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    ran = re.findall(r"(\w+): (\d+) examples", proc.stdout)
+    assert len(ran) == 3, proc.stdout
+    RAN["hypothesis properties"] = sum(int(n) for _, n in ran)
+
+
 # ------------------------------------------------------------------------------ count
 def test_generated_case_count():
     """Runs last in this module (pytest keeps file order): every class ran; the total is printed."""

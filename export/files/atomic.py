@@ -9,7 +9,7 @@ How, and where the file system sets limits
    ``.NAME.XXXX.part`` next to its target. A failure here (disk full, I/O error, Ctrl-C,
    SIGTERM: the command line turns it into an interrupt) removes every staged file and
    leaves every target untouched.
-3. **Commit**: with SIGINT and SIGTERM held back (they are delivered once the commit is
+3. **Commit**: with SIGINT and SIGTERM held back (their handlers run once the commit is
    over), each existing target is first hard-linked to a hidden ``.NAME.XXXX.old`` backup,
    then the staged files are renamed over their targets. If a rename fails (a file of
    another user in a sticky directory, a full inode table), the ones already renamed are
@@ -177,16 +177,29 @@ def _backup(p: Path) -> str | None:
 
 @contextlib.contextmanager
 def _signals_held():
-    """Hold SIGINT and SIGTERM back while the files are renamed (main thread, POSIX)."""
-    held = {signal.SIGINT, signal.SIGTERM}
-    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+    """Hold SIGINT and SIGTERM back while the files are renamed; deliver them afterwards.
+
+    Python runs signal handlers in the main thread whichever thread the signal reached, so
+    the handlers are swapped for one that only records (an OS-level mask would not do: a
+    process-directed signal goes to any thread that does not mask it). Elsewhere than in the
+    main thread, where handlers cannot be set, the renames run unprotected.
+    """
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    pending: list[int] = []
+    old = {s: signal.signal(s, lambda signum, frame: pending.append(signum)) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for s, handler in old.items():
+            signal.signal(s, handler)
+        if pending:
+            handler = old[pending[0]]
+            if callable(handler):
+                handler(pending[0], None)
+            elif handler == signal.SIG_DFL:
+                signal.raise_signal(pending[0])
 
 
 def _sync_dirs(dirs: set[Path]) -> None:
