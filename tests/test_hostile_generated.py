@@ -338,6 +338,54 @@ def test_stitches_piled_on_one_spot_are_checked_in_linear_time(tmp_path):
     check_clean(results, "piled stitches")
 
 
+MUTATIONS = ("flip", "zero-run", "ff-run", "truncate", "duplicate", "shuffle")
+
+
+def _mutate(data: bytes, how: str, rng) -> bytes:
+    """One seeded mutation of a machine file (the fuzzing round's operators)."""
+    b = bytearray(data)
+    i = rng.randrange(len(b))
+    n = rng.randrange(1, max(2, len(b) // 8))
+    if how == "flip":
+        for k in rng.sample(range(len(b)), min(len(b), 40)):
+            b[k] ^= 1 << rng.randrange(8)
+    elif how in ("zero-run", "ff-run"):
+        b[i:i + n] = bytes([0 if how == "zero-run" else 0xFF]) * n
+    elif how == "truncate":
+        del b[i:]
+    elif how == "duplicate":
+        b[i:i] = b[i:i + n] * 20
+    else:
+        chunk = b[i:i + n]
+        rng.shuffle(chunk)
+        b[i:i + n] = chunk
+    return bytes(b)
+
+
+def test_mutated_machine_files_of_every_format(tmp_path):
+    """Seeded mutations of a real file of every format embroact writes: each is read and checked, or one
+    line (exit 2), within the ceiling and a few seconds."""
+    import random
+
+    from embroact.export.machine.formats import FORMATS
+
+    rng = random.Random(18)
+    cases = []
+    for fmt in FORMATS:
+        good = _machine_bytes(fmt)
+        for how in MUTATIONS:
+            for k in range(2):
+                f = tmp_path / f"{how}{k}.{fmt}"
+                f.write_bytes(_mutate(good, how, rng))
+                cases.append({"id": f.name, "argv": ["check", str(f), "--tube-path", "0,0 100,0"], "cwd": str(tmp_path)})
+    results = run_cases(cases)
+    for r in results.values():
+        assert r["code"] in (0, 1, 2), r
+        if r["code"] == 2:
+            check_error(r, 2, pattern=re.escape(f"{tmp_path}/{r['id']}: ") + r".+")
+    check_clean(results, "mutated machine files")
+
+
 # ------------------------------------------------------------------------------ design-file numbers and names
 DESIGN = ('{top}[[actuator]]\nname = "{name}"\npattern = "zigzag"\nwidth_mm = {width}\ninterval_mm = 1\n'
           'length_mm = {length}\norigin_mm = [{ox}, 0]\n{extra}')

@@ -84,6 +84,8 @@ _MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
 #: EXP has no header and no end code, so a truncated EXP file cannot be told from a short design.)
 _END_CODED = {"dst", "pes", "pec", "vp3", "xxx", "tbf", "u01"}
 _JEF_CONTROL, _JEF_END = 0x80, 0x10
+#: Largest tube-path coordinate [mm] (as for design paths).
+_MAX_COORD_MM = 1e7
 _TUBE_KEYS = {"name", "path_mm", "outer_radius_mm", "clearance_mm", "end_margin_mm"}
 _MACHINE_KEYS = {"hoop_width_mm", "hoop_height_mm", "min_stitch_mm", "max_stitch_mm", "format"}
 
@@ -240,6 +242,14 @@ def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
         raise ParameterError(f"{usage}, got {text!r}")
     if not np.all(np.isfinite(pts)):
         raise ParameterError(f"{name} must hold finite numbers, got {text!r}")
+    return _in_range(pts, name)
+
+
+def _in_range(pts: np.ndarray, name: str) -> np.ndarray:
+    """``pts`` if every coordinate lies within the range paths may use (before any arithmetic on them)."""
+    worst = float(np.abs(pts).max())
+    if worst > _MAX_COORD_MM:
+        raise ParameterError(f"{name} coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {worst:g}")
     return pts
 
 
@@ -276,7 +286,7 @@ def _toml_points(raw, where: str) -> np.ndarray:
         pts = np.zeros(0)
     if pts.ndim != 2 or pts.shape[1:] != (2,) or len(pts) < 2 or not np.all(np.isfinite(pts)):
         raise DesignFileError(f"{where} must be [[x, y], ...] with at least 2 finite points in mm, got {raw!r:.80}")
-    return pts
+    return _in_range(pts, where)
 
 
 def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dict]:
