@@ -92,7 +92,9 @@ KAPPA_MERGE_REL = 1e-3
 #: Suffix -> writer kind.  GLB is written in metres, Y up (glTF convention); the others in mm, plan frame.
 MESH_FORMATS = {".glb": "glb", ".stl": "stl", ".obj": "obj", ".ply": "ply"}
 
-_SAMPLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75)  # of a cell, along and across: where the deviation is sampled
+#: Where the deviation is sampled in a cell, along and across (fractions): its edges' midpoints and its centre,
+#: where a chord is farthest from its arc (the quarter points as well found the same maxima at 4x the cost).
+_SAMPLE_FRACTIONS = (0.0, 0.5)
 _MAX_MEASURED_STEPS = 2048  # steps along the path whose cells the deviation is measured on
 _M_PER_MM = 1e-3
 _MIN_TUBE_SEGMENTS = 8
