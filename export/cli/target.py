@@ -22,8 +22,13 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .args import TUBE_FLAGS, add_tube_arguments
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ...patterns.design import Design
+    from ...predict.calibration import CalibrationSet
 
 __all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "load_target",
            "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS"]
@@ -51,7 +56,7 @@ class Target:
         True when the design came from quick parameters (one actuator).
     """
 
-    design: object
+    design: Design
     calibration_sets: tuple
     source: str
     quick: bool
@@ -145,6 +150,7 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
     """
     from ...predict.analysis import with_model_overrides
 
+    sets: tuple[CalibrationSet, ...]
     if pattern is not None:
         design, sets, source, quick = _quick_design(args, pattern), (), "quick parameters", True
     elif design_path is not None:
@@ -158,7 +164,8 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
         from ...patterns.design import default_design
 
         design, sets, source, quick = default_design(), (), "built-in default design", False
-    flag_cal, flag_sets = (getattr(args, "calibration", None), ())
+    flag_sets: tuple[CalibrationSet, ...] = ()
+    flag_cal = getattr(args, "calibration", None)
     if flag_cal is not None:
         from ..files.calibfile import calibration_reference
 
@@ -208,7 +215,9 @@ def summary_line(findings) -> str:
         return shown if len(names) <= SUMMARY_NAMES else f"{shown} and {len(names) - SUMMARY_NAMES} more"
 
     codes = ", ".join(f"{c} ({named(n)})" if n else c for c, n in sorted(by_code.items()))
-    head = f"{counts['error']} errors, {counts['warning']} warnings, {counts['info']} info"
+    n_err, n_warn = counts["error"], counts["warning"]
+    head = (f"{n_err} error{'s' if n_err != 1 else ''}, {n_warn} warning{'s' if n_warn != 1 else ''}, "
+            f"{counts['info']} info")  # spelled as check's header
     return f"{head}: {codes}" if codes else head
 
 
