@@ -98,6 +98,7 @@ function showFields(fields) {
   }
   for (const f of fields) {
     const input = $(fieldId(f.key));
+    if (input === document.activeElement && input.classList.contains("invalid")) continue;  // being corrected
     input.value = f.value === null || f.value === undefined ? "" : String(f.value);
     input.classList.remove("invalid");
     $("m-" + fieldId(f.key).slice(2)).textContent = "";
