@@ -158,3 +158,38 @@ def test_paper_w5_zigzag_reports_its_coiled_and_over_stretched_states(capsys):
     rows = capsys.readouterr().out.splitlines()[2:]
     assert rows[3].split()[2] == "COILED" and rows[3].endswith("COILED+KINKED+OVERSTRETCHED")
     assert rows[0].split()[2] == "BENDING" and len(rows[0].split()) == 7
+
+
+SEGMENTED = """name = "seg"
+[[actuator]]
+name = "S"
+[[actuator.segment]]
+pattern = "zigzag"
+width_mm = 7
+interval_mm = 1
+length_mm = 50
+[[actuator.segment]]
+pattern = "cross"
+width_mm = 7
+interval_mm = 1.4
+angle_deg = 45
+length_mm = 50
+"""
+
+
+def test_segmented_actuator_predicts_each_segment_and_their_sum(tmp_path, capsys):
+    path = tmp_path / "seg.toml"
+    path.write_text(SEGMENTED)
+    d = run_json(capsys, str(path), "--pressure-kpa", "0:300:50")
+    (s,) = d["actuators"]
+    zig, crs = s["segment_curves"]
+    # a zigzag's curvature does not depend on its length (docs/model.md, segmented actuators): the 50 mm
+    # segment bends by its length over 100 mm times what the whole 100 mm paper zigzag bends at each pressure
+    whole = run_json(capsys, "zigzag", "--width-mm", "7", "--pressure-kpa", "0:300:50")
+    share = s["segments"][0]["derived"]["length_mm"] / whole["derived"]["length_mm"]
+    np.testing.assert_allclose(zig["theta_deg"], np.array(whole["theta_deg"]) * share, rtol=1e-9, atol=1e-9)
+    assert crs["theta_deg"][-1] < 0 < zig["theta_deg"][-1]  # alpha0 = 45 deg bends the other way
+    np.testing.assert_allclose(s["theta_deg"], np.add(zig["theta_deg"], crs["theta_deg"]), rtol=0, atol=1e-12)
+    assert s["status"][0] == "INFLATION" and s["status"][-1] == "BENDING"
+    assert main(["predict", str(path), "--pressure-kpa", "100"]) == 0
+    assert "whole strip, 2 segments" in capsys.readouterr().out

@@ -56,35 +56,76 @@ def _finite(x: float):
     return x if math.isfinite(x) else None
 
 
-def _limits(act, c) -> list[list[str]]:
+def _limits(model, c) -> list[list[str]]:
     """Every validity limit each point exceeds (its status names only the first)."""
     import numpy as np
 
     from ...predict.validity import limit_flags
 
-    return limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, act.model.length_mm).names()
+    return limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm).names()
 
 
-def _result(act, c, band) -> dict:
+def _band_dict(band):
+    # 1-sigma band from the calibration's covariance; None when the calibration carries none
+    return None if band is None else {k: band.as_dict()[k] for k in (
+        "theta_sd_deg", "theta_low_deg", "theta_high_deg", "parameters", "covariance")}
+
+
+def _piece(model, c) -> dict:
     from ...predict.validity import branch_end
 
-    out = act.as_dict()
-    out["branch_end"] = branch_end(act.model).as_dict()  # lock-up, fold (zigzag), tracing cap or none
+    out = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
-    out["limits"] = _limits(act, c)
-    # 1-sigma band from the calibration's covariance; None when the calibration carries none
-    out["band"] = None if band is None else {k: band.as_dict()[k] for k in (
-        "theta_sd_deg", "theta_low_deg", "theta_high_deg", "parameters", "covariance")}
+    out["limits"] = _limits(model, c)
     return out
+
+
+def _result(act, c, band, segment_curves) -> dict:
+    out = act.as_dict()
+    if not act.segments:
+        out.update(_piece(act.model, c))
+        out["band"] = _band_dict(band)
+        return out
+    total = _total(act, segment_curves)
+    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
+    out.update(total)
+    return out
+
+
+def _total(act, segment_curves) -> dict:
+    """A segmented actuator's whole-strip bend: the sum of its segments' bends (docs/model.md, segments).
+
+    The status per pressure is the first segment state the model does not describe (a segment past a
+    validity limit, out of its domain, failed), else COILED when the total reaches a full turn, else
+    BENDING when any segment bends, else INFLATION.
+    """
+    import numpy as np
+
+    from ...predict.status import Status
+    from ...predict.validity import valid_mask
+
+    theta = np.sum([sc.theta_deg for sc in segment_curves], axis=0)
+    names = []
+    for k in range(len(theta)):
+        bad = [Status(int(sc.status[k])).name for sc in segment_curves if not valid_mask(sc)[k]]
+        if bad:
+            names.append(bad[0])
+        elif abs(theta[k]) >= 360.0:
+            names.append(Status.COILED.name)
+        elif any(int(sc.status[k]) == Status.BENDING for sc in segment_curves):
+            names.append(Status.BENDING.name)
+        else:
+            names.append(Status.INFLATION.name)
+    return {"pressure_kpa": segment_curves[0].pressure_kpa.tolist(), "theta_deg": theta.tolist(), "status": names}
 
 
 _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
 
 
-def _table(act, c, band) -> str:
-    derived, model, choice = act.derived, act.model, act.choice
+def _piece_table(title, derived, choice, c, band) -> str:
+    model = choice.model
     angle = f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg" if derived.pattern == "cross" else ""
-    head = (f"{act.name}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
+    head = (f"{title}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
             f"l0={derived.length_mm:.4g} mm{angle}; r0 {derived.r0_mm:.4g} mm; G {model.g_mpa:.4g} MPa "
             f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube r_f {model.outer_radius_mm:g} mm, "
             f"d_f {model.inner_radius_mm:g} mm, G_e {model.g_e_mpa:g} MPa; tube law {model.tube_law}; "
@@ -96,9 +137,21 @@ def _table(act, c, band) -> str:
                                 if s > 0.0))
     rows.append("pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
     d = c.as_dict()
-    for p, t, s, l, r, b, di, lim in zip(*(d[k] for k in _COLUMNS), _limits(act, c)):
+    for p, t, s, l, r, b, di, lim in zip(*(d[k] for k in _COLUMNS), _limits(model, c)):
         rows.append(f"{p:10.3f}  {t:10.3f}   {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
+
+
+def _table(act, c, band, segment_curves) -> str:
+    if not act.segments:
+        return _piece_table(act.name, act.derived, act.choice, c, band)
+    parts = [_piece_table(f"{act.name} segment {k}", s.derived, s.choice, sc, None)
+             for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
+    total = _total(act, segment_curves)
+    rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends)",
+            "pressure_kpa  theta_deg  status"]
+    rows += [f"{p:10.3f}  {t:10.3f}   {s}" for p, t, s in zip(total["pressure_kpa"], total["theta_deg"], total["status"])]
+    return "\n\n".join(parts + ["\n".join(rows)])
 
 
 def run(args) -> int:
@@ -114,16 +167,22 @@ def run(args) -> int:
     if args.actuator is not None:
         acts = tuple(a for a in acts if a.name == args.actuator)
         if not acts:
-            names = ", ".join(a.name for a in analysis.actuators)
-            raise ParameterError(f"--actuator must be one of {names}, got {args.actuator!r}")
+            valid = ", ".join(a.name for a in analysis.actuators)
+            raise ParameterError(f"--actuator must be one of {valid}, got {args.actuator!r}")
     names = [a.name for a in analysis.actuators]
-    curves = dict(zip(names, analysis.curves(pressures, method=args.method)))
-    bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
-    results = [_result(a, curves[a.name], bands[a.name]) for a in acts]
+    pieces = dict(zip(names, analysis.segment_curves(pressures, method=args.method)))
+    single = [a for a in analysis.actuators if not a.segments]
+    if len(single) == len(analysis.actuators):
+        curves = dict(zip(names, analysis.curves(pressures, method=args.method)))
+        bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
+    else:  # one curve per single actuator from its pieces; segmented ones have no single curve or band
+        curves = {a.name: pieces[a.name][0] if not a.segments else None for a in analysis.actuators}
+        bands = {a.name: None for a in analysis.actuators}
+    results = [_result(a, curves[a.name], bands[a.name], pieces[a.name]) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:
-        print("\n\n".join(_table(a, curves[a.name], bands[a.name]) for a in acts))
+        print("\n\n".join(_table(a, curves[a.name], bands[a.name], pieces[a.name]) for a in acts))
     return 0
