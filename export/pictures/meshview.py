@@ -103,12 +103,16 @@ def _picture_shapes(shapes, tol: float):
     mesh's own limit allows): the triangle count goes as 1/tol (rings along the path and
     segments round the tube each as 1/sqrt(tol)), so each retry scales tol by the excess."""
     out = tuple(s if s.tolerance_mm >= tol else s.remeshed(tol) for s in shapes)
+    n = sum(s.triangle_count for s in out)
     for _ in range(4):
-        n = sum(s.triangle_count for s in out)
         if n <= PICTURE_MAX_TRIANGLES or tol >= _MAX_TOLERANCE_MM:
             break
         tol = min(_MAX_TOLERANCE_MM, tol * 1.1 * n / PICTURE_MAX_TRIANGLES)
-        out = tuple(s.remeshed(tol) for s in shapes)
+        coarser = tuple(s.remeshed(tol) for s in shapes)
+        n, before = sum(s.triangle_count for s in coarser), n
+        out = coarser
+        if n > 0.9 * before:  # at the bodies' least triangles (many small shapes): coarser cannot help
+            break
     return out
 
 

@@ -240,6 +240,21 @@ def actuator_entry(act, curve) -> dict:
     return {**act.as_dict(), "curve": curve.as_dict()}
 
 
+#: Most actuators the side view draws, side by side (a wider drawing shows nothing more on a screen, and its
+#: size and time grew with the design: 1000 panels were 13 MB and a fifth of the build); the report keeps
+#: every actuator's side-view states.
+SIDE_VIEW_MAX_PANELS = 24
+
+
+def _side_view(panels) -> str:
+    """The side-view SVG of the first :data:`SIDE_VIEW_MAX_PANELS` panels; its title says when some are left out."""
+    if len(panels) <= SIDE_VIEW_MAX_PANELS:
+        return side_view_svg(panels)
+    return side_view_svg(panels[:SIDE_VIEW_MAX_PANELS],
+                         title=f"Bent shape (side view, clamped top): the first {SIDE_VIEW_MAX_PANELS} of "
+                               f"{len(panels)} actuators")
+
+
 def render_previews(
     analysis,
     curves: Sequence | None = None,
@@ -283,7 +298,7 @@ def render_previews(
     _check_inputs(analysis, curves, side_states)
     plan = analysis.plan
     panels = side_panels(analysis, curves, count=side_states)
-    figures = {"bend": bend_chart(analysis, curves, measured), "side": side_view_svg(panels)}
+    figures = {"bend": bend_chart(analysis, curves, measured), "side": _side_view(panels)}
     files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
     mesh_info = None
     if mesh_suffix is not None:
