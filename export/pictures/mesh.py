@@ -102,6 +102,8 @@ _MIN_TUBE_SEGMENTS = 8
 #: within about 300 MB (the deviation measure costs ~4 KB per triangle). A smaller
 #: ``tolerance_mm`` is refused before anything is allocated, naming the smallest that fits.
 MESH_MAX_TRIANGLES = 60_000
+#: Curvature below which a piece is straight [1/mm] (radius 1e100 mm; its square stays a normal double).
+_STRAIGHT_KAPPA_PER_MM = 1e-100
 _COLOURS = {"fabric": (225, 214, 190, 255), "tube": (70, 130, 200, 255), "rails": (200, 60, 60, 255)}
 
 
@@ -141,7 +143,7 @@ class PlanarPath:
     @classmethod
     def straight(cls, length_mm: float) -> "PlanarPath":
         """A straight path along +x from the origin."""
-        return cls((0.0, 0.0), 0.0, [check_range("length_mm", length_mm, low=0.0)], [0.0])
+        return cls((0.0, 0.0), 0.0, np.array([check_range("length_mm", length_mm, low=0.0)]), np.zeros(1))
 
     @classmethod
     def from_centerline(cls, centerline) -> "PlanarPath":
@@ -354,7 +356,7 @@ def _triangle_bound(bent: BentPath, r0: float, extent: float, tol: float) -> flo
     for _, length, kb, kp in bent.pieces():
         k = math.hypot(kb, kp)
         rings += 1.0
-        if k > 0.0:
+        if k >= _STRAIGHT_KAPPA_PER_MM:  # as _stations
             d = 2.0 * _half_chord_angle(half, 1.0 / k + extent)
             rings += math.inf if d == 0.0 else k * length / d
     return 2.0 * rings * max(_MIN_TUBE_SEGMENTS, math.pi / a + 1.0)
@@ -386,7 +388,7 @@ def _stations(bent: BentPath, prof: _Profile, tol: float) -> np.ndarray:
     used = 0.0  # budget since the last ring
     for s0, length, kb, kp in bent.pieces():
         k = math.hypot(kb, kp)
-        if k == 0:
+        if k < _STRAIGHT_KAPPA_PER_MM:  # straight (k**2 below would underflow: a 1e-300 kPa bend)
             if used > 0:
                 out.append(s0)
             out.append(s0 + length)
@@ -538,10 +540,11 @@ def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
     for shape in shapes:
         for b in shape.bodies:
             mesh = trimesh.Trimesh(vertices=np.array(b.vertices), faces=np.array(b.faces), process=False)
-            mesh.visual.face_colors = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
+            face_colours = np.tile(np.array(b.colour, dtype=np.uint8), (len(b.faces), 1))
+            mesh.visual.face_colors = face_colours  # type: ignore[union-attr]
             meshes.append((f"{shape.name}.{b.name}", mesh))
     joined = trimesh.util.concatenate([m for _, m in meshes])
-    data = joined.export(file_type=kind)
+    data = joined.export(None, file_type=kind)
     return data.encode("utf-8") if isinstance(data, str) else data
 
 
