@@ -184,3 +184,22 @@ def test_the_launcher_page_forwards_to_the_studio(studio_page, tmp_path):
     page.wait_for_url(url, timeout=30_000)
     page.wait_for_selector("body[data-ready='1']", timeout=30_000)
     assert page.inner_text("#design-name") == "paper-zigzag"
+
+
+def test_the_target_shape_panel_replaces_the_actuator(studio_page):
+    page, url, out, problems = studio_page
+    page.fill("#shape-d", "M 0 0 A 63.662 63.662 0 0 0 63.662 -63.662")
+    page.fill("#shape-pressure", "150")
+    page.click("#shape-run")
+    page.wait_for_selector("#shape-apply:not([hidden])", timeout=60_000)
+    assert page.inner_text("#shape-result").startswith("met with 1 segment(s)")
+    version = page.get_attribute("body", "data-version")
+    page.click("#shape-apply")
+    wait_for_update(page, version)
+    from embroact.predict.inverse import design_shape
+    from embroact.patterns.centerline import Centerline
+
+    target = Centerline.from_svg_path("M 0 0 A 63.662 63.662 0 0 0 63.662 -63.662").points_mm
+    width = design_shape(target, 150.0).design.actuators[0].params.width_mm
+    assert float(page.input_value("#f-actuator-0--width_mm")) == pytest.approx(width, rel=1e-12)
+    assert [p for p in problems if "status of 403" not in p] == []

@@ -376,3 +376,25 @@ def test_the_browser_is_given_a_private_launcher_page_not_the_token(tmp_path, mo
     assert f'http-equiv="refresh" content="0;url={url}"' in page.read_text()
     serve._open_browser(types.SimpleNamespace(started=True, should_exit=False), page)
     assert opened == [page.as_uri()] and "SECRET" not in opened[0]
+
+
+def test_a_target_shape_is_proposed_then_applied(client):
+    r = client.post("/api/apply-proposal", json={}, headers=AUTH)
+    assert r.status_code == 400 and r.json()["error"].startswith("no inverse-design proposal")
+    bad = client.post("/api/inverse-shape", json={"path_d": "M 0 0 Q", "pressure_kpa": 150}, headers=AUTH)
+    assert bad.status_code == 400 and "\n" not in bad.json()["error"]
+    # a quarter circle 100 mm long from the clamp, bending toward the back of the fabric (up in SVG)
+    arc = "M 0 0 A 63.662 63.662 0 0 0 63.662 -63.662"
+    res = client.post("/api/inverse-shape", json={"path_d": arc, "pressure_kpa": 150}, headers=AUTH).json()
+    assert res["reached"] is True and res["rmse_mm"] < 0.05
+    unchanged = client.get("/api/views?pressure_kpa=150", headers=AUTH).json()
+    assert unchanged["actuators"][0]["derived"]["width_mm"] == 7.0  # a proposal changes nothing yet
+    v = client.post("/api/apply-proposal", json={"pressure_kpa": 150}, headers=AUTH).json()
+    width = v["actuators"][0]["derived"]["requested_width_mm"]
+    assert width == pytest.approx(res["segments"][0]["params"]["width_mm"])
+    # the applied design, analysed on its own, bends the quarter circle's 90 deg at 150 kPa
+    theta = float(analyse(design_from_dict(paper_dict(width_mm=width))).curves([150.0])[0].theta_deg[0])
+    assert v["actuators"][0]["theta_deg"] == pytest.approx(theta, rel=1e-12)
+    assert theta == pytest.approx(90.0, abs=0.5)
+    again = client.post("/api/apply-proposal", json={}, headers=AUTH)
+    assert again.status_code == 400

@@ -4,18 +4,22 @@ Routes (every one needs the run's token, as ``?token=`` or the ``X-Embroact-Toke
 and a ``Host`` of ``127.0.0.1:PORT`` or ``localhost:PORT``; anything else is answered 403
 before a route runs):
 
-=========================  ===============================================================
-``GET /``                  the page (``static/index.html``, the token written into it)
-``GET /static/NAME``       the page's script and style sheet (package data; no CDN)
-``GET /api/views``         fields and views at ``?pressure_kpa=`` (stitches, chart, side
-                           view, numbers, findings, worksheet figures)
-``GET /api/shape3d``       the 3D picture at ``?pressure_kpa=``
-``POST /api/edit``         ``{"values": {key: value}, "pressure_kpa": p}``: the new views, or
-                           ``{"applied": false, "error", "key"}`` (the design file's message)
-``POST /api/save``         ``{"name": "x.toml"}``: the design file, in the output directory
-``POST /api/build``        ``{"force": false}``: ``embroact build`` into the output directory
-``POST /api/inverse``      ``{"bend_deg", "pressure_kpa", "pattern", "actuator"}``
-=========================  ===============================================================
+==============================  ============================================================
+``GET /``                       the page (``static/index.html``, the token written into it)
+``GET /static/NAME``            the page's script and style sheet (package data; no CDN)
+``GET /api/views``              fields and views at ``?pressure_kpa=`` (stitches, chart, side
+                                view, numbers, findings, worksheet figures)
+``GET /api/shape3d``            the 3D picture at ``?pressure_kpa=``
+``POST /api/edit``              ``{"values": {key: value}, "pressure_kpa": p}``: the new views, or
+                                ``{"applied": false, "error", "key"}`` (the design file's message)
+``POST /api/save``              ``{"name": "x.toml"}``: the design file, in the output directory
+``POST /api/build``             ``{"force": false}``: ``embroact build`` into the output directory
+``POST /api/inverse``           ``{"bend_deg", "pressure_kpa", "pattern", "actuator"}``: a target
+                                bend, answered with the field edits that meet it
+``POST /api/inverse-shape``     ``{"path_d", "pressure_kpa", "max_segments", "actuator"}``: a
+                                target shape, kept as a proposal
+``POST /api/apply-proposal``    ``{"pressure_kpa"}``: the proposal in the design; the new views
+==============================  ============================================================
 
 Errors are JSON ``{"error": "one line"}``: 400 bad input, 403 refused (token, host, a write
 outside the output directory), 409 design-rule errors (nothing written), 500 an output that
@@ -177,5 +181,10 @@ def create_app(studio, *, token: str, port: int) -> Starlette:
         Route("/api/inverse", call(lambda d: studio.inverse(d.get("bend_deg"), d.get("pressure_kpa"),
                                                             pattern=d.get("pattern", "any"),
                                                             actuator=d.get("actuator", 0))), methods=["POST"]),
+        Route("/api/inverse-shape", call(lambda d: studio.inverse_shape(d.get("path_d"), d.get("pressure_kpa"),
+                                                                        max_segments=d.get("max_segments", 6),
+                                                                        actuator=d.get("actuator", 0))),
+              methods=["POST"]),
+        Route("/api/apply-proposal", call(lambda d: studio.apply_proposal(d.get("pressure_kpa"))), methods=["POST"]),
     ]
     return Starlette(routes=routes, middleware=[Middleware(_Guard, token=token, port=port)])

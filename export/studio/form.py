@@ -173,7 +173,10 @@ def _walk(form: dict, key: str) -> tuple[dict, str]:
     parts = key.split(".")
     node = form
     for part in parts[:-1]:
-        name, index = _TOKEN.fullmatch(part).groups()
+        match = _TOKEN.fullmatch(part)
+        if match is None:
+            raise FieldError(key, f"{key}: not a design-file key path")
+        name, index = match.groups()
         node = node.setdefault(name, {}) if index is None else node[name][int(index)]
     return node, parts[-1]
 

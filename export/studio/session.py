@@ -19,12 +19,14 @@ Examples
 """
 from __future__ import annotations
 
+import copy
 import json
 import threading
 from collections import OrderedDict
 from pathlib import Path
 
 from ...patterns.base.errors import EmbroactError, ParameterError, check_range
+from ...patterns.design import design_from_dict
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
@@ -65,6 +67,7 @@ class Studio:
         self.design = design
         self._lock = threading.Lock()
         self._cache: OrderedDict = OrderedDict()
+        self._proposal: tuple[int, dict] | None = None
 
     # -------------------------------------------------------------- analysis
     def _analysed(self, design, form):
@@ -182,6 +185,14 @@ class Studio:
             res = build(self.design, self.out_dir, force=force, analysis=analysis, stages=(previews_stage(),))
         return {"files": list(res.files), "out_dir": res.out_dir, "stitch_count": res.worksheet.stitch_count}
 
+    def _actuator(self, actuator) -> tuple[int, object]:
+        """(index, spec) of the design's actuator number ``actuator``."""
+        n = len(self.design.actuators)
+        index = actuator if isinstance(actuator, int) and not isinstance(actuator, bool) else -1
+        if not 0 <= index < n:
+            raise ParameterError(f"actuator must be an index in [0, {n - 1}], got {actuator!r:.40}")
+        return index, self.design.actuators[index]
+
     def inverse(self, bend_deg, pressure_kpa, *, pattern="any", actuator=0) -> dict:
         """Inverse design (:func:`embroact.predict.inverse.design_bend`) for one straight actuator of the design.
 
@@ -192,10 +203,7 @@ class Studio:
 
         with self._lock:
             design = self.design
-            index = actuator if isinstance(actuator, int) and not isinstance(actuator, bool) else -1
-            if not 0 <= index < len(design.actuators):
-                raise ParameterError(f"actuator must be an index in [0, {len(design.actuators) - 1}], got {actuator!r:.40}")
-            spec = design.actuators[index]
+            index, spec = self._actuator(actuator)
             if spec.segments:
                 raise ParameterError(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
             result = design_bend(_number("bend_deg", bend_deg, low=-720.0, high=720.0),
@@ -203,6 +211,54 @@ class Studio:
                                  pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
                                  settings=spec.model, sets=self.calibration_sets, name=spec.name)
         best = result.best
-        values = {f"actuator[{index}].pattern": best.pattern}
+        values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
         values.update({f"actuator[{index}].{k}": float(getattr(best.params, k)) for k in best.params.__slots__})
         return {**result.as_dict(), "values": values}
+
+    def inverse_shape(self, path_d, pressure_kpa, *, max_segments=6, actuator=0) -> dict:
+        """Inverse design of a target shape (:func:`embroact.predict.inverse.design_shape`) for one actuator.
+
+        ``path_d`` is the wanted fabric line as SVG path data in mm (from the clamped end,
+        heading +x; y down as in SVG, so bends toward the back of the fabric go up on screen).
+        The answer is kept as a proposal: :meth:`apply_proposal` puts it in the design in
+        place of the actuator (same name, origin, rotation and model settings).
+        """
+        from ...patterns.centerline import Centerline
+        from ...predict.inverse import design_shape
+
+        if not isinstance(path_d, str) or not path_d.strip():
+            raise ParameterError(f"path_d must be SVG path data in mm (e.g. 'M 0 0 A 60 60 0 0 0 60 -60'), "
+                                 f"got {path_d!r:.40}")
+        if isinstance(max_segments, bool) or not isinstance(max_segments, int) or not 1 <= max_segments <= 12:
+            raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r:.40}")
+        with self._lock:
+            index, spec = self._actuator(actuator)
+            target = Centerline.from_svg_path(path_d).points_mm
+            result = design_shape(target, _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0,
+                                                  inclusive=False),
+                                  max_segments=max_segments, tube=self.design.tube, settings=spec.model,
+                                  sets=self.calibration_sets, name=spec.name)
+            table = design_form(result.design)["actuator"][0]
+            old = self.form["actuator"][index]
+            table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
+            self._proposal = (index, table)
+        return {**result.as_dict(), "actuator": spec.name}
+
+    def apply_proposal(self, pressure_kpa=None) -> dict:
+        """Put the last inverse-design proposal in the design; the new views.
+
+        Raises
+        ------
+        ParameterError
+            No proposal is waiting (none made, or already applied).
+        """
+        with self._lock:
+            if self._proposal is None:
+                raise ParameterError("no inverse-design proposal to apply: design a shape first")
+            index, table = self._proposal
+            form = copy.deepcopy(self.form)
+            form["actuator"][index] = table
+            design = design_from_dict(form)
+            self._analysed(design, form)
+            self.form, self.design, self._proposal = form, design, None
+        return self.views(pressure_kpa)

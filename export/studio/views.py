@@ -157,8 +157,8 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         states = (0.0, pressure_kpa) if pressure_kpa > 0 else (0.0,)
         rows = [[0.0] * len(lengths), list(thetas)][: len(states)]
         panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=a.derived.r0_mm, pressure_kpa=states,
-                                theta_deg=[0.0, b["theta_deg"]][: len(states)], segment_lengths_mm=lengths,
-                                segment_theta_deg=rows))
+                                theta_deg=(0.0, b["theta_deg"])[: len(states)], segment_lengths_mm=tuple(lengths),
+                                segment_theta_deg=tuple(tuple(r) for r in rows)))
     return side_view_svg(panels, title=f"Side view at {pressure_kpa:g} kPa")
 
 
@@ -172,7 +172,7 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         return message_svg("no 3D view: the model gives no finite bend here")
     shapes = []
     for a, b in zip(analysis.actuators, bends):
-        segs = {}
+        segs: dict = {}
         if a.segments:
             lengths, thetas = _pieces(a, b)
             segs = {"segment_lengths_mm": lengths, "segment_theta_deg": thetas}

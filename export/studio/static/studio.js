@@ -310,6 +310,24 @@ async function inverse() {
   $("inv-apply").hidden = false;
 }
 
+async function inverseShape() {
+  resultText("shape-result", "searching...");
+  $("shape-apply").hidden = true;
+  const res = await api("api/inverse-shape", {
+    path_d: $("shape-d").value, pressure_kpa: $("shape-pressure").value,
+    max_segments: Number($("shape-segments").value), actuator: Number($("inv-actuator").value || 0),
+  });
+  if (!res.ok) {
+    resultText("shape-result", res.data.error, true);
+    return;
+  }
+  const segs = res.data.segments.map((s, k) => `segment ${k}: ${s.pattern} ` +
+    Object.entries(s.params).map(([p, x]) => `${p} ${fmt(x, 3)}`).join(", ") + `, length_mm ${fmt(s.length_mm, 2)}`);
+  resultText("shape-result", `${res.data.statement}\nRMSE ${fmt(res.data.rmse_mm, 3)} mm, tip ` +
+    `${fmt(res.data.tip_error_mm, 2)} mm off\n${segs.join("\n")}`, !res.data.reached);
+  $("shape-apply").hidden = false;
+}
+
 function start() {
   $("pressure").addEventListener("input", slide);
   $("zoom").addEventListener("change", zoomStitches);
@@ -318,6 +336,11 @@ function start() {
   $("build").addEventListener("click", build);
   $("inv-run").addEventListener("click", inverse);
   $("inv-apply").addEventListener("click", () => state.inverse && edit(state.inverse));
+  $("shape-run").addEventListener("click", inverseShape);
+  $("shape-apply").addEventListener("click", () => {
+    $("shape-apply").hidden = true;
+    enqueue(() => api("api/apply-proposal", { pressure_kpa: pressure() }));
+  });
   enqueue(() => api("api/views")).then(() => { document.body.dataset.ready = "1"; });
 }
 
