@@ -131,6 +131,9 @@ def _command_parser(name: str):
     return module, parser
 
 
+_OUT_OF_MEMORY = "out of memory: the input is too large for this machine"
+
+
 class _Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
 
@@ -177,6 +180,7 @@ def main(argv: list[str] | None = None) -> int:
 
     in_main_thread = threading.current_thread() is threading.main_thread()
     old_term = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
+    err: EmbroactError | str
     try:
         with warnings.catch_warnings():
             if not debug:
@@ -197,7 +201,11 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         code, err = EXIT_INPUT, f"{exc.filename or ''}: {exc.strerror or exc}".lstrip(": ")
     except MemoryError:  # past the documented input limits; one line, not a traceback
-        code, err = EXIT_INPUT, "out of memory: the input is too large for this machine"
+        code, err = EXIT_INPUT, _OUT_OF_MEMORY
+    except Exception as exc:  # C++ libraries (GEOS via shapely) report exhausted memory as their own error
+        if "bad_alloc" not in str(exc):
+            raise
+        code, err = EXIT_INPUT, _OUT_OF_MEMORY
     except _Terminated:
         print("embroact: terminated", file=sys.stderr)
         return EXIT_TERMINATED
@@ -209,5 +217,5 @@ def main(argv: list[str] | None = None) -> int:
             signal.signal(signal.SIGTERM, old_term)
     if debug:
         raise err if isinstance(err, BaseException) else RuntimeError(err)
-    print(f"embroact: error: {_printable(err)}", file=sys.stderr)
+    print(f"embroact: error: {_printable(str(err))}", file=sys.stderr)
     return code
