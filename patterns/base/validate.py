@@ -20,7 +20,7 @@ memory either):
 =========================  ==================  =============================================
 limit                      value               applies to
 =========================  ==================  =============================================
-``TEXT_FILE_BYTES``        4 MiB               design and tube TOML files, calibration TOML
+``TEXT_FILE_BYTES``        4 MiB               design and tube TOML files, SVG files
 ``CSV_FILE_BYTES``         16 MiB              measurement and marker CSV files
 ``CSV_ROWS``               3,000               data rows of one CSV file (fit: ~50 KB each)
 ``CSV_COLUMNS``            1,000               columns of one CSV row
