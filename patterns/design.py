@@ -95,7 +95,7 @@ from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
-from .plan import Command, Role, StitchPlan
+from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import LENGTH_MATCH_MM, SegmentSpec, segment_stations, segmented
 from .placement import placement_records, with_placement
 from .stops import cord_stop as _cord_stop
@@ -500,7 +500,7 @@ def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optiona
                    flags: tuple[str, ...] = ()):
     keys = _names(cls)
     table = _table(value, path, keys)
-    kwargs = {}
+    kwargs: dict[str, object] = {}
     for key, v in table.items():
         where = _where(path, key)
         if key in strings:
@@ -665,7 +665,7 @@ def design_to_dict(design: Design) -> dict:
     acts = []
     for a in design.actuators:
         if a.segments:
-            d = {"name": a.name, "segment": [{"pattern": seg.pattern, **_plain(seg.params), **seg.kind_options,
+            d: dict[str, object] = {"name": a.name, "segment": [{"pattern": seg.pattern, **_plain(seg.params), **seg.kind_options,
                                               "length_mm": seg.length_mm} for seg in a.segments]}
         else:
             d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
@@ -714,7 +714,11 @@ def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> S
     if not plans:
         raise ParameterError("plans must hold at least one plan, got none")
     limit = check_range("max_jump_mm", max_jump_mm, low=2.0 * DEFAULT_TOLERANCES.machine_grid_mm)
-    xy, cmd, role, owner, acts = [], [], [], [], []
+    xy: list[np.ndarray] = []
+    cmd: list[np.ndarray] = []
+    role: list[np.ndarray] = []
+    owner: list[np.ndarray] = []
+    acts: list[ActuatorPlan] = []
     for p in plans:
         keep = p.commands != Command.END
         index = np.where(p.actuator[keep] >= 0, p.actuator[keep] + len(acts), -1)

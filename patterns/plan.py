@@ -223,7 +223,7 @@ class StitchPlan:
         """
         rows = [tuple(r) + ((0,) if len(r) == 4 else ()) for r in records]
         if not rows:
-            return cls(np.zeros((0, 2)), [], [], [], actuators, name)
+            return cls(np.zeros((0, 2)), np.zeros(0), np.zeros(0), np.zeros(0), actuators, name)
         arr = np.array(rows, dtype=np.float64)
         return cls(arr[:, :2], arr[:, 2], arr[:, 3], arr[:, 4], actuators, name)
 

@@ -231,7 +231,10 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
     """
     cl = as_centerline(centerline)
     segs = _check_lengths(cl, segments)
-    s_all, o_all, role_all, parts = [], [], [], []
+    s_all: list[np.ndarray] = []
+    o_all: list[np.ndarray] = []
+    role_all: list[np.ndarray] = []
+    parts = []
     start = 0.0
     for k, seg in enumerate(segs):
         try:

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from typing import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -48,6 +48,9 @@ from ..patterns.plan import ActuatorPlan, StitchPlan
 from ..patterns.segments import SegmentPlan
 from .calibration import CalibrationSet, ModelChoice, model_for
 from .derived import DerivedGeometry, derive
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .uncertainty import Band
 
 __all__ = ["ActuatorAnalysis", "SegmentAnalysis", "DesignAnalysis", "analyse", "with_model_overrides", "PRESSURE_STEP_KPA",
            "pressure_grid_kpa"]
@@ -203,7 +206,7 @@ class ActuatorAnalysis:
         >>> d["name"], d["pattern"], d["model_error"]
         ('A1', 'zigzag', None)
         """
-        d = {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
+        d: dict[str, object] = {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
              "model": self.choice.as_dict() if self.choice is not None else None,
              "model_error": self.model_error or None}
         if self.segments:
@@ -422,12 +425,13 @@ class DesignAnalysis:
         p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
         key = ("band", p, method)
         if key not in self._curves:
-            out = []
+            out: list[Band | None] = []
             for a in self.actuators:
                 cal = a.choice.calibration if a.choice is not None else None
                 given = a.spec.model.g_mpa is not None or a.spec.model.p0_kpa is not None
                 usable = cal is not None and cal.covariance and not given and set(cal.fitted) <= {"g_mpa", "p0_kpa"}
-                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method) if usable else None)
+                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method)
+                           if cal is not None and usable else None)
             self._curves[key] = tuple(out)
         return self._curves[key]
 

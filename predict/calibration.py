@@ -60,13 +60,16 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Iterable, Mapping
+from typing import TYPE_CHECKING, Iterable, Mapping
 
 from ..patterns.base.choices import check_choice
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
 from ..patterns.kinds import pattern_kind
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .curve import ActuatorModel
 
 __all__ = [
     "PATTERNS",
@@ -405,7 +408,7 @@ def _paper_2025() -> CalibrationSet:
         "not give the tube's radii, so the set records no tube; G and the tube's wall constant enter the "
         "model together, and with embroact's default tube these G values bend far more than the paper "
         "measured (w = 5 mm zigzag: about 2000 deg at 250 kPa against about 155 deg measured at 290 kPa).",
-        {"tube": "natural rubber (Hagitec T-2 02-089-01-02)", "thread": "polyester", "fabric": "cotton"},
+        (("tube", "natural rubber (Hagitec T-2 02-089-01-02)"), ("thread", "polyester"), ("fabric", "cotton")),
         tube=None,
         tube_law="paper",
         measurement="markers: the paper's marker sum (7 per side, 10 mm apart); how its fit compared them "
@@ -619,7 +622,7 @@ class ModelChoice:
         Mismatches between the design and what the calibration was fitted with (tube).
     """
 
-    model: object
+    model: ActuatorModel
     calibration: Calibration | None
     g_source: str
     p0_source: str
@@ -690,12 +693,16 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     tube = derived.tube
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
-    elif p0_from_set:
+    elif p0_from_set and cal is not None:
         p0, p0_src = cal.p0_kpa, f"calibration {cal.label}"
     else:
         p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
         p0_src = f"geometry (tube law {law} at r0 = {derived.r0_mm:.4g} mm)"
-    g, g_src = (float(settings.g_mpa), "given") if settings.g_mpa is not None else (cal.g_mpa, f"calibration {cal.label}")
+    if settings.g_mpa is not None:
+        g, g_src = float(settings.g_mpa), "given"
+    else:
+        assert cal is not None  # looked up above whenever G is not given
+        g, g_src = cal.g_mpa, f"calibration {cal.label}"
     notes: tuple[str, ...] = ()
     if cal is not None:
         cset = get_set(settings.calibration, _as_sets(sets))

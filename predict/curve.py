@@ -664,8 +664,8 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits
     states = _states(geo, theta, p, status, _tube_laws(geo, [model]))
     if limits:  # validity limits (validity.py); the pressure keeps the value of the status replaced
         status = apply_limits(status, theta, states[0], states[1], geo.l0)
-    arrays = (p * KPA_PER_MPA, np.degrees(theta), status) + states
-    return Curve(*(frozen_array(a[0], dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
+    arrays = [p * KPA_PER_MPA, np.degrees(theta), status, *states]
+    return Curve(*(frozen_array(a[0], dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",  # type: ignore[misc, arg-type]
                  calibration=model.calibration)
 
 

@@ -197,6 +197,8 @@ class FitResult:
         des = dict(self.design)
         if "pattern" not in des:
             raise ParameterError("to_point needs a fit_design result (design fields unknown)")
+        if self.p0_kpa is None:
+            raise ParameterError("to_point needs a P0: p0_kpa must be fitted or given, got None")
         return CalibrationPoint(
             pattern=des["pattern"],
             width_mm=des["width_mm"],
@@ -367,7 +369,7 @@ def fit_curve(
     *,
     fit: Iterable[str] = ("g_mpa", "p0_kpa"),
     fixed: Mapping[str, float | None] | None = None,
-    start: Mapping[str, float] | None = None,
+    start: Mapping[str, float | None] | None = None,
     branch: str = "pooled",
     method: str = "callable",
 ) -> FitResult:
@@ -509,7 +511,7 @@ def model_predictor(derived: DerivedGeometry, *, method: str = "auto", measureme
             theta = reading_deg(theta, derived.length_mm, measurement)
         return theta if batch else theta[0]
 
-    predict_deg.last_method, predict_deg.last_status = method, None
+    predict_deg.last_method, predict_deg.last_status = method, None  # type: ignore[attr-defined]
     return predict_deg
 
 

@@ -820,7 +820,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     lo, hi = np.minimum(lo, x0), np.maximum(hi, x0)
     hi = np.where(hi - lo > 1e-9, hi, lo + 1e-9)
     x = np.clip(x0, lo + 1e-9, hi - 1e-9)
-    best = None
+    best: tuple[float, np.ndarray] | None = None
     for _ in range(_POLISH_ROUNDS):  # the sewn leg extents change in steps with the parameters: hold them per round
         legs = [_legs_sewn(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths)]
         cost = float(np.sum(residual(x, legs) ** 2))  # x as sewn: its own leg extents
@@ -831,7 +831,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
         if legs == [_legs_sewn(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths)]:
             best = (0.0, x)
             break
-    x = np.round(best[1], 4)
+    x = np.round(best[1] if best is not None else x, 4)
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
     if len(segs) == 1:
         spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)

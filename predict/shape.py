@@ -43,9 +43,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..patterns.base.arrays import frozen_array
 from ..patterns.base.display import repr_svg
@@ -149,8 +149,8 @@ class BentShape:
     _r0: np.ndarray
 
     @classmethod
-    def chain(cls, segment_lengths_mm: Sequence[float], theta_deg: Sequence[float], *,
-              path_lengths_mm: Sequence[float] | None = None, path_kappa_per_mm: Sequence[float] | None = None,
+    def chain(cls, segment_lengths_mm: ArrayLike, theta_deg: ArrayLike, *,
+              path_lengths_mm: ArrayLike | None = None, path_kappa_per_mm: ArrayLike | None = None,
               start_mm: tuple[float, float] = (0.0, 0.0), heading_deg: float = 0.0) -> "BentShape":
         """Segments ``k`` of length ``L_k`` bent by ``theta_k`` (uniformly within each), along a path.
 

@@ -81,7 +81,7 @@ def tight_sleeve(s: Subject) -> list[Finding]:
 def near_neutral(s: Subject) -> list[Finding]:
     band = s.settings.neutral_band_deg
     out = []
-    for k, act in enumerate(s.plan.actuators):
+    for k, act in enumerate(s.design_plan.actuators):
         for label, req, real in pattern_parts(act):
             if not isinstance(req, CrossParams):
                 continue

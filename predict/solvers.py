@@ -217,7 +217,7 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     top = targets.max(axis=1) if targets.shape[1] else np.full(rows.size, np.inf)
     folded = np.flatnonzero((first_fall < grid_points - 1) & (top > p[rows, np.maximum(first_fall - 1, 0)]))
     if folded.size:  # locate the fold: the root of the slope around the last rising point
-        key = ("fold", folded.tobytes())
+        key: tuple = ("fold", folded.tobytes())
         if key not in memo:
             memo[key] = _fold(rate, slope, grid, first_fall, folded, rtol, atol)
         sel, t_fold, p_fold = memo[key]

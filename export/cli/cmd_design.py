@@ -31,11 +31,16 @@ best: zigzag width_mm=6.1529 interval_mm=1 -> 90.000 deg; P0 ... kPa, G ... MPa
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .args import add_tube_arguments, tube_from_args
 from .target import P0_SOURCES
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ...patterns.design import Design
 
 __all__ = ["add_arguments", "run", "read_target_shape"]
 
@@ -121,7 +126,7 @@ def _params_text(params) -> str:
     return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
 
 
-def _bend(args, tube, settings, sets) -> tuple[dict, object, list[str]]:
+def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str]]:
     from ...predict.inverse import design_bend
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
@@ -145,7 +150,7 @@ def _bend(args, tube, settings, sets) -> tuple[dict, object, list[str]]:
     return r.as_dict(), r.best.design, lines
 
 
-def _shape(args, tube, settings, sets) -> tuple[dict, object, list[str], str]:
+def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
     import numpy as np
 
     from ...predict.inverse import design_shape
@@ -181,7 +186,7 @@ def run(args) -> int:
     out = Path(args.output)
     if args.bend_deg is not None:
         result, design, lines = _bend(args, tube, settings, sets)
-        files = {out: dumps_design(design).encode("utf-8")}
+        files: dict[str | os.PathLike, bytes] = {out: dumps_design(design).encode("utf-8")}
     else:
         result, design, lines, svg = _shape(args, tube, settings, sets)
         svg_path = Path(args.svg) if args.svg else out.with_name(f"{out.stem}-shape.svg")

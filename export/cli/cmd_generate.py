@@ -96,7 +96,7 @@ def run(args) -> int:
         return 1
     data, res = encode(plan, fmt, split_long=args.split_long or forced_split(findings, args.force),
                        cord_stop=args.cord_stop)
-    outputs = {out: data}
+    outputs: dict[Path, str | bytes] = {out: data}
     if args.worksheet:
         from ..report.worksheet import DEFAULT_SPEED_SPM, worksheet
 

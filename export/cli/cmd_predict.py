@@ -74,7 +74,7 @@ def _band_dict(band):
 def _piece(model, c) -> dict:
     from ...predict.validity import branch_end
 
-    out = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
+    out: dict[str, object] = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
     out["limits"] = _limits(model, c)
     return out

@@ -155,8 +155,7 @@ def _read_rows(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
     finally:
         csv.field_size_limit(old_limit)
     header = [h.strip().lower() for h in rows[0]]
-    seen: set[str] = set()
-    dup = next((h for h in header if h in seen or seen.add(h)), None)
+    dup = next((h for i, h in enumerate(header) if h in header[:i]), None)
     if dup is not None:
         raise DesignFileError(f"{str(path)!r}: column {dup!r} appears more than once in the header")
     if len(rows) == 1:
@@ -353,7 +352,7 @@ def read_calibration(path) -> CalibrationSet:
         raise DesignFileError(f"{str(path)!r}: [materials] must map names to strings")
     parsed = [_point(path, i, p) for i, p in enumerate(points)]
     try:
-        return CalibrationSet(doc.get("name"), tuple(parsed), doc.get("description", ""), materials,
+        return CalibrationSet(doc.get("name", ""), tuple(parsed), doc.get("description", ""), tuple(materials.items()),
                               tube=_tube(path, doc.get("tube")), tube_law=doc.get("tube_law", "paper"),
                               measurement=doc.get("measurement", "whole-strip"))
     except EmbroactError as exc:

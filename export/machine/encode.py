@@ -72,7 +72,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -174,7 +174,7 @@ class MachinePattern:
         written from their first needle point (VP3).
     """
 
-    pattern: object
+    pattern: Any
     format: str
     split_legs: int
     extra_needle_points: int
@@ -493,7 +493,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         raise ExportError(
             f"design needs {len(b.pattern.stitches)} records; {fmt.name} holds at most {fmt.limit.max_records}"
         )
-    labels = [_actuator_name(plan, k) for k in sorted(threads, key=threads.get) or [0]]
+    labels = [_actuator_name(plan, k) for k in sorted(threads, key=lambda k: threads[k]) or [0]]
     for label in ([f"{labels[0]} placement"] if lead_block else []) + labels:
         t = pe.EmbThread()
         t.set_color(*(THREAD_COLORS[len(b.pattern.threadlist) % len(THREAD_COLORS)].to_bytes(3, "big")))

@@ -285,8 +285,8 @@ def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px:
     xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
                                                      if s.measured_pressure_kpa is not None])
     ys = _finite([s.theta_deg[s.drawn()] for s in series]
-                 + [b[s.drawn()] for s in series if s.theta_low_deg is not None for b in (s.theta_low_deg,
-                                                                                          s.theta_high_deg)]
+                 + [b[s.drawn()] for s in series if s.theta_low_deg is not None and s.theta_high_deg is not None
+                    for b in (s.theta_low_deg, s.theta_high_deg)]
                  + [s.measured_theta_deg for s in series if s.measured_theta_deg is not None])
     xt = nice_ticks(0.0, float(xs.max()) if xs.size else 1.0)
     yt = nice_ticks(min(0.0, float(ys.min()) if ys.size else 0.0), max(0.0, float(ys.max()) if ys.size else 1.0))
@@ -310,9 +310,9 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 def _status_spans(s: Series) -> list[tuple[str, float, float]]:
     """(status, p_from, p_to) spans; boundaries halfway between samples of different status."""
-    p = s.pressure_kpa
+    p, status = s.pressure_kpa, s.status or ()
     order = np.argsort(p, kind="stable")
-    p, names = p[order], [s.status[i] for i in order]
+    p, names = p[order], [status[i] for i in order]
     edges = np.concatenate([[p[0]], (p[1:] + p[:-1]) / 2.0, [p[-1]]])
     spans: list[tuple[str, float, float]] = []
     for i, name in enumerate(names):
@@ -365,7 +365,7 @@ def _draw_axes(dwg, g, sc: Scale, xt, yt, ribbons_px: float) -> None:
 
 def _draw_band(dwg, g, k: int, s: Series, sc: Scale) -> None:
     """The band as one polygon per run of drawn points (low edge forward, high edge back)."""
-    if s.theta_low_deg is None:
+    if s.theta_low_deg is None or s.theta_high_deg is None:
         return
     order = np.argsort(s.pressure_kpa, kind="stable")
     p, lo, hi = s.pressure_kpa[order], s.theta_low_deg[order], s.theta_high_deg[order]

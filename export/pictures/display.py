@@ -210,9 +210,9 @@ def shape_svg(shape: BentShape) -> str:
 
     from .sideview import SidePanel, side_view_svg
 
-    lengths = [float(v) for v in shape.lengths_mm]
-    theta = [math.degrees(k * length) for k, length in zip(shape.kappa_b_per_mm.tolist(), lengths)]
+    lengths = tuple(float(v) for v in shape.lengths_mm)
+    theta = tuple(math.degrees(k * length) for k, length in zip(shape.kappa_b_per_mm.tolist(), lengths))
     panel = SidePanel(f"{len(lengths)} piece{'s' * (len(lengths) > 1)}, {shape.turning_deg:.1f} deg",
-                      length_mm=shape.length_mm, r0_mm=0.5, pressure_kpa=[math.nan], theta_deg=[sum(theta)],
-                      segment_lengths_mm=lengths, segment_theta_deg=[theta])
+                      length_mm=shape.length_mm, r0_mm=0.5, pressure_kpa=(math.nan,), theta_deg=(sum(theta),),
+                      segment_lengths_mm=lengths, segment_theta_deg=(theta,))
     return side_view_svg([panel], title="Bent shape (side view, clamped top)")

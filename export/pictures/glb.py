@@ -62,7 +62,11 @@ def _pad(data: bytes, fill: bytes) -> bytes:
 def glb_bytes(meshes) -> bytes:
     """The ``.glb`` file of ``meshes`` (a sequence of :class:`GlbMesh`), one node each."""
     meshes = list(meshes)
-    blob, views, accessors, materials, colours, gltf_meshes = bytearray(), [], [], [], {}, []
+    blob, colours = bytearray(), {}
+    views: list[dict] = []
+    accessors: list[dict] = []
+    materials: list[dict] = []
+    gltf_meshes: list[dict] = []
     shared = {}  # index bytes -> accessor: bodies of one ring layout (fabric, rails) share their triangles
 
     def view(data: bytes, target: int) -> int:

@@ -159,14 +159,14 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     # long thin triangles defeat depth sorting: split them to a fraction of the shape's
     # size, or of the whole drawing when it holds many shapes
     split = _SPLIT_FRACTION * max(max(s.bent.path.length_mm for s in shapes), float(_extent_mm(shapes, rot).max()))
-    tris, cols, behind = [], [], []
+    tris, cols, hidden = [], [], []
     for s in shapes:
         for b in s.bodies:
             v, f, parent = subdivide_to_size(b.vertices, b.faces, split)
             tris.append(v[f] @ rot.T)
             cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(f), 1)))
-            behind.append(_behind_fabric(s, b, rot)[parent])
-    tri, col, behind = np.concatenate(tris), np.concatenate(cols), np.concatenate(behind)
+            hidden.append(_behind_fabric(s, b, rot)[parent])
+    tri, col, behind = np.concatenate(tris), np.concatenate(cols), np.concatenate(hidden)
     n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     norm = np.linalg.norm(n, axis=1)
     keep = (n[:, 2] > 0) & (norm > 0)

@@ -184,7 +184,7 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
     for a, c in zip(analysis.actuators, curves):
         picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
         panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
-                                theta_deg=[shape_theta_deg(c, p)[1] for p in picks]))
+                                theta_deg=tuple(shape_theta_deg(c, p)[1] for p in picks)))
     return panels
 
 

@@ -76,8 +76,8 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
                           stroke_linejoin="round", **{"class": "predicted"}))
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pred, axis=0).T))])
     for b in boundaries_mm:
-        x, y = np.interp(b, s, pred[:, 0]), np.interp(b, s, pred[:, 1])
-        root.add(dwg.circle(_points([[x, y]], x0, top)[0], 1.2, fill="#fff", stroke=_PREDICTED, stroke_width=0.4,
+        x, y = float(np.interp(b, s, pred[:, 0])), float(np.interp(b, s, pred[:, 1]))
+        root.add(dwg.circle(_points(np.array([[x, y]]), x0, top)[0], 1.2, fill="#fff", stroke=_PREDICTED, stroke_width=0.4,
                             **{"class": "boundary", "data-s-mm": f"{b:g}"}))
     root.add(dwg.circle(_points(pred[:1], x0, top)[0], 1.5, fill="#444", **{"class": "clamp"}))
     legend_y = 12.0

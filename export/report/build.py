@@ -57,7 +57,7 @@ from ...patterns.base.errors import ParameterError, PatternError
 from ...patterns.plan import StitchPlan
 from ..files.atomic import check_writable_dir, write_files_atomic
 from ..machine.formats import FORMATS, WriteResult, encode
-from .worksheet import DEFAULT_SPEED_SPM, worksheet
+from .worksheet import DEFAULT_SPEED_SPM, Worksheet, worksheet
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
@@ -164,7 +164,7 @@ class BuildResult:
     out_dir: str
     files: tuple[str, ...]
     machine_files: tuple[WriteResult, ...]
-    worksheet: object = field(compare=False)
+    worksheet: Worksheet = field(compare=False)
     findings: tuple = ()
     plan: StitchPlan | None = field(default=None, compare=False)
     analysis: object = field(default=None, compare=False)
@@ -298,8 +298,8 @@ def build_plan_outputs(
     outputs["template.svg"] = template_svg(plan, getattr(design, "machine", None)).encode("utf-8")  # 1:1 layout
     for stage in stages:
         ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))
-        for name, data in stage(ctx).items():
-            outputs[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+        for name, content in stage(ctx).items():
+            outputs[name] = content.encode("utf-8") if isinstance(content, str) else bytes(content)
     files = write_outputs(d, outputs)
     return BuildResult(str(d), files, tuple(machine), ws, findings, plan, analysis)
 

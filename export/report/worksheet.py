@@ -478,7 +478,7 @@ def worksheet(
         act = plan.actuators[k] if k < len(plan.actuators) else None
         sheets[k] = _actuator_sheet(plan, k, act, t_f, analysed.get(act.name) if act is not None else None)
     needles = plan.xy_mm[plan.commands == Command.STITCH]
-    size = tuple(float(v) for v in np.ptp(needles, axis=0)) if len(needles) else (0.0, 0.0)
+    size = (float(np.ptp(needles[:, 0])), float(np.ptp(needles[:, 1]))) if len(needles) else (0.0, 0.0)
     if machine is None:
         n_st, n_j, n_tr, n_sp = (plan.count(c) for c in (Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP))
         n_cc, n_wait, pauses = 0, n_sp, None

@@ -26,7 +26,7 @@ from collections import OrderedDict
 from pathlib import Path
 
 from ...patterns.base.errors import EmbroactError, ParameterError, check_range
-from ...patterns.design import design_from_dict
+from ...patterns.design import ActuatorSpec, design_from_dict
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
@@ -185,7 +185,7 @@ class Studio:
             res = build(self.design, self.out_dir, force=force, analysis=analysis, stages=(previews_stage(),))
         return {"files": list(res.files), "out_dir": res.out_dir, "stitch_count": res.worksheet.stitch_count}
 
-    def _actuator(self, actuator) -> tuple[int, object]:
+    def _actuator(self, actuator) -> tuple[int, ActuatorSpec]:
         """(index, spec) of the design's actuator number ``actuator``."""
         n = len(self.design.actuators)
         index = actuator if isinstance(actuator, int) and not isinstance(actuator, bool) else -1

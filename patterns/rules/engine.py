@@ -30,6 +30,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..base.errors import ParameterError
 from ..base.findings import RULES, Finding, Inputs, Rule
 from ..limits import record_moves_units
 from ..plan import Command, Role, StitchPlan
@@ -76,6 +77,13 @@ class Subject:
     def __init__(self, layout: Layout, settings: RuleSettings, plan: StitchPlan | None = None) -> None:
         self.layout, self.settings, self.plan = layout, settings, plan
         self._shared: dict = {}
+
+    @property
+    def design_plan(self) -> StitchPlan:
+        """The design's plan, for rules of designs (they run only when there is one)."""
+        if self.plan is None:
+            raise ParameterError("this rule checks a design's plan; an embroidery file has none")
+        return self.plan
 
     def shared(self, key: str, compute: Callable):
         """``compute()`` once per subject under ``key``: a value several rules read."""
@@ -160,7 +168,7 @@ class Subject:
     @cached_property
     def first_leg(self) -> np.ndarray:
         """Per plan actuator, the first LEG record (-1 if none)."""
-        plan = self.plan
+        plan = self.design_plan
         first = np.full(len(plan.actuators), -1, dtype=np.int64)
         legs = np.flatnonzero((plan.roles == Role.LEG) & (plan.actuator >= 0))
         acts, at = np.unique(plan.actuator[legs], return_index=True)
@@ -171,8 +179,9 @@ class Subject:
     def actuator_place(self, k: int) -> dict:
         """``actuator``, ``stitch_index`` and ``xy_mm`` of plan actuator ``k`` (at its first leg)."""
         i = int(self.first_leg[k])
-        return dict(actuator=self.plan.actuators[k].name, stitch_index=i if i >= 0 else None,
-                    xy_mm=self.plan.xy_mm[i] if i >= 0 else None)
+        plan = self.design_plan
+        return dict(actuator=plan.actuators[k].name, stitch_index=i if i >= 0 else None,
+                    xy_mm=plan.xy_mm[i] if i >= 0 else None)
 
     # ----------------------------------------------------------------- findings
     def point(self, i: int, code: str, message: str, *, owner: int | None = None) -> Finding:

@@ -55,7 +55,7 @@ class TubeLayout:
     """
 
     name: str
-    path: object
+    path: shapely.LineString
     outer_radius_mm: float
     clearance_mm: float
     end_margin_mm: float

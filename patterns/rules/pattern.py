@@ -57,7 +57,7 @@ def interval(s: Subject) -> Hits:
 def angle_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.angle_deg
     out = []
-    for k, act in enumerate(s.plan.actuators):
+    for k, act in enumerate(s.design_plan.actuators):
         for label, req, real in pattern_parts(act):
             if isinstance(req, CrossParams) and abs(real.angle_deg - req.angle_deg) > tol:
                 out.append(RULES.finding(
@@ -73,7 +73,7 @@ def angle_off(s: Subject) -> list[Finding]:
 def interval_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.spacing_rel
     out = []
-    for k, act in enumerate(s.plan.actuators):
+    for k, act in enumerate(s.design_plan.actuators):
         for label, req, real in pattern_parts(act):
             rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
             if rel > tol:
