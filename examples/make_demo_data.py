@@ -8,9 +8,11 @@ parameters plus Gaussian noise, so ``embroact fit`` has a known answer to find.
   unloading G = 2.3 MPa, P0 = 70 kPa; noise 1 deg.
 * ``cross_a45_loop.csv``   cross w = 7 mm, alpha0 = 45 deg (bends negative): loading
   G = 1.3 MPa, P0 = 170 kPa; unloading G = 1.1 MPa, P0 = 150 kPa; noise 1 deg.
-* ``zigzag_w7_markers.csv`` the zigzag loop as motion-capture frames: 14 markers, 7 per
-  side 10 mm apart on a circular arc whose five joint angles sum to the bend angle;
-  the strip hangs along -z and bends toward +x (the fabric's back); noise 0.05 mm.
+* ``zigzag_w7_markers.csv`` the zigzag loop as motion-capture frames: the paper's layout,
+  14 markers, 7 per side 10 mm apart from the clamped end, on the uniformly bent 100 mm
+  strip (so their marker sum reads half of the bend angle, docs/model.md, what a marker sum
+  reads); the strip hangs along -z and bends toward +x (the fabric's back); noise 0.05 mm.
+  ``embroact fit --markers`` compares them with the layout's reading.
 
 Run: ``python examples/make_demo_data.py [OUT_DIR]`` (default: ``examples/data``).
 """
@@ -28,6 +30,7 @@ from embroact.predict.derived import derive_from_values
 
 SEED = 20251023
 MARKER_SPACING_MM = 10.0
+LENGTH_MM = 100.0
 SIDE_GAP_MM = 8.0
 LOOPS = {
     # name: (pattern, angle_deg, interval_mm, (G, P0) loading, (G, P0) unloading, top pressure)
@@ -55,11 +58,13 @@ def _bend_csv(rows) -> str:
 
 
 def _markers(theta_deg, rng) -> np.ndarray:
-    """14 markers (2 sides x 7) on an arc of 6 chords, 10 mm each, five joints of theta/5."""
-    step = np.radians(theta_deg) / 5.0
-    heading = step * np.arange(6)  # direction of each chord, from -z toward +x
-    chords = MARKER_SPACING_MM * np.stack([np.sin(heading), np.zeros(6), -np.cos(heading)], axis=1)
-    side = np.vstack([np.zeros(3), np.cumsum(chords, axis=0)])
+    """14 markers (2 sides x 7, from the clamped end) on a uniform bend of theta over l0 = 100 mm."""
+    s = MARKER_SPACING_MM * np.arange(7)  # arc length of each marker from the clamp [mm]
+    turn = np.radians(theta_deg) * s / LENGTH_MM  # tangent angle at each marker, from -z toward +x
+    # the arc's points, (1 - cos)/kappa along +x and sin/kappa along -z, written without 0/0 at kappa = 0
+    x = s * np.sin(turn / 2.0) * np.sinc(turn / (2.0 * np.pi))
+    z = -s * np.sinc(turn / np.pi)
+    side = np.stack([x, np.zeros(7), z], axis=1)
     both = np.vstack([side, side + [0.0, SIDE_GAP_MM, 0.0]])
     return both + rng.normal(0.0, 0.05, both.shape)
 

@@ -67,6 +67,7 @@ from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
 from ..patterns.kinds import pattern_kind
+from .markers import MarkerLayout
 
 if TYPE_CHECKING:  # pragma: no cover
     from .curve import ActuatorModel
@@ -94,6 +95,8 @@ BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
 
 _FITTABLE = ("g_mpa", "p0_kpa", "g_e_mpa")
+#: Keys of a point's ``tube_law_parameters``: the paper's law (r_f, G_e), the thick wall (r_f, d_f, mu).
+_TUBE_LAW_KEYS = ("outer_radius_mm", "inner_radius_mm", "g_e_mpa", "mu_mpa")
 _G_MAX_MPA = 1e5
 _P_MAX_KPA = 1e5
 _NAME_CHARS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.")
@@ -142,6 +145,10 @@ class CalibrationPoint:
     covariance : tuple of tuples
         Covariance of the fitted parameters [MPa, kPa units]; empty when unknown. G and P0 are
         strongly correlated, so a band from standard errors alone would be wrong.
+    tube_law_parameters : tuple of (str, float) pairs
+        The parameters of the set's tube law the fit used (``outer_radius_mm`` and ``g_e_mpa``
+        for the paper's law; ``outer_radius_mm``, ``inner_radius_mm`` and ``mu_mpa`` for the
+        thick wall; [mm, MPa]); empty when unknown. A mapping is accepted.
     """
 
     pattern: str
@@ -159,6 +166,7 @@ class CalibrationPoint:
     n_points: int | None = None
     fitted: tuple[str, ...] = ()
     covariance: tuple[tuple[float, ...], ...] = ()
+    tube_law_parameters: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         _choice("pattern", self.pattern, PATTERNS)
@@ -192,6 +200,7 @@ class CalibrationPoint:
             raise ParameterError("covariance must be finite and symmetric with a non-negative diagonal")
         object.__setattr__(self, "fitted", fitted)
         object.__setattr__(self, "covariance", cov)
+        object.__setattr__(self, "tube_law_parameters", _law_parameters(self.tube_law_parameters))
 
     @property
     def coordinate(self) -> float:
@@ -214,7 +223,24 @@ class CalibrationPoint:
             out["fitted"] = list(out["fitted"])
         if "covariance" in out:
             out["covariance"] = [list(row) for row in out["covariance"]]
+        if "tube_law_parameters" in out:
+            out["tube_law_parameters"] = dict(out["tube_law_parameters"])
         return out
+
+
+def _law_parameters(value) -> tuple[tuple[str, float], ...]:
+    """Validated ``(key, value)`` pairs of a tube law's parameters (keys of ``_TUBE_LAW_KEYS``)."""
+    try:
+        pairs = tuple((value.items() if isinstance(value, Mapping) else value))
+        keys = [str(k) for k, _ in pairs]
+    except (TypeError, ValueError):
+        raise ParameterError(f"tube_law_parameters must map names to numbers, got {value!r}") from None
+    bad = [k for k in keys if k not in _TUBE_LAW_KEYS]
+    if bad or len(set(keys)) != len(keys):
+        raise ParameterError(f"tube_law_parameters must name distinct keys of {', '.join(_TUBE_LAW_KEYS)}, "
+                             f"got {keys!r}")
+    return tuple((k, check_range(f"tube_law_parameters.{k}", v, low=0.0, low_inclusive=k == "inner_radius_mm",
+                                 high=_G_MAX_MPA)) for k, (_, v) in zip(keys, pairs))
 
 
 @dataclass(frozen=True, slots=True)
@@ -275,6 +301,10 @@ class CalibrationSet:
     measurement : str
         How the fitted angles were measured: ``"whole-strip"`` (the angle between the two
         ends of the strip) or a marker layout, e.g. ``"markers: 7 per side, 10 mm apart"``.
+    marker_layout : MarkerLayout or None
+        The layout the fit compared the data through (its reading of the model's bend);
+        ``None``: whole-strip angles, or a layout not known in numbers (the paper's set).
+        With a layout, ``measurement`` defaults to its label.
     """
 
     name: str
@@ -284,6 +314,7 @@ class CalibrationSet:
     tube: CalibrationTube | None = None
     tube_law: str = "paper"
     measurement: str = "whole-strip"
+    marker_layout: MarkerLayout | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name or not set(self.name) <= _NAME_CHARS:
@@ -302,6 +333,11 @@ class CalibrationSet:
         object.__setattr__(self, "tube_law", check_choice("tube_law", self.tube_law, TubeLaw).value)
         if not isinstance(self.measurement, str) or not self.measurement.strip():
             raise ParameterError(f"measurement must be a non-empty description, got {self.measurement!r}")
+        if self.marker_layout is not None:
+            if not isinstance(self.marker_layout, MarkerLayout):
+                raise ParameterError(f"marker_layout must be a MarkerLayout or None, got {type(self.marker_layout).__name__}")
+            if self.measurement == "whole-strip":
+                object.__setattr__(self, "measurement", self.marker_layout.label)
 
     def with_points(self, points: Iterable[CalibrationPoint]) -> "CalibrationSet":
         """A copy whose points are merged with ``points`` (a new point replaces an old one of the same design)."""

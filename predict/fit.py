@@ -193,7 +193,11 @@ class FitResult:
         return d
 
     def to_point(self) -> CalibrationPoint:
-        """The fit as a calibration point (needs ``design``, i.e. a :func:`fit_design` result)."""
+        """The fit as a calibration point (needs ``design``, i.e. a :func:`fit_design` result).
+
+        The point keeps the fitted names, their covariance (for uncertainty bands) and the
+        tube law's parameters.
+        """
         des = dict(self.design)
         if "pattern" not in des:
             raise ParameterError("to_point needs a fit_design result (design fields unknown)")
@@ -213,6 +217,9 @@ class FitResult:
             g_e_mpa_se=self.g_e_mpa_se,
             rmse_deg=self.rmse_deg,
             n_points=self.n_points,
+            fitted=self.fitted,
+            covariance=self.covariance,
+            tube_law_parameters=self.tube_law_parameters,
         )
 
 

@@ -172,14 +172,15 @@ def test_fit_with_design_file(capsys, tmp_path):
 
 
 def test_unsigned_markers_take_the_design_direction(capsys, tmp_path):
-    """Without --normal the paper's unsigned angle sum is given the design's sign (cross 45: negative)."""
+    """Without --normal the paper's unsigned angle sum is given the design's sign (cross 45: negative).
+
+    The markers sit on the uniformly bent strip (tests/markerdata.py), turned over so that the
+    bend looks positive: only the design can tell the sign."""
     import numpy as np
+    from markerdata import strip_points
 
     bend = read_bend_csv(DATA / "cross_a45_loop.csv")
-    step = np.radians(np.abs(bend.angle_deg)) / 5.0  # five joints per side share the bend
-    heading = step[:, None] * np.arange(6)
-    side = np.concatenate([np.zeros((len(step), 1, 2)),
-                           np.cumsum(10.0 * np.stack([np.cos(heading), np.sin(heading)], axis=-1), axis=1)], axis=1)
+    side = np.stack([strip_points(abs(t), 10.0 * np.arange(7)) for t in bend.angle_deg])
     both = np.concatenate([side, side], axis=1)  # 2-D: both rows project onto one line
     cols = ",".join(f"m{i}_{a}" for i in range(1, 15) for a in "xy")
     rows = [f"{p:g},{b}," + ",".join(f"{v:.6f}" for v in m.ravel())

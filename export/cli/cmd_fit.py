@@ -28,18 +28,14 @@ import os
 import re
 import sys
 
-from .target import add_quick_arguments
+from .markerargs import add_layout_arguments, layout_from_args
+from .target import TUBE_LAWS, add_quick_arguments
 
 __all__ = ["add_arguments", "run"]
 
-_ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa"}
+_ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa", "mu": "g_e_mpa"}
 #: Pattern names (the keys of the quick-parameter defaults; no numpy for --help).
 PATTERNS = ("zigzag", "cross")
-#: Tube law of the fitted model (embroact.predict.fit models the inflation phase with the paper's law).
-_TUBE_LAW = "paper"
-#: Marker layout bounds: a marker CSV then has at most 3 rows * 100 markers * 3 axes
-#: coordinate columns (within :data:`embroact.patterns.base.validate.CSV_COLUMNS`).
-MAX_MARKERS_PER_SIDE, MAX_MARKER_ROWS = 100, 3
 
 
 def add_arguments(parser, name: str) -> None:
@@ -53,7 +49,11 @@ def add_arguments(parser, name: str) -> None:
     design.add_argument("--pattern", choices=PATTERNS, help="pattern of the measured sample")
     add_quick_arguments(design, pattern=None, name_flag=False)
     fit = parser.add_argument_group("fit")
-    fit.add_argument("--fit", default="g,p0", help="parameters to fit: g, p0, g_e (comma-separated; default g,p0)")
+    fit.add_argument("--fit", default="g,p0",
+                     help="parameters to fit: g, p0, g_e (comma-separated; default g,p0); with --tube-law "
+                          "thick-wall g_e (or mu) is the tube's mu")
+    fit.add_argument("--tube-law", choices=TUBE_LAWS, default="paper",
+                     help="tube law of P0 from the geometry and of the inflation phase (default paper)")
     fit.add_argument(
         "--branch",
         choices=("loading", "unloading", "both", "pooled"),
@@ -63,25 +63,30 @@ def add_arguments(parser, name: str) -> None:
     fit.add_argument("--g-mpa", type=float, help="G [MPa] when not fitted (also a start value)")
     fit.add_argument("--p0-kpa", type=float, help="P0 [kPa] when not fitted (default: from geometry and G_e)")
     fit.add_argument("--method", default="auto", help="model method (default auto)")
-    marks = parser.add_argument_group("markers (DATA.csv holds m1_x, m1_y[, m1_z] ... per frame)")
-    marks.add_argument("--markers", action="store_true", help="compute bend angles from marker coordinates first")
-    marks.add_argument("--markers-per-side", type=int, default=7, help="markers per side (default 7)")
-    marks.add_argument("--sides", type=int, default=2, help="marker rows (default 2)")
+    marks = parser.add_argument_group("how the angles were measured (markers: DATA.csv may hold m1_x, m1_y[, m1_z] "
+                                      "... per frame)")
+    marks.add_argument("--markers", action="store_true",
+                       help="DATA.csv holds marker coordinates: compute the marker sums first (implies "
+                            "--measurement markers)")
+    add_layout_arguments(marks, measurement_help=(
+        "how the angles in DATA.csv were measured: whole-strip (the angle between the strip's two ends, default) "
+        "or markers (the layout's marker sum: the fit compares the data with what the layout reads on the "
+        "model's bend); recorded in the set"))
     marks.add_argument(
         "--normal",
         metavar="X,Y,Z",
         help="direction out of the fabric's back: signs the angles; without it the unsigned angles "
         "take the design's bending direction",
     )
+    marks.add_argument("--tangent", metavar="X,Y,Z",
+                       help="with --normal: the strip's direction at the clamp, clamped end to tip (default: the "
+                            "first marker chord of the straightest frame)")
     out = parser.add_argument_group("output")
     out.add_argument("-o", "--output", metavar="CAL.toml", help="write the fits as a calibration set")
     out.add_argument("--name", help="calibration set name (default: the output file's stem)")
     out.add_argument("--description", default="", help="calibration set description")
     out.add_argument("--material", action="append", default=[], metavar="KEY=VALUE", help="e.g. tube=silicone (repeatable)")
     out.add_argument("--append", action="store_true", help="merge into an existing calibration file instead of replacing it")
-    out.add_argument("--measurement", default="whole-strip",
-                     help="how the angles in DATA.csv were measured, recorded in the set (default whole-strip: "
-                          "the angle between the strip's two ends)")
     out.add_argument("--json", action="store_true", help="machine-readable output")
 
 
@@ -119,30 +124,38 @@ def _actuator(args):
     return analyse_target(load_target(quick, pattern=args.pattern)).actuators[0]
 
 
-def _data(args, derived):
+def _vector(flag: str, text: str | None):
+    from ...patterns.base.errors import ParameterError
+
+    if text is None:
+        return None
+    try:
+        return [float(t) for t in text.split(",")]
+    except ValueError:
+        raise ParameterError(f"{flag} must be 2 or 3 comma-separated numbers, got {text!r}") from None
+
+
+def _data(args, derived, layout):
     """(pressure_kpa, angle_deg, branch labels, note) from the CSV."""
     import numpy as np
 
     from ...patterns.base.errors import ParameterError
-    from ...patterns.base.validate import check_count
     from ...predict.markers import marker_angles
     from ..files.calibfile import read_bend_csv, read_marker_csv
 
     if not args.markers:
+        if args.normal is not None or args.tangent is not None:
+            raise ParameterError("--normal and --tangent orient marker coordinates: they need --markers")
         d = read_bend_csv(args.data)
-        return d.pressure_kpa, d.angle_deg, d.branch, ""
-    normal = None
-    if args.normal is not None:
-        try:
-            normal = [float(t) for t in args.normal.split(",")]
-        except ValueError:
-            raise ParameterError(f"--normal must be 2 or 3 comma-separated numbers, got {args.normal!r}") from None
-    check_count("markers_per_side", args.markers_per_side, low=3, high=MAX_MARKERS_PER_SIDE)
-    check_count("sides", args.sides, low=1, high=MAX_MARKER_ROWS)
-    m = read_marker_csv(args.data, n_markers=args.markers_per_side * args.sides)
-    angles = marker_angles(m.markers_mm, markers_per_side=args.markers_per_side, sides=args.sides, normal=normal)
+        return d.pressure_kpa, d.angle_deg, d.branch, "" if layout is None else f"angles are {layout.label}"
+    normal, tangent = _vector("--normal", args.normal), _vector("--tangent", args.tangent)
+    if tangent is not None and normal is None:
+        raise ParameterError("--tangent needs --normal (it only orients the signed angles)")
+    m = read_marker_csv(args.data, n_markers=layout.markers_per_side * layout.rows)
+    angles = marker_angles(m.markers_mm, markers_per_side=layout.markers_per_side, sides=layout.rows, normal=normal,
+                           tangent=tangent)
     theta = np.asarray(angles.theta_deg)
-    note = f"bend angles from {args.sides} x {args.markers_per_side} markers"
+    note = f"marker sums of {layout.label}; coordinate noise {angles.noise_mm:.2g} mm"
     if normal is None and not derived.bends_positive:
         theta = -theta
         note += " (unsigned; given this design's negative bending direction)"
@@ -161,14 +174,7 @@ def _materials(items):
     return out
 
 
-def _measurement(args) -> str:
-    """How the fitted angles were measured, for the calibration set."""
-    if args.markers:
-        return f"markers: {args.sides} rows of {args.markers_per_side}, bend angles by embroact's marker analysis"
-    return args.measurement
-
-
-def _write_set(args, act, results):
+def _write_set(args, act, results, layout):
     """Write (or merge into) the calibration file: the points plus the tube and tube law the fit used."""
     from ...patterns.base.errors import ParameterError
     from ...predict.calibration import CalibrationSet, CalibrationTube
@@ -185,10 +191,15 @@ def _write_set(args, act, results):
         if old.tube is not None and old.tube.differences(act.derived.tube):
             raise ParameterError(f"tube differs from the one of the set in {args.output!r}: "
                                  + "; ".join(old.tube.differences(act.derived.tube)))
+        if old.tube_law != args.tube_law:
+            raise ParameterError(f"--tube-law {args.tube_law} differs from the set's {old.tube_law!r} in {args.output!r}")
+        if old.marker_layout != layout:
+            was = "whole-strip angles" if old.marker_layout is None else old.marker_layout.label
+            raise ParameterError(f"the measurement differs from the set's ({was}) in {args.output!r}")
         cset = old.with_points(points)
     else:
         cset = CalibrationSet(name, points, args.description, _materials(args.material), tube=tube,
-                              tube_law=_TUBE_LAW, measurement=_measurement(args))
+                              tube_law=args.tube_law, marker_layout=layout)
     write_calibration(args.output, cset)
     return cset
 
@@ -208,7 +219,9 @@ def _table(derived, results, note, cset, path) -> str:
         p0 = f"{_pm(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
         lines.append(f"{r.branch:<10} {r.n_points:>4}  {_pm(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
         if "g_e_mpa" in r.fitted:
-            lines.append(f"{'':<16}G_e = {_pm(r.g_e_mpa, r.g_e_mpa_se)} MPa")
+            modulus = "mu" if r.tube_law == "thick-wall" else "G_e"
+            lines.append(f"{'':<16}{modulus} = {_pm(r.g_e_mpa, r.g_e_mpa_se)} MPa (tube law {r.tube_law})")
+        lines += [f"{'':<16}note: {n}" for n in r.notes]
     if cset is not None:
         lines.append(f"wrote calibration set {cset.name!r} ({len(cset.points)} point(s)) to {path}")
     return "\n".join(lines)
@@ -222,9 +235,10 @@ def run(args) -> int:
 
     if args.output is not None:
         check_output_dir(check_output_name("--output", args.output))
+    layout = layout_from_args(args, markers=args.markers)
     act = _actuator(args)
     derived = act.derived
-    pressure, angle, labels, note = _data(args, derived)
+    pressure, angle, labels, note = _data(args, derived, layout)
     results = fit_design(
         derived,
         pressure,
@@ -235,15 +249,18 @@ def run(args) -> int:
         g_mpa=args.g_mpa,
         p0_kpa=args.p0_kpa,
         method=args.method,
+        measurement=layout,
+        tube_law=args.tube_law,
     )
-    cset = _write_set(args, act, results) if args.output else None
+    cset = _write_set(args, act, results, layout) if args.output else None
     if args.json:
         doc = {
             "design": derived.as_dict(),
             "note": note,
             "fits": [r.as_dict() for r in results],
             "calibration": None if cset is None else {"name": cset.name, "path": args.output, "points": len(cset.points),
-                                                      "tube_law": cset.tube_law, "measurement": cset.measurement},
+                                                      "tube_law": cset.tube_law, "measurement": cset.measurement,
+                                                      "marker_layout": None if layout is None else layout.as_dict()},
         }
         json.dump(doc, sys.stdout, indent=1, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")

@@ -18,12 +18,18 @@ Calibration TOML (what the set was fitted with, then one table per fitted point)
     name = "mylab"
     description = "..."
     tube_law = "paper"               # inflation-phase tube law of the fit
-    measurement = "whole-strip"      # how the angles were measured
+    measurement = "markers: 2 rows of 7, 10 mm apart, ..."   # how the angles were measured
     # covers: zigzag width_mm 7
     [tube]                           # the tube of the fitted samples (left out: unknown)
     outer_radius_mm = 1.5
     inner_radius_mm = 1.0
     g_e_mpa = 0.13
+    [marker_layout]                  # the marker layout the data were compared through
+    markers_per_side = 7             # (left out: whole-strip angles)
+    spacing_mm = 10.0
+    offset_mm = 0.0
+    rows = 2
+    side = "fabric"
     [materials]
     tube = "silicone"
     [[points]]
@@ -33,9 +39,15 @@ Calibration TOML (what the set was fitted with, then one table per fitted point)
     g_mpa = 2.7
     p0_kpa = 85.0
     branch = "loading"
+    fitted = ["g_mpa", "p0_kpa"]     # the fitted parameters, the order of covariance
+    covariance = [[4e-4, 0.05], [0.05, 1.2]]   # [MPa, kPa units]: uncertainty bands
+    [points.tube_law_parameters]     # the tube law's parameters in the fit
+    outer_radius_mm = 1.5
+    g_e_mpa = 0.13
 
-Files written before ``tube``, ``tube_law``, ``measurement`` and ``coordinate`` existed are
-read with the defaults (tube unknown, paper law, whole-strip angles).
+Files written before ``tube``, ``tube_law``, ``measurement``, ``marker_layout``,
+``coordinate``, ``fitted``, ``covariance`` and ``tube_law_parameters`` existed are read with
+the defaults (tube unknown, paper law, whole-strip angles, no covariance).
 
 Every problem is one line naming the file, the line or point, the column or key and
 the value; files are written atomically and byte-for-byte reproducibly.
@@ -66,6 +78,7 @@ from ...patterns.base.errors import DesignFileError, EmbroactError
 from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_limited
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
+from ...predict.markers import MarkerLayout
 from .atomic import write_text_atomic
 from .tomltext import dumps
 
@@ -82,9 +95,10 @@ __all__ = [
     "resolve_calibration_files",
 ]
 
-_SET_KEYS = ("name", "description", "tube_law", "measurement", "tube", "materials", "points")
+_SET_KEYS = ("name", "description", "tube_law", "measurement", "tube", "marker_layout", "materials", "points")
 _POINT_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationPoint))
 _TUBE_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationTube))
+_LAYOUT_KEYS = tuple(f.name for f in dataclasses.fields(MarkerLayout))
 _AXES = ("x", "y", "z")
 
 
@@ -256,6 +270,8 @@ def calibration_toml(cset: CalibrationSet) -> str:
                  "measurement": cset.measurement}
     if cset.tube is not None:
         doc["tube"] = {k: getattr(cset.tube, k) for k in _TUBE_KEYS}
+    if cset.marker_layout is not None:
+        doc["marker_layout"] = cset.marker_layout.as_dict()
     if cset.materials:
         doc["materials"] = dict(cset.materials)
     doc["points"] = [{"pattern": p.pattern, "coordinate": pattern_kind(p.pattern).calibration_axis,
@@ -354,7 +370,8 @@ def read_calibration(path) -> CalibrationSet:
     try:
         return CalibrationSet(doc.get("name", ""), tuple(parsed), doc.get("description", ""), tuple(materials.items()),
                               tube=_tube(path, doc.get("tube")), tube_law=doc.get("tube_law", "paper"),
-                              measurement=doc.get("measurement", "whole-strip"))
+                              measurement=doc.get("measurement", "whole-strip"),
+                              marker_layout=_layout(path, doc.get("marker_layout")))
     except EmbroactError as exc:
         raise DesignFileError(f"{str(path)!r}: {exc}") from None
 
@@ -374,8 +391,37 @@ def _tube(path, table) -> CalibrationTube | None:
         raise DesignFileError(f"{str(path)!r}: [tube]: {exc}") from None
 
 
+def _layout(path, table) -> MarkerLayout | None:
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise DesignFileError(f"{str(path)!r}: [marker_layout] must be a table of {', '.join(_LAYOUT_KEYS)}")
+    _unknown(path, "[marker_layout]", table, _LAYOUT_KEYS)
+    try:
+        return MarkerLayout(**table)
+    except EmbroactError as exc:
+        raise DesignFileError(f"{str(path)!r}: [marker_layout]: {exc}") from None
+
+
+def _check_shapes(path, i: int, table: dict) -> None:
+    """``fitted`` a list of names, ``covariance`` a list of lists of numbers, ``tube_law_parameters`` a table."""
+    where = f"{str(path)!r}: points[{i}]"
+    fitted = table.get("fitted", [])
+    if not isinstance(fitted, list) or not all(isinstance(f, str) for f in fitted):
+        raise DesignFileError(f"{where}: fitted must be a list of parameter names, got {fitted!r}")
+    cov = table.get("covariance", [])
+    if not isinstance(cov, list) or not all(
+            isinstance(row, list) and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in row)
+            for row in cov):
+        raise DesignFileError(f"{where}: covariance must be a list of rows of numbers, got {cov!r}")
+    law = table.get("tube_law_parameters", {})
+    if not isinstance(law, dict):
+        raise DesignFileError(f"{where}: tube_law_parameters must be a table of numbers, got {law!r}")
+
+
 def _point(path, i: int, table: dict) -> CalibrationPoint:
     _unknown(path, f"points[{i}]", table, ("coordinate",) + _POINT_KEYS)
+    _check_shapes(path, i, table)
     fields = {k: v for k, v in table.items() if k != "coordinate"}
     try:
         point = CalibrationPoint(**fields)
