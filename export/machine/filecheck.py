@@ -12,7 +12,10 @@ Positions are those pystitch reads, converted to millimetres: ``x_mm = x / 10``,
 ``y_mm = y / 10`` with **y pointing down** (pystitch's frame; DST stores y up
 and the reader flips it). Tube paths are given in this same frame. For a tube
 drawn in an embroact design (plan frame, y up), negate y:
-plan ``(x, y)`` -> file ``(x, -y)``.
+plan ``(x, y)`` -> file ``(x, -y)``.  A VP3 file embroact wrote has its origin
+1 mm beside the first needle point and says where in its notes
+(:mod:`embroact.export.machine.vp3note`): its positions are shifted back, so it
+reads in the same frame as every other format written from the design.
 
 Commands
 --------
@@ -58,6 +61,7 @@ from ...patterns.base.findings import Finding
 from ...patterns.base.validate import MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, TEXT_FILE_BYTES, read_limited
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
+from .vp3note import read_origin_mm
 from ...patterns.plan import Command
 from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
 from .dst import END_BYTE, HEADER_SIZE
@@ -172,7 +176,12 @@ def _read_pattern(path: str, suffix: str, data: bytes):
     if getattr(reader, "READ_FILE_IN_TEXT_MODE", False):
         return pystitch.read(path, dict(_RAW_READ))
     stream = _TrackedBytes(data)
-    pattern = pystitch.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+    try:
+        pattern = pystitch.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+    except Exception:  # the VP3 reader fails on a cut-short file (None + int) after a short read
+        if not (suffix == "vp3" and stream.hit_end):
+            raise
+        pattern = None
     if suffix in _END_CODED and stream.hit_end:
         raise DesignFileError(
             f"{path}: truncated or garbage {suffix.upper()} file: the data ends before the end-of-design code"
@@ -200,9 +209,8 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     p = str(path)
     suffix = Path(p).suffix.lower().lstrip(".")
     if suffix not in readable_suffixes():
-        raise DesignFileError(
-            f"{p}: cannot read '.{suffix}' embroidery files; readable: {', '.join(readable_suffixes())}"
-        )
+        kind = f"cannot read '.{suffix}' embroidery files" if suffix else "no file suffix to tell its format by"
+        raise DesignFileError(f"{p}: {kind}; readable: {', '.join(readable_suffixes())}")
     try:
         data = read_limited(p, MACHINE_FILE_BYTES, "embroidery file")
     except OSError as exc:
@@ -226,6 +234,9 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     cmap = _command_map()
     commands = np.array([cmap.get(int(c) & pystitch.COMMAND_MASK, Command.JUMP) for c in raw[:, 2]], dtype=np.int8)
     xy = raw[:, :2] / 10.0
+    origin = read_origin_mm(data) if suffix == "vp3" else None
+    if origin is not None:  # embroact's VP3: back to the design's frame (origin 0, 0; y down)
+        xy += (origin[0], -origin[1])
     xy.setflags(write=False)
     commands.setflags(write=False)
     return FileRecords(p, suffix, xy, commands)

@@ -17,7 +17,8 @@ pes       color        Brother, version 6 (thread table names each actuator)
 pec       color        Brother
 jef       color        Janome; trims written explicitly
 exp       stop         Melco / Bernina; trim record written without its 0.7 mm offset
-vp3       color        Pfaff / Husqvarna (thread table names each actuator); origin 1 mm beside the first needle point
+vp3       color        Pfaff / Husqvarna (thread table names each actuator); origin 1 mm beside the first needle point,
+                       recorded in the file's notes (embroact check reads it in the design's frame)
 xxx       color        Singer
 u01       needle_stop  Barudan
 ========  ===========  ==================================================
@@ -63,6 +64,7 @@ from ...patterns.stops import CordStop
 from ..files.atomic import check_output_dir, write_bytes_atomic
 from .census import NAMED_FORMATS, census
 from .encode import MachinePattern, to_pattern
+from .vp3note import add_origin_note
 
 __all__ = ["FIXED_DATE", "MachineFormat", "WriteResult", "FORMATS", "machine_format", "encode", "write"]
 
@@ -109,6 +111,11 @@ def _exp_trims(data: bytes, mp: MachinePattern) -> bytes:
             out[i + 2 : i + 4] = b"\x00\x00"
         i += 4
     return bytes(out)
+
+
+def _vp3_origin(data: bytes, mp: MachinePattern) -> bytes:
+    """VP3: record the file's origin in its notes string (:mod:`embroact.export.machine.vp3note`)."""
+    return add_origin_note(data, mp.origin_mm)
 
 
 def _vp3_even_center(pattern) -> None:
@@ -193,7 +200,7 @@ FORMATS: dict[str, MachineFormat] = {
         _fmt("pec", "PecWriter", "color", color_after_travel=False, trim_is_jump=True),
         _fmt("jef", "JefWriter", "color", [("trims", True), ("date", FIXED_DATE)]),
         _fmt("exp", "ExpWriter", "stop", post=_exp_trims),
-        _fmt("vp3", "Vp3Writer", "color", prepare=_vp3_even_center, end_trims=True, first_at_origin=True),
+        _fmt("vp3", "Vp3Writer", "color", post=_vp3_origin, prepare=_vp3_even_center, end_trims=True, first_at_origin=True),
         _fmt("xxx", "XxxWriter", "color"),
         _fmt("u01", "U01Writer", "needle_stop"),
     )
@@ -236,7 +243,8 @@ def _notes(f: MachineFormat, mp: MachinePattern) -> tuple[str, ...]:
         notes.append(f"{f.name}: {_CANNOT[f.stop_style]}")
     if f.first_at_origin:
         notes.append(f"{f.name}: the file's origin is {mp.origin_mm[0]:g}, {mp.origin_mm[1]:g} mm (plan frame), 1 mm "
-                     "beside the first needle point: the format cannot move the frame before its first stitch")
+                     "beside the first needle point: the format cannot move the frame before its first stitch "
+                     "(recorded in the file's notes: embroact check reads the file in the design's frame)")
     return tuple(notes)
 
 
