@@ -10,7 +10,8 @@ the same model, computed once per run::
       +------------------------+-------------------> ActuatorAnalysis (frozen) per actuator
                                                           |
                                        DesignAnalysis.curves(pressures) -> Curve per actuator
-                                       (computed once per pressure grid and method, then reused)
+                                       (a segmented one: StripCurve, the sum of its segments'
+                                       curves; computed once per pressure grid and method, then reused)
 
 The policy for G and P0 (what a design's ``[actuator.model]`` means, what command-line
 flags override) is :func:`embroact.predict.calibration.model_for`'s; a command applies its
@@ -52,8 +53,8 @@ from .derived import DerivedGeometry, derive
 if TYPE_CHECKING:  # pragma: no cover
     from .uncertainty import Band
 
-__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "DesignAnalysis", "analyse", "with_model_overrides", "PRESSURE_STEP_KPA",
-           "pressure_grid_kpa"]
+__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "DesignAnalysis", "analyse",
+           "with_model_overrides", "PRESSURE_STEP_KPA", "pressure_grid_kpa"]
 
 #: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
 PRESSURE_STEP_KPA = 10.0
@@ -107,6 +108,105 @@ class SegmentAnalysis:
                 "adjustments": list(p.adjustments), "derived": self.derived.as_dict(),
                 "model": self.choice.as_dict() if self.choice is not None else None,
                 "model_error": self.model_error or None}
+
+
+@dataclass(frozen=True, slots=True)
+class StripCurve:
+    """A segmented actuator's whole-strip curve: the sum of its segments' bends (docs/model.md, segments).
+
+    Attributes
+    ----------
+    pressure_kpa, theta_deg : ndarray
+        Pressure [kPa] and the whole strip's bend, the sum of the segments' bends [deg].
+    status : ndarray of int8
+        :class:`~embroact.predict.status.Status` code of the whole strip per pressure (see
+        :func:`strip_curve`): a model state only where every segment's state is one and the
+        strip has not coiled, so :func:`~embroact.predict.validity.valid_mask` tells the views
+        which shapes to draw.
+    segments : tuple of Curve
+        Each segment's own curve, in order along the path.
+    method : str
+        The segments' methods (one name when they agree).
+    """
+
+    pressure_kpa: np.ndarray
+    theta_deg: np.ndarray
+    status: np.ndarray
+    segments: tuple
+    method: str
+
+    def segment_theta_deg(self, index: int) -> tuple[float, ...]:
+        """Each segment's bend at pressure number ``index`` [deg]."""
+        return tuple(float(c.theta_deg[index]) for c in self.segments)
+
+    def as_dict(self) -> dict:
+        """JSON-ready: ``pressure_kpa``, ``theta_deg``, ``status`` names and ``method``."""
+        from .status import status_names
+
+        return {"pressure_kpa": self.pressure_kpa.tolist(), "theta_deg": self.theta_deg.tolist(),
+                "status": status_names(self.status), "method": self.method}
+
+    def __repr__(self) -> str:
+        from .status import status_names
+
+        names = status_names(self.status)
+        counts = ", ".join(f"{name} {names.count(name)}" for name in dict.fromkeys(names))
+        return f"StripCurve({len(self.segments)} segments, {len(names)} pressures; {counts or 'no statuses'})"
+
+
+def strip_curve(segment_curves: Sequence) -> StripCurve:
+    """The whole strip of a segmented actuator from its segments' curves (one pressure grid).
+
+    The bend is the sum of the segments' bends. The status per pressure is the first segment
+    state the model does not describe (a segment past a validity limit, out of its domain,
+    failed), else COILED when the total reaches a full turn, else BENDING when any segment
+    bends, else INFLATION.
+
+    Parameters
+    ----------
+    segment_curves : sequence of Curve
+        One per segment, all at the same pressures.
+
+    Returns
+    -------
+    StripCurve
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, curve
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> c = curve(m, [0, 100, 200, 300])
+    >>> s = strip_curve([c, c])   # at 300 kPa each bends 233.9 deg: together past a full turn
+    >>> [round(float(t), 2) for t in s.theta_deg], s.as_dict()["status"]
+    ([0.0, 23.07, 205.71, 467.89], ['INFLATION', 'BENDING', 'BENDING', 'COILED'])
+    """
+    from .status import Status
+    from .validity import valid_mask
+
+    curves = tuple(segment_curves)
+    if not curves:
+        raise ParameterError("segment_curves must hold at least one curve")
+    p = curves[0].pressure_kpa
+    if any(c.pressure_kpa.shape != p.shape or not np.array_equal(c.pressure_kpa, p) for c in curves):
+        raise ParameterError("segment_curves must all be at the same pressures")
+    theta = np.sum([c.theta_deg for c in curves], axis=0)
+    valid = [valid_mask(c) for c in curves]
+    status = np.empty(len(theta), dtype=np.int8)
+    for k in range(len(theta)):
+        bad = [int(c.status[k]) for c, ok in zip(curves, valid) if not ok[k]]
+        if bad:
+            status[k] = bad[0]
+        elif abs(theta[k]) >= 360.0:
+            status[k] = Status.COILED
+        elif any(int(c.status[k]) == Status.BENDING for c in curves):
+            status[k] = Status.BENDING
+        else:
+            status[k] = Status.INFLATION
+    for a in (theta, status):
+        a.setflags(write=False)
+    method = ", ".join(dict.fromkeys(c.method for c in curves))
+    return StripCurve(p, theta, status, curves, method)
 
 
 @dataclass(frozen=True, slots=True)
@@ -288,6 +388,9 @@ class DesignAnalysis:
     def curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
         """Predicted curve per actuator at ``pressures_kpa`` (default :attr:`pressures_kpa`), memoised.
 
+        A segmented actuator's curve is its whole strip (:class:`StripCurve`, the sum of its
+        segments' bends); its segments' own curves are :meth:`segment_curves`.
+
         Parameters
         ----------
         pressures_kpa : sequence of float, optional
@@ -297,7 +400,7 @@ class DesignAnalysis:
 
         Returns
         -------
-        tuple of Curve
+        tuple of Curve or StripCurve
             One per actuator, in sewing order.
 
         Examples
@@ -309,21 +412,21 @@ class DesignAnalysis:
         Raises
         ------
         ModelDomainError
-            An actuator has no model (``model_error``).
+            An actuator (or a segment) has no model (``model_error``).
         """
-        from .curve import curve
-
         p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
         key = (p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(curve(a.model, p, method=method) for a in self.actuators)
+            self._curves[key] = tuple(strip_curve(pieces) if a.segments else pieces[0]
+                                      for a, pieces in zip(self.actuators, self.segment_curves(p, method=method)))
         return self._curves[key]
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
         """Per actuator, one predicted curve per segment (a single-pattern actuator: its one curve), memoised.
 
         Segments decouple (docs/model.md, segmented actuators): each bends by its own
-        ``theta_k(P)``, zero while ``P <= P0_k``.
+        ``theta_k(P)``, zero while ``P <= P0_k``. These are the curves :meth:`curves` gives
+        (a single-pattern actuator's is the same object).
 
         Parameters
         ----------
@@ -412,7 +515,7 @@ class DesignAnalysis:
         Returns
         -------
         tuple of (Band or None)
-            One per actuator.
+            One per actuator (``None`` for a segmented one).
 
         Examples
         --------
@@ -427,6 +530,9 @@ class DesignAnalysis:
         if key not in self._curves:
             out: list[Band | None] = []
             for a in self.actuators:
+                if a.segments:  # no band is claimed for a sum of segments
+                    out.append(None)
+                    continue
                 cal = a.choice.calibration if a.choice is not None else None
                 given = a.spec.model.g_mpa is not None or a.spec.model.p0_kpa is not None
                 usable = cal is not None and cal.covariance and not given and set(cal.fitted) <= {"g_mpa", "p0_kpa"}

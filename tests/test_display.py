@@ -118,12 +118,17 @@ def test_analysis_html_tables_and_pictures(analysis):
     assert one.cells == parsed.cells and one.svgs == 1
 
 
-def test_segmented_design_shows_its_table_and_says_why_there_is_no_chart():
+def test_segmented_design_shows_a_row_per_segment_and_its_chart_and_side_view():
     analysis = embroact.analyse(load_design(ROOT / "examples" / "designed_hook.toml"))
     html = analysis._repr_html_()
     parsed = _cells(html)
-    assert parsed.svgs == 1 and "no bend chart" in html
-    assert any(cell.endswith("one model per segment (ActuatorAnalysis.segments)") for cell in parsed.cells)
+    assert parsed.svgs == 3 and "no bend chart" not in html  # stitches, bend chart, side view
+    names = [c for c in parsed.cells if c.startswith("A1")]
+    assert names == ["A1 segment 0", "A1 segment 1", "A1 segment 2"]
+    for seg in analysis.actuators[0].segments:  # each segment's own G from its calibration
+        assert f"{seg.model.g_mpa:.4g}" in parsed.cells
+    one = analysis.actuators[0]._repr_html_()
+    assert _cells(one).svgs == 1 and "whole strip: sum of its 3 segments" in one
 
 
 def test_a_renderer_that_cannot_draw_falls_back_to_the_text_repr():

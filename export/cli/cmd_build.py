@@ -113,11 +113,12 @@ def run(args) -> int:
 def _models_line(analysis) -> str:
     """Per actuator: G and P0 with their sources (one line each)."""
     lines = []
-    for a in analysis.actuators:
-        if a.choice is None:
-            lines.append(f"{a.name}: no model ({a.model_error})")
-            continue
-        m, c = a.model, a.choice
-        lines.append(f"{a.name}: G {m.g_mpa:.4g} MPa ({c.g_source}), P0 {m.p0_kpa:.4g} kPa ({c.p0_source}); "
-                     f"tube law {m.tube_law}")
+    for a in analysis.actuators:  # a segmented actuator: one line per segment, each its own model
+        for name, part in ([(f"{a.name} segment {k}", s) for k, s in enumerate(a.segments)] or [(a.name, a)]):
+            if part.choice is None:
+                lines.append(f"{name}: no model ({part.model_error})")
+                continue
+            m, c = part.choice.model, part.choice
+            lines.append(f"{name}: G {m.g_mpa:.4g} MPa ({c.g_source}), P0 {m.p0_kpa:.4g} kPa ({c.p0_source}); "
+                         f"tube law {m.tube_law}")
     return "\n".join(lines)

@@ -86,37 +86,9 @@ def _result(act, c, band, segment_curves) -> dict:
         out.update(_piece(act.model, c))
         out["band"] = _band_dict(band)
         return out
-    total = _total(act, segment_curves)
     out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
-    out.update(total)
+    out.update({k: v for k, v in c.as_dict().items() if k in ("pressure_kpa", "theta_deg", "status")})
     return out
-
-
-def _total(act, segment_curves) -> dict:
-    """A segmented actuator's whole-strip bend: the sum of its segments' bends (docs/model.md, segments).
-
-    The status per pressure is the first segment state the model does not describe (a segment past a
-    validity limit, out of its domain, failed), else COILED when the total reaches a full turn, else
-    BENDING when any segment bends, else INFLATION.
-    """
-    import numpy as np
-
-    from ...predict.status import Status
-    from ...predict.validity import valid_mask
-
-    theta = np.sum([sc.theta_deg for sc in segment_curves], axis=0)
-    names = []
-    for k in range(len(theta)):
-        bad = [Status(int(sc.status[k])).name for sc in segment_curves if not valid_mask(sc)[k]]
-        if bad:
-            names.append(bad[0])
-        elif abs(theta[k]) >= 360.0:
-            names.append(Status.COILED.name)
-        elif any(int(sc.status[k]) == Status.BENDING for sc in segment_curves):
-            names.append(Status.BENDING.name)
-        else:
-            names.append(Status.INFLATION.name)
-    return {"pressure_kpa": segment_curves[0].pressure_kpa.tolist(), "theta_deg": theta.tolist(), "status": names}
 
 
 _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
@@ -147,7 +119,7 @@ def _table(act, c, band, segment_curves) -> str:
         return _piece_table(act.name, act.derived, act.choice, c, band)
     parts = [_piece_table(f"{act.name} segment {k}", s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
-    total = _total(act, segment_curves)
+    total = c.as_dict()  # the whole strip (embroact.predict.analysis.strip_curve)
     rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends)",
             "pressure_kpa  theta_deg  status"]
     rows += [f"{p:10.3f}  {t:10.3f}   {s}" for p, t, s in zip(total["pressure_kpa"], total["theta_deg"], total["status"])]
@@ -171,13 +143,8 @@ def run(args) -> int:
             raise ParameterError(f"--actuator must be one of {valid}, got {args.actuator!r}")
     names = [a.name for a in analysis.actuators]
     pieces = dict(zip(names, analysis.segment_curves(pressures, method=args.method)))
-    single = [a for a in analysis.actuators if not a.segments]
-    if len(single) == len(analysis.actuators):
-        curves = dict(zip(names, analysis.curves(pressures, method=args.method)))
-        bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
-    else:  # one curve per single actuator from its pieces; segmented ones have no single curve or band
-        curves = {a.name: pieces[a.name][0] if not a.segments else None for a in analysis.actuators}
-        bands = {a.name: None for a in analysis.actuators}
+    curves = dict(zip(names, analysis.curves(pressures, method=args.method)))  # segmented: the whole strip
+    bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
     results = [_result(a, curves[a.name], bands[a.name], pieces[a.name]) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}

@@ -61,15 +61,22 @@ def design_svg(design: Design) -> str:
     return plan_svg(build_plan(design))
 
 
-def _row(act: ActuatorAnalysis) -> str:
+def _rows(act: ActuatorAnalysis) -> str:
+    """One table row per actuator; a segmented actuator's one per segment (``A1 segment 0``...)."""
+    if act.segments:
+        return "".join(_row(f"{act.name} segment {k}", s) for k, s in enumerate(act.segments))
+    return _row(act.name, act)
+
+
+def _row(name: str, act) -> str:
     d = act.derived
-    cells = [act.name, d.pattern, f"{d.width_mm:.3g}", f"{d.interval_mm:.3g}",
+    cells = [name, d.pattern, f"{d.width_mm:.3g}", f"{d.interval_mm:.3g}",
              f"{d.angle_deg:.3g}" if d.pattern == "cross" else "", f"{d.length_mm:.4g}", f"{d.r0_mm:.4g}",
              f"{d.beta0_deg:.4g}"]
     if act.choice is None:
         cells += ["", "", act.model_error]
     else:
-        m, c = act.model, act.choice
+        m, c = act.choice.model, act.choice
         cells += [f"{m.g_mpa:.4g}", f"{m.p0_kpa:.4g}",
                   c.g_source if c.g_source == c.p0_source else f"G: {c.g_source}; P0: {c.p0_source}"]
     return "<tr>" + "".join(f"<td>{escape(v)}</td>" for v in cells) + "</tr>"
@@ -77,7 +84,7 @@ def _row(act: ActuatorAnalysis) -> str:
 
 def _table(actuators) -> str:
     head = "".join(f"<th>{escape(c)}</th>" for c in _COLUMNS)
-    return f"<table><tr>{head}</tr>{''.join(_row(a) for a in actuators)}</table>"
+    return f"<table><tr>{head}</tr>{''.join(_rows(a) for a in actuators)}</table>"
 
 
 def _figure(svg: str) -> str:
@@ -85,7 +92,7 @@ def _figure(svg: str) -> str:
 
 
 def _model_figures(analysis: DesignAnalysis) -> list[str]:
-    """Bend chart and side view; a note instead when an actuator has no single model."""
+    """Bend chart and side view; a note instead when an actuator (or a segment) has no model."""
     from .previews import bend_chart, side_panels
     from .sideview import side_view_svg
 
@@ -142,18 +149,19 @@ def actuator_html(act: ActuatorAnalysis) -> str:
     1
     """
     from ...patterns.design import OperationSettings
-    from ...predict.analysis import pressure_grid_kpa
+    from ...predict.analysis import pressure_grid_kpa, strip_curve
     from ...predict.curve import curve
-    from .chart import Series, bend_chart_svg
-    from .previews import _label
+    from .chart import bend_chart_svg
+    from .previews import actuator_series
 
     parts = [_table([act])]
-    if act.choice is None:
-        parts.append(f"<p>no bend chart: {escape(act.model_error)}</p>")
-    else:
-        c = curve(act.model, pressure_grid_kpa(OperationSettings().max_pressure_kpa))
-        series = Series.from_curve(c, label=_label(act), p0_kpa=act.model.p0_kpa)
-        parts.append(_figure(bend_chart_svg([series], title=f"{act.name}: predicted bend angle")))
+    missing = [p.model_error for p in act.segments or (act,) if p.choice is None]
+    if missing:
+        parts.append(f"<p>no bend chart: {escape('; '.join(missing))}</p>")
+    else:  # a segmented actuator: its whole strip and each segment
+        grid = pressure_grid_kpa(OperationSettings().max_pressure_kpa)
+        c = strip_curve([curve(s.model, grid) for s in act.segments]) if act.segments else curve(act.model, grid)
+        parts.append(_figure(bend_chart_svg(actuator_series(act, c), title=f"{act.name}: predicted bend angle")))
     return f'<div class="embroact">{"".join(parts)}</div>'
 
 

@@ -30,7 +30,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from ...patterns.base.errors import ExportError, ParameterError
-from .chart import Series, bend_chart_svg
+from .chart import Series, bend_chart_svg, chart_scale
 from ..report.report import report_data, report_html, report_json
 from .sideview import SidePanel, side_view_svg
 
@@ -39,7 +39,11 @@ __all__ = [
     "Previews",
     "side_pressures",
     "shape_theta_deg",
+    "shape_state",
+    "piece_theta_deg",
+    "sleeve_mm",
     "model_caption",
+    "actuator_series",
     "bend_series",
     "bend_chart",
     "side_panels",
@@ -61,6 +65,9 @@ OUTPUT_NAMES = {
     "html": "report.html",
 }
 DEFAULT_SIDE_STATES = 5
+#: Width of the bend chart [px], and the least width of its plot box [px] (a wider legend widens the chart).
+CHART_WIDTH_PX = 720.0
+CHART_MIN_PLOT_PX = 300.0
 MAX_SIDE_STATES = 12
 
 
@@ -106,6 +113,27 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     """(pressure, theta) for a drawn shape: the highest sampled pressure whose state the model
     describes (not coiled, kinked or over-stretched: :func:`embroact.predict.validity.valid_mask`),
     or the curve interpolated linearly at ``pressure_kpa`` (which must lie in that valid range)."""
+    p, theta, _ = shape_state(curve, pressure_kpa)
+    return p, theta
+
+
+def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[float, ...]]:
+    """As :func:`shape_theta_deg`, with each segment's bend there when ``curve`` is a segmented
+    actuator's whole strip (:class:`~embroact.predict.analysis.StripCurve`; ``()`` otherwise).
+
+    A strip's state is drawable only where every segment's is and the strip has not coiled
+    (its status); each segment's bend is interpolated over the same drawable pressures, so the
+    segments' bends add up to the strip's.
+
+    Examples
+    --------
+    >>> from embroact.export.files.designfile import load_design
+    >>> from embroact.predict.analysis import analyse
+    >>> strip = analyse(load_design("examples/designed_hook.toml")).curves([0.0, 250.0])[0]
+    >>> p, theta, parts = shape_state(strip, 250.0)
+    >>> p, round(theta, 2), [round(t, 2) for t in parts], abs(sum(parts) - theta) < 1e-9
+    (250.0, 121.94, [30.42, 119.1, -27.58], True)
+    """
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
     ok = np.isfinite(t) & _valid(curve)
@@ -113,13 +141,27 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
         raise ParameterError("the curve has no state the model describes to draw a shape from")
     order = np.argsort(p[ok], kind="stable")
     p, t = p[ok][order], t[ok][order]
+    parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in getattr(curve, "segments", ())]
     if pressure_kpa is None:
-        return float(p[-1]), float(t[-1])
+        return float(p[-1]), float(t[-1]), tuple(float(v[-1]) for v in parts)
     if not p[0] <= pressure_kpa <= p[-1]:
         raise ParameterError(f"shape_pressure_kpa must be in [{p[0]:g}, {p[-1]:g}] (the predicted range the model "
                              "describes), "
                              f"got {pressure_kpa:g}")
-    return float(pressure_kpa), float(np.interp(pressure_kpa, p, t))
+    at = float(pressure_kpa)
+    return at, float(np.interp(at, p, t)), tuple(float(np.interp(at, p, v)) for v in parts)
+
+
+def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...]:
+    """The bend of each of ``act.bend_pieces()`` given each segment's bend [deg] (0 for the unbent pieces)."""
+    return tuple(float(segment_theta_deg[k]) if k >= 0 else 0.0 for _, k in act.bend_pieces())
+
+
+def sleeve_mm(act) -> tuple[float, float]:
+    """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
+    segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
+    parts = [s.derived for s in act.segments] or [act.derived]
+    return max(d.width_mm for d in parts), max(d.r0_mm for d in parts)
 
 
 def _short_source(source: str, choice) -> str:
@@ -130,16 +172,15 @@ def _short_source(source: str, choice) -> str:
     return source.split(" ", 1)[0]
 
 
-def _label(act) -> str:
-    """Legend of one actuator: name, width, and the model's G and P0 with where they came from."""
-    d = act.derived
-    if act.choice is None:
-        return f"{act.name} ({d.pattern}, w {d.width_mm:.1f} mm; no model)"
-    m, c = act.model, act.choice
+def _label(name: str, d, choice) -> str:
+    """Legend of one actuator (or segment): name, width, and the model's G and P0 with where they came from."""
+    if choice is None:
+        return f"{name} ({d.pattern}, w {d.width_mm:.1f} mm; no model)"
+    m, c = choice.model, choice
     g_src, p0_src = _short_source(c.g_source, c), _short_source(c.p0_source, c)
     values = (f"G {m.g_mpa:.4g} MPa, P0 {m.p0_kpa:.4g} kPa ({g_src})" if g_src == p0_src
               else f"G {m.g_mpa:.4g} MPa ({g_src}), P0 {m.p0_kpa:.4g} kPa ({p0_src})")
-    return f"{act.name}, w {d.width_mm:.1f} mm: {values}"
+    return f"{name}, w {d.width_mm:.1f} mm: {values}"
 
 
 def model_caption(analysis) -> str:
@@ -153,21 +194,35 @@ def model_caption(analysis) -> str:
     'paper law, r_f 1.5, d_f 1 mm, G_e 0.13 MPa'
     """
     parts: list[str] = []
-    for act in analysis.actuators:
-        if act.choice is None:
+    for choice in (p.choice for act in analysis.actuators for p in (act.segments or (act,))):
+        if choice is None:
             continue
-        m = act.model
+        m = choice.model
         text = f"{m.tube_law} law, r_f {m.outer_radius_mm:g}, d_f {m.inner_radius_mm:g} mm, G_e {m.g_e_mpa:g} MPa"
         if text not in parts:
             parts.append(text)
     return "; ".join(parts)
 
 
+def actuator_series(act, curve, measured: tuple | None = None) -> list[Series]:
+    """Chart series of one analysed actuator and its curve; ``measured`` is (pressure_kpa, theta_deg) or None.
+
+    A segmented actuator gets its whole strip (the sum, which measurements of the tip angle
+    are compared with) and then one series per segment, each with its own pattern, G and P0."""
+    if not act.segments:
+        return [Series.from_curve(curve, label=_label(act.name, act.derived, act.choice), p0_kpa=act.model.p0_kpa,
+                                  measured=measured)]
+    return [Series.from_curve(curve, label=f"{act.name} whole strip: sum of its {len(act.segments)} segments",
+                              measured=measured)] + [
+        Series.from_curve(c, label=_label(f"{act.name} segment {k} ({seg.derived.pattern})", seg.derived, seg.choice),
+                          p0_kpa=seg.model.p0_kpa) for k, (seg, c) in enumerate(zip(act.segments, curve.segments))]
+
+
 def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
-    """Chart series, one per actuator; ``measured`` maps actuator name -> (pressure_kpa, theta_deg)."""
+    """Chart series of every actuator (:func:`actuator_series`); ``measured`` maps actuator name ->
+    (pressure_kpa, theta_deg)."""
     measured = dict(measured or {})
-    return [Series.from_curve(c, label=_label(a), p0_kpa=a.model.p0_kpa, measured=measured.get(a.name))
-            for a, c in zip(analysis.actuators, curves)]
+    return [s for a, c in zip(analysis.actuators, curves) for s in actuator_series(a, c, measured.get(a.name))]
 
 
 def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None) -> str:
@@ -175,7 +230,10 @@ def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None) ->
     came from, the title the tube law and tube."""
     caption = model_caption(analysis)
     title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
-    return bend_chart_svg(bend_series(analysis, curves, measured), title=title)
+    series = bend_series(analysis, curves, measured)
+    # long legends (a segment's pattern, G and P0) widen the chart rather than narrow its plot
+    width = CHART_WIDTH_PX + max(0.0, CHART_MIN_PLOT_PX - chart_scale(series, width_px=CHART_WIDTH_PX).width_px)
+    return bend_chart_svg(series, title=title, width_px=width)
 
 
 def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:
@@ -183,8 +241,16 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
     panels = []
     for a, c in zip(analysis.actuators, curves):
         picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
-        panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
-                                theta_deg=tuple(shape_theta_deg(c, p)[1] for p in picks)))
+        states = [shape_state(c, p) for p in picks]
+        if not a.segments:
+            panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
+                                    theta_deg=tuple(t for _, t, _ in states)))
+            continue
+        lengths = tuple(length for length, _ in a.bend_pieces())  # the chain of arcs, transitions unbent
+        panels.append(SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(lengths),
+                                r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=tuple(t for _, t, _ in states),
+                                segment_lengths_mm=lengths,
+                                segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states)))
     return panels
 
 
@@ -195,9 +261,12 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
     shapes, pressures = [], {}
     for a, c in zip(analysis.actuators, curves):
-        p, theta = shape_theta_deg(c, pressure_kpa)
-        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=a.derived.width_mm,
-                                    r0_mm=a.derived.r0_mm, tolerance_mm=tol, name=a.name))
+        p, theta, parts = shape_state(c, pressure_kpa)
+        chain = ({"segment_lengths_mm": tuple(length for length, _ in a.bend_pieces()),
+                  "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
+        width, r0 = sleeve_mm(a)
+        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
+                                    tolerance_mm=tol, name=a.name, **chain))
         pressures[a.name] = p
     return shapes, pressures
 
@@ -235,9 +304,13 @@ def _check_inputs(analysis, curves, side_states) -> None:
 
 def actuator_entry(act, curve) -> dict:
     """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
-    tube law and their sources) and the curve as ``Curve.as_dict`` gives it (status names as in
-    ``embroact predict --json``)."""
-    return {**act.as_dict(), "curve": curve.as_dict()}
+    tube law and their sources; a segmented actuator's per segment) and the curve as ``Curve.as_dict``
+    gives it (status names as in ``embroact predict --json``); a segmented actuator's is the whole
+    strip's, followed by each segment's (``segment_curves``)."""
+    entry = {**act.as_dict(), "curve": curve.as_dict()}
+    if act.segments:
+        entry["segment_curves"] = [c.as_dict() for c in curve.segments]
+    return entry
 
 
 #: Most actuators the side view draws, side by side (a wider drawing shows nothing more on a screen, and its
@@ -253,6 +326,14 @@ def _side_view(panels) -> str:
     return side_view_svg(panels[:SIDE_VIEW_MAX_PANELS],
                          title=f"Bent shape (side view, clamped top): the first {SIDE_VIEW_MAX_PANELS} of "
                                f"{len(panels)} actuators")
+
+
+def _side_states(act, curve, panel) -> list[dict]:
+    """The report's side-view states: pressure and bend, and a segmented actuator's bend per segment."""
+    if not act.segments:
+        return [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
+    return [{"pressure_kpa": p, "theta_deg": t, "segment_theta_deg": list(shape_state(curve, p)[2])}
+            for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
 
 
 def render_previews(
@@ -276,7 +357,8 @@ def render_previews(
         The analysed design (:func:`embroact.predict.analysis.analyse`): plan, derived
         geometry and model of every actuator.
     curves : sequence of Curve, optional
-        Predicted curve per actuator; default ``analysis.curves()`` (the standard grid).
+        Predicted curve per actuator (a segmented one: its whole strip,
+        :class:`~embroact.predict.analysis.StripCurve`); default ``analysis.curves()`` (the standard grid).
     findings : iterable
         Design-rule findings (``Finding`` or dicts).
     worksheet : Worksheet or dict, optional
@@ -315,13 +397,16 @@ def render_previews(
         mesh_info = {"file": name, "pressure_kpa": pressures, "theta_deg": {s.name: s.theta_deg for s in shapes},
                      "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": shapes[0].tolerance_mm,
                      "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
+        if any(a.segments for a in analysis.actuators):  # each segment's bend in the 3D shape
+            mesh_info["segment_theta_deg"] = {
+                a.name: list(shape_state(c, shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)
+                if a.segments}
     if stitch_svg is None:
         from .stitches import plan_svg
 
         stitch_svg = plan_svg(plan)
     figures["stitches"] = stitch_svg
-    entries = [{**actuator_entry(a, c),
-                "side_view": [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(s.pressure_kpa, s.theta_deg)]}
+    entries = [{**actuator_entry(a, c), "side_view": _side_states(a, c, s)}
                for a, c, s in zip(analysis.actuators, curves, panels)]
     ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
     data = report_data(title=plan.name, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
