@@ -529,7 +529,7 @@ def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
     cached = _branch(models[0], rtol) if len(models) == 1 and (energy, deriv, inverse) == _FAST else None
     geo = _geometry(models) if cached is None else cached.geo
-    pressure = np.broadcast_to(p, (len(models), p.size))
+    pressure = p[None, :] if len(models) == 1 else np.broadcast_to(p, (len(models), p.size))
     targets = pressure - geo.p0
     if cached is None:
         theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)

@@ -232,7 +232,7 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
         if key not in memo:
             memo[key] = _zoom(rate, grid, de, dv, p, zoom, reach[zoom], grid_points)
         grid, de, dv, p = memo[key]
-        last = np.where(np.isin(rows, zoom), grid_points - 1, last)
+        last[zoom] = grid_points - 1
     beyond = targets > p_stop
     where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
     theta = np.where(beyond, theta_stop, 0.0)

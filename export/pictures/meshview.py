@@ -187,10 +187,25 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     px = np.empty_like(tri[:, :, :2])
     px[:, :, 0] = _MARGIN_PX + (tri[:, :, 0] - lo[0]) * scale
     px[:, :, 1] = top + (hi[1] - tri[:, :, 1]) * scale
-    for k in order:
-        c = "#{:02x}{:02x}{:02x}".format(*rgb[k])
-        g.add(dwg.polygon([(round(float(x), 1), round(float(y), 1)) for x, y in px[k]], fill=c, stroke=c))
     if title:
         dwg.add(dwg.text(title, insert=(_MARGIN_PX, 20), font_size=14, font_weight="bold",
                          style="font-family:Helvetica,Arial,sans-serif"))
-    return dwg.tostring()
+    return _with_polygons(dwg.tostring(), g.tostring(), px[order].tolist(), rgb[order].tolist())
+
+
+def _with_polygons(svg: str, group: str, points, colours) -> str:
+    """``svg`` with the empty group ``group`` filled by one polygon per triangle, written as svgwrite writes them.
+
+    svgwrite builds and validates an element object per polygon (most of the picture's time, for a few
+    thousand triangles); the text is the same: attributes in name order, points as ``str`` of the
+    coordinates rounded to 0.1 px.
+    """
+    polys = []
+    for tri, rgb in zip(points, colours):
+        c = "#{:02x}{:02x}{:02x}".format(*rgb)
+        pts = " ".join(f"{round(x, 1)},{round(y, 1)}" for x, y in tri)
+        polys.append(f'<polygon fill="{c}" points="{pts}" stroke="{c}" />')
+    if not polys:
+        return svg
+    assert svg.count(group) == 1 and group.endswith(" />")
+    return svg.replace(group, group[:-3] + ">" + "".join(polys) + "</g>")
