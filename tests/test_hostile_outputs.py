@@ -272,3 +272,14 @@ def test_arc_radii_that_square_to_zero_or_infinity(tmp_path):
     code, _, err = _run(ZZ + ["-o", str(tmp_path / "y.dst"), "--path", "M 0 0 A 1e308 1e308 0 1 1 50 0"])
     assert (code, err) == (2, "embroact: error: SVG path: an arc of radius 1e+308 mm taking the large way round "
                               "(large-arc-flag 1) leaves the coordinate range [-1e+07, 1e+07] mm\n")
+
+
+def test_control_characters_in_an_input_file_name_are_escaped_on_stdout(tmp_path):
+    """A file named with an ESC sequence is reported as ``\\x1b[2J``: it cannot clear the terminal."""
+    from test_hostile_generated import _machine_bytes
+
+    f = tmp_path / "e\x1b[2Jx.dst"
+    f.write_bytes(_machine_bytes("dst"))
+    code, out, err = _run(["check", str(f)])
+    assert code == 0 and "\x1b" not in out + err, (out, err)
+    assert out.startswith(f"{tmp_path}/e\\x1b[2Jx.dst: embroidery file, format dst"), out

@@ -27,6 +27,7 @@ import argparse
 import importlib
 import io
 import os
+import re
 import signal
 import sys
 import threading
@@ -132,6 +133,32 @@ def _command_parser(name: str):
 
 
 _OUT_OF_MEMORY = "out of memory: the input is too large for this machine"
+#: Control characters other than newline and tab: escaped on stdout (an input file name
+#: with ESC [2J in it must not clear the terminal).
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+class _EscapingStdout(io.TextIOBase):
+    """Standard output with control characters written as escapes (``\x1b``), all else passed on."""
+
+    def __init__(self, inner):
+        self._inner = inner
+
+    def write(self, text: str) -> int:
+        self._inner.write(_CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text))
+        return len(text)
+
+    def flush(self) -> None:
+        self._inner.flush()
+
+    def fileno(self) -> int:
+        return self._inner.fileno()
+
+    def isatty(self) -> bool:
+        return self._inner.isatty()
+
+    def writable(self) -> bool:
+        return True
 
 
 class _Terminated(KeyboardInterrupt):
@@ -159,7 +186,8 @@ def main(argv: list[str] | None = None) -> int:
     the shell's code for a broken pipe; floating-point RuntimeWarnings are not shown (every
     result is checked for finiteness where it leaves the model, and a non-finite one
     becomes a status or a one-line error, so the warning tells a user nothing; ``--debug``
-    shows them); stdout escapes what it cannot encode instead of failing.
+    shows them); stdout escapes control characters (a file name holding ESC sequences) and
+    what it cannot encode instead of failing.
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     if isinstance(sys.stdout, io.TextIOWrapper):
@@ -181,12 +209,15 @@ def main(argv: list[str] | None = None) -> int:
     in_main_thread = threading.current_thread() is threading.main_thread()
     old_term = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
     err: EmbroactError | str
+    real_stdout = sys.stdout
+    if real_stdout is not None:  # None when started with stdout closed (>&-)
+        sys.stdout = _EscapingStdout(real_stdout)
     try:
         with warnings.catch_warnings():
             if not debug:
                 warnings.simplefilter("ignore", RuntimeWarning)
             code = int(module.run(args))
-            if sys.stdout is not None:  # None when started with stdout closed (>&-)
+            if sys.stdout is not None:
                 sys.stdout.flush()
         return code
     except BrokenPipeError:
@@ -213,6 +244,7 @@ def main(argv: list[str] | None = None) -> int:
         print("embroact: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:
+        sys.stdout = real_stdout
         if old_term is not None:
             signal.signal(signal.SIGTERM, old_term)
     if debug:
