@@ -65,6 +65,19 @@ def test_a_second_declaration_of_a_code_is_refused():
         reg.declare(Rule("EA900", Severity.INFO, "b", "d", "f", Inputs.FILES))
 
 
+def test_a_lookup_in_a_fresh_process_loads_the_geometric_rules():
+    """Nothing imported but the registry: EA101 is found (patterns.rules is loaded on the miss); an
+    unknown code still fails in one line naming the declared codes."""
+    code = ("from embroact.patterns.base.findings import RULES\n"
+            "f = RULES.finding('EA101', 'needle in the tube')\n"
+            "print(f.severity.value, f.title, 'EA307' in RULES, len(RULES) >= 15)\n"
+            "try:\n    RULES['EA999']\nexcept Exception as e:\n    print(type(e).__name__, e)\n")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    first, second = res.stdout.splitlines()
+    assert first == f"error {RULES['EA101'].title} True True"
+    assert second.startswith("ParameterError rule code must be one of EA101, EA102, ")
+
+
 def test_readme_table_and_rules_listing_render_from_the_registry(capsys):
     table = rules_table()
     assert table in (ROOT / "README.md").read_text(encoding="utf-8")

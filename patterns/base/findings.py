@@ -197,12 +197,29 @@ class RuleRegistry:
 
     Rules are added by :meth:`rule` (a decorator on the check function) or
     :meth:`declare`; a code is declared once.
+
+    Parameters
+    ----------
+    load_on_miss : tuple of str
+        Modules declaring rules, imported (once) when a code is looked up that is not
+        declared yet, before the lookup fails: a lookup never depends on what else the
+        process happened to import.
     """
 
-    __slots__ = ("_rules",)
+    __slots__ = ("_rules", "_load_on_miss")
 
-    def __init__(self) -> None:
+    def __init__(self, load_on_miss: tuple[str, ...] = ()) -> None:
         self._rules: dict[str, Rule] = {}
+        self._load_on_miss = tuple(load_on_miss)
+
+    def _load(self) -> bool:
+        """Import the declaring modules not imported yet; True when there were any."""
+        import importlib
+
+        pending, self._load_on_miss = self._load_on_miss, ()
+        for name in pending:
+            importlib.import_module(name)
+        return bool(pending)
 
     def declare(self, rule: Rule) -> Rule:
         """Add ``rule``; a second, different declaration of its code is refused."""
@@ -230,12 +247,14 @@ class RuleRegistry:
         return len(self._rules)
 
     def __contains__(self, code: object) -> bool:
-        return code in self._rules
+        return code in self._rules or (self._load() and code in self._rules)
 
     def __getitem__(self, code: str) -> Rule:
         try:
             return self._rules[code]
         except KeyError:
+            if self._load() and code in self._rules:
+                return self._rules[code]
             raise ParameterError(
                 f"rule code must be one of {', '.join(r.code for r in self)}, got {code!r}") from None
 
@@ -272,8 +291,13 @@ class RuleRegistry:
         return "\n".join(lines) + "\n"
 
 
-RULES = RuleRegistry()
-"""The registry of every rule embroact declares (filled as the declaring modules are imported)."""
+RULES = RuleRegistry(load_on_miss=(__package__.rpartition(".")[0] + ".rules",))
+"""The registry of every rule embroact declares (filled as the declaring modules are imported).
+
+A lookup of a code not declared yet imports ``embroact.patterns.rules`` (the geometric
+rules, this layer's) first; the sleeve and model rules are declared by the
+``embroact.predict`` modules that check them, imported wherever their findings are made.
+"""
 
 
 
@@ -295,7 +319,6 @@ def count_by_severity(findings) -> dict[str, int]:
 
     Examples
     --------
-    >>> import embroact.patterns.rules  # declares EA101
     >>> count_by_severity([RULES.finding("EA101", "needle in the tube")])
     {'error': 1, 'warning': 0, 'info': 0}
     """
