@@ -7,6 +7,7 @@ import pytest
 
 import dst_decoder
 from embroact.export.cli.main import main
+from embroact.export.cli.target import GATE_ERRORS_PER_CODE
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import ZigzagParams
 from embroact.patterns.zigzag import zigzag
@@ -152,6 +153,25 @@ def test_rule_errors_refuse_and_force_writes(tmp_path, capsys, argv, code):
     assert out.exists() and doc["written"] and code in {f["code"] for f in doc["findings"]}
     sheet = json.loads((tmp_path / "x.worksheet.json").read_text())
     assert sheet["findings"] == doc["findings"]
+
+
+def test_gate_prints_a_few_errors_per_rule_and_counts_the_rest(tmp_path, capsys):
+    """w = 14 mm, s = 1 mm, l0 = 100 mm: 100 legs of 14 mm, each an EA102 and an EA103 error."""
+    argv = ["zigzag", "--width-mm", "14", "--interval-mm", "1", "-o", str(tmp_path / "x.dst")]
+    assert main(argv) == 1
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("design rules: 200 errors, ") and lines[-1].endswith("nothing written "
+                                                                                     "(use --force to write anyway)")
+    assert len(lines) == 1 + 2 * (GATE_ERRORS_PER_CODE + 1) + 1
+    assert main(argv + ["--force", "--json"]) == 0
+    counts = {}
+    for f in json.loads(capsys.readouterr().out)["findings"]:
+        counts[f["code"]] = counts.get(f["code"], 0) + f["count"]
+    for code in ("EA102", "EA103"):
+        mine = [line for line in lines if line.startswith(f"error: {code} ")]
+        assert len(mine) == GATE_ERRORS_PER_CODE + 1 and counts[code] == 100
+        assert mine[-1] == (f"error: {code} ... and {100 - GATE_ERRORS_PER_CODE} more "
+                            "(see the worksheet / embroact check --json)")
 
 
 def test_warnings_are_one_line_and_json_has_the_model(tmp_path, capsys):

@@ -221,10 +221,41 @@ def summary_line(findings) -> str:
     return f"{head}: {codes}" if codes else head
 
 
+#: Errors the gate prints per rule code; the rest are counted on one line.
+GATE_ERRORS_PER_CODE = 3
+
+
+def error_lines(errors, per_code: int = GATE_ERRORS_PER_CODE) -> list[str]:
+    """The gate's error lines: at most ``per_code`` of each rule code, then how many more there are.
+
+    Examples
+    --------
+    >>> from embroact.patterns.base.findings import RULES
+    >>> fs = [RULES.finding("EA103", f"stitch {k}", stitch_index=k) for k in range(5)]
+    >>> fs.append(RULES.finding("EA103", "90 more findings of this rule", count=90))
+    >>> for line in error_lines(fs, per_code=2):
+    ...     print(line)
+    error: EA103 stitch 0 (stitch 0)
+    error: EA103 stitch 1 (stitch 1)
+    error: EA103 ... and 93 more (see the worksheet / embroact check --json)
+    """
+    by_code: dict[str, list] = {}
+    for f in errors:
+        by_code.setdefault(f.code, []).append(f)
+    lines: list[str] = []
+    for code, fs in by_code.items():
+        lines += [f"error: {code} {f.message} ({f.place()})" for f in fs[:per_code]]
+        if len(fs) > per_code:
+            more = sum(f.count for f in fs[per_code:])
+            lines.append(f"error: {code} ... and {more} more (see the worksheet / embroact check --json)")
+    return lines
+
+
 def gate(findings, *, force: bool, stream=None) -> bool:
     """The rule gate of every command that writes a machine file.
 
-    Prints the summary line (and each error) to ``stream`` (stderr) when there are findings.
+    Prints the summary line (and the first :data:`GATE_ERRORS_PER_CODE` errors of each
+    rule code, see :func:`error_lines`) to ``stream`` (stderr) when there are findings.
     Returns True when the command may write: no errors, or ``force``.
     """
     stream = sys.stderr if stream is None else stream
@@ -233,8 +264,8 @@ def gate(findings, *, force: bool, stream=None) -> bool:
         return True
     errors = [f for f in findings if f.is_error]
     print(f"design rules: {summary_line(findings)}", file=stream)
-    for f in errors:
-        print(f"error: {f.code} {f.message} ({f.place()})", file=stream)
+    for line in error_lines(errors):
+        print(line, file=stream)
     if errors and not force:
         print("embroact: error: design-rule errors; nothing written (use --force to write anyway)", file=stream)
         return False
