@@ -265,6 +265,7 @@ def test_size_bombs_for_every_reader(tmp_path):
     big_toml = _sparse(t / "big.toml", lim.TEXT_FILE_BYTES + 1)
     big_csv = _sparse(t / "big.csv", lim.CSV_FILE_BYTES + 1)
     (t / "rows.csv").write_bytes(_csv_rows(lim.CSV_ROWS + 1))
+    (t / "short.csv").write_bytes(b"p\n" + b"0\n" * (lim.CSV_FILE_BYTES // 2 - 1))
     (t / "cols.csv").write_text(",".join(f"c{i}" for i in range(lim.CSV_COLUMNS + 1)) + "\n1\n")
     (t / "field.csv").write_text("pressure_kpa,angle_deg\n0," + "1" * (lim.CSV_FIELD_CHARS + 1) + "\n")
     (t / "mfield.csv").write_text("pressure_kpa,m1_x\n0," + "1" * (lim.CSV_FIELD_CHARS + 1) + "\n")
@@ -287,7 +288,11 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("csv-bytes", ["fit", str(big_csv), *FIT],
          f"{big_csv}: CSV file must be at most {lim.CSV_FILE_BYTES:,} bytes, got {lim.CSV_FILE_BYTES + 1:,}"),
         ("csv-rows", ["fit", f"{t}/rows.csv", *FIT],
-         f"'{t}/rows.csv' must have at most {lim.CSV_ROWS:,} data rows, got {lim.CSV_ROWS + 1:,}"),
+         f"'{t}/rows.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{lim.CSV_ROWS + 1:,})"),
+        ("csv-many-short-rows", ["fit", f"{t}/short.csv", *FIT],  # 2 bytes a row up to the byte limit
+         f"'{t}/short.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{lim.CSV_ROWS + 1:,})"),
         ("csv-columns", ["fit", f"{t}/cols.csv", *FIT],
          f"'{t}/cols.csv' line 1: a row must have at most {lim.CSV_COLUMNS:,} columns, got {lim.CSV_COLUMNS + 1:,}"),
         ("csv-field", ["fit", f"{t}/field.csv", *FIT],

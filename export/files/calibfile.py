@@ -149,12 +149,15 @@ def _read_rows(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise DesignFileError(f"{str(path)!r} is not a UTF-8 text (CSV) file") from None
-    lines = [(i, line) for i, line in enumerate(io.StringIO(text, newline=""), start=1)
-             if line.strip() and not line.lstrip().startswith("#")]
+    lines: list[tuple[int, str]] = []
+    for i, line in enumerate(io.StringIO(text, newline=""), start=1):
+        if line.strip() and not line.lstrip().startswith("#"):
+            lines.append((i, line))
+            if len(lines) > CSV_ROWS + 1:  # stop here: 16 MiB of "0\n" would be 8 million rows
+                raise DesignFileError(f"{str(path)!r} must have at most {CSV_ROWS:,} data rows, got more "
+                                      f"(line {i} is data row {CSV_ROWS + 1:,})")
     if not lines:
         raise DesignFileError(f"{str(path)!r} is empty: expected a header line and data rows")
-    if len(lines) - 1 > CSV_ROWS:
-        raise DesignFileError(f"{str(path)!r} must have at most {CSV_ROWS:,} data rows, got {len(lines) - 1:,}")
     rows: list[list[str]] = []
     old_limit = csv.field_size_limit(CSV_FIELD_CHARS)
     try:
