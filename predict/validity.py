@@ -111,7 +111,7 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
     kinked = 2.0 * r * a > l0
     over = l >= STRETCH_LIMIT * l0
     shape = np.broadcast(th, l, r, l0).shape
-    return LimitFlags(*(np.broadcast_to(f, shape).copy() for f in (coiled, kinked, over)))
+    return LimitFlags(*(f if f.shape == shape else np.broadcast_to(f, shape).copy() for f in (coiled, kinked, over)))
 
 
 def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm) -> np.ndarray:
