@@ -58,7 +58,8 @@ class Band:
     pressure_kpa, theta_deg, theta_sd_deg : ndarray
         Pressures [kPa], the model's angle and its standard deviation [deg].
     theta_low_deg, theta_high_deg : ndarray
-        ``theta -+ sd``: the 1-sigma confidence band of the curve.
+        ``theta -+ sd``: the 1-sigma confidence band of the curve, its edge toward zero held at
+        zero (no G or P0 turns a bend to the other side: a later P0 only keeps the strip straight).
     status : ndarray of int8
         The curve's statuses (the band means something where the state does).
     reading_deg, reading_sd_deg : ndarray or None
@@ -93,6 +94,13 @@ class Band:
         out["covariance"] = [list(row) for row in self.covariance]
         out["prediction_sd_deg"] = self.prediction_sd_deg().tolist()
         return out
+
+    def summary(self) -> dict:
+        """The band per point as ``predict --json`` and ``report.json`` quote it: ``theta_sd_deg``,
+        ``theta_low_deg``, ``theta_high_deg`` (lists), ``parameters`` and ``covariance``."""
+        return {"theta_sd_deg": self.theta_sd_deg.tolist(), "theta_low_deg": self.theta_low_deg.tolist(),
+                "theta_high_deg": self.theta_high_deg.tolist(), "parameters": list(self.parameters),
+                "covariance": [list(row) for row in self.covariance]}
 
     def prediction_sd_deg(self) -> np.ndarray:
         """Scatter of a new measurement about the model: sqrt(sd^2 + noise^2) of the measured quantity."""
@@ -175,9 +183,11 @@ def theta_band(model, pressures_kpa, parameters, covariance, *, measurement: Mar
         gain = _slope(lambda t: reading_deg(t, model.length_mm, measurement), theta)
         reading_sd = frozen_array(np.abs(gain) * sd)
         reading = frozen_array(reading)
+    low = np.where(theta > 0.0, np.maximum(theta - sd, 0.0), theta - sd)
+    high = np.where(theta < 0.0, np.minimum(theta + sd, 0.0), theta + sd)
     return Band(pressure_kpa=frozen_array(c.pressure_kpa), theta_deg=frozen_array(theta),
-                theta_sd_deg=frozen_array(sd), theta_low_deg=frozen_array(theta - sd),
-                theta_high_deg=frozen_array(theta + sd), status=frozen_array(status, dtype=None), reading_deg=reading,
+                theta_sd_deg=frozen_array(sd), theta_low_deg=frozen_array(low),
+                theta_high_deg=frozen_array(high), status=frozen_array(status, dtype=None), reading_deg=reading,
                 reading_sd_deg=reading_sd, parameters=names,
                 covariance=tuple(tuple(float(v) for v in row) for row in cov), noise_sd_deg=noise)
 

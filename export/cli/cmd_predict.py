@@ -67,8 +67,7 @@ def _limits(model, c) -> list[list[str]]:
 
 def _band_dict(band):
     # 1-sigma band from the calibration's covariance; None when the calibration carries none
-    return None if band is None else {k: band.as_dict()[k] for k in (
-        "theta_sd_deg", "theta_low_deg", "theta_high_deg", "parameters", "covariance")}
+    return None if band is None else band.summary()
 
 
 def _piece(model, c) -> dict:

@@ -51,6 +51,7 @@ __all__ = [
     "shape3d_title",
     "check_side_states",
     "actuator_entry",
+    "curve_bands",
     "render_previews",
     "previews_stage",
 ]
@@ -204,33 +205,46 @@ def model_caption(analysis) -> str:
     return "; ".join(parts)
 
 
-def actuator_series(act, curve, measured: tuple | None = None) -> list[Series]:
-    """Chart series of one analysed actuator and its curve; ``measured`` is (pressure_kpa, theta_deg) or None.
+def actuator_series(act, curve, measured: tuple | None = None, band=None) -> list[Series]:
+    """Chart series of one analysed actuator and its curve; ``measured`` is (pressure_kpa, theta_deg) or None,
+    ``band`` the 1-sigma band of its fitted calibration at the curve's pressures
+    (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or None.
 
     A segmented actuator gets its whole strip (the sum, which measurements of the tip angle
     are compared with) and then one series per segment, each with its own pattern, G and P0."""
     if not act.segments:
         return [Series.from_curve(curve, label=_label(act.name, act.derived, act.choice), p0_kpa=act.model.p0_kpa,
-                                  measured=measured)]
+                                  measured=measured, band=band)]
     return [Series.from_curve(curve, label=f"{act.name} whole strip: sum of its {len(act.segments)} segments",
                               measured=measured)] + [
         Series.from_curve(c, label=_label(f"{act.name} segment {k} ({seg.derived.pattern})", seg.derived, seg.choice),
                           p0_kpa=seg.model.p0_kpa) for k, (seg, c) in enumerate(zip(act.segments, curve.segments))]
 
 
-def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None) -> list[Series]:
+def curve_bands(analysis, curves) -> tuple:
+    """The 1-sigma band of each actuator at its curve's pressures, None where its calibration has no
+    covariance (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or the curves' pressures differ."""
+    grids = {tuple(float(p) for p in c.pressure_kpa) for c in curves}
+    if len(grids) != 1:
+        return (None,) * len(curves)
+    return analysis.bands(grids.pop())
+
+
+def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, bands=None) -> list[Series]:
     """Chart series of every actuator (:func:`actuator_series`); ``measured`` maps actuator name ->
-    (pressure_kpa, theta_deg)."""
+    (pressure_kpa, theta_deg); ``bands`` has one band (or None) per actuator (default :func:`curve_bands`)."""
     measured = dict(measured or {})
-    return [s for a, c in zip(analysis.actuators, curves) for s in actuator_series(a, c, measured.get(a.name))]
+    bands = curve_bands(analysis, curves) if bands is None else bands
+    return [s for a, c, b in zip(analysis.actuators, curves, bands)
+            for s in actuator_series(a, c, measured.get(a.name), b)]
 
 
-def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None) -> str:
+def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None, bands=None) -> str:
     """The bend chart SVG of an analysed design: the legend gives each actuator's G and P0 and where they
-    came from, the title the tube law and tube."""
+    came from, the title the tube law and tube; a fitted calibration's 1-sigma band is shaded."""
     caption = model_caption(analysis)
     title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
-    series = bend_series(analysis, curves, measured)
+    series = bend_series(analysis, curves, measured, bands)
     # long legends (a segment's pattern, G and P0) widen the chart rather than narrow its plot
     width = CHART_WIDTH_PX + max(0.0, CHART_MIN_PLOT_PX - chart_scale(series, width_px=CHART_WIDTH_PX).width_px)
     return bend_chart_svg(series, title=title, width_px=width)
@@ -302,12 +316,14 @@ def _check_inputs(analysis, curves, side_states) -> None:
     check_side_states(side_states)
 
 
-def actuator_entry(act, curve) -> dict:
+def actuator_entry(act, curve, band=None) -> dict:
     """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
     tube law and their sources; a segmented actuator's per segment) and the curve as ``Curve.as_dict``
     gives it (status names as in ``embroact predict --json``); a segmented actuator's is the whole
-    strip's, followed by each segment's (``segment_curves``)."""
-    entry = {**act.as_dict(), "curve": curve.as_dict()}
+    strip's, followed by each segment's (``segment_curves``). ``band``: the 1-sigma band of the
+    calibration's covariance per point (``band``: :meth:`~embroact.predict.uncertainty.Band.summary`,
+    None without one)."""
+    entry = {**act.as_dict(), "curve": curve.as_dict(), "band": None if band is None else band.summary()}
     if act.segments:
         entry["segment_curves"] = [c.as_dict() for c in curve.segments]
     return entry
@@ -380,7 +396,8 @@ def render_previews(
     _check_inputs(analysis, curves, side_states)
     plan = analysis.plan
     panels = side_panels(analysis, curves, count=side_states)
-    figures = {"bend": bend_chart(analysis, curves, measured), "side": _side_view(panels)}
+    bands = curve_bands(analysis, curves)
+    figures = {"bend": bend_chart(analysis, curves, measured, bands), "side": _side_view(panels)}
     files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
     mesh_info = None
     if mesh_suffix is not None:
@@ -406,8 +423,8 @@ def render_previews(
 
         stitch_svg = plan_svg(plan)
     figures["stitches"] = stitch_svg
-    entries = [{**actuator_entry(a, c), "side_view": _side_states(a, c, s)}
-               for a, c, s in zip(analysis.actuators, curves, panels)]
+    entries = [{**actuator_entry(a, c, b), "side_view": _side_states(a, c, s)}
+               for a, c, s, b in zip(analysis.actuators, curves, panels, bands)]
     ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
     data = report_data(title=plan.name, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
     files[OUTPUT_NAMES["json"]] = report_json(data)

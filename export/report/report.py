@@ -226,11 +226,22 @@ def _curve_table(actuators: Sequence[Mapping]) -> str:
     head = "".join(f"<th>{_e(a.get('name'))} theta [deg]</th><th>status</th>" for a in with_curves)
     rows = []
     for i, p in enumerate(pressures):
-        cells = "".join(_cell(a["curve"]["theta_deg"][i]) + _cell((a["curve"].get("status") or [""] * (i + 1))[i])
+        cells = "".join(_theta_cell(a, i) + _cell((a["curve"].get("status") or [""] * (i + 1))[i])
                         for a in with_curves)
         rows.append(f"<tr>{_cell(p)}{cells}</tr>")
-    return (f"<details><summary>Predicted curve ({len(pressures)} pressures)</summary><table><tr><th>pressure [kPa]</th>"
-            f"{head}</tr>{''.join(rows)}</table></details>")
+    banded = any(a.get("band") for a in with_curves)
+    note = " (+- the 1-sigma band of the fitted calibration's covariance)" if banded else ""
+    return (f"<details><summary>Predicted curve ({len(pressures)} pressures){note}</summary><table>"
+            f"<tr><th>pressure [kPa]</th>{head}</tr>{''.join(rows)}</table></details>")
+
+
+def _theta_cell(actuator: Mapping, i: int) -> str:
+    """theta at point i, with the band's 1-sigma half-width where it has one (``theta +- sd``)."""
+    theta, band = actuator["curve"]["theta_deg"][i], actuator.get("band")
+    sd = band["theta_sd_deg"][i] if band else 0.0
+    if not isinstance(theta, (int, float)) or not sd:
+        return _cell(theta)
+    return f'<td class="num">{_num(theta)} +- {_e(f"{sd:.3g}")}</td>'
 
 
 def _mesh_note(mesh: Mapping | None) -> str:
