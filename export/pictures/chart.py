@@ -45,6 +45,7 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import ParameterError
+from .titles import fit_title
 
 __all__ = ["STATUS_STYLE", "DRAWN_STATES", "BEYOND_VALIDITY", "Scale", "Series", "nice_ticks", "chart_scale",
            "bend_chart_svg"]
@@ -75,6 +76,7 @@ PALETTE = ("#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#0
 _DECIMALS = 2  # SVG coordinates are rounded to 0.01 user unit: stable bytes, small files
 _TICK_STEPS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0)  # two decades: rounding can push past the first
 _FONT = "font-family:Helvetica,Arial,sans-serif"
+_TITLE_RIGHT_PX = 10.0  # the title's margin to the chart's right edge
 _RIBBON_PX = 7.0
 _LEGEND_MIN_PX = 190.0
 _CHAR_PX = 6.2
@@ -486,5 +488,9 @@ def bend_chart_svg(
     for k, s in enumerate(series):
         _draw_series(dwg, g, k, s, sc)
     _draw_legend(dwg, g, series, used, sc)
-    g.add(dwg.text(title, insert=(_fmt(sc.left_px), 22), font_size=15, font_weight="bold", **{"class": "title"}))
+    fitted = fit_title(title, width_px - sc.left_px - _TITLE_RIGHT_PX)  # two lines of 12 px above the plot at most
+    for k, line in enumerate(fitted.lines):
+        y = 22 if len(fitted.lines) == 1 else 17 + 15 * k
+        g.add(dwg.text(line, insert=(_fmt(sc.left_px), y), font_size=_fmt(fitted.font_px), font_weight="bold",
+                       **{"class": "title"}))
     return dwg.tostring()

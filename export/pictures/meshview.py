@@ -41,6 +41,7 @@ import numpy as np
 
 from ...patterns.base.errors import check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+from .titles import fit_title
 
 __all__ = ["view_rotation", "mesh_svg", "picture_tolerance_mm", "PICTURE_TOLERANCE_PX"]
 
@@ -145,7 +146,8 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
         Turn the plan frame first so that the strip hangs from its clamped start, as in
         the paper's photographs: plan +x -> down, plan +z (thread side) -> world +x.
     title : str, optional
-        Caption drawn in the top-left corner.
+        Caption drawn in the top-left corner (wrapped onto up to 3 lines, shortened past them:
+        :func:`embroact.export.pictures.titles.fit_title`).
     """
     import svgwrite
 
@@ -177,7 +179,8 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     order = np.lexsort((tri[:, :, 2].mean(axis=1), ~behind))
     lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
     scale = _scale_px_per_mm(hi - lo, width)
-    top = 30.0 if title else _MARGIN_PX
+    fitted = fit_title(title, width - 2 * _MARGIN_PX, font_px=14.0, small_px=12.0, max_lines=3) if title else None
+    top = 15.0 + 15.0 * len(fitted.lines) if fitted else _MARGIN_PX
     height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
     dwg = svgwrite.Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}",
                            debug=False)
@@ -187,8 +190,8 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     px = np.empty_like(tri[:, :, :2])
     px[:, :, 0] = _MARGIN_PX + (tri[:, :, 0] - lo[0]) * scale
     px[:, :, 1] = top + (hi[1] - tri[:, :, 1]) * scale
-    if title:
-        dwg.add(dwg.text(title, insert=(_MARGIN_PX, 20), font_size=14, font_weight="bold",
+    for k, line in enumerate(fitted.lines if fitted else ()):
+        dwg.add(dwg.text(line, insert=(_MARGIN_PX, 20 + 15 * k), font_size=f"{fitted.font_px:g}", font_weight="bold",
                          style="font-family:Helvetica,Arial,sans-serif"))
     return _with_polygons(dwg.tostring(), g.tostring(), px[order].tolist(), rgb[order].tolist())
 
