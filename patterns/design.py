@@ -90,7 +90,7 @@ from .base.choices import check_choice
 from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import check_name, shown
+from .base.validate import DESIGN_ACTUATORS, check_name, shown
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
@@ -395,6 +395,8 @@ class Design:
         object.__setattr__(self, "actuators", tuple(self.actuators))
         if not self.actuators:
             raise ParameterError("actuators must hold at least one actuator, got none")
+        if len(self.actuators) > DESIGN_ACTUATORS:
+            raise ParameterError(f"a design must have at most {DESIGN_ACTUATORS:,} actuators, got {len(self.actuators):,}")
         names = [a.name for a in self.actuators]
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
@@ -623,6 +625,8 @@ def design_from_dict(d) -> Design:
     acts = top["actuator"]
     if not isinstance(acts, list) or not acts:
         raise DesignFileError(f"actuator: must be a non-empty list of tables ([[actuator]]), got {acts!r:.60}")
+    if len(acts) > DESIGN_ACTUATORS:
+        raise DesignFileError(f"actuator: a design must have at most {DESIGN_ACTUATORS:,} actuators, got {len(acts):,}")
     specs = tuple(_actuator(a, i) for i, a in enumerate(acts))
     seen: dict[str, int] = {}
     for i, spec in enumerate(specs):

@@ -277,6 +277,9 @@ def test_size_bombs_for_every_reader(tmp_path):
     seg = "M 0 0 " + " ".join(f"L {i * 0.01:.2f} {(i % 2) * 0.01}" for i in range(1, lim.PATH_SEGMENTS + 1))
     (t / "segments.toml").write_text(design.format(seg))
     n_numbers = 2 + 2 * (lim.PATH_SEGMENTS * 7 // 2 + 1)
+    (t / "actuators.toml").write_text("".join(
+        f'[[actuator]]\nname = "A{i}"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\nlength_mm = 20\n'
+        for i in range(lim.DESIGN_ACTUATORS + 1)))
     big_svg = _sparse(t / "big.svg", lim.TEXT_FILE_BYTES + 1)
     (t / "many.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
                                 f'viewBox="0 0 200 200"><path id="t" d="{seg} L 0 5"/></svg>')
@@ -309,6 +312,9 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("path-segments", ["check", f"{t}/segments.toml"],  # a move-to and PATH_SEGMENTS lines
          f"{t}/segments.toml: actuator[0].path: SVG path must have at most {lim.PATH_SEGMENTS:,} segments, "
          f"got {lim.PATH_SEGMENTS + 1:,}"),
+        ("design-actuators", ["check", f"{t}/actuators.toml"],
+         f"{t}/actuators.toml: actuator: a design must have at most {lim.DESIGN_ACTUATORS:,} actuators, "
+         f"got {lim.DESIGN_ACTUATORS + 1:,}"),
         ("svg-bytes", ZZ + ["-o", f"{t}/a.dst", "--path", str(big_svg)],
          f"{big_svg}: SVG file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
         ("svg-segments", ZZ + ["-o", f"{t}/a.dst", "--path", f"{t}/many.svg#t"],  # a move-to and the lines

@@ -30,6 +30,7 @@ limit                      value               applies to
 ``PATH_CHARS``             1,000,000           characters of one SVG path ``d`` string
 ``PATH_SEGMENTS``          5,000               drawing commands of one SVG path (check: 4 s)
 ``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
+``DESIGN_ACTUATORS``       1,000               actuators of one design (check: 14 s)
 =========================  ==================  =============================================
 
 An embroidery file of more than ``MACHINE_FILE_RECORDS`` records is far beyond any hoop (a
@@ -69,6 +70,7 @@ __all__ = [
     "PATH_CHARS",
     "PATH_SEGMENTS",
     "NAME_CHARS",
+    "DESIGN_ACTUATORS",
     "SHOWN_CHARS",
     "shown",
     "check_count",
@@ -87,6 +89,7 @@ MACHINE_FILE_RECORDS = 500_000
 PATH_CHARS = 1_000_000
 PATH_SEGMENTS = 5_000
 NAME_CHARS = 1_000
+DESIGN_ACTUATORS = 1_000
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
 SHOWN_CHARS = 80
 
