@@ -190,8 +190,9 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     px = np.empty_like(tri[:, :, :2])
     px[:, :, 0] = _MARGIN_PX + (tri[:, :, 0] - lo[0]) * scale
     px[:, :, 1] = top + (hi[1] - tri[:, :, 1]) * scale
-    for k, line in enumerate(fitted.lines if fitted else ()):
-        dwg.add(dwg.text(line, insert=(_MARGIN_PX, 20 + 15 * k), font_size=f"{fitted.font_px:g}", font_weight="bold",
+    lines, font_px = (fitted.lines, fitted.font_px) if fitted else ((), 0.0)
+    for k, line in enumerate(lines):
+        dwg.add(dwg.text(line, insert=(_MARGIN_PX, 20 + 15 * k), font_size=f"{font_px:g}", font_weight="bold",
                          style="font-family:Helvetica,Arial,sans-serif"))
     return _with_polygons(dwg.tostring(), g.tostring(), px[order].tolist(), rgb[order].tolist())
 

@@ -276,7 +276,7 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     shapes, pressures = [], {}
     for a, c in zip(analysis.actuators, curves):
         p, theta, parts = shape_state(c, pressure_kpa)
-        chain = ({"segment_lengths_mm": tuple(length for length, _ in a.bend_pieces()),
+        chain: dict = ({"segment_lengths_mm": tuple(length for length, _ in a.bend_pieces()),
                   "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
         width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
