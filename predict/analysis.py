@@ -498,7 +498,8 @@ class DesignAnalysis:
             out.append((BentShape.chain(lengths, theta), theta))
         return tuple(out)
 
-    def bands(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
+    def bands(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto",
+              measurement=None) -> tuple:
         """1-sigma band of theta(P) per actuator (:class:`~embroact.predict.uncertainty.Band`), memoised.
 
         An actuator gets a band when G and P0 come from one fitted calibration point with a
@@ -511,6 +512,8 @@ class DesignAnalysis:
             Pressures [kPa], >= 0; default :attr:`pressures_kpa`.
         method : str
             As for :func:`~embroact.predict.curve.curve`.
+        measurement : MarkerLayout, optional
+            Also give the band of that layout's marker reading (``Band.reading_sd_deg``).
 
         Returns
         -------
@@ -526,7 +529,7 @@ class DesignAnalysis:
         from .uncertainty import theta_band
 
         p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
-        key = ("band", p, method)
+        key = ("band", p, method, measurement)
         if key not in self._curves:
             out: list[Band | None] = []
             for a in self.actuators:
@@ -536,7 +539,7 @@ class DesignAnalysis:
                 cal = a.choice.calibration if a.choice is not None else None
                 given = a.spec.model.g_mpa is not None or a.spec.model.p0_kpa is not None
                 usable = cal is not None and cal.covariance and not given and set(cal.fitted) <= {"g_mpa", "p0_kpa"}
-                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method)
+                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method, measurement=measurement)
                            if cal is not None and usable else None)
             self._curves[key] = tuple(out)
         return self._curves[key]

@@ -97,10 +97,14 @@ class Band:
 
     def summary(self) -> dict:
         """The band per point as ``predict --json`` and ``report.json`` quote it: ``theta_sd_deg``,
-        ``theta_low_deg``, ``theta_high_deg`` (lists), ``parameters`` and ``covariance``."""
-        return {"theta_sd_deg": self.theta_sd_deg.tolist(), "theta_low_deg": self.theta_low_deg.tolist(),
-                "theta_high_deg": self.theta_high_deg.tolist(), "parameters": list(self.parameters),
-                "covariance": [list(row) for row in self.covariance]}
+        ``theta_low_deg``, ``theta_high_deg`` (lists), ``parameters`` and ``covariance``; with a
+        layout also ``reading_sd_deg``."""
+        out = {"theta_sd_deg": self.theta_sd_deg.tolist(), "theta_low_deg": self.theta_low_deg.tolist(),
+               "theta_high_deg": self.theta_high_deg.tolist(), "parameters": list(self.parameters),
+               "covariance": [list(row) for row in self.covariance]}
+        if self.reading_sd_deg is not None:
+            out["reading_sd_deg"] = self.reading_sd_deg.tolist()
+        return out
 
     def prediction_sd_deg(self) -> np.ndarray:
         """Scatter of a new measurement about the model: sqrt(sd^2 + noise^2) of the measured quantity."""

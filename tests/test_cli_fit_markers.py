@@ -189,3 +189,53 @@ def test_bad_layout_flags_are_one_line(capsys, tmp_path, flags, message):
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1, err
     assert not (tmp_path / "c.toml").exists()
+
+
+# ----------------------------------------------------------------------------- predict's marker reading
+def _hand_reading(theta_deg, offsets_mm, l0):
+    """Turning between the first and last chord of markers on the bent strip, by hand (tests/markerdata.py)."""
+    from markerdata import strip_points
+
+    d = np.diff(strip_points(theta_deg, offsets_mm, l0), axis=0)
+    turn = np.arctan2(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0], np.einsum("ij,ij->i", d[:-1], d[1:]))
+    return math.degrees(turn.sum())
+
+
+def test_predict_gives_the_marker_reading_next_to_theta(capsys):
+    """--measurement markers: reading_deg is the turning of the layout's chords on the predicted bend,
+    also with markers past the bent length (offset 60 mm: the last two on the straight continuation)."""
+    grid = "0,100,150,200,250"
+    for offset, per_side in (("0", "7"), ("60", "5")):
+        doc = _json(capsys, "predict", *ZIGZAG, "--g-mpa", "2.7", "--p0-kpa", "85", "--pressure-kpa", grid,
+                    "--measurement", "markers", "--marker-offset-mm", offset, "--markers-per-side", per_side, "--json")
+        s = float(offset) + 10.0 * np.arange(int(per_side))
+        want = [_hand_reading(t, s, doc["derived"]["length_mm"]) for t in doc["theta_deg"]]
+        assert np.allclose(doc["reading_deg"], want, rtol=1e-9, atol=1e-9)
+        assert doc["measurement"]["offset_mm"] == float(offset) and doc["band"] is None
+    # the paper's layout on 100 mm: exactly half of theta; the text table shows the same column
+    doc = _json(capsys, "predict", *ZIGZAG, "--g-mpa", "2.7", "--p0-kpa", "85", "--pressure-kpa", grid,
+                "--measurement", "markers", "--json")
+    assert np.allclose(doc["reading_deg"], 0.5 * np.array(doc["theta_deg"]), rtol=1e-12)
+    assert main(["predict", *ZIGZAG, "--g-mpa", "2.7", "--p0-kpa", "85", "--pressure-kpa", grid,
+                 "--measurement", "markers"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[2].split()[:3] == ["pressure_kpa", "theta_deg", "reading_deg"]
+    assert [float(ln.split()[2]) for ln in lines[3:]] == pytest.approx(doc["reading_deg"], abs=5e-4)
+    # whole-strip (default): no reading column or key
+    assert "reading_deg" not in _json(capsys, "predict", *ZIGZAG, "--pressure-kpa", grid, "--json")
+
+
+def test_predict_reading_at_the_fitted_parameters_is_what_fit_matched(capsys, tmp_path):
+    """fit --markers and predict --measurement markers answer the same question: at the fitted G and P0
+    predict's reading is the marker sums fit computed from the coordinates; the band carries a reading band."""
+    theta = _theta(capsys, ZIGZAG, G_MPA, P0_KPA, UP)
+    data = _marker_csv(tmp_path / "m.csv", UP, _frames(theta, 0.2, 11))
+    cal = tmp_path / "lab.toml"
+    doc = _fit(capsys, data, ZIGZAG, "--markers", "--normal", "0,1,0", "-o", str(cal))
+    (f,) = doc["fits"]
+    grid = ",".join(f"{p:g}" for p in f["pressure_kpa"])
+    pred = _json(capsys, "predict", *ZIGZAG, "--calibration", str(cal), "--pressure-kpa", grid,
+                 "--measurement", "markers", "--json")
+    assert np.allclose(np.array(pred["reading_deg"]) - f["angle_deg"], f["residuals_deg"], atol=1e-6)
+    sd, rsd = np.array(pred["band"]["theta_sd_deg"]), np.array(pred["band"]["reading_sd_deg"])
+    assert np.allclose(rsd, 0.5 * sd, rtol=1e-6)  # the reading is half of theta here, so is its band

@@ -31,6 +31,7 @@ import math
 import sys
 
 from .args import parse_pressures
+from .markerargs import add_layout_arguments, layout_from_args
 from .target import add_model_arguments, add_quick_arguments, analyse_target, load_target
 
 __all__ = ["add_arguments", "run", "parse_pressures"]
@@ -50,6 +51,9 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                    help="pressures [kPa] (default 0 to MAX in 10 kPa steps and MAX itself, MAX = the design's "
                         "max_pressure_kpa, 300 for quick parameters)")
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
+    add_layout_arguments(parser.add_argument_group("measurement (the marker reading next to theta)"),
+                         measurement_help="markers: also give what the layout's marker sum reads on each predicted "
+                                          "bend (reading_deg; default whole-strip: theta only)")
 
 
 def _finite(x: float):
@@ -70,21 +74,33 @@ def _band_dict(band):
     return None if band is None else band.summary()
 
 
-def _piece(model, c) -> dict:
+def _reading(model, c, layout):
+    """What the layout's marker sum reads on each bend of the curve [deg] (docs/model.md, marker sums)."""
+    from ...predict.markers import reading_deg
+
+    return reading_deg(c.theta_deg, model.length_mm, layout)
+
+
+def _piece(model, c, layout=None) -> dict:
     from ...predict.validity import branch_end
 
     out: dict[str, object] = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
     out["limits"] = _limits(model, c)
+    if layout is not None:
+        out["measurement"] = layout.as_dict()
+        out["reading_deg"] = _reading(model, c, layout).tolist()
     return out
 
 
-def _result(act, c, band, segment_curves) -> dict:
+def _result(act, c, band, segment_curves, layout=None) -> dict:
     out = act.as_dict()
     if not act.segments:
-        out.update(_piece(act.model, c))
+        out.update(_piece(act.model, c, layout))
         out["band"] = _band_dict(band)
         return out
+    if layout is not None:  # reading_deg reads a uniform bend, not a chain of arcs
+        out["reading_deg"] = None
     out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
     out.update({k: v for k, v in c.as_dict().items() if k in ("pressure_kpa", "theta_deg", "status")})
     return out
@@ -93,7 +109,7 @@ def _result(act, c, band, segment_curves) -> dict:
 _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
 
 
-def _piece_table(title, derived, choice, c, band) -> str:
+def _piece_table(title, derived, choice, c, band, layout=None) -> str:
     model = choice.model
     angle = f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg" if derived.pattern == "cross" else ""
     head = (f"{title}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
@@ -106,20 +122,25 @@ def _piece_table(title, derived, choice, c, band) -> str:
         rows.append("1-sigma band of theta from the calibration's covariance: "
                     + ", ".join(f"{p:g} kPa +-{s:.3g} deg" for p, s in zip(band.pressure_kpa, band.theta_sd_deg)
                                 if s > 0.0))
-    rows.append("pressure_kpa  theta_deg  status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
     d = c.as_dict()
-    for p, t, s, l, r, b, di, lim in zip(*(d[k] for k in _COLUMNS), _limits(model, c)):
-        rows.append(f"{p:10.3f}  {t:10.3f}   {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
+    if layout is not None:
+        rows.append(f"reading_deg: what the marker sum reads ({layout.label})")
+    reading = [f"{v:10.3f} " for v in _reading(model, c, layout)] if layout is not None else [""] * len(d["theta_deg"])
+    rows.append("pressure_kpa  theta_deg " + ("reading_deg " if layout is not None else "")
+                + " status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
+    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), reading, _limits(model, c)):
+        rows.append(f"{p:10.3f}  {t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
 
 
-def _table(act, c, band, segment_curves) -> str:
+def _table(act, c, band, segment_curves, layout=None) -> str:
     if not act.segments:
-        return _piece_table(act.name, act.derived, act.choice, c, band)
+        return _piece_table(act.name, act.derived, act.choice, c, band, layout)
     parts = [_piece_table(f"{act.name} segment {k}", s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
     total = c.as_dict()  # the whole strip (embroact.predict.analysis.strip_curve)
-    rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends)",
+    rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends)"
+            + ("; no marker reading (it is computed for a uniform bend, not a chain of arcs)" if layout else ""),
             "pressure_kpa  theta_deg  status"]
     rows += [f"{p:10.3f}  {t:10.3f}   {s}" for p, t, s in zip(total["pressure_kpa"], total["theta_deg"], total["status"])]
     return "\n\n".join(parts + ["\n".join(rows)])
@@ -130,6 +151,7 @@ def run(args) -> int:
     from ...patterns.base.errors import ParameterError
 
     quick = args.target in ("zigzag", "cross")
+    layout = layout_from_args(args)
     target = load_target(args, pattern=args.target if quick else None, design_path=None if quick else args.target)
     analysis = analyse_target(target)
     # default: the design's standard grid, the one build, check and preview use (working pressure included)
@@ -143,12 +165,12 @@ def run(args) -> int:
     names = [a.name for a in analysis.actuators]
     pieces = dict(zip(names, analysis.segment_curves(pressures, method=args.method)))
     curves = dict(zip(names, analysis.curves(pressures, method=args.method)))  # segmented: the whole strip
-    bands = dict(zip(names, analysis.bands(pressures, method=args.method)))
-    results = [_result(a, curves[a.name], bands[a.name], pieces[a.name]) for a in acts]
+    bands = dict(zip(names, analysis.bands(pressures, method=args.method, measurement=layout)))
+    results = [_result(a, curves[a.name], bands[a.name], pieces[a.name], layout) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:
-        print("\n\n".join(_table(a, curves[a.name], bands[a.name], pieces[a.name]) for a in acts))
+        print("\n\n".join(_table(a, curves[a.name], bands[a.name], pieces[a.name], layout) for a in acts))
     return 0
