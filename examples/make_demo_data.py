@@ -10,8 +10,8 @@ parameters plus Gaussian noise, so ``embroact fit`` has a known answer to find.
   G = 1.3 MPa, P0 = 170 kPa; unloading G = 1.1 MPa, P0 = 150 kPa; noise 1 deg.
 * ``zigzag_w7_markers.csv`` the zigzag loop as motion-capture frames: the paper's layout,
   14 markers, 7 per side 10 mm apart from the clamped end, on the uniformly bent 100 mm
-  strip (so their marker sum reads half of the bend angle, docs/model.md, what a marker sum
-  reads); the strip hangs along -z and bends toward +x (the fabric's back); noise 0.05 mm.
+  strip (so their marker sum reads half of the bend angle, docs/model.md section 11);
+  the strip hangs along -z and bends toward +x (the fabric's back); noise 0.05 mm.
   ``embroact fit --markers`` compares them with the layout's reading.
 
 Run: ``python examples/make_demo_data.py [OUT_DIR]`` (default: ``examples/data``).

@@ -239,3 +239,70 @@ def test_predict_reading_at_the_fitted_parameters_is_what_fit_matched(capsys, tm
     assert np.allclose(np.array(pred["reading_deg"]) - f["angle_deg"], f["residuals_deg"], atol=1e-6)
     sd, rsd = np.array(pred["band"]["theta_sd_deg"]), np.array(pred["band"]["reading_sd_deg"])
     assert np.allclose(rsd, 0.5 * sd, rtol=1e-6)  # the reading is half of theta here, so is its band
+
+
+def test_readme_marker_example_numbers(capsys):
+    """The README's marker example quotes what these commands print."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    readme = (root / "README.md").read_text(encoding="utf-8")
+    (load, _) = _json(capsys, "fit", str(root / "examples/data/zigzag_w7_markers.csv"), "--markers", "--normal",
+                      "1,0,0", "--pattern", "zigzag", "--width-mm", "7", "--json")["fits"]
+    assert (f"loading {load['n_points']} points: G {load['g_mpa']:.4g} +- {load['g_mpa_se']:.2g} MPa, "
+            f"P0 {load['p0_kpa']:.4g} +- {load['p0_kpa_se']:.2g} kPa") in readme
+    # ... and the truth they were made with (examples/make_demo_data.py) lies within 3 SE
+    assert abs(load["g_mpa"] - 2.7) < 3 * load["g_mpa_se"] and abs(load["p0_kpa"] - 85.0) < 3 * load["p0_kpa_se"]
+
+
+# ----------------------------------------------------------------------------- the calibration file's new fields
+def _cal_text(extra_set="", extra_point=""):
+    return ('name = "lab"\n' + extra_set + '[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 2.7\n'
+            'p0_kpa = 85.0\n' + extra_point)
+
+
+@pytest.mark.parametrize("extra_set, extra_point, message", [
+    ("", 'fitted = "g_mpa"\n', "points[0]: fitted must be a list of parameter names, got 'g_mpa'"),
+    ("", 'fitted = ["g_mpa", "p0_kpa"]\ncovariance = [[1.0, 0.0]]\n', "covariance must be 2 x 2"),
+    ("", 'fitted = ["g_mpa"]\ncovariance = [["a"]]\n', "covariance must be a list of rows of numbers"),
+    ("", 'fitted = ["g_mpa"]\ncovariance = [[-1.0]]\n', "non-negative diagonal"),
+    ("", 'tube_law_parameters = 3\n', "tube_law_parameters must be a table of numbers, got 3"),
+    ("", '[points.tube_law_parameters]\nk_mpa = 1.0\n', "tube_law_parameters must name distinct keys of"),
+    ("", '[points.tube_law_parameters]\nmu_mpa = -1.0\n', "tube_law_parameters.mu_mpa must be in (0, "),
+    ('marker_layout = 7\n', "", "[marker_layout] must be a table of markers_per_side"),
+    ('[marker_layout]\nspacing_mm = 0\n', "", "[marker_layout]: spacing_mm must be in (0, 10000), got 0"),
+    ('[marker_layout]\nrow = 2\n', "", "unknown key 'row' in [marker_layout]"),
+    ('[marker_layout]\nside = "inside"\n', "", "side must be one of 'fabric', 'thread', got 'inside'"),
+])
+def test_bad_new_calibration_fields_are_one_line(capsys, tmp_path, extra_set, extra_point, message):
+    cal = tmp_path / "bad.toml"
+    cal.write_text(_cal_text(extra_set, extra_point))
+    assert main(["predict", *ZIGZAG, "--calibration", str(cal), "--pressure-kpa", "100"]) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1, err
+
+
+def test_old_and_new_files_read(tmp_path):
+    """A file without the new fields reads as before (no layout, no covariance); a full one round-trips."""
+    import dataclasses
+
+    from embroact.export.files.calibfile import read_calibration, write_calibration
+    from embroact.predict.markers import MarkerLayout
+
+    old = tmp_path / "old.toml"
+    old.write_text(_cal_text())
+    cset = read_calibration(old)
+    assert cset.marker_layout is None and cset.measurement == "whole-strip"
+    (p,) = cset.points
+    assert p.fitted == () and p.covariance == () and p.tube_law_parameters == ()
+    full = dataclasses.replace(cset, marker_layout=MarkerLayout(markers_per_side=5, spacing_mm=12.5, offset_mm=3.0,
+                                                                rows=1, side="thread"),
+                               measurement="whole-strip",  # replaced by the layout's label
+                               points=(dataclasses.replace(p, fitted=("g_mpa", "g_e_mpa"),
+                                                           covariance=((1e-4, 2e-6), (2e-6, 3e-7)),
+                                                           tube_law_parameters=(("outer_radius_mm", 1.5),
+                                                                                ("inner_radius_mm", 1.0),
+                                                                                ("mu_mpa", 0.2))),))
+    assert full.measurement == "markers: 1 rows of 5, 12.5 mm apart, first 3 mm from the clamped end, thread side"
+    write_calibration(tmp_path / "new.toml", full)
+    assert read_calibration(tmp_path / "new.toml") == full

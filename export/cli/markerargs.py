@@ -1,7 +1,7 @@
 """Marker-layout flags shared by ``embroact fit`` and ``embroact predict``.
 
-``--measurement markers`` says the angles are marker sums (docs/model.md, what a marker sum
-reads): ``fit`` compares the data with the layout's reading of the model's bend, ``predict``
+``--measurement markers`` says the angles are marker sums (docs/model.md section 11):
+``fit`` compares the data with the layout's reading of the model's bend, ``predict``
 prints that reading next to theta. The layout flags default to the paper's: 2 rows
 (``--sides``) of 7 markers 10 mm apart, the first at the clamped end, on the fabric.
 
