@@ -75,7 +75,7 @@ def _band_dict(band):
 
 
 def _reading(model, c, layout):
-    """What the layout's marker sum reads on each bend of the curve [deg] (docs/model.md, marker sums)."""
+    """What the layout's marker sum reads on each bend of the curve [deg] (docs/model.md section 11)."""
     from ...predict.markers import reading_deg
 
     return reading_deg(c.theta_deg, model.length_mm, layout)
