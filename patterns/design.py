@@ -90,7 +90,7 @@ from .base.choices import check_choice
 from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import DESIGN_ACTUATORS, check_name, shown
+from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, check_name, shown
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, pattern_kind
 from .limits import format_limit
@@ -555,6 +555,8 @@ def _pattern_params(a: dict, path: str, allowed: tuple[str, ...]):
 def _segments(value, path: str) -> tuple[SegmentSpec, ...]:
     if not isinstance(value, list) or not value:
         raise DesignFileError(f"{path}: must be a non-empty list of tables ([[actuator.segment]]), got {value!r:.60}")
+    if len(value) > ACTUATOR_SEGMENTS:
+        raise DesignFileError(f"{path}: an actuator must have at most {ACTUATOR_SEGMENTS:,} segments, got {len(value):,}")
     out = []
     for k, table in enumerate(value):
         where = f"{path}[{k}]"

@@ -277,6 +277,9 @@ def test_size_bombs_for_every_reader(tmp_path):
     seg = "M 0 0 " + " ".join(f"L {i * 0.01:.2f} {(i % 2) * 0.01}" for i in range(1, lim.PATH_SEGMENTS + 1))
     (t / "segments.toml").write_text(design.format(seg))
     n_numbers = 2 + 2 * (lim.PATH_SEGMENTS * 7 // 2 + 1)
+    (t / "segments-tables.toml").write_text('[[actuator]]\nname = "A"\n' + "".join(
+        '[[actuator.segment]]\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\nlength_mm = 5\n'
+        for _ in range(lim.ACTUATOR_SEGMENTS + 1)))
     (t / "actuators.toml").write_text("".join(
         f'[[actuator]]\nname = "A{i}"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\nlength_mm = 20\n'
         for i in range(lim.DESIGN_ACTUATORS + 1)))
@@ -315,6 +318,9 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("design-actuators", ["check", f"{t}/actuators.toml"],
          f"{t}/actuators.toml: actuator: a design must have at most {lim.DESIGN_ACTUATORS:,} actuators, "
          f"got {lim.DESIGN_ACTUATORS + 1:,}"),
+        ("actuator-segments", ["check", f"{t}/segments-tables.toml"],
+         f"{t}/segments-tables.toml: actuator[0].segment: an actuator must have at most {lim.ACTUATOR_SEGMENTS:,} "
+         f"segments, got {lim.ACTUATOR_SEGMENTS + 1:,}"),
         ("svg-bytes", ZZ + ["-o", f"{t}/a.dst", "--path", str(big_svg)],
          f"{big_svg}: SVG file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
         ("svg-segments", ZZ + ["-o", f"{t}/a.dst", "--path", f"{t}/many.svg#t"],  # a move-to and the lines

@@ -31,6 +31,7 @@ limit                      value               applies to
 ``PATH_SEGMENTS``          5,000               drawing commands of one SVG path (check: 4 s)
 ``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
 ``DESIGN_ACTUATORS``       1,000               actuators of one design (check: 14 s)
+``ACTUATOR_SEGMENTS``      200                 ``[[actuator.segment]]`` tables of one actuator (check: 3 s)
 =========================  ==================  =============================================
 
 An embroidery file of more than ``MACHINE_FILE_RECORDS`` records is far beyond any hoop (a
@@ -71,6 +72,7 @@ __all__ = [
     "PATH_SEGMENTS",
     "NAME_CHARS",
     "DESIGN_ACTUATORS",
+    "ACTUATOR_SEGMENTS",
     "SHOWN_CHARS",
     "shown",
     "check_count",
@@ -90,6 +92,7 @@ PATH_CHARS = 1_000_000
 PATH_SEGMENTS = 5_000
 NAME_CHARS = 1_000
 DESIGN_ACTUATORS = 1_000
+ACTUATOR_SEGMENTS = 200
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
 SHOWN_CHARS = 80
 
