@@ -54,7 +54,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .uncertainty import Band
 
 __all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "DesignAnalysis", "analyse",
-           "with_model_overrides", "PRESSURE_STEP_KPA", "pressure_grid_kpa"]
+           "segment_plans", "with_model_overrides", "PRESSURE_STEP_KPA", "pressure_grid_kpa"]
 
 #: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
 PRESSURE_STEP_KPA = 10.0
@@ -603,11 +603,26 @@ def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets) -> tuple[
         return None, str(exc)
 
 
+def segment_plans(act: ActuatorPlan) -> tuple[ActuatorPlan, ...]:
+    """Each segment of a segmented actuator as a single-pattern plan (named ``A1[0]``...), what its sleeve
+    geometry is derived from; ``()`` for a single-pattern actuator.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 40}]}]})
+    >>> [(p.name, p.realised.width_mm) for p in segment_plans(build_plan(d).actuators[0])]
+    [('S[0]', 7.0), ('S[1]', 9.0)]
+    """
+    return tuple(ActuatorPlan(f"{act.name}[{k}]", seg.params, act.tube, act.centerline, seg.realised, seg.adjustments,
+                              act.options) for k, seg in enumerate(act.segments))
+
+
 def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
     segs = []
-    for k, seg in enumerate(act.segments):
-        part = ActuatorPlan(f"{act.name}[{k}]", seg.params, act.tube, act.centerline, seg.realised, seg.adjustments,
-                            act.options)
+    for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
         derived = derive(part)
         choice, error = _model_of(derived, spec.model, sets)
         segs.append(SegmentAnalysis(seg, derived, choice, f"segment {k}: {error}" if error else ""))

@@ -33,14 +33,27 @@ from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 __all__ = ["SLEEVE_RULES", "DESIGN_RULES", "check_plan", "check_layout"]
 
 
-def _sleeve_gaps(s: Subject) -> list[tuple[int, float, float, float]]:
-    """Per tube with a known width: index, width w, sleeve radius r0 and r0 - r_f [mm]."""
+def _sleeve_gaps(s: Subject) -> list[tuple[int, str, float, float, float, object]]:
+    """Per tube with a known width, per pattern part: tube index, message prefix, width w, sleeve radius r0,
+    r0 - r_f [mm] and where to place a finding (None: the tube's first needle point).
+
+    A design's segmented actuator is checked segment by segment at each segment's realised width
+    (placed where its legs start); a file's tube at the width read from its needle points.
+    """
     out = []
     for k, tube in enumerate(s.layout.tubes):
-        if tube.half_width_mm is not None:
-            w = 2.0 * tube.half_width_mm
+        act = s.plan.actuators[k] if s.plan is not None and k < len(s.plan.actuators) else None
+        parts: list[tuple[str, float, object]]
+        if act is not None and act.segments:
+            parts = [(label, real.width_mm, act.centerline.point_at(seg.first_leg_mm))
+                     for (label, _, real), seg in zip(pattern_parts(act), act.segments)]
+        elif tube.half_width_mm is not None:
+            parts = [("", 2.0 * tube.half_width_mm, None)]
+        else:
+            continue
+        for label, w, xy in parts:
             r0 = float(sleeve_radius_mm(w, tube.outer_radius_mm))
-            out.append((k, w, r0, r0 - tube.outer_radius_mm))
+            out.append((k, label, w, r0, r0 - tube.outer_radius_mm, xy))
     return out
 
 
@@ -50,12 +63,12 @@ def _sleeve_gaps(s: Subject) -> list[tuple[int, float, float, float]]:
             "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
 def no_sleeve(s: Subject) -> list[Finding]:
     out = []
-    for k, w, r0, gap in _sleeve_gaps(s):
+    for k, label, w, r0, gap, xy in _sleeve_gaps(s):
         if gap <= 0.0:
             rf = s.layout.tubes[k].outer_radius_mm
             out.append(s.tube_finding(
-                k, "EA201", f"width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f {rf:g} mm "
-                f"(needs w > {float(min_sleeve_width_mm(rf)):.2f} mm)"))
+                k, "EA201", f"{label}width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f {rf:g} mm "
+                f"(needs w > {float(min_sleeve_width_mm(rf)):.2f} mm)", xy))
     return out
 
 
@@ -65,12 +78,12 @@ def no_sleeve(s: Subject) -> list[Finding]:
             "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
 def tight_sleeve(s: Subject) -> list[Finding]:
     out = []
-    for k, _, r0, gap in _sleeve_gaps(s):
+    for k, label, _, r0, gap, xy in _sleeve_gaps(s):
         if 0.0 < gap < s.settings.min_sleeve_gap_mm:
             rf = s.layout.tubes[k].outer_radius_mm
             out.append(s.tube_finding(
-                k, "EA202", f"sleeve radius r0 {r0:.3f} mm exceeds r_f {rf:g} mm by only {gap:.3f} mm "
-                f"(< {s.settings.min_sleeve_gap_mm:g} mm)"))
+                k, "EA202", f"{label}sleeve radius r0 {r0:.3f} mm exceeds r_f {rf:g} mm by only {gap:.3f} mm "
+                f"(< {s.settings.min_sleeve_gap_mm:g} mm)", xy))
     return out
 
 

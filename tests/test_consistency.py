@@ -4,7 +4,8 @@ Each design goes through the Python API (:func:`embroact.predict.analysis.analys
 :func:`embroact.predict.rules.check_design`), ``embroact predict --json``, ``embroact build``
 (``report.json``, ``worksheet.json``, ``bend.svg``), ``embroact check --json`` and
 ``embroact preview bend --json``. For every actuator the derived geometry, G and P0 with their
-sources, the tube and tube law, the curve's angles and statuses, and the findings must be
+sources, the tube and tube law, the curve's angles and statuses (a segmented actuator's for every
+segment and for the whole strip), and the findings must be
 *equal* (JSON numbers are shortest round-trip reprs, so equality is to the last digit), and
 the chart the build draws must be byte-identical to the one drawn from the API's curves.
 
@@ -54,14 +55,32 @@ def _api(path: Path):
     return analyse_target(load_target(args, design_path=str(path)))
 
 
+def _parts(entry: dict) -> list[tuple[dict, dict]]:
+    """(derived, model) of each pattern part of an actuator entry: its segments, or the actuator itself."""
+    segs = entry.get("segments")
+    return [(s["derived"], s["model"]) for s in segs] if segs else [(entry["derived"], entry["model"])]
+
+
+def _curves(entry: dict, whole: dict) -> list[dict]:
+    """The actuator's curve (a segmented one's whole strip) followed by each segment's."""
+    return [whole] + list(entry.get("segment_curves") or [])
+
+
 def _assert_commands_agree(capsys, tmp_path: Path, path: Path) -> bool:
-    """Assert that every command agrees with the API; False (nothing compared) when an actuator has no model."""
+    """Assert that every command agrees with the API; False (nothing compared) when an actuator or a segment
+    has no model (no sleeve)."""
     analysis = _api(path)
-    if any(a.choice is None for a in analysis.actuators):  # no sleeve, or segmented: no single model and curve
+    if any(p.choice is None for a in analysis.actuators for p in (a.segments or (a,))):
         return False
     curves = analysis.curves()
-    api = {a.name: {"derived": _plain(a.derived.as_dict()), "model": _plain(a.choice.as_dict()),
-                    "curve": _plain(c.as_dict())} for a, c in zip(analysis.actuators, curves)}
+    api = {}
+    for a, c in zip(analysis.actuators, curves):
+        whole = _plain(c.as_dict())
+        segment_curves = [_plain(sc.as_dict()) for sc in getattr(c, "segments", ())]
+        if a.segments:  # the whole strip is the sum of the segments' bends
+            sums = [math.fsum(t) for t in zip(*(sc["theta_deg"] for sc in segment_curves))]
+            assert whole["theta_deg"] == pytest.approx(sums, abs=1e-9)
+        api[a.name] = {"parts": _parts(_plain(a.as_dict())), "curves": [whole] + segment_curves}
     api_findings = _plain([f.as_dict() for f in check_design(analysis)])
 
     # embroact predict --json (default grid: 0 to the design's working pressure, 10 kPa steps)
@@ -84,12 +103,17 @@ def _assert_commands_agree(capsys, tmp_path: Path, path: Path) -> bool:
     assert [a["name"] for a in sheet["actuators"]] == [a["name"] for a in preview["actuators"]] == names
     for name, p, r, w, v in zip(names, predicted, report["actuators"], sheet["actuators"], preview["actuators"]):
         want = api[name]
-        for got in (p, r, w, v):
-            assert got["derived"] == want["derived"], name
-            assert {k: got["model"][k] for k in MODEL_KEYS} == {k: want["model"][k] for k in MODEL_KEYS}, name
-        for got in (p, r["curve"], v["curve"]):
-            for key in ("pressure_kpa", "theta_deg", "status", "method", "calibration"):
-                assert got[key] == want["curve"][key], (name, key)
+        for got in (p, r, w, v):  # every segment's derived geometry and model
+            assert len(_parts(got)) == len(want["parts"]), name
+            for (derived, model), (want_derived, want_model) in zip(_parts(got), want["parts"]):
+                assert derived == want_derived, name
+                assert {k: model[k] for k in MODEL_KEYS} == {k: want_model[k] for k in MODEL_KEYS}, name
+        for got in (_curves(p, p), _curves(r, r["curve"]), _curves(v, v["curve"])):  # the total and every segment
+            assert len(got) == len(want["curves"]), name
+            for got_curve, want_curve in zip(got, want["curves"]):
+                for key in ("pressure_kpa", "theta_deg", "status", "method", "calibration"):
+                    if key in want_curve:
+                        assert got_curve[key] == want_curve[key], (name, key)
     # the findings: the API, check, the report and the worksheet list the same ones
     assert checked["findings"] == api_findings
     built_findings = _plain([f.as_dict() for f in check_design(analysis, ignore=SPLIT_LONG_IGNORES)])
@@ -106,8 +130,7 @@ def _assert_commands_agree(capsys, tmp_path: Path, path: Path) -> bool:
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_every_example_gives_one_answer(capsys, tmp_path, path):
-    if not _assert_commands_agree(capsys, tmp_path, path):
-        pytest.skip(f"{path.name}: an actuator has no single model (segmented: one model per segment)")
+    assert _assert_commands_agree(capsys, tmp_path, path)  # segmented ones (designed_hook) too
 
 
 @settings(max_examples=6, derandomize=True, deadline=None,

@@ -102,7 +102,7 @@ def _result(act, c, band, segment_curves, layout=None) -> dict:
     if layout is not None:  # reading_deg reads a uniform bend, not a chain of arcs
         out["reading_deg"] = None
     out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
-    out.update({k: v for k, v in c.as_dict().items() if k in ("pressure_kpa", "theta_deg", "status")})
+    out.update(c.as_dict())  # the whole strip: pressure_kpa, theta_deg, status, method
     return out
 
 

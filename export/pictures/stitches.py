@@ -83,13 +83,15 @@ def _param_lines(plan: StitchPlan) -> list[str]:
     n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
     lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
              f"{n_trim} trim{'s' * (n_trim != 1)}"]
-    for a in plan.actuators:
-        r = a.realised
-        angle = f", alpha0 {r.angle_deg:.2f} deg" if a.pattern == "cross" else ""
-        lines.append(
-            f"{a.name} {a.pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
-            f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"
-        )
+    for a in plan.actuators:  # a segmented actuator: one line per segment
+        parts = [(f"{a.name} segment {k}", s.pattern, s.realised) for k, s in enumerate(a.segments)] \
+            or [(a.name, a.pattern, a.realised)]
+        for name, pattern, r in parts:
+            angle = f", alpha0 {r.angle_deg:.2f} deg" if pattern == "cross" else ""
+            lines.append(
+                f"{name} {pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
+                f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"
+            )
     return lines
 
 

@@ -142,24 +142,52 @@ def _cell(v) -> str:
     return f"<td>{_e(v)}</td>"
 
 
-def _derived_table(actuators: Sequence[Mapping]) -> str:
-    rows: list[str] = []
+def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
+    """One entry per actuator, or per segment of a segmented one (named ``A1 segment 0``), with its
+    ``derived`` and ``model``."""
+    out: list[Mapping] = []
     for a in actuators:
+        segs = a.get("segments") or []
+        out += [{**s, "name": f"{a.get('name')} segment {k}"} for k, s in enumerate(segs)] or [a]
+    return out
+
+
+def _derived_table(actuators: Sequence[Mapping]) -> str:
+    parts = _parts(actuators)
+    rows: list[str] = []
+    for a in parts:
         for k in a.get("derived") or {}:
             if k not in rows:
                 rows.append(k)
     if not rows:
         return '<p class="note">no actuators</p>'
-    head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in actuators)
+    head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in parts)
     body = "".join(
-        f"<tr><th>{_e(k)}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in actuators)}</tr>" for k in rows
+        f"<tr><th>{_e(k)}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in parts)}</tr>" for k in rows
     )
-    return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>"
+    return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>" + _segments_table(actuators)
+
+
+def _segments_table(actuators: Sequence[Mapping]) -> str:
+    """Where each segment of a segmented actuator lies: its share of the path, its legs (the part that
+    bends), the unbent transition to the next segment and the thread's run along a rail there [mm]."""
+    rows = []
+    for a in actuators:
+        for k, s in enumerate(a.get("segments") or []):
+            legs = s["first_leg_mm"] + (s.get("derived") or {}).get("length_mm", 0.0)
+            rows.append(f"<tr><th>{_e(a.get('name'))} segment {k}</th><td>{_e(s.get('pattern'))}</td>"
+                        f"{_cell(s['start_mm'])}{_cell(s['start_mm'] + s['length_mm'])}{_cell(s['first_leg_mm'])}"
+                        f"{_cell(legs)}{_cell(s['transition_mm'])}{_cell(s['join_run_mm'])}</tr>")
+    if not rows:
+        return ""
+    head = "".join(f"<th>{h}</th>" for h in ("segment", "pattern", "path from [mm]", "path to [mm]", "legs from [mm]",
+                                               "legs to [mm]", "transition [mm]", "thread run [mm]"))
+    return f"<h3>Segments along the path</h3><table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
 def _model_table(actuators: Sequence[Mapping]) -> str:
-    """G, P0, tube and tube law per actuator, each with where it came from."""
-    with_model = [a for a in actuators if a.get("model")]
+    """G, P0, tube and tube law per actuator (per segment of a segmented one), each with where it came from."""
+    with_model = [a for a in _parts(actuators) if a.get("model")]
     if not with_model:
         return '<p class="note">no model</p>'
     rows = []
@@ -206,7 +234,7 @@ def _worksheet_html(ws: Mapping | None) -> str:
                    + "</ul>")
     acts = ws.get("actuators") or []
     if acts:
-        keys = [k for k in acts[0] if k not in ("derived", "name", "adjustments")]
+        keys = [k for k in acts[0] if k not in ("derived", "name", "adjustments", "segments")]
         head = "".join(f"<th>{_e(k)}</th>" for k in keys)
         rows = "".join(f"<tr><th>{_e(a.get('name'))}</th>{''.join(_cell(a.get(k)) for k in keys)}</tr>" for a in acts)
         notes = [f"{a.get('name')}: {s}" for a in acts for s in a.get("adjustments") or []]
@@ -216,8 +244,18 @@ def _worksheet_html(ws: Mapping | None) -> str:
     return "".join(out)
 
 
+def _curve_columns(actuator: Mapping) -> list[Mapping]:
+    """The curves of one actuator in the table: its own, or a segmented one's whole strip and each segment's."""
+    segs = actuator.get("segment_curves") or []
+    if not segs:
+        return [actuator]
+    name = actuator.get("name")
+    return [{**actuator, "name": f"{name} whole strip"}] + [{"name": f"{name} segment {k}", "curve": c}
+                                                            for k, c in enumerate(segs)]
+
+
 def _curve_table(actuators: Sequence[Mapping]) -> str:
-    with_curves = [a for a in actuators if a.get("curve")]
+    with_curves = [c for a in actuators if a.get("curve") for c in _curve_columns(a)]
     if not with_curves:
         return ""
     pressures = with_curves[0]["curve"]["pressure_kpa"]

@@ -136,6 +136,11 @@ class ActuatorSheet:
     model : dict or None
         G, P0, tube and tube law with their sources (``ModelChoice.as_dict()``), when the
         worksheet was made from an analysis and the actuator has a model.
+    segments : tuple of dict
+        A segmented actuator's segments in order along the path
+        (:meth:`~embroact.predict.analysis.SegmentAnalysis.as_dict`: where each lies, its legs,
+        the unbent transition to the next and the thread's run there, the realised parameters
+        and derived geometry, its model); empty for a single-pattern actuator.
     """
 
     name: str
@@ -150,6 +155,7 @@ class ActuatorSheet:
     derived: dict = field(compare=False)
     adjustments: tuple[str, ...] = ()
     model: dict | None = field(default=None, compare=False)
+    segments: tuple[dict, ...] = field(default=(), compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -236,6 +242,7 @@ class Worksheet:
                     "derived": a.derived,
                     "model": a.model,
                     "adjustments": list(a.adjustments),
+                    **({"segments": list(a.segments)} if a.segments else {}),
                 }
                 for a in self.actuators
             ],
@@ -266,12 +273,18 @@ class Worksheet:
             *[f"  {s}" for s in self.stops],
         ]
         for a in self.actuators:
-            lines += ["", f"ACTUATOR {a.name} ({a.pattern})",
+            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}" if a.segments
+                    else a.pattern)
+            lines += ["", f"ACTUATOR {a.name} ({kind})",
                       f"  tube cut length  {a.tube_cut_mm:.0f} mm"
                       f" = {a.path_length_mm:.1f} mm path + 2 x {a.end_margin_mm:g} mm end margin",
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
-            lines += [f"  {_DERIVED_LABELS.get(k, k):<24} {_fmt(v)}" for k, v in a.derived.items() if k != "name"]
+            if a.segments:
+                for k, seg in enumerate(a.segments):
+                    lines += _segment_lines(k, seg)
+                continue
+            lines += _derived_lines(a.derived)
             lines += _model_lines(a.model)
             lines += [f"  adjustment: {s}" for s in a.adjustments]
         lines += ["", "DESIGN-RULE FINDINGS"]
@@ -284,16 +297,35 @@ class Worksheet:
 _DERIVED_LABELS = {"p0_kpa": "p0_tube_law_kpa"}
 
 
-def _model_lines(model: dict | None) -> list[str]:
+def _derived_lines(derived: dict, indent: str = "  ") -> list[str]:
+    return [f"{indent}{_DERIVED_LABELS.get(k, k):<24} {_fmt(v)}" for k, v in derived.items() if k != "name"]
+
+
+def _model_lines(model: dict | None, indent: str = "  ") -> list[str]:
     """The model block of one actuator: G, P0 with their sources, tube law, tube, notes."""
     if model is None:
         return []
     t = model["tube"]
-    return [f"  model G                  {model['g_mpa']:.6g} MPa ({model['g_source']})",
-            f"  model P0                 {model['p0_kpa']:.6g} kPa ({model['p0_source']})",
-            f"  model tube law           {model['tube_law']}",
-            f"  model tube               r_f {t['outer_radius_mm']:g} mm, d_f {t['inner_radius_mm']:g} mm, "
-            f"G_e {t['g_e_mpa']:g} MPa"] + [f"  model note: {n}" for n in model["notes"]]
+    return [f"{indent}model G                  {model['g_mpa']:.6g} MPa ({model['g_source']})",
+            f"{indent}model P0                 {model['p0_kpa']:.6g} kPa ({model['p0_source']})",
+            f"{indent}model tube law           {model['tube_law']}",
+            f"{indent}model tube               r_f {t['outer_radius_mm']:g} mm, d_f {t['inner_radius_mm']:g} mm, "
+            f"G_e {t['g_e_mpa']:g} MPa"] + [f"{indent}model note: {n}" for n in model["notes"]]
+
+
+def _segment_lines(k: int, seg: dict) -> list[str]:
+    """One segment's block: where it lies and its legs, the transition to the next, what was sewn, its model."""
+    legs_end = seg["first_leg_mm"] + seg["derived"]["length_mm"]
+    lines = [f"  SEGMENT {k} ({seg['pattern']}): path {seg['start_mm']:.2f} to {seg['start_mm'] + seg['length_mm']:.2f} mm,"
+             f" legs {seg['first_leg_mm']:.2f} to {legs_end:.2f} mm"]
+    if seg["transition_mm"] > 0.0 or seg["join_run_mm"] > 0.0:
+        lines.append(f"    transition to segment {k + 1}: {seg['transition_mm']:.2f} mm unbent, thread runs "
+                     f"{seg['join_run_mm']:.2f} mm along a rail")
+    lines += _derived_lines(seg["derived"], "    ")
+    lines += _model_lines(seg["model"], "    ")
+    if seg.get("model_error"):
+        lines.append(f"    no model: {seg['model_error']}")
+    return lines + [f"    adjustment: {s}" for s in seg["adjustments"]]
 
 
 def _fmt(v) -> str:
@@ -326,15 +358,19 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
     if act is None:
         return ActuatorSheet(f"A{k + 1}", "unknown", 0.0, 0.0, 0.0, n, top, bobbin, 0, {})
     if analysed is None:
+        from ...predict.analysis import SegmentAnalysis, segment_plans
         from ...predict.derived import derive
 
         derived, model = derive(act), None
+        segments = tuple(SegmentAnalysis(seg, derive(part), None).as_dict()
+                         for seg, part in zip(act.segments, segment_plans(act)))
     else:
         derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
+        segments = tuple(s.as_dict() for s in analysed.segments)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
     return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,
-                         len(extra), derived.as_dict(), tuple(act.adjustments), model)
+                         len(extra), derived.as_dict(), tuple(act.adjustments), model, segments)
 
 
 def _side(dx: float, dy: float) -> str:
