@@ -277,6 +277,8 @@ def test_size_bombs_for_every_reader(tmp_path):
     seg = "M 0 0 " + " ".join(f"L {i * 0.01:.2f} {(i % 2) * 0.01}" for i in range(1, lim.PATH_SEGMENTS + 1))
     (t / "segments.toml").write_text(design.format(seg))
     n_numbers = 2 + 2 * (lim.PATH_SEGMENTS * 7 // 2 + 1)
+    (t / "tubes.toml").write_text("".join(f'[[tube]]\npath_mm = "0,{i} 100,{i}"\n'
+                                          for i in range(lim.DESIGN_ACTUATORS + 1)))
     (t / "segments-tables.toml").write_text('[[actuator]]\nname = "A"\n' + "".join(
         '[[actuator.segment]]\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\nlength_mm = 5\n'
         for _ in range(lim.ACTUATOR_SEGMENTS + 1)))
@@ -321,6 +323,9 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("actuator-segments", ["check", f"{t}/segments-tables.toml"],
          f"{t}/segments-tables.toml: actuator[0].segment: an actuator must have at most {lim.ACTUATOR_SEGMENTS:,} "
          f"segments, got {lim.ACTUATOR_SEGMENTS + 1:,}"),
+        ("tube-tables", ["check", f"{t}/good.dst", "--tube", f"{t}/tubes.toml"],
+         f"{t}/tubes.toml: must have at most {lim.DESIGN_ACTUATORS:,} [[tube]] tables (one per actuator), "
+         f"got {lim.DESIGN_ACTUATORS + 1:,}"),
         ("svg-bytes", ZZ + ["-o", f"{t}/a.dst", "--path", str(big_svg)],
          f"{big_svg}: SVG file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
         ("svg-segments", ZZ + ["-o", f"{t}/a.dst", "--path", f"{t}/many.svg#t"],  # a move-to and the lines

@@ -58,7 +58,8 @@ import numpy as np
 
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
-from ...patterns.base.validate import MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, TEXT_FILE_BYTES, read_limited
+from ...patterns.base.validate import (DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, TEXT_FILE_BYTES,
+                                        read_limited)
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
@@ -313,6 +314,9 @@ def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dic
     entries = doc.get("tube")
     if not isinstance(entries, list) or not entries or not all(isinstance(t, dict) for t in entries):
         raise DesignFileError(f"{p}: needs at least one [[tube]] table with path_mm")
+    if len(entries) > DESIGN_ACTUATORS:
+        raise DesignFileError(f"{p}: must have at most {DESIGN_ACTUATORS:,} [[tube]] tables (one per actuator), "
+                              f"got {len(entries):,}")
     tubes = []
     for i, t in enumerate(entries):
         _unknown(t, _TUBE_KEYS, f"[[tube]] {i + 1}", p)
