@@ -79,6 +79,11 @@ def test_side_view_svg_states_carry_the_whole_strips_bend(tmp_path, capsys, hook
     for p, t in states:
         assert float(t) == pytest.approx(theta[float(p)], rel=1e-5)
     assert "A1 (3 segments)" in svg
+    assert svg.count('class="mark"') == 2 * len(states)  # where segment 0 meets 1 and 1 meets 2, in every state
+    starts = np.cumsum([0.0] + [length for length, _ in hook.actuators[0].bend_pieces()])
+    for m in pv.segment_boundaries_mm(hook.actuators[0]):  # each mark lies in an unbent transition
+        i = int(np.searchsorted(starts, m)) - 1
+        assert hook.actuators[0].bend_pieces()[i][1] == -1
 
 
 def test_bend_chart_has_the_whole_strip_and_one_series_per_segment(tmp_path, capsys, hook):

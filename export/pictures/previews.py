@@ -42,6 +42,7 @@ __all__ = [
     "shape_state",
     "piece_theta_deg",
     "sleeve_mm",
+    "segment_boundaries_mm",
     "model_caption",
     "actuator_series",
     "bend_series",
@@ -158,6 +159,14 @@ def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...
     return tuple(float(segment_theta_deg[k]) if k >= 0 else 0.0 for _, k in act.bend_pieces())
 
 
+def segment_boundaries_mm(act) -> tuple[float, ...]:
+    """Arc lengths where one segment gives way to the next [mm]: the middle of the unbent transition
+    between one segment's legs and the next's (``()`` for a single-pattern actuator)."""
+    segs = act.segments
+    return tuple((a.plan.first_leg_mm + a.derived.length_mm + b.plan.first_leg_mm) / 2.0
+                 for a, b in zip(segs, segs[1:]))
+
+
 def sleeve_mm(act) -> tuple[float, float]:
     """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
     segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
@@ -264,7 +273,8 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
         panels.append(SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(lengths),
                                 r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=tuple(t for _, t, _ in states),
                                 segment_lengths_mm=lengths,
-                                segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states)))
+                                segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states),
+                                marks_mm=segment_boundaries_mm(a)))
     return panels
 
 

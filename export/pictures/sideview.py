@@ -79,6 +79,9 @@ class SidePanel:
     segment_theta_deg : array-like, optional
         With ``segment_lengths_mm``: one row per pressure, the bend of each segment [deg]
         (``theta_deg`` is then their sum, the total bend).
+    marks_mm : array-like, optional
+        Arc lengths along the fabric line [mm] marked (open circles on the tube) in every
+        state, e.g. where one segment of a segmented actuator gives way to the next.
     """
 
     label: str
@@ -88,6 +91,7 @@ class SidePanel:
     theta_deg: tuple[float, ...]
     segment_lengths_mm: tuple[float, ...] = ()
     segment_theta_deg: tuple[tuple[float, ...], ...] = ()
+    marks_mm: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         check_range("length_mm", self.length_mm, low=0.0)
@@ -104,6 +108,10 @@ class SidePanel:
         if lengths and (rows.shape[0] != len(p) or abs(sum(lengths) - self.length_mm) > 1e-6):
             raise ParameterError(f"segment_theta_deg must have one row of {len(lengths)} angles per pressure "
                                  f"({len(p)}) and segment_lengths_mm must add up to length_mm {self.length_mm:g}")
+        marks = tuple(float(v) for v in np.asarray(self.marks_mm, dtype=np.float64).reshape(-1))
+        if not all(0.0 <= m <= self.length_mm for m in marks):
+            raise ParameterError(f"marks_mm must lie in [0, length_mm {self.length_mm:g}], got {marks}")
+        object.__setattr__(self, "marks_mm", marks)
         object.__setattr__(self, "segment_lengths_mm", lengths)
         object.__setattr__(self, "segment_theta_deg", tuple(tuple(float(v) for v in r) for r in rows) if lengths else ())
 
@@ -197,6 +205,10 @@ def _draw_panel(dwg, parent, panel: SidePanel, dx: float, dy: float, left: float
                            stroke=colour, stroke_width=0.25, **{"class": "tube"}))
         sg.add(dwg.polygon(_pts(_band(shape, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
                            stroke=colour, stroke_width=0.3, **{"class": "fabric"}))
+        if panel.marks_mm:
+            on_tube = shape.points(list(panel.marks_mm), [(0.0, r0)])[:, 0, :]
+            for x, y in _pts(np.column_stack([on_tube[:, 2], -on_tube[:, 0]]), dx, dy):
+                sg.add(dwg.circle((x, y), 0.9, fill="#fff", stroke=colour, stroke_width=0.35, **{"class": "mark"}))
         tip = _pts(shape_line_mm(shape, r0)[-1:], dx, dy)[0]
         sg.add(dwg.circle(tip, 1.0, fill=colour))
         sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
