@@ -306,6 +306,9 @@ def test_size_bombs_for_every_reader(tmp_path):
         ("csv-field", ["fit", f"{t}/field.csv", *FIT],
          f"'{t}/field.csv' line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
          f"(at most {lim.CSV_FIELD_CHARS:,} characters per field)"),
+        ("shape-csv-rows", ["design", "--target-shape", f"{t}/rows.csv", "--at-kpa", "200", "-o", f"{t}/d.toml"],
+         f"'{t}/rows.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{lim.CSV_ROWS + 1:,})"),
         ("marker-csv-field", ["fit", f"{t}/mfield.csv", *FIT, "--markers", "--markers-per-side", "3", "--sides", "1"],
          f"'{t}/mfield.csv' line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
          f"(at most {lim.CSV_FIELD_CHARS:,} characters per field)"),

@@ -85,8 +85,6 @@ def read_target_shape(ref: str):
     DesignFileError
         Unreadable file, missing header, a row that is not two numbers (named by line).
     """
-    import csv
-
     import numpy as np
 
     from ...patterns.base.errors import DesignFileError
@@ -96,18 +94,16 @@ def read_target_shape(ref: str):
         from ..files.svgfile import svg_centerline
 
         return np.asarray(svg_centerline(ref).points_mm, dtype=np.float64)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise DesignFileError(f"target shape {str(path)!r}: cannot read ({exc.__class__.__name__})") from None
-    rows = [r for r in csv.reader(text.splitlines()) if r and not r[0].lstrip().startswith("#")]
-    if not rows or [c.strip() for c in rows[0][:2]] != ["x_mm", "y_mm"]:
+    from ..files.calibfile import read_csv_table  # the size limits of every CSV reader
+
+    columns, rows = read_csv_table(path)
+    if "x_mm" not in columns or "y_mm" not in columns:
         raise DesignFileError(f"target shape {str(path)!r}: the first row must be the header x_mm,y_mm")
     points = []
-    for line, row in enumerate(rows[1:], start=2):
+    for line, row in rows:
         try:
-            x, y = (float(c) for c in row[:2])
-        except ValueError:
+            x, y = float(row[columns["x_mm"]]), float(row[columns["y_mm"]])
+        except (ValueError, IndexError):
             raise DesignFileError(f"target shape {str(path)!r} row {line}: x_mm,y_mm must be two numbers, "
                                   f"got {','.join(row)[:40]!r}") from None
         points.append((x, y))

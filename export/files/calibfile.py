@@ -86,6 +86,7 @@ __all__ = [
     "BendData",
     "MarkerData",
     "read_bend_csv",
+    "read_csv_table",
     "read_marker_csv",
     "read_calibration",
     "write_calibration",
@@ -134,8 +135,9 @@ class MarkerData:
     branch: tuple[str, ...] | None
 
 
-def _read_rows(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
-    """Header -> column index, and (line number, cells) of each data row.
+def read_csv_table(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
+    """Header -> column index, and (line number, cells) of each data row: the one CSV reader of the
+    commands (measurements, markers, target shapes); blank lines and ``#`` comments are skipped.
 
     The limits of :mod:`embroact.patterns.base.validate` hold before anything is parsed:
     file size (``CSV_FILE_BYTES``, read no further), data rows (``CSV_ROWS``), columns
@@ -237,7 +239,7 @@ def read_bend_csv(path) -> BendData:
     DesignFileError
         Unreadable or empty file, missing column, empty or non-numeric cell, bad branch.
     """
-    columns, rows = _read_rows(path)
+    columns, rows = read_csv_table(path)
     values = _columns(path, columns, rows, ("pressure_kpa", "angle_deg"))
     return BendData(frozen_array(values[:, 0]), frozen_array(values[:, 1]), _branches(path, columns, rows))
 
@@ -251,7 +253,7 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
         As :func:`read_bend_csv`, naming the first missing marker column.
     """
     check_count("n_markers", n_markers, low=1, high=CSV_COLUMNS // len(_AXES))
-    columns, rows = _read_rows(path)
+    columns, rows = read_csv_table(path)
     axes = _AXES if "m1_z" in columns else _AXES[:2]
     names = [f"m{i}_{ax}" for i in range(1, n_markers + 1) for ax in axes]
     values = _columns(path, columns, rows, ["pressure_kpa", *names])
