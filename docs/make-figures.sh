@@ -12,4 +12,6 @@ embroact preview stitches examples/three_actuators.toml -o docs/img/three_previe
 embroact design --target-shape examples/data/target_hook.csv --at-kpa 250 -o examples/designed_hook.toml \
     --svg docs/img/design_shape.svg > /dev/null
 embroact preview stitches examples/designed_hook.toml -o docs/img/design_stitches.svg > /dev/null
+embroact preview bend examples/designed_hook.toml -o docs/img/design_bend.svg > /dev/null
+embroact preview shape examples/designed_hook.toml -o docs/img/design_side.svg > /dev/null
 echo "figures written to docs/img"
