@@ -339,8 +339,10 @@ def test_a_segmented_actuator_shows_each_segments_bend(out_dir):
     chart = ET.fromstring(v["chart_svg"])
     series = {e.get("data-series") for e in chart.iter("{http://www.w3.org/2000/svg}polyline")
               if e.get("class") == "curve"}
-    assert series == {"0", "1"}  # one curve per segment
-    assert "segment 1" in v["chart_svg"] and v["side_svg"].startswith("<svg")
+    assert series == {"0", "1", "2"}  # the build's chart: the whole strip, then one curve per segment
+    assert "S whole strip" in v["chart_svg"] and "segment 1" in v["chart_svg"] and v["side_svg"].startswith("<svg")
+    assert len(chart.findall(".//{http://www.w3.org/2000/svg}circle[@class='pressure-dot']")) == 3
+    assert act["status"] == "BENDING"
 
 
 HOSTILE = ["nan", "inf", "-inf", "1e999", "abc", "", "  ", "0x10", "\x00", "7" * 400, -1e308]

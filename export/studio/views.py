@@ -50,22 +50,20 @@ def message_svg(text: str, *, width_px: int = 480, chars_per_line: int = 70) -> 
 
 
 def bend_at(analysis, pressure_kpa: float) -> list[dict]:
-    """Per actuator: bend [deg] and status at ``pressure_kpa`` (per segment too), or why there is none."""
+    """Per actuator: bend [deg] and status at ``pressure_kpa`` (per segment too), or why there is none.
+
+    A segmented actuator's bend and status are its whole strip's
+    (:func:`~embroact.predict.analysis.strip_curve`), as ``embroact predict`` gives them."""
     from ...predict.status import Status
 
     try:
-        per = analysis.segment_curves((float(pressure_kpa),))
+        whole = analysis.curves((float(pressure_kpa),))
     except EmbroactError as exc:
         return [{"name": a.name, "theta_deg": None, "status": None, "segment_theta_deg": [],
                  "model_error": a.model_error or str(exc)} for a in analysis.actuators]
-    out = []
-    for a, curves in zip(analysis.actuators, per):
-        thetas = [float(c.theta_deg[0]) for c in curves]
-        statuses = [Status(int(c.status[0])).name for c in curves]
-        worst = next((s for s in statuses if s not in ("BENDING", "INFLATION")), statuses[0])
-        out.append({"name": a.name, "theta_deg": float(np.sum(thetas)), "status": worst,
-                    "segment_theta_deg": thetas if a.segments else [], "model_error": None})
-    return out
+    return [{"name": a.name, "theta_deg": float(c.theta_deg[0]), "status": Status(int(c.status[0])).name,
+             "segment_theta_deg": [float(sc.theta_deg[0]) for sc in c.segments] if a.segments else [],
+             "model_error": None} for a, c in zip(analysis.actuators, whole)]
 
 
 def stitches_svg(plan, findings) -> str:
@@ -90,38 +88,17 @@ def stitches_svg(plan, findings) -> str:
     return svg[: svg.rfind("</svg>")] + layer + "</svg>"
 
 
-def _segment_series(analysis):
-    """Chart series and title of a design with segmented actuators: one series per segment
-    (:meth:`~embroact.predict.analysis.DesignAnalysis.segment_curves`; a single-pattern actuator: its curve)."""
-    from ..pictures.chart import Series
-
-    series = []
-    for a, curves in zip(analysis.actuators, analysis.segment_curves()):
-        parts = a.segments or (a,)
-        for k, (part, c) in enumerate(zip(parts, curves)):
-            d = part.derived
-            name = f"{a.name} segment {k}" if a.segments else a.name
-            series.append(Series.from_curve(c, label=f"{name} ({d.pattern}, w {d.width_mm:.1f} mm; G {part.model.g_mpa:.4g}"
-                                                     f" MPa, P0 {part.model.p0_kpa:.4g} kPa)", p0_kpa=part.model.p0_kpa))
-    return series, f"{analysis.plan.name}: predicted bend per segment"
-
-
 def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """The build's bend chart (:func:`~embroact.export.pictures.previews.bend_chart`) with the slider's
-    pressure as a vertical line and each actuator's bend there as a dot; a design with segmented
-    actuators gets one curve (and dot) per segment."""
+    pressure as a vertical line and each actuator's bend there as a dot; a segmented actuator has
+    the build's curve (and dot) for its whole strip and for each segment."""
     from ..pictures import previews as pv
-    from ..pictures.chart import bend_chart_svg, chart_scale
+    from ..pictures.chart import chart_scale
 
     try:
-        if any(a.segments for a in analysis.actuators):
-            series, title = _segment_series(analysis)
-            svg = bend_chart_svg(series, title=title)
-            thetas = [t for b in bends for t in (b["segment_theta_deg"] or [b["theta_deg"]])]
-        else:
-            curves = analysis.curves()
-            series, svg = pv.bend_series(analysis, curves), pv.bend_chart(analysis, curves)
-            thetas = [b["theta_deg"] for b in bends]
+        curves = analysis.curves()
+        series, svg = pv.bend_series(analysis, curves), pv.bend_chart(analysis, curves)
+        thetas = [t for b in bends for t in [b["theta_deg"], *b["segment_theta_deg"]]]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")
     sc = chart_scale(series)
