@@ -526,8 +526,6 @@ class DesignAnalysis:
         >>> analyse(default_design()).bands([100.0])   # the built-in set has no covariance
         (None,)
         """
-        from .uncertainty import theta_band
-
         p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
         key = ("band", p, method, measurement)
         if key not in self._curves:
@@ -536,11 +534,7 @@ class DesignAnalysis:
                 if a.segments:  # no band is claimed for a sum of segments
                     out.append(None)
                     continue
-                cal = a.choice.calibration if a.choice is not None else None
-                given = a.spec.model.g_mpa is not None or a.spec.model.p0_kpa is not None
-                usable = cal is not None and cal.covariance and not given and set(cal.fitted) <= {"g_mpa", "p0_kpa"}
-                out.append(theta_band(a.model, p, cal.fitted, cal.covariance, method=method, measurement=measurement)
-                           if cal is not None and usable else None)
+                out.append(_band(a, p, method, measurement))
             self._curves[key] = tuple(out)
         return self._curves[key]
 
@@ -566,6 +560,27 @@ class DesignAnalysis:
 
     #: Actuator table, stitch preview, bend chart and side view in Jupyter (registered by ``embroact``).
     _repr_html_ = repr_html
+
+
+def _band(act: ActuatorAnalysis, pressures_kpa: tuple, method: str, measurement) -> Band | None:
+    """The 1-sigma band of one actuator's fitted calibration point, or None (:meth:`DesignAnalysis.bands`).
+
+    The model's G and P0 must both be the point's: fitted as (G, P0), or as (G, G_e) with P0 the tube
+    law's at the fitted modulus (its band acts through P0, scaled by that modulus, not the design's).
+    """
+    from .uncertainty import theta_band
+
+    choice = act.choice
+    cal = choice.calibration if choice is not None else None
+    if cal is None or not cal.covariance or not (choice.g_source.startswith("calibration")
+                                                  and choice.p0_source.startswith("calibration")):
+        return None  # G or P0 given, or P0 from the geometry: not the fitted pair
+    model = act.model
+    if set(cal.fitted) <= {"g_mpa", "g_e_mpa"} and "g_e_mpa" in cal.fitted and cal.g_e_mpa is not None:
+        model = dataclasses.replace(model, g_e_mpa=cal.g_e_mpa)
+    elif not set(cal.fitted) <= {"g_mpa", "p0_kpa"}:
+        return None
+    return theta_band(model, pressures_kpa, cal.fitted, cal.covariance, method=method, measurement=measurement)
 
 
 def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = None, **overrides) -> Design:

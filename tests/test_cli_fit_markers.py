@@ -306,3 +306,31 @@ def test_old_and_new_files_read(tmp_path):
     assert full.measurement == "markers: 1 rows of 5, 12.5 mm apart, first 3 mm from the clamped end, thread side"
     write_calibration(tmp_path / "new.toml", full)
     assert read_calibration(tmp_path / "new.toml") == full
+
+
+def test_thick_wall_calibration_band_acts_through_p0_at_the_fitted_mu(capsys, tmp_path):
+    """A (G, mu) fit's band: mu moves P0 in proportion (P0 = law(r0; mu)), checked by finite differences
+    of predict at shifted G and P0 = P0 (1 + dmu/mu); the design's G_e (0.13) plays no part."""
+    theta = _theta(capsys, ZIGZAG, G_MPA, P0_KPA, UP)
+    noisy = theta + np.random.default_rng(5).normal(0.0, 1.0, theta.shape) * (theta > 0)
+    angles = tmp_path / "a.csv"
+    angles.write_text("pressure_kpa,angle_deg\n" + "".join(f"{p:g},{float(t)!r}\n" for p, t in zip(UP, noisy)))
+    cal = tmp_path / "thick.toml"
+    assert main(["fit", str(angles), "--pattern", "zigzag", "--width-mm", "7", "--branch", "loading",
+                 "--tube-law", "thick-wall", "--fit", "g,mu", "-o", str(cal)]) == 0
+    capsys.readouterr()
+    (point,) = tomllib.loads(cal.read_text())["points"]
+    pressures = [120.0, 200.0, 280.0]
+    grid = ",".join(f"{p:g}" for p in pressures)
+    doc = _json(capsys, "predict", *ZIGZAG, "--calibration", str(cal), "--tube-law", "thick-wall",
+                "--pressure-kpa", grid, "--json")
+    assert doc["band"]["parameters"] == ["g_mpa", "g_e_mpa"]
+    g, p0, mu = point["g_mpa"], point["p0_kpa"], point["g_e_mpa"]
+    assert doc["model"]["p0_kpa"] == pytest.approx(p0, rel=1e-12)
+    hg, hmu = 1e-4 * g, 1e-4 * mu
+    d_g = (_theta(capsys, ZIGZAG, g + hg, p0, pressures) - _theta(capsys, ZIGZAG, g - hg, p0, pressures)) / (2 * hg)
+    d_mu = (_theta(capsys, ZIGZAG, g, p0 * (1 + hmu / mu), pressures)
+            - _theta(capsys, ZIGZAG, g, p0 * (1 - hmu / mu), pressures)) / (2 * hmu)
+    jac = np.stack([d_g, d_mu], axis=1)
+    sd = np.sqrt(np.einsum("pi,ij,pj->p", jac, np.array(point["covariance"]), jac))
+    assert np.allclose(doc["band"]["theta_sd_deg"], sd, rtol=1e-4) and sd.min() > 0.05
