@@ -122,7 +122,9 @@ def _pieces(act, bend: dict) -> tuple[tuple[float, ...], tuple[float, ...]]:
 
 
 def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
-    """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure."""
+    """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure
+    (a segmented actuator drawn as the build draws it: widest sleeve, segment boundaries marked)."""
+    from ..pictures import previews as pv
     from ..pictures.sideview import SidePanel, side_view_svg
 
     if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
@@ -133,9 +135,9 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         lengths, thetas = _pieces(a, b)
         states = (0.0, pressure_kpa) if pressure_kpa > 0 else (0.0,)
         rows = [[0.0] * len(lengths), list(thetas)][: len(states)]
-        panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=a.derived.r0_mm, pressure_kpa=states,
+        panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=pv.sleeve_mm(a)[1], pressure_kpa=states,
                                 theta_deg=(0.0, b["theta_deg"])[: len(states)], segment_lengths_mm=tuple(lengths),
-                                segment_theta_deg=tuple(tuple(r) for r in rows)))
+                                segment_theta_deg=tuple(tuple(r) for r in rows), marks_mm=pv.segment_boundaries_mm(a)))
     return side_view_svg(panels, title=f"Side view at {pressure_kpa:g} kPa")
 
 
@@ -143,7 +145,7 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """The 3D picture (:func:`~embroact.export.pictures.meshview.mesh_svg`) of every actuator at the slider's pressure."""
     from ..pictures.mesh import PlanarPath, actuator_mesh
     from ..pictures.meshview import mesh_svg
-    from ..pictures.previews import shape3d_title
+    from ..pictures.previews import shape3d_title, sleeve_mm
 
     if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
         return message_svg("no 3D view: the model gives no finite bend here")
@@ -153,8 +155,9 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         if a.segments:
             lengths, thetas = _pieces(a, b)
             segs = {"segment_lengths_mm": lengths, "segment_theta_deg": thetas}
+        width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), b["theta_deg"],
-                                    width_mm=a.derived.width_mm, r0_mm=a.derived.r0_mm,
+                                    width_mm=width, r0_mm=r0,
                                     tolerance_mm=SHAPE3D_TOLERANCE_MM, name=a.name, measure=False, **segs))
     return mesh_svg(shapes, width_px=SHAPE3D_WIDTH_PX,
                     title=shape3d_title({a.name: pressure_kpa for a in analysis.actuators}))
