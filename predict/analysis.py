@@ -571,10 +571,11 @@ def _band(act: ActuatorAnalysis, pressures_kpa: tuple, method: str, measurement)
     from .uncertainty import theta_band
 
     choice = act.choice
-    cal = choice.calibration if choice is not None else None
-    if cal is None or not cal.covariance or not (choice.g_source.startswith("calibration")
-                                                  and choice.p0_source.startswith("calibration")):
+    if choice is None or choice.calibration is None or not choice.calibration.covariance:
+        return None
+    if not (choice.g_source.startswith("calibration") and choice.p0_source.startswith("calibration")):
         return None  # G or P0 given, or P0 from the geometry: not the fitted pair
+    cal = choice.calibration
     model = act.model
     if set(cal.fitted) <= {"g_mpa", "g_e_mpa"} and "g_e_mpa" in cal.fitted and cal.g_e_mpa is not None:
         model = dataclasses.replace(model, g_e_mpa=cal.g_e_mpa)
