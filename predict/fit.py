@@ -632,6 +632,9 @@ def fit_design(
         raise ParameterError(f"branch must be one of {', '.join(map(repr, BRANCH_CHOICES))}, got {branch!r}")
     if measurement is not None and not isinstance(measurement, MarkerLayout):
         raise ParameterError(f"measurement must be a MarkerLayout or None (whole-strip angle), got {measurement!r}")
+    if measurement is not None and measurement.offset_mm >= derived.length_mm:
+        raise ParameterError(f"marker offset_mm must be below the bent length l0 = {derived.length_mm:.4g} mm "
+                             f"(markers beyond it lie on the straight end and read no bend), got {measurement.offset_mm:g}")
     check_tube_law(tube_law)
     names = _check_fit_names(fit)
     if "g_mpa" not in names and g_mpa is None:

@@ -181,6 +181,8 @@ def test_thick_wall_fit_records_mu(capsys, tmp_path):
     (["--markers", "--tangent", "1,0,0"], "--tangent needs --normal"),
     (["--markers", "--normal", "0,1,0", "--tangent", "1,x"], "--tangent must be 2 or 3 comma-separated numbers"),
     (["--normal", "0,1,0"], "--normal and --tangent orient marker coordinates: they need --markers"),
+    (["--measurement", "markers", "--marker-offset-mm", "100"],
+     "marker offset_mm must be below the bent length l0 = 100 mm (markers beyond it lie on the straight end"),
 ])
 def test_bad_layout_flags_are_one_line(capsys, tmp_path, flags, message):
     data = tmp_path / "a.csv"
