@@ -172,6 +172,11 @@ def test_thick_wall_fit_records_mu(capsys, tmp_path):
     # appending whole-strip data fitted with the other law to this set is refused in one line
     assert main(["fit", str(angles), "--pattern", "zigzag", "--width-mm", "7", "-o", str(cal), "--append"]) == 2
     assert "--tube-law paper differs from the set's 'thick-wall'" in capsys.readouterr().err
+    # ... and so are marker sums appended to a set of whole-strip angles
+    assert main(["fit", str(angles), "--pattern", "zigzag", "--width-mm", "7", "-o", str(cal), "--append",
+                 "--tube-law", "thick-wall", "--fit", "g,mu", "--measurement", "markers"]) == 2
+    err = capsys.readouterr().err
+    assert "the measurement (markers: 2 rows of 7, 10 mm apart" in err and "differs from the set's (whole-strip)" in err
 
 
 @pytest.mark.parametrize("flags, message", [

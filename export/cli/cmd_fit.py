@@ -194,8 +194,8 @@ def _write_set(args, act, results, layout):
         if old.tube_law != args.tube_law:
             raise ParameterError(f"--tube-law {args.tube_law} differs from the set's {old.tube_law!r} in {args.output!r}")
         if old.marker_layout != layout:
-            was = "whole-strip angles" if old.marker_layout is None else old.marker_layout.label
-            raise ParameterError(f"the measurement differs from the set's ({was}) in {args.output!r}")
+            now = "whole-strip" if layout is None else layout.label
+            raise ParameterError(f"the measurement ({now}) differs from the set's ({old.measurement}) in {args.output!r}")
         cset = old.with_points(points)
     else:
         cset = CalibrationSet(name, points, args.description, _materials(args.material), tube=tube,
