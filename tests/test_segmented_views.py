@@ -210,3 +210,12 @@ def test_tight_sleeve_is_checked_on_every_segment():
         assert f"by only {_r0(w) - 1.5:.3f} mm" in f.message
     starts = [s.plan.first_leg_mm for s in a.actuators[0].segments[1:]]
     assert [float(f.xy_mm[0]) for f in found] == pytest.approx(starts, abs=1e-9)  # where each segment's legs start
+
+
+def test_preview_mesh_json_gives_each_segments_bend(tmp_path, capsys, hook):
+    out = tmp_path / "m.glb"
+    assert main(["preview", "mesh", str(HOOK), "-o", str(out), "--shape-pressure-kpa", str(AT_KPA), "--json"]) == 0
+    (shape,) = json.loads(capsys.readouterr().out)["shapes"]
+    want = [float(c.theta_deg[0]) for c in hook.segment_curves([AT_KPA])[0]]
+    assert shape["segment_theta_deg"] == pytest.approx(want, abs=1e-9)
+    assert shape["theta_deg"] == pytest.approx(sum(want), abs=1e-9) and shape["pressure_kpa"] == AT_KPA
