@@ -47,7 +47,7 @@ import signal
 import tempfile
 import threading
 from pathlib import Path
-from typing import Iterable, Mapping
+from typing import Iterable, Iterator, Mapping
 
 from ...patterns.base.errors import ExportError, ParameterError
 
@@ -176,7 +176,7 @@ def _backup(p: Path) -> str | None:
 
 
 @contextlib.contextmanager
-def _signals_held():
+def _signals_held() -> Iterator[None]:
     """Hold SIGINT and SIGTERM back while the files are renamed; deliver them afterwards.
 
     Python runs signal handlers in the main thread whichever thread the signal reached, so
