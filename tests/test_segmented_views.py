@@ -219,3 +219,8 @@ def test_preview_mesh_json_gives_each_segments_bend(tmp_path, capsys, hook):
     want = [float(c.theta_deg[0]) for c in hook.segment_curves([AT_KPA])[0]]
     assert shape["segment_theta_deg"] == pytest.approx(want, abs=1e-9)
     assert shape["theta_deg"] == pytest.approx(sum(want), abs=1e-9) and shape["pressure_kpa"] == AT_KPA
+
+
+def test_a_segmented_actuator_needs_its_whole_strip_curve(hook):
+    with pytest.raises(Exception, match=r"actuator 'A1' has 3 segments: its curve must be its whole strip"):
+        pv.render_previews(hook, [hook.segment_curves()[0][0]], mesh_suffix=None)

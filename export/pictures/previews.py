@@ -323,6 +323,10 @@ def _check_inputs(analysis, curves, side_states) -> None:
     n = len(analysis.actuators)
     if not n or n != len(curves):
         raise ParameterError(f"need one curve per actuator ({n}), got {len(curves)}")
+    for a, c in zip(analysis.actuators, curves):
+        if a.segments and len(getattr(c, "segments", ())) != len(a.segments):
+            raise ParameterError(f"actuator {a.name!r} has {len(a.segments)} segments: its curve must be its whole "
+                                 f"strip (DesignAnalysis.curves), got {type(c).__name__}")
     check_side_states(side_states)
 
 
