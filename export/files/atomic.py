@@ -187,18 +187,19 @@ def _signals_held() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    pending: list[int] = []
-    old = {s: signal.signal(s, lambda signum, frame: pending.append(signum)) for s in (signal.SIGINT, signal.SIGTERM)}
+    pending: list[signal.Signals] = []
+    old = {s: signal.signal(s, lambda signum, frame: pending.append(signal.Signals(signum)))
+           for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
         for s, handler in old.items():
             signal.signal(s, handler)
         if pending:
-            handler = old[pending[0]]
-            if callable(handler):
-                handler(pending[0], None)
-            elif handler == signal.SIG_DFL:
+            first = old[pending[0]]
+            if callable(first):
+                first(pending[0], None)
+            elif first == signal.SIG_DFL:
                 signal.raise_signal(pending[0])
 
 
