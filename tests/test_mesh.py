@@ -224,3 +224,14 @@ def test_picture_draws_front_faces_only_and_is_stable():
     assert 0.3 * total < len(polys) < 0.7 * total
     with pytest.raises(ParameterError, match="elevation_deg must be in"):
         mesh_svg(m, elevation_deg=95.0)
+
+
+def test_default_tolerance_coarsens_to_the_triangle_limit_an_asked_one_is_refused():
+    from embroact.export.pictures.mesh import MESH_MAX_TRIANGLES
+
+    long_path = PlanarPath.straight(10_000.0)  # a 10 m strip wound 3000 deg: far more rings than the limit allows
+    with pytest.raises(ParameterError, match=r"tolerance_mm=0.05 would make .* use tolerance_mm >= "):
+        actuator_mesh(long_path, 3000.0, width_mm=W, r0_mm=R0, tolerance_mm=0.05, measure=False)
+    m = actuator_mesh(long_path, 3000.0, width_mm=W, r0_mm=R0, tolerance_mm=0.05, measure=False, coarsen=True)
+    # the result says what it used; the limit is judged on the mesh's estimated size (within tens of percent)
+    assert m.tolerance_mm > 0.05 and m.triangle_count < 1.5 * MESH_MAX_TRIANGLES

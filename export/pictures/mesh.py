@@ -280,7 +280,7 @@ class ShapeMesh:
         """The same shape meshed at another chordal tolerance (a picture's, say)."""
         w, r0, strip = self.section_mm
         return actuator_mesh(self.bent.path, self.theta_deg, width_mm=w, r0_mm=r0, strip_width_mm=strip,
-                             tolerance_mm=tolerance_mm, name=self.name, measure=measure,
+                             tolerance_mm=tolerance_mm, name=self.name, measure=measure, coarsen=True,
                              segment_lengths_mm=self.bent.segment_lengths_mm,
                              segment_theta_deg=self.bent.segment_theta_deg)
 
@@ -362,14 +362,23 @@ def _triangle_bound(bent: BentPath, r0: float, extent: float, tol: float) -> flo
     return 2.0 * rings * max(_MIN_TUBE_SEGMENTS, math.pi / a + 1.0)
 
 
-def _check_triangles(bent: BentPath, r0: float, extent: float, tol: float, name: str) -> None:
-    """Refuse a tolerance whose mesh would exceed :data:`MESH_MAX_TRIANGLES` (one line)."""
-    n = _triangle_bound(bent, r0, extent, tol)
-    if n <= MESH_MAX_TRIANGLES:
-        return
+def _fitting_tolerance(bent: BentPath, r0: float, extent: float, tol: float) -> float:
+    """The smallest tolerance from ``tol`` up (in 1.25x steps, at most 10 mm) whose mesh fits :data:`MESH_MAX_TRIANGLES`."""
     fit = tol  # the count goes as 1/tol (rings and segments each as 1/sqrt(tol))
     while _triangle_bound(bent, r0, extent, fit) > MESH_MAX_TRIANGLES and fit < 10.0:
         fit = min(10.0, fit * 1.25 * min(_triangle_bound(bent, r0, extent, fit) / MESH_MAX_TRIANGLES, 1e12))
+    return fit
+
+
+def _check_triangles(bent: BentPath, r0: float, extent: float, tol: float, name: str, *, coarsen: bool) -> float:
+    """The tolerance to mesh at: ``tol``, or with ``coarsen`` the smallest that fits :data:`MESH_MAX_TRIANGLES`;
+    without ``coarsen`` a tolerance whose mesh would exceed the limit is refused (one line)."""
+    n = _triangle_bound(bent, r0, extent, tol)
+    if n <= MESH_MAX_TRIANGLES:
+        return tol
+    fit = _fitting_tolerance(bent, r0, extent, tol)
+    if coarsen:
+        return fit
     about = "more than 1e308" if math.isinf(n) else f"about {n:.3g}"
     raise ParameterError(f"tolerance_mm={tol:g} would make {about} triangles for {name!r}, more than "
                          f"the limit {MESH_MAX_TRIANGLES:,}; use tolerance_mm >= {fit:.2g}")
@@ -463,6 +472,7 @@ def actuator_mesh(
     measure: bool = True,
     segment_lengths_mm=(),
     segment_theta_deg=(),
+    coarsen: bool = False,
 ) -> ShapeMesh:
     """Mesh of the actuator bent by ``theta_deg``, with its realised deviation measured.
 
@@ -488,6 +498,11 @@ def actuator_mesh(
     segment_lengths_mm, segment_theta_deg : sequence of float, optional
         A segmented actuator: each segment's length along the path [mm] and its own bend
         [deg] (``theta_deg`` is then their sum); default one segment bent uniformly.
+    coarsen : bool
+        When the mesh at ``tolerance_mm`` would exceed :data:`MESH_MAX_TRIANGLES` (a long path at the
+        default tolerance), mesh at the smallest tolerance that fits instead of refusing; the result's
+        ``tolerance_mm`` says which was used. For the default tolerance; a tolerance the user asked for
+        is refused instead (``coarsen=False``).
 
     Returns
     -------
@@ -502,7 +517,7 @@ def actuator_mesh(
     half = strip / 2.0
     bent = (BentPath.from_segments(path, segment_lengths_mm, segment_theta_deg) if len(segment_lengths_mm)
             else BentPath.from_theta(path, theta_deg))
-    _check_triangles(bent, r0, max(half, 2.0 * r0), tol, name)
+    tol = _check_triangles(bent, r0, max(half, 2.0 * r0), tol, name, coarsen=coarsen)
     rb = RAIL_BAND_WIDTH_MM / 2.0
     profiles = [
         (_rect("fabric", -half, half, -FABRIC_THICKNESS_MM, 0.0), "fabric"),

@@ -290,7 +290,7 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
                   "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
         width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
-                                    tolerance_mm=tol, name=a.name, **chain))
+                                    tolerance_mm=tol, name=a.name, coarsen=tolerance_mm is None, **chain))
         pressures[a.name] = p
     return shapes, pressures
 
