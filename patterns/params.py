@@ -44,8 +44,8 @@ class Tube:
     Examples
     --------
     >>> t = Tube()                      # the paper's tube: r_f 1.5 mm, d_f 1.0 mm
-    >>> t.corridor_radius_mm, t.wall_constant_mm2
-    (1.8, 1.25)
+    >>> t.corridor_radius_mm
+    1.8
     >>> Tube(inner_radius_mm=2.0)
     Traceback (most recent call last):
     ...
@@ -73,11 +73,6 @@ class Tube:
     def corridor_radius_mm(self) -> float:
         """Half width of the forbidden corridor around the centerline [mm]."""
         return self.outer_radius_mm + self.clearance_mm
-
-    @property
-    def wall_constant_mm2(self) -> float:
-        """c = r_f^2 - d_f^2 [mm^2], the wall's cross-section area over pi."""
-        return self.outer_radius_mm**2 - self.inner_radius_mm**2
 
 
 @dataclass(frozen=True, slots=True)

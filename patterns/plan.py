@@ -294,20 +294,6 @@ class StitchPlan:
         """
         return int(np.count_nonzero(self.commands == command))
 
-    def needle_mask(self) -> np.ndarray:
-        """Boolean mask of records where the needle goes through the fabric (STITCH).
-
-        Returns
-        -------
-        ndarray of bool, shape (n,)
-
-        Examples
-        --------
-        >>> StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (5, 0, Command.JUMP, Role.TRAVEL)]).needle_mask().tolist()
-        [True, False]
-        """
-        return self.commands == Command.STITCH
-
     def bounds_mm(self) -> tuple[float, float, float, float]:
         """(xmin, ymin, xmax, ymax) over all records [mm].
 

@@ -84,8 +84,6 @@ def parse_d(d: str) -> "svgelements.Path":
     >>> [type(s).__name__ for s in parse_d("M 0 0 C 1 1 2 1 3 0 a 2 2 0 0 0 4 0")]
     ['Move', 'CubicBezier', 'Arc']
     """
-    import svgelements
-
     if not isinstance(d, str) or not d.strip():
         raise PathError(f"SVG path must be a non-empty string, got {d!r}")
     if ".svg" in d.lower():

@@ -167,8 +167,6 @@ class MachinePattern:
     format : str
     split_legs : int
         Legs split into several stitches (only with ``split_long=True``).
-    extra_needle_points : int
-        Needle points added by splitting.
     origin_mm : tuple of float
         Plan position of the file's origin [mm, y up]: (0, 0) except for formats
         written from their first needle point (VP3).
@@ -177,7 +175,6 @@ class MachinePattern:
     pattern: Any
     format: str
     split_legs: int
-    extra_needle_points: int
     origin_mm: tuple[float, float] = (0.0, 0.0)
 
 
@@ -431,7 +428,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     origin = _file_origin(plan, units) if fmt.first_at_origin else np.zeros(2, np.int64)
     units = units - origin
     commands = plan.commands.tolist()
-    split = extra = 0
+    split = 0
     threads: dict[int, int] = {}
     lead_block = False  # colour formats: the first actuator's placement line is a colour block of its own
     pending: np.ndarray | None = None  # travel target of a run of plan JUMPs, written as one move
@@ -471,7 +468,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
                 b.travel(p, i)  # first needle point: a frame move, never a stitch from the origin
             if int(np.abs(p - b.pos).max()) > lim:
                 pts = _split_leg(b.pos, p, lim, _forbidden_t(plan, k, plan.xy_mm[i - 1], plan.xy_mm[i]))
-                split, extra = split + 1, extra + len(pts) - 1
+                split += 1
             else:
                 pts = [p]
             for q in pts:
@@ -502,5 +499,5 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         t.brand = "embroact"
         b.pattern.add_thread(t)
     b.pattern.metadata("name", ascii_label(plan.name))
-    return MachinePattern(b.pattern, fmt.name, split, extra,
+    return MachinePattern(b.pattern, fmt.name, split,
                           (float(origin[0]) / UNITS_PER_MM, -float(origin[1]) / UNITS_PER_MM))
