@@ -66,7 +66,7 @@ from ..patterns.base.choices import check_choice
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
-from ..patterns.kinds import pattern_kind
+from ..patterns.kinds import PATTERN_KINDS, pattern_kind
 from .markers import MarkerLayout
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -90,7 +90,7 @@ __all__ = [
     "model_for",
 ]
 
-PATTERNS = ("zigzag", "cross")
+PATTERNS = PATTERN_KINDS.names()
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
 
@@ -174,7 +174,7 @@ class CalibrationPoint:
         check_range("width_mm", self.width_mm, low=0.0, high=200.0)
         check_range("g_mpa", self.g_mpa, low=0.0, high=_G_MAX_MPA)
         check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=_P_MAX_KPA)
-        if self.pattern == "cross":
+        if pattern_kind(self.pattern).has_angle:
             check_range("angle_deg", self.angle_deg, low=0.0, high=90.0)
         else:
             check_range("angle_deg", self.angle_deg, low=-90.0, high=90.0)
@@ -204,8 +204,8 @@ class CalibrationPoint:
 
     @property
     def coordinate(self) -> float:
-        """The interpolation coordinate: width for zigzag, angle for cross."""
-        return self.angle_deg if self.pattern == "cross" else self.width_mm
+        """The interpolation coordinate, the pattern's calibration axis: width for zigzag, angle for cross."""
+        return getattr(self, pattern_kind(self.pattern).calibration_axis)
 
     def same_design(self, other: "CalibrationPoint") -> bool:
         """True when ``other`` is for the same pattern, width, angle and branch."""
@@ -495,8 +495,9 @@ def get_set(name: str, sets: Iterable[CalibrationSet] | None = None) -> Calibrat
     return found
 
 
-def _coordinate_tolerance(pattern: str) -> float:
-    return DEFAULT_TOLERANCES.angle_deg if pattern == "cross" else DEFAULT_TOLERANCES.spacing_rel
+def _coordinate_tolerance(axis: str, value: float) -> float:
+    """How far a point's coordinate on ``axis`` may lie from ``value`` and still be the same design."""
+    return DEFAULT_TOLERANCES.angle_deg if axis == "angle_deg" else DEFAULT_TOLERANCES.spacing_rel * value
 
 
 def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[list, list[str]]:
@@ -506,11 +507,11 @@ def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -
             f"calibration set {cset.name!r} has no {pattern} points for the {branch} branch"
         )
     notes: list[str] = []
-    if pattern == "cross":
+    if pattern_kind(pattern).calibration_axis != "width_mm":  # points along another axis share one width
         nearest = min(pts, key=lambda p: abs(p.width_mm - width)).width_mm
         pts = [p for p in pts if p.width_mm == nearest]
         if abs(nearest - width) > DEFAULT_TOLERANCES.spacing_rel * width:
-            notes.append(f"width_mm {width:g} differs from the calibrated cross width {nearest:g}")
+            notes.append(f"width_mm {width:g} differs from the calibrated {pattern} width {nearest:g}")
     # one point per coordinate: an exact branch match wins over "both"; equals are averaged
     by_coord: dict[float, list[CalibrationPoint]] = {}
     for p in pts:
@@ -588,9 +589,10 @@ def lookup(
     _choice("branch", branch, BRANCHES)
     _choice("extrapolation", extrapolation, EXTRAPOLATIONS)
     w = check_range("width_mm", width_mm, low=0.0, high=200.0)
-    if pattern == "cross":
+    axis = pattern_kind(pattern).calibration_axis
+    if axis == "angle_deg":
         if angle_deg is None:
-            raise ParameterError("angle_deg is required for a cross design, got None")
+            raise ParameterError(f"angle_deg is required for a {pattern} design, got None")
         value = check_range("angle_deg", angle_deg, low=0.0, high=90.0)
     else:
         value = w
@@ -603,7 +605,7 @@ def lookup(
     has_ge = all(v is not None for group in ge_all for v in group)
     ge = [_mean(group) for group in ge_all] if has_ge else None
 
-    tol = _coordinate_tolerance(pattern) * (1.0 if pattern == "cross" else value)
+    tol = _coordinate_tolerance(axis, value)
     hit = [i for i, x in enumerate(xs) if abs(x - value) <= tol]
     extrapolated = value < xs[0] - tol or value > xs[-1] + tol
     fitted, cov = (), ()
@@ -617,7 +619,7 @@ def lookup(
         g_v = _interpolate(xs, g, value, extrapolation)
         p0_v = _interpolate(xs, p0, value, extrapolation)
         ge_v = _interpolate(xs, ge, value, extrapolation) if ge else None
-    label = f"calibration {name!r} extrapolated linearly to {pattern} {'angle_deg' if pattern == 'cross' else 'width_mm'}={value:g}"
+    label = f"calibration {name!r} extrapolated linearly to {pattern} {axis}={value:g}"
     if not 0.0 < g_v <= _G_MAX_MPA or not 0.0 <= p0_v <= _P_MAX_KPA or (ge_v is not None and ge_v <= 0.0):
         raise ModelDomainError(
             f"{label} gives g_mpa={g_v:.4g}, p0_kpa={p0_v:.4g} outside (0, {_G_MAX_MPA:g}] / [0, {_P_MAX_KPA:g}]; "
@@ -630,7 +632,7 @@ def lookup(
         g_mpa=float(g_v),
         p0_kpa=float(p0_v),
         g_e_mpa=None if ge_v is None else float(ge_v),
-        parameter="angle_deg" if pattern == "cross" else "width_mm",
+        parameter=axis,
         value=value,
         range_low=float(xs[0]),
         range_high=float(xs[-1]),

@@ -80,6 +80,7 @@ from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA
+from .kinds import MODEL_KINDS, model_kind
 from .status import Status, status_names
 from .tubelaws import check_tube_law, pressure_kpa, radius_mm, transition_pressure_kpa
 from .validity import apply_limits
@@ -165,8 +166,8 @@ class ActuatorModel:
     calibration: str = "given"
 
     def __post_init__(self) -> None:
-        if self.pattern not in ("zigzag", "cross"):
-            raise ParameterError(f"pattern must be one of zigzag, cross, got {self.pattern!r}")
+        if not isinstance(self.pattern, str) or self.pattern not in MODEL_KINDS:
+            raise ParameterError(f"pattern must be one of {', '.join(MODEL_KINDS)}, got {self.pattern!r}")
         for name, hi in (("length_mm", 1e5), ("r0_mm", 1e3), ("outer_radius_mm", 50.0), ("g_mpa", 1e5),
                          ("g_e_mpa", 1e4)):
             check_range(name, getattr(self, name), low=0.0, high=hi)
@@ -177,10 +178,10 @@ class ActuatorModel:
             raise ModelDomainError(
                 f"r0_mm must be > outer_radius_mm={self.outer_radius_mm:g} (no sleeve: the thread squeezes the tube "
                 f"before any pressure, the model has no inflation phase), got {self.r0_mm:g}")
-        if self.pattern == "cross":
+        if MODEL_KINDS[self.pattern].has_thread_angle:
             check_range("beta0_deg", self.beta0_deg, low=0.0, high=90.0)
         elif self.beta0_deg != 0:
-            raise ParameterError(f"beta0_deg must be 0 for the zigzag pattern, got {self.beta0_deg!r}")
+            raise ParameterError(f"beta0_deg must be 0 for the {self.pattern} pattern, got {self.beta0_deg!r}")
         check_tube_law(self.tube_law)
         if self.tube_law == "thick-wall" and self.inner_radius_mm == 0:
             raise ParameterError("inner_radius_mm must be > 0 with tube_law 'thick-wall' (a solid rod does not "
@@ -222,7 +223,7 @@ class ActuatorModel:
             p0_kpa = float(derived.p0_kpa) if tube_law == "paper" else float(
                 transition_pressure_kpa(derived.r0_mm, t, tube_law))
         return cls(derived.pattern, length_mm=derived.length_mm, r0_mm=derived.r0_mm,
-                   beta0_deg=derived.beta0_deg if derived.pattern == "cross" else 0.0,
+                   beta0_deg=derived.beta0_deg if model_kind(derived.pattern).has_thread_angle else 0.0,
                    outer_radius_mm=t.outer_radius_mm, inner_radius_mm=t.inner_radius_mm,
                    g_e_mpa=t.g_e_mpa, g_mpa=g_mpa, p0_kpa=p0_kpa, tube_law=tube_law,
                    calibration=calibration)

@@ -20,12 +20,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
-from ..patterns.base.errors import ParameterError, check_range
+from ..patterns.base.errors import check_range
+from ..patterns.kinds import pattern_kind
 from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
-from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm, thread_angle_deg
+from .kinds import model_kind
+from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 from .tubelaws import transition_pressure_kpa
 
 __all__ = ["DerivedGeometry", "derive", "derive_from_values"]
@@ -81,7 +81,7 @@ class DerivedGeometry:
     @property
     def bends_positive(self) -> bool:
         """Initial bending direction: dV/dl > 0 at theta = 0 (zigzag always; cross if tan beta0 < 1/2)."""
-        return self.pattern == "zigzag" or bool(np.tan(np.radians(self.beta0_deg)) < 0.5)
+        return model_kind(self.pattern).bends_positive(self.beta0_deg)
 
     def as_dict(self) -> dict:
         """Plain dict with unit-suffixed keys (for JSON and reports)."""
@@ -108,17 +108,12 @@ def derive_from_values(
 
     ``requested`` is (width_mm, interval_mm, angle_deg); defaults to the realised values.
     """
-    if pattern not in ("zigzag", "cross"):
-        raise ParameterError(f"pattern must be one of 'zigzag', 'cross', got {pattern!r}")
+    kind = model_kind(pattern)
     w = check_range("width_mm", width_mm, low=0.0)
     s = check_range("interval_mm", interval_mm, low=0.0)
     l0 = check_range("length_mm", length_mm, low=0.0)
-    if pattern == "cross":
-        a = check_range("angle_deg", angle_deg, low=0.0, high=90.0)
-        beta0 = float(thread_angle_deg(w, a, tube.outer_radius_mm))
-    else:
-        a = float(angle_deg)
-        beta0 = 0.0
+    a = check_range("angle_deg", angle_deg, low=0.0, high=90.0) if pattern_kind(pattern).has_angle else float(angle_deg)
+    beta0 = kind.beta0_deg(w, a, tube.outer_radius_mm)
     r0 = float(sleeve_radius_mm(w, tube.outer_radius_mm))
     req = requested if requested is not None else (w, s, a)
     return DerivedGeometry(
@@ -148,7 +143,7 @@ def derive(actuator: ActuatorPlan) -> DerivedGeometry:
         actuator.pattern,
         width_mm=r.width_mm,
         interval_mm=r.interval_mm,
-        angle_deg=r.angle_deg if actuator.pattern == "cross" else 0.0,
+        angle_deg=r.angle_deg if pattern_kind(actuator.pattern).has_angle else 0.0,
         length_mm=r.length_mm,
         tube=actuator.tube,
         name=actuator.name,

@@ -58,6 +58,7 @@ import numpy as np
 
 from ..patterns.base.arrays import frozen_array
 from ..patterns.base.errors import ModelDomainError, ParameterError, SolverError
+from ..patterns.kinds import pattern_kind
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
 from .markers import MarkerLayout, reading_deg
@@ -546,7 +547,7 @@ def _design_fields(derived: DerivedGeometry) -> tuple:
     return (
         ("pattern", derived.pattern),
         ("width_mm", derived.requested_width_mm),
-        ("angle_deg", derived.requested_angle_deg if derived.pattern == "cross" else 0.0),
+        ("angle_deg", derived.requested_angle_deg if pattern_kind(derived.pattern).has_angle else 0.0),
         ("interval_mm", derived.requested_interval_mm),
         ("length_mm", derived.length_mm),
     )

@@ -49,15 +49,17 @@ from ..patterns.base.errors import EmbroactError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
+from ..patterns.kinds import PATTERN_KINDS, pattern_kind
 from ..patterns.params import CrossParams, Tube, ZigzagParams
 from ..patterns.segments import SegmentSpec
+from .kinds import model_kind
 from .status import Status
 
 __all__ = ["PATTERN_CHOICES", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature"]
 
 #: Values of ``pattern`` for a target bend.
-PATTERN_CHOICES = ("zigzag", "cross", "any")
+PATTERN_CHOICES = PATTERN_KINDS.names() + ("any",)
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
 #: A candidate's bend must match the target within this after polishing [deg].
@@ -134,8 +136,7 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     """
     from .calibration import get_set
 
-    if pattern not in PATTERN_CHOICES[:2]:
-        raise ParameterError(f"pattern must be one of 'zigzag', 'cross', got {pattern!r}")
+    pattern_kind(pattern)  # a registered kind, else one line naming them
     cset = get_set(settings.calibration, tuple(sets))
     cover = cset.coverage().get(pattern)
     points = [p for p in cset.points if p.pattern == pattern]
@@ -143,11 +144,11 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
         raise ParameterError(f"calibration {cset.name!r} has no {pattern} points; choose another pattern or set")
     interval = float(np.median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0]))
     width = float(np.median([p.width_mm for p in points]))
-    param = "width_mm" if pattern == "zigzag" else "angle_deg"
+    param = pattern_kind(pattern).calibration_axis
     low, high = cover
     if allow_extrapolation:
         low, high = min(low, _EXTRAPOLATED[pattern][0]), max(high, _EXTRAPOLATED[pattern][1])
-        if pattern == "zigzag":
+        if param == "width_mm":  # a width clears the tube corridor
             low = max(low, 2.0 * tube.corridor_radius_mm + 0.2)
     return DesignSpace(pattern, param, float(low), float(high), width, interval, not allow_extrapolation)
 
@@ -169,7 +170,6 @@ def _legs_sewn(params, length_mm: float) -> tuple[float, float]:
     """(gap before the legs, legs' length) of a segment as its generator sews it on a straight path."""
     if params.pattern == "zigzag":
         return _legs(params, length_mm)
-    from ..patterns.kinds import pattern_kind
     from ..patterns.plan import Role
 
     plan = pattern_kind(params.pattern).generate(Centerline.straight(length_mm), params)
@@ -398,7 +398,7 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     span = space.high - space.low
     edge = min(x - space.low, space.high - x) / span if span > 0.0 else 0.0  # a one-point calibration: no room
     s_w = _geometry_sensitivity(act.derived, model, pressure_kpa, width_mm=0.05) * 2.0  # per 0.1 mm
-    s_a = _geometry_sensitivity(act.derived, model, pressure_kpa, angle_deg=0.5) if space.pattern == "cross" else None
+    s_a = _geometry_sensitivity(act.derived, model, pressure_kpa, angle_deg=0.5) if pattern_kind(space.pattern).has_angle else None
     range_note = (f"the {space.describe()} range: {space.parameter} {x:.4g} is "
                   f"{min(x - space.low, space.high - x):.3g} from its end")
     limit_note = f"{limit} ({margin:.1f} kPa above the target pressure)" if math.isfinite(margin) else limit
@@ -460,7 +460,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     if pattern not in PATTERN_CHOICES:
         raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
     sets = tuple(sets)
-    kinds = PATTERN_CHOICES[:2] if pattern == "any" else (pattern,)
+    kinds = PATTERN_KINDS.names() if pattern == "any" else (pattern,)
     model = _Model(p, tube, settings, sets)
     found, reasons, nearest = [], [], []
     for kind in kinds:
@@ -706,11 +706,12 @@ def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
     joint polish may move it.
     """
     options, near = [], None
-    order = ("zigzag", "cross") if theta_deg >= 0.0 else ("cross",)
+    # a negative bend needs a kind that can bend negative: one with a thread angle
+    order = tuple(k for k in PATTERN_KINDS.names() if theta_deg >= 0.0 or model_kind(k).has_thread_angle)
     for rank, kind in enumerate(order):
         space = spaces[kind]
         x, theta, status = model.table(space, length_mm, points=61)
-        fits = np.array([kind != "cross" or 4.0 * space.params(v).width_mm * math.tan(math.radians(v)) <= length_mm
+        fits = np.array([not pattern_kind(kind).has_angle or 4.0 * space.params(v).width_mm * math.tan(math.radians(v)) <= length_mm
                          for v in x])
         ok = np.isin(status, _VALID) & fits
         for r in _roots(model, space, length_mm, theta_deg, (x, theta, np.where(ok, status, -1))):
@@ -770,7 +771,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     sj, xy, length = _resample(target_xy_mm)
     model = _Model(p, tube, settings, sets)
     spaces = {k: design_space(k, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
-              for k in PATTERN_CHOICES[:2]}
+              for k in PATTERN_KINDS.names()}
     fits = []
     for n in range(1, max_segments + 1):
         fits.append(fit_curvature(xy, n))

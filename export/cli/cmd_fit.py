@@ -209,9 +209,11 @@ def _pm(value, se, digits=4) -> str:
 
 
 def _table(derived, results, note, cset, path) -> str:
+    from ...patterns.kinds import pattern_kind
+
     d = derived
     design = f"{d.pattern} w={d.width_mm:.4g} mm s={d.interval_mm:.4g} mm l0={d.length_mm:.4g} mm"
-    if d.pattern == "cross":
+    if pattern_kind(d.pattern).has_angle:
         design += f" alpha0={d.angle_deg:.4g} deg"
     lines = [f"fit of {design} (as generated); model method {results[0].method}" + (f"; {note}" if note else "")]
     lines.append(f"{'branch':<10} {'n':>4}  {'G [MPa]':<18} {'P0 [kPa]':<24} {'RMSE [deg]':>10}")

@@ -56,8 +56,10 @@ def _realised(r) -> dict:
 
 
 def _summary(path: str, res, act) -> str:
+    from ...patterns.kinds import pattern_kind
+
     r = act.derived
-    angle = f", alpha0 {r.angle_deg:.4g} deg" if r.pattern == "cross" else ""
+    angle = f", alpha0 {r.angle_deg:.4g} deg" if pattern_kind(r.pattern).has_angle else ""
     stops = f"{res.stops} stop" + ("s" if res.stops != 1 else "")
     trims = f"{res.trims} trim" + ("s" if res.trims != 1 else "")
     split = f", {res.split_legs} long legs split" if res.split_legs else ""

@@ -110,8 +110,11 @@ _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "be
 
 
 def _piece_table(title, derived, choice, c, band, layout=None) -> str:
+    from ...patterns.kinds import pattern_kind
+
     model = choice.model
-    angle = f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg" if derived.pattern == "cross" else ""
+    angle = (f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg"
+             if pattern_kind(derived.pattern).has_angle else "")
     head = (f"{title}: {derived.pattern} w={derived.width_mm:.4g} mm s={derived.interval_mm:.4g} mm "
             f"l0={derived.length_mm:.4g} mm{angle}; r0 {derived.r0_mm:.4g} mm; G {model.g_mpa:.4g} MPa "
             f"({choice.g_source}), P0 {model.p0_kpa:.4g} kPa ({choice.p0_source}); tube r_f {model.outer_radius_mm:g} mm, "
@@ -149,8 +152,9 @@ def _table(act, c, band, segment_curves, layout=None) -> str:
 def run(args) -> int:
     """Predict and print; return the exit code."""
     from ...patterns.base.errors import ParameterError
+    from ...patterns.kinds import PATTERN_KINDS
 
-    quick = args.target in ("zigzag", "cross")
+    quick = args.target in PATTERN_KINDS.names()
     layout = layout_from_args(args)
     target = load_target(args, pattern=args.target if quick else None, design_path=None if quick else args.target)
     analysis = analyse_target(target)

@@ -79,12 +79,14 @@ def add_quick_arguments(group, *, pattern: str | None, required: bool = False, t
     """Quick-parameter flags: ``--width-mm``, ``--interval-mm``, ``--angle-deg``, ``--adjust``, ``--length-mm``,
     ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (zigzag/cross commands); None adds
     the angle and adjust flags for a pattern chosen elsewhere."""
+    from ...patterns.kinds import pattern_kind
+
     group.add_argument("--width-mm", type=float, required=required, help="rail spacing w [mm]")
     group.add_argument("--interval-mm", type=float,
                        help="stitch interval s: axial distance between neighbouring needle points / parallel legs [mm] "
                             "(default: the paper's, 1.0 zigzag, 1.4 cross)")
-    if pattern != "zigzag":
-        group.add_argument("--angle-deg", type=float, required=required and pattern == "cross",
+    if pattern is None or pattern_kind(pattern).has_angle:
+        group.add_argument("--angle-deg", type=float, required=required and pattern is not None,
                            help="cross embroidery angle alpha0 from the perpendicular, (0, 90) [deg]")
         group.add_argument("--adjust", choices=("auto", "interval", "angle"), default="auto",
                            help="cross: what to change when s and alpha0 cannot both be met (default auto)")

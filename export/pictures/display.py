@@ -24,6 +24,7 @@ from html import escape
 from typing import TYPE_CHECKING
 
 from ...patterns.base.errors import EmbroactError
+from ...patterns.kinds import pattern_kind
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...patterns.design import Design
@@ -71,7 +72,7 @@ def _rows(act: ActuatorAnalysis) -> str:
 def _row(name: str, act) -> str:
     d = act.derived
     cells = [name, d.pattern, f"{d.width_mm:.3g}", f"{d.interval_mm:.3g}",
-             f"{d.angle_deg:.3g}" if d.pattern == "cross" else "", f"{d.length_mm:.4g}", f"{d.r0_mm:.4g}",
+             f"{d.angle_deg:.3g}" if pattern_kind(d.pattern).has_angle else "", f"{d.length_mm:.4g}", f"{d.r0_mm:.4g}",
              f"{d.beta0_deg:.4g}"]
     if act.choice is None:
         cells += ["", "", act.model_error]

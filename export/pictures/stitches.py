@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...patterns.base.errors import check_range
+from ...patterns.kinds import pattern_kind
 from ...patterns.plan import Command, Role, StitchPlan
 
 __all__ = ["RAMP", "plan_svg"]
@@ -87,7 +88,7 @@ def _param_lines(plan: StitchPlan) -> list[str]:
         parts = [(f"{a.name} segment {k}", s.pattern, s.realised) for k, s in enumerate(a.segments)] \
             or [(a.name, a.pattern, a.realised)]
         for name, pattern, r in parts:
-            angle = f", alpha0 {r.angle_deg:.2f} deg" if pattern == "cross" else ""
+            angle = f", alpha0 {r.angle_deg:.2f} deg" if pattern_kind(pattern).has_angle else ""
             lines.append(
                 f"{name} {pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
                 f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"

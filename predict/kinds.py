@@ -1,0 +1,87 @@
+"""What the model knows about each pattern kind, in one table: its constraint and its thread angle.
+
+The geometry facts of a kind (parameters, generator, calibration axis) live in
+:mod:`embroact.patterns.kinds`, which knows nothing of the model. This table adds the model's
+side, keyed by the same names: which pattern constraint the kind follows (docs/model.md,
+section 4) and so how the sleeve's thread angle beta0 follows from the sewn geometry and which
+way the strip first bends. Every part of ``predict`` that would otherwise ask "is this the cross
+pattern?" asks :func:`model_kind` instead; a third pattern adds one row to :data:`MODEL_KINDS`.
+
+Examples
+--------
+>>> from embroact.predict.kinds import model_kind
+>>> z, c = model_kind("zigzag"), model_kind("cross")
+>>> z.constraint.value, c.constraint.value
+('fixed-radius', 'pantograph')
+>>> z.beta0_deg(7.0, 45.0, 1.5), round(c.beta0_deg(7.0, 45.0, 1.5), 4)
+(0.0, 37.2078)
+>>> z.bends_positive(0.0), c.bends_positive(37.2078), c.bends_positive(20.0)
+(True, False, True)
+>>> try:
+...     model_kind("satin")
+... except ValueError as exc:
+...     print(exc)
+pattern must be one of 'zigzag', 'cross', got 'satin'
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+from ..patterns.kinds import pattern_kind
+from .sleeve import thread_angle_deg
+
+__all__ = ["Constraint", "ModelKind", "MODEL_KINDS", "model_kind"]
+
+
+class Constraint(enum.Enum):
+    """The pattern constraint: how the sleeve's length and radius move with the bend."""
+
+    FIXED_RADIUS = "fixed-radius"
+    """``l = l0 + 2 r0 theta, r = r0``: the threads run around the tube (beta0 = 0; zigzag)."""
+    PANTOGRAPH = "pantograph"
+    """Thread length conserved, the crossing threads scissor (beta from beta0; cross)."""
+
+
+@dataclass(frozen=True, slots=True)
+class ModelKind:
+    """The model's facts about one pattern kind.
+
+    Attributes
+    ----------
+    name : str
+        The pattern's name, as in :data:`embroact.patterns.kinds.PATTERN_KINDS`.
+    constraint : Constraint
+        Its pattern constraint.
+    """
+
+    name: str
+    constraint: Constraint
+
+    @property
+    def has_thread_angle(self) -> bool:
+        """True when the sleeve's threads lie at an angle beta0 > 0 to the circumference."""
+        return self.constraint is Constraint.PANTOGRAPH
+
+    def beta0_deg(self, width_mm: float, angle_deg: float, outer_radius_mm: float) -> float:
+        """Thread angle beta0 [deg] of a sleeve sewn at width ``width_mm`` and angle ``angle_deg`` (0 without one)."""
+        if not self.has_thread_angle:
+            return 0.0
+        return float(thread_angle_deg(width_mm, angle_deg, outer_radius_mm))
+
+    def bends_positive(self, beta0_deg: float) -> bool:
+        """Initial bending direction: dV/dl > 0 at theta = 0 (always at r = r0; a pantograph if tan beta0 < 1/2)."""
+        return not self.has_thread_angle or math.tan(math.radians(beta0_deg)) < 0.5
+
+
+MODEL_KINDS: dict[str, ModelKind] = {
+    "zigzag": ModelKind("zigzag", Constraint.FIXED_RADIUS),
+    "cross": ModelKind("cross", Constraint.PANTOGRAPH),
+}
+"""The model's row for every registered pattern kind."""
+
+
+def model_kind(name: object) -> ModelKind:
+    """The model's facts for pattern ``name`` (:class:`ParameterError` naming the valid patterns otherwise)."""
+    return MODEL_KINDS[pattern_kind(name).name]
