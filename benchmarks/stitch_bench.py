@@ -51,7 +51,8 @@ def meander(length_mm: float) -> np.ndarray:
     """Vertices [mm] of a sine meander whose arc length is ``length_mm`` (to 0.1 %)."""
     k = 2 * np.pi / WAVELENGTH_MM
     x = np.linspace(0.0, WAVELENGTH_MM, 2001)
-    stretch = np.trapezoid(np.sqrt(1 + (AMPLITUDE_MM * k * np.cos(k * x)) ** 2), x) / WAVELENGTH_MM
+    y = np.sqrt(1 + (AMPLITUDE_MM * k * np.cos(k * x)) ** 2)
+    stretch = float(np.sum((y[1:] + y[:-1]) * np.diff(x))) / 2.0 / WAVELENGTH_MM  # trapezoid rule (np.trapezoid is numpy >= 2)
     span = length_mm / stretch
     x = np.linspace(0.0, span, int(span / VERTEX_SPACING_MM) + 2)
     return np.column_stack([x, AMPLITUDE_MM * np.sin(k * x)])
