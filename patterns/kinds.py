@@ -16,8 +16,8 @@ Examples
 >>> k = pattern_kind("cross")
 >>> k.param_keys, k.calibration_axis, k.options
 (('width_mm', 'interval_mm', 'angle_deg'), 'angle_deg', ('adjust',))
->>> pattern_kind("zigzag").calibration_axis
-'width_mm'
+>>> pattern_kind("zigzag").calibration_axis, k.interval.value, k.default_interval_mm
+('width_mm', 'parallel legs', 1.4)
 >>> try:
 ...     pattern_kind("satin")
 ... except ValueError as exc:
@@ -26,6 +26,7 @@ pattern must be one of 'zigzag', 'cross', got 'satin'
 """
 from __future__ import annotations
 
+import enum
 import importlib
 from dataclasses import dataclass, fields
 from typing import Callable
@@ -33,7 +34,16 @@ from typing import Callable
 from .base.errors import ParameterError
 from .params import CrossParams, ZigzagParams
 
-__all__ = ["PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+__all__ = ["Interval", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+
+
+class Interval(enum.Enum):
+    """What a pattern's stitch interval ``interval_mm`` spaces, measured along the path."""
+
+    NEEDLE_POINTS = "needle points"
+    """Neighbouring needle points (the zigzag: one leg per interval)."""
+    PARALLEL_LEGS = "parallel legs"
+    """Neighbouring parallel legs of one family (the cross: two families of legs cross)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,6 +63,10 @@ class PatternKind:
         The parameter a calibration set interpolates over for this pattern.
     options : tuple of str
         Extra generator options a design may set (``("adjust",)`` for the cross pattern).
+    interval : Interval
+        What ``interval_mm`` spaces (how :func:`embroact.patterns.measure.measure` reads it back).
+    default_interval_mm : float
+        The paper's stitch interval, used when a quick command gives none [mm].
     """
 
     name: str
@@ -60,6 +74,8 @@ class PatternKind:
     module: str
     calibration_axis: str
     options: tuple[str, ...] = ()
+    interval: Interval = Interval.NEEDLE_POINTS
+    default_interval_mm: float = 1.0
 
     def _function(self, suffix: str) -> Callable:
         module = importlib.import_module(f".{self.module}", __package__)
@@ -140,4 +156,4 @@ def pattern_kind(name: object) -> PatternKind:
 
 
 register(PatternKind("zigzag", ZigzagParams, "zigzag", "width_mm"))
-register(PatternKind("cross", CrossParams, "cross", "angle_deg", ("adjust",)))
+register(PatternKind("cross", CrossParams, "cross", "angle_deg", ("adjust",), Interval.PARALLEL_LEGS, 1.4))

@@ -30,13 +30,14 @@ import numpy as np
 
 from .centerline import as_centerline
 from .base.errors import ParameterError, PatternError
+from .kinds import PATTERN_KINDS, Interval, pattern_kind
 from .plan import Realised, Role
 from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["measure", "PATTERNS"]
 
 #: Pattern names :func:`measure` understands.
-PATTERNS = ("zigzag", "cross")
+PATTERNS = PATTERN_KINDS.names()
 
 
 def _family_spacing(pos: np.ndarray, family: np.ndarray) -> float:
@@ -84,7 +85,7 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     angle = float(np.degrees(np.arctan2(np.abs(ds), np.abs(do))).mean())
     direction = np.sign(ds[np.abs(ds) > DEFAULT_TOLERANCES.length_mm])
     passes = 1 + int(np.count_nonzero(np.diff(direction)))
-    if pattern == "zigzag":
+    if pattern_kind(pattern).interval is Interval.NEEDLE_POINTS:
         interval = float(np.abs(ds).mean())
     else:
         family = np.sign(ds * do)

@@ -78,8 +78,6 @@ _FIT_PLAUSIBLE_MM = 0.25
 _SHAPE_GOOD_MM = 0.2
 #: Shortest segment the curvature fit may make [mm].
 _MIN_SEGMENT_MM = 8.0
-#: Extrapolated design spaces (``allow_extrapolation``) [mm, deg].
-_EXTRAPOLATED = {"zigzag": (4.0, 14.0), "cross": (5.0, 80.0)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -147,7 +145,8 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     param = pattern_kind(pattern).calibration_axis
     low, high = cover
     if allow_extrapolation:
-        low, high = min(low, _EXTRAPOLATED[pattern][0]), max(high, _EXTRAPOLATED[pattern][1])
+        wide = model_kind(pattern).extrapolated_range
+        low, high = min(low, wide[0]), max(high, wide[1])
         if param == "width_mm":  # a width clears the tube corridor
             low = max(low, 2.0 * tube.corridor_radius_mm + 0.2)
     return DesignSpace(pattern, param, float(low), float(high), width, interval, not allow_extrapolation)

@@ -54,10 +54,14 @@ class ModelKind:
         The pattern's name, as in :data:`embroact.patterns.kinds.PATTERN_KINDS`.
     constraint : Constraint
         Its pattern constraint.
+    extrapolated_range : tuple of float
+        The widest range of the calibration axis (``embroact.patterns.kinds``) a design search may
+        extrapolate the calibration to (``allow_extrapolation``) [mm or deg].
     """
 
     name: str
     constraint: Constraint
+    extrapolated_range: tuple[float, float]
 
     @property
     def has_thread_angle(self) -> bool:
@@ -76,8 +80,8 @@ class ModelKind:
 
 
 MODEL_KINDS: dict[str, ModelKind] = {
-    "zigzag": ModelKind("zigzag", Constraint.FIXED_RADIUS),
-    "cross": ModelKind("cross", Constraint.PANTOGRAPH),
+    "zigzag": ModelKind("zigzag", Constraint.FIXED_RADIUS, (4.0, 14.0)),
+    "cross": ModelKind("cross", Constraint.PANTOGRAPH, (5.0, 80.0)),
 }
 """The model's row for every registered pattern kind."""
 

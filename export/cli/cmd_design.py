@@ -36,6 +36,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ...patterns.kinds import PATTERN_KINDS
 from .args import add_tube_arguments, tube_from_args
 from .target import P0_SOURCES
 
@@ -44,7 +45,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["add_arguments", "run", "read_target_shape"]
 
-_PATTERNS = ("zigzag", "cross", "any")
+_PATTERNS = PATTERN_KINDS.names() + ("any",)
 _TUBE_LAWS = ("paper", "thick-wall")
 
 

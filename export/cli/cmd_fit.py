@@ -28,14 +28,15 @@ import os
 import re
 import sys
 
+from ...patterns.kinds import PATTERN_KINDS
 from .markerargs import add_layout_arguments, layout_from_args
 from .target import TUBE_LAWS, add_quick_arguments
 
 __all__ = ["add_arguments", "run"]
 
 _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa", "mu": "g_e_mpa"}
-#: Pattern names (the keys of the quick-parameter defaults; no numpy for --help).
-PATTERNS = ("zigzag", "cross")
+#: Pattern names (the registry is light: no numpy for --help).
+PATTERNS = PATTERN_KINDS.names()
 
 
 def add_arguments(parser, name: str) -> None:

@@ -37,8 +37,7 @@ __all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placemen
 #: that ``--help`` needs no numpy).
 P0_SOURCES = ("calibration", "geometry")
 TUBE_LAWS = ("paper", "thick-wall")
-#: Quick-parameter defaults: the paper's interval per pattern [mm] and the actuator length [mm].
-DEFAULT_INTERVAL_MM = {"zigzag": 1.0, "cross": 1.4}
+#: Quick-parameter default actuator length [mm] (the interval's is the pattern kind's).
 DEFAULT_LENGTH_MM = 100.0
 
 
@@ -128,7 +127,7 @@ def _quick_design(args, pattern: str):
     if args.width_mm is None:
         raise ParameterError(f"--width-mm is required for a {pattern} design")
     values = {"width_mm": args.width_mm,
-              "interval_mm": args.interval_mm if args.interval_mm is not None else DEFAULT_INTERVAL_MM[pattern]}
+              "interval_mm": args.interval_mm if args.interval_mm is not None else kind.default_interval_mm}
     if kind.has_angle:
         if getattr(args, "angle_deg", None) is None:
             raise ParameterError(f"--angle-deg is required for the {pattern} pattern")
