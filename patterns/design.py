@@ -92,7 +92,7 @@ from .base.errors import DesignFileError, EmbroactError, ParameterError, Pattern
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, check_name, shown
 from .centerline import Centerline, as_centerline
-from .kinds import PATTERN_KINDS, pattern_kind
+from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
@@ -264,7 +264,7 @@ class ModelSettings:
 
 
 @dataclass(frozen=True, slots=True)
-class ActuatorSpec:
+class ActuatorSpec(KindFields):
     """One actuator as the user asked for it.
 
     Parameters
@@ -348,16 +348,6 @@ class ActuatorSpec:
         if centerline is None:
             centerline = Centerline.straight(sum(seg.length_mm for seg in segs))
         return cls(name, segs[0].params, centerline, segments=segs, **kwargs)
-
-    @property
-    def pattern(self) -> str:
-        """The pattern kind's name (``"zigzag"``, ``"cross"``)."""
-        return self.params.pattern
-
-    @property
-    def kind_options(self) -> dict:
-        """The generator options this pattern kind takes (``{"adjust": ...}`` for cross)."""
-        return {key: getattr(self, key) for key in pattern_kind(self.pattern).options}
 
 
 @dataclass(frozen=True, slots=True)

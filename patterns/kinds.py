@@ -32,9 +32,9 @@ from dataclasses import dataclass, fields
 from typing import Callable
 
 from .base.errors import ParameterError
-from .params import CrossParams, ZigzagParams
+from .params import CrossParams, PatternParams, ZigzagParams
 
-__all__ = ["Interval", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+__all__ = ["Interval", "KindFields", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
 
 
 class Interval(enum.Enum):
@@ -153,6 +153,31 @@ def register(kind: PatternKind) -> None:
 def pattern_kind(name: object) -> PatternKind:
     """The registered kind called ``name`` (:class:`ParameterError` listing the valid names otherwise)."""
     return PATTERN_KINDS[name]
+
+
+class KindFields:
+    """Mixin of a request holding ``params`` and its kind's generator options as fields (actuator, segment).
+
+    Examples
+    --------
+    >>> from embroact.patterns.segments import SegmentSpec
+    >>> s = SegmentSpec(CrossParams(7.0, 1.4, 30.0), 40.0, adjust="angle")
+    >>> s.pattern, s.kind_options
+    ('cross', {'adjust': 'angle'})
+    """
+
+    __slots__ = ()
+    params: PatternParams
+
+    @property
+    def pattern(self) -> str:
+        """The pattern kind's name (``"zigzag"``, ``"cross"``)."""
+        return self.params.pattern
+
+    @property
+    def kind_options(self) -> dict:
+        """The generator options this pattern kind takes (``{"adjust": ...}`` for cross)."""
+        return {key: getattr(self, key) for key in pattern_kind(self.pattern).options}
 
 
 register(PatternKind("zigzag", ZigzagParams, "zigzag", "width_mm"))

@@ -54,7 +54,7 @@ import numpy as np
 from .assemble import _check_corridor, check_pattern_inputs, tie_step_mm
 from .base.errors import EmbroactError, ParameterError
 from .centerline import Centerline, as_centerline
-from .kinds import PATTERN_KINDS, pattern_kind
+from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Realised, Role, StitchPlan
@@ -70,7 +70,7 @@ _STATION_ROLES = (Role.LEG, Role.EDGE)
 
 
 @dataclass(frozen=True, slots=True)
-class SegmentSpec:
+class SegmentSpec(KindFields):
     """One segment of a segmented actuator, as asked for.
 
     Parameters
@@ -92,16 +92,6 @@ class SegmentSpec:
                 or not 0.0 < self.length_mm < 1e6:
             raise ParameterError(f"length_mm must be in (0, 1e6) mm, got {self.length_mm!r}")
         object.__setattr__(self, "length_mm", float(self.length_mm))
-
-    @property
-    def pattern(self) -> str:
-        """The pattern kind's name."""
-        return self.params.pattern
-
-    @property
-    def kind_options(self) -> dict:
-        """The generator options this pattern kind takes."""
-        return {key: getattr(self, key) for key in pattern_kind(self.pattern).options}
 
 
 @dataclass(frozen=True, slots=True)
