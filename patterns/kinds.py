@@ -106,6 +106,10 @@ class PatternKind:
         """True when the pattern has an embroidery angle ``angle_deg``."""
         return "angle_deg" in self.param_keys
 
+    def angle_deg(self, params: object) -> float:
+        """The embroidery angle alpha0 of ``params`` (this kind's parameters) [deg]; 0 for a kind without one."""
+        return float(getattr(params, "angle_deg")) if self.has_angle else 0.0
+
 
 class PatternKinds:
     """Registry of :class:`PatternKind` by name, in registration order."""

@@ -25,7 +25,8 @@ import numpy as np
 
 from .base.arrays import frozen_array
 from .base.display import repr_svg
-from .params import CrossParams, PatternParams, StitchOptions, Tube
+from .kinds import pattern_kind
+from .params import PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
     from .centerline import Centerline
@@ -137,7 +138,7 @@ class ActuatorPlan:
     @property
     def requested_angle_deg(self) -> float:
         """alpha0 asked for (0 for zigzag) [deg]."""
-        return self.params.angle_deg if isinstance(self.params, CrossParams) else 0.0
+        return pattern_kind(self.pattern).angle_deg(self.params)
 
     def rails(self):
         """The two rails at +-w/2 (realised width) as shapely LineStrings (left, right)."""

@@ -139,7 +139,7 @@ class SegmentPlan:
     @property
     def requested_angle_deg(self) -> float:
         """alpha0 asked for (0 for zigzag) [deg]."""
-        return getattr(self.params, "angle_deg", 0.0) if pattern_kind(self.pattern).has_angle else 0.0
+        return pattern_kind(self.pattern).angle_deg(self.params)
 
 
 def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised], ...]:

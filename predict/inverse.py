@@ -49,7 +49,7 @@ from ..patterns.base.errors import EmbroactError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
-from ..patterns.kinds import PATTERN_KINDS, pattern_kind
+from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
 from ..patterns.params import CrossParams, Tube, ZigzagParams
 from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
@@ -114,7 +114,7 @@ class DesignSpace:
         >>> round(p.interval_mm, 4), round(2 * 7.0 * math.tan(math.radians(40.0)) / p.interval_mm, 9)
         (1.4684, 8.0)
         """
-        if self.pattern == "zigzag":
+        if not pattern_kind(self.pattern).has_angle:  # the free parameter is the width
             return ZigzagParams(float(x), self.interval_mm)
         reach = 2.0 * self.width_mm * math.tan(math.radians(x))
         n = max(1, round(reach / self.interval_mm))
@@ -167,7 +167,7 @@ def _legs(params, length_mm: float) -> tuple[float, float]:
 @functools.lru_cache(maxsize=4096)
 def _legs_sewn(params, length_mm: float) -> tuple[float, float]:
     """(gap before the legs, legs' length) of a segment as its generator sews it on a straight path."""
-    if params.pattern == "zigzag":
+    if pattern_kind(params.pattern).interval is Interval.NEEDLE_POINTS:  # one leg per interval: the span exactly
         return _legs(params, length_mm)
     from ..patterns.plan import Role
 

@@ -22,12 +22,12 @@ Examples
 from __future__ import annotations
 
 from ..patterns.base.findings import RULES, Finding, Inputs, Severity
-from ..patterns.params import CrossParams
 from ..patterns.plan import StitchPlan
 from ..patterns.segments import pattern_parts
 from ..patterns import rules as geometry
 from ..patterns.rules import GEOMETRY_RULES, Layout, RuleSettings
 from ..patterns.rules.engine import Subject
+from .kinds import model_kind
 from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 
 __all__ = ["SLEEVE_RULES", "DESIGN_RULES", "check_plan", "check_layout"]
@@ -96,7 +96,7 @@ def near_neutral(s: Subject) -> list[Finding]:
     out = []
     for k, act in enumerate(s.design_plan.actuators):
         for label, req, real in pattern_parts(act):
-            if not isinstance(req, CrossParams):
+            if not model_kind(req.pattern).has_thread_angle:  # no thread angle, no neutral one
                 continue
             neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
             if abs(real.angle_deg - neutral) < band:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..base.findings import RULES, Finding, Inputs, Severity
-from ..params import CrossParams
+from ..kinds import pattern_kind
 from ..segments import pattern_parts
 from .engine import Hits, Subject
 
@@ -59,9 +59,10 @@ def angle_off(s: Subject) -> list[Finding]:
     out = []
     for k, act in enumerate(s.design_plan.actuators):
         for label, req, real in pattern_parts(act):
-            if isinstance(req, CrossParams) and abs(real.angle_deg - req.angle_deg) > tol:
+            kind = pattern_kind(req.pattern)
+            if kind.has_angle and abs(real.angle_deg - kind.angle_deg(req)) > tol:
                 out.append(RULES.finding(
-                    "EA204", f"{label}leg angle {real.angle_deg:.2f} deg realised, {req.angle_deg:g} deg requested "
+                    "EA204", f"{label}leg angle {real.angle_deg:.2f} deg realised, {kind.angle_deg(req):g} deg requested "
                     f"(tolerance {tol:g} deg)", **s.actuator_place(k)))
     return out
 
