@@ -34,7 +34,7 @@ from typing import Callable
 from .base.errors import ParameterError
 from .params import CrossParams, PatternParams, ZigzagParams
 
-__all__ = ["Interval", "KindFields", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+__all__ = ["Interval", "KindFields", "KindOf", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
 
 
 class Interval(enum.Enum):
@@ -159,7 +159,32 @@ def pattern_kind(name: object) -> PatternKind:
     return PATTERN_KINDS[name]
 
 
-class KindFields:
+class KindOf:
+    """Mixin of a value holding pattern parameters ``params`` (request or plan): its kind's name and angle.
+
+    Examples
+    --------
+    >>> from embroact.patterns.segments import SegmentSpec
+    >>> s = SegmentSpec(CrossParams(7.0, 1.4, 30.0), 40.0, adjust="angle")
+    >>> s.pattern, s.requested_angle_deg
+    ('cross', 30.0)
+    """
+
+    __slots__ = ()
+    params: PatternParams
+
+    @property
+    def pattern(self) -> str:
+        """The pattern kind's name (``"zigzag"``, ``"cross"``)."""
+        return self.params.pattern
+
+    @property
+    def requested_angle_deg(self) -> float:
+        """alpha0 asked for (0 for a kind without an angle, zigzag) [deg]."""
+        return pattern_kind(self.pattern).angle_deg(self.params)
+
+
+class KindFields(KindOf):
     """Mixin of a request holding ``params`` and its kind's generator options as fields (actuator, segment).
 
     Examples
@@ -171,12 +196,6 @@ class KindFields:
     """
 
     __slots__ = ()
-    params: PatternParams
-
-    @property
-    def pattern(self) -> str:
-        """The pattern kind's name (``"zigzag"``, ``"cross"``)."""
-        return self.params.pattern
 
     @property
     def kind_options(self) -> dict:

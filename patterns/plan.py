@@ -25,7 +25,7 @@ import numpy as np
 
 from .base.arrays import frozen_array
 from .base.display import repr_svg
-from .kinds import pattern_kind
+from .kinds import KindOf
 from .params import PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -96,7 +96,7 @@ class Realised:
 
 
 @dataclass(frozen=True, slots=True)
-class ActuatorPlan:
+class ActuatorPlan(KindOf):
     """One actuator's share of a plan: what was asked, what was built, on which path.
 
     Attributes
@@ -129,16 +129,6 @@ class ActuatorPlan:
     adjustments: tuple[str, ...] = ()
     options: StitchOptions = field(default_factory=StitchOptions)
     segments: tuple = ()
-
-    @property
-    def pattern(self) -> str:
-        """``"zigzag"`` or ``"cross"``."""
-        return self.params.pattern
-
-    @property
-    def requested_angle_deg(self) -> float:
-        """alpha0 asked for (0 for zigzag) [deg]."""
-        return pattern_kind(self.pattern).angle_deg(self.params)
 
     def rails(self):
         """The two rails at +-w/2 (realised width) as shapely LineStrings (left, right)."""

@@ -54,7 +54,7 @@ import numpy as np
 from .assemble import _check_corridor, check_pattern_inputs, tie_step_mm
 from .base.errors import EmbroactError, ParameterError
 from .centerline import Centerline, as_centerline
-from .kinds import PATTERN_KINDS, KindFields, pattern_kind
+from .kinds import PATTERN_KINDS, KindFields, KindOf, pattern_kind
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Realised, Role, StitchPlan
@@ -95,7 +95,7 @@ class SegmentSpec(KindFields):
 
 
 @dataclass(frozen=True, slots=True)
-class SegmentPlan:
+class SegmentPlan(KindOf):
     """One generated segment.
 
     Attributes
@@ -130,16 +130,6 @@ class SegmentPlan:
     join_run_mm: float
     adjustments: tuple[str, ...] = ()
     mirrored: bool = False
-
-    @property
-    def pattern(self) -> str:
-        """``"zigzag"`` or ``"cross"``."""
-        return self.params.pattern
-
-    @property
-    def requested_angle_deg(self) -> float:
-        """alpha0 asked for (0 for zigzag) [deg]."""
-        return pattern_kind(self.pattern).angle_deg(self.params)
 
 
 def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised], ...]:
