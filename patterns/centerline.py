@@ -214,9 +214,12 @@ class Centerline:
         """
         return shapely.LineString(self.points_mm)
 
+    def _clamped(self, s_mm) -> np.ndarray:
+        """Arc length(s) ``s_mm`` as floats clipped to [0, length] [mm]."""
+        return np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+
     def _angle_at(self, s_mm):
-        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
-        return s, np.interp(s, self._s, self._theta)
+        return np.interp(self._clamped(s_mm), self._s, self._theta)
 
     def point_at(self, s_mm) -> np.ndarray:
         """Point(s) at arc length ``s_mm`` (clipped to [0, length]) [mm], shape (..., 2).
@@ -235,7 +238,7 @@ class Centerline:
         >>> Centerline.from_points([(0, 0), (10, 0), (10, 10)]).point_at([5.0, 15.0, 99.0]).tolist()
         [[5.0, 0.0], [10.0, 5.0], [10.0, 10.0]]
         """
-        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+        s = self._clamped(s_mm)
         return np.stack([np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1])], axis=-1)
 
     def tangent_at(self, s_mm) -> np.ndarray:
@@ -255,7 +258,7 @@ class Centerline:
         >>> Centerline.straight(10.0, rotation_deg=90.0).tangent_at(2.0).round(9).tolist()
         [0.0, 1.0]
         """
-        _, th = self._angle_at(s_mm)
+        th = self._angle_at(s_mm)
         return np.stack([np.cos(th), np.sin(th)], axis=-1)
 
     def normal_at(self, s_mm) -> np.ndarray:
@@ -275,7 +278,7 @@ class Centerline:
         >>> Centerline.straight(10.0).normal_at(2.0).tolist()
         [-0.0, 1.0]
         """
-        _, th = self._angle_at(s_mm)
+        th = self._angle_at(s_mm)
         return np.stack([-np.sin(th), np.cos(th)], axis=-1)
 
     def offset_point_at(self, s_mm, offset_mm) -> np.ndarray:
@@ -321,7 +324,7 @@ class Centerline:
         0.0
         """
         kappa = self.segment_curvature()
-        s = np.clip(np.asarray(s_mm, dtype=np.float64), 0.0, self.length_mm)
+        s = self._clamped(s_mm)
         i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
         return kappa[i]
 
