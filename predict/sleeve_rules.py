@@ -57,19 +57,27 @@ def _sleeve_gaps(s: Subject) -> list[tuple[int, str, float, float, float, object
     return out
 
 
+def _gap_findings(s: Subject, code: str, flagged, message) -> list[Finding]:
+    """Findings ``code`` on the sleeves of :func:`_sleeve_gaps` whose ``flagged(gap)`` holds.
+
+    The text is the part's label then ``message(w, r0, rf, gap)`` (width, sleeve radius, tube
+    radius, r0 - rf, all mm); each finding sits where its part starts.
+    """
+    out = []
+    for k, label, w, r0, gap, xy in _sleeve_gaps(s):
+        if flagged(gap):
+            out.append(s.tube_finding(k, code, label + message(w, r0, s.layout.tubes[k].outer_radius_mm, gap), xy))
+    return out
+
+
 @RULES.rule("EA201", Severity.ERROR, "no sleeve",
             "The realised width leaves no sleeve: r0 <= r_f, i.e. w <= (pi^2 - 4)/pi * r_f (docs/model.md); "
             "the thread squeezes the tube before any pressure and the model has no inflation phase.",
             "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
 def no_sleeve(s: Subject) -> list[Finding]:
-    out = []
-    for k, label, w, r0, gap, xy in _sleeve_gaps(s):
-        if gap <= 0.0:
-            rf = s.layout.tubes[k].outer_radius_mm
-            out.append(s.tube_finding(
-                k, "EA201", f"{label}width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f {rf:g} mm "
-                f"(needs w > {float(min_sleeve_width_mm(rf)):.2f} mm)", xy))
-    return out
+    return _gap_findings(s, "EA201", lambda gap: gap <= 0.0, lambda w, r0, rf, gap: (
+        f"width {w:.2f} mm gives sleeve radius r0 {r0:.3f} mm <= tube radius r_f {rf:g} mm "
+        f"(needs w > {float(min_sleeve_width_mm(rf)):.2f} mm)"))
 
 
 @RULES.rule("EA202", Severity.WARNING, "sleeve barely wider than the tube",
@@ -77,14 +85,9 @@ def no_sleeve(s: Subject) -> list[Finding]:
             "to the width.",
             "Increase the width.", Inputs.DESIGNS | Inputs.FILES)
 def tight_sleeve(s: Subject) -> list[Finding]:
-    out = []
-    for k, label, _, r0, gap, xy in _sleeve_gaps(s):
-        if 0.0 < gap < s.settings.min_sleeve_gap_mm:
-            rf = s.layout.tubes[k].outer_radius_mm
-            out.append(s.tube_finding(
-                k, "EA202", f"{label}sleeve radius r0 {r0:.3f} mm exceeds r_f {rf:g} mm by only {gap:.3f} mm "
-                f"(< {s.settings.min_sleeve_gap_mm:g} mm)", xy))
-    return out
+    least = s.settings.min_sleeve_gap_mm
+    return _gap_findings(s, "EA202", lambda gap: 0.0 < gap < least, lambda w, r0, rf, gap: (
+        f"sleeve radius r0 {r0:.3f} mm exceeds r_f {rf:g} mm by only {gap:.3f} mm (< {least:g} mm)"))
 
 
 @RULES.rule("EA206", Severity.WARNING, "angle near neutral",
