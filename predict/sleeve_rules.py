@@ -96,17 +96,16 @@ def tight_sleeve(s: Subject) -> list[Finding]:
             "Move alpha0 away from the neutral angle.", Inputs.DESIGNS)
 def near_neutral(s: Subject) -> list[Finding]:
     band = s.settings.neutral_band_deg
-    out = []
-    for k, act in enumerate(s.design_plan.actuators):
-        for label, req, real in pattern_parts(act):
-            if not model_kind(req.pattern).has_thread_angle:  # no thread angle, no neutral one
-                continue
-            neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
-            if abs(real.angle_deg - neutral) < band:
-                out.append(RULES.finding(
-                    "EA206", f"{label}angle {real.angle_deg:.2f} deg is {abs(real.angle_deg - neutral):.2f} deg from "
-                    f"the neutral angle {neutral:.2f} deg (band {band:g} deg)", **s.actuator_place(k)))
-    return out
+
+    def message(act, req, real):
+        if not model_kind(req.pattern).has_thread_angle:  # no thread angle, no neutral one
+            return None
+        neutral = float(neutral_angle_deg(real.width_mm, act.tube.outer_radius_mm))
+        if abs(real.angle_deg - neutral) < band:
+            return (f"angle {real.angle_deg:.2f} deg is {abs(real.angle_deg - neutral):.2f} deg from "
+                    f"the neutral angle {neutral:.2f} deg (band {band:g} deg)")
+        return None
+    return s.pattern_findings("EA206", message)
 
 
 SLEEVE_RULES = (no_sleeve, tight_sleeve, near_neutral)

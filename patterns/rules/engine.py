@@ -34,6 +34,7 @@ from ..base.errors import ParameterError
 from ..base.findings import RULES, Finding, Inputs, Rule
 from ..limits import record_moves_units
 from ..plan import Command, Role, StitchPlan
+from ..segments import pattern_parts
 from ..spatial import Crossings, TubeIndex, needle_density
 from .layout import Layout
 from .settings import RuleSettings
@@ -182,6 +183,22 @@ class Subject:
         plan = self.design_plan
         return dict(actuator=plan.actuators[k].name, stitch_index=i if i >= 0 else None,
                     xy_mm=plan.xy_mm[i] if i >= 0 else None)
+
+    def pattern_findings(self, code: str, message: Callable) -> list[Finding]:
+        """Findings ``code`` comparing each requested pattern of the design with what was sewn.
+
+        ``message(act, req, real)`` gets the plan actuator, the requested parameters and the
+        realised ones of each of its patterns (:func:`~embroact.patterns.segments.pattern_parts`)
+        and returns the text, or None when there is nothing to report; the part's label
+        prefixes the text and the finding sits at the actuator's first leg.
+        """
+        out = []
+        for k, act in enumerate(self.design_plan.actuators):
+            for label, req, real in pattern_parts(act):
+                text = message(act, req, real)
+                if text is not None:
+                    out.append(RULES.finding(code, label + text, **self.actuator_place(k)))
+        return out
 
     # ----------------------------------------------------------------- findings
     def point(self, i: int, code: str, message: str, *, owner: int | None = None) -> Finding:

@@ -17,7 +17,6 @@ import numpy as np
 
 from ..base.findings import RULES, Finding, Inputs, Severity
 from ..kinds import pattern_kind
-from ..segments import pattern_parts
 from .engine import Hits, Subject
 
 __all__ = ["PATTERN_RULES"]
@@ -56,15 +55,14 @@ def interval(s: Subject) -> Hits:
             Inputs.DESIGNS)
 def angle_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.angle_deg
-    out = []
-    for k, act in enumerate(s.design_plan.actuators):
-        for label, req, real in pattern_parts(act):
-            kind = pattern_kind(req.pattern)
-            if kind.has_angle and abs(real.angle_deg - kind.angle_deg(req)) > tol:
-                out.append(RULES.finding(
-                    "EA204", f"{label}leg angle {real.angle_deg:.2f} deg realised, {kind.angle_deg(req):g} deg requested "
-                    f"(tolerance {tol:g} deg)", **s.actuator_place(k)))
-    return out
+
+    def message(act, req, real):
+        kind = pattern_kind(req.pattern)
+        if kind.has_angle and abs(real.angle_deg - kind.angle_deg(req)) > tol:
+            return (f"leg angle {real.angle_deg:.2f} deg realised, {kind.angle_deg(req):g} deg requested "
+                    f"(tolerance {tol:g} deg)")
+        return None
+    return s.pattern_findings("EA204", message)
 
 
 @RULES.rule("EA205", Severity.WARNING, "stitch interval off request",
@@ -73,15 +71,14 @@ def angle_off(s: Subject) -> list[Finding]:
             "Adjust the length or the interval so that a whole number of legs fits.", Inputs.DESIGNS)
 def interval_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.spacing_rel
-    out = []
-    for k, act in enumerate(s.design_plan.actuators):
-        for label, req, real in pattern_parts(act):
-            rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
-            if rel > tol:
-                out.append(RULES.finding(
-                    "EA205", f"{label}stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm "
-                    f"requested ({rel * 100:.1f} % off, tolerance {tol * 100:g} %)", **s.actuator_place(k)))
-    return out
+
+    def message(act, req, real):
+        rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
+        if rel > tol:
+            return (f"stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm "
+                    f"requested ({rel * 100:.1f} % off, tolerance {tol * 100:g} %)")
+        return None
+    return s.pattern_findings("EA205", message)
 
 
 PATTERN_RULES = (interval, angle_off, interval_off)
