@@ -55,7 +55,7 @@ from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
 from .status import Status
 
-__all__ = ["PATTERN_CHOICES", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
+__all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature"]
 
 #: Values of ``pattern`` for a target bend.
@@ -79,6 +79,21 @@ _SHAPE_GOOD_MM = 0.2
 #: Shortest segment the curvature fit may make [mm].
 _MIN_SEGMENT_MM = 8.0
 
+
+
+#: Highest target pressure a search accepts [kPa] (far above any tube; larger is a typo).
+MAX_TARGET_PRESSURE_KPA = 10_000.0
+
+
+def check_target_pressure(value, name: str = "pressure_kpa") -> float:
+    """``value`` if it is a pressure in (0, MAX_TARGET_PRESSURE_KPA) kPa, else one-line ParameterError naming ``name``.
+
+    Examples
+    --------
+    >>> check_target_pressure(150.0)
+    150.0
+    """
+    return check_range(name, value, low=0.0, high=MAX_TARGET_PRESSURE_KPA)
 
 @dataclass(frozen=True, slots=True)
 class DesignSpace:
@@ -454,7 +469,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     target = check_range("bend_deg", bend_deg, low=-720.0, high=720.0, high_inclusive=True, low_inclusive=True)
     if target == 0.0:
         raise ParameterError("bend_deg must be non-zero, got 0")
-    p = check_range("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0)
+    p = check_target_pressure(pressure_kpa)
     length = check_range("length_mm", length_mm, low=10.0, high=1000.0, low_inclusive=True, high_inclusive=True)
     if pattern not in PATTERN_CHOICES:
         raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
@@ -763,7 +778,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     -------
     ShapeResult
     """
-    p = check_range("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0)
+    p = check_target_pressure(pressure_kpa)
     if isinstance(max_segments, bool) or not isinstance(max_segments, int) or not 1 <= max_segments <= 12:
         raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r}")
     sets = tuple(sets)

@@ -52,7 +52,7 @@ def test_target_shape_from_csv(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv, needle", [
-    (["--bend-deg", "90", "--at-kpa", "-5"], "pressure_kpa must be in"),
+    (["--bend-deg", "90", "--at-kpa", "-5"], "--at-kpa must be in (0, 10000), got -5"),
     (["--bend-deg", "90", "--at-kpa", "150", "--length-mm", "5"], "length_mm must be in"),
     (["--bend-deg", "90", "--at-kpa", "150", "--pattern", "satin"], "invalid choice"),
 ])

@@ -469,7 +469,7 @@ NUMERIC_FLAGS = [
      "shape_pressure_kpa", ("0",)),
     (["preview", "mesh", "-o", "{tmp}/m.stl", "--pressure-kpa", "0:200:100"], "--tolerance-mm", "tolerance_mm", ()),
     (["design", "--at-kpa", "150", "-o", "{tmp}/d.toml"], "--bend-deg", "bend_deg", ("0", "-1")),
-    (["design", "--bend-deg", "90", "-o", "{tmp}/d.toml"], "--at-kpa", "pressure_kpa", ()),
+    (["design", "--bend-deg", "90", "-o", "{tmp}/d.toml"], "--at-kpa", "--at-kpa", ()),
     (["design", "--bend-deg", "90", "--at-kpa", "150", "-o", "{tmp}/d.toml"], "--length-mm", "length_mm", ()),
 ]
 BAD_VALUES = ("0", "-1", "nan", "inf", "abc")

@@ -91,7 +91,7 @@ def _set_flag(argv: list[str], flag: str, value: str) -> list[str]:
 
 
 # ------------------------------------------------------------------------------ extreme numbers
-_RANGE = re.compile(r"(?P<name>\w+) must be (?:a finite number )?in (?P<lo_b>[\(\[])(?P<lo>[^,]+), "
+_RANGE = re.compile(r"(?P<name>[\w-]+) must be (?:a finite number )?in (?P<lo_b>[\(\[])(?P<lo>[^,]+), "
                     r"(?P<hi>[^\)\]]+)(?P<hi_b>[\)\]])(?P<note> \([^)]*\))?, got ")
 
 

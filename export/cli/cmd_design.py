@@ -178,6 +178,9 @@ def run(args) -> int:
     from ..files.atomic import prepare_outputs, write_files_atomic
     from ..files.designfile import dumps_design
 
+    from ...predict.inverse import check_target_pressure
+
+    check_target_pressure(args.at_kpa, "--at-kpa")  # named as the user typed it, before any search
     tube = tube_from_args(args)
     settings, sets = _settings(args)
     out = Path(args.output)
