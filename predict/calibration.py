@@ -305,6 +305,9 @@ class CalibrationSet:
         The layout the fit compared the data through (its reading of the model's bend);
         ``None``: whole-strip angles, or a layout not known in numbers (the paper's set).
         With a layout, ``measurement`` defaults to its label.
+    source : str
+        The file the set was read from (absolute path), empty for a set made in memory; a
+        design's ``calibration`` setting may name the set by it (not part of equality).
     """
 
     name: str
@@ -315,6 +318,7 @@ class CalibrationSet:
     tube_law: str = "paper"
     measurement: str = "whole-strip"
     marker_layout: MarkerLayout | None = None
+    source: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name or not set(self.name) <= _NAME_CHARS:
@@ -486,8 +490,9 @@ def set_names() -> tuple[str, ...]:
 
 
 def get_set(name: str, sets: Iterable[CalibrationSet] | None = None) -> CalibrationSet:
-    """The set called ``name``: from ``sets`` first, then the registry."""
+    """The set called ``name`` (its name, or the file it was read from): from ``sets`` first, then the registry."""
     extra = {s.name: s for s in (sets or ())}
+    extra.update({s.source: s for s in (sets or ()) if s.source})
     found = extra.get(name) or _REGISTRY.get(name)
     if found is None:
         valid = sorted(set(extra) | set(_REGISTRY))

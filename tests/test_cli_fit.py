@@ -272,6 +272,15 @@ def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
     from embroact.predict.analysis import analyse
 
     design, sets = resolve_calibration_files(load_design(sub / "d.toml"), sub)
-    assert sets == (cset,) and design.actuators[0].model.calibration == "lab"
+    assert sets == (cset,) and design.actuators[0].model.calibration == sets[0].source  # the file, by path
     (c,) = analyse(design, calibration_sets=sets).curves(pressures)
     assert max(abs(a - b) for a, b in zip(c.theta_deg, truth)) < 1e-6
+    # a resolved design saved elsewhere (as the studio saves into its output folder) still finds the file
+    from embroact.export.files.designfile import save_design
+
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    save_design(design, elsewhere / "saved.toml")
+    assert main(["predict", str(elsewhere / "saved.toml"), "--pressure-kpa", grid, "--json"]) == 0
+    (act,) = json.loads(capsys.readouterr().out)["actuators"]
+    assert max(abs(a - b) for a, b in zip(act["theta_deg"], truth)) < 1e-6

@@ -173,7 +173,7 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
         flag_cal, flag_sets = calibration_reference(flag_cal, Path.cwd())
     overrides = {k: getattr(args, k, None) for k in ("g_mpa", "p0_kpa", "p0_source", "tube_law")}
     design = _with_placement(with_model_overrides(design, calibration=flag_cal, **overrides), args)
-    merged = {s.name: s for s in sets + flag_sets}
+    merged = {s.source or s.name: s for s in sets + flag_sets}
     return Target(design, tuple(merged.values()), source, quick)
 
 

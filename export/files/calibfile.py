@@ -296,16 +296,17 @@ def is_calibration_file(value: str) -> bool:
 
 
 def calibration_reference(value: str | None, base_dir) -> tuple[str | None, tuple[CalibrationSet, ...]]:
-    """(set name, (set,)) for a calibration setting that names a file (read relative to ``base_dir``);
-    (value, ()) for a set name or None."""
+    """(reference, (set,)) for a calibration setting that names a file (read relative to ``base_dir``):
+    the reference is the file's absolute path, by which the set is found (``CalibrationSet.source``) and
+    which a design saved anywhere still resolves; (value, ()) for a set name or None."""
     if value is None or not is_calibration_file(value):
         return value, ()
     cset = read_calibration(Path(base_dir) / value)
-    return cset.name, (cset,)
+    return cset.source, (cset,)
 
 
 def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[CalibrationSet, ...]]:
-    """``design`` with every calibration file its actuators name replaced by the set's name, and the sets.
+    """``design`` with every calibration file its actuators name replaced by its absolute path, and the sets.
 
     What ``embroact predict/build/check DESIGN.toml`` do with ``[actuator.model] calibration =
     "lab.toml"`` (``base_dir``: the design file's folder); pass the sets on to
@@ -323,8 +324,8 @@ def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[Calibrati
     >>> d = design_from_dict({"actuator": [{"name": "A1", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1,
     ...                                     "length_mm": 100, "model": {"calibration": "lab.toml"}}]})
     >>> d, sets = resolve_calibration_files(d, folder)
-    >>> d.actuators[0].model.calibration, [s.name for s in sets]
-    ('lab', ['lab'])
+    >>> d.actuators[0].model.calibration == os.path.realpath(os.path.join(folder, "lab.toml")), [s.name for s in sets]
+    (True, ['lab'])
     >>> m = analyse(d, calibration_sets=sets).actuators[0].model
     >>> m.g_mpa, m.p0_kpa
     (2.0, 90.0)
@@ -376,7 +377,8 @@ def read_calibration(path) -> CalibrationSet:
         return CalibrationSet(doc.get("name", ""), tuple(parsed), doc.get("description", ""), tuple(materials.items()),
                               tube=_tube(path, doc.get("tube")), tube_law=doc.get("tube_law", "paper"),
                               measurement=doc.get("measurement", "whole-strip"),
-                              marker_layout=_layout(path, doc.get("marker_layout")))
+                              marker_layout=_layout(path, doc.get("marker_layout")),
+                              source=str(Path(path).resolve()))
     except EmbroactError as exc:
         raise DesignFileError(f"{str(path)!r}: {exc}") from None
 

@@ -62,7 +62,7 @@ class Studio:
     def __init__(self, design, out_dir, calibration_sets: tuple = ()) -> None:
         self.out_dir = Path(out_dir)
         self.calibration_sets = tuple(calibration_sets)
-        self._names = tuple(s.name for s in self.calibration_sets)
+        self._names = tuple(s.source or s.name for s in self.calibration_sets)  # how a saved design names each
         self.form = design_form(design)
         self.design = design
         self._lock = threading.Lock()
