@@ -44,7 +44,7 @@ import numpy as np
 from ...patterns.base.arrays import frozen_array
 from .dst import COLOR_BYTE, END_BYTE, HEADER_SIZE, decode_moves
 
-__all__ = ["Census", "census", "STOP_CODE_FORMATS", "COLOR_FORMATS", "NAMED_FORMATS"]
+__all__ = ["Census", "census", "raw_reader", "RAW_READ", "STOP_CODE_FORMATS", "COLOR_FORMATS", "NAMED_FORMATS"]
 
 #: Formats with a stop record (DST and EXP share it with the colour change; TBF and U01 have their own).
 STOP_CODE_FORMATS = frozenset({"dst", "exp", "tbf", "u01"})
@@ -54,7 +54,7 @@ COLOR_FORMATS = frozenset({"pes", "pec", "jef", "vp3", "xxx"})
 NAMED_FORMATS = frozenset({"pes", "vp3"})
 _JUMP_BIT = 0x80
 #: Reader settings that keep the file's own records (no trims made from jump runs, nothing clipped).
-_RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
+RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -127,11 +127,17 @@ def _array(pts) -> np.ndarray:
     return frozen_array(np.array(pts, dtype=np.float64).reshape(-1, 2))
 
 
+def raw_reader(fmt: str):
+    """pystitch's reader module for format ``fmt`` (read it with :data:`RAW_READ`)."""
+    import pystitch
+
+    return next(f["reader"] for f in pystitch.supported_formats() if f["extension"] == fmt)
+
+
 def _read(data: bytes, fmt: str):
     import pystitch as pe
 
-    reader = next(f["reader"] for f in pe.supported_formats() if f["extension"] == fmt)
-    return pe, pe.EmbPattern.read_embroidery(reader, io.BytesIO(data), dict(_RAW_READ))
+    return pe, pe.EmbPattern.read_embroidery(raw_reader(fmt), io.BytesIO(data), dict(RAW_READ))
 
 
 def census(data: bytes, fmt: str) -> Census:

@@ -65,6 +65,7 @@ from ...patterns.params import Tube
 from .vp3note import read_origin_mm
 from ...patterns.plan import Command
 from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
+from .census import RAW_READ, raw_reader
 from .dst import END_BYTE, HEADER_SIZE
 
 __all__ = [
@@ -79,8 +80,6 @@ __all__ = [
     "file_rule_settings",
 ]
 
-#: pyembroidery reader settings that keep the file's own record order.
-_RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
 _DST_RECORD_BYTES = 3
 #: Leading bytes of formats that have a magic number.
 _MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
@@ -173,12 +172,12 @@ def _read_pattern(path: str, suffix: str, data: bytes):
         raise DesignFileError(f"{path}: not a {suffix.upper()} file: it does not start with {magic.decode()!r}")
     if suffix == "jef":
         _check_jef_end(path, data)
-    reader = next(f["reader"] for f in pystitch.supported_formats() if f["extension"] == suffix)
+    reader = raw_reader(suffix)
     if getattr(reader, "READ_FILE_IN_TEXT_MODE", False):
-        return pystitch.read(path, dict(_RAW_READ))
+        return pystitch.read(path, dict(RAW_READ))
     stream = _TrackedBytes(data)
     try:
-        pattern = pystitch.EmbPattern.read_embroidery(reader, stream, dict(_RAW_READ))
+        pattern = pystitch.EmbPattern.read_embroidery(reader, stream, dict(RAW_READ))
     except Exception:  # the VP3 reader fails on a cut-short file (None + int) after a short read
         if not (suffix == "vp3" and stream.hit_end):
             raise
