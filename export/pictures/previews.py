@@ -40,6 +40,7 @@ __all__ = [
     "side_pressures",
     "shape_theta_deg",
     "shape_state",
+    "piece_lengths_mm",
     "piece_theta_deg",
     "sleeve_mm",
     "segment_boundaries_mm",
@@ -152,6 +153,11 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
                              f"got {pressure_kpa:g}")
     at = float(pressure_kpa)
     return at, float(np.interp(at, p, t)), tuple(float(np.interp(at, p, v)) for v in parts)
+
+
+def piece_lengths_mm(act) -> tuple[float, ...]:
+    """The length of each of ``act.bend_pieces()`` [mm]: the chain of arcs, transitions unbent."""
+    return tuple(length for length, _ in act.bend_pieces())
 
 
 def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...]:
@@ -269,7 +275,7 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
             panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
                                     theta_deg=tuple(t for _, t, _ in states)))
             continue
-        lengths = tuple(length for length, _ in a.bend_pieces())  # the chain of arcs, transitions unbent
+        lengths = piece_lengths_mm(a)
         panels.append(SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(lengths),
                                 r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=tuple(t for _, t, _ in states),
                                 segment_lengths_mm=lengths,
@@ -286,8 +292,8 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     shapes, pressures = [], {}
     for a, c in zip(analysis.actuators, curves):
         p, theta, parts = shape_state(c, pressure_kpa)
-        chain: dict = ({"segment_lengths_mm": tuple(length for length, _ in a.bend_pieces()),
-                  "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
+        chain: dict = ({"segment_lengths_mm": piece_lengths_mm(a),
+                        "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
         width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
                                     tolerance_mm=tol, name=a.name, coarsen=tolerance_mm is None, **chain))

@@ -116,9 +116,9 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
 def _pieces(act, bend: dict) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """Piece lengths along the fabric line and each piece's bend at the slider's pressure."""
-    pieces = act.bend_pieces()
-    thetas = bend["segment_theta_deg"] or [bend["theta_deg"]]
-    return (tuple(length for length, _ in pieces), tuple(thetas[k] if k >= 0 else 0.0 for _, k in pieces))
+    from ..pictures.previews import piece_lengths_mm, piece_theta_deg
+
+    return piece_lengths_mm(act), piece_theta_deg(act, bend["segment_theta_deg"] or [bend["theta_deg"]])
 
 
 def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
