@@ -49,8 +49,8 @@ from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 from .spatial import corridor_hits
 
-__all__ = ["assemble", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm", "MAX_RECORDS",
-           "MIN_TIE_GRID_STEPS"]
+__all__ = ["assemble", "frame_records", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm",
+           "MAX_RECORDS", "MIN_TIE_GRID_STEPS"]
 
 #: Hard cap on records in one plan; generators refuse before allocating.
 MAX_RECORDS = 5_000_000
@@ -190,17 +190,32 @@ def assemble(
     params : ZigzagParams | CrossParams
         The requested parameters (rail offset is ``params.width_mm / 2``).
     """
+    s0, sn = float(station_s[0]), float(station_s[-1])
+    xy, commands, roles, actuator = frame_records(cl, station_s, station_side * (params.width_mm / 2.0), station_role,
+                                                  np.array([_inward(cl, s0), _inward(cl, sn)]), tube=tube,
+                                                  options=options)
+    realised = measure(xy, roles, cl, params.pattern)
+    act = ActuatorPlan(name, params, tube, cl, realised, tuple(adjustments), options)
+    return StitchPlan(xy, commands, roles, actuator, (act,), name)
+
+
+def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.ndarray, station_role: np.ndarray,
+                  inward: np.ndarray, *, tube: Tube, options: StitchOptions):
+    """Records 1-6 of the module docstring around stations given by arc length and rail offset [mm].
+
+    ``inward`` (+-1 each) is the direction along the path of the tie-in and the tie-off lock
+    stitches. Checks the corridor invariant; returns ``(xy, commands, roles, actuator)``.
+    """
     k = options.tie_count
     s0, sn = float(station_s[0]), float(station_s[-1])
-    inward = np.array([_inward(cl, s0), _inward(cl, sn)])
-    step = inward * tie_step_mm(cl, [s0, sn], np.array([station_side[0], station_side[-1]]) * (params.width_mm / 2.0),
-                                inward, options.tie_stitch_mm)
+    o0, on = float(station_offset_mm[0]), float(station_offset_mm[-1])
+    step = inward * tie_step_mm(cl, [s0, sn], np.array([o0, on]), inward, options.tie_stitch_mm)
     j = np.arange(k + 1)
     tie_in = s0 + step[0] * ((k - j) % 2)  # [STOP, k stitches ending on s0]
     tie_off = sn + step[1] * (j[1:] % 2)  # k stitches from sn
     s_all = np.concatenate([tie_in, station_s[1:], tie_off])
-    side_all = np.concatenate([np.full(k + 1, station_side[0]), station_side[1:], np.full(k, station_side[-1])])
-    xy = cl.offset_point_at(s_all, side_all * (params.width_mm / 2.0))
+    o_all = np.concatenate([np.full(k + 1, o0), station_offset_mm[1:], np.full(k, on)])
+    xy = cl.offset_point_at(s_all, o_all)
     xy = np.vstack([xy, xy[-1], xy[-1]])  # TRIM, END
     n = len(xy)
     commands = np.full(n, Command.STITCH, dtype=np.int8)
@@ -211,9 +226,7 @@ def assemble(
     actuator = np.zeros(n, dtype=np.int16)
     actuator[-1] = -1
     _check_corridor(cl, xy[commands == Command.STITCH], tube)
-    realised = measure(xy, roles, cl, params.pattern)
-    act = ActuatorPlan(name, params, tube, cl, realised, tuple(adjustments), options)
-    return StitchPlan(xy, commands, roles, actuator, (act,), name)
+    return xy, commands, roles, actuator
 
 
 def _check_corridor(cl: Centerline, xy: np.ndarray, tube: Tube) -> None:

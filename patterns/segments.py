@@ -51,13 +51,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assemble import _check_corridor, check_pattern_inputs, tie_step_mm
+from .assemble import check_pattern_inputs, frame_records
 from .base.errors import EmbroactError, ParameterError
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, KindOf, pattern_kind
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
-from .plan import ActuatorPlan, Command, Realised, Role, StitchPlan
+from .plan import ActuatorPlan, Realised, Role, StitchPlan
 
 __all__ = ["SegmentSpec", "SegmentPlan", "segmented", "segment_stations", "pattern_parts",
            "MAX_TRANSITION_STITCH_MM", "LENGTH_MATCH_MM"]
@@ -258,23 +258,8 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
 def _wrap(cl: Centerline, station_s, station_o, station_role, segs: tuple[SegmentPlan, ...], *, tube: Tube,
           options: StitchOptions, name: str) -> StitchPlan:
     """STOP, lock stitches, the stations, lock stitches, TRIM, END (the record convention of assemble)."""
-    k = options.tie_count
-    s0, sn = float(station_s[0]), float(station_s[-1])
-    inward = np.array([1.0, -1.0])
-    step = inward * tie_step_mm(cl, [s0, sn], np.array([station_o[0], station_o[-1]]), inward, options.tie_stitch_mm)
-    j = np.arange(k + 1)
-    s_all = np.concatenate([s0 + step[0] * ((k - j) % 2), station_s[1:], sn + step[1] * (j[1:] % 2)])
-    o_all = np.concatenate([np.full(k + 1, station_o[0]), station_o[1:], np.full(k, station_o[-1])])
-    xy = cl.offset_point_at(s_all, o_all)
-    xy = np.vstack([xy, xy[-1], xy[-1]])
-    n = len(xy)
-    commands = np.full(n, Command.STITCH, dtype=np.int8)
-    commands[[0, -2, -1]] = (Command.STOP, Command.TRIM, Command.END)
-    roles = np.concatenate([[Role.CONTROL], np.full(k, Role.TIE_IN), station_role[1:], np.full(k, Role.TIE_OFF),
-                            [Role.CONTROL] * 2]).astype(np.int8)
-    actuator = np.zeros(n, dtype=np.int16)
-    actuator[-1] = -1
-    _check_corridor(cl, xy[commands == Command.STITCH], tube)
+    xy, commands, roles, actuator = frame_records(cl, station_s, station_o, station_role, np.array([1.0, -1.0]),
+                                                  tube=tube, options=options)
     first = segs[0]
     act = ActuatorPlan(name, first.params, tube, cl, first.realised,
                        tuple(f"segment[{i}]: {note}" for i, s in enumerate(segs) for note in s.adjustments), options,
