@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..patterns.base.errors import check_range
-from .status import Status, is_model_state
+from .status import VALIDITY_LIMITS, Status, is_model_state
 
 __all__ = [
     "STRETCH_LIMIT",
@@ -85,7 +85,7 @@ class LimitFlags:
     def names(self) -> list[list[str]]:
         """Per point (flattened), the names of the limits it exceeds, in precedence order."""
         rows = zip(*(np.ravel(getattr(self, k)) for k in ("coiled", "kinked", "overstretched")))
-        return [[s.name for s, hit in zip((Status.COILED, Status.KINKED, Status.OVERSTRETCHED), row) if hit]
+        return [[s.name for s, hit in zip(VALIDITY_LIMITS, row) if hit]
                 for row in rows]
 
 
@@ -269,7 +269,7 @@ def first_limit(model) -> FirstLimit | None:
         return None
     grid = np.linspace(0.0, end.theta_deg, _LIMIT_GRID)
     st = pressure_at(model, grid).status
-    hit = np.flatnonzero(np.isin(st, [Status.COILED, Status.KINKED, Status.OVERSTRETCHED]))
+    hit = np.flatnonzero(np.isin(st, [int(s) for s in VALIDITY_LIMITS]))
     if hit.size == 0:
         return None
     lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
@@ -277,7 +277,7 @@ def first_limit(model) -> FirstLimit | None:
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
             break
-        if Status(int(pressure_at(model, [mid]).status[0])) in (Status.COILED, Status.KINKED, Status.OVERSTRETCHED):
+        if Status(int(pressure_at(model, [mid]).status[0])) in VALIDITY_LIMITS:
             hi = mid
         else:
             lo = mid
