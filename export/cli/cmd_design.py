@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING
 
 from ...patterns.kinds import PATTERN_KINDS
 from .args import add_tube_arguments, tube_from_args
-from .target import P0_SOURCES
+from .target import P0_SOURCES, TUBE_LAWS
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...patterns.design import Design
@@ -46,7 +46,6 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["add_arguments", "run", "read_target_shape"]
 
 _PATTERNS = PATTERN_KINDS.names() + ("any",)
-_TUBE_LAWS = ("paper", "thick-wall")
 
 
 def add_arguments(parser, name: str) -> None:
@@ -70,7 +69,7 @@ def add_arguments(parser, name: str) -> None:
                        help="calibration set: a built-in name or a file written by 'embroact fit' (default paper-2025)")
     model.add_argument("--p0-source", choices=P0_SOURCES, default="calibration",
                        help="P0: the calibration set's fitted P0 (default) or the tube law's at r0")
-    model.add_argument("--tube-law", choices=_TUBE_LAWS, default="paper", help="tube law of the inflation phase")
+    model.add_argument("--tube-law", choices=TUBE_LAWS, default="paper", help="tube law of the inflation phase")
     out = parser.add_argument_group("output")
     out.add_argument("-o", "--output", required=True, metavar="DESIGN.toml", help="design file to write")
     out.add_argument("--svg", metavar="FILE.svg", help="target shape: predicted shape over the target "
