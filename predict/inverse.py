@@ -53,6 +53,7 @@ from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
 from ..patterns.params import CrossParams, Tube, ZigzagParams
 from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
+from .shape import planar_chain_mm
 from .status import Status
 
 __all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
@@ -541,12 +542,6 @@ def _resample(target_xy_mm) -> tuple[np.ndarray, np.ndarray, float]:
     return sj, np.column_stack([np.interp(sj, s, xy[:, 0]), np.interp(sj, s, xy[:, 1])]), length
 
 
-def _chain_xy(lengths, theta_deg, s_mm) -> np.ndarray:
-    from .shape import planar_chain_mm
-
-    return planar_chain_mm(lengths, theta_deg, s_mm)
-
-
 def _split(kappa: np.ndarray, n: int, min_len: int) -> list[int]:
     """Optimal split of a sampled signal into n constant pieces (least squares), as piece start indices."""
     m = len(kappa)
@@ -616,7 +611,7 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
 
     def residual(v):
         lengths, k = unpack(v)
-        return (_chain_xy(lengths, np.degrees(k * lengths), sj) - xy).ravel()
+        return (planar_chain_mm(lengths, np.degrees(k * lengths), sj) - xy).ravel()
 
     share0 = np.maximum(np.diff(edges) - _MIN_SEGMENT_MM, 1e-3 * max(free, 1e-9))
     v0 = np.concatenate([share0[:-1] / share0[-1], kappa0])
@@ -754,7 +749,7 @@ def _nominal_xy(model: _Model, spaces, x, lengths, sj, legs) -> tuple[np.ndarray
         pieces += [gap, l0, L - gap - l0]
         bends += [0.0, float(t), 0.0]
     keep = np.asarray(pieces) > 1e-9
-    return _chain_xy(np.asarray(pieces)[keep], np.asarray(bends)[keep], sj), status
+    return planar_chain_mm(np.asarray(pieces)[keep], np.asarray(bends)[keep], sj), status
 
 
 def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tube: Tube = Tube(),
