@@ -422,7 +422,7 @@ def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], pauses) -> t
     return tuple(out)
 
 
-def machine_setup(machine, n_actuators: int, *, placement: bool = False) -> tuple[str, ...]:
+def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
     """Plain-words machine set-up for the machine file ``machine`` (a WriteResult), or none;
     ``placement``: the actuators have placement lines (sewn first, then the machine stops for
     each tube).
@@ -431,7 +431,7 @@ def machine_setup(machine, n_actuators: int, *, placement: bool = False) -> tupl
     --------
     >>> from embroact.export.machine.formats import WriteResult
     >>> res = WriteResult(None, "dst", 0, 10, 0, 3, 6, 0, 0, "double", ((0, 0),) * 3)
-    >>> print(machine_setup(res, 3)[1])
+    >>> print(machine_setup(res)[1])
     multi-needle machine (automatic needle mode is fine): set all 7 entries of the needle sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in automatic mode
     """
     first = ("hoop the fabric without any tube: each actuator's placement line is sewn first (a running stitch "
@@ -541,7 +541,7 @@ def worksheet(
         findings=tuple(f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in findings),
         color_change_count=n_cc,
         machine_format=None if machine is None else machine.format,
-        setup=machine_setup(machine, len(ids), placement=bool(_placed(plan))),
+        setup=machine_setup(machine, placement=bool(_placed(plan))),
         notes=() if machine is None else tuple(machine.notes),
         fabric_mm=_fabric_mm(plan, getattr(design, "machine", None)),
     )
