@@ -34,7 +34,9 @@ import re
 from dataclasses import dataclass
 from typing import Mapping
 
+from ...patterns.base.choices import choice_values
 from ...patterns.base.errors import DesignFileError, ParameterError
+from ...patterns.cross import ADJUST_METHODS
 from ...patterns.design import Design, P0Source, TubeLaw, design_from_dict, design_to_dict
 from ...patterns.kinds import PATTERN_KINDS, pattern_kind
 
@@ -44,7 +46,6 @@ __all__ = ["Field", "FieldError", "design_form", "fields", "apply_edits", "MAX_E
 MAX_EDITS = 64
 #: Angle a cross pattern starts from when an actuator is switched to it [deg] (the paper's).
 DEFAULT_CROSS_ANGLE_DEG = 45.0
-_ADJUST = ("auto", "interval", "angle")
 _KEY = re.compile(r"^[a-z_0-9]+(\[\d{1,4}\])?(\.[a-z_0-9]+(\[\d{1,4}\])?){0,3}$")
 _TOKEN = re.compile(r"([a-z_0-9]+)(?:\[(\d+)\])?")
 
@@ -127,7 +128,7 @@ def _pattern_fields(table: dict, path: str, group: str) -> list[Field]:
     out = [Field(f"{path}.pattern", group, table["pattern"], "choice", PATTERN_KINDS.names())]
     out += [Field(f"{path}.{k}", group, table.get(k)) for k in kind.param_keys]
     if "adjust" in kind.options:
-        out.append(Field(f"{path}.adjust", group, table.get("adjust", "auto"), "choice", _ADJUST))
+        out.append(Field(f"{path}.adjust", group, table.get("adjust", "auto"), "choice", ADJUST_METHODS))
     return out
 
 
@@ -142,7 +143,7 @@ def fields(form: Mapping, calibrations: tuple[str, ...] = ()) -> tuple[Field, ..
 
     from ...patterns.stops import CordStop
 
-    choices = {"machine.format": tuple(FORMATS), "machine.cord_stop": tuple(c.value for c in CordStop)}
+    choices = {"machine.format": tuple(FORMATS), "machine.cord_stop": choice_values(CordStop)}
     out = [Field("name", "design", form.get("name", "design"), "text")]
     for table in ("operation", "tube", "machine"):
         out += [_typed(f"{table}.{k}", table, v, choices) for k, v in form.get(table, {}).items()]
@@ -162,9 +163,9 @@ def fields(form: Mapping, calibrations: tuple[str, ...] = ()) -> tuple[Field, ..
                          "choice", names))
         out += [Field(f"{path}.model.{k}", f"{group}, model", model.get(k), optional=True) for k in ("g_mpa", "p0_kpa")]
         out.append(Field(f"{path}.model.p0_source", f"{group}, model", model.get("p0_source", "calibration"), "choice",
-                         tuple(c.value for c in P0Source)))
+                         choice_values(P0Source)))
         out.append(Field(f"{path}.model.tube_law", f"{group}, model", model.get("tube_law", "paper"), "choice",
-                         tuple(c.value for c in TubeLaw)))
+                         choice_values(TubeLaw)))
     return tuple(out)
 
 
