@@ -385,6 +385,10 @@ class DesignAnalysis:
         """The standard grid: 0 to the design's working pressure in 10 kPa steps."""
         return pressure_grid_kpa(self.design.operation.max_pressure_kpa)
 
+    def _grid(self, pressures_kpa: Sequence[float] | None) -> tuple[float, ...]:
+        """``pressures_kpa`` as a tuple of floats (the memo key); :attr:`pressures_kpa` when None."""
+        return tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+
     def curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
         """Predicted curve per actuator at ``pressures_kpa`` (default :attr:`pressures_kpa`), memoised.
 
@@ -414,7 +418,7 @@ class DesignAnalysis:
         ModelDomainError
             An actuator (or a segment) has no model (``model_error``).
         """
-        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        p = self._grid(pressures_kpa)
         key = (p, method)
         if key not in self._curves:
             self._curves[key] = tuple(strip_curve(pieces) if a.segments else pieces[0]
@@ -453,7 +457,7 @@ class DesignAnalysis:
         """
         from .curve import curve
 
-        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        p = self._grid(pressures_kpa)
         key = ("segments", p, method)
         if key not in self._curves:
             self._curves[key] = tuple(
@@ -526,16 +530,12 @@ class DesignAnalysis:
         >>> analyse(default_design()).bands([100.0])   # the built-in set has no covariance
         (None,)
         """
-        p = tuple(float(v) for v in (self.pressures_kpa if pressures_kpa is None else pressures_kpa))
+        p = self._grid(pressures_kpa)
         key = ("band", p, method, measurement)
         if key not in self._curves:
-            out: list[Band | None] = []
-            for a in self.actuators:
-                if a.segments:  # no band is claimed for a sum of segments
-                    out.append(None)
-                    continue
-                out.append(_band(a, p, method, measurement))
-            self._curves[key] = tuple(out)
+            # no band is claimed for a sum of segments
+            self._curves[key] = tuple(None if a.segments else _band(a, p, method, measurement)
+                                      for a in self.actuators)
         return self._curves[key]
 
     def as_dict(self) -> dict:
