@@ -46,6 +46,7 @@ import shapely
 from .base.arrays import frozen_array
 from .base.errors import ParameterError, PathError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
+from .base.validate import check_coordinates
 from .spatial import self_crossings
 
 __all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
@@ -62,8 +63,6 @@ MIN_LENGTH_MM = 1e-3
 _PROJECT_STEPS = 6
 #: Largest number of vertices a path may have.
 _MAX_POINTS = 2_000_000
-#: Largest |coordinate| of a path vertex [mm] (10 km: far beyond any hoop, far below float overflow).
-_MAX_COORD_MM = 1e7
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -532,8 +531,8 @@ def _clean_points(points) -> np.ndarray:
         raise PathError(f"path must have at most {_MAX_POINTS} points, got {len(pts)}")
     if not np.all(np.isfinite(pts)):
         raise PathError("path points must be finite numbers, got NaN or inf")
-    if len(pts) and np.abs(pts).max() > _MAX_COORD_MM:
-        raise PathError(f"path coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {np.abs(pts).max():g}")
+    if len(pts):
+        check_coordinates("path", float(np.abs(pts).max()))
     if len(pts) >= 2:
         step = np.hypot(*np.diff(pts, axis=0).T)
         pts = pts[np.concatenate([[True], step > DEFAULT_TOLERANCES.length_mm])]

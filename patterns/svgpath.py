@@ -35,7 +35,7 @@ import numpy as np
 
 from .base.errors import PathError
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import PATH_CHARS, PATH_SEGMENTS
+from .base.validate import COORD_MM, PATH_CHARS, PATH_SEGMENTS, check_coordinates
 
 if TYPE_CHECKING:
     import svgelements
@@ -54,8 +54,6 @@ _D_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _NUMBERS_PER_SEGMENT = 7
 #: Arc radii beyond these are handled by :func:`_arc_radii` (their squares over- or underflow).
 _HUGE_RADIUS_MM, _TINY_RADIUS_MM = 1e150, 1e-150
-#: Largest coordinate a path may use [mm] (as :class:`embroact.patterns.centerline.Centerline`).
-_MAX_COORD_MM = 1e7
 _PATH_CLASS = None
 
 
@@ -139,19 +137,12 @@ def _arc_radii(rx: float, ry: float, chord: float, large: bool) -> tuple[float, 
     if big > _HUGE_RADIUS_MM:
         if large:
             raise PathError(f"SVG path: an arc of radius {big:g} mm taking the large way round (large-arc-flag 1) "
-                            f"leaves the coordinate range [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm")
+                            f"leaves the coordinate range [-{COORD_MM:g}, {COORD_MM:g}] mm")
         return None
     if small < _TINY_RADIUS_MM and big <= chord / 4.0:
         scale = chord / 4.0 / big
         rx, ry = rx * scale, ry * scale
     return (rx, ry) if min(rx, ry) >= _TINY_RADIUS_MM else None
-
-
-def _check_coordinates(point) -> None:
-    """Refuse a point outside [-_MAX_COORD_MM, _MAX_COORD_MM] mm (before arithmetic on it)."""
-    worst = max(abs(point.x), abs(point.y))
-    if not worst <= _MAX_COORD_MM:
-        raise PathError(f"path coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {worst:g}")
 
 
 def _path_class():
@@ -169,7 +160,7 @@ def _path_class():
                         end = self.z_point
                     end = svgelements.Point(end)
                     absolute = end + start if relative and start is not None else end
-                    _check_coordinates(absolute)
+                    check_coordinates("path", max(abs(absolute.x), abs(absolute.y)))
                     chord = abs(absolute - start) if start is not None else 0.0
                     radii = _arc_radii(abs(rx), abs(ry), chord, bool(large))
                     if radii is None:

@@ -32,6 +32,7 @@ limit                      value               applies to
 ``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
 ``DESIGN_ACTUATORS``       1,000               actuators of one design (check: 14 s)
 ``ACTUATOR_SEGMENTS``      200                 ``[[actuator.segment]]`` tables of one actuator (check: 3 s)
+``COORD_MM``               1e7 mm (10 km)      abs(coordinate) of a path point, SVG or not
 =========================  ==================  =============================================
 
 An embroidery file of more than ``MACHINE_FILE_RECORDS`` records is far beyond any hoop (a
@@ -58,7 +59,7 @@ from __future__ import annotations
 import os
 import unicodedata
 
-from .errors import DesignFileError, ParameterError
+from .errors import DesignFileError, ParameterError, PathError
 
 __all__ = [
     "TEXT_FILE_BYTES",
@@ -73,11 +74,13 @@ __all__ = [
     "NAME_CHARS",
     "DESIGN_ACTUATORS",
     "ACTUATOR_SEGMENTS",
+    "COORD_MM",
     "SHOWN_CHARS",
     "shown",
     "check_count",
     "check_name",
     "check_output_name",
+    "check_coordinates",
     "read_limited",
 ]
 
@@ -93,6 +96,8 @@ PATH_SEGMENTS = 5_000
 NAME_CHARS = 1_000
 DESIGN_ACTUATORS = 1_000
 ACTUATOR_SEGMENTS = 200
+#: Largest |coordinate| of a path point [mm] (10 km: far beyond any hoop, far below float overflow).
+COORD_MM = 1e7
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
 SHOWN_CHARS = 80
 
@@ -167,6 +172,19 @@ def check_output_name(flag: str, value: object) -> str:
     if _control(value) is not None:
         raise ParameterError(f"{flag} must be a UTF-8 file name without control characters, got {shown(value)}")
     return value
+
+
+def check_coordinates(name: str, worst_mm: float) -> None:
+    """Refuse a largest absolute coordinate ``worst_mm`` beyond :data:`COORD_MM` (or NaN), before arithmetic.
+
+    >>> try:
+    ...     check_coordinates("path", 2e7)
+    ... except ValueError as exc:
+    ...     print(exc)
+    path coordinates must be in [-1e+07, 1e+07] mm, got 2e+07
+    """
+    if not worst_mm <= COORD_MM:
+        raise PathError(f"{name} coordinates must be in [-{COORD_MM:g}, {COORD_MM:g}] mm, got {worst_mm:g}")
 
 
 def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
