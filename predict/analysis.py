@@ -47,7 +47,7 @@ from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterErr
 from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
 from ..patterns.plan import ActuatorPlan, StitchPlan
 from ..patterns.segments import SegmentPlan
-from .calibration import CalibrationSet, ModelChoice, model_for
+from .calibration import CalibrationSet, ModelChoice, as_calibration_sets, model_for
 from .derived import DerivedGeometry, derive
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -690,7 +690,7 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     >>> round(x.derived.angle_deg, 2), x.derived.requested_angle_deg, x.model.g_mpa
     (30.96, 30.0, 12.0)
     """
-    sets = tuple(calibration_sets.values()) if isinstance(calibration_sets, Mapping) else tuple(calibration_sets)
+    sets = as_calibration_sets(calibration_sets)
     plan = build_plan(design) if plan is None else plan
     index = {a.name: i for i, a in enumerate(plan.actuators)}
     acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets) for spec in design.actuators)

@@ -88,6 +88,7 @@ __all__ = [
     "CalibrationTube",
     "ModelChoice",
     "model_for",
+    "as_calibration_sets",
 ]
 
 PATTERNS = PATTERN_KINDS.names()
@@ -732,7 +733,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         axis = pattern_kind(derived.pattern).calibration_axis
         angle = derived.requested_angle_deg if axis == "angle_deg" else None
         cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle,
-                     name=settings.calibration, sets=_as_sets(sets), branch=branch, extrapolation=extrapolation)
+                     name=settings.calibration, sets=as_calibration_sets(sets), branch=branch, extrapolation=extrapolation)
     tube = derived.tube
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
@@ -748,7 +749,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         g, g_src = cal.g_mpa, f"calibration {cal.label}"
     notes: tuple[str, ...] = ()
     if cal is not None:
-        cset = get_set(settings.calibration, _as_sets(sets))
+        cset = get_set(settings.calibration, as_calibration_sets(sets))
         if cset.tube is None:
             notes = (f"calibration {cset.name!r} records no tube: its G may not carry over to this tube",)
         else:
@@ -763,7 +764,12 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     return ModelChoice(model, cal, g_src, p0_src, notes)
 
 
-def _as_sets(sets) -> tuple[CalibrationSet, ...]:
+def as_calibration_sets(sets) -> tuple[CalibrationSet, ...]:
+    """Calibration sets given as None, an iterable of sets or a mapping name -> set, as a tuple.
+
+    >>> as_calibration_sets({"paper-2025": PAPER_2025}) == (PAPER_2025,), as_calibration_sets(None)
+    (True, ())
+    """
     if sets is None:
         return ()
     return tuple(sets.values()) if isinstance(sets, Mapping) else tuple(sets)
