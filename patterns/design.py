@@ -96,7 +96,7 @@ from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
-from .segments import LENGTH_MATCH_MM, SegmentSpec, segment_stations, segmented
+from .segments import SegmentSpec, check_segments, segment_stations, segmented
 from .placement import placement_records, with_placement
 from .stops import cord_stop as _cord_stop
 
@@ -305,12 +305,7 @@ class ActuatorSpec(KindFields):
         object.__setattr__(self, "centerline", as_centerline(self.centerline))
         segs = tuple(self.segments)
         if segs:
-            if not all(isinstance(seg, SegmentSpec) for seg in segs):
-                raise ParameterError("segments must hold SegmentSpec values only")
-            total = sum(seg.length_mm for seg in segs)
-            if abs(total - self.centerline.length_mm) > LENGTH_MATCH_MM:
-                raise ParameterError(f"segment length_mm values must add up to the path length "
-                                     f"{self.centerline.length_mm:.6g} mm, got {total:.6g}")
+            check_segments(self.centerline, segs)
             if self.params != segs[0].params:
                 raise ParameterError("params must be the first segment's parameters for a segmented actuator")
         object.__setattr__(self, "segments", segs)

@@ -59,7 +59,7 @@ from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Realised, Role, StitchPlan
 
-__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "segment_stations", "pattern_parts",
+__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "check_segments", "segment_stations", "pattern_parts",
            "MAX_TRANSITION_STITCH_MM", "LENGTH_MATCH_MM"]
 
 #: Longest stitch of a transition between segments, along the path [mm].
@@ -149,7 +149,16 @@ def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised
     return (("", act.params, act.realised),)
 
 
-def _check_lengths(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:
+def check_segments(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:
+    """``segments`` as a tuple if it is a non-empty sequence of :class:`SegmentSpec` whose lengths
+    add up to the path's within ``LENGTH_MATCH_MM``; :class:`ParameterError` otherwise.
+
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> check_segments(Centerline.straight(60.0), [SegmentSpec(ZigzagParams(7.0, 1.0), 50.0)])
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: segment length_mm values must add up to the path length 60 mm (within 0.05 mm), got 50
+    """
     segs = tuple(segments)
     if not segs or not all(isinstance(s, SegmentSpec) for s in segs):
         raise ParameterError("segments must be a non-empty sequence of SegmentSpec")
@@ -210,7 +219,7 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
         As the generators, the message prefixed with ``segment[k]``.
     """
     cl = as_centerline(centerline)
-    segs = _check_lengths(cl, segments)
+    segs = check_segments(cl, segments)
     s_all: list[np.ndarray] = []
     o_all: list[np.ndarray] = []
     role_all: list[np.ndarray] = []
