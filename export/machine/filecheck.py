@@ -58,8 +58,8 @@ import numpy as np
 
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
-from ...patterns.base.validate import (DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, TEXT_FILE_BYTES,
-                                        read_limited)
+from ...patterns.base.validate import (COORD_MM, DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS,
+                                        TEXT_FILE_BYTES, read_limited)
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
@@ -88,8 +88,6 @@ _MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
 #: EXP has no header and no end code, so a truncated EXP file cannot be told from a short design.)
 _END_CODED = {"dst", "pes", "pec", "vp3", "xxx", "tbf", "u01"}
 _JEF_CONTROL, _JEF_END = 0x80, 0x10
-#: Largest tube-path coordinate [mm] (as for design paths).
-_MAX_COORD_MM = 1e7
 _TUBE_KEYS = {"name", "path_mm", "outer_radius_mm", "clearance_mm", "end_margin_mm"}
 _MACHINE_KEYS = {"hoop_width_mm", "hoop_height_mm", "min_stitch_mm", "max_stitch_mm", "format"}
 
@@ -259,8 +257,8 @@ def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
 def _in_range(pts: np.ndarray, name: str) -> np.ndarray:
     """``pts`` if every coordinate lies within the range paths may use (before any arithmetic on them)."""
     worst = float(np.abs(pts).max())
-    if worst > _MAX_COORD_MM:
-        raise ParameterError(f"{name} coordinates must be in [-{_MAX_COORD_MM:g}, {_MAX_COORD_MM:g}] mm, got {worst:g}")
+    if worst > COORD_MM:  # the bound of design paths
+        raise ParameterError(f"{name} coordinates must be in [-{COORD_MM:g}, {COORD_MM:g}] mm, got {worst:g}")
     return pts
 
 
