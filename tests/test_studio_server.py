@@ -400,3 +400,21 @@ def test_a_target_shape_is_proposed_then_applied(client):
     assert theta == pytest.approx(90.0, abs=0.5)
     again = client.post("/api/apply-proposal", json={}, headers=AUTH)
     assert again.status_code == 400
+
+
+def test_the_slider_marks_the_pressure_where_a_widened_chart_draws_it(out_dir):
+    """The hook's long segment legends widen the build's chart: the slider's dots sit on its curves."""
+    import xml.etree.ElementTree as ET
+    from pathlib import Path
+
+    design = load_design(Path(__file__).resolve().parents[1] / "examples" / "designed_hook.toml")
+    chart = ET.fromstring(Studio(design, out_dir).views(200.0)["chart_svg"])
+    ns = "{http://www.w3.org/2000/svg}"
+    assert float(chart.get("width")) > 720.0  # widened (else this test would not show anything)
+    vertices = [tuple(map(float, p.split(","))) for e in chart.iter(ns + "polyline") if e.get("class") == "curve"
+                for p in e.get("points").split()]
+    dots = chart.findall(f".//{ns}circle[@class='pressure-dot']")
+    assert len(dots) == 4  # the whole strip and its three segments, each drawn with a vertex at 200 kPa
+    for dot in dots:
+        x, y = float(dot.get("cx")), float(dot.get("cy"))
+        assert min(abs(vx - x) + abs(vy - y) for vx, vy in vertices) < 0.02

@@ -48,6 +48,7 @@ __all__ = [
     "actuator_series",
     "bend_series",
     "bend_chart",
+    "bend_chart_width_px",
     "side_panels",
     "shape_meshes",
     "shape3d_title",
@@ -260,9 +261,13 @@ def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None, ba
     caption = model_caption(analysis)
     title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
     series = bend_series(analysis, curves, measured, bands)
-    # long legends (a segment's pattern, G and P0) widen the chart rather than narrow its plot
-    width = CHART_WIDTH_PX + max(0.0, CHART_MIN_PLOT_PX - chart_scale(series, width_px=CHART_WIDTH_PX).width_px)
-    return bend_chart_svg(series, title=title, width_px=width)
+    return bend_chart_svg(series, title=title, width_px=bend_chart_width_px(series))
+
+
+def bend_chart_width_px(series) -> float:
+    """Width [px] of :func:`bend_chart` for these series: long legends (a segment's pattern, G and P0)
+    widen the chart rather than narrow its plot below ``CHART_MIN_PLOT_PX``."""
+    return CHART_WIDTH_PX + max(0.0, CHART_MIN_PLOT_PX - chart_scale(series, width_px=CHART_WIDTH_PX).width_px)
 
 
 def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:

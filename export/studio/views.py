@@ -101,7 +101,7 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         thetas = [t for b in bends for t in [b["theta_deg"], *b["segment_theta_deg"]]]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")
-    sc = chart_scale(series)
+    sc = chart_scale(series, width_px=pv.bend_chart_width_px(series))  # the chart's own (a long legend widens it)
     if not sc.x_min_kpa <= pressure_kpa <= sc.x_max_kpa:
         return svg
     x = sc.x_px(pressure_kpa)
