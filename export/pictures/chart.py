@@ -1,4 +1,4 @@
-"""Pressure-bend chart: bend angle [deg] against pressure [kPa], drawn with svgwrite.
+"""Pressure-bend chart: bend angle [deg] against pressure [kPa], drawn with :mod:`.svgdoc`.
 
 One or many designs on one chart; each design's transition pressure P0 is a dashed
 vertical mark, the model's status regions are shaded (a full-height band for a
@@ -465,7 +465,7 @@ def bend_chart_svg(
         formula past a validity limit) and ``data-series="k"``; bands are polygons of
         ``class="band"``.
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     if not series or any(len(s.pressure_kpa) == 0 for s in series):
         raise ParameterError("series must hold at least one curve with at least one sample")
@@ -474,8 +474,7 @@ def bend_chart_svg(
     sc = chart_scale(series, width_px=width_px, height_px=height_px)
     xt = nice_ticks(sc.x_min_kpa, sc.x_max_kpa)
     yt = nice_ticks(sc.y_min_deg, sc.y_max_deg)
-    dwg = svgwrite.Drawing(size=(_fmt(width_px), _fmt(height_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(height_px)}",
-                           debug=False)
+    dwg = Drawing(size=(_fmt(width_px), _fmt(height_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(height_px)}")
     dwg.add(dwg.rect((0, 0), (_fmt(width_px), _fmt(height_px)), fill="#fff"))
     clip = dwg.defs.add(dwg.clipPath(id="plot-box"))
     clip.add(dwg.rect((_fmt(sc.left_px), _fmt(sc.top_px)), (_fmt(sc.width_px), _fmt(sc.height_px))))

@@ -149,7 +149,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
         Caption drawn in the top-left corner (wrapped onto up to 3 lines, shortened past them:
         :func:`embroact.export.pictures.titles.fit_title`).
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     from .mesh import shapes_of
     from .triangles import subdivide_to_size
@@ -182,8 +182,7 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     fitted = fit_title(title, width - 2 * _MARGIN_PX, font_px=14.0, small_px=12.0, max_lines=3) if title else None
     top = 15.0 + 15.0 * len(fitted.lines) if fitted else _MARGIN_PX
     height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
-    dwg = svgwrite.Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}",
-                           debug=False)
+    dwg = Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}")
     dwg.add(dwg.rect((0, 0), (f"{width:.0f}", f"{height:.0f}"), fill="#fff"))
     g = dwg.g(stroke_width=0.4, stroke_linejoin="round", **{"class": "mesh"})
     dwg.add(g)

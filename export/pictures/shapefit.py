@@ -50,7 +50,7 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     caption : sequence of str
         Lines printed under the drawing (errors, the design).
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     target = np.asarray(target_xy_mm, dtype=np.float64).reshape(-1, 2)
     pred = np.asarray(predicted_xy_mm, dtype=np.float64).reshape(-1, 2)
@@ -63,8 +63,8 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     body = float(hi[1] - lo[1])
     height = _HEADER_MM + body + 6.0 * (len(caption) + 1) + _MARGIN_MM
     top = _HEADER_MM + float(hi[1])  # page y = top - plan y (y up on the page)
-    dwg = svgwrite.Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
-                           viewBox=f"0 0 {width:.3f} {height:.3f}", debug=False)
+    dwg = Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+                  viewBox=f"0 0 {width:.3f} {height:.3f}")
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)
     dwg.add(root)

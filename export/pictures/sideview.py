@@ -227,7 +227,7 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     10 mm scale bar is drawn.  Each state is a ``<g class="state">`` carrying
     ``data-pressure-kpa`` and ``data-theta-deg``.
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     if not panels:
         raise ParameterError("panels must hold at least one side view")
@@ -242,8 +242,8 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
         x += max(b[2] - b[0], _LEGEND_WIDTH_MM) + _PANEL_GAP_MM
     width = x - _PANEL_GAP_MM + _MARGIN_MM + 20.0
     height = legend_y + rows * _LEGEND_ROW_MM + _MARGIN_MM
-    dwg = svgwrite.Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
-                           viewBox=f"0 0 {width:.3f} {height:.3f}", debug=False)
+    dwg = Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+                  viewBox=f"0 0 {width:.3f} {height:.3f}")
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)
     dwg.add(root)

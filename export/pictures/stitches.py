@@ -1,4 +1,4 @@
-"""Stitch preview: the plan drawn to scale in millimetres (SVG, svgwrite).
+"""Stitch preview: the plan drawn to scale in millimetres (SVG, :mod:`.svgdoc`).
 
 The drawing's user unit is the millimetre (``viewBox`` in mm, ``width``/``height``
 with ``mm`` units), so it prints at 1:1 and measures true in Inkscape.  The plan
@@ -110,7 +110,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     show_points : bool
         Draw a dot at every needle point.
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     margin = check_range("margin_mm", margin_mm, low=0.0, high=100.0, low_inclusive=True, high_inclusive=True)
     pr = check_range("point_radius_mm", point_radius_mm, low=0.0, high=5.0, high_inclusive=True)
@@ -131,8 +131,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0
     height = (fab_hi[1] - fab_lo[1]) + 2 * pad + text_h
     vx, vy = fab_lo[0] - pad, -fab_hi[1] - pad
-    dwg = svgwrite.Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}",
-                           profile="full", debug=False)
+    dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
     layer = {name: dwg.add(dwg.g(id=name)) for name in (
         "fabric", "corridor", "tube", "centerline", "rails", "travel", "legs", "needle-points", "ties", "stops",

@@ -78,7 +78,7 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     machine : MachineSettings, optional
         Its ``hoop_width_mm`` x ``hoop_height_mm`` is the hoop drawn (default 200 x 200 mm).
     """
-    import svgwrite
+    from .svgdoc import Drawing
 
     hoop = (getattr(machine, "hoop_width_mm", _DEFAULT_HOOP_MM[0]), getattr(machine, "hoop_height_mm",
                                                                           _DEFAULT_HOOP_MM[1]))
@@ -92,8 +92,8 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     text_h = _ROW_MM * (len(notes) + 1) + 2 * _BORDER_MM
     width, height = hi[0] - lo[0], hi[1] - lo[1] + text_h
     vx, vy = lo[0], -hi[1]
-    dwg = svgwrite.Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"),
-                           viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}", profile="full", debug=False)
+    dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"),
+                  viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
     layer = {name: dwg.add(dwg.g(id=name)) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
     _draw_hoop(dwg, layer["hoop"], h_lo, h_hi)
