@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 import signal
 import tempfile
 import threading
@@ -164,7 +163,7 @@ def _backup(p: Path) -> str | None:
     if not p.exists():
         return None
     for _ in range(8):
-        name = str(p.parent / f".{p.name[:200]}.{secrets.token_hex(4)}.old")
+        name = str(p.parent / f".{p.name[:200]}.{os.urandom(4).hex()}.old")
         try:
             os.link(p, name)
             return name

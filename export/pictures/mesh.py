@@ -444,7 +444,8 @@ def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> flo
     its cost bounded, where measuring all of a 10 m path took 19 s).
     """
     m, f = body.ring_size, np.array(_SAMPLE_FRACTIONS)
-    steps = np.unique(np.linspace(0, len(s) - 2, min(len(s) - 1, _MAX_MEASURED_STEPS)).round().astype(np.int64))
+    # strictly increasing (spaced at least 1 apart before rounding): no duplicates to remove
+    steps = np.linspace(0, len(s) - 2, min(len(s) - 1, _MAX_MEASURED_STEPS)).round().astype(np.int64)
     i, j, fs, gs = (x.reshape(-1) for x in np.meshgrid(steps, np.arange(m), f, f, indexing="ij"))
     sq = s[i] + fs * (s[i + 1] - s[i])
     x, r = bent.frames(sq)

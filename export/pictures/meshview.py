@@ -193,22 +193,19 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     for k, line in enumerate(lines):
         dwg.add(dwg.text(line, insert=(_MARGIN_PX, 20 + 15 * k), font_size=f"{font_px:g}", font_weight="bold",
                          style="font-family:Helvetica,Arial,sans-serif"))
-    return _with_polygons(dwg.tostring(), g.tostring(), px[order].tolist(), rgb[order].tolist())
+    return _with_polygons(dwg.tostring(), g.tostring(), px[order].reshape(-1, 6).tolist(), rgb[order].tolist())
 
 
 def _with_polygons(svg: str, group: str, points, colours) -> str:
-    """``svg`` with the empty group ``group`` filled by one polygon per triangle, written as svgwrite writes them.
+    """``svg`` with the empty group ``group`` filled by one polygon per triangle, written as svgdoc writes them.
 
-    svgwrite builds and validates an element object per polygon (most of the picture's time, for a few
-    thousand triangles); the text is the same: attributes in name order, points as ``str`` of the
-    coordinates rounded to 0.1 px.
+    An element object per polygon would be most of the picture's time (a few thousand triangles); the
+    text is the same: attributes in name order, points as the coordinates rounded to 0.1 px (``%.1f``
+    gives the digits of ``str(round(x, 1))`` for every coordinate a picture can have).
     """
-    polys = []
-    for tri, rgb in zip(points, colours):
-        c = "#{:02x}{:02x}{:02x}".format(*rgb)
-        pts = " ".join(f"{round(x, 1)},{round(y, 1)}" for x, y in tri)
-        polys.append(f'<polygon fill="{c}" points="{pts}" stroke="{c}" />')
-    if not polys:
+    if not len(points):
         return svg
+    one = '<polygon fill="#%02x%02x%02x" points="%.1f,%.1f %.1f,%.1f %.1f,%.1f" stroke="#%02x%02x%02x" />'
+    polys = "".join(one % (*c, *p, *c) for c, p in zip(colours, points))
     assert svg.count(group) == 1 and group.endswith(" />")
-    return svg.replace(group, group[:-3] + ">" + "".join(polys) + "</g>")
+    return svg.replace(group, group[:-3] + ">" + polys + "</g>")

@@ -78,7 +78,9 @@ def subdivide_to_size(vertices, faces, max_edge: float):
     parent = np.arange(len(f))
     for _ in range(MAX_SUBDIVISIONS + 1):
         edges = np.sort(f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
-        unique, inverse = np.unique(edges, axis=0, return_inverse=True)
+        # each edge as one integer (first * n + second sorts as the pairs do): a 1-D unique, not a row sort
+        keys, inverse = np.unique(edges[:, 0] * len(v) + edges[:, 1], return_inverse=True)
+        unique = np.column_stack([keys // len(v), keys % len(v)])
         long_edge = np.linalg.norm(v[unique[:, 0]] - v[unique[:, 1]], axis=1) > max_edge
         if not long_edge.any():
             return v, f, parent

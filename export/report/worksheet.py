@@ -398,7 +398,7 @@ def _lay_line(a: ActuatorSheet, act: ActuatorPlan | None, needle) -> str:
 
 def _placed(plan: StitchPlan) -> set[int]:
     """Actuators with a placement line."""
-    return {int(a) for a in np.unique(plan.actuator[plan.roles == Role.PLACEMENT])}
+    return set(plan.actuator[plan.roles == Role.PLACEMENT].tolist())
 
 
 def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], pauses) -> tuple[str, ...]:
