@@ -28,7 +28,9 @@ True
 from __future__ import annotations
 
 from importlib import import_module
-from typing import Any, Callable
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # annotations only: importing typing is ~2 ms of `embroact --help`
+    from typing import Any, Callable
 
 from .errors import EmbroactError, ParameterError
 
