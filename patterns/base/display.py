@@ -28,11 +28,12 @@ True
 from __future__ import annotations
 
 from importlib import import_module
+
+from .errors import EmbroactError, ParameterError
+
 TYPE_CHECKING = False
 if TYPE_CHECKING:  # annotations only: importing typing is ~2 ms of `embroact --help`
     from typing import Any, Callable
-
-from .errors import EmbroactError, ParameterError
 
 __all__ = ["MIME_TYPES", "register", "renderer", "render", "repr_svg", "repr_html"]
 
