@@ -169,9 +169,9 @@ def bent_line_mm(length_mm: float, theta_deg: float, offset_mm: float, *,
                          tolerance_mm=tolerance_mm)
 
 
-def _band(shape: BentShape, lo_mm: float, hi_mm: float) -> np.ndarray:
-    """Closed outline of the region between two offsets."""
-    return np.vstack([shape_line_mm(shape, lo_mm), shape_line_mm(shape, hi_mm)[::-1]])
+def _band(lines: dict[float, np.ndarray], lo_mm: float, hi_mm: float) -> np.ndarray:
+    """Closed outline of the region between two offsets (of a state's :func:`_state_lines`)."""
+    return np.vstack([lines[lo_mm], lines[hi_mm][::-1]])
 
 
 def _states(panel: SidePanel) -> list[tuple[float, float, BentShape]]:
@@ -179,9 +179,16 @@ def _states(panel: SidePanel) -> list[tuple[float, float, BentShape]]:
             if math.isfinite(t) and (not panel.segment_lengths_mm or all(map(math.isfinite, panel.segment_theta_deg[k])))]
 
 
-def _panel_bounds(panel: SidePanel) -> tuple[float, float, float, float]:
+def _state_lines(panel: SidePanel) -> list[tuple[float, float, BentShape, dict[float, np.ndarray]]]:
+    """Each drawn state with its lines at the offsets the panel draws (fabric back and line, tube axis
+    and top), each computed once for the panel's extent and its drawing."""
+    offsets = (-FABRIC_THICKNESS_MM, 0.0, panel.r0_mm, 2.0 * panel.r0_mm)
+    return [(p, t, shape, {o: shape_line_mm(shape, o) for o in offsets}) for p, t, shape in _states(panel)]
+
+
+def _panel_bounds(panel: SidePanel, states) -> tuple[float, float, float, float]:
     pts = [np.array([[-3.0, 4.0], [2.0 * panel.r0_mm + 3.0, 0.0]])]
-    pts += [_band(shape, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for _, _, shape in _states(panel)]
+    pts += [_band(lines, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for *_, lines in states]
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
@@ -192,24 +199,23 @@ def _pts(xz: np.ndarray, dx: float, dy: float) -> list[tuple[float, float]]:
     return [(round(float(x) + dx, 3), round(dy - float(z), 3)) for x, z in xz]
 
 
-def _draw_panel(dwg, parent, panel: SidePanel, dx: float, dy: float, left: float, legend_y: float) -> None:
+def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, left: float, legend_y: float) -> None:
     r0 = panel.r0_mm
     g = dwg.g(**{"class": "panel"})
     parent.add(g)
-    states = _states(panel)
-    for k, (p, t, shape) in enumerate(states):
+    for k, (p, t, shape, lines) in enumerate(states):
         colour = PALETTE[k % len(PALETTE)]
         sg = dwg.g(**{"class": "state", "data-pressure-kpa": f"{p:g}", "data-theta-deg": f"{t:.6g}"})
         g.add(sg)
-        sg.add(dwg.polygon(_pts(_band(shape, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
+        sg.add(dwg.polygon(_pts(_band(lines, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
                            stroke=colour, stroke_width=0.25, **{"class": "tube"}))
-        sg.add(dwg.polygon(_pts(_band(shape, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
+        sg.add(dwg.polygon(_pts(_band(lines, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
                            stroke=colour, stroke_width=0.3, **{"class": "fabric"}))
         if panel.marks_mm:
             on_tube = shape.points(list(panel.marks_mm), [(0.0, r0)])[:, 0, :]
             for x, y in _pts(np.column_stack([on_tube[:, 2], -on_tube[:, 0]]), dx, dy):
                 sg.add(dwg.circle((x, y), 0.9, fill="#fff", stroke=colour, stroke_width=0.35, **{"class": "mark"}))
-        tip = _pts(shape_line_mm(shape, r0)[-1:], dx, dy)[0]
+        tip = _pts(lines[r0][-1:], dx, dy)[0]
         sg.add(dwg.circle(tip, 1.0, fill=colour))
         sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
         y = legend_y + k * _LEGEND_ROW_MM
@@ -231,11 +237,12 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
 
     if not panels:
         raise ParameterError("panels must hold at least one side view")
-    bounds = [_panel_bounds(p) for p in panels]
+    states = [_state_lines(p) for p in panels]
+    bounds = [_panel_bounds(p, s) for p, s in zip(panels, states)]
     top = max(b[3] for b in bounds) + 22.0
     bottom = min(b[1] for b in bounds)
     legend_y = top - bottom + 6.0
-    rows = max(len(_states(p)) for p in panels)
+    rows = max(len(s) for s in states)
     x, lefts = _MARGIN_MM, []
     for b in bounds:
         lefts.append(x)
@@ -248,8 +255,8 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     root = dwg.g(style=_FONT)
     dwg.add(root)
     root.add(dwg.text(title, insert=(_MARGIN_MM, 7.0), font_size=5, font_weight="bold"))
-    for panel, b, left in zip(panels, bounds, lefts):
-        _draw_panel(dwg, root, panel, left - b[0], top, left, legend_y)
+    for panel, s, b, left in zip(panels, states, bounds, lefts):
+        _draw_panel(dwg, root, panel, s, left - b[0], top, left, legend_y)
     bar_x, bar_y = width - _MARGIN_MM - 10.0, height - _MARGIN_MM
     root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
     root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
