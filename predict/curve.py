@@ -81,8 +81,10 @@ from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA
 from .kinds import MODEL_KINDS, model_kind
+from .lean import LeanTable, lean_table
+from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats
 from .status import Status, status_names
-from .tubelaws import check_tube_law, pressure_kpa, radius_mm, transition_pressure_kpa
+from .tubelaws import check_tube_law, pressure_kpa, transition_pressure_kpa
 from .validity import apply_limits
 
 __all__ = ["ActuatorModel", "Curve", "METHODS", "ACCURACY", "PRESSURE_FLOOR_PER_G", "MAX_BEND_DEG", "ANGLE_LIMIT_DEG",
@@ -421,26 +423,31 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
 
 @dataclass(frozen=True, slots=True, eq=False)
 class _Branch:
-    """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry,
-    branch end, rate and slope, tube laws, and the trace inverse's memo (its tabulation, fold and zooms)."""
+    """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry
+    (and as floats), branch end, rate and slope, tolerances, tube laws, the lean table
+    (:mod:`embroact.predict.lean`; None without a rising part) and the trace inverse's memo (its
+    tabulation, fold and zooms) for the targets the lean solve leaves (:mod:`embroact.predict.onecurve`)."""
 
     geo: _m.Geometry
+    scalar: _m.Geometry
     full: np.ndarray
     kind: np.ndarray
     rate: object
     slope: object
+    rtol: float
+    atol: float
     ptol: np.ndarray
     pole: np.ndarray
     laws: list
+    lean: LeanTable | None
     memo: dict
+    points: int = TRACE_POINTS
 
 
 #: Models whose branches are kept (the studio and inverse design ask one model many times); each
-#: holds at most one tabulation per zoom the calls needed (~3 KB each, at most TRACE_POINTS of them).
+#: holds its lean table (~60 KB) and at most one tabulation per zoom the trace inverse needed (~3 KB each).
 BRANCH_CACHE = 64
 _FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
-_INFLATION, _BENDING, _UNSTABLE, _FAILED = (int(s) for s in (Status.INFLATION, Status.BENDING, Status.UNSTABLE,
-                                                              Status.FAILED))  # hot paths: no enum lookups
 
 
 def _branch(model: ActuatorModel, rtol: float) -> _Branch:
@@ -452,30 +459,11 @@ def _branch(model: ActuatorModel, rtol: float) -> _Branch:
 def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
     geo = _geometry([model])
     full, kind = _branch_end(geo)
-    return _Branch(geo, full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]),
-                   PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, _tube_laws(geo, [model]), {})
-
-
-def _solve_cached(br: _Branch, targets, rtol):
-    """theta (1, m) and status of one model's targets on its cached branch (the "auto" fast path).
-
-    The trace inverse of :func:`_solve_theta` with its tables kept in the branch's memo: the
-    same answers, without tabulating again.
-    """
-    theta = np.zeros(targets.shape)
-    status = np.full(targets.shape, br.kind[0, 0], dtype=np.int8)
-    bend = np.flatnonzero(targets[0] > 0.0)  # the others are inflation points: no solve
-    if br.full[0, 0] == 0.0 or bend.size == 0:
-        return theta, status
-    th, where, _, _ = solvers.trace_inverse(br.rate, br.full, targets[:, bend], slope=br.slope,
-                                            grid_points=TRACE_POINTS, rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
-                                            ptol=br.ptol, pole_at_end=br.pole, memo=br.memo)
-    th = np.where(where == 1, br.full, th)[0]
-    bad = ~np.isfinite(th)
-    theta[0, bend] = np.where(bad, 0.0, th)
-    status[0, bend] = np.where(bad, _FAILED, np.where(where[0] == 2, _UNSTABLE,
-                                                      np.where(where[0] == 1, br.kind[0, 0], _BENDING)))
-    return theta, status
+    ptol, pole, atol = PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, rtol * THETA_FLOOR_RAD
+    lean = None if full[0, 0] == 0.0 else lean_table(geo, theta_end=float(full[0, 0]), pole_at_end=bool(pole[0, 0]),
+                                                      rtol=rtol, atol=atol, ptol=float(ptol[0, 0]))
+    return _Branch(geo, geo.scalar(), full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]), rtol, atol,
+                   ptol, pole, _tube_laws(geo, [model]), lean, {})
 
 
 def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
@@ -508,38 +496,32 @@ def _tube_laws(geo, models):
 
 
 def _states(geo, theta, pressure_mpa, status, laws):
-    """State arrays (l, r, beta, d) at each point; inflation points from the tube law (``_tube_laws``).
-
-    Below P0 the free tube follows its law until it meets the sleeve (r = r0): a P0
-    given above the law's pressure at r0 leaves the tube at r0 in between.
-    """
+    """State arrays (l, r, beta, d) at each point; inflation points from the tube law (``_tube_laws``,
+    :func:`~embroact.predict.onecurve.free_tube_radius`)."""
     l, r, sinb, _ = _m.constraint(theta, geo)
     d2 = _m.inner_radius_sq(l, r, geo)
-    infl = status == _INFLATION
+    infl = status == Status.INFLATION
     if infl.any():
         r_law = np.empty_like(theta)
         for sel, law, tube, r0, p_sleeve in laws:
-            p = np.minimum(pressure_mpa[sel] * KPA_PER_MPA, p_sleeve)
-            r_law[sel] = np.where(p >= p_sleeve, r0, radius_mm(p, tube, law))
-        r = np.where(infl, np.minimum(r_law, geo.r0), r)  # a sleeve narrower than the tube squeezes it
+            r_law[sel] = free_tube_radius(pressure_mpa[sel], law, tube, r0, p_sleeve)
+        r = np.where(infl, np.minimum(r_law, geo.r0), r)
         d2 = np.where(infl, r * r - geo.c, d2)
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
 
 def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
-    cached = _branch(models[0], rtol) if len(models) == 1 and (energy, deriv, inverse) == _FAST else None
-    geo = _geometry(models) if cached is None else cached.geo
+    if len(models) == 1 and (energy, deriv, inverse) == _FAST:  # one model: its cached branch, the lean solve
+        return tuple(a[None, :] for a in one_curve(_branch(models[0], rtol), p, limits=limits))
+    geo = _geometry(models)
     pressure = p[None, :] if len(models) == 1 else np.broadcast_to(p, (len(models), p.size))
     targets = pressure - geo.p0
-    if cached is None:
-        theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
-    else:
-        theta, status = _solve_cached(cached, targets, rtol)
+    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
     infl = targets <= 0.0
     theta = np.where(infl, 0.0, theta)
-    status = np.where(infl, _INFLATION, status).astype(np.int8)
-    states = _states(geo, theta, pressure, status, _tube_laws(geo, models) if cached is None else cached.laws)
+    status = np.where(infl, Status.INFLATION, status).astype(np.int8)
+    states = _states(geo, theta, pressure, status, _tube_laws(geo, models))
     if limits:  # validity limits (validity.py)
         status = apply_limits(status, theta, states[0], states[1], geo.l0)
     return (pressure * KPA_PER_MPA, np.degrees(theta), status) + states
@@ -633,7 +615,34 @@ def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
     """
     if not isinstance(model, ActuatorModel):
         raise ParameterError(f"model must be an ActuatorModel, got {type(model).__name__}")
-    return _solve([model], pressures_kpa, method, rtol, squeeze=True, limits=limits)
+    quick = _float_path(model, pressures_kpa, method, rtol, limits)
+    return quick if quick is not None else _solve([model], pressures_kpa, method, rtol, squeeze=True, limits=limits)
+
+
+def _float_path(model, pressures_kpa, method, rtol, limits):
+    """The curve of a handful of bending pressures on Python floats (:func:`~embroact.predict.onecurve.
+    one_curve_floats`), or None for the array path (which also reports bad input)."""
+    if isinstance(pressures_kpa, (float, int)):
+        values = [pressures_kpa]
+    elif isinstance(pressures_kpa, (list, tuple)) and len(pressures_kpa) <= FLOAT_PATH_MAX:
+        values = pressures_kpa
+    elif isinstance(pressures_kpa, np.ndarray) and pressures_kpa.ndim == 1 and pressures_kpa.size <= FLOAT_PATH_MAX:
+        values = pressures_kpa.tolist()
+    else:
+        return None
+    if not values or not all(isinstance(v, (float, int)) and not isinstance(v, bool) and 0.0 <= v < math.inf
+                             for v in values):
+        return None
+    check_range("rtol", rtol, low=0.0, high=1.0)
+    if _resolve(method, rtol) != _FAST:
+        return None
+    cols = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
+    if cols is None:
+        return None
+    arrays = [np.array(c, dtype=np.int8 if k == 2 else np.float64) for k, c in enumerate(cols)]
+    for a in arrays:
+        a.setflags(write=False)
+    return Curve(*arrays, method="-".join(_FAST), calibration=model.calibration)
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:

@@ -483,7 +483,8 @@ def _covariance(jac, fun, names, branch) -> np.ndarray:
             f"(Jacobian condition {sv[0] / max(sv[-1], 1e-300):.3g}); fit fewer parameters"
         )
     s2 = float(np.sum(fun**2)) / (n - k)
-    return (vt.T / sv**2) @ vt * s2
+    cov = (vt.T / sv**2) @ vt * s2
+    return 0.5 * (cov + cov.T)  # symmetric exactly (the product is only to round-off)
 
 
 def model_predictor(derived: DerivedGeometry, *, method: str = "auto", measurement: MarkerLayout | None = None,

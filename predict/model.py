@@ -71,6 +71,9 @@ __all__ = [
     "pressure_mpa",
     "lock_theta",
     "inner_radius_sq",
+    "rate_fast",
+    "pantograph",
+    "fast_rate_of",
 ]
 
 ENERGY_FORMS = ("stable", "printed", "reference")
@@ -79,6 +82,7 @@ DERIVATIVES = ("analytic", "complex", "central")
 
 #: Gauss-Legendre nodes of the reference energy (wall depth, angle around the tube).
 REFERENCE_NODES = (12, 64)
+
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,6 +134,11 @@ class Geometry:
         """The designs at ``rows`` (index array or boolean mask)."""
         return Geometry(*(getattr(self, k)[rows] for k in self.__slots__))
 
+    def scalar(self, row: int = 0) -> "Geometry":
+        """Design ``row`` with Python floats for fields: broadcasts against 1-D theta, and with
+        ``xp=SCALAR`` (:mod:`embroact.predict.floats`) the fast formulas run on floats."""
+        return Geometry(*(float(getattr(self, k)[row, 0]) for k in self.__slots__))  # type: ignore[arg-type]
+
 
 # -- pattern constraint -----------------------------------------------------------------
 def constraint(theta, geo: Geometry):
@@ -140,21 +149,30 @@ def constraint(theta, geo: Geometry):
     (complex-step derivatives). ``cos(beta)`` comes from a rationalised form, so it
     stays accurate (and real) as ``sin(beta) -> 1`` at any angle.
     """
-    gt = geo.gamma * theta
-    if not geo.s0.any():  # zigzag rows only: u = 1 + gamma theta, r = r0, beta = 0
+    if not np.any(geo.s0):  # zigzag rows only: u = 1 + gamma theta, r = r0, beta = 0
+        gt = geo.gamma * theta
         zero = 0.0 * gt
         return geo.l0 * (1.0 + gt), geo.r0 + zero, zero, 1.0 + zero
-    gs = gt * geo.s0
-    gs2 = gs * gs
-    den = 1.0 + gs2
-    gS = gt * np.sqrt(geo.c0 * geo.c0 + gs2)
-    u = (1.0 + gS) / den
-    # cos^2(beta) = 1 - u^2 s0^2 = (X - Y)/den^2 = c0^4/(X + Y), X = c0^2 + g^2 s0^2 (1 + s0^2),
-    # Y = 2 s0^2 g S: the form without cancellation for each sign of g (never below 0)
-    x = geo.c0 * geo.c0 + gs2 * (1.0 + geo.s0 * geo.s0)
-    y = (2.0 * geo.s0 * geo.s0) * gS
-    cosb = np.sqrt(np.where(np.real(gt) >= 0.0, geo.c0**4 / (x + y), (x - y) / (den * den)))
+    u, cos2, _, _, _ = pantograph(theta, geo)
+    cosb = np.sqrt(cos2)
     return geo.l0 * u, geo.r_c0 * cosb, u * geo.s0, cosb
+
+
+def pantograph(theta, geo: Geometry, xp=np):
+    """(u = l/l0, cos^2(beta), g S, g^2 s0^2, 1 + g^2 s0^2) with ``g = gamma theta``, ``S = sqrt(c0^2 + g^2 s0^2)``.
+
+    ``cos^2(beta) = 1 - u^2 s0^2 = (X - Y)/den^2 = c0^4/(X + Y)`` with ``X = c0^2 + g^2 s0^2 (1 + s0^2)``,
+    ``Y = 2 s0^2 g S``: the form without cancellation for each sign of g (never below 0).
+    """
+    gt = geo.gamma * theta
+    gs2 = gt * gt * geo.s0sq
+    den = 1.0 + gs2
+    gS = gt * xp.sqrt(geo.c0sq + gs2)
+    x = geo.c0sq + gs2 * (1.0 + geo.s0sq)
+    y = (2.0 * geo.s0sq) * gS
+    ahead = xp.real(gt) >= 0.0  # pick numerator and denominator first: the other form may divide by 0
+    cos2 = xp.where(ahead, geo.c0sq * geo.c0sq, x - y) / xp.where(ahead, x + y, den * den)
+    return (1.0 + gS) / den, cos2, gS, gs2, den
 
 
 def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
@@ -197,8 +215,8 @@ def _invariants(l, r, geo: Geometry):
     return A, B, r / geo.r0
 
 
-def _stable_t(a, b, c):
-    sa, sb = np.sqrt(a), np.sqrt(b)
+def _stable_t(a, b, c, xp=np):
+    sa, sb = xp.sqrt(a), xp.sqrt(b)
     return 2.0 * c / (sa * sb * (sa + sb)), sa, sb
 
 
@@ -328,7 +346,7 @@ def _energy_of_theta(geo: Geometry, form: str):
     return e
 
 
-def _zigzag_rate_stable(theta, geo: Geometry):
+def _zigzag_rate_stable(theta, geo: Geometry, xp=np):
     """(dE/dtheta, dV/dtheta) of the stable form on zigzag rows (beta0 = 0), the fast path.
 
     On the zigzag ``r = r0`` (so ``lambda2 = 1`` and ``s = c/r0^2`` are constants),
@@ -344,17 +362,17 @@ def _zigzag_rate_stable(theta, geo: Geometry):
     a = 1.0 + 2.0 * m
     w = m * m * s * ia
     b = a + w
-    T, sa, sb = _stable_t(a, b, c)
+    T, sa, sb = _stable_t(a, b, c, xp)
     hs = 0.5 / (sa + sb)
     T_a = -T * (0.5 / a + hs / sa)
     T_b = -T * (0.5 / b + hs / sb)
     f_a = (c * (1.0 + 2.0 * ia2) + 0.5 * c * m * ia2 * ((2.0 * A - s) - m * (1.0 - s * ia))
            + 2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2))
     de = geo.e_scale * k * f_a
-    return np.where(theta == 0.0, 0.0, de), np.full(de.shape, np.pi) * geo.r0 ** 3
+    return xp.where(theta == 0.0, 0.0, de), np.pi * geo.r0 ** 3 + 0.0 * de
 
 
-def _cross_rate_stable(theta, geo: Geometry):
+def _cross_rate_stable(theta, geo: Geometry, xp=np):
     """(dE/dtheta, dV/dtheta) of the stable form with the analytic derivative, fused (any beta0), the fast path.
 
     :func:`constraint`, :func:`constraint_rates`, :func:`volume_gradient` and
@@ -363,16 +381,9 @@ def _cross_rate_stable(theta, geo: Geometry):
     ``(g S - g^2 s0^2)/(2 den)``, ``lambda2^2 = cos^2(beta)/c0^2``, ``s = c/r^2``;
     no intermediate is computed twice (real theta only).
     """
-    c, s0s, c0s = geo.c, geo.s0sq, geo.c0sq
-    gt = geo.gamma * theta
-    gs2 = gt * gt * s0s
-    den = 1.0 + gs2
-    gS = gt * np.sqrt(c0s + gs2)
-    u = (1.0 + gS) / den
-    x = c0s + gs2 * (1.0 + s0s)
-    y = (2.0 * s0s) * gS
-    cos2 = np.where(gt >= 0.0, (c0s * c0s) / (x + y), (x - y) / (den * den))
-    cosb = np.sqrt(cos2)
+    c = geo.c
+    u, cos2, gS, gs2, den = pantograph(theta, geo, xp)
+    cosb = xp.sqrt(cos2)
     r = geo.r_c0 * cosb
     # constraint rates: -dr/dl = r_slope tan(beta), dl/dtheta = r/(1/2 + theta (-dr/dl))
     r_l = geo.r_slope * (u * geo.s0) / cosb
@@ -384,14 +395,12 @@ def _cross_rate_stable(theta, geo: Geometry):
     ia2 = ia * ia
     ir = 1.0 / r
     s = c * ir * ir
-    lam2 = cos2 / c0s
+    lam2 = cos2 / geo.c0sq
     il2 = 1.0 / lam2
     w = m * m * s * ia
     b = u + w
-    sa, sb = np.sqrt(u), np.sqrt(b)
-    ssum = sa + sb
-    T = 2.0 * c / (sa * sb * ssum)
-    hs = 0.5 / ssum
+    T, sa, sb = _stable_t(u, b, c, xp)
+    hs = 0.5 / (sa + sb)
     T_a = -T * (0.5 / u + hs / sa)
     T_b = -T * (0.5 / b + hs / sb)
     cm = 0.5 * c * m * ia2
@@ -401,13 +410,36 @@ def _cross_rate_stable(theta, geo: Geometry):
     l_sum = geo.l0 * (1.0 + u)  # l + l0
     de = geo.e_scale * (f_a * (0.5 / geo.l0) * l_t + f_r * r_t)
     dv = np.pi * r * (0.5 * r * l_t + l_sum * r_t)
-    return np.where(theta == 0.0, 0.0, de), dv
+    return xp.where(theta == 0.0, 0.0, de), dv
+
+
+def rate_fast(theta, geo: Geometry, xp=np):
+    """(dE/dtheta, dV/dtheta) of the stable form with the analytic derivative, the fused fast path, on
+    real theta: numpy arrays (``xp=np``) or, with a :meth:`Geometry.scalar` geometry and ``xp=SCALAR``,
+    one Python float (the same operations, so the same bits).
+
+    Examples
+    --------
+    >>> from embroact.predict.floats import SCALAR
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> one = rate_fast(0.4, geo.scalar(), xp=SCALAR)
+    >>> many = rate_fast(np.array([0.4, 0.5]), geo.scalar())
+    >>> one == (many[0][0], many[1][0])
+    True
+    """
+    return fast_rate_of(geo)(theta, geo, xp)
+
+
+def fast_rate_of(geo: Geometry):
+    """The function :func:`rate_fast` calls for ``geo``: ``f(theta, geo, xp)`` (chosen once by a caller
+    that evaluates one geometry many times)."""
+    return _cross_rate_stable if np.any(geo.s0) else _zigzag_rate_stable
 
 
 def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
     """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives."""
     if form == "stable" and derivative == "analytic" and not np.iscomplexobj(theta):
-        return _cross_rate_stable(theta, geo) if geo.s0.any() else _zigzag_rate_stable(theta, geo)
+        return rate_fast(theta, geo)
     l, r, sinb, cosb = constraint(theta, geo)
     l_t, r_t = constraint_rates(theta, l, r, sinb, cosb, geo)
     v_l, v_r = volume_gradient(l, r, geo)

@@ -105,28 +105,49 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
     """
     th = np.asarray(theta_rad, dtype=np.float64)
     l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (length_mm, radius_mm, l0_mm))
-    a = np.abs(th)
-    inner = (th < 0.0) & (a > math.pi) & (l0 * (1.0 - np.cos(th)) <= 2.0 * r * a)
-    coiled = (a >= _FULL_TURN) | inner
-    kinked = 2.0 * r * a > l0
-    over = l >= STRETCH_LIMIT * l0
+    flags = _exceeded(th, l, r, l0)
     shape = np.broadcast(th, l, r, l0).shape
-    return LimitFlags(*(f if f.shape == shape else np.broadcast_to(f, shape).copy() for f in (coiled, kinked, over)))
+    return LimitFlags(*(f if f.shape == shape else np.broadcast_to(f, shape).copy() for f in flags))
 
 
-def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm) -> np.ndarray:
+def _exceeded(th, l, r, l0, xp=np):
+    """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR``."""
+    a = abs(th)
+    inner = (th < 0.0) & (a > math.pi) & (l0 * (1.0 - xp.cos(th)) <= 2.0 * r * a)
+    return (a >= _FULL_TURN) | inner, 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+
+
+_KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
+_LIMIT_CODES = tuple(int(s) for s in (Status.COILED, Status.KINKED, Status.OVERSTRETCHED))
+
+
+def _limited(st, flags, xp=np):
+    """Status with the first limit of ``flags`` (coiled, kinked, overstretched) a state exceeds."""
+    coiled, kinked, over = flags
+    out = xp.where(over, _LIMIT_CODES[2], st)
+    out = xp.where(kinked, _LIMIT_CODES[1], out)
+    out = xp.where(coiled, _LIMIT_CODES[0], out)
+    return xp.where((st == _KEPT[0]) | (st == _KEPT[1]), st, out)
+
+
+def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     """Status codes with the validity limits applied (precedence: :mod:`embroact.predict.status`).
 
     FAILED and OUT_OF_DOMAIN points keep their status (their theta is a fill value);
-    every other point takes the first limit it exceeds.
+    every other point takes the first limit it exceeds. Arrays give an int8 array; one state
+    in Python numbers with ``xp=SCALAR`` (:mod:`embroact.predict.floats`) gives an int.
+
+    Examples
+    --------
+    >>> import math
+    >>> from embroact.predict.floats import SCALAR
+    >>> apply_limits(int(Status.BENDING), math.radians(400.0), 118.0, 2.58, 100.0, SCALAR) == Status.COILED
+    True
     """
+    if xp is not np:
+        return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp), xp)
     st = np.asarray(status, dtype=np.int8)
-    f = limit_flags(theta_rad, length_mm, radius_mm, l0_mm)
-    keep = (st == Status.FAILED) | (st == Status.OUT_OF_DOMAIN)
-    out = np.where(f.overstretched, Status.OVERSTRETCHED, st)
-    out = np.where(f.kinked, Status.KINKED, out)
-    out = np.where(f.coiled, Status.COILED, out)
-    return np.where(keep, st, out).astype(np.int8)
+    return _limited(st, _exceeded(theta_rad, length_mm, radius_mm, l0_mm)).astype(np.int8)
 
 
 def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:

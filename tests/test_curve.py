@@ -218,7 +218,7 @@ def test_sweep_matches_single_curves():
         c = curve(m, p)
         np.testing.assert_allclose(s.theta_deg[k], c.theta_deg, rtol=1e-12, atol=1e-12)
         assert s.status[k].tolist() == c.status.tolist()
-        np.testing.assert_allclose(s.radius_mm[k], c.radius_mm, rtol=1e-14)
+        np.testing.assert_allclose(s.radius_mm[k], c.radius_mm, rtol=1e-12)  # two solves, each within rtol
     assert s.calibration == "given"
     d = s.as_dict()
     assert len(d["status"]) == 5 and len(d["status"][0]) == 31

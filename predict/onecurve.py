@@ -1,0 +1,137 @@
+"""The curve of one model on its cached branch: what ``curve(model, ...)`` runs with ``method="auto"``.
+
+:func:`one_curve` answers any pressures on numpy arrays: the lean solve
+(:mod:`embroact.predict.lean`) for targets on the branch's rising part, the trace inverse
+for the rest (fold, branch end, targets the lean solve does not settle), the tube law
+below P0, then the states and the validity limits. :func:`one_curve_floats` answers a
+handful of pressures on Python floats, where numpy's fixed cost per operation would be
+most of the time; it serves only bending points the lean solve settles and returns None
+otherwise (the caller then asks :func:`one_curve`). Both compute each state with the
+same operations (:func:`state`), so a pressure gets the same bits whichever path, and
+whatever other pressures the call holds.
+
+Examples
+--------
+>>> from embroact.predict.curve import ActuatorModel, curve
+>>> m = ActuatorModel("cross", length_mm=100, r0_mm=2.6, beta0_deg=20.0, outer_radius_mm=1.5,
+...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170)
+>>> one, many = curve(m, [230.0]), curve(m, [0.0, 230.0, 260.0])
+>>> bool(one.theta_deg[0] == many.theta_deg[1]), bool(one.beta_deg[0] == many.beta_deg[1])
+(True, True)
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import model as _m
+from .floats import SCALAR
+from .inflation import KPA_PER_MPA
+from .lean import solve_lean, solve_lean_scalar
+from .solvers import trace_inverse
+from .status import Status
+from .tubelaws import radius_mm
+from .validity import apply_limits
+
+__all__ = ["state", "free_tube_radius", "one_curve", "one_curve_floats", "FLOAT_PATH_MAX"]
+
+#: Largest number of pressures :func:`one_curve_floats` takes (above it numpy's arrays are cheaper).
+FLOAT_PATH_MAX = 8
+_DEG_PER_RAD = 180.0 / math.pi  # numpy's degrees() multiplies by this same double
+_INFLATION, _BENDING, _UNSTABLE, _FAILED = (int(s) for s in (Status.INFLATION, Status.BENDING, Status.UNSTABLE,
+                                                              Status.FAILED))
+
+
+def state(theta, g: _m.Geometry, xp=np):
+    """(l, r, beta [deg], d^2) on the constraint at bend angles ``theta`` [rad] of the scalar geometry ``g``.
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry
+    >>> g = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1).scalar()
+    >>> [round(float(v), 6) for v in state(0.5, g, SCALAR)]   # l = l0 + 2 r0 theta, d^2 = r0^2 - c 2 l0/(l + l0)
+    [102.5, 2.5, 0.0, 5.015432]
+    """
+    u, cos2, _, _, _ = _m.pantograph(theta, g, xp)
+    l = g.l0 * u
+    r = g.r_c0 * xp.sqrt(cos2)
+    beta = xp.arcsin(xp.minimum(xp.maximum(u * g.s0, -1.0), 1.0)) * _DEG_PER_RAD
+    return l, r, beta, _m.inner_radius_sq(l, r, g)
+
+
+def free_tube_radius(p, law, tube, r0, p_sleeve):
+    """Outer radius [mm] of the tube below P0 at pressures ``p`` [MPa]: its law (``tube`` as
+    :func:`~embroact.predict.tubelaws.radius_mm` takes it) until it meets the sleeve (r0, reached at
+    ``p_sleeve`` [kPa]); a P0 above the law's pressure at r0 leaves it at r0 in between. The caller
+    takes the smaller of this and the sleeve's r0 (a sleeve narrower than the tube squeezes it)."""
+    pk = np.minimum(p * KPA_PER_MPA, p_sleeve)
+    return np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law))
+
+
+def _solve(br, t):
+    """(theta, status) of bending targets ``t`` (1-D, > 0) on the branch ``br`` (curve._Branch)."""
+    theta = np.zeros(t.size)
+    status = np.full(t.size, br.kind[0, 0] if br.full[0, 0] == 0.0 else _BENDING, dtype=np.int8)
+    if br.full[0, 0] == 0.0:
+        return theta, status
+    rest = np.arange(t.size)
+    lean = br.lean
+    if lean is not None:
+        if t.size and float(t.max()) <= lean.top:
+            theta, settled = solve_lean(lean, t)
+            rest = np.flatnonzero(~settled)
+        else:
+            served = np.flatnonzero(t <= lean.top)
+            theta[served], settled = solve_lean(lean, t[served])
+            rest = np.concatenate([np.flatnonzero(t > lean.top), served[~settled]])
+    if rest.size:
+        th, where, _, _ = trace_inverse(br.rate, br.full, t[None, rest], slope=br.slope, grid_points=br.points,
+                                        rtol=br.rtol, atol=br.atol, ptol=br.ptol, pole_at_end=br.pole, memo=br.memo)
+        th = np.where(where == 1, br.full, th)[0]
+        bad = ~np.isfinite(th)
+        theta[rest] = np.where(bad, 0.0, th)
+        status[rest] = np.where(bad, _FAILED, np.where(where[0] == 2, _UNSTABLE,
+                                                       np.where(where[0] == 1, br.kind[0, 0], _BENDING)))
+    return theta, status
+
+
+def one_curve(br, p, *, limits: bool = True):
+    """Arrays (P [kPa], theta [deg], status, l, r, beta, d) of one model at pressures ``p`` [MPa] (1-D)."""
+    g = br.scalar
+    t = p - g.p0
+    bend = t > 0.0
+    if bend.all():
+        theta, status = _solve(br, t)
+    else:
+        theta, status = np.zeros(p.size), np.full(p.size, _INFLATION, dtype=np.int8)
+        if bend.any():
+            theta[bend], status[bend] = _solve(br, t[bend])
+    l, r, beta, d2 = state(theta, g)
+    if not bend.all():
+        (_, law, tube, r0, p_sleeve), = br.laws
+        r = np.where(bend, r, np.minimum(free_tube_radius(p, law, tube, r0, p_sleeve)[0], g.r0))
+        d2 = np.where(bend, d2, r * r - g.c)
+    if limits:
+        status = apply_limits(status, theta, l, r, g.l0)
+    return p * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, np.sqrt(np.maximum(d2, 0.0))
+
+
+def one_curve_floats(br, p, *, limits: bool = True):
+    """As :func:`one_curve` for pressures ``p`` [MPa] given as a list of floats: lists of floats
+    (status as ints), or None when a pressure is not a bending point the lean solve settles."""
+    lean, g = br.lean, br.scalar
+    if lean is None:
+        return None
+    rows = []
+    for pk in p:
+        t = pk - g.p0
+        if not 0.0 < t <= lean.top:
+            return None
+        theta = solve_lean_scalar(lean, t)
+        if theta is None:
+            return None
+        l, r, beta, d2 = state(theta, g, SCALAR)
+        status = apply_limits(_BENDING, theta, l, r, g.l0, SCALAR) if limits else _BENDING
+        rows.append((pk * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, math.sqrt(max(d2, 0.0))))
+    return [list(col) for col in zip(*rows)]
