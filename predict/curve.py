@@ -461,7 +461,7 @@ def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
     full, kind = _branch_end(geo)
     ptol, pole, atol = PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, rtol * THETA_FLOOR_RAD
     lean = None if full[0, 0] == 0.0 else lean_table(geo, theta_end=float(full[0, 0]), pole_at_end=bool(pole[0, 0]),
-                                                      rtol=rtol, atol=atol, ptol=float(ptol[0, 0]))
+                                                      rtol=rtol, atol=atol)
     return _Branch(geo, geo.scalar(), full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]), rtol, atol,
                    ptol, pole, _tube_laws(geo, [model]), lean, {})
 
@@ -512,8 +512,6 @@ def _states(geo, theta, pressure_mpa, status, laws):
 
 def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
-    if len(models) == 1 and (energy, deriv, inverse) == _FAST:  # one model: its cached branch, the lean solve
-        return tuple(a[None, :] for a in one_curve(_branch(models[0], rtol), p, limits=limits))
     geo = _geometry(models)
     pressure = p[None, :] if len(models) == 1 else np.broadcast_to(p, (len(models), p.size))
     targets = pressure - geo.p0
@@ -563,9 +561,14 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
     check_range("rtol", rtol, low=0.0, high=1.0)
     energy, deriv, inverse = _resolve(method, rtol)
     p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
-    blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol, limits)
-              for k in range(0, len(models), SWEEP_BLOCK)]
-    arrays = [parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks)]
+    if len(models) == 1 and (energy, deriv, inverse) == _FAST:  # one model: its cached branch, the lean solve
+        arrays = one_curve(_branch(models[0], rtol), p, limits=limits)
+        if not squeeze:
+            arrays = tuple(a[None, :] for a in arrays)
+    else:
+        blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol, limits)
+                  for k in range(0, len(models), SWEEP_BLOCK)]
+        arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks))
     return Curve(*(_frozen(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
 

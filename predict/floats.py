@@ -24,7 +24,7 @@ __all__ = ["SCALAR"]
 
 
 class _ScalarMath:
-    """``sqrt``, ``cos``, ``arcsin``, ``minimum``, ``maximum``, ``where`` and ``real`` on floats (module docstring)."""
+    """``sqrt``, ``cos``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats (module docstring)."""
 
     __slots__ = ()
     sqrt = staticmethod(math.sqrt)
@@ -45,6 +45,11 @@ class _ScalarMath:
     def where(condition, a, b):
         """``a`` if ``condition`` else ``b`` (both already evaluated, as with numpy)."""
         return a if condition else b
+
+    @staticmethod
+    def any(x):
+        """``bool(x)``."""
+        return bool(x)
 
     @staticmethod
     def real(x):

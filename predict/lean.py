@@ -22,10 +22,10 @@ A target is *settled* when the step stays in its interval and the error the step
 leaves is within the tolerance: ``min(step, left) <= rtol |theta| + atol``, where
 ``left = step (27 |c3| + |R_ww| step/|h|)/|R_w|`` bounds the slope error of the cubic
 (its cubic term) times the step plus Newton's quadratic term, the estimate the trace
-inverse uses; or when the residual is within the round-off floor of P (``ptol``).
-A target that is not settled (near a fold, or near the lock-up pole) is the caller's to
-solve by the full trace inverse (:func:`embroact.predict.solvers.trace_inverse`); so is
-every target above the table's top (beyond a fold, or past the branch end).
+inverse uses. A target that is not settled (near a fold, near the lock-up pole, or so
+small that its residual is round-off) is the caller's to solve by the full trace inverse
+(:func:`embroact.predict.solvers.trace_inverse`, which also knows P's round-off floor);
+so is every target above the table's top (beyond a fold, or past the branch end).
 
 The table depends on the model only, never on the pressures asked for, so an answer is
 the same whatever else the call or earlier calls asked. The same text runs on numpy
@@ -38,8 +38,7 @@ Examples
 >>> from embroact.predict.model import Geometry, lock_theta, pressure_mpa
 >>> from embroact.predict.lean import lean_table, solve_lean, solve_lean_scalar
 >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
->>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10,
-...                  atol=1e-22, ptol=1e-14)
+>>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
 >>> t = pressure_mpa(np.array([-0.003, -0.3, -4.0]), geo)[0] - 0.17
 >>> theta, settled = solve_lean(tab, t)
 >>> bool(np.all(np.abs(theta / [-0.003, -0.3, -4.0] - 1.0) < 1e-10)), settled.tolist()
@@ -65,7 +64,7 @@ LEVELS = 10
 #: Grid points per level: an odd count, so the midpoint of a level is the end of the next.
 LEVEL_POINTS = 129
 #: Newton steps on the interpolating cubic for the start (no model evaluations).
-CUBIC_STEPS = 2
+CUBIC_STEPS = 1
 #: Power-basis coefficients of the cubic through the grid points j..j+3, in the coordinate of
 #: the interval starting at j + s (s = 0, 1, 2: the first, inner and last intervals' windows).
 _WINDOW = tuple(np.linalg.inv(np.vander(np.arange(4.0) - s, 4, increasing=True)) for s in range(3))
@@ -83,12 +82,10 @@ class LeanTable:
         ``rate(theta, geo, xp)``: the fused analytic rates (:func:`~embroact.predict.model.fast_rate_of`).
     p : ndarray
         P - P0 at the intervals' ends [MPa], rising, ``(k + 1,)``.
-    rows : ndarray
-        ``(k, 12)``: per interval its start theta [rad], its width h [rad] (signed as the branch), the
-        cubics of E' and V' (4 coefficients each) and E', V' at its end.
     columns : ndarray
-        ``rows`` transposed (C order), for gathering many intervals at once.
-    rtol, atol, ptol : float
+        ``(13, k)``, a column per interval: its start theta [rad], its width h and ``|h|`` [rad] (h signed
+        as the branch), the cubics of E' and V' (4 coefficients each) and E', V' at its end.
+    rtol, atol : float
         Settling tolerances (module docstring).
     p_list : list
         ``p`` as Python floats, for :func:`solve_lean_scalar`.
@@ -97,11 +94,9 @@ class LeanTable:
     geo: _m.Geometry
     rate: Callable
     p: np.ndarray
-    rows: np.ndarray
     columns: np.ndarray
     rtol: float
     atol: float
-    ptol: float
     p_list: list
 
     @property
@@ -110,8 +105,8 @@ class LeanTable:
         return self.p_list[-1]
 
 
-def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: float, atol: float,
-               ptol: float) -> LeanTable | None:
+def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: float,
+               atol: float) -> LeanTable | None:
     """The table of one design's branch from 0 to ``theta_end`` [rad] (``geo`` of one row; module docstring).
 
     ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no interval rises.
@@ -140,43 +135,42 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
     p_ends = np.concatenate([p[k, i] for k, i in pieces] + [p[pieces[-1][0], pieces[-1][1][-1] + 1:][:1]])
     if not np.isfinite(p_ends[-2]):
         return None
-    return LeanTable(g, _m.fast_rate_of(g), p_ends, rows, np.ascontiguousarray(rows.T), float(rtol), float(atol),
-                     float(ptol), p_ends.tolist())
+    return LeanTable(g, _m.fast_rate_of(g), p_ends, np.ascontiguousarray(rows.T), float(rtol), float(atol),
+                     p_ends.tolist())
 
 
 def _rows(grid, de, dv, i):
-    """Rows (start, h, cubic of E', cubic of V', E' and V' at the end) of intervals ``i`` of one level."""
+    """Rows (start, h, |h|, cubic of E', cubic of V', E' and V' at the end) of intervals ``i`` of one level."""
     j = np.clip(i - 1, 0, grid.size - 4)
     window = j[:, None] + np.arange(4)
-    out = np.empty((i.size, 12))
+    out = np.empty((i.size, 13))
     out[:, 0], out[:, 1] = grid[i], grid[1] - grid[0]
+    out[:, 2] = abs(out[:, 1])
     for s, mat in enumerate(_WINDOW):
         sel = (i - j) == s
-        out[sel, 2:6] = de[window[sel]] @ mat.T
-        out[sel, 6:10] = dv[window[sel]] @ mat.T
-    out[:, 2], out[:, 6] = de[i], dv[i]  # the cubic meets the table at w = 0 exactly
-    out[:, 10], out[:, 11] = de[i + 1], dv[i + 1]
+        out[sel, 3:7] = de[window[sel]] @ mat.T
+        out[sel, 7:11] = dv[window[sel]] @ mat.T
+    out[:, 3], out[:, 7] = de[i], dv[i]  # the cubic meets the table at w = 0 exactly
+    out[:, 11], out[:, 12] = de[i + 1], dv[i + 1]
     return out
 
 
 def _settle(tab: LeanTable, t, row, xp):
     """(theta, settled) of targets ``t`` in the intervals ``row`` (steps 2-3 of the module docstring)."""
-    x_i, h, e0, e1, e2, e3, v0, v1, v2, v3, e_b, v_b = row
+    x_i, h, habs, e0, e1, e2, e3, v0, v1, v2, v3, e_b, v_b = row
     c0, c1, c2, c3 = e0 - t * v0, e1 - t * v1, e2 - t * v2, e3 - t * v3
+    q2, q3 = 2.0 * c2, 3.0 * c3
     u = c0 / (c0 - (e_b - t * v_b))  # the secant of the tabulated residuals: R(0) <= 0 < R(1)
     for _ in range(CUBIC_STEPS):
-        u = xp.minimum(xp.maximum(u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (2.0 * c2 + u * (3.0 * c3))),
-                                  0.0), 1.0)
-    x = x_i + h * u
-    e, v = tab.rate(x, tab.geo, xp)
-    f = e - t * v
-    f = xp.where(abs(f) <= tab.ptol * abs(v), 0.0, f)
-    slope = c1 + u * (2.0 * c2 + u * (3.0 * c3))
-    w = u - f / slope
+        u = xp.minimum(xp.maximum(u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (q2 + u * q3)), 0.0), 1.0)
+    e, v = tab.rate(x_i + h * u, tab.geo, xp)
+    slope = c1 + u * (q2 + u * q3)
+    dw = (e - t * v) / slope
+    w = u - dw
     theta = x_i + h * w
-    step = abs(w - u) * abs(h)
-    left = step * (27.0 * abs(c3) + abs(2.0 * c2 + 6.0 * c3 * u) * step / abs(h)) / abs(slope)
-    settled = (w >= 0.0) & (w <= 1.0) & ((xp.minimum(step, left) <= tab.rtol * abs(theta) + tab.atol) | (f == 0.0))
+    step = abs(dw) * habs
+    left = step * (27.0 * abs(c3) + abs(q2 + 2.0 * q3 * u) * step / habs) / abs(slope)
+    settled = (w >= 0.0) & (w <= 1.0) & (xp.minimum(step, left) <= tab.rtol * abs(theta) + tab.atol)
     return theta, settled
 
 
@@ -185,8 +179,8 @@ def solve_lean(tab: LeanTable, t):
 
     Entries not settled (module docstring) hold no answer: solve them by the trace inverse.
     """
-    i = np.searchsorted(tab.p, t, side="right") - 1
-    np.clip(i, 0, tab.rows.shape[0] - 1, out=i)
+    i = np.searchsorted(tab.p, t, side="right") - 1  # >= 0: t > 0 = p[0]
+    np.minimum(i, tab.columns.shape[1] - 1, out=i)  # t = top itself: the last interval
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         theta, settled = _settle(tab, t, tab.columns[:, i], np)
         return theta, settled & np.isfinite(theta)
@@ -197,9 +191,9 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
 
     The same answer, bit for bit, as :func:`solve_lean` gives for ``t`` among any others.
     """
-    i = min(max(bisect_right(tab.p_list, t) - 1, 0), tab.rows.shape[0] - 1)
+    i = min(bisect_right(tab.p_list, t) - 1, tab.columns.shape[1] - 1)  # >= 0: t > 0 = p[0]
     try:
-        theta, settled = _settle(tab, t, tab.rows[i].tolist(), SCALAR)
+        theta, settled = _settle(tab, t, tab.columns[:, i].tolist(), SCALAR)
     except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic: the trace inverse's case
         return None
     return theta if settled and theta == theta else None

@@ -80,6 +80,8 @@ def _solve(br, t):
     if lean is not None:
         if t.size and float(t.max()) <= lean.top:
             theta, settled = solve_lean(lean, t)
+            if settled.all():
+                return theta, status
             rest = np.flatnonzero(~settled)
         else:
             served = np.flatnonzero(t <= lean.top)
@@ -110,8 +112,9 @@ def one_curve(br, p, *, limits: bool = True):
     l, r, beta, d2 = state(theta, g)
     if not bend.all():
         (_, law, tube, r0, p_sleeve), = br.laws
-        r = np.where(bend, r, np.minimum(free_tube_radius(p, law, tube, r0, p_sleeve)[0], g.r0))
-        d2 = np.where(bend, d2, r * r - g.c)
+        infl = ~bend
+        r[infl] = np.minimum(free_tube_radius(p[infl], law, tube, r0, p_sleeve)[0], g.r0)
+        d2[infl] = r[infl] * r[infl] - g.c
     if limits:
         status = apply_limits(status, theta, l, r, g.l0)
     return p * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, np.sqrt(np.maximum(d2, 0.0))

@@ -191,8 +191,8 @@ class BentShape:
                 raise ParameterError(f"path_lengths_mm must add up to the segments' length {lengths.sum():g} mm, "
                                      f"got {pl.sum():g}")
         seg_b, path_b = _breaks(lengths), _breaks(pl)
-        cuts = np.unique(np.concatenate([seg_b, path_b[1:-1]]))
-        cuts = cuts[np.concatenate([[True], np.diff(cuts) > _MERGE_MM])]
+        cuts = np.sort(np.concatenate([seg_b, path_b[1:-1]]))  # sorted; repeats go with the close ones
+        cuts = cuts[np.concatenate([[True], np.diff(cuts) > _MERGE_MM])]  # (np.unique would load numpy.ma)
         cuts[-1] = seg_b[-1]
         mids = 0.5 * (cuts[:-1] + cuts[1:])
         kb = kb_seg[np.clip(np.searchsorted(seg_b, mids, side="right") - 1, 0, len(lengths) - 1)]

@@ -113,8 +113,11 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
 def _exceeded(th, l, r, l0, xp=np):
     """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR``."""
     a = abs(th)
-    inner = (th < 0.0) & (a > math.pi) & (l0 * (1.0 - xp.cos(th)) <= 2.0 * r * a)
-    return (a >= _FULL_TURN) | inner, 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+    back = th < -math.pi  # the inner coil needs a negative bend past half a turn
+    coiled = a >= _FULL_TURN
+    if xp.any(back):
+        coiled = coiled | (back & (l0 * (1.0 - xp.cos(th)) <= 2.0 * r * a))
+    return coiled, 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
 
 
 _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
@@ -147,7 +150,10 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     if xp is not np:
         return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp), xp)
     st = np.asarray(status, dtype=np.int8)
-    return _limited(st, _exceeded(theta_rad, length_mm, radius_mm, l0_mm)).astype(np.int8)
+    flags = _exceeded(theta_rad, length_mm, radius_mm, l0_mm)
+    if not (flags[0] | flags[1] | flags[2]).any():  # the common case: every state within the limits
+        return st
+    return _limited(st, flags).astype(np.int8)
 
 
 def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:

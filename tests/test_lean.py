@@ -1,0 +1,168 @@
+"""The lean solve of one model's curve (predict/lean.py, predict/onecurve.py).
+
+Against the 50-digit reference (tests/mpref.py), against the trace inverse that
+``sweep`` runs, and against itself: the float path and the array path give the same
+bits, and a pressure's answer depends neither on the other pressures of the call nor
+on what was cached before.
+"""
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import given
+
+import mpref
+from strategies import budget, model_designs, pressures_kpa
+from embroact.predict import curve as C
+from embroact.predict.curve import ActuatorModel, curve, lockup, sweep
+from embroact.predict.derived import derive_from_values
+from embroact.predict.lean import LEVELS, lean_table, solve_lean
+from embroact.predict.model import lock_theta
+from embroact.predict.onecurve import FLOAT_PATH_MAX
+from embroact.predict.status import Status
+from embroact.patterns.params import Tube
+
+FIELDS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
+
+
+def design(pattern, w, angle=0.0, g=2.0, p0=150.0, l0=100.0):
+    d = derive_from_values(pattern, width_mm=w, interval_mm=1.0, angle_deg=angle, length_mm=l0, tube=Tube())
+    return ActuatorModel.from_derived(d, g_mpa=g, p0_kpa=p0)
+
+
+def ref_of(m: ActuatorModel) -> mpref.Ref:
+    return mpref.Ref(m.pattern, l0=m.length_mm, r0=m.r0_mm, beta0=mp.radians(mp.mpf(m.beta0_deg)),
+                     rf=m.outer_radius_mm, df=m.inner_radius_mm, g=m.g_mpa, p0=mp.mpf(m.p0_kpa) / 1000)
+
+
+def same_bits(a, b):
+    for f in FIELDS:
+        x, y = getattr(a, f), getattr(b, f)
+        assert x.tobytes() == y.tobytes(), f
+
+
+@pytest.mark.parametrize("m", [design("zigzag", 7.0, g=2.7, p0=85.0), design("cross", 7.0, 20.0, g=1.3, p0=170.0),
+                               design("cross", 9.0, 60.0, g=2.9, p0=200.0), design("cross", 5.0, 10.0, g=0.8),
+                               design("zigzag", 5.0, g=12.0, p0=0.0, l0=10.0)])
+def test_angles_match_the_50_digit_reference_over_the_branch(m):
+    """Angles evenly spread over the stable branch (down to 1e-4 of it): P from mpmath, theta back
+    from the lean solve within rtol 1e-10 (the documented tolerance; observed ~1e-13)."""
+    ref = ref_of(m)
+    end, _ = lockup(m)
+    cap = math.radians(min(abs(end) * 0.98, 700.0))
+    theta = math.copysign(1.0, end) * np.concatenate([cap * np.geomspace(1e-4, 0.1, 12), np.linspace(0.1, 1.0, 40)
+                                                       * cap])
+    p = np.array([float(ref.pressure(mp.mpf(float(t))) * 1000) for t in theta])
+    c = curve(m, p, limits=False)
+    assert c.status.tolist() == [Status.BENDING] * p.size
+    back = np.radians(c.theta_deg)
+    with mp.workdps(60):  # the exact root of each float64 pressure, by one Newton step from theta
+        exact = [float(mp.mpf(float(t)) + (mp.mpf(float(pk)) / 1000 - ref.pressure(mp.mpf(float(t))))
+                       / mp.diff(ref.pressure, mp.mpf(float(t)))) for t, pk in zip(theta, p)]
+    assert np.all(np.abs(back - exact) <= 1e-10 * np.abs(exact))
+
+
+@given(m=model_designs(), p=pressures_kpa(max_size=3 * FLOAT_PATH_MAX))
+@budget(0.3)
+def test_float_path_and_array_path_give_the_same_bits(m, p):
+    many = curve(m, np.array(p))
+    for k in range(0, len(p), FLOAT_PATH_MAX):  # a handful at a time: the float path where it serves them
+        few = curve(m, p[k:k + FLOAT_PATH_MAX])
+        for f in FIELDS:
+            assert getattr(few, f).tobytes() == getattr(many, f)[k:k + FLOAT_PATH_MAX].tobytes(), f
+    one = curve(m, p[-1])
+    for f in FIELDS:
+        assert getattr(one, f).tobytes() == getattr(many, f)[-1:].tobytes(), f
+
+
+@given(m=model_designs(), p=pressures_kpa(max_size=20))
+@budget(0.3)
+def test_an_answer_depends_neither_on_the_other_pressures_nor_on_the_cache(m, p):
+    warm = curve(m, p)
+    C._cached_branch.cache_clear()
+    cold_reversed = curve(m, p[::-1])
+    for f in FIELDS:
+        assert getattr(cold_reversed, f)[::-1].tobytes() == getattr(warm, f).tobytes(), f
+
+
+@given(m=model_designs(), p=pressures_kpa(max_size=12))
+@budget(0.3)
+def test_lean_curve_agrees_with_the_trace_inverse_of_sweep(m, p):
+    c, s = curve(m, p), sweep([m], p)
+    assert c.status.tolist() == s.status[0].tolist()
+    lift = np.maximum(np.asarray(p) - m.p0_kpa, 1e-300)  # the round-off floor of P - P0 (documented)
+    floor = 2.0 * C.PRESSURE_FLOOR_PER_G["analytic"] * m.g_mpa * 1000 / lift
+    assert np.all(np.abs(c.theta_deg - s.theta_deg[0]) <= (2e-10 + floor) * np.abs(s.theta_deg[0]) + 1e-12)
+
+
+def test_table_covers_each_scale_and_stops_at_the_zigzags_fold():
+    m = design("zigzag", 7.0, g=2.7, p0=85.0)
+    br = C._branch(m, 1e-10)
+    tab = br.lean
+    h = tab.columns[2]
+    starts = np.abs(tab.columns[0])
+    inner = starts > 0.0
+    # every interval but the finest level's first ones is at most 1/64 of the angles it serves
+    assert np.all(h[inner][128:] <= starts[inner][128:] / 63.99)
+    assert np.isclose(h[0], abs(br.full[0, 0]) / 2 ** LEVELS / 128, rtol=1e-15)
+    # P rises over the whole table; the fold of P (snap-through) lies beyond its last point
+    assert np.all(np.diff(tab.p) > 0.0)
+    theta_fold, p_fold = lockup(m)
+    assert abs(tab.columns[0, -1] + tab.columns[1, -1]) <= math.radians(theta_fold)
+    beyond = curve(m, [p_fold * 1.01], limits=False)
+    assert beyond.status[0] == Status.UNSTABLE and beyond.theta_deg[0] == pytest.approx(theta_fold, rel=1e-9)
+
+
+def test_table_reaches_the_lock_up_of_a_cross():
+    m = design("cross", 7.0, 20.0, g=1.3, p0=170.0)
+    tab = C._branch(m, 1e-10).lean
+    assert tab.top == math.inf
+    near = curve(m, [1e4, 1e6], limits=False)  # P -> inf at the lock: the angle creeps towards it
+    lock, _ = lockup(m)
+    assert np.all(np.abs(near.theta_deg) < abs(lock)) and abs(near.theta_deg[1]) > abs(near.theta_deg[0])
+
+
+def test_unsettled_targets_go_to_the_trace_inverse():
+    """A target whose residual is round-off (far below the finest level's first grid point) is not settled
+    by the lean step; the trace inverse solves it, within the pressure floor."""
+    m = design("zigzag", 7.0, g=2.7, p0=85.0)
+    br = C._branch(m, 1e-10)
+    t = np.array([1e-15, 1e-3])  # MPa above P0
+    theta, settled = solve_lean(br.lean, t)
+    assert settled.tolist() == [False, True]
+    c = curve(m, 85.0 + t * 1000, limits=False)
+    assert c.status.tolist() == [Status.BENDING] * 2
+    # near the straight state P - P0 is linear in theta: the slope from the reference at a small angle
+    ref, small = ref_of(m), mp.mpf("1e-6")
+    slope = (ref.pressure(small) - mp.mpf(85) / 1000) / small
+    expected = math.degrees(float(mp.mpf(t[0]) / slope))
+    floor = C.PRESSURE_FLOOR_PER_G["analytic"] * m.g_mpa / t[0]  # relative round-off floor of P - P0
+    assert c.theta_deg[0] == pytest.approx(expected, rel=2 * floor)
+
+
+def test_no_rising_interval_gives_no_table():
+    m = design("cross", 7.0, 20.0, g=1.3, p0=170.0)
+    geo = C._geometry([m])
+    assert lean_table(geo, theta_end=0.0, pole_at_end=False, rtol=1e-10, atol=1e-22) is None
+    assert lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10,
+                      atol=1e-22) is not None
+
+
+@pytest.mark.parametrize("bad", [[-1.0], [float("nan")], [float("inf")], [[1.0, 2.0]]])
+def test_bad_pressures_are_refused_as_on_the_array_path(bad):
+    m = design("zigzag", 7.0)
+    with pytest.raises(Exception) as one:
+        curve(m, bad)
+    with pytest.raises(Exception) as many:
+        curve(m, np.array(bad * 20 if np.ndim(bad) == 1 else bad))
+    assert type(one.value) is type(many.value) and "pressure_kpa" in str(one.value)
+
+
+def test_bools_and_numpy_scalars_take_the_array_path_with_the_same_answer():
+    m = design("cross", 7.0, 20.0, g=1.3, p0=170.0)
+    same_bits(curve(m, [np.float64(230.0)]), curve(m, [230.0]))
+    same_bits(curve(m, np.array([230.0, 240.0])), curve(m, (230.0, 240.0)))
+    assert curve(m, [True]).pressure_kpa.tolist() == [1.0]  # a bool is the number numpy makes of it
