@@ -122,36 +122,39 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
         p[0, -1] = np.inf
     rising = p[:, 1:] > p[:, :-1]
     tops = np.where(rising.all(axis=1), n - 1, np.argmin(rising, axis=1))
-    pieces = []
-    for k in range(LEVELS, -1, -1):  # finest first: whole, then the upper half of each coarser level
-        lo = 0 if k == LEVELS else (n - 1) // 2
-        if tops[k] > lo:
-            pieces.append((k, np.arange(lo, tops[k])))
-        if tops[k] < n - 1:  # a fold: P falls beyond it, the coarser levels add nothing
-            break
-    if not pieces:
+    # finest level first: all of it, then the upper half of each coarser level, up to the first fold
+    # (P falls beyond it: the coarser levels add nothing)
+    folded = np.flatnonzero(tops[::-1] < n - 1)
+    last = LEVELS - (folded[0] if folded.size else LEVELS)  # the coarsest level kept
+    i = np.arange(n - 1)
+    keep = (i >= np.where(np.arange(LEVELS + 1) == LEVELS, 0, (n - 1) // 2)[:, None]) & (i < tops[:, None])
+    keep[:last] = False
+    if not keep.any():
         return None
-    rows = np.concatenate([_rows(grid[k], de[k], dv[k], i) for k, i in pieces])
-    p_ends = np.concatenate([p[k, i] for k, i in pieces] + [p[pieces[-1][0], pieces[-1][1][-1] + 1:][:1]])
+    rows = _rows(grid, de, dv)[::-1][keep[::-1]]
+    p_ends = np.append(p[:, :-1][::-1][keep[::-1]], p[:, 1:][::-1][keep[::-1]][-1])
     if not np.isfinite(p_ends[-2]):
         return None
     return LeanTable(g, _m.fast_rate_of(g), p_ends, np.ascontiguousarray(rows.T), float(rtol), float(atol),
                      p_ends.tolist())
 
 
-def _rows(grid, de, dv, i):
-    """Rows (start, h, |h|, cubic of E', cubic of V', E' and V' at the end) of intervals ``i`` of one level."""
-    j = np.clip(i - 1, 0, grid.size - 4)
+def _rows(grid, de, dv):
+    """Rows (start, h, |h|, cubic of E', cubic of V', E' and V' at the end) of every interval of every level,
+    ``(levels, n - 1, 13)``."""
+    n = grid.shape[1]
+    i = np.arange(n - 1)
+    j = np.clip(i - 1, 0, n - 4)
     window = j[:, None] + np.arange(4)
-    out = np.empty((i.size, 13))
-    out[:, 0], out[:, 1] = grid[i], grid[1] - grid[0]
-    out[:, 2] = abs(out[:, 1])
-    for s, mat in enumerate(_WINDOW):
-        sel = (i - j) == s
-        out[sel, 3:7] = de[window[sel]] @ mat.T
-        out[sel, 7:11] = dv[window[sel]] @ mat.T
-    out[:, 3], out[:, 7] = de[i], dv[i]  # the cubic meets the table at w = 0 exactly
-    out[:, 11], out[:, 12] = de[i + 1], dv[i + 1]
+    mats = np.stack(_WINDOW)[i - j]  # the window's matrix per interval, (n - 1, 4, 4)
+    out = np.empty(grid.shape[:1] + (n - 1, 13))
+    out[..., 0] = grid[:, :-1]
+    out[..., 1] = (grid[:, 1] - grid[:, 0])[:, None]
+    out[..., 2] = abs(out[..., 1])
+    out[..., 3:7] = np.einsum("kiw,icw->kic", de[:, window], mats)
+    out[..., 7:11] = np.einsum("kiw,icw->kic", dv[:, window], mats)
+    out[..., 3], out[..., 7] = de[:, :-1], dv[:, :-1]  # the cubic meets the table at w = 0 exactly
+    out[..., 11], out[..., 12] = de[:, 1:], dv[:, 1:]
     return out
 
 
