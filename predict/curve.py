@@ -21,6 +21,16 @@ A method name is ``"<energy>-<derivative>-<inverse>"`` or ``"auto"``:
   pressure on the whole branch; may land on an unstable or later branch, or miss
   the branch, when P(theta) is not monotone; 10-20x slower).
 
+One model at a time (``curve``: what every command, the studio and inverse design ask)
+design) with ``stable-analytic-trace`` runs the trace as a *lean solve*
+(:mod:`embroact.predict.lean`, :mod:`embroact.predict.onecurve`): a table kept per model
+(nested grids, each interval at most 1/64 of the angles it serves) gives each pressure its
+bracket and cubic start, and one model evaluation polishes it; the trace inverse takes
+only what that leaves (beyond the last rising grid point, near a fold, round-off-sized
+targets). Up to ``FLOAT_PATH_MAX`` pressures are computed on Python floats (the same bits
+as on arrays). ``sweep`` of several models runs the trace inverse itself; the two agree
+within ``rtol`` (and the floor of P below).
+
 Accuracy of P: ``ACCURACY * |P| + PRESSURE_FLOOR_PER_G[derivative] * G``, a relative
 part (:data:`ACCURACY`) above an absolute floor (:data:`PRESSURE_FLOOR_PER_G`), both
 held by the tests against the 50-digit reference over the parameter space, near
