@@ -22,7 +22,7 @@ A method name is ``"<energy>-<derivative>-<inverse>"`` or ``"auto"``:
   the branch, when P(theta) is not monotone; 10-20x slower).
 
 One model at a time (``curve``: what every command, the studio and inverse design ask)
-design) with ``stable-analytic-trace`` runs the trace as a *lean solve*
+with ``stable-analytic-trace`` runs the trace as a *lean solve*
 (:mod:`embroact.predict.lean`, :mod:`embroact.predict.onecurve`): a table kept per model
 (nested grids, each interval at most 1/64 of the angles it serves) gives each pressure its
 bracket and cubic start, and one model evaluation polishes it; the trace inverse takes
