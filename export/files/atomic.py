@@ -43,7 +43,6 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-import tempfile
 import threading
 from pathlib import Path
 from typing import Iterable, Iterator, Mapping
@@ -126,10 +125,34 @@ def _new_file_mode() -> int:
     return 0o666 & ~mask
 
 
+#: Flags of a staged file: created here and now (never an existing file or a symbolic link), not inherited.
+_NEW_FILE = (os.O_WRONLY | os.O_CREAT | os.O_EXCL
+             | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0))
+#: Random names tried for one hidden file before giving up (each collision is one in 2**32).
+_NAME_TRIES = 8
+
+
+def _hidden_name(p: Path, suffix: str, create):
+    """``(create(name), name)`` for the first free hidden name ``.NAME.XXXXXXXX<suffix>`` next to ``p``.
+
+    ``create`` makes the file (or link) and raises FileExistsError when the name is taken; the
+    standard library's tempfile module would do the same for the staged file, but importing it
+    (with shutil, random and the compression modules) costs a few milliseconds at every start.
+    """
+    def attempt():
+        name = str(p.parent / f".{p.name[:200]}.{os.urandom(4).hex()}{suffix}")
+        return create(name), name
+
+    for _ in range(_NAME_TRIES - 1):
+        with contextlib.suppress(FileExistsError):
+            return attempt()
+    return attempt()
+
+
 def _stage(p: Path, data: bytes, mode: int) -> str:
     """Write ``data`` to a synced temporary file next to ``p``; return its name (removed on failure)."""
     try:  # a directory root may not write to (/proc, a read-only mount) passes os.access
-        fd, tmp = tempfile.mkstemp(prefix=f".{p.name[:200]}.", suffix=".part", dir=p.parent)
+        fd, tmp = _hidden_name(p, ".part", lambda name: os.open(name, _NEW_FILE, 0o600))
     except OSError as exc:
         raise _cannot_write(p, exc) from exc
     try:
@@ -162,16 +185,10 @@ def _backup(p: Path) -> str | None:
     """A hard link to the existing target ``p`` (None if there is none or links are unsupported)."""
     if not p.exists():
         return None
-    for _ in range(8):
-        name = str(p.parent / f".{p.name[:200]}.{os.urandom(4).hex()}.old")
-        try:
-            os.link(p, name)
-            return name
-        except FileExistsError:
-            continue
-        except OSError:
-            return None
-    return None
+    try:
+        return _hidden_name(p, ".old", lambda name: os.link(p, name))[1]
+    except OSError:
+        return None
 
 
 @contextlib.contextmanager
