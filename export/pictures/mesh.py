@@ -446,9 +446,11 @@ def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> flo
     m, f = body.ring_size, np.array(_SAMPLE_FRACTIONS)
     # strictly increasing (spaced at least 1 apart before rounding): no duplicates to remove
     steps = np.linspace(0, len(s) - 2, min(len(s) - 1, _MAX_MEASURED_STEPS)).round().astype(np.int64)
-    i, j, fs, gs = (x.reshape(-1) for x in np.meshgrid(steps, np.arange(m), f, f, indexing="ij"))
-    sq = s[i] + fs * (s[i + 1] - s[i])
-    x, r = bent.frames(sq)
+    n, nf = len(steps), len(f)
+    k, j, kf, gs = (x.reshape(-1) for x in np.meshgrid(np.arange(n), np.arange(m), np.arange(nf), f, indexing="ij"))
+    i = steps[k]
+    # a sample's frame depends only on its step and fraction along the path, not on its place round the ring
+    x, r = (a[k * nf + kf] for a in bent.frames(s[steps, None] + f * (s[steps + 1] - s[steps])[:, None]))
     uv = prof.outline(j, gs)
     pts = x + uv[:, :1] * r[:, :, 1] + uv[:, 1:] * r[:, :, 2]
     v = body.vertices
