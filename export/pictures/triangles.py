@@ -76,6 +76,9 @@ def subdivide_to_size(vertices, faces, max_edge: float):
     v = np.array(vertices, dtype=np.float64)
     f = np.array(faces, dtype=np.int64).reshape(-1, 3)
     parent = np.arange(len(f))
+    # faces with no long edge are final (their edges are never cut): set aside, in the order they became so,
+    # which is where the faces with no cut edge of each round go; only the rest is looked at again
+    done, done_parent = [], []
     for _ in range(MAX_SUBDIVISIONS + 1):
         edges = np.sort(f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
         # each edge as one integer (first * n + second sorts as the pairs do): a 1-D unique, not a row sort
@@ -83,14 +86,16 @@ def subdivide_to_size(vertices, faces, max_edge: float):
         unique = np.column_stack([keys // len(v), keys % len(v)])
         long_edge = np.linalg.norm(v[unique[:, 0]] - v[unique[:, 1]], axis=1) > max_edge
         if not long_edge.any():
-            return v, f, parent
+            return v, np.vstack(done + [f]), np.concatenate(done_parent + [parent])
         mid = np.full(len(unique), -1, dtype=np.int64)
         mid[long_edge] = len(v) + np.arange(int(long_edge.sum()))
         v = np.vstack([v, 0.5 * (v[unique[long_edge, 0]] + v[unique[long_edge, 1]])])
         face_mid = mid[inverse.reshape(-1)].reshape(-1, 3)  # edges (v0 v1, v1 v2, v2 v0)
         split = face_mid >= 0
         count = split.sum(axis=1)
-        parts, parents = [f[count == 0]], [parent[count == 0]]
+        done.append(f[count == 0])
+        done_parent.append(parent[count == 0])
+        parts, parents = [], []
         # one cut edge, rotated to (a, b): [a, p, c], [p, b, c]
         one = count == 1
         a, b, c, p, _ = _rotated(f[one], face_mid[one], np.argmax(split[one], axis=1))
