@@ -126,8 +126,10 @@ def _behind_fabric(shape, body, rot: np.ndarray) -> np.ndarray:
     if body.name == "fabric":
         return np.zeros(len(body.faces), dtype=bool)
     s = np.asarray(body.ring_s_mm)[np.asarray(body.faces) // body.ring_size].mean(axis=1)
-    _, frames = shape.bent.frames(s)
-    return (frames[:, :, 2] @ rot[2]) < 0.0
+    # the faces of one ring-to-ring cell share a few arc lengths: one frame for each distinct one
+    s_once, face = np.unique(s, return_inverse=True)
+    _, frames = shape.bent.frames(s_once)
+    return ((frames[:, :, 2] @ rot[2]) < 0.0)[face.reshape(-1)]
 
 
 def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, width_px: float = 480.0,
