@@ -220,6 +220,13 @@ def _stable_t(a, b, c, xp=np):
     return 2.0 * c / (sa * sb * (sa + sb)), sa, sb
 
 
+def _stable_t_partials(a, b, c, xp=np):
+    """(T, dT/da, dT/db) of the rationalised ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) + sqrt(b)))``."""
+    T, sa, sb = _stable_t(a, b, c, xp)
+    hs = 0.5 / (sa + sb)
+    return T, -T * (0.5 / a + hs / sa), -T * (0.5 / b + hs / sb)
+
+
 def _energy_closed(l, r, geo: Geometry, form: str):
     A, B, lam = _invariants(l, r, geo)
     if form == "stable":
@@ -290,10 +297,7 @@ def _gradient_stable(l, r, geo: Geometry):
     w = m * m * s * ia
     a = l / geo.l0
     b = a + w
-    T, sa, sb = _stable_t(a, b, c)
-    hs = 0.5 / (sa + sb)
-    T_a = -T * (0.5 / a + hs / sa)
-    T_b = -T * (0.5 / b + hs / sb)
+    T, T_a, T_b = _stable_t_partials(a, b, c)
     il2 = 1.0 / lam2
     f_a = (c * (1.0 - (lam2 - 3.0) * ia * ia)
            + 0.5 * c * m * ia * ia * ((2.0 * A - s) - m * (1.0 - s * ia))
@@ -362,10 +366,7 @@ def _zigzag_rate_stable(theta, geo: Geometry, xp=np):
     a = 1.0 + 2.0 * m
     w = m * m * s * ia
     b = a + w
-    T, sa, sb = _stable_t(a, b, c, xp)
-    hs = 0.5 / (sa + sb)
-    T_a = -T * (0.5 / a + hs / sa)
-    T_b = -T * (0.5 / b + hs / sb)
+    T, T_a, T_b = _stable_t_partials(a, b, c, xp)
     f_a = (c * (1.0 + 2.0 * ia2) + 0.5 * c * m * ia2 * ((2.0 * A - s) - m * (1.0 - s * ia))
            + 2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2))
     de = geo.e_scale * k * f_a
@@ -399,10 +400,7 @@ def _cross_rate_stable(theta, geo: Geometry, xp=np):
     il2 = 1.0 / lam2
     w = m * m * s * ia
     b = u + w
-    T, sa, sb = _stable_t(u, b, c, xp)
-    hs = 0.5 / (sa + sb)
-    T_a = -T * (0.5 / u + hs / sa)
-    T_b = -T * (0.5 / b + hs / sb)
+    T, T_a, T_b = _stable_t_partials(u, b, c, xp)
     cm = 0.5 * c * m * ia2
     f_a = (c * (1.0 - (lam2 - 3.0) * ia2) + cm * ((2.0 * A - s) - m * (1.0 - s * ia))
            + (2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2)) * il2)
