@@ -78,7 +78,8 @@ def subdivide_to_size(vertices, faces, max_edge: float):
     parent = np.arange(len(f))
     # faces with no long edge are final (their edges are never cut): set aside, in the order they became so,
     # which is where the faces with no cut edge of each round go; only the rest is looked at again
-    done, done_parent = [], []
+    done: list[np.ndarray] = []
+    done_parent: list[np.ndarray] = []
     for _ in range(MAX_SUBDIVISIONS + 1):
         edges = np.sort(f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
         # each edge as one integer (first * n + second sorts as the pairs do): a 1-D unique, not a row sort
