@@ -65,7 +65,7 @@ import numpy as np
 from .assemble import assemble, check_pattern_inputs, check_record_count, rail_positions
 from .centerline import as_centerline
 from .base.errors import ParameterError, PatternError
-from .params import CrossParams, StitchOptions, Tube
+from .params import CrossParams, StitchOptions, Tube, whole_intervals
 from .plan import Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 
@@ -135,7 +135,7 @@ def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") 
     171
     """
     n, s, _, _ = closing(params, adjust)
-    span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
+    span = whole_intervals(length_mm, s) * s
     return 2.0 * span / s + n * (2.0 + 2.0 * s / MAX_EDGE_STITCH_MM)  # an outer rail is at most 2x as long
 
 
@@ -204,7 +204,7 @@ def cross(
             f"path length_mm must be >= {minimum:.4g} for a cross pattern with width_mm={params.width_mm:g}, "
             f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
         )
-    span = math.floor((length + tol) / s) * s
+    span = whole_intervals(length, s) * s
     check_record_count(cross_stations(length, params, adjust), options)
     start = 0.5 * (length - span)
     passes = []

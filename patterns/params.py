@@ -15,12 +15,24 @@ Examples
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
 from .base.errors import ParameterError, check_range
+from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams"]
+__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "whole_intervals"]
+
+
+def whole_intervals(length_mm: float, interval_mm: float) -> int:
+    """Whole intervals along ``length_mm`` (within the length tolerance): the generators fill that
+    many times ``interval_mm`` of a path, centred on it.
+
+    >>> whole_intervals(100.0, 1.4), whole_intervals(2.8 - 1e-12, 1.4)
+    (71, 2)
+    """
+    return math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / interval_mm)
 
 
 @dataclass(frozen=True, slots=True)

@@ -30,14 +30,12 @@ Examples
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .assemble import assemble, check_pattern_inputs, check_record_count
 from .centerline import as_centerline
 from .base.errors import ParameterError, PatternError
-from .params import StitchOptions, Tube, ZigzagParams
+from .params import StitchOptions, Tube, ZigzagParams, whole_intervals
 from .plan import Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 
@@ -53,7 +51,7 @@ def zigzag_stations(length_mm: float, params: ZigzagParams) -> int:
     >>> zigzag_stations(100.0, ZigzagParams(width_mm=7.0, interval_mm=1.0))
     101
     """
-    return math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / params.interval_mm) + 1
+    return whole_intervals(length_mm, params.interval_mm) + 1
 
 
 def zigzag_realised_params(params: ZigzagParams) -> ZigzagParams:

@@ -46,11 +46,10 @@ from typing import Iterable
 import numpy as np
 
 from ..patterns.base.errors import EmbroactError, ParameterError, check_range
-from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
 from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
-from ..patterns.params import CrossParams, Tube, ZigzagParams
+from ..patterns.params import CrossParams, Tube, ZigzagParams, whole_intervals
 from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
 from .shape import planar_chain_mm
@@ -176,7 +175,7 @@ def _legs(params, length_mm: float) -> tuple[float, float]:
     turn (:func:`_legs_sewn` generates it).
     """
     s = params.interval_mm
-    span = math.floor((length_mm + DEFAULT_TOLERANCES.length_mm) / s) * s
+    span = whole_intervals(length_mm, s) * s
     return 0.5 * (length_mm - span), span
 
 
