@@ -117,7 +117,7 @@ def pareto_svg(points, *, title: str = "Speed against accuracy (Pareto chart)") 
             dwg.add(dwg.line((x, y), (tx, ty - 4), stroke="#999999", stroke_width=0.5))
         dwg.add(_text(dwg, p["label"], tx, ty))
     ky = top + 10
-    for kind, label in (("auto", "auto (default)"), ("method", "embroact method"), ("baseline", "baseline")):
+    for kind, label in (("auto", "auto (default)"), ("method", "embroact method"), ("baseline", "baselines")):
         dwg.add(dwg.circle((w - right + 16, ky + 30), 5, fill=_KIND_COLOURS[kind]))
         dwg.add(_text(dwg, label, w - right + 26, ky + 34))
         ky += 16

@@ -274,9 +274,11 @@ def _pareto_points(res: dict) -> list[dict]:
             "time_ms": res["methods"][m]["time_per_curve_ms"], "error_deg": res["methods"][m]["angle_err_max_deg"],
             "kind": "auto" if m == AUTO else "method"}
            for m in METHODS if m != AUTO or res["methods"][m]["resolved"]]
-    b = res["baseline_scipy"]
+    b, c = res["baseline_scipy"], res["competitor"]
     pts.append({"label": "scipy baseline (dblquad, central, brentq)", "time_ms": b["time_per_curve_ms"],
                 "error_deg": b["angle_err_max_deg"], "kind": "baseline"})
+    pts.append({"label": "numpy competitor (closed form, table, 4 secant steps)", "time_ms": c["time_per_curve_ms"],
+                "error_deg": c["angle_err_max_deg"], "kind": "baseline"})
     return [p for p in pts if not (p["kind"] == "method" and p["label"] == res["methods"][AUTO]["resolved"][0])]
 
 
