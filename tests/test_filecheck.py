@@ -188,7 +188,7 @@ def test_tube_toml(tmp_path):
         ('[[tube]]\nname = "A"\n', "has no path_mm"),
         ('[[tube]]\npath_mm = [[0, 0]]\n', "at least 2 finite points"),
         ('[machine]\nhoop_width_mm = 1\n', "needs at least one \\[\\[tube\\]\\]"),
-        ('[[tube]\n', "not valid TOML"),
+        ('[[tube]\n', "TOML syntax error"),
     ]:
         path.write_text(text)
         with pytest.raises(DesignFileError, match=message):

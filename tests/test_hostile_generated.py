@@ -293,24 +293,28 @@ def test_size_bombs_for_every_reader(tmp_path):
                                                     f"{lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
         ("tube-bytes", ["check", f"{t}/good.dst", "--tube", str(big_toml)],
          f"{big_toml}: tube file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got {lim.TEXT_FILE_BYTES + 1:,}"),
+        ("calibration-bytes", ["predict", "zigzag", "--width-mm", "7", "--calibration", str(big_toml),
+                               "--pressure-kpa", "200"],
+         f"{big_toml}: calibration file must be at most {lim.TEXT_FILE_BYTES:,} bytes, got "
+         f"{lim.TEXT_FILE_BYTES + 1:,}"),
         ("csv-bytes", ["fit", str(big_csv), *FIT],
          f"{big_csv}: CSV file must be at most {lim.CSV_FILE_BYTES:,} bytes, got {lim.CSV_FILE_BYTES + 1:,}"),
         ("csv-rows", ["fit", f"{t}/rows.csv", *FIT],
-         f"'{t}/rows.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{t}/rows.csv must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
          f"{lim.CSV_ROWS + 1:,})"),
         ("csv-many-short-rows", ["fit", f"{t}/short.csv", *FIT],  # 2 bytes a row up to the byte limit
-         f"'{t}/short.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{t}/short.csv must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
          f"{lim.CSV_ROWS + 1:,})"),
         ("csv-columns", ["fit", f"{t}/cols.csv", *FIT],
-         f"'{t}/cols.csv' line 1: a row must have at most {lim.CSV_COLUMNS:,} columns, got {lim.CSV_COLUMNS + 1:,}"),
+         f"{t}/cols.csv line 1: a row must have at most {lim.CSV_COLUMNS:,} columns, got {lim.CSV_COLUMNS + 1:,}"),
         ("csv-field", ["fit", f"{t}/field.csv", *FIT],
-         f"'{t}/field.csv' line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
+         f"{t}/field.csv line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
          f"(at most {lim.CSV_FIELD_CHARS:,} characters per field)"),
         ("shape-csv-rows", ["design", "--target-shape", f"{t}/rows.csv", "--at-kpa", "200", "-o", f"{t}/d.toml"],
-         f"'{t}/rows.csv' must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
+         f"{t}/rows.csv must have at most {lim.CSV_ROWS:,} data rows, got more (line {lim.CSV_ROWS + 2} is data row "
          f"{lim.CSV_ROWS + 1:,})"),
         ("marker-csv-field", ["fit", f"{t}/mfield.csv", *FIT, "--markers", "--markers-per-side", "3", "--sides", "1"],
-         f"'{t}/mfield.csv' line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
+         f"{t}/mfield.csv line 2: not CSV: field larger than field limit ({lim.CSV_FIELD_CHARS}) "
          f"(at most {lim.CSV_FIELD_CHARS:,} characters per field)"),
         ("path-chars", ["check", f"{t}/chars.toml"],
          f"{t}/chars.toml: actuator[0].path: SVG path must be at most {lim.PATH_CHARS:,} characters, got {len(long_d):,}"),

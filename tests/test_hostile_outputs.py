@@ -227,7 +227,7 @@ def test_undecodable_bytes_in_arguments_are_one_escaped_line(tmp_path):
     q = _process(["check", os.fsencode(tmp_path) + b"/\xff.dst"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     _, err = q.communicate(timeout=60)
     assert q.returncode == 2 and err == (b"embroact: error: " + os.fsencode(tmp_path)
-                                         + b"/\\udcff.dst: cannot read: No such file or directory\n"), err
+                                         + b"/\\udcff.dst: cannot read embroidery file: No such file or directory\n"), err
 
 
 # ------------------------------------------------------------------------------ usage and names

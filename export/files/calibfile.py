@@ -67,7 +67,6 @@ from __future__ import annotations
 import csv
 import dataclasses
 import io
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -75,12 +74,12 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
-from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_limited
+from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_input
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from ...predict.markers import MarkerLayout
 from .atomic import write_text_atomic
-from .tomltext import dumps
+from .tomltext import dumps, load_toml
 
 __all__ = [
     "BendData",
@@ -143,42 +142,35 @@ def read_csv_table(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
     file size (``CSV_FILE_BYTES``, read no further), data rows (``CSV_ROWS``), columns
     (``CSV_COLUMNS``) and characters per field (``CSV_FIELD_CHARS``).
     """
-    try:
-        raw = read_limited(path, CSV_FILE_BYTES, "CSV file")
-    except OSError as exc:
-        raise DesignFileError(f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise DesignFileError(f"{str(path)!r} is not a UTF-8 text (CSV) file") from None
+    text = read_input(path, CSV_FILE_BYTES, "CSV file", encoding="utf-8-sig")
     lines: list[tuple[int, str]] = []
     for i, line in enumerate(io.StringIO(text, newline=""), start=1):
         if line.strip() and not line.lstrip().startswith("#"):
             lines.append((i, line))
             if len(lines) > CSV_ROWS + 1:  # stop here: 16 MiB of "0\n" would be 8 million rows
-                raise DesignFileError(f"{str(path)!r} must have at most {CSV_ROWS:,} data rows, got more "
+                raise DesignFileError(f"{path} must have at most {CSV_ROWS:,} data rows, got more "
                                       f"(line {i} is data row {CSV_ROWS + 1:,})")
     if not lines:
-        raise DesignFileError(f"{str(path)!r} is empty: expected a header line and data rows")
+        raise DesignFileError(f"{path} is empty: expected a header line and data rows")
     rows: list[list[str]] = []
     old_limit = csv.field_size_limit(CSV_FIELD_CHARS)
     try:
         for row in csv.reader(line for _, line in lines):
             if len(row) > CSV_COLUMNS:
-                raise DesignFileError(f"{str(path)!r} line {lines[len(rows)][0]}: a row must have at most "
+                raise DesignFileError(f"{path} line {lines[len(rows)][0]}: a row must have at most "
                                       f"{CSV_COLUMNS:,} columns, got {len(row):,}")
             rows.append(row)
     except csv.Error as exc:
-        raise DesignFileError(f"{str(path)!r} line {lines[min(len(rows), len(lines) - 1)][0]}: not CSV: {exc} "
+        raise DesignFileError(f"{path} line {lines[min(len(rows), len(lines) - 1)][0]}: not CSV: {exc} "
                               f"(at most {CSV_FIELD_CHARS:,} characters per field)") from None
     finally:
         csv.field_size_limit(old_limit)
     header = [h.strip().lower() for h in rows[0]]
     dup = next((h for i, h in enumerate(header) if h in header[:i]), None)
     if dup is not None:
-        raise DesignFileError(f"{str(path)!r}: column {dup!r} appears more than once in the header")
+        raise DesignFileError(f"{path}: column {dup!r} appears more than once in the header")
     if len(rows) == 1:
-        raise DesignFileError(f"{str(path)!r} has a header but no data rows")
+        raise DesignFileError(f"{path} has a header but no data rows")
     return {h: i for i, h in enumerate(header)}, [(n, r) for (n, _), r in zip(lines[1:], rows[1:])]
 
 
@@ -186,14 +178,14 @@ def _require(path, columns: dict[str, int], names) -> None:
     missing = [n for n in names if n not in columns]
     if missing:
         raise DesignFileError(
-            f"{str(path)!r}: missing column {missing[0]!r} (header has: {', '.join(columns) or 'nothing'})"
+            f"{path}: missing column {missing[0]!r} (header has: {', '.join(columns) or 'nothing'})"
         )
 
 
 def _cell(path, line: int, row: list[str], columns: dict[str, int], name: str) -> str:
     i = columns[name]
     if i >= len(row) or not row[i].strip():
-        raise DesignFileError(f"{str(path)!r} line {line}: column {name!r} is empty")
+        raise DesignFileError(f"{path} line {line}: column {name!r} is empty")
     return row[i].strip()
 
 
@@ -204,7 +196,7 @@ def _number(path, line, row, columns, name) -> float:
     except ValueError:
         value = float("nan")
     if not np.isfinite(value):
-        raise DesignFileError(f"{str(path)!r} line {line}: {name} must be a finite number, got {text!r}")
+        raise DesignFileError(f"{path} line {line}: {name} must be a finite number, got {text!r}")
     return value
 
 
@@ -215,7 +207,7 @@ def _branches(path, columns, rows) -> tuple[str, ...] | None:
     for line, row in rows:
         b = _cell(path, line, row, columns, "branch").lower()
         if b not in ("loading", "unloading"):
-            raise DesignFileError(f"{str(path)!r} line {line}: branch must be 'loading' or 'unloading', got {b!r}")
+            raise DesignFileError(f"{path} line {line}: branch must be 'loading' or 'unloading', got {b!r}")
         out.append(b)
     return tuple(out)
 
@@ -227,7 +219,7 @@ def _columns(path, columns, rows, names) -> np.ndarray:
     negative = np.flatnonzero(values[:, 0] < 0.0)
     if negative.size:
         line = rows[negative[0]][0]
-        raise DesignFileError(f"{str(path)!r} line {line}: {names[0]} must be >= 0 (gauge pressure), got {values[negative[0], 0]:g}")
+        raise DesignFileError(f"{path} line {line}: {names[0]} must be >= 0 (gauge pressure), got {values[negative[0], 0]:g}")
     return values
 
 
@@ -347,7 +339,7 @@ def write_calibration(path, cset: CalibrationSet) -> None:
 def _unknown(path, where: str, keys, allowed) -> None:
     extra = sorted(set(keys) - set(allowed))
     if extra:
-        raise DesignFileError(f"{str(path)!r}: unknown key {extra[0]!r} in {where} (allowed: {', '.join(allowed)})")
+        raise DesignFileError(f"{path}: unknown key {extra[0]!r} in {where} (allowed: {', '.join(allowed)})")
 
 
 def read_calibration(path) -> CalibrationSet:
@@ -358,20 +350,14 @@ def read_calibration(path) -> CalibrationSet:
     DesignFileError
         Unreadable file, TOML syntax, unknown keys, wrong types or out-of-range values.
     """
-    try:
-        with open(path, "rb") as fh:
-            doc = tomllib.load(fh)
-    except OSError as exc:
-        raise DesignFileError(f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise DesignFileError(f"{str(path)!r} is not valid TOML: {exc}") from None
+    doc = load_toml(path, "calibration file")
     _unknown(path, "the calibration set", doc, _SET_KEYS)
     points = doc.get("points")
     if not isinstance(points, list) or not all(isinstance(p, dict) for p in points):
-        raise DesignFileError(f"{str(path)!r}: expected [[points]] tables, got {type(points).__name__}")
+        raise DesignFileError(f"{path}: expected [[points]] tables, got {type(points).__name__}")
     materials = doc.get("materials", {})
     if not isinstance(materials, dict) or not all(isinstance(v, str) for v in materials.values()):
-        raise DesignFileError(f"{str(path)!r}: [materials] must map names to strings")
+        raise DesignFileError(f"{path}: [materials] must map names to strings")
     parsed = [_point(path, i, p) for i, p in enumerate(points)]
     try:
         return CalibrationSet(doc.get("name", ""), tuple(parsed), doc.get("description", ""), tuple(materials.items()),
@@ -380,39 +366,39 @@ def read_calibration(path) -> CalibrationSet:
                               marker_layout=_layout(path, doc.get("marker_layout")),
                               source=str(Path(path).resolve()))
     except EmbroactError as exc:
-        raise DesignFileError(f"{str(path)!r}: {exc}") from None
+        raise DesignFileError(f"{path}: {exc}") from None
 
 
 def _tube(path, table) -> CalibrationTube | None:
     if table is None:
         return None
     if not isinstance(table, dict):
-        raise DesignFileError(f"{str(path)!r}: [tube] must be a table of {', '.join(_TUBE_KEYS)}")
+        raise DesignFileError(f"{path}: [tube] must be a table of {', '.join(_TUBE_KEYS)}")
     _unknown(path, "[tube]", table, _TUBE_KEYS)
     missing = [k for k in _TUBE_KEYS if k not in table]
     if missing:
-        raise DesignFileError(f"{str(path)!r}: [tube] is missing key {missing[0]!r}")
+        raise DesignFileError(f"{path}: [tube] is missing key {missing[0]!r}")
     try:
         return CalibrationTube(**table)
     except EmbroactError as exc:
-        raise DesignFileError(f"{str(path)!r}: [tube]: {exc}") from None
+        raise DesignFileError(f"{path}: [tube]: {exc}") from None
 
 
 def _layout(path, table) -> MarkerLayout | None:
     if table is None:
         return None
     if not isinstance(table, dict):
-        raise DesignFileError(f"{str(path)!r}: [marker_layout] must be a table of {', '.join(_LAYOUT_KEYS)}")
+        raise DesignFileError(f"{path}: [marker_layout] must be a table of {', '.join(_LAYOUT_KEYS)}")
     _unknown(path, "[marker_layout]", table, _LAYOUT_KEYS)
     try:
         return MarkerLayout(**table)
     except EmbroactError as exc:
-        raise DesignFileError(f"{str(path)!r}: [marker_layout]: {exc}") from None
+        raise DesignFileError(f"{path}: [marker_layout]: {exc}") from None
 
 
 def _check_shapes(path, i: int, table: dict) -> None:
     """``fitted`` a list of names, ``covariance`` a list of lists of numbers, ``tube_law_parameters`` a table."""
-    where = f"{str(path)!r}: points[{i}]"
+    where = f"{path}: points[{i}]"
     fitted = table.get("fitted", [])
     if not isinstance(fitted, list) or not all(isinstance(f, str) for f in fitted):
         raise DesignFileError(f"{where}: fitted must be a list of parameter names, got {fitted!r}")
@@ -434,11 +420,11 @@ def _point(path, i: int, table: dict) -> CalibrationPoint:
         point = CalibrationPoint(**fields)
     except TypeError:
         missing = [k for k in ("pattern", "width_mm", "g_mpa", "p0_kpa") if k not in table]
-        raise DesignFileError(f"{str(path)!r}: points[{i}] is missing key {missing[0]!r}") from None
+        raise DesignFileError(f"{path}: points[{i}] is missing key {missing[0]!r}") from None
     except EmbroactError as exc:
-        raise DesignFileError(f"{str(path)!r}: points[{i}]: {exc}") from None
+        raise DesignFileError(f"{path}: points[{i}]: {exc}") from None
     axis = pattern_kind(point.pattern).calibration_axis
     if table.get("coordinate", axis) != axis:
-        raise DesignFileError(f"{str(path)!r}: points[{i}]: coordinate must be {axis!r} for the {point.pattern} "
+        raise DesignFileError(f"{path}: points[{i}]: coordinate must be {axis!r} for the {point.pattern} "
                               f"pattern, got {table['coordinate']!r}")
     return point

@@ -31,7 +31,7 @@ from pathlib import Path
 
 from ...patterns.design import Design, design_from_dict, design_to_dict
 from ...patterns.base.errors import DesignFileError, PathError
-from ...patterns.base.validate import TEXT_FILE_BYTES, read_limited
+from ...patterns.base.validate import TEXT_FILE_BYTES, read_input
 from .atomic import write_text_atomic
 from .tomltext import dumps
 
@@ -117,14 +117,7 @@ def load_design(path: str | os.PathLike) -> Design:
         error (with line and column), or a schema error (with the key path).
     """
     p = Path(path)
-    try:
-        raw = read_limited(p, TEXT_FILE_BYTES, "design file")
-    except OSError as exc:
-        raise DesignFileError(f"{p}: cannot read design file: {exc.strerror or exc}") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise DesignFileError(f"{p}: design file is not UTF-8 text (byte {exc.start})") from None
+    text = read_input(p, TEXT_FILE_BYTES, "design file", encoding="utf-8")
     return loads_design(text, source=str(p), base_dir=p.parent)
 
 

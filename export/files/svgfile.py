@@ -42,8 +42,8 @@ from typing import Any
 import numpy as np
 
 from ...patterns.base.arrays import frozen_array
-from ...patterns.base.errors import DesignFileError, PathError
-from ...patterns.base.validate import PATH_SEGMENTS, TEXT_FILE_BYTES, read_limited
+from ...patterns.base.errors import PathError
+from ...patterns.base.validate import PATH_SEGMENTS, TEXT_FILE_BYTES, read_input
 from ...patterns.centerline import Centerline
 
 __all__ = ["SvgPath", "is_svg_ref", "split_ref", "read_svg_path", "svg_centerline"]
@@ -215,12 +215,7 @@ def read_svg_path(ref: str | os.PathLike, *, base_dir: str | os.PathLike | None 
 
     file, name = split_ref(os.fspath(ref))
     p = Path(file) if base_dir is None else Path(base_dir) / file
-    try:
-        data = read_limited(p, TEXT_FILE_BYTES, "SVG file")
-    except DesignFileError as exc:
-        raise PathError(str(exc)) from None
-    except OSError as exc:
-        raise PathError(f"{p}: cannot read SVG file: {exc.strerror or exc}") from None
+    data = read_input(p, TEXT_FILE_BYTES, "SVG file", error=PathError)
     try:
         import io
 

@@ -1,4 +1,5 @@
-"""TOML text for the files embroact writes (design files, calibration sets), by tomli-w.
+"""TOML text for the files embroact writes (design files, calibration sets), by tomli-w, and
+:func:`load_toml` for the TOML files it reads (tube files, calibration sets).
 
 :func:`dumps` hands tomli-w plain Python values: numpy scalars and arrays become Python
 numbers and lists (``np.int64(3)`` stays the integer 3), tuples become lists. tomli-w
@@ -23,13 +24,39 @@ True
 """
 from __future__ import annotations
 
+import os
+import tomllib
 from typing import Any
 
 import numpy as np
 
 from ...patterns.base.errors import DesignFileError
+from ...patterns.base.validate import TEXT_FILE_BYTES, read_input
 
-__all__ = ["dumps"]
+__all__ = ["dumps", "load_toml"]
+
+
+def load_toml(path: str | os.PathLike, what: str) -> dict:
+    """The TOML file ``path`` (at most ``TEXT_FILE_BYTES``, UTF-8) as a dict.
+
+    Raises
+    ------
+    DesignFileError
+        One line naming the file: ``cannot read <what>``, too large, not UTF-8, or ``TOML syntax
+        error`` with the line and column (the wording of design files too).
+
+    Examples
+    --------
+    >>> load_toml("missing.toml", "tube file")
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.DesignFileError: missing.toml: cannot read tube file: No such file or directory
+    """
+    text = read_input(path, TEXT_FILE_BYTES, what, encoding="utf-8")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignFileError(f"{os.fsdecode(path)}: TOML syntax error: {exc}") from None
 
 
 def _plain(value: Any, where: str) -> Any:

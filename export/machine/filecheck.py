@@ -50,7 +50,6 @@ from __future__ import annotations
 
 import io
 import os
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -58,8 +57,7 @@ import numpy as np
 
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
-from ...patterns.base.validate import (COORD_MM, DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS,
-                                        TEXT_FILE_BYTES, read_limited)
+from ...patterns.base.validate import COORD_MM, DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, read_input
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
@@ -67,6 +65,7 @@ from ...patterns.plan import Command
 from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
 from .census import RAW_READ, raw_reader
 from .dst import END_BYTE, HEADER_SIZE
+from ..files.tomltext import load_toml
 
 __all__ = [
     "FileRecords",
@@ -209,10 +208,7 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     if suffix not in readable_suffixes():
         kind = f"cannot read '.{suffix}' embroidery files" if suffix else "no file suffix to tell its format by"
         raise DesignFileError(f"{p}: {kind}; readable: {', '.join(readable_suffixes())}")
-    try:
-        data = read_limited(p, MACHINE_FILE_BYTES, "embroidery file")
-    except OSError as exc:
-        raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    data = read_input(p, MACHINE_FILE_BYTES, "embroidery file")
     if not data:
         raise DesignFileError(f"{p}: empty file")
     if suffix == "dst":
@@ -301,12 +297,7 @@ def _toml_points(raw, where: str) -> np.ndarray:
 def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dict]:
     """Tubes and machine settings (a dict of :class:`RuleSettings` fields) from a tube TOML file."""
     p = str(path)
-    try:
-        doc = tomllib.loads(read_limited(p, TEXT_FILE_BYTES, "tube file").decode("utf-8"))
-    except OSError as exc:
-        raise DesignFileError(f"{p}: cannot read: {exc.strerror or exc}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise DesignFileError(f"{p}: not valid TOML: {exc}") from None
+    doc = load_toml(p, "tube file")
     _unknown(doc, {"tube", "machine"}, "the file", p)
     entries = doc.get("tube")
     if not isinstance(entries, list) or not entries or not all(isinstance(t, dict) for t in entries):

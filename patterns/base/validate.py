@@ -20,7 +20,7 @@ memory either):
 =========================  ==================  =============================================
 limit                      value               applies to
 =========================  ==================  =============================================
-``TEXT_FILE_BYTES``        4 MiB               design and tube TOML files, SVG files
+``TEXT_FILE_BYTES``        4 MiB               design, tube and calibration TOML files, SVG files
 ``CSV_FILE_BYTES``         16 MiB              measurement and marker CSV files
 ``CSV_ROWS``               3,000               data rows of one CSV file (fit: ~50 KB each)
 ``CSV_COLUMNS``            1,000               columns of one CSV row
@@ -59,7 +59,7 @@ from __future__ import annotations
 import os
 import unicodedata
 
-from .errors import DesignFileError, ParameterError, PathError
+from .errors import DesignFileError, EmbroactError, ParameterError, PathError
 
 __all__ = [
     "TEXT_FILE_BYTES",
@@ -82,6 +82,7 @@ __all__ = [
     "check_output_name",
     "check_coordinates",
     "read_limited",
+    "read_input",
 ]
 
 TEXT_FILE_BYTES = 4 * 1024 * 1024
@@ -212,3 +213,34 @@ def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
     if len(data) > limit:
         raise DesignFileError(f"{os.fsdecode(path)}: {what} must be at most {limit:,} bytes, got more")
     return data
+
+
+def read_input(path: str | os.PathLike, limit: int, what: str, *, encoding: str | None = None,
+               error: type[EmbroactError] = DesignFileError):
+    """An input file's bytes (or its text in ``encoding``), every failure one line naming the file.
+
+    :func:`read_limited` with the messages every reader gives: ``<path>: cannot read <what>:
+    <reason>``, ``<path>: <what> must be at most <limit> bytes, got <size>`` and ``<path>:
+    <what> is not <encoding> text (byte <n>)``, raised as ``error``.
+
+    Examples
+    --------
+    >>> read_input("missing.toml", TEXT_FILE_BYTES, "design file", encoding="utf-8")
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.DesignFileError: missing.toml: cannot read design file: No such file or directory
+    """
+    name = os.fsdecode(path)
+    try:
+        data = read_limited(path, limit, what)
+    except DesignFileError as exc:
+        raise (exc if error is DesignFileError else error(str(exc))) from None
+    except OSError as exc:
+        raise error(f"{name}: cannot read {what}: {exc.strerror or exc}") from None
+    if encoding is None:
+        return data
+    try:
+        return data.decode(encoding)
+    except UnicodeDecodeError as exc:
+        label = "UTF-8" if encoding.lower().startswith("utf") else encoding
+        raise error(f"{name}: {what} is not {label} text (byte {exc.start})") from None
