@@ -26,6 +26,7 @@ Examples
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,10 +34,10 @@ import numpy as np
 from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.rules import RuleSettings, sort_findings
-from .sleeve_rules import check_plan
+from .sleeve_rules import DESIGN_RULES, check_plan
 from .status import VALIDITY_LIMITS, Status
 
-__all__ = ["ModelRuleSettings", "check_model", "check_design"]
+__all__ = ["ModelRuleSettings", "PER_FORMAT_RULES", "check_model", "check_design"]
 
 #: States EA405 reports: outside the model's domain, snap-through, a method failure, or past a
 #: validity limit (coiled, kinked, overstretched: docs/model.md).
@@ -202,10 +203,14 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     return sort_findings(found)
 
 
+#: The rules that read the target machine format: checked again for each further format of a design.
+PER_FORMAT_RULES = tuple(r for r in DESIGN_RULES if r.per_format)
+
+
 def check_design(
     analysis,
     *,
-    format: str | None = None,
+    format: str | Sequence[str] | None = None,
     rule_settings: RuleSettings | None = None,
     model_settings: ModelRuleSettings | None = None,
     ignore: tuple[str, ...] = (),
@@ -217,8 +222,10 @@ def check_design(
     analysis : DesignAnalysis
         From :func:`embroact.predict.analysis.analyse`; supplies the design (machine limits,
         working pressure, bend limit), the plan and each actuator's model.
-    format : str, optional
-        Target machine format; default ``design.machine.format``.
+    format : str or sequence of str, optional
+        Target machine format(s); default ``design.machine.format``. With several, every rule runs
+        for the first and the rules that read the format (``Rule.per_format``: record limits) for
+        each further one.
     rule_settings, model_settings : optional
         Override the thresholds derived from the design.
     ignore : tuple of str
@@ -241,6 +248,9 @@ def check_design(
     """
     design = analysis.design
     skip = {RULES[code].code for code in ignore}
-    rs = rule_settings or RuleSettings.for_machine(design.machine, format=format)
-    found = list(check_plan(analysis.plan, rs)) + list(check_model(analysis, model_settings))
-    return sort_findings(f for f in found if f.code not in skip)
+    formats = [format] if format is None or isinstance(format, str) else list(format)
+    settings = [rule_settings or RuleSettings.for_machine(design.machine, format=f) for f in formats]
+    found = list(check_plan(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
+    for rs in settings[1:]:
+        found += check_plan(analysis.plan, rs, rules=PER_FORMAT_RULES)
+    return sort_findings(dict.fromkeys(f for f in found if f.code not in skip))

@@ -115,9 +115,10 @@ DESIGN_RULES = tuple(sorted(GEOMETRY_RULES + SLEEVE_RULES, key=lambda r: r.code)
 """Every rule checked on a plan or layout (all but the model rules), in code order."""
 
 
-def check_plan(plan: StitchPlan, settings: RuleSettings | None = None):
-    """Every geometric, pattern, file-structure and sleeve rule on a design's plan; findings worst first."""
-    return geometry.check_plan(plan, settings, rules=DESIGN_RULES)
+def check_plan(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=DESIGN_RULES):
+    """Every geometric, pattern, file-structure and sleeve rule (or those of ``rules``) on a design's plan;
+    findings worst first."""
+    return geometry.check_plan(plan, settings, rules=rules)
 
 
 def check_layout(layout: Layout, settings: RuleSettings | None = None):

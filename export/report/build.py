@@ -379,10 +379,7 @@ def build(
         from ...predict.rules import check_design
 
         ignore = SPLIT_LONG_IGNORES if split_long else ()
-        from ...patterns.rules import sort_findings
-
-        findings = sort_findings(dict.fromkeys(f for fmt in formats for f in check_design(analysis, format=fmt,
-                                                                                          ignore=ignore)))
+        findings = check_design(analysis, format=formats, ignore=ignore)
     else:
         findings = tuple(check(analysis))
     return build_plan_outputs(analysis.plan, out_dir, design=design, analysis=analysis, findings=findings,

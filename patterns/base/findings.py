@@ -107,6 +107,9 @@ class Rule:
         ``check(subject) -> findings`` for the rule engine of ``embroact.patterns.rules``;
         None for the model rules, which ``embroact.predict.rules`` checks together from
         one curve per actuator.
+    per_format : bool
+        The check reads the target machine format (its record limits): a design written in
+        several formats is checked once, and these rules again for each further format.
     """
 
     code: str
@@ -116,6 +119,7 @@ class Rule:
     fix: str
     inputs: Inputs
     check: Callable | None = None
+    per_format: bool = False
 
     @property
     def inputs_label(self) -> str:
@@ -232,11 +236,12 @@ class RuleRegistry:
         return rule
 
     def rule(self, code: str, severity: Severity, title: str, description: str, fix: str,
-             inputs: Inputs) -> Callable[[Callable], Rule]:
-        """Decorator: declare rule ``code`` checked by the decorated function; returns the :class:`Rule`."""
+             inputs: Inputs, *, per_format: bool = False) -> Callable[[Callable], Rule]:
+        """Decorator: declare rule ``code`` checked by the decorated function; returns the :class:`Rule`
+        (``per_format``: see :class:`Rule`)."""
 
         def register(check: Callable) -> Rule:
-            return self.declare(Rule(code, severity, title, description, fix, inputs, check))
+            return self.declare(Rule(code, severity, title, description, fix, inputs, check, per_format))
 
         return register
 

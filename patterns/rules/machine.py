@@ -44,7 +44,7 @@ def machine_records(s: Subject) -> np.ndarray:
 @RULES.rule("EA501", Severity.WARNING, "jump run reads as trim",
             "Three or more consecutive jump records (the machine's trim count) where no trim is meant: the "
             "machine cuts the thread.",
-            "Shorten the travel, add a real trim, or lay actuators closer.", _DF)
+            "Shorten the travel, add a real trim, or lay actuators closer.", _DF, per_format=True)
 def jump_runs(s: Subject) -> Hits:
     cmds, tol = s.layout.commands, s.settings.tolerances.length_mm
     jump = cmds == Command.JUMP
@@ -111,7 +111,7 @@ def unexpected_stop(s: Subject) -> Hits:
 
 @RULES.rule("EA504", Severity.ERROR, "too many records",
             "The number of records exceeds the format's (or the machine's) limit.",
-            "Split the design into several files.", _DF)
+            "Split the design into several files.", _DF, per_format=True)
 def record_count(s: Subject) -> list[Finding]:
     limit = s.settings.max_records or format_limit(s.settings.format).max_records
     n = int(machine_records(s).sum())

@@ -60,7 +60,8 @@ def needle_corridor(s: Subject) -> Hits:
             "A stitch moves further per axis (|dx| or |dy|, on the 0.1 mm machine grid the writer rounds to) "
             "than the target format allows in one record (DST 12.1 mm, EXP/JEF/U01/TBF 12.7 mm, ...); the "
             "writer would have to split it.",
-            "Narrow the pattern, choose a format with longer records, or split the leg explicitly.", _DF)
+            "Narrow the pattern, choose a format with longer records, or split the leg explicitly.", _DF,
+            per_format=True)
 def record_limit(s: Subject) -> Hits:
     lim = format_limit(s.settings.format)
     moves = s.moves_units
