@@ -92,7 +92,7 @@ from . import solvers
 from .inflation import KPA_PER_MPA
 from .kinds import MODEL_KINDS, model_kind
 from .lean import LeanTable, lean_table
-from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats
+from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats, trace_outcome
 from .status import Status, status_names
 from .tubelaws import check_tube_law, pressure_kpa, transition_pressure_kpa
 from .validity import apply_limits
@@ -178,6 +178,9 @@ class ActuatorModel:
     calibration: str = "given"
 
     def __post_init__(self) -> None:
+        for name in ("beta0_deg", "p0_kpa", "inner_radius_mm"):  # those that may be 0: -0.0 is 0.0, one cache entry
+            if isinstance(getattr(self, name), float) and getattr(self, name) == 0.0:
+                object.__setattr__(self, name, 0.0)
         if not isinstance(self.pattern, str) or self.pattern not in MODEL_KINDS:
             raise ParameterError(f"pattern must be one of {', '.join(MODEL_KINDS)}, got {self.pattern!r}")
         for name, hi in (("length_mm", 1e5), ("r0_mm", 1e3), ("outer_radius_mm", 50.0), ("g_mpa", 1e5),
@@ -409,8 +412,7 @@ def _trace(geo, t, full, kind, energy, deriv, rtol):
                                             slope=_slope_fn(geo, energy, deriv), grid_points=TRACE_POINTS,
                                             rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
                                             ptol=PRESSURE_FLOOR_PER_G[deriv] * geo.g, pole_at_end=kind == Status.LOCKED)
-    st = np.where(where == 2, Status.UNSTABLE, np.where(where == 1, kind, Status.BENDING))
-    return np.where(where == 1, full, th), st
+    return trace_outcome(th, where, full, kind)
 
 
 def _root(geo, t, full, kind, energy, deriv, rtol):
@@ -455,7 +457,8 @@ class _Branch:
 
 
 #: Models whose branches are kept (the studio and inverse design ask one model many times); each
-#: holds its lean table (~60 KB) and at most one tabulation per zoom the trace inverse needed (~3 KB each).
+#: holds its lean table (~110 KB: 64 branches ~7 MB) and at most one tabulation per zoom the trace
+#: inverse needed (~3 KB each).
 BRANCH_CACHE = 64
 _FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
 

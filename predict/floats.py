@@ -13,6 +13,8 @@ Examples
 >>> from embroact.predict.floats import SCALAR
 >>> SCALAR.sqrt(2.0) == float(np.sqrt(2.0)), SCALAR.where(1.0 > 0.0, "a", "b")
 (True, 'a')
+>>> [str(f(a, b)) for f in (SCALAR.maximum, np.maximum) for a, b in ((-0.0, 0.0), (0.0, -0.0))]
+['0.0', '-0.0', '0.0', '-0.0']
 """
 from __future__ import annotations
 
@@ -24,12 +26,21 @@ __all__ = ["SCALAR"]
 
 
 class _ScalarMath:
-    """``sqrt``, ``cos``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats (module docstring)."""
+    """``sqrt``, ``cos``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats
+    (module docstring)."""
 
     __slots__ = ()
     sqrt = staticmethod(math.sqrt)
-    minimum = staticmethod(min)
-    maximum = staticmethod(max)
+
+    @staticmethod
+    def minimum(a, b):
+        """numpy's ``minimum``: NaN if either is, ``b`` on a tie (``min`` keeps ``a``: -0.0 against 0.0)."""
+        return a if a < b or a != a else b
+
+    @staticmethod
+    def maximum(a, b):
+        """numpy's ``maximum`` (as :meth:`minimum`)."""
+        return a if a > b or a != a else b
 
     @staticmethod
     def arcsin(x):

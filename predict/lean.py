@@ -14,21 +14,21 @@ where P has a pole and R has none). :func:`solve_lean` then does, per target and
 Python loop over targets:
 
 1. bracket: the interval with ``P_i <= t < P_(i+1)`` (a binary search in the table);
-2. start: the root of the cubic ``R`` from the secant of the tabulated residuals, by two
-   Newton steps on the cubic (no model evaluation);
+2. start: the root of the cubic ``R`` from the secant of the tabulated residuals, by
+   :data:`CUBIC_STEPS` Newton step(s) on the cubic (no model evaluation);
 3. polish: one Newton step on the model's residual with the cubic's slope.
 
 A target is *settled* when the step stays in its interval and the error the step
 leaves is within the tolerance: ``min(step, left) <= rtol |theta| + atol``, where
 ``left = step (27 |c3| + |R_ww| step/|h|)/|R_w|`` bounds the slope error of the cubic
-(its cubic term) times the step plus Newton's quadratic term, the estimate the trace
-inverse uses. A target that is not settled (near a fold, near the lock-up pole, or so
+(its cubic term) times the step plus Newton's quadratic term (``R_ww`` the cubic's own
+second derivative), as the trace inverse estimates it. A target that is not settled (near a fold, near the lock-up pole, or so
 small that its residual is round-off) is the caller's to solve by the full trace inverse
 (:func:`embroact.predict.solvers.trace_inverse`, which also knows P's round-off floor);
 so is every target above the table's top (beyond a fold, or past the branch end).
 
-The table depends on the model only, never on the pressures asked for, so an answer is
-the same whatever else the call or earlier calls asked. The same text runs on numpy
+The table depends on the model only, never on the pressures asked for, so a settled
+answer is the same whatever else the call or earlier calls asked. The same text runs on numpy
 arrays (many pressures) and on Python floats (:data:`embroact.predict.floats.SCALAR`, a
 handful of pressures): the same operations in the same order, so both give the same bits.
 
@@ -109,7 +109,8 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
                atol: float) -> LeanTable | None:
     """The table of one design's branch from 0 to ``theta_end`` [rad] (``geo`` of one row; module docstring).
 
-    ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no interval rises.
+    ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no interval rises, or
+    when the last interval before the pole is not finite (nothing the table could serve).
     """
     n = LEVEL_POINTS
     g = geo.scalar()

@@ -84,7 +84,6 @@ DERIVATIVES = ("analytic", "complex", "central")
 REFERENCE_NODES = (12, 64)
 
 
-
 @dataclass(frozen=True, slots=True)
 class Geometry:
     """Model constants of one or more designs, as ``(n, 1)`` float64 arrays (mm, MPa, rad).
@@ -370,7 +369,7 @@ def _zigzag_rate_stable(theta, geo: Geometry, xp=np):
     f_a = (c * (1.0 + 2.0 * ia2) + 0.5 * c * m * ia2 * ((2.0 * A - s) - m * (1.0 - s * ia))
            + 2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2))
     de = geo.e_scale * k * f_a
-    return xp.where(theta == 0.0, 0.0, de), np.pi * geo.r0 ** 3 + 0.0 * de
+    return xp.where(theta == 0.0, 0.0, de), np.pi * geo.r0 ** 3 + 0.0 * theta
 
 
 def _cross_rate_stable(theta, geo: Geometry, xp=np):

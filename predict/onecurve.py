@@ -8,7 +8,8 @@ handful of pressures on Python floats, where numpy's fixed cost per operation wo
 most of the time; it serves only bending points the lean solve settles and returns None
 otherwise (the caller then asks :func:`one_curve`). Both compute each state with the
 same operations (:func:`state`), so a pressure gets the same bits whichever path, and
-whatever other pressures the call holds.
+whatever other pressures the call holds (the targets the trace inverse solves are solved
+one at a time for that, except those beyond the lean table, which do not depend on each other).
 
 Examples
 --------
@@ -34,7 +35,7 @@ from .status import Status
 from .tubelaws import radius_mm
 from .validity import apply_limits
 
-__all__ = ["state", "free_tube_radius", "one_curve", "one_curve_floats", "FLOAT_PATH_MAX"]
+__all__ = ["state", "free_tube_radius", "trace_outcome", "one_curve", "one_curve_floats", "FLOAT_PATH_MAX"]
 
 #: Largest number of pressures :func:`one_curve_floats` takes (above it numpy's arrays are cheaper).
 FLOAT_PATH_MAX = 8
@@ -69,32 +70,44 @@ def free_tube_radius(p, law, tube, r0, p_sleeve):
     return np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law))
 
 
+def trace_outcome(theta, where, full, kind):
+    """(theta, status) of the trace inverse's answers (:func:`~embroact.predict.solvers.trace_inverse`):
+    ``where`` 1, past the branch end: the end and its status ``kind``; 2, past a fold: UNSTABLE at the
+    fold; a non-finite angle: FAILED with theta 0; the rest BENDING."""
+    theta = np.where(where == 1, full, theta)
+    status = np.where(where == 2, _UNSTABLE, np.where(where == 1, kind, _BENDING))
+    bad = ~np.isfinite(theta)
+    return np.where(bad, 0.0, theta), np.where(bad, _FAILED, status).astype(np.int8)
+
+
 def _solve(br, t):
-    """(theta, status) of bending targets ``t`` (1-D, > 0) on the branch ``br`` (curve._Branch)."""
+    """(theta, status) of bending targets ``t`` (1-D, > 0) on the branch ``br`` (curve._Branch).
+
+    The lean solve first; the trace inverse for the targets above the lean table (near a fold or
+    past it: one call, whose answers do not depend on each other there) and for each target the
+    lean solve did not settle (one call each: the trace's zoom follows the largest target of a
+    call, so an answer would otherwise depend on the others).
+    """
     theta = np.zeros(t.size)
     status = np.full(t.size, br.kind[0, 0] if br.full[0, 0] == 0.0 else _BENDING, dtype=np.int8)
     if br.full[0, 0] == 0.0:
         return theta, status
-    rest = np.arange(t.size)
     lean = br.lean
-    if lean is not None:
-        if t.size and float(t.max()) <= lean.top:
-            theta, settled = solve_lean(lean, t)
-            if settled.all():
-                return theta, status
-            rest = np.flatnonzero(~settled)
-        else:
-            served = np.flatnonzero(t <= lean.top)
-            theta[served], settled = solve_lean(lean, t[served])
-            rest = np.concatenate([np.flatnonzero(t > lean.top), served[~settled]])
-    if rest.size:
+    if lean is None:
+        groups = [np.arange(t.size)]
+    elif t.size and float(t.max()) <= lean.top:
+        theta, settled = solve_lean(lean, t)
+        if settled.all():
+            return theta, status
+        groups = [[k] for k in np.flatnonzero(~settled)]
+    else:
+        served = np.flatnonzero(t <= lean.top)
+        theta[served], settled = solve_lean(lean, t[served])
+        groups = [np.flatnonzero(t > lean.top)] + [[k] for k in served[~settled]]
+    for rest in groups:
         th, where, _, _ = trace_inverse(br.rate, br.full, t[None, rest], slope=br.slope, grid_points=br.points,
                                         rtol=br.rtol, atol=br.atol, ptol=br.ptol, pole_at_end=br.pole, memo=br.memo)
-        th = np.where(where == 1, br.full, th)[0]
-        bad = ~np.isfinite(th)
-        theta[rest] = np.where(bad, 0.0, th)
-        status[rest] = np.where(bad, _FAILED, np.where(where[0] == 2, _UNSTABLE,
-                                                       np.where(where[0] == 1, br.kind[0, 0], _BENDING)))
+        theta[rest], status[rest] = trace_outcome(th[0], where[0], br.full[0, 0], br.kind[0, 0])
     return theta, status
 
 

@@ -371,7 +371,7 @@ def _newton(rate, interval, ends, ce, cv, rows, t, tols):
             # error left after the step: the cubic's slope error (bounded by its cubic term)
             # times the step, plus Newton's quadratic term
             step = np.abs(xn - xw)
-            left = step * (9.0 * np.abs(d3w) + np.abs(d2w + 3.0 * d3w * uu) * step / hw) / np.abs(r_u)
+            left = step * (9.0 * np.abs(d3w) + np.abs(d2w + 2.0 * d3w * uu) * step / hw) / np.abs(r_u)  # R_uu
         ok = (xn >= low) & (xn <= hiw)
         done = ok & ((np.minimum(step, left) <= rtol * np.abs(xn) + atol) | (fx == 0.0))
         if done.all():

@@ -150,9 +150,9 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     if xp is not np:
         return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp), xp)
     st = np.asarray(status, dtype=np.int8)
-    flags = _exceeded(theta_rad, length_mm, radius_mm, l0_mm)
-    if not (flags[0] | flags[1] | flags[2]).any():  # the common case: every state within the limits
-        return st
+    flags = _exceeded(*(np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm)))
+    if not np.any(flags[0] | flags[1] | flags[2]):  # the common case: every state within the limits
+        return np.array(st, dtype=np.int8)  # a new array, as the other case gives
     return _limited(st, flags).astype(np.int8)
 
 

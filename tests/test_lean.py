@@ -1,9 +1,9 @@
 """The lean solve of one model's curve (predict/lean.py, predict/onecurve.py).
 
-Against the 50-digit reference (tests/mpref.py), against the trace inverse that
-``sweep`` runs, and against itself: the float path and the array path give the same
-bits, and a pressure's answer depends neither on the other pressures of the call nor
-on what was cached before.
+Against the 50-digit reference (tests/mpref.py), against the trace inverse that a
+``sweep`` of several models runs, and against itself: the float path and the array path
+give the same bits, and a pressure's answer depends neither on the other pressures of the
+call nor on what was cached before.
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ from embroact.predict.curve import ActuatorModel, curve, lockup, sweep
 from embroact.predict.derived import derive_from_values
 from embroact.predict.lean import LEVELS, lean_table, solve_lean
 from embroact.predict.model import lock_theta
-from embroact.predict.onecurve import FLOAT_PATH_MAX
+from embroact.predict.onecurve import FLOAT_PATH_MAX, one_curve_floats
 from embroact.predict.status import Status
 from embroact.patterns.params import Tube
 
@@ -65,10 +65,15 @@ def test_angles_match_the_50_digit_reference_over_the_branch(m):
     assert np.all(np.abs(back - exact) <= 1e-10 * np.abs(exact))
 
 
+def arrays_only(m, p):
+    """The curve by the array path whatever the number of pressures (curve() takes floats for a handful)."""
+    return C._solve([m], p, "auto", C.DEFAULT_TOLERANCES.model_rtol, squeeze=True)
+
+
 @given(m=model_designs(), p=pressures_kpa(max_size=3 * FLOAT_PATH_MAX))
 @budget(0.3)
 def test_float_path_and_array_path_give_the_same_bits(m, p):
-    many = curve(m, np.array(p))
+    many = arrays_only(m, p)
     for k in range(0, len(p), FLOAT_PATH_MAX):  # a handful at a time: the float path where it serves them
         few = curve(m, p[k:k + FLOAT_PATH_MAX])
         for f in FIELDS:
@@ -78,20 +83,43 @@ def test_float_path_and_array_path_give_the_same_bits(m, p):
         assert getattr(one, f).tobytes() == getattr(many, f)[-1:].tobytes(), f
 
 
+def test_the_float_path_serves_a_handful_of_bending_pressures():
+    m = design("cross", 7.0, 20.0, g=1.3, p0=170.0)
+    br = C._branch(m, C.DEFAULT_TOLERANCES.model_rtol)
+    assert one_curve_floats(br, [0.23, 0.26]) is not None  # MPa, above P0 and settled
+    assert one_curve_floats(br, [0.1, 0.26]) is None  # an inflation point: the array path's tube law
+    same_bits(curve(m, [230.0, 260.0]), arrays_only(m, [230.0, 260.0]))
+
+
 @given(m=model_designs(), p=pressures_kpa(max_size=20))
 @budget(0.3)
 def test_an_answer_depends_neither_on_the_other_pressures_nor_on_the_cache(m, p):
-    warm = curve(m, p)
+    warm = arrays_only(m, p)
     C._cached_branch.cache_clear()
-    cold_reversed = curve(m, p[::-1])
+    cold_reversed = arrays_only(m, p[::-1])
     for f in FIELDS:
         assert getattr(cold_reversed, f)[::-1].tobytes() == getattr(warm, f).tobytes(), f
+    for k, pk in enumerate(p):  # each pressure alone
+        alone = arrays_only(m, [pk])
+        for f in FIELDS:
+            assert getattr(alone, f).tobytes() == getattr(warm, f)[k:k + 1].tobytes(), f
+
+
+@pytest.mark.parametrize("m, p, other", [
+    # a target the lean step leaves to the trace inverse (round-off-sized), with one far past the fold
+    (design("zigzag", 7.0, g=2.7, p0=85.0), 85.000000000001, 1e5),
+    (ActuatorModel("cross", length_mm=87.1533556167941, r0_mm=4.697723863285179, beta0_deg=4.2135640896712205,
+                   outer_radius_mm=1.270686703640462, inner_radius_mm=0.27055142212689764,
+                   g_e_mpa=1.7346866114754718, g_mpa=2.778803484852792, p0_kpa=0.0), 165.3466490033037,
+     3684.58633312124)])
+def test_an_unsettled_target_is_solved_alone(m, p, other):
+    assert arrays_only(m, [p]).theta_deg.tobytes() == arrays_only(m, [p, other]).theta_deg[:1].tobytes()
 
 
 @given(m=model_designs(), p=pressures_kpa(max_size=12))
 @budget(0.3)
 def test_lean_curve_agrees_with_the_trace_inverse_of_sweep(m, p):
-    c, s = curve(m, p), sweep([m], p)
+    c, s = curve(m, p), sweep([m, m], p)  # two models: sweep's own trace inverse (one model is a curve)
     assert c.status.tolist() == s.status[0].tolist()
     lift = np.maximum(np.asarray(p) - m.p0_kpa, 1e-300)  # the round-off floor of P - P0 (documented)
     floor = 2.0 * C.PRESSURE_FLOOR_PER_G["analytic"] * m.g_mpa * 1000 / lift
@@ -161,8 +189,9 @@ def test_bad_pressures_are_refused_as_on_the_array_path(bad):
     assert type(one.value) is type(many.value) and "pressure_kpa" in str(one.value)
 
 
-def test_bools_and_numpy_scalars_take_the_array_path_with_the_same_answer():
+def test_numpy_scalars_arrays_and_tuples_give_the_answers_of_floats_and_lists():
     m = design("cross", 7.0, 20.0, g=1.3, p0=170.0)
     same_bits(curve(m, [np.float64(230.0)]), curve(m, [230.0]))
     same_bits(curve(m, np.array([230.0, 240.0])), curve(m, (230.0, 240.0)))
+    same_bits(curve(m, 230), curve(m, [230.0]))
     assert curve(m, [True]).pressure_kpa.tolist() == [1.0]  # a bool is the number numpy makes of it

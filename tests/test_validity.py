@@ -151,3 +151,14 @@ def test_cross_45_locks_before_its_coil_contact():
     assert first_limit(m) is None
     c = curve(m, [200.0, 300.0, 1e4])
     assert np.all(c.status == Status.BENDING)
+
+
+def test_apply_limits_takes_numbers_and_lists_and_returns_a_new_array():
+    from embroact.predict.validity import apply_limits
+
+    st = np.array([int(Status.BENDING)] * 2, dtype=np.int8)
+    out = apply_limits(st, [0.1, 7.0], [100.0, 130.0], 2.5, 100.0)  # 7 rad: past a full turn
+    assert out.tolist() == [Status.BENDING, Status.COILED] and out is not st
+    calm = apply_limits(st, [0.1, 0.2], [100.0, 101.0], 2.5, 100.0)
+    assert calm.tolist() == st.tolist() and calm is not st and calm.dtype == np.int8
+    assert apply_limits(int(Status.BENDING), 0.1, 100.0, 2.5, 100.0).tolist() == int(Status.BENDING)
