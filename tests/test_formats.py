@@ -53,8 +53,9 @@ def _expected(plan, fmt, cord_stop="sequence"):
     exp = {"stitches": plan.stitch_count, "trims": plan.count(C.TRIM)}
     if fmt in ("dst", "exp"):
         exp.update(stops=stops * (2 if cord_stop == "double" else 1), color_changes=0)
-    elif fmt in ("tbf", "u01"):
-        exp.update(stops=stops, color_changes=plan.count(C.STOP))
+    elif fmt in ("tbf", "u01"):  # a needle set at each stop, and before a placement line sewn before the first
+        sewn_first = np.any(plan.commands[:int(np.argmax(plan.commands == C.STOP))] == C.STITCH)
+        exp.update(stops=stops, color_changes=plan.count(C.STOP) + int(sewn_first))
     else:  # a colour change wherever a tube is laid after something was sewn (later actuators, placement lines)
         sewn = np.cumsum(plan.commands == C.STITCH)
         exp.update(stops=0, color_changes=int(np.count_nonzero((plan.commands == C.STOP) & (sewn > 0))))

@@ -181,3 +181,20 @@ def test_build_flag_equals_design_setting(tmp_path):
     assert main(["build", str(plain), "--out", str(tmp_path / "b"), "--no-previews", "--placement-line"]) == 0
     a, b = (tmp_path / "a" / "design.dst").read_bytes(), (tmp_path / "b" / "design.dst").read_bytes()
     assert a == b and len(a) > 512 + 3 * math.ceil(60 / 2.5)
+
+
+@pytest.mark.parametrize("fmt", ["tbf", "u01"])
+def test_needle_formats_choose_the_needle_before_the_placement_line(fmt, tmp_path):
+    """TBF and U01 select the needle with a record of their own: the placement line, sewn before the first
+    cord-in stop, comes after one (read back by pystitch's reader, not embroact's)."""
+    import pystitch
+
+    from embroact.export.files.designfile import load_design
+    from embroact.export.machine.formats import encode
+
+    data, res = encode(build_plan(_placed(load_design("examples/three_actuators.toml"))), fmt)
+    (tmp_path / f"x.{fmt}").write_bytes(data)
+    cmds = [c[2] & pystitch.COMMAND_MASK for c in pystitch.read(str(tmp_path / f"x.{fmt}")).stitches]
+    first_stitch, first_needle = cmds.index(pystitch.STITCH), cmds.index(pystitch.NEEDLE_SET)
+    assert first_needle < first_stitch < cmds.index(pystitch.STOP)
+    assert cmds.count(pystitch.NEEDLE_SET) == res.color_changes == 4  # the start, and each of 3 cord-in stops

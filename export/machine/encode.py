@@ -40,7 +40,9 @@ STOP      cord in, by the format's ``stop_style``:
             the last actuator ended, before the travel, because their writer adds
             a needle penetration to a colour change that follows a jump.
           * ``"needle_stop"`` (TBF, U01): a needle-set record selecting the
-            actuator's thread (always needle 1) and the format's own stop record.
+            actuator's thread (always needle 1) and the format's own stop record;
+            with a placement line, a needle-set record before its first needle
+            point too, so no stitch is sewn before a needle is chosen.
 TRIM      one trim (DST: a run of 3 jumps netting to zero; JEF: 3 zero-length
           jumps; PEC/PES have no trim code: the trim flag of the next jump, a
           zero-length one after the last actuator; VP3's end code trims, so the
@@ -363,6 +365,7 @@ class _Builder:
         self.stitched = False  # a needle record has been written
         self.jump_run = 0  # consecutive jump records just written
         self.waited = False  # a cord-in stop was handled: the first stitch starts where the machine waited
+        self.selected = False  # needle-stop formats: a needle-set record was written
         self.max_jump = round(fmt.limit.max_jump_mm * UNITS_PER_MM)
 
     def add(self, cmd: int, p: np.ndarray | None = None) -> None:
@@ -382,11 +385,16 @@ class _Builder:
                 f"before them; machines read {TRIM_JUMP_RUN} or more jumps as a trim: add a TRIM before the travel"
             )
 
+    def select(self, thread: int) -> None:
+        """A needle-set record choosing ``thread`` (always needle 1)."""
+        self.add(self.pe.encode_thread_change(self.pe.NEEDLE_SET, thread, 1))
+        self.selected = True
+
     def stop(self, thread: int, cord: CordStop) -> None:
         """A cord-in stop at the current position in the format's stop style."""
         pe, style = self.pe, self.fmt.stop_style
         if style == "needle_stop":
-            self.add(pe.encode_thread_change(pe.NEEDLE_SET, thread, 1))
+            self.select(thread)
         if not self.pattern.stitches or (style == "needle_stop" and len(self.pattern.stitches) == 1):
             return  # nothing before it: the machine waits at the start anyway (a leading stop is dropped by readers)
         for _ in range(cord.records_per_stop if style == "stop" else 1):
@@ -464,6 +472,8 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
             b.travel(pending, i)
             pending = None
         if cmd == Command.STITCH:
+            if fmt.stop_style == "needle_stop" and not b.selected:  # a placement line sewn before the first stop
+                b.select(threads.get(k, len(threads)))
             if not b.stitched and b.jump_ok and not b.waited:
                 b.travel(p, i)  # first needle point: a frame move, never a stitch from the origin
             if int(np.abs(p - b.pos).max()) > lim:
