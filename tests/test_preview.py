@@ -76,3 +76,27 @@ def test_generated_plans_render(label, plan):
 def test_bad_options():
     with pytest.raises(ParameterError, match="margin_mm"):
         plan_svg(hand_plan(1), margin_mm=-1)
+
+
+def test_placement_line_is_a_layer_of_its_own():
+    """The placement line's stitches are drawn in the ``placement`` layer, one colour, and not among the legs
+    (read with the standard library's XML parser)."""
+    from dataclasses import replace as _replace
+
+    from embroact.export.pictures.stitches import PLACEMENT_COLOUR
+    from embroact.patterns.design import build_plan, default_design
+
+    d = default_design()
+    plan = build_plan(_replace(d, machine=_replace(d.machine, placement_line=True)))
+    ns = {"s": "http://www.w3.org/2000/svg"}
+    root = ET.fromstring(plan_svg(plan))
+    paths = root.findall(".//s:g[@id='placement']/s:path", ns)
+    assert len(paths) == 1 and paths[0].get("stroke") == PLACEMENT_COLOUR
+    segments = paths[0].get("d").count("M ")
+    stitch = plan.commands == C.STITCH
+    placed = stitch[1:] & stitch[:-1] & (plan.roles[1:] == R.PLACEMENT)
+    assert segments == int(placed.sum()) > 10
+    legs = sum(p.get("d").count("M ") for p in root.findall(".//s:g[@id='legs']/s:path", ns))
+    assert legs == int((stitch[1:] & stitch[:-1]).sum()) - segments
+    plain = ET.fromstring(plan_svg(build_plan(d)))
+    assert plain.findall(".//s:g[@id='placement']/s:path", ns) == []

@@ -6,8 +6,9 @@ frame has y up; SVG's y points down, so y is negated when drawing.
 
 Layers (``<g id=...>``, bottom to top): ``fabric`` outline, ``corridor`` (tube
 corridor, no needle may land there), ``tube``, ``centerline``, ``rails``,
-``travel`` (jumps, dashed), ``legs`` (thread legs coloured by sewing order, from
-:data:`RAMP` start colour to end colour), ``needle-points``, ``ties``
+``travel`` (jumps, dashed), ``placement`` (placement-line stitches along a tube axis,
+sewn before the tube is laid, in one colour of their own), ``legs`` (thread legs coloured
+by sewing order, from :data:`RAMP` start colour to end colour), ``needle-points``, ``ties``
 (tie-in triangles, tie-off squares), ``stops`` and ``trims`` (labelled marks),
 ``scale-bar`` and ``params`` (realised parameters as text).
 
@@ -31,12 +32,14 @@ from ...patterns.base.errors import check_range
 from ...patterns.kinds import pattern_kind
 from ...patterns.plan import Command, Role, StitchPlan
 
-__all__ = ["RAMP", "plan_svg"]
+__all__ = ["RAMP", "PLACEMENT_COLOUR", "plan_svg"]
 
 RAMP = ((0x31, 0x36, 0x95), (0x2C, 0x7F, 0xB8), (0x41, 0xB6, 0xC4), (0xFD, 0xAE, 0x61), (0xD7, 0x30, 0x27))
 """Sewing-order colour ramp, first leg to last (blue -> red)."""
 
 _RAMP_BINS = 24
+#: Colour of placement-line stitches (outside the sewing-order ramp, which runs blue to red).
+PLACEMENT_COLOUR = "#7b3294"
 _FONT_MM = 2.5
 _TEXT_ROW_MM = 3.6
 _SCALE_CANDIDATES_MM = (1, 2, 5, 10, 20, 50, 100, 200, 500)
@@ -134,7 +137,8 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
     layer = {name: dwg.add(dwg.g(id=name)) for name in (
-        "fabric", "corridor", "tube", "centerline", "rails", "travel", "legs", "needle-points", "ties", "stops",
+        "fabric", "corridor", "tube", "centerline", "rails", "travel", "placement", "legs", "needle-points", "ties",
+        "stops",
         "trims", "scale-bar", "params")}
     layer["fabric"].add(dwg.rect((_f(fab_lo[0]), _f(-fab_hi[1])), (_f(fab_hi[0] - fab_lo[0]), _f(fab_hi[1] - fab_lo[1])),
                                  fill="#f6f1e7", stroke="#9c8f78", stroke_width="0.3"))
@@ -159,8 +163,15 @@ def _pts_list(xy) -> list[tuple[str, str]]:
 def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool) -> None:
     cmds, xy = plan.commands, plan.xy_mm
     stitch = cmds == Command.STITCH
-    # legs: consecutive STITCH records, binned by sewing order into one path per colour
-    legs = np.flatnonzero(stitch[1:] & stitch[:-1])
+    # legs: consecutive STITCH records, binned by sewing order into one path per colour; the stitches of a
+    # placement line (sewn along the tube axis before the tube is laid) are drawn apart, in their own colour
+    joined = stitch[1:] & stitch[:-1]
+    placed = joined & (plan.roles[1:] == Role.PLACEMENT)
+    if placed.any():
+        d = " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in np.flatnonzero(placed))
+        layer["placement"].add(dwg.path(d=d, fill="none", stroke=PLACEMENT_COLOUR, stroke_width=_f(1.5 * lw),
+                                        stroke_linecap="round"))
+    legs = np.flatnonzero(joined & ~placed)
     if len(legs):
         bins = np.minimum((np.arange(len(legs)) * _RAMP_BINS) // len(legs), _RAMP_BINS - 1)
         for b in range(_RAMP_BINS):
