@@ -125,8 +125,11 @@ PRESSURE_FLOOR_PER_G = {"analytic": 32 * solvers.EPS, "complex": 32 * solvers.EP
                         "central": 128 * solvers.EPS ** (2.0 / 3.0)}
 #: Tabulation points along a branch (trace inverse).
 TRACE_POINTS = 128
-#: Designs solved together by ``sweep`` (arrays of a block stay in cache).
+#: Designs solved together by ``sweep`` (arrays of a block stay in cache), at most.
 SWEEP_BLOCK = 128
+#: Design-pressure points a ``sweep`` block holds at most: a block's working arrays (~50 of them) then
+#: stay near 10 MB however many pressures a design has (fits with thousands of data rows).
+SWEEP_BLOCK_POINTS = 25_600
 
 
 @dataclass(frozen=True, slots=True)
@@ -579,8 +582,9 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
         if not squeeze:
             arrays = tuple(a[None, :] for a in arrays)
     else:
-        blocks = [_block(models[k:k + SWEEP_BLOCK], p, energy, deriv, inverse, rtol, limits)
-                  for k in range(0, len(models), SWEEP_BLOCK)]
+        size = max(1, min(SWEEP_BLOCK, SWEEP_BLOCK_POINTS // max(p.size, 1)))
+        blocks = [_block(models[k:k + size], p, energy, deriv, inverse, rtol, limits)
+                  for k in range(0, len(models), size)]
         arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks))
     return Curve(*(_frozen(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))

@@ -93,6 +93,8 @@ CLOSURE_FRACTION = 0.02
 _ONSET_FRACTION = 0.05
 #: Coarse scan of G for the start value [MPa], logarithmic.
 _G_SCAN_MPA = (1e-2, 1e3, 31)
+#: Candidate-pressure points of the start scan evaluated at once (its curves are ~60 bytes a point).
+_SCAN_POINTS = 200_000
 #: Scan of G_e when it is fitted without a start value [MPa], logarithmic.
 _GE_SCAN_MPA = (1e-3, 10.0, 17)
 #: Parameter bounds: G and G_e [MPa]; P0 from 0 to the largest measured pressure [kPa].
@@ -440,7 +442,9 @@ def fit_curve(
         return theta - a
 
     candidates = _scan(names, start, p, a)
-    sse = np.sum(residual(candidates) ** 2, axis=-1)
+    chunk = max(1, _SCAN_POINTS // max(p.size, 1))  # candidates at a time: memory stays bounded with the data
+    sse = np.concatenate([np.sum(residual(candidates[k:k + chunk]) ** 2, axis=-1)
+                          for k in range(0, len(candidates), chunk)])
     x0 = candidates[int(np.nanargmin(sse))]
     lo, hi = _bounds(names, p)
     x0 = np.clip(x0, lo + _FD_STEP_REL * np.maximum(np.abs(lo), 1.0), hi * (1.0 - _FD_STEP_REL))

@@ -4,6 +4,7 @@ Marker data are built by hand (tests/markerdata.py) on the model's bend at known
 read back with ``marker_angles`` and fitted through the layout's reading: the fit must give
 (G, P0) back within the uncertainty it reports; fitted as whole-strip angles they are biased.
 """
+import json
 import math
 
 import numpy as np
@@ -145,3 +146,23 @@ def test_measurement_and_tube_law_validated():
         fit_design(DESIGN, UP, _theta(UP), measurement="markers")
     with pytest.raises(ParameterError, match="tube_law must be one of"):
         fit_design(DESIGN, UP, _theta(UP), tube_law="thin")
+
+
+def test_a_fit_of_the_row_limit_recovers_g_and_p0(tmp_path, capsys):
+    """CSV_ROWS data rows (a long motion-capture record) fit from the command line; the model's own curve
+    at G 2.0 MPa, P0 120 kPa with 0.5 deg noise gives those values back within a few standard errors."""
+    from embroact.export.cli.main import main
+    from embroact.patterns.base.validate import CSV_ROWS
+
+    d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    m = ActuatorModel.from_derived(d, g_mpa=2.0, p0_kpa=120.0)
+    p = np.tile(np.linspace(0.0, 300.0, 100), CSV_ROWS // 100)
+    a = curve(m, p).theta_deg + np.random.default_rng(3).normal(0.0, 0.5, p.size)
+    csv = tmp_path / "long.csv"
+    csv.write_text("pressure_kpa,angle_deg,branch\n" + "".join(f"{x!r},{y!r},loading\n"
+                                                            for x, y in zip(p.tolist(), a.tolist())))
+    assert main(["fit", str(csv), "--pattern", "zigzag", "--width-mm", "7", "-o", str(tmp_path / "c.toml"),
+                 "--json"]) == 0
+    (r,) = json.loads(capsys.readouterr().out)["fits"]
+    assert abs(r["g_mpa"] - 2.0) < 4 * r["g_mpa_se"] and abs(r["p0_kpa"] - 120.0) < 4 * r["p0_kpa_se"]
+    assert r["g_mpa_se"] < 0.002 and r["n_points"] == CSV_ROWS

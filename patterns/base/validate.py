@@ -22,7 +22,7 @@ limit                      value               applies to
 =========================  ==================  =============================================
 ``TEXT_FILE_BYTES``        4 MiB               design, tube and calibration TOML files, SVG files
 ``CSV_FILE_BYTES``         16 MiB              measurement and marker CSV files
-``CSV_ROWS``               3,000               data rows of one CSV file (fit: ~50 KB each)
+``CSV_ROWS``               30,000              data rows of one CSV file (fit of 30,000: ~2 s, ~110 MB)
 ``CSV_COLUMNS``            1,000               columns of one CSV row
 ``CSV_FIELD_CHARS``        1,000               characters of one CSV field
 ``MACHINE_FILE_BYTES``     1.5 MiB             embroidery files given to ``check`` (520,000 DST records)
@@ -87,7 +87,7 @@ __all__ = [
 
 TEXT_FILE_BYTES = 4 * 1024 * 1024
 CSV_FILE_BYTES = 16 * 1024 * 1024
-CSV_ROWS = 3_000
+CSV_ROWS = 30_000
 CSV_COLUMNS = 1_000
 CSV_FIELD_CHARS = 1_000
 MACHINE_FILE_BYTES = 1536 * 1024
