@@ -51,6 +51,8 @@ from .calibration import CalibrationSet, ModelChoice, as_calibration_sets, model
 from .derived import DerivedGeometry, derive
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .layoutchoice import LayoutChoice
+    from .markers import MarkerLayout
     from .uncertainty import Band
 
 __all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "DesignAnalysis", "analyse",
@@ -492,15 +494,101 @@ class DesignAnalysis:
         """
         from .shape import BentShape
 
+        lengths, bends = self._piece_bends(name, pressures_kpa, method)
+        out = []
+        for row in bends.tolist():
+            theta = tuple(row)
+            out.append((BentShape.chain(lengths, theta), theta))
+        return tuple(out)
+
+    def _piece_bends(self, name: str, pressures_kpa, method: str) -> tuple[list[float], np.ndarray]:
+        """Lengths of :meth:`ActuatorAnalysis.bend_pieces` [mm] and their bends (pressures, pieces) [deg]."""
         index = [a.name for a in self.actuators].index(self.actuator(name).name)
         act, curves = self.actuators[index], self.segment_curves(pressures_kpa, method=method)[index]
         pieces = act.bend_pieces()
-        lengths = [length for length, _ in pieces]
-        out = []
-        for j in range(len(curves[0].theta_deg)):
-            theta = tuple(float(curves[k].theta_deg[j]) if k >= 0 else 0.0 for _, k in pieces)
-            out.append((BentShape.chain(lengths, theta), theta))
-        return tuple(out)
+        zero = np.zeros(len(curves[0].theta_deg))
+        bends = np.stack([np.asarray(curves[k].theta_deg, dtype=np.float64) if k >= 0 else zero for _, k in pieces],
+                         axis=-1)
+        return [length for length, _ in pieces], bends
+
+    def marker_layout(self, name: str, **given) -> LayoutChoice:
+        """The marker layout of actuator ``name``'s readings, and where it came from.
+
+        Policy (:func:`~embroact.predict.layoutchoice.layout_for`): each field given here, else
+        the layout recorded by the calibration set the actuator's model (a segmented one's:
+        its segments') drew G or P0 from, else the paper's layout.
+
+        Parameters
+        ----------
+        name : str
+            The actuator.
+        **given
+            :class:`~embroact.predict.markers.MarkerLayout` fields to set (``None``: not given).
+
+        Returns
+        -------
+        LayoutChoice
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> c = analyse(default_design()).marker_layout("A1", spacing_mm=8.0)
+        >>> c.layout.spacing_mm, c.source
+        (8.0, "given spacing_mm; the rest the paper's (calibration set 'paper-2025' records none)")
+        """
+        from .calibration import get_set
+        from .layoutchoice import layout_for
+
+        act = self.actuator(name)
+        choices = [s.choice for s in act.segments] if act.segments else [act.choice]
+        if not any(c is not None and c.calibration is not None for c in choices):
+            return layout_for(given=given)
+        cset = get_set(act.spec.model.calibration, self.calibration_sets)
+        return layout_for(cset.marker_layout, calibration=cset.name, given=given)
+
+    def marker_reading_deg(self, name: str, layout: MarkerLayout, pressures_kpa: Sequence[float] | None = None, *,
+                           method: str = "auto") -> np.ndarray:
+        """What ``layout``'s marker sum reads on actuator ``name``'s predicted bent line, per pressure [deg].
+
+        The line is the chain of arcs of :meth:`shapes` (a single-pattern actuator: one arc),
+        clamped where the first legs start (the layout's offset counts from there) and
+        straight past the last ones; the reading is
+        :func:`~embroact.predict.markers.chain_reading_deg` of it (docs/model.md section 11).
+        Memoised.
+
+        Parameters
+        ----------
+        name : str
+            The actuator.
+        layout : MarkerLayout
+        pressures_kpa : sequence of float, optional
+            Pressures [kPa], >= 0; default :attr:`pressures_kpa`.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Returns
+        -------
+        ndarray
+            One reading per pressure (read-only).
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> from embroact.predict.markers import PAPER_LAYOUT
+        >>> [round(float(r), 3) for r in analyse(default_design()).marker_reading_deg("A1", PAPER_LAYOUT, [200.0])]
+        [51.465]
+        """
+        from .markers import chain_reading_deg
+
+        p = self._grid(pressures_kpa)
+        key = ("reading", self.actuator(name).name, p, method, layout)
+        if key not in self._curves:
+            lengths, bends = self._piece_bends(name, p, method)
+            first = next(j for j, (_, k) in enumerate(self.actuator(name).bend_pieces()) if k >= 0)
+            out = np.asarray(chain_reading_deg(lengths[first:], bends[:, first:], layout), dtype=np.float64)
+            out.setflags(write=False)
+            self._curves[key] = out
+        return self._curves[key]
 
     def bands(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto",
               measurement=None) -> tuple:

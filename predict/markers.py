@@ -13,11 +13,14 @@ The sum of the chord-to-chord turning angles is the angle between the first and 
 last chord. On a uniform bend of curvature ``kappa = theta/l0`` each chord points
 along the arc's tangent at its middle, so ``n`` markers ``h`` apart read
 ``(n - 2) h kappa`` (50 mm worth of curvature for the paper's layout: half of theta on a
-100 mm strip), not theta. In general the reading is the turning of the tangent between
-the middles of the first and the last chord, the integral of the curvature between them;
-markers past the bent length ``l0`` sit on the straight continuation and add nothing.
-:func:`reading_deg` computes the reading from the marker positions on the bent strip
-(:class:`MarkerLayout`), exactly, also where a chord straddles the end of the bend.
+100 mm strip), not theta. On a chain of arcs (a segmented actuator, docs/model.md
+section 10) the reading is the turning of the tangent between the middles of the first
+and the last chord, the integral of the curvature between them, as long as each of those
+two chords lies within one arc; a chord straddling a boundary between arcs points along
+neither arc's middle tangent, and markers past the bent length sit on the straight
+continuation. :func:`chain_reading_deg` computes the reading from the marker positions
+on the bent line (:func:`chain_marker_positions_mm`, :class:`MarkerLayout`), exactly in
+every one of these cases; :func:`reading_deg` is its one-arc case, a uniform bend.
 
 From coordinates
 ----------------
@@ -70,8 +73,9 @@ from ..patterns.base.arrays import frozen_array
 from ..patterns.base.errors import ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["MarkerSide", "MarkerLayout", "PAPER_LAYOUT", "reading_deg", "marker_positions_mm", "MarkerAngles",
-           "marker_angles", "bend_angle_deg", "PAPER_MARKERS_PER_SIDE", "PAPER_SIDES"]
+__all__ = ["MarkerSide", "MarkerLayout", "PAPER_LAYOUT", "reading_deg", "marker_positions_mm", "chain_reading_deg",
+           "chain_marker_positions_mm", "MarkerAngles", "marker_angles", "bend_angle_deg", "PAPER_MARKERS_PER_SIDE",
+           "PAPER_SIDES"]
 
 PAPER_MARKERS_PER_SIDE = 7
 PAPER_SIDES = 2
@@ -151,38 +155,108 @@ PAPER_LAYOUT = MarkerLayout()
 """The paper's layout: 2 rows of 7 markers 10 mm apart (offset not stated; 0 assumed)."""
 
 
+def chain_marker_positions_mm(lengths_mm, theta_deg, layout: MarkerLayout) -> np.ndarray:
+    """Marker positions in the bending plane on a chain of arcs, the fabric line [mm].
+
+    Arc ``k`` of the chain has length ``lengths_mm[k]`` and bends uniformly by
+    ``theta_deg[..., k]``; the chain starts at the origin (the clamped end of the bent
+    length, where ``layout.offset_mm`` is counted from) with its tangent along +x, a
+    positive bend turning toward +y, and continues straight past its last arc. Marker
+    ``j`` sits at arc length ``offset + j * spacing`` along the line (the fabric does not
+    stretch). Leading axes of ``theta_deg`` are separate chains (e.g. one per pressure).
+
+    Parameters
+    ----------
+    lengths_mm : sequence of float
+        Arc lengths [mm], each > 0, from the clamped end (a straight piece is an arc bending by 0).
+    theta_deg : array_like, shape (..., len(lengths_mm))
+        Bend of each arc [deg], finite.
+    layout : MarkerLayout
+
+    Returns
+    -------
+    ndarray, shape theta.shape[:-1] + (markers_per_side, 2)
+
+    Examples
+    --------
+    >>> lay = MarkerLayout(markers_per_side=3, spacing_mm=50.0, rows=1)
+    >>> chain_marker_positions_mm([50.0, 50.0], [0.0, 180.0], lay).round(4).tolist()
+    [[0.0, 0.0], [50.0, 0.0], [50.0, 31.831]]
+    """
+    lengths = np.asarray(lengths_mm, dtype=np.float64).reshape(-1)
+    theta = np.asarray(theta_deg, dtype=np.float64)
+    if theta.ndim == 0 or theta.shape[-1] != len(lengths) or not len(lengths):
+        raise ParameterError(f"theta_deg must have one bend per arc length ({len(lengths)}) along its last axis, "
+                             f"got shape {theta.shape}")
+    for i, length in enumerate(lengths.tolist()):
+        check_range(f"lengths_mm[{i}]", length, low=0.0)
+    if not np.all(np.isfinite(theta)):
+        raise ParameterError("theta_deg must be finite numbers, got NaN or infinity")
+    return _chain_positions(lengths, theta, layout)
+
+
+def _chain_positions(lengths: np.ndarray, theta: np.ndarray, layout: MarkerLayout) -> np.ndarray:
+    """:func:`chain_marker_positions_mm` of checked float arrays (fits call it in their inner loop)."""
+    from .shape import planar_chain_mm
+
+    s = layout.offset_mm + layout.spacing_mm * np.arange(layout.markers_per_side)
+    tail = max(float(s[-1]) - float(lengths.sum()), 0.0) + layout.spacing_mm  # the straight continuation
+    straight = np.zeros(theta.shape[:-1] + (1,))
+    return planar_chain_mm(np.append(lengths, tail), np.concatenate([theta, straight], axis=-1), s)
+
+
 def marker_positions_mm(theta_deg, length_mm, layout: MarkerLayout) -> np.ndarray:
     """Marker positions in the bending plane on a uniform bend of the fabric line [mm].
 
-    The clamped end is at the origin with its tangent along +x; a positive theta turns
-    toward +y. The bent length ``length_mm`` (l0) carries curvature ``theta/l0``; beyond
-    it the strip continues straight. Returns shape ``theta.shape + (markers_per_side, 2)``.
+    The one-arc chain of :func:`chain_marker_positions_mm`: the bent length ``length_mm``
+    (l0) carries curvature ``theta/l0``; beyond it the strip continues straight. Returns
+    shape ``theta.shape + (markers_per_side, 2)``.
+
+    >>> marker_positions_mm(0.0, 100.0, MarkerLayout(markers_per_side=3, rows=1)).tolist()
+    [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0]]
     """
-    th = np.radians(np.asarray(theta_deg, dtype=np.float64))[..., None]
     l0 = check_range("length_mm", length_mm, low=0.0)
-    s = layout.offset_mm + layout.spacing_mm * np.arange(layout.markers_per_side)
-    on = np.minimum(s, l0)
-    kappa = th / l0
-    # sin(k s)/k and (1 - cos(k s))/k without 0/0 at k = 0 (np.sinc(x) = sin(pi x)/(pi x))
-    x = on * np.sinc(kappa * on / np.pi)
-    y = on * np.sin(0.5 * kappa * on) * np.sinc(kappa * on / (2.0 * np.pi))
-    past = s - on
-    return np.stack([x + past * np.cos(th), y + past * np.sin(th)], axis=-1)
+    return _chain_positions(np.array([l0]), np.asarray(theta_deg, dtype=np.float64)[..., None], layout)
 
 
-def reading_deg(theta_deg, length_mm, layout: MarkerLayout = PAPER_LAYOUT):
-    """What the layout's marker sum reads on a uniform bend theta of length l0 [deg].
-
-    The sum of the signed chord-to-chord turning angles of :func:`marker_positions_mm`;
-    ``(n - 2) h theta / l0`` while every marker lies on the bent length. A float for a
-    scalar theta, an array otherwise.
-    """
-    pos = marker_positions_mm(theta_deg, length_mm, layout)
+def _marker_sum_deg(pos: np.ndarray):
+    """Sum of the signed turning angles between consecutive chords of planar points (..., n, 2) [deg]."""
     d = np.diff(pos, axis=-2)
     cross = d[..., :-1, 0] * d[..., 1:, 1] - d[..., :-1, 1] * d[..., 1:, 0]
     dot = np.einsum("...i,...i->...", d[..., :-1, :], d[..., 1:, :])
     out = np.degrees(np.arctan2(cross, dot).sum(axis=-1))
     return float(out) if np.ndim(out) == 0 else out
+
+
+def chain_reading_deg(lengths_mm, theta_deg, layout: MarkerLayout = PAPER_LAYOUT):
+    """What the layout's marker sum reads on a chain of arcs [deg] (module docstring).
+
+    The sum of the signed chord-to-chord turning angles of :func:`chain_marker_positions_mm`,
+    exact also where a chord straddles a boundary between arcs. While the first and the
+    last chord each lie within one arc it is the bend between their middles (the integral
+    of the curvature there). A float for one chain, an array over the leading axes of
+    ``theta_deg`` otherwise.
+
+    Examples
+    --------
+    >>> # 7 markers 10 mm apart on 20 mm straight, then 40 mm bending by 80 deg: the chords' middles
+    >>> # at 5 and 55 mm hold 35 mm of that arc (70 deg); the first marker is at the clamp
+    >>> round(chain_reading_deg([20.0, 40.0], [0.0, 80.0]), 9)
+    70.0
+    """
+    return _marker_sum_deg(chain_marker_positions_mm(lengths_mm, theta_deg, layout))
+
+
+def reading_deg(theta_deg, length_mm, layout: MarkerLayout = PAPER_LAYOUT):
+    """What the layout's marker sum reads on a uniform bend theta of length l0 [deg].
+
+    The one-arc case of :func:`chain_reading_deg`: ``(n - 2) h theta / l0`` while every
+    marker lies on the bent length. A float for a scalar theta, an array otherwise.
+
+    >>> round(reading_deg(100.0, 100.0), 9)   # the paper's layout: half of theta on 100 mm
+    50.0
+    """
+    return _marker_sum_deg(marker_positions_mm(theta_deg, length_mm, layout))
 
 
 @dataclass(frozen=True, slots=True)

@@ -97,15 +97,19 @@ def sample_count(turn_rad: float, radius_mm: float, tolerance_mm: float) -> int:
 
 
 def planar_chain_mm(lengths_mm, theta_deg, s_mm) -> np.ndarray:
-    """Profile points (n, 2) of a straight-path chain at arc lengths ``s_mm``: the planar case, fast.
+    """Profile points (..., n, 2) of a straight-path chain at arc lengths ``s_mm``: the planar case, fast.
 
     The same line as ``BentShape.chain(lengths_mm, theta_deg).profile_mm(s_mm)`` (x along the
     clamped tangent, y toward positive bends), by complex numbers: on an arc of curvature
     ``k`` starting at ``z0`` with heading ``phi0``, ``z = z0 + h e^{i(phi0 + k h / 2)} sinc(k h / 2)``.
-    No input checks: for inner loops (fits) that call it thousands of times.
+    ``theta_deg`` has one bend per length along its last axis; leading axes are separate
+    chains of the same lengths (e.g. one per pressure), and lead the result's. No input
+    checks: for inner loops (fits) that call it thousands of times.
 
     >>> planar_chain_mm([50.0, 50.0], [90.0, -90.0], [100.0]).round(4).tolist()
     [[63.662, 63.662]]
+    >>> planar_chain_mm([100.0], [[0.0], [90.0]], [100.0]).round(4).tolist()   # two chains
+    [[[100.0, 0.0]], [[63.662, 63.662]]]
     """
     lengths = np.asarray(lengths_mm, dtype=np.float64)
     turn = np.radians(np.asarray(theta_deg, dtype=np.float64))
@@ -113,14 +117,15 @@ def planar_chain_mm(lengths_mm, theta_deg, s_mm) -> np.ndarray:
     k = turn / lengths
     half = 0.5 * turn
     chords = lengths * np.exp(1j * half) * np.sinc(half / np.pi)
-    phi0 = np.concatenate([[0.0], np.cumsum(turn)])[:-1]
-    z0 = np.concatenate([[0.0], np.cumsum(np.exp(1j * phi0) * chords)])[:-1]
+    start = np.zeros(turn.shape[:-1] + (1,))
+    phi0 = np.concatenate([start, np.cumsum(turn, axis=-1)], axis=-1)[..., :-1]
+    z0 = np.concatenate([start, np.cumsum(np.exp(1j * phi0) * chords, axis=-1)], axis=-1)[..., :-1]
     s = np.asarray(s_mm, dtype=np.float64).reshape(-1)
     i = np.clip(np.searchsorted(edges, s, side="right") - 1, 0, len(lengths) - 1)
     h = np.clip(s - edges[i], 0.0, lengths[i])
-    a = 0.5 * k[i] * h
-    z = z0[i] + np.exp(1j * (phi0[i] + a)) * h * np.sinc(a / np.pi)
-    return np.column_stack([z.real, z.imag])
+    a = 0.5 * k[..., i] * h
+    z = z0[..., i] + np.exp(1j * (phi0[..., i] + a)) * h * np.sinc(a / np.pi)
+    return np.stack([z.real, z.imag], axis=-1)
 
 
 def _breaks(lengths: np.ndarray) -> np.ndarray:

@@ -69,7 +69,7 @@ def add_arguments(parser, name: str) -> None:
     marks.add_argument("--markers", action="store_true",
                        help="DATA.csv holds marker coordinates: compute the marker sums first (implies "
                             "--measurement markers)")
-    add_layout_arguments(marks, measurement_help=(
+    add_layout_arguments(marks, recorded="the layout of the set --append merges into", measurement_help=(
         "how the angles in DATA.csv were measured: whole-strip (the angle between the strip's two ends, default) "
         "or markers (the layout's marker sum: the fit compares the data with what the layout reads on the "
         "model's bend); recorded in the set"))
@@ -136,8 +136,8 @@ def _vector(flag: str, text: str | None):
         raise ParameterError(f"{flag} must be 2 or 3 comma-separated numbers, got {text!r}") from None
 
 
-def _data(args, derived, layout):
-    """(pressure_kpa, angle_deg, branch labels, note) from the CSV."""
+def _data(args, derived, choice):
+    """(pressure_kpa, angle_deg, branch labels, note) from the CSV; ``choice`` the LayoutChoice or None."""
     import numpy as np
 
     from ...patterns.base.errors import ParameterError
@@ -148,7 +148,9 @@ def _data(args, derived, layout):
         if args.normal is not None or args.tangent is not None:
             raise ParameterError("--normal and --tangent orient marker coordinates: they need --markers")
         d = read_bend_csv(args.data)
-        return d.pressure_kpa, d.angle_deg, d.branch, "" if layout is None else f"angles are {layout.label}"
+        return (d.pressure_kpa, d.angle_deg, d.branch,
+                "" if choice is None else f"angles are {choice.layout.label} (layout: {choice.source})")
+    layout = choice.layout
     normal, tangent = _vector("--normal", args.normal), _vector("--tangent", args.tangent)
     if tangent is not None and normal is None:
         raise ParameterError("--tangent needs --normal (it only orients the signed angles)")
@@ -156,7 +158,7 @@ def _data(args, derived, layout):
     angles = marker_angles(m.markers_mm, markers_per_side=layout.markers_per_side, sides=layout.rows, normal=normal,
                            tangent=tangent)
     theta = np.asarray(angles.theta_deg)
-    note = f"marker sums of {layout.label}; coordinate noise {angles.noise_mm:.2g} mm"
+    note = f"marker sums of {layout.label} (layout: {choice.source}); coordinate noise {angles.noise_mm:.2g} mm"
     if normal is None and not derived.bends_positive:
         theta = -theta
         note += " (unsigned; given this design's negative bending direction)"
@@ -175,18 +177,24 @@ def _materials(items):
     return out
 
 
-def _write_set(args, act, results, layout):
-    """Write (or merge into) the calibration file: the points plus the tube and tube law the fit used."""
+def _appended_set(args):
+    """The calibration set ``--append`` merges into (None: no such file, or no ``--append``)."""
+    from ..files.calibfile import read_calibration
+
+    return read_calibration(args.output) if args.output and args.append and os.path.exists(args.output) else None
+
+
+def _write_set(args, act, results, layout, old):
+    """Write (or merge into ``old``) the calibration file: the points plus the tube and tube law the fit used."""
     from ...patterns.base.errors import ParameterError
     from ...predict.calibration import CalibrationSet, CalibrationTube
-    from ..files.calibfile import read_calibration, write_calibration
+    from ..files.calibfile import write_calibration
 
     points = tuple(r.to_point() for r in results)
     tube = CalibrationTube.of(act.derived.tube)
     stem = os.path.splitext(os.path.basename(args.output))[0]
     name = args.name or re.sub(r"[^A-Za-z0-9._-]", "-", stem)
-    if args.append and os.path.exists(args.output):
-        old = read_calibration(args.output)
+    if old is not None:
         if args.name and args.name != old.name:
             raise ParameterError(f"--name {args.name!r} differs from the set {old.name!r} in {args.output!r}")
         if old.tube is not None and old.tube.differences(act.derived.tube):
@@ -238,10 +246,13 @@ def run(args) -> int:
 
     if args.output is not None:
         check_output_dir(check_output_name("--output", args.output))
-    layout = layout_from_args(args, markers=args.markers)
+    old = _appended_set(args)
+    choice = layout_from_args(args, markers=args.markers, recorded=None if old is None else old.marker_layout,
+                              calibration="" if old is None else old.name)
+    layout = None if choice is None else choice.layout
     act = _actuator(args)
     derived = act.derived
-    pressure, angle, labels, note = _data(args, derived, layout)
+    pressure, angle, labels, note = _data(args, derived, choice)
     results = fit_design(
         derived,
         pressure,
@@ -255,7 +266,7 @@ def run(args) -> int:
         measurement=layout,
         tube_law=args.tube_law,
     )
-    cset = _write_set(args, act, results, layout) if args.output else None
+    cset = _write_set(args, act, results, layout, old) if args.output else None
     if args.json:
         doc = {
             "design": derived.as_dict(),
@@ -263,7 +274,8 @@ def run(args) -> int:
             "fits": [r.as_dict() for r in results],
             "calibration": None if cset is None else {"name": cset.name, "path": args.output, "points": len(cset.points),
                                                       "tube_law": cset.tube_law, "measurement": cset.measurement,
-                                                      "marker_layout": None if layout is None else layout.as_dict()},
+                                                      "marker_layout": None if layout is None else layout.as_dict(),
+                                                      "marker_layout_source": None if choice is None else choice.source},
         }
         json.dump(doc, sys.stdout, indent=1, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")

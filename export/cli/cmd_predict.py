@@ -31,7 +31,7 @@ import math
 import sys
 
 from .args import parse_pressures
-from .markerargs import add_layout_arguments, layout_from_args
+from .markerargs import add_layout_arguments, given_layout, wants_markers
 from .target import add_model_arguments, add_quick_arguments, analyse_target, load_target
 
 __all__ = ["add_arguments", "run", "parse_pressures"]
@@ -52,8 +52,10 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                         "max_pressure_kpa, 300 for quick parameters)")
     o.add_argument("--json", action="store_true", help="print machine-readable JSON (units in the keys)")
     add_layout_arguments(parser.add_argument_group("measurement (the marker reading next to theta)"),
+                         recorded="the layout the actuator's calibration set records, if any",
                          measurement_help="markers: also give what the layout's marker sum reads on each predicted "
-                                          "bend (reading_deg; default whole-strip: theta only)")
+                                          "bent line, a segmented actuator's chain of arcs included (reading_deg; "
+                                          "default whole-strip: theta only)")
 
 
 def _finite(x: float):
@@ -74,42 +76,48 @@ def _band_dict(band):
     return None if band is None else band.summary()
 
 
-def _reading(model, c, layout):
-    """What the layout's marker sum reads on each bend of the curve [deg] (docs/model.md section 11)."""
-    from ...predict.markers import reading_deg
-
-    return reading_deg(c.theta_deg, model.length_mm, layout)
-
-
-def _piece(model, c, layout=None) -> dict:
+def _piece(model, c) -> dict:
     from ...predict.validity import branch_end
 
     out: dict[str, object] = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
     out["limits"] = _limits(model, c)
-    if layout is not None:
-        out["measurement"] = layout.as_dict()
-        out["reading_deg"] = _reading(model, c, layout).tolist()
     return out
 
 
-def _result(act, c, band, segment_curves, layout=None) -> dict:
+def _measured(out: dict, reading) -> dict:
+    """``out`` with the marker reading (a (LayoutChoice, readings) pair, or None for whole-strip angles)."""
+    if reading is not None:
+        choice, values = reading
+        out["measurement"] = choice.layout.as_dict()
+        out["measurement_source"] = choice.source
+        out["reading_deg"] = values.tolist()
+    return out
+
+
+def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
     if not act.segments:
-        out.update(_piece(act.model, c, layout))
+        out.update(_piece(act.model, c))
         out["band"] = _band_dict(band)
-        return out
-    if layout is not None:  # reading_deg reads a uniform bend, not a chain of arcs
-        out["reading_deg"] = None
+        return _measured(out, reading)
     out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
     out.update(c.as_dict())  # the whole strip: pressure_kpa, theta_deg, status, method
-    return out
+    return _measured(out, reading)  # the reading of the whole chain of arcs
+
+
+def _reading_head(reading) -> list[str]:
+    """The line naming the layout of the reading column and where it came from (none without one)."""
+    if reading is None:
+        return []
+    choice = reading[0]
+    return [f"reading_deg: what the marker sum reads ({choice.layout.label}; layout: {choice.source})"]
 
 
 _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
 
 
-def _piece_table(title, derived, choice, c, band, layout=None) -> str:
+def _piece_table(title, derived, choice, c, band, reading=None) -> str:
     from ...patterns.kinds import pattern_kind
 
     model = choice.model
@@ -126,26 +134,28 @@ def _piece_table(title, derived, choice, c, band, layout=None) -> str:
                     + ", ".join(f"{p:g} kPa +-{s:.3g} deg" for p, s in zip(band.pressure_kpa, band.theta_sd_deg)
                                 if s > 0.0))
     d = c.as_dict()
-    if layout is not None:
-        rows.append(f"reading_deg: what the marker sum reads ({layout.label})")
-    reading = [f"{v:10.3f} " for v in _reading(model, c, layout)] if layout is not None else [""] * len(d["theta_deg"])
-    rows.append("pressure_kpa  theta_deg " + ("reading_deg " if layout is not None else "")
+    rows += _reading_head(reading)
+    column = [f"{v:10.3f} " for v in reading[1]] if reading is not None else [""] * len(d["theta_deg"])
+    rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "")
                 + " status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
-    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), reading, _limits(model, c)):
+    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits(model, c)):
         rows.append(f"{p:10.3f}  {t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
 
 
-def _table(act, c, band, segment_curves, layout=None) -> str:
+def _table(act, c, band, segment_curves, reading=None) -> str:
     if not act.segments:
-        return _piece_table(act.name, act.derived, act.choice, c, band, layout)
+        return _piece_table(act.name, act.derived, act.choice, c, band, reading)
     parts = [_piece_table(f"{act.name} segment {k}", s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
     total = c.as_dict()  # the whole strip (embroact.predict.analysis.strip_curve)
-    rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends)"
-            + ("; no marker reading (it is computed for a uniform bend, not a chain of arcs)" if layout else ""),
-            "pressure_kpa  theta_deg  status"]
-    rows += [f"{p:10.3f}  {t:10.3f}   {s}" for p, t, s in zip(total["pressure_kpa"], total["theta_deg"], total["status"])]
+    rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends"
+            + ("; the reading is the marker sum on their chain of arcs)" if reading is not None else ")")]
+    rows += _reading_head(reading)
+    rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "") + " status")
+    column = [f"{v:10.3f} " for v in reading[1]] if reading is not None else [""] * len(total["theta_deg"])
+    rows += [f"{p:10.3f}  {t:10.3f} {rd}  {s}"
+             for p, t, rd, s in zip(total["pressure_kpa"], total["theta_deg"], column, total["status"])]
     return "\n\n".join(parts + ["\n".join(rows)])
 
 
@@ -155,7 +165,7 @@ def run(args) -> int:
     from ...patterns.kinds import PATTERN_KINDS
 
     quick = args.target in PATTERN_KINDS.names()
-    layout = layout_from_args(args)
+    given = given_layout(args)  # checked even when the angles are whole-strip ones
     target = load_target(args, pattern=args.target if quick else None, design_path=None if quick else args.target)
     analysis = analyse_target(target)
     # default: the design's standard grid, the one build, check and preview use (working pressure included)
@@ -169,12 +179,18 @@ def run(args) -> int:
     names = [a.name for a in analysis.actuators]
     pieces = dict(zip(names, analysis.segment_curves(pressures, method=args.method)))
     curves = dict(zip(names, analysis.curves(pressures, method=args.method)))  # segmented: the whole strip
-    bands = dict(zip(names, analysis.bands(pressures, method=args.method, measurement=layout)))
-    results = [_result(a, curves[a.name], bands[a.name], pieces[a.name], layout) for a in acts]
+    readings, bands = {}, {}
+    for a in acts:  # the marker reading: the actuator's layout (flags > its calibration set's > the paper's)
+        choice = analysis.marker_layout(a.name, **given) if wants_markers(args) else None
+        layout = None if choice is None else choice.layout
+        readings[a.name] = None if choice is None else (
+            choice, analysis.marker_reading_deg(a.name, layout, pressures, method=args.method))
+        bands[a.name] = analysis.bands(pressures, method=args.method, measurement=layout)[names.index(a.name)]
+    results = [_result(a, curves[a.name], bands[a.name], pieces[a.name], readings[a.name]) for a in acts]
     if args.json:
         payload = results[0] if quick else {"design": target.design.name, "actuators": results}
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:
-        print("\n\n".join(_table(a, curves[a.name], bands[a.name], pieces[a.name], layout) for a in acts))
+        print("\n\n".join(_table(a, curves[a.name], bands[a.name], pieces[a.name], readings[a.name]) for a in acts))
     return 0
