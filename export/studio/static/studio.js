@@ -127,35 +127,45 @@ function table(rows) {
   return t;
 }
 
+function geometryRows(d, m, id) {
+  // the realised geometry and model of an actuator or of one segment (id: the ids' suffix, or null)
+  const rows = [
+    ["G [MPa]", m ? fmt(m.g_mpa, 4) : "no model"],
+    ["P0 [kPa]", m ? fmt(m.p0_kpa, 2) : "no model", id === null ? null : `p0-${id}`],
+    ["realised w [mm]", fmt(d.width_mm, 3), id === null ? null : `width-${id}`],
+    ["realised s [mm]", fmt(d.interval_mm, 3)],
+    ["realised alpha0 [deg]", fmt(d.angle_deg, 2)],
+    ["l0 [mm]", fmt(d.length_mm, 2)],
+    ["sleeve r0 [mm]", fmt(d.r0_mm, 4)],
+    ["beta0 [deg]", fmt(d.beta0_deg, 3)],
+    ["geometric P0 [kPa]", fmt(d.p0_kpa, 2)],
+    ["neutral angle [deg]", fmt(d.neutral_angle_deg, 2)],
+  ];
+  if (m) rows.push(["G, P0 from", m.g_source === m.p0_source ? m.g_source : `${m.g_source}; ${m.p0_source}`]);
+  return rows;
+}
+
 function showNumbers(v) {
   const box = $("numbers");
   box.replaceChildren();
   v.actuators.forEach((a, i) => {
+    const segs = a.segments || [];
     const h = document.createElement("h2");
-    h.textContent = `${a.name} (${a.pattern})`;
-    const d = a.derived;
-    const m = a.model;
+    h.textContent = segs.length ? `${a.name} (${segs.length} segments: ${segs.map((s) => s.pattern).join(", ")})`
+      : `${a.name} (${a.pattern})`;
     const rows = [
       [`bend at ${fmt(v.pressure_kpa, 0)} kPa [deg]`, fmt(a.theta_deg, 2), `angle-${i}`],
       ["state", a.status || a.model_error || "n/a", `status-${i}`],
-      ["G [MPa]", m ? fmt(m.g_mpa, 4) : "no model"],
-      ["P0 [kPa]", m ? fmt(m.p0_kpa, 2) : "no model", `p0-${i}`],
-      ["realised w [mm]", fmt(d.width_mm, 3), `width-${i}`],
-      ["realised s [mm]", fmt(d.interval_mm, 3)],
-      ["realised alpha0 [deg]", fmt(d.angle_deg, 2)],
-      ["l0 [mm]", fmt(d.length_mm, 2)],
-      ["sleeve r0 [mm]", fmt(d.r0_mm, 4)],
-      ["beta0 [deg]", fmt(d.beta0_deg, 3)],
-      ["geometric P0 [kPa]", fmt(d.p0_kpa, 2)],
-      ["neutral angle [deg]", fmt(d.neutral_angle_deg, 2)],
     ];
-    if (m) rows.push(["G, P0 from", m.g_source === m.p0_source ? m.g_source : `${m.g_source}; ${m.p0_source}`]);
-    (a.segment_theta_deg || []).forEach((t, k) => {
-      const seg = a.segments[k];
-      rows.push([`segment ${k} (${seg.pattern}) bend [deg]`, fmt(t, 2), `angle-${i}-${k}`]);
-      if (seg.model) rows.push([`segment ${k}: G [MPa], P0 [kPa]`, `${fmt(seg.model.g_mpa, 4)}, ${fmt(seg.model.p0_kpa, 2)}`]);
-    });
+    if (!segs.length) rows.push(...geometryRows(a.derived, a.model, i));
     box.append(h, table(rows));
+    segs.forEach((seg, k) => {  // a segmented actuator: its whole strip above, each segment's own numbers here
+      const sh = document.createElement("h3");
+      sh.textContent = `segment ${k} (${seg.pattern}), from ${fmt(seg.start_mm, 1)} mm`;
+      const t = (a.segment_theta_deg || [])[k];
+      box.append(sh, table([[`bend at ${fmt(v.pressure_kpa, 0)} kPa [deg]`, fmt(t, 2), `angle-${i}-${k}`],
+                            ...geometryRows(seg.derived, seg.model, `${i}-${k}`)]));
+    });
   });
 }
 
