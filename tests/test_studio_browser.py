@@ -203,3 +203,25 @@ def test_the_target_shape_panel_replaces_the_actuator(studio_page):
     width = design_shape(target, 150.0).design.actuators[0].params.width_mm
     assert float(page.input_value("#f-actuator-0--width_mm")) == pytest.approx(width, rel=1e-12)
     assert [p for p in problems if "status of 403" not in p] == []
+
+
+def test_a_segmented_actuator_shows_each_segments_numbers(tmp_path):
+    """The designed hook (three segments): the panel gives the whole strip's bend and, per segment, its bend,
+    realised width and P0, as the analysis gives them."""
+    from embroact.export.files.designfile import load_design
+
+    design = load_design("examples/designed_hook.toml")
+    with background(Studio(design, tmp_path)) as url, sync_api.sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=FLAGS, headless=True)
+        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+        page.goto(url)
+        page.wait_for_selector("body[data-ready='1']", timeout=30_000)
+        api = api_views(url, float(page.input_value("#pressure")))
+        a = api["actuators"][0]
+        assert page.inner_text("#angle-0") == f"{a['theta_deg']:.2f}"
+        for k, seg in enumerate(analyse(design).actuators[0].segments):
+            assert page.inner_text(f"#width-0-{k}") == f"{seg.derived.width_mm:.3f}"
+            assert page.inner_text(f"#p0-0-{k}") == f"{seg.choice.model.p0_kpa:.2f}"
+            assert page.inner_text(f"#angle-0-{k}") == f"{a['segment_theta_deg'][k]:.2f}"
+        assert page.query_selector("#width-0") is None  # no whole-actuator geometry: it has none
+        browser.close()
