@@ -303,9 +303,11 @@ class CalibrationSet:
         How the fitted angles were measured: ``"whole-strip"`` (the angle between the two
         ends of the strip) or a marker layout, e.g. ``"markers: 7 per side, 10 mm apart"``.
     marker_layout : MarkerLayout or None
-        The layout the fit compared the data through (its reading of the model's bend);
-        ``None``: whole-strip angles, or a layout not known in numbers (the paper's set).
-        With a layout, ``measurement`` defaults to its label.
+        The layout the fit compared the data through (its reading of the model's bend), and
+        so the default layout of marker readings predicted with the set
+        (:func:`embroact.predict.layoutchoice.layout_for`); ``None``: whole-strip angles, or a
+        layout not known in numbers (the paper's set). With a layout, ``measurement``
+        defaults to its label.
     source : str
         The file the set was read from (absolute path), empty for a set made in memory; a
         design's ``calibration`` setting may name the set by it (not part of equality).
