@@ -205,15 +205,14 @@ def test_the_target_shape_panel_replaces_the_actuator(studio_page):
     assert [p for p in problems if "status of 403" not in p] == []
 
 
-def test_a_segmented_actuator_shows_each_segments_numbers(tmp_path):
+def test_a_segmented_actuator_shows_each_segments_numbers(studio_page, tmp_path):
     """The designed hook (three segments): the panel gives the whole strip's bend and, per segment, its bend,
-    realised width and P0, as the analysis gives them."""
+    realised width and P0, as the analysis gives them (a page of its own in the module's browser)."""
     from embroact.export.files.designfile import load_design
 
     design = load_design("examples/designed_hook.toml")
-    with background(Studio(design, tmp_path)) as url, sync_api.sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=CHROMIUM, args=FLAGS, headless=True)
-        page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    with background(Studio(design, tmp_path)) as url:
+        page = studio_page[0].context.browser.new_page(viewport={"width": 1400, "height": 1000})
         page.goto(url)
         page.wait_for_selector("body[data-ready='1']", timeout=30_000)
         api = api_views(url, float(page.input_value("#pressure")))
@@ -224,4 +223,4 @@ def test_a_segmented_actuator_shows_each_segments_numbers(tmp_path):
             assert page.inner_text(f"#p0-0-{k}") == f"{seg.choice.model.p0_kpa:.2f}"
             assert page.inner_text(f"#angle-0-{k}") == f"{a['segment_theta_deg'][k]:.2f}"
         assert page.query_selector("#width-0") is None  # no whole-actuator geometry: it has none
-        browser.close()
+        page.close()
