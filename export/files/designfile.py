@@ -26,14 +26,13 @@ d.toml: actuator[0].widht_mm: unknown key
 from __future__ import annotations
 
 import os
-import tomllib
 from pathlib import Path
 
 from ...patterns.design import Design, design_from_dict, design_to_dict
 from ...patterns.base.errors import DesignFileError, PathError
 from ...patterns.base.validate import TEXT_FILE_BYTES, read_input
 from .atomic import write_text_atomic
-from .tomltext import dumps
+from .tomltext import dumps, loads_toml
 
 __all__ = ["load_design", "loads_design", "dumps_design", "save_design"]
 
@@ -81,10 +80,7 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     ...              'length_mm = 50').actuators[0].centerline.length_mm
     50.0
     """
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignFileError(f"{source}: TOML syntax error: {exc}") from None
+    data = loads_toml(text, source=source)
     try:
         return design_from_dict(_svg_paths(data, base_dir))
     except DesignFileError as exc:

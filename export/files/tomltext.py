@@ -33,7 +33,7 @@ import numpy as np
 from ...patterns.base.errors import DesignFileError
 from ...patterns.base.validate import TEXT_FILE_BYTES, read_input
 
-__all__ = ["dumps", "load_toml"]
+__all__ = ["dumps", "load_toml", "loads_toml"]
 
 
 def load_toml(path: str | os.PathLike, what: str) -> dict:
@@ -52,11 +52,21 @@ def load_toml(path: str | os.PathLike, what: str) -> dict:
     ...
     embroact.patterns.base.errors.DesignFileError: missing.toml: cannot read tube file: No such file or directory
     """
-    text = read_input(path, TEXT_FILE_BYTES, what, encoding="utf-8")
+    return loads_toml(read_input(path, TEXT_FILE_BYTES, what, encoding="utf-8"), source=os.fsdecode(path))
+
+
+def loads_toml(text: str, *, source: str) -> dict:
+    """TOML ``text`` as a dict; a syntax error is ``<source>: TOML syntax error: ...`` (line and column).
+
+    Examples
+    --------
+    >>> loads_toml("n = 3", source="x.toml")
+    {'n': 3}
+    """
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise DesignFileError(f"{os.fsdecode(path)}: TOML syntax error: {exc}") from None
+        raise DesignFileError(f"{source}: TOML syntax error: {exc}") from None
 
 
 def _plain(value: Any, where: str) -> Any:
