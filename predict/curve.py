@@ -439,11 +439,10 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
 @dataclass(frozen=True, slots=True, eq=False)
 class _Branch:
     """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry
-    (and as floats), branch end, rate and slope, tolerances, tube laws, the lean table
+    as floats, branch end, rate and slope, tolerances, tube laws, the lean table
     (:mod:`embroact.predict.lean`; None without a rising part) and the trace inverse's memo (its
     tabulation, fold and zooms) for the targets the lean solve leaves (:mod:`embroact.predict.onecurve`)."""
 
-    geo: _m.Geometry
     scalar: _m.Geometry
     full: np.ndarray
     kind: np.ndarray
@@ -456,7 +455,7 @@ class _Branch:
     laws: list
     lean: LeanTable | None
     memo: dict
-    points: int = TRACE_POINTS
+    points: int
 
 
 #: Models whose branches are kept (the studio and inverse design ask one model many times); each
@@ -478,8 +477,8 @@ def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
     ptol, pole, atol = PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, rtol * THETA_FLOOR_RAD
     lean = None if full[0, 0] == 0.0 else lean_table(geo, theta_end=float(full[0, 0]), pole_at_end=bool(pole[0, 0]),
                                                       rtol=rtol, atol=atol)
-    return _Branch(geo, geo.scalar(), full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]), rtol, atol,
-                   ptol, pole, _tube_laws(geo, [model]), lean, {})
+    return _Branch(geo.scalar() if lean is None else lean.geo, full, kind, _rate_fn(geo, *_FAST[:2]),
+                   _slope_fn(geo, *_FAST[:2]), rtol, atol, ptol, pole, _tube_laws(geo, [model]), lean, {}, settings[1])
 
 
 def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
@@ -520,8 +519,8 @@ def _states(geo, theta, pressure_mpa, status, laws):
     if infl.any():
         r_law = np.empty_like(theta)
         for sel, law, tube, r0, p_sleeve in laws:
-            r_law[sel] = free_tube_radius(pressure_mpa[sel], law, tube, r0, p_sleeve)
-        r = np.where(infl, np.minimum(r_law, geo.r0), r)
+            r_law[sel] = free_tube_radius(pressure_mpa[sel], law, tube, r0, p_sleeve, geo.r0[sel])
+        r = np.where(infl, r_law, r)
         d2 = np.where(infl, r * r - geo.c, d2)
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
@@ -659,10 +658,8 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     cols = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
     if cols is None:
         return None
-    arrays = [np.array(c, dtype=np.int8 if k == 2 else np.float64) for k, c in enumerate(cols)]
-    for a in arrays:
-        a.setflags(write=False)
-    return Curve(*arrays, method="-".join(_FAST), calibration=model.calibration)
+    return Curve(*(_frozen(np.array(c, dtype=np.int8 if k == 2 else np.float64)) for k, c in enumerate(cols)),
+                 method="-".join(_FAST), calibration=_calibrations([model]))
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:

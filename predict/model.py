@@ -133,10 +133,10 @@ class Geometry:
         """The designs at ``rows`` (index array or boolean mask)."""
         return Geometry(*(getattr(self, k)[rows] for k in self.__slots__))
 
-    def scalar(self, row: int = 0) -> "Geometry":
-        """Design ``row`` with Python floats for fields: broadcasts against 1-D theta, and with
+    def scalar(self) -> "Geometry":
+        """The (first) design with Python floats for fields: broadcasts against 1-D theta, and with
         ``xp=SCALAR`` (:mod:`embroact.predict.floats`) the fast formulas run on floats."""
-        return Geometry(*(float(getattr(self, k)[row, 0]) for k in self.__slots__))  # type: ignore[arg-type]
+        return Geometry(*(float(getattr(self, k)[0, 0]) for k in self.__slots__))  # type: ignore[arg-type]
 
 
 # -- pattern constraint -----------------------------------------------------------------

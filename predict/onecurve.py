@@ -61,13 +61,13 @@ def state(theta, g: _m.Geometry, xp=np):
     return l, r, beta, _m.inner_radius_sq(l, r, g)
 
 
-def free_tube_radius(p, law, tube, r0, p_sleeve):
+def free_tube_radius(p, law, tube, r0, p_sleeve, sleeve_r0_mm):
     """Outer radius [mm] of the tube below P0 at pressures ``p`` [MPa]: its law (``tube`` as
     :func:`~embroact.predict.tubelaws.radius_mm` takes it) until it meets the sleeve (r0, reached at
-    ``p_sleeve`` [kPa]); a P0 above the law's pressure at r0 leaves it at r0 in between. The caller
-    takes the smaller of this and the sleeve's r0 (a sleeve narrower than the tube squeezes it)."""
+    ``p_sleeve`` [kPa]); a P0 above the law's pressure at r0 leaves it at r0 in between; never more
+    than the sleeve's ``sleeve_r0_mm`` (a sleeve narrower than the tube squeezes it)."""
     pk = np.minimum(p * KPA_PER_MPA, p_sleeve)
-    return np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law))
+    return np.minimum(np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law)), sleeve_r0_mm)
 
 
 def trace_outcome(theta, where, full, kind):
@@ -126,7 +126,7 @@ def one_curve(br, p, *, limits: bool = True):
     if not bend.all():
         (_, law, tube, r0, p_sleeve), = br.laws
         infl = ~bend
-        r[infl] = np.minimum(free_tube_radius(p[infl], law, tube, r0, p_sleeve)[0], g.r0)
+        r[infl] = free_tube_radius(p[infl], law, tube, r0, p_sleeve, g.r0)[0]
         d2[infl] = r[infl] * r[infl] - g.c
     if limits:
         status = apply_limits(status, theta, l, r, g.l0)
