@@ -77,6 +77,7 @@ from ...patterns.base.errors import DesignFileError, EmbroactError
 from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_input
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
+from ...predict.layoutchoice import LAYOUT_FIELDS
 from ...predict.markers import MarkerLayout
 from .atomic import write_text_atomic
 from .tomltext import dumps, load_toml
@@ -98,7 +99,6 @@ __all__ = [
 _SET_KEYS = ("name", "description", "tube_law", "measurement", "tube", "marker_layout", "materials", "points")
 _POINT_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationPoint))
 _TUBE_KEYS = tuple(f.name for f in dataclasses.fields(CalibrationTube))
-_LAYOUT_KEYS = tuple(f.name for f in dataclasses.fields(MarkerLayout))
 _AXES = ("x", "y", "z")
 
 
@@ -388,8 +388,8 @@ def _layout(path, table) -> MarkerLayout | None:
     if table is None:
         return None
     if not isinstance(table, dict):
-        raise DesignFileError(f"{path}: [marker_layout] must be a table of {', '.join(_LAYOUT_KEYS)}")
-    _unknown(path, "[marker_layout]", table, _LAYOUT_KEYS)
+        raise DesignFileError(f"{path}: [marker_layout] must be a table of {', '.join(LAYOUT_FIELDS)}")
+    _unknown(path, "[marker_layout]", table, LAYOUT_FIELDS)
     try:
         return MarkerLayout(**table)
     except EmbroactError as exc:
