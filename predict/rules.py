@@ -249,6 +249,7 @@ def check_design(
     design = analysis.design
     skip = {RULES[code].code for code in ignore}
     formats = [format] if format is None or isinstance(format, str) else list(format)
+    formats = formats[:1] if rule_settings is not None else formats  # given settings: one check suffices
     settings = [rule_settings or RuleSettings.for_machine(design.machine, format=f) for f in formats]
     found = list(check_plan(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
     for rs in settings[1:]:
