@@ -25,7 +25,6 @@ True
 from __future__ import annotations
 
 import os
-import tomllib
 from typing import Any
 
 import numpy as np
@@ -63,6 +62,8 @@ def loads_toml(text: str, *, source: str) -> dict:
     >>> loads_toml("n = 3", source="x.toml")
     {'n': 3}
     """
+    import tomllib  # only a file read needs it (check x.dst without a tube file does not)
+
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
