@@ -160,6 +160,11 @@ def _pts_list(xy) -> list[tuple[str, str]]:
     return [(_f(x), _f(-y)) for x, y in np.asarray(xy, dtype=np.float64).reshape(-1, 2)]
 
 
+def _segments_d(xy, starts) -> str:
+    """Path data of the segments from each record in ``starts`` to the next one."""
+    return " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in starts)
+
+
 def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool) -> None:
     cmds, xy = plan.commands, plan.xy_mm
     stitch = cmds == Command.STITCH
@@ -168,7 +173,7 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
     joined = stitch[1:] & stitch[:-1]
     placed = joined & (plan.roles[1:] == Role.PLACEMENT)
     if placed.any():
-        d = " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in np.flatnonzero(placed))
+        d = _segments_d(xy, np.flatnonzero(placed))
         layer["placement"].add(dwg.path(d=d, fill="none", stroke=PLACEMENT_COLOUR, stroke_width=_f(1.5 * lw),
                                         stroke_linecap="round"))
     legs = np.flatnonzero(joined & ~placed)
@@ -178,13 +183,13 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
             sel = legs[bins == b]
             if len(sel) == 0:
                 continue
-            d = " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in sel)
+            d = _segments_d(xy, sel)
             layer["legs"].add(dwg.path(d=d, fill="none", stroke=_ramp(b / max(_RAMP_BINS - 1, 1)),
                                        stroke_width=_f(lw), stroke_linecap="round"))
     # travel: from the previous record to every JUMP/STOP that moves
     moves = [i for i in range(1, len(cmds)) if cmds[i] in (Command.JUMP, Command.STOP) and np.any(xy[i] != xy[i - 1])]
     if moves:
-        d = " ".join(f"M {_pts(xy[i - 1])} L {_pts(xy[i])}" for i in moves)
+        d = _segments_d(xy, np.array(moves) - 1)
         layer["travel"].add(dwg.path(d=d, fill="none", stroke="#888888", stroke_width="0.15", stroke_dasharray="0.8,0.5"))
     if show_points:
         for x, y in xy[stitch]:
