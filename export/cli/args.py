@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures",
-           "check_shape_flags"]
+           "check_shape_flags", "input_files"]
 
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
@@ -111,3 +111,34 @@ def check_shape_flags(args) -> None:
                     high=MAX_PRESSURE_KPA, high_inclusive=True)
     if getattr(args, "tolerance_mm", None) is not None:
         check_range("tolerance_mm", args.tolerance_mm, low=0.0, high=10.0, high_inclusive=True)
+
+
+#: Options (argparse dest -> what the file is) whose value may name a file a command reads.
+_INPUT_FLAGS = (("design", "design file"), ("data", "data file"), ("target_shape", "target shape"),
+                ("calibration", "calibration file"), ("path", "path drawing"), ("tube", "tube file"))
+
+
+def input_files(args) -> list[tuple[str, str]]:
+    """(what, file) of every input file the parsed ``args`` name: what no output may replace.
+
+    A value counts when it names a file (``--calibration lab.toml``, not a set name;
+    ``--path drawing.svg#t1`` without the ``#t1``, not path data).
+
+    >>> import argparse
+    >>> input_files(argparse.Namespace(data="d.csv", calibration="paper-2025", path="a.svg#t", output="o"))
+    [('data file', 'd.csv'), ('path drawing', 'a.svg')]
+    """
+    from ..files.calibfile import is_calibration_file
+    from ..files.svgfile import is_svg_ref, split_ref
+
+    out = []
+    for dest, what in _INPUT_FLAGS:
+        value = getattr(args, dest, None)
+        if not isinstance(value, str) or not value:
+            continue
+        if dest == "calibration" and not is_calibration_file(value):
+            continue  # a set name
+        if dest == "path" and not is_svg_ref(value):
+            continue  # path data
+        out.append((what, split_ref(value)[0] if dest in ("path", "target_shape") else value))
+    return out

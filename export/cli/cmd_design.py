@@ -174,24 +174,28 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
 
 def run(args) -> int:
     """Search, print, write the design (and the overlay SVG for a shape)."""
-    from ..files.atomic import prepare_outputs, write_files_atomic
+    from ..files.atomic import check_command_files, write_files_atomic
     from ..files.designfile import dumps_design
 
     from ...predict.inverse import check_target_pressure
+    from .args import input_files
 
     check_target_pressure(args.at_kpa, "--at-kpa")  # named as the user typed it, before any search
+    outputs = [("--output", args.output)]
+    if args.bend_deg is None:  # the overlay's default name derives from a checked --output
+        out = check_command_files(outputs, input_files(args))[0]
+        outputs.append(("--svg", args.svg) if args.svg is not None else
+                       ("--svg (from --output)", out.with_name(f"{out.stem}-shape.svg")))
+    out, *more = check_command_files(outputs, input_files(args))
     tube = tube_from_args(args)
     settings, sets = _settings(args)
-    out = Path(args.output)
     if args.bend_deg is not None:
         result, design, lines = _bend(args, tube, settings, sets)
         files: dict[str | os.PathLike, bytes] = {out: dumps_design(design).encode("utf-8")}
     else:
         result, design, lines, svg = _shape(args, tube, settings, sets)
-        svg_path = Path(args.svg) if args.svg else out.with_name(f"{out.stem}-shape.svg")
-        files = {out: dumps_design(design).encode("utf-8"), svg_path: svg.encode("utf-8")}
-        result["svg"] = str(svg_path)
-    prepare_outputs(list(files))
+        files = {out: dumps_design(design).encode("utf-8"), more[0]: svg.encode("utf-8")}
+        result["svg"] = str(more[0])
     write_files_atomic(files)
     result["design_file"] = str(out)
     if args.json:

@@ -240,12 +240,12 @@ def _table(derived, results, note, cset, path) -> str:
 
 def run(args) -> int:
     """Read the data, fit, print, write the calibration set; return the exit code."""
-    from ...patterns.base.validate import check_output_name
     from ...predict.fit import fit_design
-    from ..files.atomic import check_output_dir
+    from ..files.atomic import check_command_files
+    from .args import input_files
 
     if args.output is not None:
-        check_output_dir(check_output_name("--output", args.output))
+        check_command_files([("--output", args.output)], input_files(args))
     old = _appended_set(args)
     choice = layout_from_args(args, markers=args.markers, recorded=None if old is None else old.marker_layout,
                               calibration="" if old is None else old.name)

@@ -75,7 +75,8 @@ def run(args) -> int:
     prepared before the first is written."""
     from ...predict.rules import check_design
     from ...patterns.base.validate import check_output_name
-    from ..files.atomic import prepare_outputs, write_files_atomic
+    from ..files.atomic import check_command_files, write_files_atomic
+    from .args import input_files
     from ..machine.formats import encode, machine_format
     from ..report.build import SPLIT_LONG_IGNORES, forced_split
     from .target import analyse_target, gate, load_target
@@ -87,8 +88,8 @@ def run(args) -> int:
     out = Path(check_output_name("--output", args.output))
     fmt = machine_format(out, fmt=args.format)
     sheets = [out.with_name(out.stem + ".worksheet.txt"), out.with_name(out.stem + ".worksheet.json")]
-    prepare_outputs([out] + (sheets if args.worksheet else [])
-                    + ([Path(check_output_name("--preview", args.preview))] if args.preview is not None else []))
+    check_command_files([("--output", out)] + [("--worksheet", s) for s in sheets if args.worksheet]
+                        + ([("--preview", args.preview)] if args.preview is not None else []), input_files(args))
     analysis = analyse_target(load_target(args, pattern=args.command))
     plan, act = analysis.plan, analysis.actuators[0]
     findings = check_design(analysis, format=fmt.name, ignore=SPLIT_LONG_IGNORES if args.split_long else ())

@@ -87,12 +87,11 @@ def _svg_only(kind: str, out: Path) -> None:
 
 def run(args) -> int:
     """Load (or default) the design, analyse it once, render the view, write it atomically, report."""
-    from ...patterns.base.validate import check_output_name
-    from .args import check_shape_flags
-    from ..files.atomic import check_output_dir
+    from .args import check_shape_flags, input_files
+    from ..files.atomic import check_command_files
     from .target import analyse_target, load_target
 
-    out = check_output_dir(check_output_name("--output", args.output))
+    out = check_command_files([("--output", args.output)], input_files(args))[0]
     check_shape_flags(args)
     if args.kind != "mesh":
         _svg_only(args.kind, out)

@@ -45,7 +45,7 @@ import os
 import signal
 import threading
 from pathlib import Path
-from typing import Iterable, Iterator, Mapping
+from typing import Iterable, Iterator, Mapping, Sequence
 
 from ...patterns.base.errors import ExportError, ParameterError
 
@@ -54,6 +54,7 @@ __all__ = [
     "write_text_atomic",
     "write_files_atomic",
     "prepare_outputs",
+    "check_command_files",
     "check_output_dir",
     "check_writable_dir",
 ]
@@ -112,6 +113,66 @@ def prepare_outputs(paths: Iterable[str | os.PathLike]) -> list[Path]:
         if key in seen:
             raise ParameterError(f"two outputs name one file: {os.fspath(paths[seen[key]])!r} and {os.fspath(paths[i])!r}")
         seen[key] = i
+    return targets
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    """True when ``a`` and ``b`` name one file: one real path, or one inode (a hard link)."""
+    if os.path.realpath(a) == os.path.realpath(b):
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # either does not exist (yet): only the real paths could have matched
+        return False
+
+
+def check_command_files(outputs: Sequence[tuple[str, str | os.PathLike]],
+                        inputs: Sequence[tuple[str, str | os.PathLike | None]] = ()) -> list[Path]:
+    """Check the output files of one command before any work; return them as Paths.
+
+    Every command runs this first, so that a clash is one line and no search runs in vain:
+    each output is a file name (:func:`~embroact.patterns.base.validate.check_output_name`)
+    in a writable directory and no directory itself (``-o .``, ``-o /``), no two outputs
+    name one file (``-o a.toml --svg ./a.toml``), and no output names an input of the run
+    (``fit data.csv -o data.csv``), which the command would replace before the user noticed.
+
+    Parameters
+    ----------
+    outputs : sequence of (flag, path)
+        Each output with the option that named it (or the file it derives from).
+    inputs : sequence of (flag, path or None)
+        The files the command reads; None entries are skipped.
+
+    Raises
+    ------
+    ParameterError
+        A bad name, two outputs naming one file, or an output naming an input.
+    ExportError
+        A directory is missing or not writable, or a target is a directory.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> a = os.path.join(d, "a.toml")
+    >>> try:
+    ...     check_command_files([("--output", a), ("--svg", os.path.join(d, ".", "a.toml"))])
+    ... except ValueError as exc:
+    ...     print(str(exc).replace(d, "D"))
+    two outputs name one file: --output 'D/a.toml' and --svg 'D/./a.toml'
+    """
+    from ...patterns.base.validate import check_output_name, shown
+
+    targets = [check_output_dir(check_output_name(flag, os.fspath(p))) for flag, p in outputs]
+    for i, p in enumerate(targets):
+        for j in range(i):
+            if _same_file(p, targets[j]):
+                raise ParameterError(f"two outputs name one file: {outputs[j][0]} {shown(os.fspath(outputs[j][1]))} "
+                                     f"and {outputs[i][0]} {shown(os.fspath(outputs[i][1]))}")
+        for flag, source in inputs:
+            if source is not None and _same_file(p, Path(source)):
+                raise ParameterError(f"{outputs[i][0]} {shown(os.fspath(outputs[i][1]))} would replace the input "
+                                     f"{flag} {shown(os.fspath(source))}: write the output to another file")
     return targets
 
 
