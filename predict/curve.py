@@ -90,6 +90,7 @@ from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
 from . import solvers
 from .inflation import KPA_PER_MPA
+from .floats import SCALAR
 from .kinds import MODEL_KINDS, model_kind
 from .lean import LeanTable, lean_table
 from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats, trace_outcome
@@ -356,23 +357,25 @@ def _calibrations(models) -> str:
 
 
 # -- branch geometry ------------------------------------------------------------------------
-def _branch_end(geo: _m.Geometry):
-    """Signed end of each design's bending branch and the status beyond it, (n, 1) each.
+def _branch_end(geo: _m.Geometry, xp=np):
+    """Signed end of each design's bending branch and the status beyond it, (n, 1) each (a float and an
+    int with a :meth:`~embroact.predict.model.Geometry.scalar` geometry and ``xp=SCALAR``: the same values).
 
     The branch runs where V grows, and ``V = pi l0 A d^2``: with ``d^2 > 0`` at the
     straight state (``r0^2 > c``) it stays positive up to lock-up, and so do ``l`` and
     ``1 - sin(beta)`` (``sin(beta)`` lies between ``s0`` and ``x_L < 1``). The domain
     therefore holds on the whole branch or, when ``r0^2 <= c``, nowhere.
     """
-    lock = _m.lock_theta(geo)
+    lock = _m.lock_theta(geo, xp)
     cap = math.radians(MAX_BEND_DEG)
-    direction = np.where(lock < 0.0, -1.0, 1.0)
+    direction = xp.where(lock < 0.0, -1.0, 1.0)
     # a lock closer to the straight state than the angle tolerance is the neutral angle
-    lock = np.where(np.abs(lock) < math.radians(DEFAULT_TOLERANCES.angle_solution_deg), 0.0, lock)
-    kind = np.where(np.abs(lock) <= cap, Status.LOCKED, Status.OUT_OF_DOMAIN).astype(np.int8)
+    lock = xp.where(abs(lock) < math.radians(DEFAULT_TOLERANCES.angle_solution_deg), 0.0, lock)
+    kind = xp.where(abs(lock) <= cap, _LOCKED, _OUT_OF_DOMAIN)
     squeezed = geo.r0 * geo.r0 <= geo.c  # the wall does not fit in the sleeve: d^2 <= 0 already
-    full = np.where(squeezed, 0.0, direction * np.minimum(np.abs(lock), cap))
-    return full, np.where(squeezed, Status.OUT_OF_DOMAIN, kind).astype(np.int8)
+    full = xp.where(squeezed, 0.0, direction * xp.minimum(abs(lock), cap))
+    kind = xp.where(squeezed, _OUT_OF_DOMAIN, kind)
+    return (full, kind) if xp is not np else (full, kind.astype(np.int8))
 
 
 def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
@@ -439,23 +442,54 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
 @dataclass(frozen=True, slots=True, eq=False)
 class _Branch:
     """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry
-    as floats, branch end, rate and slope, tolerances, tube laws, the lean table
-    (:mod:`embroact.predict.lean`; None without a rising part) and the trace inverse's memo (its
-    tabulation, fold and zooms) for the targets the lean solve leaves (:mod:`embroact.predict.onecurve`)."""
+    as floats, the branch end and its status, tolerances, the lean table (:mod:`embroact.predict.lean`;
+    None without a rising part), and, made on first use only (a first curve whose pressures the lean
+    solve settles needs none of them), the arrays the trace inverse and the tube law take
+    (:meth:`arrays`) and the trace inverse's memo (its tabulation, fold and zooms)
+    (:mod:`embroact.predict.onecurve`)."""
 
+    model: ActuatorModel
     scalar: _m.Geometry
+    end: float
+    end_kind: int
+    rtol: float
+    atol: float
+    lean: LeanTable | None
+    memo: dict
+    points: int
+    lazy: dict
+
+    def arrays(self) -> "_BranchArrays":
+        """The numpy side of the branch (made once, on first use)."""
+        if "arrays" not in self.lazy:
+            geo = _geometry([self.model])
+            full, kind = _branch_end(geo)
+            self.lazy["arrays"] = _BranchArrays(full, kind, _rate_fn(geo, *_FAST[:2]), _slope_fn(geo, *_FAST[:2]),
+                                                PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED)
+        return self.lazy["arrays"]
+
+    def laws(self):
+        """The model's tube law (:func:`_tube_laws`; made once, on first use)."""
+        if "laws" not in self.lazy:
+            self.lazy["laws"] = _tube_laws(_geometry([self.model]), [self.model])
+        return self.lazy["laws"]
+
+    @property
+    def full(self) -> np.ndarray:
+        """The branch end as a (1, 1) array."""
+        return self.arrays().full
+
+
+@dataclass(frozen=True, slots=True)
+class _BranchArrays:
+    """A branch's arrays for the trace inverse: end and status (1, 1), rate, slope, pressure floor, pole."""
+
     full: np.ndarray
     kind: np.ndarray
     rate: object
     slope: object
-    rtol: float
-    atol: float
     ptol: np.ndarray
     pole: np.ndarray
-    laws: list
-    lean: LeanTable | None
-    memo: dict
-    points: int
 
 
 #: Models whose branches are kept (the studio and inverse design ask one model many times); each
@@ -463,6 +497,7 @@ class _Branch:
 #: inverse needed (~3 KB each).
 BRANCH_CACHE = 64
 _FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
+_LOCKED, _OUT_OF_DOMAIN = int(Status.LOCKED), int(Status.OUT_OF_DOMAIN)
 
 
 def _branch(model: ActuatorModel, rtol: float) -> _Branch:
@@ -472,13 +507,13 @@ def _branch(model: ActuatorModel, rtol: float) -> _Branch:
 
 @lru_cache(maxsize=BRANCH_CACHE)
 def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
-    geo = _geometry([model])
-    full, kind = _branch_end(geo)
-    ptol, pole, atol = PRESSURE_FLOOR_PER_G[_FAST[1]] * geo.g, kind == Status.LOCKED, rtol * THETA_FLOOR_RAD
-    lean = None if full[0, 0] == 0.0 else lean_table(geo, theta_end=float(full[0, 0]), pole_at_end=bool(pole[0, 0]),
-                                                      rtol=rtol, atol=atol)
-    return _Branch(geo.scalar() if lean is None else lean.geo, full, kind, _rate_fn(geo, *_FAST[:2]),
-                   _slope_fn(geo, *_FAST[:2]), rtol, atol, ptol, pole, _tube_laws(geo, [model]), lean, {}, settings[1])
+    g = _m.Geometry.of_floats(beta0_rad=np.radians(model.beta0_deg), l0_mm=model.length_mm, r0_mm=model.r0_mm,
+                              c_mm2=model.outer_radius_mm**2 - model.inner_radius_mm**2, g_mpa=model.g_mpa,
+                              p0_mpa=model.p0_kpa / KPA_PER_MPA)
+    end, kind = _branch_end(g, SCALAR)
+    atol = rtol * THETA_FLOOR_RAD
+    lean = None if end == 0.0 else lean_table(g, theta_end=end, pole_at_end=kind == _LOCKED, rtol=rtol, atol=atol)
+    return _Branch(model, g, end, kind, rtol, atol, lean, {}, settings[1], {})
 
 
 def _solve_theta(geo, targets, energy, deriv, inverse, rtol):

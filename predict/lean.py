@@ -107,55 +107,67 @@ class LeanTable:
 
 def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: float,
                atol: float) -> LeanTable | None:
-    """The table of one design's branch from 0 to ``theta_end`` [rad] (``geo`` of one row; module docstring).
+    """The table of one design's branch from 0 to ``theta_end`` [rad] (module docstring).
 
-    ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no interval rises, or
-    when the last interval before the pole is not finite (nothing the table could serve).
+    ``geo``: one design, as arrays of one row or as Python floats (:meth:`~embroact.predict.model.
+    Geometry.scalar`). ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no
+    interval rises, or when the last interval before the pole is not finite (nothing the table could serve).
     """
     n = LEVEL_POINTS
-    g = geo.scalar()
-    grid = (theta_end * 0.5 ** np.arange(LEVELS + 1.0))[:, None] * np.linspace(0.0, 1.0, n)  # halvings: exact
-    de, dv = _m.rate_fast(grid, g)
+    g = geo if isinstance(geo.l0, float) else geo.scalar()
+    grid = (theta_end * _HALVINGS)[:, None] * _UNIT  # finest level first; halvings: exact
+    rate = _m.fast_rate_of(g)
+    de, dv = rate(grid, g, np)
     with np.errstate(divide="ignore", invalid="ignore"):
         p = de / dv
     p[:, 0] = 0.0
-    if pole_at_end or not np.isfinite(p[0, -1]):
-        p[0, -1] = np.inf
+    if pole_at_end or not np.isfinite(p[-1, -1]):
+        p[-1, -1] = np.inf
     rising = p[:, 1:] > p[:, :-1]
     tops = np.where(rising.all(axis=1), n - 1, np.argmin(rising, axis=1))
     # finest level first: all of it, then the upper half of each coarser level, up to the first fold
     # (P falls beyond it: the coarser levels add nothing)
-    folded = np.flatnonzero(tops[::-1] < n - 1)
-    last = LEVELS - (folded[0] if folded.size else LEVELS)  # the coarsest level kept
-    i = np.arange(n - 1)
-    keep = (i >= np.where(np.arange(LEVELS + 1) == LEVELS, 0, (n - 1) // 2)[:, None]) & (i < tops[:, None])
-    keep[:last] = False
-    if not keep.any():
+    folded = np.flatnonzero(tops < n - 1)
+    keep = _KEEP & (_INTERVAL < tops[:, None])
+    if folded.size:
+        keep[folded[0] + 1:] = False
+    kept = np.flatnonzero(keep.ravel())  # level * (n - 1) + interval, finest level first
+    if not kept.size:
         return None
-    rows = _rows(grid, de, dv)[::-1][keep[::-1]]
-    p_ends = np.append(p[:, :-1][::-1][keep[::-1]], p[:, 1:][::-1][keep[::-1]][-1])
+    level, i = np.divmod(kept, n - 1)
+    at = level * n + i  # the interval's start in the flat grid
+    p_ends = np.append(p.ravel()[at], p.ravel()[at[-1] + 1])
     if not np.isfinite(p_ends[-2]):
         return None
-    return LeanTable(g, _m.fast_rate_of(g), p_ends, np.ascontiguousarray(rows.T), float(rtol), float(atol),
-                     p_ends.tolist())
+    return LeanTable(g, rate, p_ends, _columns(grid.ravel(), de.ravel(), dv.ravel(), at, i), float(rtol),
+                     float(atol), p_ends.tolist())
 
 
-def _rows(grid, de, dv):
-    """Rows (start, h, |h|, cubic of E', cubic of V', E' and V' at the end) of every interval of every level,
-    ``(levels, n - 1, 13)``."""
-    n = grid.shape[1]
-    i = np.arange(n - 1)
-    j = np.clip(i - 1, 0, n - 4)
-    window = j[:, None] + np.arange(4)
-    mats = np.stack(_WINDOW)[i - j]  # the window's matrix per interval, (n - 1, 4, 4)
-    out = np.empty(grid.shape[:1] + (n - 1, 13))
-    out[..., 0] = grid[:, :-1]
-    out[..., 1] = (grid[:, 1] - grid[:, 0])[:, None]
-    out[..., 2] = abs(out[..., 1])
-    out[..., 3:7] = np.einsum("kiw,icw->kic", de[:, window], mats)
-    out[..., 7:11] = np.einsum("kiw,icw->kic", dv[:, window], mats)
-    out[..., 3], out[..., 7] = de[:, :-1], dv[:, :-1]  # the cubic meets the table at w = 0 exactly
-    out[..., 11], out[..., 12] = de[:, 1:], dv[:, 1:]
+#: The nested grids' constants: the halvings (finest level first), one level's points in [0, 1], each
+#: level's interval indices, the intervals a level serves (all of the finest, the upper half of the others).
+_HALVINGS = 0.5 ** np.arange(LEVELS, -1.0, -1.0)
+_UNIT = np.linspace(0.0, 1.0, LEVEL_POINTS)
+_INTERVAL = np.arange(LEVEL_POINTS - 1)
+_KEEP = np.broadcast_to(_INTERVAL >= (LEVEL_POINTS - 1) // 2, (LEVELS + 1, LEVEL_POINTS - 1)).copy()
+_KEEP[0] = True
+#: Per interval of a level: the offset of its four-point window from its start, and the window's matrix.
+_WINDOW_START = np.clip(_INTERVAL - 1, 0, LEVEL_POINTS - 4) - _INTERVAL
+_WINDOW_OF = np.stack(_WINDOW)[-_WINDOW_START]
+
+
+def _columns(grid, de, dv, at, i):
+    """The ``(13, k)`` columns (:class:`LeanTable`) of the intervals starting at the flat grid indices ``at``
+    (interval ``i`` of its level)."""
+    window = (at + _WINDOW_START[i])[:, None] + np.arange(4)
+    mats = _WINDOW_OF[i]
+    out = np.empty((13, at.size))
+    out[0] = grid[at]
+    out[1] = grid[at - i + 1] - grid[at - i]  # the level's step: its second point less its first
+    out[2] = abs(out[1])
+    out[3:7] = np.einsum("kw,kcw->ck", de[window], mats)
+    out[7:11] = np.einsum("kw,kcw->ck", dv[window], mats)
+    out[3], out[7] = de[at], dv[at]  # the cubic meets the table at w = 0 exactly
+    out[11], out[12] = de[at + 1], dv[at + 1]
     return out
 
 

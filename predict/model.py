@@ -125,7 +125,27 @@ class Geometry:
         cols = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=np.float64))
                                      for v in (beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa)))
         beta0, l0, r0, c, g, p0 = (np.ascontiguousarray(v.reshape(-1, 1)) for v in cols)
-        s0, c0 = np.sin(beta0), np.cos(beta0)
+        return cls._derived(l0, r0, np.sin(beta0), np.cos(beta0), c, g, p0)
+
+    @classmethod
+    def of_floats(cls, *, beta0_rad: float, l0_mm: float, r0_mm: float, c_mm2: float, g_mpa: float,
+                  p0_mpa: float) -> "Geometry":
+        """One design as Python floats, bit for bit the :meth:`scalar` of :meth:`from_values` (no arrays:
+        a first curve of a new model pays no numpy calls for its constants).
+
+        Examples
+        --------
+        >>> v = dict(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+        >>> Geometry.of_floats(**v) == Geometry.from_values(**v).scalar()
+        True
+        """
+        b = float(beta0_rad)
+        return cls._derived(float(l0_mm), float(r0_mm), float(np.sin(b)), float(np.cos(b)), float(c_mm2),
+                            float(g_mpa), float(p0_mpa))
+
+    @classmethod
+    def _derived(cls, l0, r0, s0, c0, c, g, p0) -> "Geometry":
+        """The geometry with its derived constants (the same operations on arrays and on floats)."""
         return cls(l0=l0, r0=r0, s0=s0, c0=c0, c=c, g=g, p0=p0, gamma=2.0 * r0 / (l0 * c0), r_c0=r0 / c0,
                    r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0, s0sq=s0 * s0, c0sq=c0 * c0)
 
@@ -190,21 +210,24 @@ def inner_radius_sq(l, r, geo: Geometry):
     return r * r - geo.c * 2.0 * geo.l0 / (l + geo.l0)
 
 
-def lock_theta(geo: Geometry):
+def lock_theta(geo: Geometry, xp=np):
     """Lock-up angle [rad] of each design, where dV/dtheta = 0 (inf for the zigzag).
 
     With ``V = pi (r^2 (l + l0)/2 - c l0)`` on the pantograph, ``dV/dbeta`` is
     proportional to ``cos(beta) (1 - 3 x^2 - 2 s0 x)``, ``x = sin(beta)``, so
     ``x_L = (sqrt(s0^2 + 3) - s0)/3``; ``x_L = s0`` exactly at ``tan(beta0) = 1/2``.
+    With a :meth:`Geometry.scalar` geometry and ``xp=SCALAR`` one float (the same bits).
     """
     s0, c0 = geo.s0, geo.c0
-    root = np.sqrt(s0 * s0 + 3.0)
+    if xp is not np and not s0 > 0.0:
+        return np.inf
+    root = xp.sqrt(s0 * s0 + 3.0)
     x = (root - s0) / 3.0
     # x - s0 = (1 - 5 s0^2)/(root + 4 s0): no cancellation near the neutral angle
     with np.errstate(divide="ignore", invalid="ignore"):
         dl = geo.l0 * (c0 - 2.0 * s0) * (c0 + 2.0 * s0) / ((root + 4.0 * s0) * s0)
-        theta = dl / (2.0 * geo.r_c0 * np.sqrt(1.0 - x * x))
-    return np.where(s0 > 0.0, theta, np.inf)
+        theta = dl / (2.0 * geo.r_c0 * xp.sqrt(1.0 - x * x))
+    return theta if xp is not np else np.where(s0 > 0.0, theta, np.inf)
 
 
 # -- energy ---------------------------------------------------------------------------

@@ -89,8 +89,8 @@ def _solve(br, t):
     call, so an answer would otherwise depend on the others).
     """
     theta = np.zeros(t.size)
-    status = np.full(t.size, br.kind[0, 0] if br.full[0, 0] == 0.0 else _BENDING, dtype=np.int8)
-    if br.full[0, 0] == 0.0:
+    status = np.full(t.size, br.end_kind if br.end == 0.0 else _BENDING, dtype=np.int8)
+    if br.end == 0.0:
         return theta, status
     lean = br.lean
     if lean is None:
@@ -105,9 +105,10 @@ def _solve(br, t):
         theta[served], settled = solve_lean(lean, t[served])
         groups = [np.flatnonzero(t > lean.top)] + [[k] for k in served[~settled]]
     for rest in groups:
-        th, where, _, _ = trace_inverse(br.rate, br.full, t[None, rest], slope=br.slope, grid_points=br.points,
-                                        rtol=br.rtol, atol=br.atol, ptol=br.ptol, pole_at_end=br.pole, memo=br.memo)
-        theta[rest], status[rest] = trace_outcome(th[0], where[0], br.full[0, 0], br.kind[0, 0])
+        a = br.arrays()
+        th, where, _, _ = trace_inverse(a.rate, a.full, t[None, rest], slope=a.slope, grid_points=br.points,
+                                        rtol=br.rtol, atol=br.atol, ptol=a.ptol, pole_at_end=a.pole, memo=br.memo)
+        theta[rest], status[rest] = trace_outcome(th[0], where[0], br.end, br.end_kind)
     return theta, status
 
 
@@ -124,7 +125,7 @@ def one_curve(br, p, *, limits: bool = True):
             theta[bend], status[bend] = _solve(br, t[bend])
     l, r, beta, d2 = state(theta, g)
     if not bend.all():
-        (_, law, tube, r0, p_sleeve), = br.laws
+        (_, law, tube, r0, p_sleeve), = br.laws()
         infl = ~bend
         r[infl] = free_tube_radius(p[infl], law, tube, r0, p_sleeve, g.r0)[0]
         d2[infl] = r[infl] * r[infl] - g.c
