@@ -31,8 +31,9 @@ Lookup scheme
   (among the cross points of the width closest to the requested one; a different
   width is reported in ``notes``).
 * Interpolation is piecewise linear in the parameter, separately for ``G`` and ``P0``
-  (and ``G_e`` when every point has one).  Several points at the same coordinate are
-  averaged.
+  (and ``G_e`` when every point has one).  Two points of one design (pattern, width,
+  angle, branch) must be identical: a set that holds two different fits of one design
+  is refused, naming both points, rather than averaged.
 * Outside the calibrated range, ``extrapolation="clamp"`` (default) holds the end
   value, ``extrapolation="linear"`` extends the end segment; either way the result
   says ``extrapolated=True`` so that a design rule can warn.  A linear extrapolation
@@ -100,6 +101,9 @@ _FITTABLE = ("g_mpa", "p0_kpa", "g_e_mpa")
 _TUBE_LAW_KEYS = ("outer_radius_mm", "inner_radius_mm", "g_e_mpa", "mu_mpa")
 _G_MAX_MPA = 1e5
 _P_MAX_KPA = 1e5
+#: Largest |covariance entry| [MPa^2, kPa^2, MPa kPa]: the square of the largest G or P0, so a band
+#: computed from it stays finite (1e308 gave "+-inf deg").
+_COV_MAX = _G_MAX_MPA * _P_MAX_KPA
 _NAME_CHARS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.")
 
 
@@ -190,15 +194,21 @@ class CalibrationPoint:
         bad = [f for f in fitted if f not in _FITTABLE]
         if bad or len(set(fitted)) != len(fitted):
             raise ParameterError(f"fitted must name distinct parameters of {', '.join(_FITTABLE)}, got {self.fitted!r}")
-        cov = tuple(tuple(float(v) for v in row) for row in self.covariance)
+        cov = tuple(tuple(check_range("covariance entries", v, low=-_COV_MAX, high=_COV_MAX, low_inclusive=True,
+                                      high_inclusive=True) for v in row) for row in self.covariance)
         k = len(fitted)
         if cov and (len(cov) != k or any(len(row) != k for row in cov)):
             raise ParameterError(f"covariance must be {k} x {k} (one row per fitted parameter), got {len(cov)} rows")
-        if cov and (any(not math.isfinite(v) for row in cov for v in row)
-                    or any(cov[i][i] < 0.0 for i in range(k))
+        if cov and (any(cov[i][i] < 0.0 for i in range(k))
                     or any(abs(cov[i][j] - cov[j][i]) > 1e-9 * (abs(cov[i][j]) + abs(cov[j][i]) + 1e-300)
                            for i in range(k) for j in range(i))):
             raise ParameterError("covariance must be finite and symmetric with a non-negative diagonal")
+        if cov:
+            from .uncertainty import is_positive_semidefinite
+
+            if not is_positive_semidefinite(cov):
+                raise ParameterError(f"covariance must be positive semi-definite (no negative variance along any "
+                                     f"combination of {', '.join(fitted)}), got {[list(r) for r in cov]}")
         object.__setattr__(self, "fitted", fitted)
         object.__setattr__(self, "covariance", cov)
         object.__setattr__(self, "tube_law_parameters", _law_parameters(self.tube_law_parameters))
@@ -280,6 +290,26 @@ class CalibrationTube:
         return tuple(out)
 
 
+def _check_duplicates(points: tuple[CalibrationPoint, ...]) -> None:
+    """Refuse two points of one design (pattern, width, angle, branch) with different values.
+
+    The lookup averages points at one coordinate; two fits of one design that disagree (G 2.7
+    and 9.0 MPa) are a mistake in the set, not a measurement to split the difference of.
+    Identical copies are harmless and kept.
+    """
+    seen: dict[tuple, int] = {}
+    for i, p in enumerate(points):
+        key = (p.pattern, p.width_mm, p.angle_deg, p.branch)
+        j = seen.setdefault(key, i)
+        if j != i and points[j] != p:
+            q = points[j]
+            diff = next((f"{k} {getattr(q, k)!r} and {getattr(p, k)!r}" for k in p.__slots__
+                         if getattr(q, k) != getattr(p, k)), "")
+            raise ParameterError(f"points[{j}] and points[{i}] are one design ({p.pattern} width_mm {p.width_mm:g}"
+                                 f"{f' angle_deg {p.angle_deg:g}' if pattern_kind(p.pattern).has_angle else ''}, "
+                                 f"{p.branch}) with different values ({diff}): keep one")
+
+
 @dataclass(frozen=True, slots=True)
 class CalibrationSet:
     """A named collection of calibration points for one combination of materials.
@@ -331,6 +361,7 @@ class CalibrationSet:
         points = tuple(self.points)
         if not points or not all(isinstance(p, CalibrationPoint) for p in points):
             raise ParameterError(f"calibration set {self.name!r} needs at least one CalibrationPoint")
+        _check_duplicates(points)
         mats = self.materials.items() if isinstance(self.materials, Mapping) else self.materials
         object.__setattr__(self, "points", points)
         object.__setattr__(self, "materials", tuple((str(k), str(v)) for k, v in mats))

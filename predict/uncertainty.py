@@ -122,9 +122,19 @@ def _check_covariance(parameters, covariance) -> tuple[tuple[str, ...], np.ndarr
     k = len(names)
     if c.shape != (k, k) or not np.all(np.isfinite(c)) or not np.allclose(c, c.T, rtol=1e-9, atol=0.0):
         raise ParameterError(f"covariance must be a finite symmetric {k} x {k} matrix for {names!r}, got shape {c.shape}")
-    if np.any(np.linalg.eigvalsh(c) < -1e-12 * max(float(np.max(np.abs(c))), 1e-300)):
+    if not is_positive_semidefinite(c):
         raise ParameterError("covariance must be positive semi-definite")
     return names, c
+
+
+def is_positive_semidefinite(covariance) -> bool:
+    """True when the finite symmetric matrix ``covariance`` has no eigenvalue below -1e-12 of its largest entry.
+
+    >>> is_positive_semidefinite([[1.0, 0.5], [0.5, 1.0]]), is_positive_semidefinite([[1.0, 2.0], [2.0, 1.0]])
+    (True, False)
+    """
+    c = np.asarray(covariance, dtype=np.float64)
+    return not np.any(np.linalg.eigvalsh(c) < -1e-12 * max(float(np.max(np.abs(c))), 1e-300))
 
 
 def _slope(fn, x):

@@ -126,18 +126,31 @@ def test_user_set_via_sets_and_branches():
         lookup("cross", width_mm=7.0, angle_deg=30.0, name="lab-a", sets=[s])
 
 
-def test_exact_branch_wins_and_duplicates_average():
+def test_exact_branch_wins_over_both():
     s = CalibrationSet(
         "dup",
         (
             CalibrationPoint("zigzag", 7.0, 9.0, 90.0, branch="both"),
-            CalibrationPoint("zigzag", 7.0, 1.0, 10.0, branch="loading"),
-            CalibrationPoint("zigzag", 7.0, 3.0, 30.0, branch="loading"),
+            CalibrationPoint("zigzag", 7.0, 2.0, 20.0, branch="loading"),
+            CalibrationPoint("zigzag", 7.0, 2.0, 20.0, branch="loading"),  # an identical copy is harmless
         ),
     )
     c = lookup("zigzag", width_mm=7.0, name="dup", sets=[s])
     assert (c.g_mpa, c.p0_kpa) == (2.0, 20.0)
     assert lookup("zigzag", width_mm=7.0, name="dup", sets=[s], branch="unloading").g_mpa == 9.0
+
+
+def test_conflicting_duplicates_are_refused_not_averaged():
+    """G 2.70 and 9.0 for one design and branch would have become 5.85: the set names both points."""
+    pts = (CalibrationPoint("zigzag", 5.0, 1.0, 50.0), CalibrationPoint("zigzag", 7.0, 2.7, 85.0),
+           CalibrationPoint("zigzag", 7.0, 9.0, 85.0))
+    with pytest.raises(ValueError, match=r"^points\[1\] and points\[2\] are one design \(zigzag width_mm 7, both\) "
+                                         r"with different values \(g_mpa 2.7 and 9.0\): keep one$"):
+        CalibrationSet("dup", pts)
+    cross = (CalibrationPoint("cross", 7.0, 2.0, 80.0, angle_deg=45.0),
+             CalibrationPoint("cross", 7.0, 2.0, 95.0, angle_deg=45.0))
+    with pytest.raises(ValueError, match=r"\(cross width_mm 7 angle_deg 45, both\) .*\(p0_kpa 80.0 and 95.0\)"):
+        CalibrationSet("dup", cross)
 
 
 def test_g_e_interpolated_only_when_all_points_have_it():

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 from pathlib import Path
 
 from test_hostile import FIT, GOOD_CSV, ZZ
@@ -85,3 +86,151 @@ def test_outputs_that_are_no_file(tmp_path):
     for cid, message in expect.items():
         check_error(results[cid], 2 if "non-empty" in message else 3, message)
     check_clean(results, "outputs that are no file")
+
+
+# ------------------------------------------------------------------------------ only regular files
+#: Every reader, as (id, argv with {f} for the input, what the message calls it): the suffix of {f}.
+READERS = [
+    ("check-design", ["check", "{f}.toml"], "design file"),
+    ("build-design", ["build", "{f}.toml", "--out", "out"], "design file"),
+    ("predict-design", ["predict", "{f}.toml"], "design file"),
+    ("preview-design", ["preview", "stitches", "{f}.toml", "-o", "p.svg"], "design file"),
+    ("check-machine", ["check", "{f}.dst"], "embroidery file"),
+    ("check-tube-file", ["check", "good.dst", "--tube", "{f}.toml"], "tube file"),
+    ("check-tube-svg", ["check", "good.dst", "--tube-path", "{f}.svg#t"], "SVG file"),
+    ("zigzag-path-svg", ZZ + ["--path", "{f}.svg", "-o", "a.dst"], "SVG file"),
+    ("fit-data", ["fit", "{f}.csv", *FIT], "CSV file"),
+    ("design-shape", ["design", "--target-shape", "{f}.csv", "--at-kpa", "200", "-o", "a.toml"], "CSV file"),
+    ("design-shape-svg", ["design", "--target-shape", "{f}.svg", "--at-kpa", "200", "-o", "a.toml"], "SVG file"),
+    ("design-calibration", DESIGN_BEND + ["--calibration", "{f}.toml", "-o", "a.toml"], "calibration file"),
+]
+
+
+def _good_dst(d: Path) -> None:
+    from embroact.export.machine.formats import encode, machine_format
+    from embroact.patterns.design import default_design
+    from embroact.predict.analysis import analyse
+
+    plan = analyse(default_design()).plan
+    (d / "good.dst").write_bytes(encode(plan, machine_format("a.dst"))[0])
+
+
+def test_fifos_and_devices_are_refused_at_once(tmp_path):
+    """A FIFO with no writer blocked every reader forever; FIFOs and devices are refused before a byte is read."""
+    _good_dst(tmp_path)
+    (tmp_path / "out").mkdir()
+    for suffix in ("toml", "dst", "svg", "csv"):
+        os.mkfifo(tmp_path / f"fifo.{suffix}")
+        (tmp_path / f"zero.{suffix}").symlink_to("/dev/zero")
+    cases, want = [], {}
+    for rid, argv, what in READERS:
+        for kind, label in (("fifo", "a FIFO"), ("zero", "a character device")):
+            cid = f"{rid}-{kind}"
+            cases.append({"id": cid, "argv": [a.replace("{f}", kind) for a in argv], "cwd": str(tmp_path)})
+            name = next(a for a in cases[-1]["argv"] if a.startswith(kind)).split("#")[0]
+            want[cid] = (name, what, label)
+    results = run_cases(cases, timeout=60)
+    for cid, (name, what, label) in want.items():
+        check_error(results[cid], 2, pattern=rf"(\S*/)?{re.escape(name)}: cannot read {what}: not a regular file "
+                                             rf"\({label}\)")
+    check_clean(results, "fifos and devices")
+
+
+# ------------------------------------------------------------------------------ TOML shape, calibration semantics
+DESIGN_TOML = '[[actuator]]\nname = "A1"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\nlength_mm = 100\n'
+TUBE_TOML = '[[tube]]\npath_mm = "0,0 100,0"\n'
+
+
+def _calibration_toml(point_extra: str = "", more: str = "") -> str:
+    return ('name = "lab"\n[[points]]\npattern = "zigzag"\nwidth_mm = 5.0\ng_mpa = 2.0\np0_kpa = 80.0\n'
+            '[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 2.7\np0_kpa = 85.0\n' + point_extra + more)
+
+
+#: (id, argv, file name, file text prefix): one reader of each TOML kind; hostile lines are appended.
+TOML_READERS = [
+    ("design", ["check", "h.toml"], DESIGN_TOML),
+    ("tube", ["check", "good.dst", "--tube", "h.toml"], TUBE_TOML),
+    ("calibration", DESIGN_BEND + ["--calibration", "h.toml", "-o", "a.toml"], _calibration_toml()),
+]
+
+
+def test_toml_nesting_and_number_size_bounded_before_parsing(tmp_path):
+    """Inline tables 330 deep, arrays 500 deep (RecursionError), a 4,301-digit integer (ValueError): one line."""
+    _good_dst(tmp_path)
+    bombs = {
+        "inline330": ("x = " + "{a = " * 330 + "1" + "}" * 330, "arrays and inline tables must nest at most 32 deep, "
+                      "got 33"),
+        "array500": ("x = " + "[" * 500 + "]" * 500, "arrays and inline tables must nest at most 32 deep, got 33"),
+        "array33": ("x = " + "[" * 33 + "]" * 33, "arrays and inline tables must nest at most 32 deep, got 33"),
+        "int4301": ("x = " + "7" * 4301, "numbers must have at most 1000 digits, got 4301"),
+        "float2000": ("x = 0." + "0" * 2000 + "1", "numbers must have at most 1000 digits, got 2001"),
+        "underscored": ("x = " + "1_" * 1200 + "1", "numbers must have at most 1000 digits, got 1201"),
+    }
+    cases, want = [], {}
+    for rid, argv, text in TOML_READERS:
+        for bid, (line, message) in bombs.items():
+            d = tmp_path / f"{rid}-{bid}"
+            d.mkdir()
+            (d / "good.dst").write_bytes((tmp_path / "good.dst").read_bytes())
+            (d / "h.toml").write_text(line + "\n" + text)  # the bomb on line 1, before any table
+            cases.append({"id": f"{rid}-{bid}", "argv": argv, "cwd": str(d)})
+            want[f"{rid}-{bid}"] = message
+    results = run_cases(cases, timeout=60)
+    for cid, message in want.items():
+        check_error(results[cid], 2, pattern=rf"(\S*/)?h\.toml line 1: {re.escape(message)}")
+    check_clean(results, "toml shape")
+
+
+def test_toml_brackets_in_strings_and_comments_are_no_nesting(tmp_path):
+    """The shape check skips strings (all four kinds) and comments: 100 brackets there parse as before."""
+    from embroact.export.files.tomltext import loads_toml
+
+    text = ('a = "' + "[" * 100 + '"\nb = \'' + "{" * 100 + "'\nc = \"\"\"\n" + "[" * 100 + '\n"""\n'
+            "d = '''" + "[" * 100 + "'''\n# " + "[" * 100 + "\ne = [[1, 2], {x = \"]]]]\"}]\nf = " + "9" * 1000 + "\n")
+    doc = loads_toml(text, source="s.toml")
+    assert doc["a"] == "[" * 100 and doc["c"] == "[" * 100 + "\n" and doc["e"] == [[1, 2], {"x": "]]]]"}]
+    assert doc["f"] == int("9" * 1000)
+
+
+def test_calibration_semantics_checked_on_reading(tmp_path):
+    """Covariance not positive semi-definite, out of range (1e308 printed '+-inf deg'), 400 digits, non-finite;
+    conflicting duplicates (G 2.70 and 9.0 were averaged to 5.85): one line naming file and point, every command."""
+    cov = 'fitted = ["g_mpa", "p0_kpa"]\ncovariance = [[{a}, {b}], [{b}, {c}]]\n'
+    bad = {
+        "not-psd": (cov.format(a=1, b=2, c=1), "points[1]: covariance must be positive semi-definite (no negative "
+                    "variance along any combination of g_mpa, p0_kpa), got [[1.0, 2.0], [2.0, 1.0]]"),
+        "huge": (cov.format(a="1e308", b=0, c=1), "points[1]: covariance entries must be in [-1e+10, 1e+10], "
+                 "got 1e+308"),
+        "digits": (cov.format(a="1" + "0" * 399, b=0, c=1), "points[1]: covariance entries must be in "
+                   "[-1e+10, 1e+10], got an integer of 400 digits"),
+        "nan": (cov.format(a="nan", b=0, c=1), "points[1]: covariance entries must be a finite number in "
+                "[-1e+10, 1e+10], got nan"),
+        "negative-variance": (cov.format(a=-1, b=0, c=1), "points[1]: covariance must be finite and symmetric with a "
+                              "non-negative diagonal"),
+        "duplicate": ('[[points]]\npattern = "zigzag"\nwidth_mm = 7.0\ng_mpa = 9.0\np0_kpa = 85.0\n',
+                      "points[1] and points[2] are one design (zigzag width_mm 7, both) with different values "
+                      "(g_mpa 2.7 and 9.0): keep one"),
+    }
+    commands = {
+        "design": DESIGN_BEND + ["--calibration", "cal.toml", "-o", "a.toml"],
+        "predict": ["predict", "zigzag", "--width-mm", "7", "--calibration", "cal.toml"],
+        "check": ["check", "d.toml"], "build": ["build", "d.toml", "--out", "out"],
+        "fit-append": ["fit", "data.csv", *FIT, "-o", "cal.toml", "--append"],
+    }
+    cases, want = [], {}
+    for bid, (extra, message) in bad.items():
+        d = tmp_path / bid
+        d.mkdir()
+        (d / "out").mkdir()
+        text = (_calibration_toml(more=extra) if bid == "duplicate" else _calibration_toml(point_extra=extra))
+        (d / "cal.toml").write_text(text)
+        (d / "data.csv").write_text(GOOD_CSV)
+        (d / "d.toml").write_text(DESIGN_TOML + '[actuator.model]\ncalibration = "cal.toml"\n')
+        for cmd, argv in commands.items():
+            cases.append({"id": f"{bid}-{cmd}", "argv": argv, "cwd": str(d)})
+            want[f"{bid}-{cmd}"] = (d, message)
+    results = run_cases(cases, timeout=90)
+    for cid, (d, message) in want.items():
+        check_error(results[cid], 2, pattern=rf"(\S*/)?cal\.toml: {re.escape(message)}")
+        assert "inf" not in results[cid]["out"]
+    check_clean(results, "calibration semantics")

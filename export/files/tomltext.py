@@ -25,6 +25,7 @@ True
 from __future__ import annotations
 
 import os
+import re
 from typing import Any
 
 import numpy as np
@@ -64,10 +65,45 @@ def loads_toml(text: str, *, source: str) -> dict:
     """
     import tomllib  # only a file read needs it (check x.dst without a tube file does not)
 
+    _check_shape(text, source)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DesignFileError(f"{source}: TOML syntax error: {exc}") from None
+
+
+#: Deepest nesting of arrays and inline tables a TOML file may have (embroact's own files nest 3 deep;
+#: tomllib recurses per level and fails with a RecursionError past a few hundred).
+TOML_DEPTH = 32
+#: Most digits of one number in a TOML file, checked before parsing (Python refuses to convert integers
+#: of more than 4,300 digits). Shorter numbers that no float holds (400 digits) are parsed and then
+#: refused by the range check of their key, which names it.
+TOML_DIGITS = 1000
+#: Strings, comments, brackets and long digit runs: what the shape check looks at, in one pass.
+_TOKENS = re.compile(r'''"""(?:\\.|[^\\])*?"""|\'\'\'.*?\'\'\'|"(?:\\.|[^"\\\n])*"|'[^'\n]*'|#[^\n]*'''
+                     r"|(?P<open>[\[{])|(?P<close>[\]}])|(?P<digits>[0-9_]{%d,})" % (TOML_DIGITS + 1), re.S)
+
+
+def _check_shape(text: str, source: str) -> None:
+    """Refuse nesting deeper than :data:`TOML_DEPTH` and numbers longer than :data:`TOML_DIGITS`, before parsing.
+
+    >>> _check_shape("a = " + "[" * 40 + "]" * 40, "x.toml")
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.DesignFileError: x.toml line 1: arrays and inline tables must nest at most 32 deep, got 33
+    """
+    depth = 0
+    for m in _TOKENS.finditer(text):
+        if m["open"]:
+            depth += 1
+            if depth > TOML_DEPTH:
+                raise DesignFileError(f"{source} line {text.count(chr(10), 0, m.start()) + 1}: arrays and inline "
+                                      f"tables must nest at most {TOML_DEPTH} deep, got {depth}")
+        elif m["close"]:
+            depth = max(depth - 1, 0)
+        elif m["digits"]:
+            raise DesignFileError(f"{source} line {text.count(chr(10), 0, m.start()) + 1}: numbers must have at "
+                                  f"most {TOML_DIGITS} digits, got {len(m['digits'].replace('_', ''))}")
 
 
 def _plain(value: Any, where: str) -> Any:

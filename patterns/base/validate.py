@@ -14,8 +14,8 @@ values cut to :data:`SHOWN_CHARS` characters), never a traceback, a NaN or a hug
 Limits
 ------
 The documented sizes, checked before a file is read into memory (:func:`read_limited`
-reads at most ``limit + 1`` bytes, so ``/dev/zero`` or a growing file cannot exhaust
-memory either):
+reads only regular files, refusing FIFOs and devices at once, and at most ``limit + 1``
+bytes, so a growing file cannot exhaust memory either):
 
 =========================  ==================  =============================================
 limit                      value               applies to
@@ -188,25 +188,48 @@ def check_coordinates(name: str, worst_mm: float) -> None:
         raise PathError(f"{name} coordinates must be in [-{COORD_MM:g}, {COORD_MM:g}] mm, got {worst_mm:g}")
 
 
-def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
-    """The bytes of ``path``, refusing files larger than ``limit`` without reading them whole.
+#: What a file that is no regular file is, by the ``stat`` test that recognises it.
+_SPECIAL_FILES = (("S_ISFIFO", "a FIFO"), ("S_ISCHR", "a character device"), ("S_ISBLK", "a block device"),
+                  ("S_ISSOCK", "a socket"))
 
-    Reads at most ``limit + 1`` bytes, so special files (``/dev/zero``) and files that grow
-    while read are bounded too.
+
+def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
+    """The bytes of the regular file ``path``, refusing files larger than ``limit`` without reading them whole.
+
+    Only regular files are read: the file is opened without blocking (a FIFO with no writer
+    would otherwise wait forever) and a FIFO, a device (``/dev/zero``, a terminal) or a
+    socket is refused before a byte is read. At most ``limit + 1`` bytes are read, so a file
+    that grows while read is bounded too.
 
     Raises
     ------
     DesignFileError
         ``<path>: <what> must be at most <limit> bytes, got <size>`` (``more than`` when the
-        size is not known in advance).
+        file grew), or ``<path>: cannot read <what>: not a regular file (a FIFO)``.
     OSError
-        When the file cannot be opened or read (the caller words it).
+        When the file cannot be opened or read (the caller words it); a directory is
+        ``IsADirectoryError``.
+
+    Examples
+    --------
+    >>> try:
+    ...     read_limited("/dev/zero", 10, "design file")
+    ... except ValueError as exc:
+    ...     print(exc)
+    /dev/zero: cannot read design file: not a regular file (a character device)
     """
-    with open(path, "rb") as fh:
-        try:
-            size = os.fstat(fh.fileno()).st_size
-        except OSError:
-            size = 0
+    import stat
+
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+                 | getattr(os, "O_BINARY", 0))
+    with open(fd, "rb") as fh:
+        mode = os.fstat(fd).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(21, "Is a directory", os.fsdecode(path))
+        kind = next((text for test, text in _SPECIAL_FILES if getattr(stat, test)(mode)), None)
+        if kind is not None or not stat.S_ISREG(mode):
+            raise DesignFileError(f"{os.fsdecode(path)}: cannot read {what}: not a regular file ({kind or 'special'})")
+        size = os.fstat(fd).st_size
         if size > limit:
             raise DesignFileError(f"{os.fsdecode(path)}: {what} must be at most {limit:,} bytes, got {size:,}")
         data = fh.read(limit + 1)
