@@ -462,9 +462,16 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = ("segments", p, method)
         if key not in self._curves:
+            same: dict = {}  # identical models (identical actuators): one curve, shared (curves are read-only)
+
+            def curve_of(model):
+                if model not in same:
+                    same[model] = curve(model, p, method=method)
+                return same[model]
+
             self._curves[key] = tuple(
-                tuple(curve(s.model, p, method=method) for s in a.segments) if a.segments
-                else (curve(a.model, p, method=method),) for a in self.actuators)
+                tuple(curve_of(s.model) for s in a.segments) if a.segments else (curve_of(a.model),)
+                for a in self.actuators)
         return self._curves[key]
 
     def shapes(self, name: str, pressures_kpa: Sequence[float], *, method: str = "auto") -> tuple:

@@ -736,8 +736,14 @@ def lockup(model: ActuatorModel) -> tuple[float, float]:
 
     Lock-up (cross designs): the lock angle and ``math.inf`` (P has a pole there).
     Otherwise the fold (snap-through), the domain end or the tracing cap
-    ``MAX_BEND_DEG``, with the finite pressure there.
+    ``MAX_BEND_DEG``, with the finite pressure there. Kept per model (identical actuators, repeated
+    checks: the search runs once).
     """
+    return _cached_lockup(model, MAX_BEND_DEG, TRACE_POINTS)
+
+
+@lru_cache(maxsize=BRANCH_CACHE)
+def _cached_lockup(model: ActuatorModel, *settings) -> tuple[float, float]:
     geo = _geometry([model])
     full, kind = _branch_end(geo)
     if full[0, 0] == 0.0:

@@ -26,6 +26,7 @@ Examples
 """
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -197,9 +198,17 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     """
     settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
     found: list[Finding] = []
+    shared: dict = {}  # identical actuators (same models, calibration): their findings are made once
     for act in analysis.actuators:
-        if act.derived.has_sleeve:
-            found += _actuator_findings(act, analysis, settings)
+        if not act.derived.has_sleeve:
+            continue
+        key = (act.choice, act.model_error, act.spec.model.calibration,
+               tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
+        if key not in shared:
+            shared[key] = _actuator_findings(act, analysis, settings)
+            found += shared[key]
+        else:
+            found += [dataclasses.replace(f, actuator=act.name) for f in shared[key]]
     return sort_findings(found)
 
 

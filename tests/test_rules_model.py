@@ -143,3 +143,18 @@ def test_ea406_calibration_notes():
     # at the calibrated width only the set's missing tube is noted
     (note,) = run(7.0)
     assert "differs from the calibrated" not in note.message and "records no tube" in note.message
+
+
+def test_identical_actuators_get_the_findings_each_would_get_alone():
+    """The model rules' work is shared between identical actuators; each still gets its own findings,
+    named for it, as it would alone (the default zigzag with a 500 kPa working pressure: EA402-EA405 fire)."""
+    ops = OperationSettings(500.0, 90.0)
+    specs = tuple(ActuatorSpec(f"A{k}", ZigzagParams(width_mm=w, interval_mm=1.0),
+                               Centerline.straight(100.0).transformed(origin_mm=(0.0, 20.0 * k)))
+                  for k, w in enumerate((7.0, 7.0, 5.0, 7.0)))
+    together = check_model(analyse(Design("t", Tube(), MachineSettings(), ops, specs)))
+    for spec in specs:
+        alone = check_model(analyse(Design("t", Tube(), MachineSettings(), ops, (spec,))))
+        assert alone and [(f.code, f.message) for f in together if f.actuator == spec.name] == [
+            (f.code, f.message) for f in alone]
+        assert all(f.actuator == spec.name for f in alone)
