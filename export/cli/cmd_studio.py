@@ -45,8 +45,10 @@ def run(args) -> int:
     from ...patterns.base.errors import ParameterError
     from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_writable_dir
+    from ..studio.serve import check_port
     from .target import load_target
 
+    check_port(args.port)  # before the extra is looked for and the design read
     out = check_writable_dir(check_output_name("--out", args.out))
     if any(importlib.util.find_spec(m) is None for m in ("starlette", "uvicorn")):
         raise ParameterError(EXTRA_HINT)

@@ -193,6 +193,25 @@ _NEW_FILE = (os.O_WRONLY | os.O_CREAT | os.O_EXCL
 _NAME_TRIES = 8
 
 
+#: Longest file name most file systems take [bytes]; a hidden name's copy of its target's name is cut to fit.
+_NAME_BYTES = 255
+
+
+def _cut_name(name: str, limit: int) -> str:
+    """``name`` cut to at most ``limit`` bytes in the file system's encoding, at a character boundary.
+
+    >>> _cut_name("ab\u00e9cd", 3), _cut_name("ab\u00e9cd", 4), _cut_name("abc", 10)
+    ('ab', 'ab', 'abc')
+    """
+    data = os.fsencode(name)
+    if len(data) <= limit:
+        return name
+    cut = data[:limit]
+    while cut and cut[-1] >= 0x80:  # a multi-byte character may be cut: drop trailing non-ASCII bytes
+        cut = cut[:-1]
+    return os.fsdecode(cut)
+
+
 def _hidden_name(p: Path, suffix: str, create):
     """``(create(name), name)`` for the first free hidden name ``.NAME.XXXXXXXX<suffix>`` next to ``p``.
 
@@ -200,8 +219,10 @@ def _hidden_name(p: Path, suffix: str, create):
     standard library's tempfile module would do the same for the staged file, but importing it
     (with shutil, random and the compression modules) costs a few milliseconds at every start.
     """
+    stem = _cut_name(p.name, _NAME_BYTES - len(f"..{'0' * 8}{suffix}"))
+
     def attempt():
-        name = str(p.parent / f".{p.name[:200]}.{os.urandom(4).hex()}{suffix}")
+        name = str(p.parent / f".{stem}.{os.urandom(4).hex()}{suffix}")
         return create(name), name
 
     for _ in range(_NAME_TRIES - 1):

@@ -57,7 +57,7 @@ import numpy as np
 
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
-from ...patterns.base.validate import COORD_MM, DESIGN_ACTUATORS, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, read_input
+from ...patterns.base.validate import DESIGN_ACTUATORS, check_coordinates, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, read_input
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
@@ -252,9 +252,7 @@ def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
 
 def _in_range(pts: np.ndarray, name: str) -> np.ndarray:
     """``pts`` if every coordinate lies within the range paths may use (before any arithmetic on them)."""
-    worst = float(np.abs(pts).max())
-    if worst > COORD_MM:  # the bound of design paths
-        raise ParameterError(f"{name} coordinates must be in [-{COORD_MM:g}, {COORD_MM:g}] mm, got {worst:g}")
+    check_coordinates(name, float(np.abs(pts).max()) if pts.size else 0.0)  # the bound of design paths
     return pts
 
 
@@ -266,10 +264,14 @@ def tube_layout(
     clearance_mm: float = Tube().clearance_mm,
     end_margin_mm: float = 0.0,
 ) -> TubeLayout:
-    """A tube for file checks from path points in the file's frame [mm], with range checks."""
+    """A tube for file checks from path points in the file's frame [mm], with range checks.
+
+    The points may come from anywhere (a ``--tube-path`` string, a tube file, an SVG
+    drawing): every source meets the same coordinate bound here, before any arithmetic.
+    """
     return TubeLayout.from_path(
         name,
-        np.asarray(points_mm, dtype=np.float64),
+        _in_range(np.asarray(points_mm, dtype=np.float64), name),
         outer_radius_mm=check_range("outer_radius_mm", outer_radius_mm, low=0.0, high=50.0),
         clearance_mm=check_range("clearance_mm", clearance_mm, low=0.0, low_inclusive=True, high=50.0),
         end_margin_mm=check_range("end_margin_mm", end_margin_mm, low=0.0, low_inclusive=True, high=1e4),
@@ -287,7 +289,7 @@ def _toml_points(raw, where: str) -> np.ndarray:
         return parse_tube_path(raw, name=where)
     try:
         pts = np.array(raw, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an integer no float holds
         pts = np.zeros(0)
     if pts.ndim != 2 or pts.shape[1:] != (2,) or len(pts) < 2 or not np.all(np.isfinite(pts)):
         raise DesignFileError(f"{where} must be [[x, y], ...] with at least 2 finite points in mm, got {raw!r:.80}")

@@ -21,9 +21,12 @@ before a route runs):
 ``POST /api/apply-proposal``    ``{"pressure_kpa"}``: the proposal in the design; the new views
 ==============================  ============================================================
 
-Errors are JSON ``{"error": "one line"}``: 400 bad input, 403 refused (token, host, a write
-outside the output directory), 409 design-rule errors (nothing written), 500 an output that
-could not be written. An invalid field is an answer (200, ``applied`` false), not an error.
+Errors are JSON ``{"error": "one line"}``: 400 bad input (also a query that is not UTF-8, a
+body nested deeper than ``MAX_JSON_DEPTH``, numbers longer than ``MAX_NUMBER_CHARS``, NaN, lone
+surrogates), 403 refused (token, host, a write outside the output directory), 409 design-rule
+errors (nothing written) or an inverse search already running, 500 an output that could not be
+written, 503 an inverse search that took longer than ``SEARCH_SECONDS`` (30 s). Inverse searches
+run without the session lock: the views, edits and saves of the page go on meanwhile. An invalid field is an answer (200, ``applied`` false), not an error.
 
 Examples
 --------
@@ -38,6 +41,7 @@ Examples
 """
 from __future__ import annotations
 
+import asyncio
 import json
 import math
 import secrets
@@ -50,9 +54,11 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
-from ...patterns.base.errors import EmbroactError, ExportError
+from ...patterns.base.errors import EmbroactError, ExportError, ParameterError
+from ...patterns.base.validate import shown
 from .form import FieldError
 from .outputs import OutsideOutputError
+from .session import SEARCH_SECONDS, BusyError
 
 __all__ = ["create_app", "TOKEN_HEADER", "STATIC"]
 
@@ -61,6 +67,10 @@ TOKEN_HEADER = "x-embroact-token"
 STATIC = {"studio.js": "text/javascript; charset=utf-8", "studio.css": "text/css; charset=utf-8"}
 #: Largest request body read [bytes].
 MAX_BODY_BYTES = 256 * 1024
+#: Deepest nesting of a request's JSON (the page sends 3 levels).
+MAX_JSON_DEPTH = 16
+#: Longest number in a request's JSON [characters] (a double needs 24).
+MAX_NUMBER_CHARS = 40
 _SECURITY_HEADERS = [(b"cache-control", b"no-store"), (b"x-content-type-options", b"nosniff"),
                      (b"referrer-policy", b"no-referrer"),
                      (b"content-security-policy",
@@ -87,8 +97,7 @@ class _Guard:
         if headers.get(b"host") not in self.hosts:
             reason = "refused: the Host header must be this studio's address (127.0.0.1 or localhost with its port)"
         else:
-            given = headers.get(TOKEN_HEADER.encode()) or \
-                (parse_qs(scope.get("query_string", b"").decode("latin-1")).get("token") or [""])[0].encode("latin-1")
+            given = headers.get(TOKEN_HEADER.encode()) or _query_token(scope.get("query_string", b""))
             origin = headers.get(b"origin")
             if not secrets.compare_digest(given, self.token):
                 reason = "refused: this studio's token is missing or wrong (use the address the studio printed)"
@@ -105,6 +114,16 @@ class _Guard:
         return await self.app(scope, receive, secured)
 
 
+def _query_token(query: bytes) -> bytes:
+    """The ``token`` of a query string as bytes, percent-decoded byte for byte (``%FF`` is the byte 0xFF).
+
+    Decoded as Latin-1, every byte stands for itself: nothing undecodable can fail here, and
+    a wrong token is then a wrong token (403), whatever bytes it holds.
+    """
+    values = parse_qs(query.decode("latin-1"), encoding="latin-1", errors="strict").get("token") or [""]
+    return values[0].encode("latin-1")
+
+
 def _error(exc: Exception) -> JSONResponse:
     from ..report.build import DesignRuleError
 
@@ -112,6 +131,8 @@ def _error(exc: Exception) -> JSONResponse:
         return JSONResponse({"applied": False, "error": str(exc), "key": exc.key})
     if isinstance(exc, OutsideOutputError):
         return JSONResponse({"error": str(exc)}, status_code=403)
+    if isinstance(exc, BusyError):
+        return JSONResponse({"error": str(exc)}, status_code=409)
     if isinstance(exc, DesignRuleError):
         return JSONResponse({"error": str(exc), "findings": [f.as_dict() for f in exc.findings]}, status_code=409)
     if isinstance(exc, ExportError):
@@ -132,17 +153,79 @@ def _finite(value):
     return value
 
 
+def _json_number(text: str) -> float | int:
+    """A JSON number of at most :data:`MAX_NUMBER_CHARS` characters (a 309-digit integer is no float)."""
+    if len(text) > MAX_NUMBER_CHARS:
+        raise ParameterError(f"request body: numbers must have at most {MAX_NUMBER_CHARS} characters, "
+                             f"got {len(text)}")
+    return float(text) if any(c in text for c in ".eE") else int(text)
+
+
+def _no_constant(name: str):
+    raise ParameterError(f"request body: {name} is no JSON number (numbers must be finite)")
+
+
+def _checked(value, depth: int = 0):
+    """``value`` if it nests at most :data:`MAX_JSON_DEPTH` deep and every string is valid Unicode."""
+    if depth > MAX_JSON_DEPTH:
+        raise ParameterError(f"request body must nest at most {MAX_JSON_DEPTH} deep")
+    if isinstance(value, str):
+        try:
+            value.encode("utf-8")
+        except UnicodeEncodeError:  # "\ud800" in JSON: a lone surrogate, no character
+            raise ParameterError(f"request body: strings must be valid Unicode, got a lone surrogate in "
+                                 f"{shown(value)}") from None
+    elif isinstance(value, dict):
+        for k, v in value.items():
+            _checked(k, depth + 1)
+            _checked(v, depth + 1)
+    elif isinstance(value, list):
+        for v in value:
+            _checked(v, depth + 1)
+    return value
+
+
+def _nesting(raw: bytes) -> int:
+    """Deepest bracket nesting of JSON text, counted without parsing (brackets inside strings count too:
+    an over-count only refuses a body that is absurd anyway)."""
+    depth = deepest = 0
+    for byte in raw:
+        if byte in b"[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif byte in b"]}":
+            depth -= 1
+    return deepest
+
+
 async def _body(request: Request) -> dict:
     raw = await request.body()
     if len(raw) > MAX_BODY_BYTES:
         raise EmbroactError(f"request body must be at most {MAX_BODY_BYTES} bytes, got {len(raw)}")
+    if _nesting(raw) > MAX_JSON_DEPTH:  # json.loads recurses per level: 1,000 deep is a RecursionError
+        raise ParameterError(f"request body must nest at most {MAX_JSON_DEPTH} deep")
     try:
-        data = json.loads(raw or b"{}")
-    except (ValueError, UnicodeDecodeError):
+        data = json.loads(raw or b"{}", parse_int=_json_number, parse_float=_json_number,
+                          parse_constant=_no_constant)
+    except (ValueError, UnicodeDecodeError) as exc:
+        if isinstance(exc, EmbroactError):
+            raise
         raise EmbroactError("request body must be a JSON object") from None
     if not isinstance(data, dict):
         raise EmbroactError("request body must be a JSON object")
-    return data
+    return _checked(data)
+
+
+def _query(request: Request) -> dict:
+    """The query parameters (the last of each name), each UTF-8 text: ``%FF`` is refused, not replaced."""
+    out = {}
+    for key, values in parse_qs(request.scope.get("query_string", b"").decode("latin-1"), encoding="latin-1",
+                                keep_blank_values=True).items():
+        try:
+            out[key.encode("latin-1").decode("utf-8")] = values[-1].encode("latin-1").decode("utf-8")
+        except UnicodeDecodeError:
+            raise ParameterError(f"query parameter {shown(key)} must be UTF-8 text, got {shown(values[-1])}") from None
+    return out
 
 
 def create_app(studio, *, token: str, port: int) -> Starlette:
@@ -151,14 +234,19 @@ def create_app(studio, *, token: str, port: int) -> Starlette:
 
     page = _asset("index.html")
 
-    def call(fn):
-        """An endpoint running ``fn(request data)`` in a worker thread, errors as JSON."""
+    def call(fn, seconds: float | None = None):
+        """An endpoint running ``fn(request data)`` in a worker thread, errors as JSON; with ``seconds``,
+        answered 503 when ``fn`` takes longer (it finishes in the background; nothing is kept from it)."""
         async def endpoint(request: Request) -> Response:
             try:
-                data = await _body(request) if request.method == "POST" else dict(request.query_params)
-                return JSONResponse(_finite(await run_in_threadpool(fn, data)))
+                data = await _body(request) if request.method == "POST" else _query(request)
+                work = run_in_threadpool(fn, data)
+                return JSONResponse(_finite(await (work if seconds is None else asyncio.wait_for(work, seconds))))
             except EmbroactError as exc:
                 return _error(exc)
+            except TimeoutError:  # asyncio.wait_for (Python 3.11: the built-in)
+                return JSONResponse({"error": f"the search took longer than {seconds:g} s: try a simpler target or "
+                                              "fewer segments"}, status_code=503)
         return endpoint
 
     async def index(request: Request) -> Response:
@@ -180,11 +268,12 @@ def create_app(studio, *, token: str, port: int) -> Starlette:
         Route("/api/build", call(lambda d: studio.build(force=d.get("force", False))), methods=["POST"]),
         Route("/api/inverse", call(lambda d: studio.inverse(d.get("bend_deg"), d.get("pressure_kpa"),
                                                             pattern=d.get("pattern", "any"),
-                                                            actuator=d.get("actuator", 0))), methods=["POST"]),
+                                                            actuator=d.get("actuator", 0)), SEARCH_SECONDS),
+              methods=["POST"]),
         Route("/api/inverse-shape", call(lambda d: studio.inverse_shape(d.get("path_d"), d.get("pressure_kpa"),
                                                                         max_segments=d.get("max_segments", 6),
-                                                                        actuator=d.get("actuator", 0))),
-              methods=["POST"]),
+                                                                        actuator=d.get("actuator", 0)),
+                   SEARCH_SECONDS), methods=["POST"]),
         Route("/api/apply-proposal", call(lambda d: studio.apply_proposal(d.get("pressure_kpa"))), methods=["POST"]),
     ]
     return Starlette(routes=routes, middleware=[Middleware(_Guard, token=token, port=port)])

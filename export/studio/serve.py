@@ -25,8 +25,9 @@ import time
 from pathlib import Path
 
 from ...patterns.base.errors import ParameterError
+from ...patterns.base.validate import shown
 
-__all__ = ["studio_url", "listen", "launcher_page", "serve", "background", "HOST"]
+__all__ = ["studio_url", "check_port", "listen", "launcher_page", "serve", "background", "HOST"]
 
 HOST = "127.0.0.1"
 
@@ -36,10 +37,22 @@ def studio_url(port: int, token: str) -> str:
     return f"http://{HOST}:{port}/?token={token}"
 
 
+def check_port(port: object) -> int:
+    """``port`` if it is an integer in [0, 65535] (0: any free port); checked before anything starts.
+
+    >>> check_port(-1)
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.ParameterError: port must be an integer in [0, 65535], got -1
+    """
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ParameterError(f"port must be an integer in [0, 65535], got {shown(port)}")
+    return port
+
+
 def listen(port: int) -> socket.socket:
     """A socket bound to ``127.0.0.1:port`` (0: a free port); a one-line error if it cannot be."""
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ParameterError(f"port must be an integer in [0, 65535], got {port!r}")
+    check_port(port)
     # proto IPPROTO_TCP: asyncio then sets TCP_NODELAY on each connection (with proto 0 it does not,
     # and a response written in two parts waits ~40 ms for the browser's delayed ACK)
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)

@@ -19,6 +19,7 @@ Examples
 """
 from __future__ import annotations
 
+import contextlib
 import copy
 import json
 import threading
@@ -30,10 +31,16 @@ from ...patterns.design import ActuatorSpec, design_from_dict
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
-__all__ = ["Studio", "CACHED_ANALYSES"]
+__all__ = ["Studio", "BusyError", "CACHED_ANALYSES", "SEARCH_SECONDS"]
 
 #: Analysed designs kept (undo-like back-and-forth edits and the slider reuse them).
 CACHED_ANALYSES = 8
+#: Longest the server waits for an inverse search [s]; the answer then says it took too long.
+SEARCH_SECONDS = 30.0
+
+
+class BusyError(EmbroactError):
+    """A request that needs what another request is using (an inverse search): ask again later."""
 
 
 def _number(name: str, value, *, low: float, high: float, inclusive: bool = True) -> float:
@@ -66,8 +73,9 @@ class Studio:
         self.form = design_form(design)
         self.design = design
         self._lock = threading.Lock()
+        self._search = threading.Lock()
         self._cache: OrderedDict = OrderedDict()
-        self._proposal: tuple[int, dict] | None = None
+        self._proposal: tuple[int, str, dict] | None = None
 
     # -------------------------------------------------------------- analysis
     def _analysed(self, design, form):
@@ -204,11 +212,12 @@ class Studio:
         with self._lock:
             design = self.design
             index, spec = self._actuator(actuator)
-            if spec.segments:
-                raise ParameterError(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
-            result = design_bend(_number("bend_deg", bend_deg, low=-720.0, high=720.0),
-                                 _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False),
-                                 pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
+        if spec.segments:
+            raise ParameterError(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
+        target = _number("bend_deg", bend_deg, low=-720.0, high=720.0)
+        p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
+        with self._searching():  # the design is not locked meanwhile: views and edits go on
+            result = design_bend(target, p, pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
                                  settings=spec.model, sets=self.calibration_sets, name=spec.name)
         best = result.best
         values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
@@ -233,16 +242,32 @@ class Studio:
             raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r:.40}")
         with self._lock:
             index, spec = self._actuator(actuator)
-            target = Centerline.from_svg_path(path_d).points_mm
-            result = design_shape(target, _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0,
-                                                  inclusive=False),
-                                  max_segments=max_segments, tube=self.design.tube, settings=spec.model,
+            tube, old = self.design.tube, self.form["actuator"][index]
+        target = Centerline.from_svg_path(path_d).points_mm
+        p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
+        with self._searching():  # the design is not locked meanwhile: views and edits go on
+            result = design_shape(target, p, max_segments=max_segments, tube=tube, settings=spec.model,
                                   sets=self.calibration_sets, name=spec.name)
-            table = design_form(result.design)["actuator"][0]
-            old = self.form["actuator"][index]
-            table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
-            self._proposal = (index, table)
+        table = design_form(result.design)["actuator"][0]
+        table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
+        with self._lock:
+            self._proposal = (index, spec.name, table)
         return {**result.as_dict(), "actuator": spec.name}
+
+    @contextlib.contextmanager
+    def _searching(self):
+        """One inverse search at a time, outside the session lock; a second one is refused, not queued.
+
+        A search may outlive its request (the server stops waiting after ``SEARCH_SECONDS``:
+        :mod:`.app`); refusing a second keeps at most one such search running.
+        """
+        if not self._search.acquire(blocking=False):
+            raise BusyError("an inverse search is still running: wait for it (at most "
+                            f"{SEARCH_SECONDS:g} s), then ask again")
+        try:
+            yield
+        finally:
+            self._search.release()
 
     def apply_proposal(self, pressure_kpa=None) -> dict:
         """Put the last inverse-design proposal in the design; the new views.
@@ -255,7 +280,11 @@ class Studio:
         with self._lock:
             if self._proposal is None:
                 raise ParameterError("no inverse-design proposal to apply: design a shape first")
-            index, table = self._proposal
+            index, name, table = self._proposal
+            if index >= len(self.form["actuator"]) or self.design.actuators[index].name != name:
+                self._proposal = None
+                raise ParameterError(f"the proposal was for actuator {name!r}, which the design no longer has "
+                                     "there: design the shape again")
             form = copy.deepcopy(self.form)
             form["actuator"][index] = table
             design = design_from_dict(form)
