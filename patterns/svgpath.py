@@ -1,9 +1,11 @@
 """SVG path data -> polyline points, with the svgelements library (no file I/O).
 
 :func:`parse_d` reads a path ``d`` string (every SVG 1.1 command, absolute and relative,
-compact arc flags such as ``a5,5 0 01 10,0`` included); :func:`flatten` turns a parsed
-path (its coordinates already in mm) into polyline points: lines exactly, Bezier curves
-and elliptical arcs to a chordal error of at most ``DEFAULT_TOLERANCES.curve_flatness_mm``.
+compact arc flags such as ``a5,5 0 01 10,0`` included; :func:`check_d` refuses malformed
+data naming the character offset); :func:`flatten` turns a parsed path into polyline
+points (in mm, through an optional transform matrix applied to the points): lines exactly,
+Bezier curves and elliptical arcs to a chordal error of at most
+``DEFAULT_TOLERANCES.curve_flatness_mm``.
 Points stay in SVG's frame (y down); :func:`to_plan` flips them into the plan frame (y up).
 
 Several subpaths: a tube is one piece, so subpaths are joined into one polyline when each
@@ -40,7 +42,7 @@ from .base.validate import COORD_MM, PATH_CHARS, PATH_SEGMENTS, check_coordinate
 if TYPE_CHECKING:
     import svgelements
 
-__all__ = ["parse_d", "flatten", "to_plan", "MAX_POINTS"]
+__all__ = ["parse_d", "check_d", "flatten", "to_plan", "MAX_POINTS"]
 
 #: Largest number of polyline points a flattened path may have.
 MAX_POINTS = 2_000_000
@@ -55,6 +57,76 @@ _NUMBERS_PER_SEGMENT = 7
 #: Arc radii beyond these are handled by :func:`_arc_radii` (their squares over- or underflow).
 _HUGE_RADIUS_MM, _TINY_RADIUS_MM = 1e150, 1e-150
 _PATH_CLASS = None
+#: Numbers each path command takes (an arc's 4th and 5th are flags, one character each).
+_ARITY = {"M": 2, "L": 2, "T": 2, "H": 1, "V": 1, "C": 6, "S": 4, "Q": 4, "A": 7, "Z": 0}
+_D_NUMBER_AT = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_D_SEPARATORS = " \t\r\n\f,"
+
+
+def check_d(d: str) -> None:
+    """Refuse path data that does not follow SVG's path grammar, naming the character offset.
+
+    SVG renderers (and svgelements) stop drawing at the first error and keep what came
+    before it, so a typo would silently shorten a tube; this scan finds the error instead.
+
+    Parameters
+    ----------
+    d : str
+        Path data.
+
+    Raises
+    ------
+    PathError
+        One line: what is wrong and its character offset (0-based) in ``d`` (callers prefix
+        the path or element).
+
+    Examples
+    --------
+    >>> check_d("M 0 0 a5,5 0 01 10,0 Z")
+    >>> check_d("M 0 0 L 10 0 L 20")
+    Traceback (most recent call last):
+    ...
+    embroact.patterns.base.errors.PathError: 'L' at character 13 needs numbers in groups of 2, got 1 (ends at character 17)
+    """
+    i, n = 0, len(d)
+    command: str | None = None
+    start = count = 0
+
+    def close_command(at: int) -> None:
+        assert command is not None
+        arity = _ARITY[command.upper()]
+        if (arity == 0 and count) or (arity and (count == 0 or count % arity)):
+            got = f"got {count}" + (f" (ends at character {at})" if count else "")
+            need = "takes no numbers" if arity == 0 else f"needs numbers in groups of {arity}"
+            raise PathError(f"{command!r} at character {start} {need}, {got}")
+
+    while i < n:
+        ch = d[i]
+        if ch in _D_SEPARATORS:
+            i += 1
+            continue
+        if ch.upper() in _ARITY:
+            if command is None and ch not in "Mm":
+                raise PathError(f"must start with a move-to (M), got {ch!r} at character {i}")
+            if command is not None:
+                close_command(i)
+            command, start, count = ch, i, 0
+            i += 1
+            continue
+        if command is None:
+            raise PathError(f"must start with a move-to (M), got {ch!r} at character {i}")
+        if command.upper() == "A" and count % 7 in (3, 4):  # arc flags: one character, 0 or 1
+            if ch not in "01":
+                raise PathError(f"arc flag at character {i} must be 0 or 1, got {ch!r}")
+            i, count = i + 1, count + 1
+            continue
+        m = _D_NUMBER_AT.match(d, i)
+        if m is None:
+            raise PathError(f"unexpected {ch!r} at character {i} (expected a number or a command)")
+        i, count = m.end(), count + 1
+    if command is None:
+        raise PathError("no path data")
+    close_command(n)
 
 
 def parse_d(d: str) -> "svgelements.Path":
@@ -99,6 +171,10 @@ def parse_d(d: str) -> "svgelements.Path":
         raise PathError(f"SVG path must start with a move-to (M), got {d.strip()[:1]!r}")
     if len(d) > PATH_CHARS:
         raise PathError(f"SVG path must be at most {PATH_CHARS:,} characters, got {len(d):,}")
+    try:
+        check_d(d)
+    except PathError as exc:
+        raise PathError(f"SVG path {d!r:.60}: {exc}") from None
     numbers = len(_D_NUMBER.findall(d))
     if numbers > _NUMBERS_PER_SEGMENT * PATH_SEGMENTS:
         raise PathError(f"SVG path must have at most {PATH_SEGMENTS:,} segments, got {numbers:,} numbers "
@@ -174,11 +250,10 @@ def _path_class():
     return _PATH_CLASS
 
 
-def _segment_points(seg: Any) -> np.ndarray:
-    """Points of one drawing segment, its start excluded, to the flatness tolerance."""
+def _segment_points(seg: Any, tol: float) -> np.ndarray:
+    """Points of one drawing segment, its start excluded, to the chordal tolerance ``tol``."""
     import svgelements
 
-    tol = DEFAULT_TOLERANCES.curve_flatness_mm
     if isinstance(seg, (svgelements.Line, svgelements.Close)):
         return np.array([[seg.end.x, seg.end.y]], dtype=np.float64)
     if isinstance(seg, (svgelements.QuadraticBezier, svgelements.CubicBezier)):
@@ -204,13 +279,32 @@ def _segment_points(seg: Any) -> np.ndarray:
     return pts
 
 
-def flatten(path: "svgelements.Path") -> np.ndarray:
+def _affine(matrix: tuple[float, float, float, float, float, float] | None) -> tuple[np.ndarray, np.ndarray, float]:
+    """(linear part, offset, largest stretch) of an SVG matrix (a, b, c, d, e, f)."""
+    if matrix is None:
+        return np.eye(2), np.zeros(2), 1.0
+    a, b, c, d, e, f = (float(v) for v in matrix)
+    linear = np.array([[a, c], [b, d]])
+    stretch = float(np.linalg.svd(linear, compute_uv=False)[0]) if np.all(np.isfinite(linear)) else math.nan
+    if not (math.isfinite(stretch) and stretch > 0.0 and math.isfinite(e) and math.isfinite(f)):
+        raise PathError(f"SVG path: transform matrix({a:g}, {b:g}, {c:g}, {d:g}, {e:g}, {f:g}) draws nothing "
+                        "(it must be finite, not of scale 0)")
+    return linear, np.array([e, f]), stretch
+
+
+def flatten(path: "svgelements.Path", matrix: tuple[float, float, float, float, float, float] | None = None) -> np.ndarray:
     """Polyline points of ``path`` (its units, SVG frame), subpaths joined end to start.
 
     Parameters
     ----------
     path : svgelements.Path
-        A parsed path whose coordinates are already in mm (transforms applied).
+        A parsed path, its segments untransformed.
+    matrix : tuple of 6 float, optional
+        An SVG transform ``matrix(a, b, c, d, e, f)`` from the path's coordinates to mm:
+        the path is flattened in its own coordinates (to the tolerance divided by the
+        matrix's largest stretch) and the points are then mapped. An elliptical arc under a
+        non-uniform scale or a skew stays exact this way (svgelements' reified arcs do not).
+        Default: the coordinates are mm already.
 
     Returns
     -------
@@ -231,6 +325,8 @@ def flatten(path: "svgelements.Path") -> np.ndarray:
     """
     import svgelements
 
+    linear, offset, stretch = _affine(matrix)
+    tol = DEFAULT_TOLERANCES.curve_flatness_mm / stretch
     subpaths: list[list[np.ndarray]] = []
     for seg in path:
         if isinstance(seg, svgelements.Move):
@@ -238,8 +334,8 @@ def flatten(path: "svgelements.Path") -> np.ndarray:
         elif not subpaths:
             raise PathError("SVG path must start with a move-to (M)")
         else:
-            subpaths[-1].append(_segment_points(seg))
-    drawn = [np.vstack(s) for s in subpaths if len(s) > 1]
+            subpaths[-1].append(_segment_points(seg, tol))
+    drawn = [np.vstack(s) @ linear.T + offset if matrix is not None else np.vstack(s) for s in subpaths if len(s) > 1]
     if not drawn:
         raise PathError("SVG path draws nothing (only move-to commands)")
     for k in range(1, len(drawn)):

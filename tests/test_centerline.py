@@ -195,9 +195,9 @@ def test_svg_subpaths_that_continue_are_joined():
     "d, fragment",
     [
         ("M 0 0 R 5 5", "unsupported character 'R'"),
-        ("M 0 0 A 5 5 0 2 1 10 0", "an arc flag is not 0 or 1"),
+        ("M 0 0 A 5 5 0 2 1 10 0", "arc flag at character 14 must be 0 or 1"),
         ("L 1 1", "must start with a move-to (M)"),
-        ("M 0 0 L 1", "a command is missing numbers"),
+        ("M 0 0 L 1", "'L' at character 6 needs numbers in groups of 2, got 1"),
         ("M 0 0 L 1 1 M 5 5 L 6 6", "2 subpaths with a gap of 5.657 mm"),
         ("M 0 0 M 5 5", "draws nothing"),
         ("M 0 0 L 1e999 0", "finite"),

@@ -191,7 +191,7 @@ CATALOGUE = [
      "SVG path has 2 subpaths with a gap of 100.5 mm between them"),
     ("path-bad-command", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 X 5"], 2,
      "SVG path: unsupported character 'X' at position 6; supported commands: M m L l H h V v C c"),
-    ("path-missing-number", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 10"], 2, "SVG path 'M 0 0 L 10': a command is missing numbers"),
+    ("path-missing-number", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 0 0 L 10"], 2, "SVG path 'M 0 0 L 10': 'L' at character 6 needs numbers in groups of 2, got 1"),
     ("path-empty", ZZ + ["-o", "{tmp}/a.dst", "--path", ""], 2, "SVG path must be a non-empty string, got ''"),
     ("path-huge-coordinates", ZZ + ["-o", "{tmp}/a.dst", "--path", "M 1e308 0 L -1e308 0"], 2,
      "path coordinates must be in [-1e+07, 1e+07] mm, got 1e+308"),  # bug B4: was an OverflowError traceback

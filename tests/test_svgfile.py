@@ -14,7 +14,7 @@ import shapely
 import dst_decoder
 from embroact.export.cli.main import main
 from embroact.export.files.designfile import load_design, loads_design
-from embroact.export.files.svgfile import is_svg_ref, read_svg_path, split_ref, svg_centerline
+from embroact.export.files.svgfile import is_svg_ref, read_svg_path, split_ref, svg_centerline, svg_origin_mm
 from embroact.patterns.base.errors import DesignFileError, PathError
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -232,3 +232,44 @@ def test_quick_command_errors_are_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1 and "'nope'" in err
     assert not (tmp_path / "a.dst").exists()
+
+
+# ---------------------------------------------------------------------- malformed data, clones, markers
+@pytest.mark.parametrize("d, fragment", [
+    ("M 0 0 L 10 0 L 20", "'L' at character 13 needs numbers in groups of 2, got 1"),
+    ("M 0 0 L 10 0 L 20 x 5", "unexpected 'x' at character 18"),  # svgelements would stop there: a 10 mm tube
+    ("M 0 0 A 5 5 0 2 1 10 0", "arc flag at character 14 must be 0 or 1, got '2'"),
+])
+def test_malformed_path_data_names_the_element_and_the_character(tmp_path, d, fragment):
+    p = _svg(tmp_path, f'<path id="t" d="{d}"/>', w="100mm", h="100mm", vb=' viewBox="0 0 100 100"')
+    with pytest.raises(PathError) as exc:
+        read_svg_path(f"{p}#t")
+    assert str(exc.value).startswith(f"{p}#t: path data d: ") and fragment in str(exc.value)
+    assert "\n" not in str(exc.value)
+
+
+def test_clones_beyond_the_budget_or_of_themselves_are_refused(tmp_path):
+    from embroact.export.files.svgclones import MAX_CLONES
+
+    # each level clones the one below 10 times: 10**5 copies of the path from a 2 kB file
+    levels = ['<g id="g0"><path id="p" d="M 0 0 H 10"/></g>']
+    levels += [f'<g id="g{k}">' + f'<use xlink:href="#g{k - 1}"/>' * 10 + "</g>" for k in range(1, 6)]
+    p = _svg(tmp_path, '<defs xmlns:xlink="http://www.w3.org/1999/xlink">' + "".join(levels) + "</defs>"
+             '<use href="#g5"/>', name="bomb.svg")
+    with pytest.raises(PathError, match=f"more than {MAX_CLONES:,} copies"):
+        read_svg_path(p)
+    loop = _svg(tmp_path, '<g id="a"><path d="M 0 0 H 10"/><use href="#a"/></g>', name="loop.svg")
+    with pytest.raises(PathError, match="names an element holding it"):
+        read_svg_path(loop)
+
+
+def test_origin_marker_is_the_centre_of_the_shape_so_named(tmp_path):
+    p = _svg(tmp_path, '<path id="t" d="M 0 0 H 50"/><g transform="translate(10,20)">'
+             '<circle inkscape:label="embroact-origin" cx="30" cy="40" r="2"/></g>',
+             w="100mm", h="100mm", vb=' viewBox="0 0 100 100"')
+    assert svg_origin_mm(p) == pytest.approx((40.0, 60.0))
+    assert read_svg_path(p).element_id == "t"  # the marker is no tube
+    two = _svg(tmp_path, '<path d="M 0 0 H 50"/><circle id="embroact-origin" r="1"/>'
+               '<circle inkscape:label="embroact-origin" r="1"/>', name="two.svg")
+    with pytest.raises(PathError, match="2 origin markers"):
+        svg_origin_mm(two)
