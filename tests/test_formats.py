@@ -58,7 +58,14 @@ def _expected(plan, fmt, cord_stop="sequence"):
         exp.update(stops=stops, color_changes=plan.count(C.STOP) + int(sewn_first))
     else:  # a colour change wherever a tube is laid after something was sewn (later actuators, placement lines)
         sewn = np.cumsum(plan.commands == C.STITCH)
-        exp.update(stops=0, color_changes=int(np.count_nonzero((plan.commands == C.STOP) & (sewn > 0))))
+        changes = int(np.count_nonzero((plan.commands == C.STOP) & (sewn > 0)))
+        if fmt == "vp3":  # no jump record: the travel to a placement line sewn after something begins a block
+            from embroact.patterns.plan import Role
+
+            line = plan.roles == Role.PLACEMENT
+            starts = line & ~np.concatenate([[False], line[:-1]])
+            changes += int(np.count_nonzero(starts & (sewn > 1)))
+        exp.update(stops=0, color_changes=changes)
     return exp
 
 

@@ -8,24 +8,33 @@ clipped (the file's own records, in order).
 
 How records are counted
 -----------------------
+The same words mean different records in different formats; docs/machine.md section 5
+tabulates them per format.  In short:
+
 stitches
     Needle records (penetrations).
 jumps
-    Frame moves without the needle that are not part of a trim.
+    Frame-move records without the needle that are not part of a trim: DST's travel
+    jumps after a trim's 3; every jump record of EXP, JEF, TBF, U01 and XXX; the jump
+    records of PEC/PES without the trim flag.  Not counted: the move that begins a VP3
+    colour block (the block's start position, a header field, not a record) and the
+    lead-in of a PEC stitch block (pystitch writes a move from the design's corner to the
+    start point there and its reader skips it).
 trims
-    Thread cuts: a DST run of 3 jumps netting to zero; a run of consecutive trim
-    records (JEF writes a trim as 3 zero-length jumps, which its reader reads as 3
-    trims); a PEC/PES trim-flagged jump (one record that cuts and moves).
+    Thread cuts: a DST run of 3 jumps netting to zero; a run of trim records (JEF writes a
+    trim as 3 zero-length jumps, read as 3 trims: one cut); a PEC/PES trim-flagged jump (one
+    record that cuts and moves, so it is not also counted as a jump); the trim codes of EXP,
+    TBF, U01, VP3 and XXX.
 stops
     Stop records (DST/EXP: the shared stop / colour-change code; TBF/U01: their own stop
     code); two in a row (``cord_stop = "double"``) count as two records but one pause.
 color_changes
-    Colour changes of colour formats (PES, PEC, JEF, VP3, XXX) and needle-set records
-    of TBF/U01.
+    Colour changes of colour formats (PES, PEC, JEF, VP3, XXX: for VP3 each colour block
+    after the first) and needle-set records of TBF/U01.
 pauses_mm
     Where the machine waits for the operator, in order: each run of stop records
-    (stop-code formats) or each colour change (colour formats), in the file frame
-    (mm, y up, origin at the file's start point).
+    (stop-code formats) or each colour change (colour formats; VP3: the new block's start,
+    where its first stitch is), in the file frame (mm, y up, origin at the file's start point).
 
 Examples
 --------
@@ -44,7 +53,8 @@ import numpy as np
 from ...patterns.base.arrays import frozen_array
 from .dst import COLOR_BYTE, END_BYTE, HEADER_SIZE, decode_moves
 
-__all__ = ["Census", "census", "raw_reader", "RAW_READ", "STOP_CODE_FORMATS", "COLOR_FORMATS", "NAMED_FORMATS"]
+__all__ = ["Census", "census", "raw_reader", "RAW_READ", "STOP_CODE_FORMATS", "COLOR_FORMATS", "NAMED_FORMATS",
+           "TRIM_FLAG_FORMATS", "BLOCK_START_FORMATS"]
 
 #: Formats with a stop record (DST and EXP share it with the colour change; TBF and U01 have their own).
 STOP_CODE_FORMATS = frozenset({"dst", "exp", "tbf", "u01"})
@@ -52,6 +62,10 @@ STOP_CODE_FORMATS = frozenset({"dst", "exp", "tbf", "u01"})
 COLOR_FORMATS = frozenset({"pes", "pec", "jef", "vp3", "xxx"})
 #: Formats whose files carry thread names (the actuator names).
 NAMED_FORMATS = frozenset({"pes", "vp3"})
+#: Formats whose trim is a flag on a jump record (the reader gives a trim, then the same record's move).
+TRIM_FLAG_FORMATS = frozenset({"pes", "pec"})
+#: Formats without jump records: a colour block starts at a position its header gives (the reader's move).
+BLOCK_START_FORMATS = frozenset({"vp3"})
 _JUMP_BIT = 0x80
 #: Reader settings that keep the file's own records (no trims made from jump runs, nothing clipped).
 RAW_READ = {"trim_at": None, "trim_distance": None, "clipping": False}
@@ -140,6 +154,15 @@ def _read(data: bytes, fmt: str):
     return pe, pe.EmbPattern.read_embroidery(raw_reader(fmt), io.BytesIO(data), dict(RAW_READ))
 
 
+def _block_start(records, n: int, pe) -> tuple[float, float]:
+    """Where the colour block begun by the colour change ``records[n]`` starts (the move after it)."""
+    for x, y, c in records[n + 1:]:
+        if c & pe.COMMAND_MASK != pe.COLOR_CHANGE:
+            return _point(int(round(x)), -int(round(y)))
+    x, y, _ = records[n]
+    return _point(int(round(x)), -int(round(y)))
+
+
 def census(data: bytes, fmt: str) -> Census:
     """Count the records of ``data``, a file of format ``fmt`` (see the module docstring)."""
     if fmt == "dst":
@@ -148,15 +171,17 @@ def census(data: bytes, fmt: str) -> Census:
     pts, pauses = [], []
     stitches = jumps = trims = stops = colors = 0
     previous = None
-    for x, y, c in pattern.stitches:
+    records = pattern.stitches
+    for n, (x, y, c) in enumerate(records):
         cmd = c & pe.COMMAND_MASK
         here = _point(int(round(x)), -int(round(y)))
         if cmd == pe.STITCH:
             stitches += 1
             pts.append(here)
         elif cmd == pe.JUMP:
-            if previous != pe.TRIM:  # PEC/PES: a trim-flagged jump is read as a trim and its move
-                jumps += 1
+            if not (previous == pe.TRIM and fmt in TRIM_FLAG_FORMATS) and not (
+                    previous == pe.COLOR_CHANGE and fmt in BLOCK_START_FORMATS):
+                jumps += 1  # else the trim-flagged jump's own move, or a colour block's start
         elif cmd == pe.TRIM:
             if previous != pe.TRIM:
                 trims += 1
@@ -167,7 +192,7 @@ def census(data: bytes, fmt: str) -> Census:
         elif cmd in (pe.COLOR_CHANGE, pe.NEEDLE_SET):
             colors += 1
             if fmt in COLOR_FORMATS:
-                pauses.append(here)
+                pauses.append(_block_start(records, n, pe) if fmt in BLOCK_START_FORMATS else here)
         previous = cmd
     names = tuple(t.description or "" for t in pattern.threadlist) if fmt in NAMED_FORMATS else ()
     return Census(fmt, stitches, jumps, trims, stops, colors, _array(pts), tuple(pauses), names)

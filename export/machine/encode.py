@@ -36,7 +36,9 @@ STOP      cord in, by the format's ``stop_style``:
             actuator's line is a colour block of its own (thread
             ``"<name> placement"``), so the machine pauses for tube 1 too.  JEF, VP3
             and XXX change colour at the actuator's first needle point, after the
-            travel (VP3 starts a colour block there); PEC/PES change colour where
+            travel (VP3 starts a colour block there: it has no jump record, so
+            every other travel, such as the one to a later placement line, begins
+            a colour block of its own, thread ``"<name> placement"``); PEC/PES change colour where
             the last actuator ended, before the travel, because their writer adds
             a needle penetration to a colour change that follows a jump.
           * ``"needle_stop"`` (TBF, U01): a needle-set record selecting the
@@ -92,6 +94,7 @@ __all__ = [
     "UNITS_PER_MM",
     "TRIM_JUMP_RUN",
     "THREAD_COLORS",
+    "PLACEMENT_LABEL",
     "LongLeg",
     "LongLegError",
     "MachinePattern",
@@ -106,6 +109,9 @@ UNITS_PER_MM = limits.UNITS_PER_MM
 
 TRIM_JUMP_RUN = limits.TRIM_JUMP_RUN
 """Consecutive jump records a machine (and the DST writer) treat as a trim."""
+
+PLACEMENT_LABEL = " placement"
+"""Ending of a thread label whose colour block is a placement line (``"<name> placement"``)."""
 
 THREAD_COLORS = (0x1F77B4, 0xD62728, 0x2CA02C, 0xFF7F0E, 0x9467BD, 0x8C564B, 0xE377C2, 0x17BECF)
 """Thread colours cycled over the actuators (distinct on screen, same thread on the machine)."""
@@ -172,12 +178,16 @@ class MachinePattern:
     origin_mm : tuple of float
         Plan position of the file's origin [mm, y up]: (0, 0) except for formats
         written from their first needle point (VP3).
+    lead_block : bool
+        Colour formats: the first actuator's placement line is a colour block of its own
+        (the machine pauses for tube 1 too).
     """
 
     pattern: Any
     format: str
     split_legs: int
     origin_mm: tuple[float, float] = (0.0, 0.0)
+    lead_block: bool = False
 
 
 def to_machine_units(xy_mm: np.ndarray) -> np.ndarray:
@@ -341,8 +351,8 @@ def _file_origin(plan: StitchPlan, units: np.ndarray) -> np.ndarray:
     stitch = np.flatnonzero(plan.commands == Command.STITCH)
     if not len(stitch):
         return np.zeros(2, dtype=np.int64)
-    # a colour block starts at the first needle point after each stop that follows sewing
-    stops = [int(i) for i in np.flatnonzero(plan.commands == Command.STOP) if i > stitch[0]]
+    # a colour block starts at the first needle point after each stop or travel that follows sewing
+    stops = [int(i) for i in np.flatnonzero(np.isin(plan.commands, (Command.STOP, Command.JUMP))) if i > stitch[0]]
     starts = units[stops + [_next_stitch(plan, i) for i in stops]].reshape(-1, 2)
     for off in _ORIGIN_OFFSETS:
         origin = units[stitch[0]] - np.array(off) * np.array([1, -1])
@@ -367,6 +377,12 @@ class _Builder:
         self.waited = False  # a cord-in stop was handled: the first stitch starts where the machine waited
         self.selected = False  # needle-stop formats: a needle-set record was written
         self.max_jump = round(fmt.limit.max_jump_mm * UNITS_PER_MM)
+        self.blocks: list[str] = []  # colour formats: the label of each colour block begun by a colour change
+
+    def change_colour(self, label: str) -> None:
+        """A colour change at the current position, beginning a block for ``label``."""
+        self.add(self.pe.COLOR_CHANGE)
+        self.blocks.append(label)
 
     def add(self, cmd: int, p: np.ndarray | None = None) -> None:
         p = self.pos if p is None else p
@@ -452,12 +468,12 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
                 pause = b.stitched  # a later actuator, or after a placement line (the first gets its own colour)
                 lead_block = lead_block or (pause and threads[k] == 0)
                 if pause and not fmt.color_after_travel:
-                    b.add(pe.COLOR_CHANGE)  # where the last actuator (or the placement line) ended, before the travel
+                    b.change_colour(_actuator_name(plan, k))  # where the last actuator (or the placement line) ended, before the travel
                 if not np.array_equal(b.pos, p):  # a placement line ends at the stop: the tie-in stitches from there
                     b.travel(units[_next_stitch(plan, i)], i)  # else colour formats wait at the first needle point
                 pending = None
                 if pause and fmt.color_after_travel:
-                    b.add(pe.COLOR_CHANGE)
+                    b.change_colour(_actuator_name(plan, k))
                 b.waited = True
                 continue
             if pending is not None:
@@ -471,6 +487,8 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         if pending is not None:
             b.travel(pending, i)
             pending = None
+            if fmt.no_jumps and b.stitched:  # no jump record: the travel is the start of a colour block
+                b.change_colour(_actuator_name(plan, k) + PLACEMENT_LABEL)
         if cmd == Command.STITCH:
             if fmt.stop_style == "needle_stop" and not b.selected:  # a placement line sewn before the first stop
                 b.select(threads.get(k, len(threads)))
@@ -501,7 +519,9 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
             f"design needs {len(b.pattern.stitches)} records; {fmt.name} holds at most {fmt.limit.max_records}"
         )
     labels = [_actuator_name(plan, k) for k in sorted(threads, key=lambda k: threads[k]) or [0]]
-    for label in ([f"{labels[0]} placement"] if lead_block else []) + labels:
+    if fmt.stop_style == "color":  # one thread per colour block
+        labels = [labels[0] + PLACEMENT_LABEL if lead_block else labels[0]] + b.blocks
+    for label in labels:
         t = pe.EmbThread()
         t.set_color(*(THREAD_COLORS[len(b.pattern.threadlist) % len(THREAD_COLORS)].to_bytes(3, "big")))
         t.description = ascii_label(label)
@@ -510,4 +530,4 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         b.pattern.add_thread(t)
     b.pattern.metadata("name", ascii_label(plan.name))
     return MachinePattern(b.pattern, fmt.name, split,
-                          (float(origin[0]) / UNITS_PER_MM, -float(origin[1]) / UNITS_PER_MM))
+                          (float(origin[0]) / UNITS_PER_MM, -float(origin[1]) / UNITS_PER_MM), lead_block)

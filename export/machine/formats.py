@@ -167,6 +167,9 @@ class MachineFormat:
     first_at_origin : bool
         The format cannot move the frame before its first stitch (VP3): its origin is
         the first needle point.
+    no_jumps : bool
+        The format has no jump record (VP3): a travel after sewing begins a colour block
+        (whose start is a header position), never a stitch longer than the format allows.
     """
 
     name: str
@@ -180,6 +183,7 @@ class MachineFormat:
     trim_is_jump: bool = False
     end_trims: bool = False
     first_at_origin: bool = False
+    no_jumps: bool = False
 
     @property
     def description(self) -> str:
@@ -200,7 +204,8 @@ FORMATS: dict[str, MachineFormat] = {
         _fmt("pec", "PecWriter", "color", color_after_travel=False, trim_is_jump=True),
         _fmt("jef", "JefWriter", "color", [("trims", True), ("date", FIXED_DATE)]),
         _fmt("exp", "ExpWriter", "stop", post=_exp_trims),
-        _fmt("vp3", "Vp3Writer", "color", post=_vp3_origin, prepare=_vp3_even_center, end_trims=True, first_at_origin=True),
+        _fmt("vp3", "Vp3Writer", "color", post=_vp3_origin, prepare=_vp3_even_center, end_trims=True, first_at_origin=True,
+             no_jumps=True),
         _fmt("xxx", "XxxWriter", "color"),
         _fmt("u01", "U01Writer", "needle_stop"),
     )
@@ -234,13 +239,16 @@ _CANNOT = {
     "needle_stop": "",
     "color": "no stop code: the machine pauses at each colour change (one colour per later actuator), "
              "so tube 1 is laid before start",
+    "color_placed": "no stop code: the machine pauses at each colour change (one colour after each placement "
+                    "line)",
 }
 
 
 def _notes(f: MachineFormat, mp: MachinePattern) -> tuple[str, ...]:
     notes = [] if f.name in NAMED_FORMATS else [f"{f.name}: no thread names (actuator names are not in the file)"]
-    if _CANNOT[f.stop_style]:
-        notes.append(f"{f.name}: {_CANNOT[f.stop_style]}")
+    style = "color_placed" if f.stop_style == "color" and mp.lead_block else f.stop_style
+    if _CANNOT[style]:
+        notes.append(f"{f.name}: {_CANNOT[style]}")
     if f.first_at_origin:
         notes.append(f"{f.name}: the file's origin is {mp.origin_mm[0]:g}, {mp.origin_mm[1]:g} mm (plan frame), 1 mm "
                      "beside the first needle point: the format cannot move the frame before its first stitch "

@@ -58,6 +58,7 @@ import numpy as np
 
 from ...patterns.base.errors import check_range
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
+from ..machine.encode import PLACEMENT_LABEL
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
@@ -401,25 +402,44 @@ def _placed(plan: StitchPlan) -> set[int]:
     return set(plan.actuator[plan.roles == Role.PLACEMENT].tolist())
 
 
-def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], pauses) -> tuple[str, ...]:
-    """One line per actuator: laid before start, or at the pause the machine file makes for it
-    (after its placement line, if it has one)."""
+def _line_pauses(machine, n: int) -> list[bool]:
+    """For each of the ``n`` pauses: does it begin a placement line's own colour block (VP3, which
+    has no jump: the travel to a later actuator's line is a block start) rather than a tube's?"""
+    names = tuple(getattr(machine, "thread_names", ()) or ())
+    if len(names) != n + 1:
+        return [False] * n
+    return [name.endswith(PLACEMENT_LABEL) for name in names[1:]]
+
+
+def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], machine) -> tuple[str, ...]:
+    """One line per pause: a tube laid before start or at the pause the machine file makes for it
+    (after its placement line, if it has one), or a pause before a placement line."""
     ids = sorted(sheets)
-    if pauses is None:  # no machine file: the plan's STOP records
+    if machine is None:  # no machine file: the plan's STOP records
         stops = np.flatnonzero(plan.commands == Command.STOP)
         pauses = [tuple(plan.xy_mm[i]) for i in stops]
-    before = len(ids) - len(pauses)  # actuators whose tube is laid before start
+    else:
+        pauses = list(machine.pauses_mm)
+    line = _line_pauses(machine, len(pauses))
+    tube_pauses = [p for p, is_line in zip(pauses, line) if not is_line]
+    before = len(ids) - len(tube_pauses)  # actuators whose tube is laid before start
     placed = _placed(plan)
-    out = []
-    for n, k in enumerate(ids):
-        act = plan.actuators[k] if k < len(plan.actuators) else None
-        if n < before:
-            out.append(f"before start: {_lay_line(sheets[k], act, None)}; then press start")
+    out = [f"before start: {_lay_line(sheets[k], _act(plan, k), None)}; then press start" for k in ids[:before]]
+    later = iter(ids[before:])
+    for n, (p, is_line) in enumerate(zip(pauses, line)):
+        if is_line:
+            out.append(f"stop {n + 1}: a colour change before the placement line of the next actuator, not a tube: "
+                       "keep the same thread and press start")
             continue
+        k = next(later)
         first = (f"the machine sews the placement line of {sheets[k].name} along its tube axis and stops; "
                  "lay the tube over that line: ") if k in placed else ""
-        out.append(f"stop {n - before + 1}: {first}{_lay_line(sheets[k], act, pauses[n - before])}; press start")
+        out.append(f"stop {n + 1}: {first}{_lay_line(sheets[k], _act(plan, k), p)}; press start")
     return tuple(out)
+
+
+def _act(plan: StitchPlan, k: int) -> ActuatorPlan | None:
+    return plan.actuators[k] if k < len(plan.actuators) else None
 
 
 def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
@@ -456,9 +476,12 @@ def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
         return (f"{fmt.upper()} file: needle 1 for every actuator, and the format's own stop code at each of the "
                 f"{pauses} cord-in stops: the machine stops there in any needle mode",) + first
     if placement:
+        lines = sum(_line_pauses(machine, pauses))
+        before = (f", and {lines} before the placement lines of later actuators ({fmt.upper()} has no jump: the "
+                  "travel there begins a colour block): press start there") if lines else ""
         return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
-                f"{machine.color_changes} colour changes (one after each placement line): keep the same thread and "
-                "lay that actuator's tube there",) + first
+                f"{machine.color_changes} colour changes ({pauses - lines} after the placement lines: keep the same "
+                f"thread and lay that actuator's tube there{before})",) + first
     return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
             f"{machine.color_changes} colour changes (one per actuator after the first): keep the same thread and "
             "lay the next tube there",
@@ -517,11 +540,11 @@ def worksheet(
     size = (float(np.ptp(needles[:, 0])), float(np.ptp(needles[:, 1]))) if len(needles) else (0.0, 0.0)
     if machine is None:
         n_st, n_j, n_tr, n_sp = (plan.count(c) for c in (Command.STITCH, Command.JUMP, Command.TRIM, Command.STOP))
-        n_cc, n_wait, pauses = 0, n_sp, None
+        n_cc, n_wait = 0, n_sp
     else:
         n_st, n_j, n_tr, n_sp, n_cc = (machine.stitches, machine.jumps, machine.trims, machine.stops,
                                        machine.color_changes)
-        n_wait, pauses = machine.pauses, machine.pauses_mm
+        n_wait = machine.pauses
     sewing = 60.0 * (n_st + n_j) / spm + n_tr * TRIM_TIME_S + n_wait * STOP_RESTART_S
     name = getattr(design, "name", None) or plan.name
     return Worksheet(
@@ -531,7 +554,7 @@ def worksheet(
         jump_count=n_j,
         trim_count=n_tr,
         stop_count=n_sp,
-        stops=_stop_lines(plan, sheets, pauses),
+        stops=_stop_lines(plan, sheets, machine),
         actuators=tuple(sheets[k] for k in ids),
         top_thread_mm=math.fsum(s.top_thread_mm for s in sheets.values()),
         bobbin_thread_mm=math.fsum(s.bobbin_thread_mm for s in sheets.values()),

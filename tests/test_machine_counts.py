@@ -1,0 +1,93 @@
+"""Every count embroact reports for a machine file, held against two readers it did not write.
+
+Every example x every format x {with, without placement line} x {sequence, double cord stop}:
+the file is read by pystitch and by pyembroidery, its records grouped by the format's own
+conventions (``machine_readers``, docs/machine.md section 5), and every count, needle point
+and needle number compared with what ``encode`` reports; every record is held to the
+format's per-record limits.
+"""
+import glob
+import os
+from dataclasses import replace
+
+import machine_readers as mr
+import numpy as np
+import pytest
+from embroact.export.machine.formats import FORMATS, encode
+from h3_plans import needle_points
+
+pytest.importorskip("pyembroidery")
+EXAMPLES = sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "examples", "*.toml")))
+
+
+def _designs():
+    from embroact.export.files.designfile import load_design
+    from embroact.patterns.design import build_plan
+
+    out = []
+    for path in EXAMPLES:
+        d = load_design(path)
+        for placed in (False, True):
+            label = os.path.basename(path) + ("+placement" if placed else "")
+            out.append((label, build_plan(replace(d, machine=replace(d.machine, placement_line=placed)))))
+    return out
+
+
+DESIGNS = _designs()
+CASES = [(label, fmt, mode) for label, _ in DESIGNS for fmt in sorted(FORMATS) for mode in ("sequence", "double")]
+PLANS = dict(DESIGNS)
+
+
+@pytest.mark.parametrize("label,fmt,mode", CASES, ids=["-".join(c) for c in CASES])
+def test_every_count_is_what_two_readers_find(label, fmt, mode):
+    plan = PLANS[label]
+    data, res = encode(plan, fmt, cord_stop=mode, split_long=True)
+    reported = {k: getattr(res, k) for k in ("stitches", "jumps", "trims", "stops", "color_changes")}
+    lim = FORMATS[fmt].limit
+    points = []
+    for library in mr.LIBRARIES:
+        records = mr.file_records(data, fmt, library)
+        assert mr.counts(records, fmt) == reported, library
+        assert mr.over_limit(records, round(lim.max_record_mm * 10), round(lim.max_jump_mm * 10)) == [], library
+        assert [r.needle for r in records if r.kind == "needle"] == [1] * sum(r.kind == "needle" for r in records)
+        assert [r.kind for r in records].count("end") == 1
+        points.append(np.array([(r.x, -r.y) for r in records if r.kind == "stitch"], dtype=float) / 10.0)
+    # the same needle points for both readers, and the plan's (0.1 mm grid, file origin added back)
+    assert np.array_equal(points[0], points[1])
+    want = np.rint(needle_points(plan) * 10) / 10
+    assert np.abs(points[0] + np.array(res.origin_mm) - want).max() < 1e-6
+    # the chosen stop mode changes only the stop-code formats' bytes
+    if fmt not in ("dst", "exp"):
+        assert encode(plan, fmt, cord_stop="sequence", split_long=True)[0] == data
+
+
+def test_jumps_of_three_actuators_by_hand():
+    """The issue's case: 4 jumps to the first needle point and 7 after each of 2 trims (DST: after the trim's 3)."""
+    plan = PLANS["three_actuators.toml"]
+    jumps = {fmt: encode(plan, fmt)[1].jumps for fmt in FORMATS}
+    assert {f: j for f, j in jumps.items() if f in ("dst", "exp", "jef", "tbf", "u01", "xxx")} == dict.fromkeys(
+        ("dst", "exp", "jef", "tbf", "u01", "xxx"), 4 + 7 + 7)
+    assert jumps["vp3"] == 0  # VP3 holds no jump record: its colour blocks start at header positions
+    assert jumps["pes"] == jumps["pec"] == 1  # one move to the first point; later travel is on the trim-flagged jump
+
+
+def test_vp3_placement_travel_begins_a_block():
+    """VP3 has no jump: the travel to a later placement line is a colour block's start, not a 42.5 mm stitch."""
+    plan = PLANS["three_actuators.toml+placement"]
+    data, res = encode(plan, "vp3")
+    records = mr.file_records(data, "vp3", "pystitch")
+    assert max(max(abs(r.dx), abs(r.dy)) for r in records if r.kind == "stitch") <= 255
+    assert res.thread_names == ("narrow zigzag placement", "narrow zigzag", "wide zigzag placement", "wide zigzag",
+                                "cross 45deg placement", "cross 45deg")
+    assert res.color_changes == 5 and res.pauses == 5
+
+
+def test_vp3_worksheet_says_press_start_at_the_block_before_a_placement_line():
+    from embroact.export.report.worksheet import worksheet
+
+    plan = PLANS["three_actuators.toml+placement"]
+    sheet = worksheet(plan, machine=encode(plan, "vp3")[1])
+    assert len(sheet.stops) == 5
+    assert ["lay tube" in line for line in sheet.stops] == [True, False, True, False, True]
+    assert sheet.stops[1].startswith("stop 2: a colour change before the placement line")
+    assert "3 after the placement lines" in sheet.setup[0] and "2 before the placement lines" in sheet.setup[0]
