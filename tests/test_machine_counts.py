@@ -91,3 +91,51 @@ def test_vp3_worksheet_says_press_start_at_the_block_before_a_placement_line():
     assert ["lay tube" in line for line in sheet.stops] == [True, False, True, False, True]
     assert sheet.stops[1].startswith("stop 2: a colour change before the placement line")
     assert "3 after the placement lines" in sheet.setup[0] and "2 before the placement lines" in sheet.setup[0]
+
+
+NAMES = ["A", "x" * 16, "abcdefghijklmnopq", "n" * 60, "Ümlaut ø 45° – a name of more than sixteen"]
+#: The label each format's reader gives back, by the format's field (None: the format holds no name).
+FIELD = {"dst": ("name", 16), "tbf": ("name", 16), "pec": ("Name", 16), "pes": ("name", None), "vp3": (None, None),
+         "jef": (None, None), "exp": (None, None), "xxx": (None, None), "u01": (None, None)}
+
+
+@pytest.mark.parametrize("fmt", sorted(FORMATS))
+@pytest.mark.parametrize("name", NAMES, ids=[f"{len(n)}-chars" for n in NAMES])
+def test_names_of_any_length_keep_the_header_in_place(fmt, name):
+    """A name cut to its fixed field after transliteration: nothing after the field moves, every
+    count stays, and TBF/U01 read needle 1 for every actuator."""
+    import re
+
+    from embroact.export.machine.encode import ascii_label
+    from embroact.patterns.design import build_plan, design_from_dict
+
+    design = {"name": name, "actuator": [{"name": f"T{k}", "pattern": "zigzag", "width_mm": 5.0, "interval_mm": 1.0,
+                                          "length_mm": 20.0, "origin_mm": [0.0, 15.0 * k]} for k in range(3)]}
+    plan = build_plan(design_from_dict(design))
+    data, res = encode(plan, fmt)
+    reference = encode(replace(plan, name="A"), fmt)[1]
+    key, width = FIELD[fmt]
+    label = ascii_label(name)
+    if fmt == "pec":  # PEC keeps letters and digits only (pystitch's writer: others upset machines)
+        label = re.sub(r"[^A-Za-z0-9]+", "", label)
+    for library in mr.LIBRARIES:
+        _, pattern = mr.read(data, fmt, library)
+        if key is not None:
+            assert pattern.get_metadata(key, None) == label[:width]
+        records = mr.file_records(data, fmt, library)
+        assert mr.counts(records, fmt) == {k: getattr(reference, k) for k in mr.counts(records, fmt)}
+        needles = [r.needle for r in records if r.kind == "needle"]
+        assert needles == ([1] * 3 if fmt in ("tbf", "u01") else [])
+    if fmt == "tbf":  # the needle table stays at 0x10A: one byte per needle set, needle 1
+        assert data[0x107:0x10A] == b"DO:" and data[0x10A:0x10D] == bytes([1, 1, 1]) and data[0x10D] == 0
+    if fmt == "dst":
+        assert data[:20] == b"LA:" + label[:16].ljust(16).encode("ascii") + b"\r"
+
+
+def test_cord_stop_is_reported_where_it_changes_the_bytes():
+    plan = PLANS["three_actuators.toml"]
+    for fmt in FORMATS:
+        seq, res = encode(plan, fmt, cord_stop="sequence")
+        dbl, res2 = encode(plan, fmt, cord_stop="double")
+        assert (seq != dbl) == (fmt in ("dst", "exp"))
+        assert (res.cord_stop, res2.cord_stop) == (("sequence", "double") if seq != dbl else (None, None))

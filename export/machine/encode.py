@@ -528,6 +528,6 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         t.catalog_number = f"A{len(b.pattern.threadlist) + 1}"
         t.brand = "embroact"
         b.pattern.add_thread(t)
-    b.pattern.metadata("name", ascii_label(plan.name))
+    b.pattern.metadata("name", ascii_label(plan.name, max_chars=fmt.label_chars or MAX_LABEL_CHARS))
     return MachinePattern(b.pattern, fmt.name, split,
                           (float(origin[0]) / UNITS_PER_MM, -float(origin[1]) / UNITS_PER_MM), lead_block)

@@ -113,6 +113,19 @@ def _exp_trims(data: bytes, mp: MachinePattern) -> bytes:
     return bytes(out)
 
 
+def _pec_label(data: bytes, mp: MachinePattern) -> bytes:
+    """PEC's 16-character ``LA:`` field (also inside PES) holds 16 of the name's letters and digits.
+
+    The writer keeps letters and digits only (other characters upset machines, its source
+    says) and then only the first 8 of them; readers read all 16.
+    """
+    start = 8 if data[:8] == b"#PEC0001" else int.from_bytes(data[8:12], "little")
+    if data[start:start + 3] != b"LA:" or data[start + 19:start + 20] != b"\r":
+        raise ExportError("PEC label field not found where the writer puts it")
+    name = re.sub(r"[^A-Za-z0-9]+", "", mp.pattern.get_metadata("name", "")) or "Untitled"
+    return data[:start + 3] + b"%-16s" % name[:16].encode("ascii") + data[start + 19:]
+
+
 def _vp3_origin(data: bytes, mp: MachinePattern) -> bytes:
     """VP3: record the file's origin in its notes string (:mod:`embroact.export.machine.vp3note`)."""
     return add_origin_note(data, mp.origin_mm)
@@ -167,6 +180,9 @@ class MachineFormat:
     first_at_origin : bool
         The format cannot move the frame before its first stitch (VP3): its origin is
         the first needle point.
+    label_chars : int or None
+        Width of the format's fixed label field (DST, TBF: 16 characters): the design
+        name is cut to it after transliteration, so no field after it moves.
     no_jumps : bool
         The format has no jump record (VP3): a travel after sewing begins a colour block
         (whose start is a header position), never a stitch longer than the format allows.
@@ -184,6 +200,7 @@ class MachineFormat:
     end_trims: bool = False
     first_at_origin: bool = False
     no_jumps: bool = False
+    label_chars: int | None = None
 
     @property
     def description(self) -> str:
@@ -198,10 +215,11 @@ def _fmt(name: str, writer: str, style: str, settings=(), post=None, prepare=Non
 FORMATS: dict[str, MachineFormat] = {
     f.name: f
     for f in (
-        _fmt("dst", "DstWriter", "stop", post=_dst_post),
-        _fmt("tbf", "TbfWriter", "needle_stop", post=_tbf_extents),
-        _fmt("pes", "PesWriter", "color", [("version", 6)], color_after_travel=False, trim_is_jump=True),
-        _fmt("pec", "PecWriter", "color", color_after_travel=False, trim_is_jump=True),
+        _fmt("dst", "DstWriter", "stop", post=_dst_post, label_chars=16),
+        _fmt("tbf", "TbfWriter", "needle_stop", post=_tbf_extents, label_chars=16),
+        _fmt("pes", "PesWriter", "color", [("version", 6)], post=_pec_label, color_after_travel=False,
+             trim_is_jump=True),
+        _fmt("pec", "PecWriter", "color", post=_pec_label, color_after_travel=False, trim_is_jump=True),
         _fmt("jef", "JefWriter", "color", [("trims", True), ("date", FIXED_DATE)]),
         _fmt("exp", "ExpWriter", "stop", post=_exp_trims),
         _fmt("vp3", "Vp3Writer", "color", post=_vp3_origin, prepare=_vp3_even_center, end_trims=True, first_at_origin=True,
@@ -270,8 +288,9 @@ class WriteResult:
         Records the file holds (:mod:`embroact.export.machine.census`).
     split_legs : int
         Legs split because they exceeded the per-record limit.
-    cord_stop : str
-        How cord-in stops were written (:class:`embroact.patterns.stops.CordStop`).
+    cord_stop : str or None
+        How cord-in stops were written (:class:`embroact.patterns.stops.CordStop`); None for
+        formats whose bytes it does not change (all but DST and EXP).
     pauses_mm : tuple of (float, float)
         Where the machine waits for the operator, plan frame [mm, y up].
     thread_names : tuple of str
@@ -298,7 +317,7 @@ class WriteResult:
     stops: int
     color_changes: int
     split_legs: int
-    cord_stop: str = CordStop.SEQUENCE.value
+    cord_stop: str | None = CordStop.SEQUENCE.value
     pauses_mm: tuple[tuple[float, float], ...] = ()
     thread_names: tuple[str, ...] = ()
     origin_mm: tuple[float, float] = (0.0, 0.0)
@@ -328,6 +347,11 @@ class WriteResult:
             v = getattr(self, k)
             out[k] = [list(p) for p in v] if k == "pauses_mm" else list(v) if isinstance(v, tuple) else v
         return out
+
+
+def _cord_stop_written(f: MachineFormat, cord_stop: CordStop | str) -> str | None:
+    """The cord-stop mode where it changes the bytes (stop-code formats DST, EXP), else None."""
+    return str(getattr(cord_stop, "value", cord_stop)) if f.stop_style == "stop" else None
 
 
 def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bool = False,
@@ -363,7 +387,7 @@ def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bo
     ox, oy = mp.origin_mm
     pauses = tuple((round(x + ox, 1) + 0.0, round(y + oy, 1) + 0.0) for x, y in c.pauses_mm)
     return data, WriteResult(None, f.name, len(data), c.stitches, c.jumps, c.trims, c.stops, c.color_changes,
-                             mp.split_legs, str(getattr(cord_stop, "value", cord_stop)), pauses, c.thread_names,
+                             mp.split_legs, _cord_stop_written(f, cord_stop), pauses, c.thread_names,
                              mp.origin_mm, _notes(f, mp))
 
 

@@ -32,9 +32,10 @@ from __future__ import annotations
 import numpy as np
 
 from ...patterns.plan import StitchPlan
+from ...patterns.rules.tubes import hoop_centre_mm
 from .stitches import _f, _pts_list
 
-__all__ = ["template_svg", "SCALE_BAR_MM"]
+__all__ = ["template_svg", "start_from_centre", "SCALE_BAR_MM"]
 
 SCALE_BAR_MM = 10.0
 """Length of the scale bar that checks the print [mm]."""
@@ -61,10 +62,20 @@ def _laid(act) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return pts, np.vstack([head, pts[0]]), np.vstack([pts[-1], tail])
 
 
+def start_from_centre(plan: StitchPlan) -> str:
+    """Where the machine's start point lies from the hoop centre (the hoop centred on the records).
+
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> start_from_centre(build_plan(default_design()))
+    '50.0 mm left, 0.0 mm up'
+    """
+    dx, dy = -hoop_centre_mm(plan.xy_mm) + 0.0
+    return f"{abs(dx):.1f} mm {'right' if dx >= 0 else 'left'}, {abs(dy):.1f} mm {'up' if dy >= 0 else 'down'}"
+
+
 def _hoop_box(plan: StitchPlan, hoop_mm: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
     """The hoop's sewing field centred on the records' bounding box (as EA306 places it)."""
-    xy = plan.xy_mm
-    centre = (xy.min(axis=0) + xy.max(axis=0)) / 2.0 if len(xy) else np.zeros(2)
+    centre = hoop_centre_mm(plan.xy_mm)
     half = np.array(hoop_mm, dtype=np.float64) / 2.0
     return centre - half, centre + half
 
@@ -97,7 +108,7 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
     layer = {name: dwg.add(dwg.g(id=name)) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
     _draw_hoop(dwg, layer["hoop"], h_lo, h_hi)
-    _cross(dwg, layer["start"], np.zeros(2), 3.0, "#c51b7d", "start")
+    _cross(dwg, layer["start"], np.zeros(2), 3.0, "#c51b7d", f"start: {start_from_centre(plan)} of the hoop centre")
     for k, (a, parts) in enumerate(zip(plan.actuators, laid)):
         _draw_tube(dwg, layer["tubes"], a, parts, k)
     x0, y0 = lo[0] + _BORDER_MM, -lo[1] + _BORDER_MM

@@ -58,7 +58,9 @@ import numpy as np
 
 from ...patterns.base.errors import check_range
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
+from ..machine.census import COLOR_FORMATS
 from ..machine.encode import PLACEMENT_LABEL
+from ..pictures.template import start_from_centre
 
 __all__ = [
     "DEFAULT_SPEED_SPM",
@@ -460,18 +462,7 @@ def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
         return ("no machine file: counts and stops are those of the stitch plan",) + first
     fmt, pauses = machine.format, machine.pauses
     if fmt in ("dst", "exp"):
-        entries = machine.stops + 1
-        single = (f"single-needle machine: it stops at each of the {pauses} cord-in stops; keep the same thread "
-                  "when it asks for a colour")
-        if machine.cord_stop == "double":
-            multi = (f"multi-needle machine (automatic needle mode is fine): set all {entries} entries of the needle "
-                     f"sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in "
-                     f"automatic mode")
-        else:
-            multi = (f"multi-needle machine: switch to manual needle mode, or set all {entries} entries of the needle "
-                     f"sequence to needle 1 and programme a stop at entries 2 to {entries}: in automatic mode a "
-                     f"single stop code only changes needle and sews on (cord_stop = \"double\" stops it anyway)")
-        return (f"{fmt.upper()} file with {machine.stops} stop code(s) for {pauses} cord-in stop(s)", multi, single) + first
+        return _stop_code_setup(machine) + first
     if fmt in ("tbf", "u01"):
         return (f"{fmt.upper()} file: needle 1 for every actuator, and the format's own stop code at each of the "
                 f"{pauses} cord-in stops: the machine stops there in any needle mode",) + first
@@ -486,6 +477,38 @@ def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
             f"{machine.color_changes} colour changes (one per actuator after the first): keep the same thread and "
             "lay the next tube there",
             "lay tube 1 before pressing start: the machine starts sewing actuator 1 at once")
+
+
+def _stop_code_setup(machine) -> tuple[str, ...]:
+    """DST/EXP: one code for stop and colour change; what each kind of machine does with the file's."""
+    fmt, pauses, codes = machine.format.upper(), machine.pauses, machine.stops
+    head = f"{fmt} file with {codes} stop code(s) for {pauses} cord-in stop(s)"
+    if codes == 0:
+        return (head, "no stop to set up: every tube is laid before start (one needle, needle 1)")
+    entries = codes + 1
+    later = f"entry {entries}" if entries == 2 else f"entries 2 to {entries}"
+    if machine.cord_stop == "double":
+        multi = (f"multi-needle machine (automatic needle mode is fine): set all {entries} entries of the needle "
+                 "sequence to needle 1; each cord-in is two stop codes in a row, which stops the machine even in "
+                 "automatic mode")
+        single = (f"single-needle machine: it stops at each of the {codes} stop codes, twice at each of the "
+                  f"{pauses} cord-in stops: lay the tube at the first, press start again at the second; keep the "
+                  "same thread when it asks for a colour")
+    else:
+        multi = (f"multi-needle machine: switch to manual needle mode, or set all {entries} entries of the needle "
+                 f"sequence to needle 1 and programme a stop at {later}: in automatic mode a single stop code "
+                 "only changes needle and sews on (cord_stop = \"double\" stops it anyway)")
+        single = (f"single-needle machine: it stops at each of the {pauses} cord-in stops; keep the same thread "
+                  "when it asks for a colour")
+    return (head, multi, single)
+
+
+def _start_line(plan: StitchPlan, machine) -> str:
+    """Where the machine's start point goes in the hoop (the hoop is centred on the design)."""
+    home = (" (a home machine that centres the design in the hoop itself needs no move)"
+            if machine is not None and machine.format in COLOR_FORMATS else "")
+    return (f"start point (the 'start' cross on the template): {start_from_centre(plan)} of the hoop centre; "
+            f"move the needle there before pressing start, or the design is sewn off the hoop's centre{home}")
 
 
 def check_speed_spm(speed_spm: float) -> float:
@@ -564,7 +587,7 @@ def worksheet(
         findings=tuple(f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in findings),
         color_change_count=n_cc,
         machine_format=None if machine is None else machine.format,
-        setup=machine_setup(machine, placement=bool(_placed(plan))),
+        setup=machine_setup(machine, placement=bool(_placed(plan))) + (_start_line(plan, machine),),
         notes=() if machine is None else tuple(machine.notes),
         fabric_mm=_fabric_mm(plan, getattr(design, "machine", None)),
     )

@@ -37,7 +37,7 @@ from ..plan import Command
 from ..spatial import self_crossings
 from .engine import Hits, Subject
 
-__all__ = ["TUBE_RULES", "hoop_window"]
+__all__ = ["TUBE_RULES", "hoop_window", "hoop_centre_mm"]
 
 _DF = Inputs.DESIGNS | Inputs.FILES
 
@@ -147,13 +147,22 @@ def actuators_close(s: Subject) -> list[Finding]:
     return out
 
 
+def hoop_centre_mm(xy_mm: np.ndarray) -> np.ndarray:
+    """Where the hoop's centre goes [mm]: the middle of the records' bounding box (the origin without records).
+
+    >>> hoop_centre_mm(np.array([[0.0, -5.0], [100.0, 5.0]])).tolist()
+    [50.0, 0.0]
+    """
+    xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+    return (xy.min(axis=0) + xy.max(axis=0)) / 2.0 if len(xy) else np.zeros(2)
+
+
 def hoop_window(s: Subject):
     """(low, high) corners of the hoop's sewing field centred on the records [mm], or None without a hoop."""
     cfg, xy = s.settings, s.layout.xy_mm
     if cfg.hoop_width_mm is None or cfg.hoop_height_mm is None or len(xy) == 0:
         return None
-    lo, hi = xy.min(axis=0), xy.max(axis=0)
-    centre = (lo + hi) / 2.0
+    centre = hoop_centre_mm(xy)
     half = np.array([cfg.hoop_width_mm, cfg.hoop_height_mm]) / 2.0
     return centre - half, centre + half
 
