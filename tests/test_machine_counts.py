@@ -139,3 +139,41 @@ def test_cord_stop_is_reported_where_it_changes_the_bytes():
         dbl, res2 = encode(plan, fmt, cord_stop="double")
         assert (seq != dbl) == (fmt in ("dst", "exp"))
         assert (res.cord_stop, res2.cord_stop) == (("sequence", "double") if seq != dbl else (None, None))
+
+
+def _stop_marks(svg):
+    import xml.etree.ElementTree as ET
+
+    ns = {"s": "http://www.w3.org/2000/svg"}
+    root = ET.fromstring(svg)
+    out = []
+    for g in root.find(".//s:g[@id='stops']", ns):
+        c, t = g.find("s:circle", ns), g.find("s:text", ns)
+        out.append((g.get("class"), round(float(c.get("cx")), 1), round(-float(c.get("cy")), 1), t.text))
+    return root, ns, out
+
+
+@pytest.mark.parametrize("fmt", ["dst", "pes", "vp3"])
+def test_stitch_preview_shows_the_formats_pauses_and_the_travel_from_the_origin(fmt):
+    """The stop marks of a build's preview are where that format's file makes the machine wait, as
+    pyembroidery reads the file (DST: the stop codes; PES: its colour changes, tube 1 before start)."""
+    from embroact.export.pictures.stitches import plan_svg
+
+    plan = PLANS["three_actuators.toml"]
+    data, res = encode(plan, fmt)
+    root, ns, marks = _stop_marks(plan_svg(plan, machine=res))
+    records = mr.file_records(data, fmt, "pyembroidery")
+    wait = "color"  # pyembroidery reads DST's stop code as the colour change it shares
+    where = []
+    for n, r in enumerate(records):  # VP3: the new block's start, the move after the colour change
+        if r.kind == wait and (n == 0 or records[n - 1].kind != wait):
+            q = records[n + 1] if fmt == "vp3" else r
+            where.append((round(q.x / 10 + res.origin_mm[0], 1), round(-q.y / 10 + res.origin_mm[1], 1)))
+    shown = [(x, y) for cls, x, y, _ in marks if cls == "stop"]
+    assert shown == where and len(where) == (3 if fmt == "dst" else 2)
+    before = [text for cls, *_, text in marks if cls == "before-start"]
+    assert before == ([] if fmt == "dst" else ["before start: lay tube narrow zigzag"])
+    # the frame's first move, from the machine's start point (the file origin) to the first record
+    travel = root.find(".//s:g[@id='travel']/s:path", ns).get("d")
+    ox, oy = res.origin_mm
+    assert travel.startswith(f"M {ox:g},{-oy:g} L ".replace("-0,", "0,"))

@@ -63,7 +63,7 @@ from ...patterns.plan import StitchPlan
 from ...patterns.stops import CordStop
 from ..files.atomic import check_output_dir, write_bytes_atomic
 from .census import NAMED_FORMATS, census
-from .encode import MachinePattern, to_pattern
+from .encode import PLACEMENT_LABEL, MachinePattern, to_pattern
 from .vp3note import add_origin_note
 
 __all__ = ["FIXED_DATE", "MachineFormat", "WriteResult", "FORMATS", "machine_format", "encode", "write"]
@@ -327,6 +327,26 @@ class WriteResult:
     def pauses(self) -> int:
         """Times the machine waits for the operator after start."""
         return len(self.pauses_mm)
+
+    def tube_pauses(self) -> tuple[bool, ...]:
+        """For each pause: is a tube laid there (False: a colour block that begins a later actuator's
+        placement line, VP3, whose travel cannot be a record; the machine only waits for start)?
+
+        Returns
+        -------
+        tuple of bool
+            One per pause, in order.
+
+        Examples
+        --------
+        >>> WriteResult(None, "vp3", 0, 9, 0, 2, 0, 3, 0, None, ((0, 0),) * 3,
+        ...             ("A placement", "A", "B placement", "B")).tube_pauses()
+        (True, False, True)
+        """
+        names = self.thread_names
+        if len(names) != self.pauses + 1:
+            return (True,) * self.pauses
+        return tuple(not name.endswith(PLACEMENT_LABEL) for name in names[1:])
 
     def as_dict(self) -> dict:
         """Plain dict for JSON output (lists for tuples).

@@ -31,6 +31,7 @@ import numpy as np
 from ...patterns.base.errors import check_range
 from ...patterns.kinds import pattern_kind
 from ...patterns.plan import Command, Role, StitchPlan
+from ..machine.census import COLOR_FORMATS
 
 __all__ = ["RAMP", "PLACEMENT_COLOUR", "plan_svg"]
 
@@ -100,12 +101,16 @@ def _param_lines(plan: StitchPlan) -> list[str]:
 
 
 def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float = 0.15,
-             leg_width_mm: float = 0.12, show_points: bool = True) -> str:
+             leg_width_mm: float = 0.12, show_points: bool = True, machine=None) -> str:
     """Render ``plan`` as an SVG document (a string) drawn to scale in mm.
 
     Parameters
     ----------
     plan : StitchPlan
+    machine : WriteResult, optional
+        A machine file written from ``plan``: the stop marks are where that file makes the
+        machine wait (a colour format's colour changes, tubes laid before start named), and
+        the travel starts at its origin.  Default: the plan's STOP records.
     margin_mm : float
         Fabric margin around the design [mm], in [0, 100].
     point_radius_mm, leg_width_mm : float
@@ -127,7 +132,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     lo, hi = (np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)) if boxes else (
         np.zeros(2), np.zeros(2))
     fab_lo, fab_hi = lo - margin, hi + margin
-    texts = _param_lines(plan)
+    texts = _param_lines(plan) + _pause_lines(machine)
     pad = 3.0
     text_w = max(len(t) for t in texts) * _CHAR_EM * _FONT_MM
     width = max(fab_hi[0] - fab_lo[0], text_w) + 2 * pad
@@ -151,7 +156,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
         for rail in a.rails():
             layer["rails"].add(dwg.polyline(_pts_list(np.asarray(rail.coords)), fill="none", stroke="#2a9d8f",
                                             stroke_width="0.1", stroke_dasharray="0.4,0.4"))
-    _draw_records(dwg, layer, plan, pr, lw, show_points)
+    _draw_records(dwg, layer, plan, pr, lw, show_points, machine)
     _draw_scale_and_text(dwg, layer, texts, fab_lo[0], -fab_lo[1] + pad + 2.0, fab_hi[0] - fab_lo[0])
     return dwg.tostring()
 
@@ -165,7 +170,36 @@ def _segments_d(xy, starts) -> str:
     return " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in starts)
 
 
-def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool) -> None:
+def _pause_lines(machine) -> list[str]:
+    if machine is None:
+        return []
+    kind = "colour changes: no stop code" if machine.format in COLOR_FORMATS else "stop codes"
+    return [f"stops: where the {machine.format.upper()} file makes the machine wait ({kind})"]
+
+
+def _stop_marks(plan: StitchPlan, machine) -> list[tuple[np.ndarray, str]]:
+    """(where, label) of every stop mark: the plan's STOP records, or the machine file's pauses."""
+    names = {k: a.name for k, a in enumerate(plan.actuators)}
+    stops = np.flatnonzero(plan.commands == Command.STOP)
+    if machine is None:
+        return [(plan.xy_mm[i], f"STOP {n}: lay tube {names.get(int(plan.actuator[i]), f'A{int(plan.actuator[i]) + 1}')}")
+                for n, i in enumerate(stops, start=1)]
+    ids = sorted({int(a) for a in plan.actuator.tolist() if a >= 0})
+    tube = machine.tube_pauses()
+    before = len(ids) - sum(tube)
+    word = "PAUSE" if machine.format in COLOR_FORMATS else "STOP"
+    first_stop = {int(plan.actuator[i]): plan.xy_mm[i] for i in stops[::-1]}
+    marks = [(first_stop.get(k, plan.xy_mm[0]), f"before start: lay tube {names.get(k, f'A{k + 1}')}")
+             for k in ids[:before]]
+    later = iter(ids[before:])
+    for n, (p, is_tube) in enumerate(zip(machine.pauses_mm, tube), start=1):
+        what = f"lay tube {names.get(k, f'A{k + 1}')}" if is_tube and (k := next(later, None)) is not None \
+            else "press start"
+        marks.append((np.asarray(p, dtype=np.float64), f"{word} {n}: {what}"))
+    return marks
+
+
+def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool, machine=None) -> None:
     cmds, xy = plan.commands, plan.xy_mm
     stitch = cmds == Command.STITCH
     # legs: consecutive STITCH records, binned by sewing order into one path per colour; the stitches of a
@@ -188,8 +222,10 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
                                        stroke_width=_f(lw), stroke_linecap="round"))
     # travel: from the previous record to every JUMP/STOP that moves
     moves = [i for i in range(1, len(cmds)) if cmds[i] in (Command.JUMP, Command.STOP) and np.any(xy[i] != xy[i - 1])]
-    if moves:
-        d = _segments_d(xy, np.array(moves) - 1)
+    origin = np.asarray(getattr(machine, "origin_mm", (0.0, 0.0)), dtype=np.float64)
+    lead = f"M {_pts(origin)} L {_pts(xy[0])} " if len(xy) and np.any(np.abs(xy[0] - origin) > 0.05) else ""
+    if moves or lead:  # the frame's move from the machine's start point (the origin) to the first record too
+        d = lead + _segments_d(xy, np.array(moves, dtype=np.int64) - 1)
         layer["travel"].add(dwg.path(d=d, fill="none", stroke="#888888", stroke_width="0.15", stroke_dasharray="0.8,0.5"))
     if show_points:
         for x, y in xy[stitch]:
@@ -203,14 +239,11 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
         x, y = xy[i]
         layer["ties"].add(dwg.rect((_f(x - s / 2), _f(-y - s / 2)), (_f(s), _f(s)), fill="none", stroke="#d73027",
                                    stroke_width="0.12", **{"class": "tie-off"}))
-    names = {k: a.name for k, a in enumerate(plan.actuators)}
-    for n, i in enumerate(np.flatnonzero(cmds == Command.STOP), start=1):
-        x, y = xy[i]
-        k = int(plan.actuator[i])
-        g = layer["stops"].add(dwg.g(**{"class": "stop"}))
+    for (x, y), label in _stop_marks(plan, machine):
+        g = layer["stops"].add(dwg.g(**{"class": "before-start" if label.startswith("before") else "stop"}))
         g.add(dwg.circle((_f(x), _f(-y)), "1.2", fill="none", stroke="#c51b7d", stroke_width="0.25"))
-        g.add(dwg.text(f"STOP {n}: lay tube {names.get(k, f'A{k + 1}')}", insert=(_f(x + 1.6), _f(-y - 1.4)),
-                       font_size=_f(_FONT_MM * 0.8), fill="#c51b7d", style=_FONT))
+        g.add(dwg.text(label, insert=(_f(x + 1.6), _f(-y - 1.4)), font_size=_f(_FONT_MM * 0.8), fill="#c51b7d",
+                       style=_FONT))
     for n, i in enumerate(np.flatnonzero(cmds == Command.TRIM), start=1):
         x, y = xy[i]
         g = layer["trims"].add(dwg.g(**{"class": "trim"}))

@@ -294,7 +294,7 @@ def build_plan_outputs(
     ws = worksheet(plan, design, speed_spm=speed_spm, findings=findings, analysis=analysis, machine=machine[0])
     outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
     outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
-    outputs["preview.svg"] = plan_svg(plan).encode("utf-8")
+    outputs["preview.svg"] = plan_svg(plan, machine=machine[0]).encode("utf-8")  # the first format's pauses
     outputs["template.svg"] = template_svg(plan, getattr(design, "machine", None)).encode("utf-8")  # 1:1 layout
     for stage in stages:
         ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))

@@ -59,7 +59,6 @@ import numpy as np
 from ...patterns.base.errors import check_range
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 from ..machine.census import COLOR_FORMATS
-from ..machine.encode import PLACEMENT_LABEL
 from ..pictures.template import start_from_centre
 
 __all__ = [
@@ -404,15 +403,6 @@ def _placed(plan: StitchPlan) -> set[int]:
     return set(plan.actuator[plan.roles == Role.PLACEMENT].tolist())
 
 
-def _line_pauses(machine, n: int) -> list[bool]:
-    """For each of the ``n`` pauses: does it begin a placement line's own colour block (VP3, which
-    has no jump: the travel to a later actuator's line is a block start) rather than a tube's?"""
-    names = tuple(getattr(machine, "thread_names", ()) or ())
-    if len(names) != n + 1:
-        return [False] * n
-    return [name.endswith(PLACEMENT_LABEL) for name in names[1:]]
-
-
 def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], machine) -> tuple[str, ...]:
     """One line per pause: a tube laid before start or at the pause the machine file makes for it
     (after its placement line, if it has one), or a pause before a placement line."""
@@ -422,7 +412,7 @@ def _stop_lines(plan: StitchPlan, sheets: dict[int, ActuatorSheet], machine) -> 
         pauses = [tuple(plan.xy_mm[i]) for i in stops]
     else:
         pauses = list(machine.pauses_mm)
-    line = _line_pauses(machine, len(pauses))
+    line = [False] * len(pauses) if machine is None else [not tube for tube in machine.tube_pauses()]
     tube_pauses = [p for p, is_line in zip(pauses, line) if not is_line]
     before = len(ids) - len(tube_pauses)  # actuators whose tube is laid before start
     placed = _placed(plan)
@@ -467,7 +457,7 @@ def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
         return (f"{fmt.upper()} file: needle 1 for every actuator, and the format's own stop code at each of the "
                 f"{pauses} cord-in stops: the machine stops there in any needle mode",) + first
     if placement:
-        lines = sum(_line_pauses(machine, pauses))
+        lines = pauses - sum(machine.tube_pauses())
         before = (f", and {lines} before the placement lines of later actuators ({fmt.upper()} has no jump: the "
                   "travel there begins a colour block): press start there") if lines else ""
         return (f"{fmt.upper()} file for a home machine: no stop code; the machine pauses at each of its "
