@@ -498,7 +498,7 @@ def _start_line(plan: StitchPlan, machine) -> str:
     home = (" (a home machine that centres the design in the hoop itself needs no move)"
             if machine is not None and machine.format in COLOR_FORMATS else "")
     return (f"start point (the 'start' cross on the template): {start_from_centre(plan)} of the hoop centre; "
-            f"move the needle there before pressing start, or the design is sewn off the hoop's centre{home}")
+            f"move the needle there first, or the design is sewn off the hoop's centre{home}")
 
 
 def check_speed_spm(speed_spm: float) -> float:
