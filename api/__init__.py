@@ -37,24 +37,8 @@ True
 """
 import lazy_loader
 
-__getattr__lazy, __dir__, __all__ = lazy_loader.attach(__name__, submod_attrs={
-    "export.files.designfile": ["load_design", "save_design", "loads_design", "dumps_design"],
-    "export.files.svgfile": ["svg_centerline", "read_svg_path"],
-    "patterns.design": ["Design", "ActuatorSpec", "MachineSettings", "OperationSettings", "ModelSettings",
-                        "default_design", "design_from_dict", "design_to_dict", "build_plan"],
-    "patterns.centerline": ["Centerline"],
-    "patterns.params": ["Tube", "ZigzagParams", "CrossParams", "StitchOptions"],
-    "patterns.plan": ["StitchPlan", "Command", "Role"],
-    "patterns.zigzag": ["zigzag"],
-    "patterns.cross": ["cross"],
-    "predict.analysis": ["analyse", "DesignAnalysis", "ActuatorAnalysis"],
-    "predict.curve": ["curve", "ActuatorModel", "Curve"],
-    "predict.rules": ["check_design"],
-    "export.machine.formats": ["write", "WriteResult"],
-    "export.report.build": ["build", "BuildResult"],
-    "patterns.base.errors": ["EmbroactError", "ParameterError", "PatternError", "PathError", "DesignFileError",
-                             "ModelDomainError", "SolverError", "ExportError"],
-})
+# The public names and the modules they live in: __init__.pyi, which type checkers read too.
+__getattr__lazy, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)
 __all__ = [*__all__, "__version__"]
 
 # Rich display in Jupyter: which export function draws each value class (imported when first shown).

@@ -35,3 +35,37 @@ def test_mypy_reports_no_errors_on_the_package(tmp_path):
                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
     assert [line for line in out.stdout.splitlines() if ": error:" in line] == []
+
+
+USER_SCRIPT = '''\
+import embroact
+
+design = embroact.default_design()
+plan = embroact.build_plan(design)
+reveal_type(design)
+reveal_type(embroact.analyse(design).actuators[0])
+count: str = plan.stitch_count  # a deliberate error: an int is no str
+'''
+
+
+def test_mypy_sees_real_types_through_import_embroact(tmp_path):
+    """A user's script: mypy knows ``embroact.default_design()`` is a Design and reports a wrong type."""
+    _package_tree(tmp_path)
+    (tmp_path / "user.py").write_text(USER_SCRIPT, encoding="utf-8")
+    out = subprocess.run([sys.executable, "-m", "mypy", "user.py", "--config-file", str(ROOT / "pyproject.toml"),
+                          "--cache-dir", str(tmp_path / "cache"), "--no-error-summary"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    lines = out.stdout.splitlines()
+    assert 'user.py:5: note: Revealed type is "embroact.patterns.design.Design"' in lines, out.stdout
+    assert 'user.py:6: note: Revealed type is "embroact.predict.analysis.ActuatorAnalysis"' in lines, out.stdout
+    errors = [line for line in lines if ": error:" in line]
+    assert len(errors) == 1 and errors[0].startswith("user.py:7: error: Incompatible types in assignment "
+                                                     '(expression has type "int", variable has type "str")'), out.stdout
+
+
+def test_the_stub_lists_what_import_embroact_provides():
+    import embroact
+
+    for name in embroact.__all__:
+        assert getattr(embroact, name) is not None
+    assert "load_design" in dir(embroact) and len(set(embroact.__all__)) == len(embroact.__all__)
