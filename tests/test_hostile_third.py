@@ -15,8 +15,13 @@ from __future__ import annotations
 import itertools
 import os
 import re
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
+import pytest
 from test_hostile import FIT, GOOD_CSV, ZZ
 from test_hostile_generated import check_clean, check_error, run_cases
 
@@ -234,3 +239,79 @@ def test_calibration_semantics_checked_on_reading(tmp_path):
         check_error(results[cid], 2, pattern=rf"(\S*/)?cal\.toml: {re.escape(message)}")
         assert "inf" not in results[cid]["out"]
     check_clean(results, "calibration semantics")
+
+
+# ------------------------------------------------------------------------------ signals and the time limit
+def _arcs(n: int = 5000) -> str:
+    """A path of ``n`` arcs, 20 mm each, alternating sides (the nearest-segment query on it runs ~20 s in C)."""
+    return "M 0 0 " + " ".join(f"a 30 30 0 0 {i % 2} 20 0" for i in range(n - 1))
+
+
+def _noisy_target(path: Path) -> None:
+    """A random-walk target shape: twelve segments of it searched for a minute before."""
+    import numpy as np
+
+    rng = np.random.default_rng(3)
+    t = np.cumsum(rng.normal(0, 0.15, 300))
+    xy = np.cumsum(np.stack([np.cos(t), np.sin(t)], 1) * 0.5, 0)
+    path.write_text("x_mm,y_mm\n" + "".join(f"{x:.4f},{y:.4f}\n" for x, y in xy))
+
+
+LONG_COMMANDS = {
+    "arcs-5000": ZZ + ["--path", _arcs(), "-o", "a.dst", "--force", "--worksheet"],
+    "inverse-search": ["design", "--target-shape", "noisy.csv", "--at-kpa", "200", "--max-segments", "12",
+                       "-o", "n.toml"],
+}
+
+
+def _start(tmp_path: Path, argv: list[str]) -> subprocess.Popen:
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    return subprocess.Popen([sys.executable, "-m", "embroact.export", *argv], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+@pytest.mark.parametrize("name", list(LONG_COMMANDS))
+def test_a_signal_ends_a_long_command_within_a_second(tmp_path, name, sig):
+    """A 5,000-arc path took 230 s to notice SIGTERM (one 20 s call into shapely, repeated); a long inverse
+    search the same. Each now ends within 1 s of the signal with its exit code, one line and no staged file."""
+    _noisy_target(tmp_path / "noisy.csv")
+    proc = _start(tmp_path, LONG_COMMANDS[name])
+    time.sleep(4.0)  # past the imports, into the work
+    assert proc.poll() is None, proc.communicate()
+    t = time.perf_counter()
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=30)
+    elapsed = time.perf_counter() - t
+    word, code = ("terminated", 143) if sig == signal.SIGTERM else ("interrupted", 130)
+    assert (proc.returncode, err) == (code, f"embroact: {word}\n")
+    assert elapsed < 1.0, elapsed
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["noisy.csv"]
+
+
+def test_the_time_limit_ends_any_command_with_one_line(tmp_path):
+    """``embroact --time-limit-s S``: exit 4 and one line at S seconds, inside a C call or not."""
+    _noisy_target(tmp_path / "noisy.csv")
+    for name, argv in LONG_COMMANDS.items():
+        t = time.perf_counter()
+        proc = _start(tmp_path, ["--time-limit-s", "3", *argv])
+        _, err = proc.communicate(timeout=60)
+        elapsed = time.perf_counter() - t
+        assert (proc.returncode, err) == (4, "embroact: error: the command took longer than its time limit of 3 s "
+                                             "(--time-limit-s)\n"), name
+        assert 3.0 < elapsed < 6.0, (name, elapsed)  # the interpreter's start-up included
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["noisy.csv"]
+
+
+def test_the_time_limit_flag_is_checked():
+    from embroact.export.cli import main as cli_main
+    from embroact.export.cli import signals
+
+    assert cli_main.DEFAULT_TIME_LIMIT_S == signals.DEFAULT_TIME_LIMIT_S
+    cases = [{"id": v, "argv": ["--time-limit-s", v, "zigzag", "--width-mm", "7", "-o", "x.dst"], "cwd": "."}
+             for v in ("-1", "nan", "inf", "1e300", "86401", "x", "")]
+    results = run_cases(cases)
+    for v, r in results.items():
+        assert r["code"] == 2 and r["err"].count("\n") == 1, r
+        assert r["err"].startswith("embroact: error: argument --time-limit-s: "), r
+    check_clean(results, "time limit flag")

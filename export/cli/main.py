@@ -10,8 +10,10 @@ Exit codes
 1  design-rule errors found (``check``), or ``build`` refused to write because of them
 2  unusable input: bad parameter, unreadable or invalid design / embroidery file, usage
 3  an output file could not be written
-4  a numerical method failed (a bug or a design far outside the model; message says which)
-130, 143  interrupted (Ctrl-C) or terminated (SIGTERM); no partial output is left
+4  a numerical method failed (a bug or a design far outside the model; message says which), or the
+   command ran past its time limit (``embroact --time-limit-s S COMMAND``, default an hour)
+130, 143  interrupted (Ctrl-C) or terminated (SIGTERM), within a second whatever the command is
+          computing (:mod:`embroact.export.cli.signals`); no partial output is left
 141  standard output was closed by its reader (``| head``); the program ends quietly
 
 Examples
@@ -136,6 +138,21 @@ def _option_like_value(argv: list[str]) -> str | None:
     return None
 
 
+#: The time limit's default [s]: the value of :data:`embroact.export.cli.signals.DEFAULT_TIME_LIMIT_S`
+#: (a test holds them equal), here so that ``embroact --help`` imports no threads.
+DEFAULT_TIME_LIMIT_S = 3600.0
+#: Longest time limit [s] (a day; setitimer takes any float, a typo of 1e300 is no limit).
+MAX_TIME_LIMIT_S = 86400.0
+
+
+def _time_limit(text: str) -> float:
+    """``--time-limit-s``: seconds in [0, MAX_TIME_LIMIT_S] (argparse words a ValueError as an invalid value)."""
+    value = float(text)
+    if not 0.0 <= value <= MAX_TIME_LIMIT_S:
+        raise argparse.ArgumentTypeError(f"must be in [0, {MAX_TIME_LIMIT_S:g}] seconds, got {text[:40]!r}")
+    return value
+
+
 def _top_parser() -> argparse.ArgumentParser:
     width = max(len(n) for n in COMMANDS)
     lines = "\n".join(f"  {n:<{width}}  {h}" for n, (_, h) in COMMANDS.items())
@@ -148,6 +165,8 @@ def _top_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--version", action="version", version=f"embroact {__version__}")
     p.add_argument("--debug", action="store_true", help="show tracebacks for errors")
+    p.add_argument("--time-limit-s", type=_time_limit, default=DEFAULT_TIME_LIMIT_S, metavar="S",
+                   help=f"end the command after S seconds with exit code 4 (default {DEFAULT_TIME_LIMIT_S:g}; 0: none)")
     p.add_argument("command", choices=list(COMMANDS), metavar="COMMAND", help="one of the commands above")
     p.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
     return p
@@ -162,6 +181,8 @@ def _command_parser(name: str):
 
 
 _OUT_OF_MEMORY = "out of memory: the input is too large for this machine"
+#: Longest error line printed [characters]; a longer one (a message repeating a huge value) is cut.
+ERROR_CHARS = 1000
 #: Control characters other than newline and tab: escaped on stdout (an input file name
 #: with ESC [2J in it must not clear the terminal).
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
@@ -188,14 +209,6 @@ class _EscapingStdout(io.TextIOBase):
 
     def writable(self) -> bool:
         return True
-
-
-class _Terminated(KeyboardInterrupt):
-    """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
-
-
-def _on_sigterm(signum, frame):
-    raise _Terminated()
 
 
 def _quiet_stdout() -> None:
@@ -233,17 +246,24 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     args.command = top.command
     debug = top.debug or args.debug
-    import signal  # here, not at the top: `embroact --help` needs neither
-    import threading
+    from .signals import watchdog  # here, not at the top: `embroact --help` needs neither it nor threads
 
-    from ...patterns.base.errors import EmbroactError, ExportError, SolverError
-
-    in_main_thread = threading.current_thread() is threading.main_thread()
-    old_term = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
-    err: EmbroactError | str
     real_stdout = sys.stdout
     if real_stdout is not None:  # None when started with stdout closed (>&-)
         sys.stdout = _EscapingStdout(real_stdout)
+    try:
+        with watchdog(time_limit_s=top.time_limit_s):
+            return _run(module, args, debug)
+    finally:
+        sys.stdout = real_stdout
+
+
+def _run(module, args, debug: bool) -> int:
+    """``module.run(args)`` with every failure turned into its exit code and one stderr line."""
+    from ...patterns.base.errors import EmbroactError, ExportError, SolverError
+    from .signals import Terminated
+
+    err: EmbroactError | str
     try:
         with warnings.catch_warnings():
             if not debug:
@@ -257,7 +277,7 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BROKEN_PIPE
     except ExportError as exc:
         code, err = EXIT_OUTPUT, exc
-    except SolverError as exc:
+    except SolverError as exc:  # the time limit too
         code, err = EXIT_SOLVER, exc
     except EmbroactError as exc:
         code, err = EXIT_INPUT, exc
@@ -269,17 +289,21 @@ def main(argv: list[str] | None = None) -> int:
         if "bad_alloc" not in str(exc):
             raise
         code, err = EXIT_INPUT, _OUT_OF_MEMORY
-    except _Terminated:
+    except Terminated:
         print("embroact: terminated", file=sys.stderr)
         return EXIT_TERMINATED
     except KeyboardInterrupt:
         print("embroact: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
-    finally:
-        sys.stdout = real_stdout
-        if old_term is not None:
-            signal.signal(signal.SIGTERM, old_term)
     if debug:
         raise err if isinstance(err, BaseException) else RuntimeError(err)
-    print(f"embroact: error: {_printable(str(err))}", file=sys.stderr)
+    print(f"embroact: error: {_error_line(str(err))}", file=sys.stderr)
     return code
+
+
+def _error_line(text: str) -> str:
+    """``text`` printable and at most :data:`ERROR_CHARS` characters (a message echoing a 200,000-character value)."""
+    line = _printable(text)
+    if len(line) <= ERROR_CHARS:
+        return line
+    return f"{line[:ERROR_CHARS]}... ({len(line) - ERROR_CHARS:,} more characters cut)"

@@ -57,6 +57,7 @@ __all__ = [
     "check_command_files",
     "check_output_dir",
     "check_writable_dir",
+    "abandon_staged",
 ]
 
 
@@ -231,10 +232,33 @@ def _hidden_name(p: Path, suffix: str, create):
     return attempt()
 
 
+#: Staged files not yet renamed or removed: what :func:`abandon_staged` removes when the process must end now.
+_STAGED: set[str] = set()
+#: Held while staged files are renamed over their targets (a forced end waits for it).
+_COMMITTING = threading.Lock()
+
+
+def abandon_staged() -> None:
+    """Remove every staged file of this process, after a rename in progress: the process is about to end.
+
+    The command line's watchdog (:mod:`embroact.export.cli.signals`) calls this from its own
+    thread when the main thread did not answer a signal in time. The commit lock is taken
+    and kept, so no rename starts afterwards.
+    """
+    _COMMITTING.acquire(timeout=5.0)
+    for name in list(_STAGED):
+        _remove(name)
+
+
 def _stage(p: Path, data: bytes, mode: int) -> str:
     """Write ``data`` to a synced temporary file next to ``p``; return its name (removed on failure)."""
+    def create(name):
+        fd = os.open(name, _NEW_FILE, 0o600)
+        _STAGED.add(name)
+        return fd
+
     try:  # a directory root may not write to (/proc, a read-only mount) passes os.access
-        fd, tmp = _hidden_name(p, ".part", lambda name: os.open(name, _NEW_FILE, 0o600))
+        fd, tmp = _hidden_name(p, ".part", create)
     except OSError as exc:
         raise _cannot_write(p, exc) from exc
     try:
@@ -254,6 +278,7 @@ def _stage(p: Path, data: bytes, mode: int) -> str:
 def _remove(name: str) -> None:
     with contextlib.suppress(FileNotFoundError):
         os.unlink(name)
+    _STAGED.discard(name)
 
 
 def _mode(p: Path, new: int) -> int:
@@ -354,8 +379,9 @@ def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
     try:
         for p, data in zip(targets, outputs.values()):
             staged.append((_stage(p, data, _mode(p, new_mode)), p))
-        with _signals_held():
+        with _signals_held(), _COMMITTING:
             _commit(staged)
+            _STAGED.difference_update(tmp for tmp, _ in staged)
         _sync_dirs({p.parent for p in targets})
     finally:
         for tmp, _ in staged:

@@ -1,0 +1,148 @@
+"""Ctrl-C, SIGTERM and the time limit end a command within a second, whatever it is computing.
+
+Python runs a signal handler in the main thread between two bytecodes, so a command inside
+one long call into a C library (shapely's nearest-segment query over a 5,000-arc path runs
+20 s in one call) would notice SIGTERM only when that call returns: 20 s late. The
+:func:`watchdog` closes that gap. The C-level signal handler writes the signal's number to
+a pipe (``signal.set_wakeup_fd``) at once, and a thread waiting on the pipe (the C libraries
+release the GIL while they work, so it runs) gives the main thread :data:`GRACE_S` to end
+the usual way (the handler raises, staged files are removed, the exit code is returned); if
+it has not, the thread removes the staged files itself
+(:func:`embroact.export.files.atomic.abandon_staged`, which waits for a rename in progress)
+and ends the process with the same message and exit code.
+
+The time limit (``embroact --time-limit-s S COMMAND``, default :data:`DEFAULT_TIME_LIMIT_S`)
+is a SIGALRM handled the same way: the command ends with ``embroact: error: the command took
+longer than its time limit of S s (--time-limit-s)`` and exit code 4.
+
+Examples
+--------
+>>> import signal, time
+>>> from embroact.export.cli.signals import watchdog, TimeLimitError
+>>> try:
+...     with watchdog(time_limit_s=0.05):
+...         while True:
+...             time.sleep(0.01)
+... except TimeLimitError as exc:
+...     print(exc)
+the command took longer than its time limit of 0.05 s (--time-limit-s)
+"""
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+from typing import Iterator
+
+from ...patterns.base.errors import SolverError
+
+__all__ = ["watchdog", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
+
+#: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
+GRACE_S = 0.25
+#: Time limit of every command [s] unless ``--time-limit-s`` says otherwise (0: none). An hour: far
+#: beyond any command on the documented input limits (the longest, a 5,000-segment path, takes ~30 s).
+DEFAULT_TIME_LIMIT_S = 3600.0
+#: Exit codes: the shell's 128 + signal number, and the solver's code for a time limit.
+_EXIT = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
+_EXIT_TIME_LIMIT = 4
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
+
+
+class TimeLimitError(SolverError):
+    """The command ran past its time limit (a one-line error, exit code 4)."""
+
+
+def time_limit_message(seconds: float) -> str:
+    """The one line a command past its time limit ends with."""
+    return f"the command took longer than its time limit of {seconds:g} s (--time-limit-s)"
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+def _guard(read_fd: int, done: threading.Event, time_limit_s: float) -> None:
+    """The watchdog thread: wait for a signal byte; give the main thread GRACE_S; then end the process."""
+    from ..files.atomic import abandon_staged
+
+    wanted = {int(signal.SIGINT), int(signal.SIGTERM), int(signal.SIGALRM)}
+    while True:
+        try:
+            data = os.read(read_fd, 64)
+        except OSError:
+            return
+        if not data or done.is_set():
+            return
+        hits = [b for b in data if b in wanted]
+        if not hits:
+            continue
+        if done.wait(GRACE_S):
+            return  # the main thread handled it
+        signum = signal.Signals(hits[0])
+        abandon_staged()
+        if signum == signal.SIGALRM:
+            code, line = _EXIT_TIME_LIMIT, f"embroact: error: {time_limit_message(time_limit_s)}"
+        else:
+            code, word = _EXIT[signum]
+            line = f"embroact: {word}"
+        with contextlib.suppress(OSError):
+            os.write(2, (line + "\n").encode())
+        os._exit(code)
+
+
+@contextlib.contextmanager
+def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
+    """Run the block with SIGTERM raising :class:`Terminated`, the time limit, and the watchdog thread.
+
+    Outside the main thread (where no signal handler can be set) the block runs as it is.
+
+    Raises
+    ------
+    TimeLimitError
+        The block ran past ``time_limit_s`` (0: no limit).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    read_fd, write_fd = os.pipe()
+    os.set_blocking(write_fd, False)
+    done = threading.Event()
+
+    def on_alarm(signum, frame):
+        raise TimeLimitError(time_limit_message(time_limit_s))
+
+    old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
+    try:
+        old_fd = signal.set_wakeup_fd(write_fd, warn_on_full_buffer=False)
+    except ValueError:  # not possible here (an embedding that forbids it): signals as Python handles them
+        old_fd = None
+    thread = None
+    if old_fd is not None:
+        thread = threading.Thread(target=_guard, args=(read_fd, done, time_limit_s), name="embroact-watchdog",
+                                  daemon=True)
+        thread.start()
+    if time_limit_s > 0:
+        signal.setitimer(signal.ITIMER_REAL, time_limit_s)
+    try:
+        yield
+    finally:
+        if time_limit_s > 0:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+        done.set()
+        if old_fd is not None:
+            signal.set_wakeup_fd(old_fd)
+        os.close(write_fd)  # the thread's read returns b"": it ends
+        if thread is not None:
+            thread.join(1.0)
+        os.close(read_fd)
+        signal.signal(signal.SIGTERM, old_term)
+        if old_alarm is not None:
+            signal.signal(signal.SIGALRM, old_alarm)
+        sys.stderr.flush()
