@@ -315,3 +315,44 @@ def test_the_time_limit_flag_is_checked():
         assert r["code"] == 2 and r["err"].count("\n") == 1, r
         assert r["err"].startswith("embroact: error: argument --time-limit-s: "), r
     check_clean(results, "time limit flag")
+
+
+# ------------------------------------------------------------------------------ long values echoed
+LONG = 200_000
+#: A valid command line per command that the flag under test is added to (the studio would serve: left out).
+BASES = {
+    "zigzag": ZZ + ["-o", "a.dst"], "cross": ["cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg",
+                                              "45", "-o", "a.dst"],
+    "build": ["build", "--out", "out"], "check": ["check", "good.dst"], "predict": ["predict", "zigzag",
+                                                                                     "--width-mm", "7"],
+    "fit": ["fit", "data.csv", *FIT], "preview": ["preview", "stitches", "-o", "p.svg"],
+    "design": DESIGN_BEND + ["-o", "a.toml"],
+}
+
+
+def test_long_values_are_cut_in_every_error_line(tmp_path):
+    """Error lines echoed 200,000-character inputs whole: every line is now at most ERROR_CHARS (+ the note)."""
+    from embroact.export.cli.main import ERROR_CHARS
+    from test_hostile_generated import _value_flags
+
+    _inputs(tmp_path)
+    _good_dst(tmp_path)
+    (tmp_path / "out").mkdir()
+    cases = []
+    for cmd, flag, _ in _value_flags():
+        if cmd not in BASES:
+            continue
+        for tag, value in (("digits", "7" * LONG), ("letters", "x" * LONG), ("path", "M 0 0 L " + "1 " * LONG)):
+            cases.append({"id": f"{cmd}{flag}:{tag}", "argv": BASES[cmd] + [f"{flag}={value}"], "cwd": str(tmp_path)})
+    for cmd in ("check", "build", "predict"):  # a 200,000-character file name
+        cases.append({"id": f"{cmd}:file", "argv": [cmd, "d" * LONG + ".toml"] + (["--out", "out"] if cmd == "build"
+                                                                                  else []), "cwd": str(tmp_path)})
+    results = run_cases(cases, timeout=600)
+    for r in results.values():
+        assert r["code"] in (0, 1, 2, 3, 4), r["id"]
+        lines = r["err"].splitlines()
+        assert all(len(line) <= ERROR_CHARS + 120 for line in lines), (r["id"], max(map(len, lines)))
+        if r["code"] in (2, 3, 4):
+            check_error(r, r["code"])
+    assert len(results) > 150
+    check_clean(results, "long values")

@@ -98,7 +98,7 @@ class _Parser(argparse.ArgumentParser):
         super().__init__(*args, allow_abbrev=False, **kwargs)
 
     def error(self, message: str):
-        self.exit(EXIT_INPUT, f"{self.prog}: error: {_printable(message)} (see '{self.prog} --help')\n")
+        self.exit(EXIT_INPUT, f"{self.prog}: error: {_error_line(message)} (see '{self.prog} --help')\n")
 
     def parse_args(self, args=None, namespace=None):
         required = [a for a in self._actions if a.required]

@@ -48,6 +48,8 @@ DEFAULT_TIME_LIMIT_S = 3600.0
 #: Exit codes: the shell's 128 + signal number, and the solver's code for a time limit.
 _EXIT = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
 _EXIT_TIME_LIMIT = 4
+#: Stack of the watchdog thread [bytes] (the smallest most systems allow is 32 KiB; its calls are shallow).
+_STACK_BYTES = 256 * 1024
 
 
 class Terminated(KeyboardInterrupt):
@@ -127,7 +129,13 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     if old_fd is not None:
         thread = threading.Thread(target=_guard, args=(read_fd, done, time_limit_s), name="embroact-watchdog",
                                   daemon=True)
-        thread.start()
+        stack = threading.stack_size(_STACK_BYTES)  # it reads a pipe: no 8 MB stack under a memory ceiling
+        try:
+            thread.start()
+        except RuntimeError:  # no thread to be had (address space exhausted): Python's handlers alone
+            thread = None
+        finally:
+            threading.stack_size(stack)
     if time_limit_s > 0:
         signal.setitimer(signal.ITIMER_REAL, time_limit_s)
     try:
