@@ -292,6 +292,32 @@ def _affine(matrix: tuple[float, float, float, float, float, float] | None) -> t
     return linear, np.array([e, f]), stretch
 
 
+def _check_extent(path: "svgelements.Path", linear: np.ndarray, offset: np.ndarray) -> None:
+    """Refuse a path reaching beyond :data:`COORD_MM` (or not finite) in mm, before any point is computed.
+
+    A Bezier curve lies inside the hull of its control points and an arc inside the box of
+    its centre plus its larger radius, so mapping those corners through the transform bounds
+    everything the flattening would compute: no coordinate of 1e308 or transform that
+    overflows reaches its arithmetic (a quadratic to 1e308 raised OverflowError there).
+    """
+    corners = []
+    for seg in path:
+        for key in ("start", "end", "control", "control1", "control2"):
+            q = getattr(seg, key, None)
+            if q is not None:
+                corners.append((q.x, q.y))
+        center = getattr(seg, "center", None)
+        if center is not None:
+            r = max(abs(getattr(seg, "rx", 0.0) or 0.0), abs(getattr(seg, "ry", 0.0) or 0.0))
+            corners += [(center.x + sx * r, center.y + sy * r) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
+    if not corners:
+        return
+    with np.errstate(all="ignore"):
+        pts = np.array(corners, dtype=np.float64) @ linear.T + offset
+        worst = float(np.abs(pts).max()) if np.all(np.isfinite(pts)) else math.inf
+    check_coordinates("path", worst)
+
+
 def flatten(path: "svgelements.Path", matrix: tuple[float, float, float, float, float, float] | None = None) -> np.ndarray:
     """Polyline points of ``path`` (its units, SVG frame), subpaths joined end to start.
 
@@ -326,6 +352,7 @@ def flatten(path: "svgelements.Path", matrix: tuple[float, float, float, float, 
     import svgelements
 
     linear, offset, stretch = _affine(matrix)
+    _check_extent(path, linear, offset)
     tol = DEFAULT_TOLERANCES.curve_flatness_mm / stretch
     subpaths: list[list[np.ndarray]] = []
     for seg in path:

@@ -356,3 +356,90 @@ def test_long_values_are_cut_in_every_error_line(tmp_path):
             check_error(r, r["code"])
     assert len(results) > 150
     check_clean(results, "long values")
+
+
+# ------------------------------------------------------------------------------ SVG drawings
+SVG_HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="100mm" '
+            'height="100mm" viewBox="0 0 100 100">')
+#: Documents that are XML but no SVG drawing: (file text, the root the message names).
+NOT_SVG = {
+    "html": ("<html><body><p>a page</p></body></html>", "'html'"),
+    "xhtml": ('<html xmlns="http://www.w3.org/1999/xhtml"><body>' + SVG_HEAD + '<path id="t" d="M 0 0 H 10"/>'
+              "</svg></body></html>", "'{http://www.w3.org/1999/xhtml}html'"),
+    "namespace": ('<svg xmlns="http://example.com/not-svg"><path id="t" d="M 0 0 H 10"/></svg>',
+                  "'{http://example.com/not-svg}svg'"),
+    "mathml": ('<math xmlns="http://www.w3.org/1998/Math/MathML"><mi>x</mi></math>',
+               "'{http://www.w3.org/1998/Math/MathML}math'"),
+    "rss": ('<?xml version="1.0"?><rss version="2.0"><channel/></rss>', "'rss'"),
+}
+#: Shapes and transforms that reach past the coordinate bound or overflow a float, each element kind.
+FAR = {
+    "line-1e300": '<path id="t" d="M 0 0 L 1e300 0"/>',
+    "quadratic-1e308": '<path id="t" d="M 0 0 Q 1e308 1e308 10 0"/>',
+    "cubic-controls": '<path id="t" d="M 0 0 C 1e300 1e300 -1e300 1e300 10 0"/>',
+    "arc-radius": '<path id="t" d="M 0 0 A 1e300 1e300 0 0 1 1e300 0"/>',
+    "line-element": '<line id="t" x1="0" y1="0" x2="1e300" y2="0"/>',
+    "polyline": '<polyline id="t" points="0,0 10,0 1e300,5"/>',
+    "rect": '<rect id="t" width="1e300" height="1"/>',
+    "circle": '<circle id="t" r="1e300"/>',
+    "ellipse": '<ellipse id="t" rx="1e300" ry="1"/>',
+    "scale-chain": '<g transform="scale(1e200)"><g transform="scale(1e200)"><path id="t" d="M 0 0 H 10"/></g></g>',
+    "scale-far": '<g transform="scale(1e7)"><path id="t" d="M 0 0 H 10"/></g>',
+    "matrix-overflow": '<path id="t" transform="matrix(1e308 0 0 1e308 1e308 0)" d="M 0 0 H 10"/>',
+    "translate-twice": '<path id="t" transform="translate(1e308) translate(1e308)" d="M 0 0 H 10"/>',
+    "skew-89.99999": '<g transform="skewX(89.9999999999)"><path id="t" d="M 0 0 V 10"/></g>',
+    "clone-scale": '<path id="p" d="M 0 0 H 10"/><use id="t" xlink:href="#p" transform="scale(1e300)"/>',
+}
+
+
+def _clone_nest(levels: int, fan: int = 10) -> str:
+    """``levels`` groups of ``fan`` clones of the group below: fan**levels copies in a 2-4 KB file."""
+    parts = [SVG_HEAD, '<defs><g id="g0"><path d="M 0 0 L 10 0"/></g>']
+    for level in range(1, levels + 1):
+        parts.append(f'<g id="g{level}">' + "".join(f'<use xlink:href="#g{level - 1}" transform="translate({i},0)"/>'
+                                                    for i in range(fan)) + "</g>")
+    return "".join(parts + [f'</defs><use id="t" xlink:href="#g{levels}"/></svg>'])
+
+
+#: Every reader of SVG drawings: check --tube-path, the quick commands' --path, design's target, a design file.
+SVG_READERS = {
+    "check": ["check", "good.dst", "--tube-path", "{f}#t"],
+    "zigzag": ZZ + ["--path", "{f}#t", "-o", "a.dst"],
+    "design": ["design", "--target-shape", "{f}#t", "--at-kpa", "200", "-o", "a.toml"],
+    "design-file": ["check", "{f}.toml"],
+}
+
+
+def test_hostile_drawings_in_every_svg_reader(tmp_path):
+    """A non-SVG root raised TypeError, an overflowing transform 'cannot convert float NaN to integer',
+    a line to x = 1e300 via --tube-path DRAWING.svg#id gave 'inf mm path'; clones nested 5 and 7 deep (10 each)
+    took 32 s / 857 MB and 155 s / a MemoryError traceback. Each is one line now, in every reader."""
+    _good_dst(tmp_path)
+    drawings = {f"root-{k}": text for k, (text, _) in NOT_SVG.items()}
+    drawings.update({f"far-{k}": SVG_HEAD + body + "</svg>" for k, body in FAR.items()})
+    drawings.update({f"clones-{n}": _clone_nest(n) for n in (5, 7)})
+    drawings["clones-self"] = SVG_HEAD + '<g id="g"><use id="t" xlink:href="#g"/></g></svg>'
+    cases, want = [], {}
+    for did, text in drawings.items():
+        (tmp_path / f"{did}.svg").write_text(text)
+        (tmp_path / f"{did}.svg.toml").write_text(f'[[actuator]]\nname = "A1"\npattern = "zigzag"\nwidth_mm = 7\n'
+                                                  f'interval_mm = 1\npath = "{did}.svg#t"\n')
+        for rid, argv in SVG_READERS.items():
+            cid = f"{rid}:{did}"
+            cases.append({"id": cid, "argv": [a.replace("{f}", f"{did}.svg") for a in argv], "cwd": str(tmp_path)})
+            want[cid] = did
+    results = run_cases(cases, timeout=300)
+    for cid, did in want.items():
+        r = results[cid]
+        check_error(r, 2)
+        text = r["err"]
+        if did.startswith("root-"):
+            assert f"not an SVG drawing: the root element is {NOT_SVG[did[5:]][1]}" in text, r
+        elif did.startswith("far-"):
+            assert re.search(r"coordinates must be in \[-1e\+07, 1e\+07\] mm, got |transform matrix\(.*\) draws "
+                             r"nothing", text), r
+        else:
+            assert "clone" in text, r
+        assert f"{did}.svg" in text, r  # the file is named, in every reader
+    check_clean(results, "svg drawings")
+    assert not (tmp_path / "a.dst").exists() and not (tmp_path / "a.toml").exists()

@@ -60,7 +60,7 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import PathError
-from ...patterns.base.validate import PATH_SEGMENTS, TEXT_FILE_BYTES, read_input
+from ...patterns.base.validate import PATH_SEGMENTS, TEXT_FILE_BYTES, read_input, shown
 from ...patterns.centerline import Centerline
 
 if TYPE_CHECKING:
@@ -232,6 +232,26 @@ def _choose(found: list[_Found], name: str | None, file: str) -> _Found:
     raise PathError(f"{file}#{name}: no visible path, group or layer with id or label {name!r}{listing}")
 
 
+def _check_root(svg, data: bytes, p: Path) -> None:
+    """Refuse a document whose root is no ``<svg>`` (an HTML page, an ``svg`` in another namespace).
+
+    svgelements reads any XML, and hands back a plain element for a root it does not know.
+    """
+    import svgelements
+
+    if isinstance(svg, svgelements.SVG):
+        return
+    import io
+    import xml.etree.ElementTree as ET
+
+    try:  # the XML parsed already: its first start tag is the root's
+        tag = next(ET.iterparse(io.BytesIO(data), events=("start",)))[1].tag
+    except (ET.ParseError, StopIteration):
+        tag = "?"
+    raise PathError(f"{p}: not an SVG drawing: the root element is {shown(tag)}, expected "
+                    f"'{{http://www.w3.org/2000/svg}}svg' (an SVG file saved by a drawing program)")
+
+
 def read_svg_path(ref: str | os.PathLike, *, base_dir: str | os.PathLike | None = None) -> SvgPath:
     """Read one tube path from an SVG drawing, in mm, the drawing's frame (y down).
 
@@ -343,6 +363,7 @@ def _read_drawing(ref: str | os.PathLike, base_dir) -> _Drawing:
         svg = svgelements.SVG.parse(io.BytesIO(data), ppi=_SVGELEMENTS_PPI, reify=False)
     except Exception as exc:  # svgelements raises whatever its XML parser or number parsing raises
         raise PathError(f"{p}: not a readable SVG file ({type(exc).__name__}: {str(exc)[:80]})") from None
+    _check_root(svg, data, p)
     marks: list = []
     found = _walk(svg, None, (), False, marks)
     return _Drawing(str(p), name, found, marks)
