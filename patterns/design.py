@@ -90,7 +90,7 @@ from .base.choices import check_choice
 from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, check_name, shown
+from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit
@@ -382,6 +382,7 @@ class Design:
             raise ParameterError("actuators must hold at least one actuator, got none")
         if len(self.actuators) > DESIGN_ACTUATORS:
             raise ParameterError(f"a design must have at most {DESIGN_ACTUATORS:,} actuators, got {len(self.actuators):,}")
+        _check_total_segments(sum(len(a.segments) for a in self.actuators), "a design")
         names = [a.name for a in self.actuators]
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
@@ -537,6 +538,12 @@ def _pattern_params(a: dict, path: str, allowed: tuple[str, ...]):
     return params, _string(a.get("adjust", "auto"), f"{path}.adjust")
 
 
+def _check_total_segments(n: int, what: str) -> None:
+    """Refuse more than :data:`DESIGN_SEGMENTS` segment tables in one design (checking costs ~10 ms each)."""
+    if n > DESIGN_SEGMENTS:
+        raise ParameterError(f"{what} must have at most {DESIGN_SEGMENTS:,} segments in all its actuators, got {n:,}")
+
+
 def _segments(value, path: str) -> tuple[SegmentSpec, ...]:
     if not isinstance(value, list) or not value:
         raise DesignFileError(f"{path}: must be a non-empty list of tables ([[actuator.segment]]), got {value!r:.60}")
@@ -614,6 +621,11 @@ def design_from_dict(d) -> Design:
         raise DesignFileError(f"actuator: must be a non-empty list of tables ([[actuator]]), got {acts!r:.60}")
     if len(acts) > DESIGN_ACTUATORS:
         raise DesignFileError(f"actuator: a design must have at most {DESIGN_ACTUATORS:,} actuators, got {len(acts):,}")
+    try:  # before any actuator is read: 20 actuators of 200 segments took a minute to check
+        _check_total_segments(sum(len(a["segment"]) for a in acts if isinstance(a, dict)
+                                  and isinstance(a.get("segment"), list)), "actuator: a design")
+    except ParameterError as exc:
+        raise DesignFileError(str(exc)) from None
     specs = tuple(_actuator(a, i) for i, a in enumerate(acts))
     seen: dict[str, int] = {}
     for i, spec in enumerate(specs):

@@ -443,3 +443,38 @@ def test_hostile_drawings_in_every_svg_reader(tmp_path):
         assert f"{did}.svg" in text, r  # the file is named, in every reader
     check_clean(results, "svg drawings")
     assert not (tmp_path / "a.dst").exists() and not (tmp_path / "a.toml").exists()
+
+
+# ------------------------------------------------------------------------------ bounded work
+def _segmented_design(counts: list[int], seg_len: float = 2.0) -> str:
+    out = ['name = "big"\n[machine]\nhoop_width_mm = 5000.0\nhoop_height_mm = 5000.0\n']
+    for a, n in enumerate(counts):
+        out.append(f'[[actuator]]\nname = "A{a}"\npath = [[0.0, {a * 20.0}], [{n * seg_len}, {a * 20.0}]]\n')
+        out += [f'[[actuator.segment]]\npattern = "zigzag"\nwidth_mm = {6 + s % 3}\ninterval_mm = 1.0\n'
+                f'length_mm = {seg_len}\n' for s in range(n)]
+    return "".join(out)
+
+
+def test_segments_of_a_design_are_bounded_in_all(tmp_path):
+    """20 actuators of 200 segments took 63 s to check and 50 s / 490 MB to build: more than 1,000 segment
+    tables in one design are refused before any actuator is read, by every command that reads a design."""
+    from embroact.patterns.base.validate import DESIGN_SEGMENTS
+
+    layouts = {"20x200": [200] * 20, "6x200": [200] * 6, "1001x2": [2] * 501, "mixed": [200, 200, 200, 200, 199, 2]}
+    cases, want = [], {}
+    (tmp_path / "out").mkdir()
+    for lid, counts in layouts.items():
+        (tmp_path / f"{lid}.toml").write_text(_segmented_design(counts))
+        for cmd in (["check"], ["build", "--out", "out"], ["preview", "bend", "-o", "c.svg"]):
+            cid = f"{cmd[0]}:{lid}"
+            argv = [cmd[0], f"{lid}.toml", *cmd[1:]] if cmd[0] != "preview" else ["preview", "bend", f"{lid}.toml",
+                                                                                  "-o", "c.svg"]
+            cases.append({"id": cid, "argv": argv, "cwd": str(tmp_path)})
+            want[cid] = (lid, sum(counts))
+    results = run_cases(cases, timeout=120)
+    for cid, (lid, n) in want.items():
+        check_error(results[cid], 2, pattern=rf"(\S*/)?{lid}\.toml: actuator: a design must have at most "
+                                             rf"{DESIGN_SEGMENTS:,} segments in all its actuators, got {n:,}")
+        assert results[cid]["s"] < 3.0, (cid, results[cid]["s"])
+    check_clean(results, "segments in all")
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == []

@@ -32,6 +32,7 @@ limit                      value               applies to
 ``NAME_CHARS``             1,000               design and actuator names (file stems: 100)
 ``DESIGN_ACTUATORS``       1,000               actuators of one design (check: 14 s)
 ``ACTUATOR_SEGMENTS``      200                 ``[[actuator.segment]]`` tables of one actuator (check: 3 s)
+``DESIGN_SEGMENTS``        1,000               segment tables of all actuators of a design (check: ~15 s)
 ``COORD_MM``               1e7 mm (10 km)      abs(coordinate) of a path point, SVG or not
 =========================  ==================  =============================================
 
@@ -74,6 +75,7 @@ __all__ = [
     "NAME_CHARS",
     "DESIGN_ACTUATORS",
     "ACTUATOR_SEGMENTS",
+    "DESIGN_SEGMENTS",
     "COORD_MM",
     "SHOWN_CHARS",
     "shown",
@@ -97,6 +99,7 @@ PATH_SEGMENTS = 5_000
 NAME_CHARS = 1_000
 DESIGN_ACTUATORS = 1_000
 ACTUATOR_SEGMENTS = 200
+DESIGN_SEGMENTS = 1_000
 #: Largest |coordinate| of a path point [mm] (10 km: far beyond any hoop, far below float overflow).
 COORD_MM = 1e7
 #: Longest value an error message repeats (longer ones are cut and marked with '...').
