@@ -478,3 +478,37 @@ def test_segments_of_a_design_are_bounded_in_all(tmp_path):
         assert results[cid]["s"] < 3.0, (cid, results[cid]["s"])
     check_clean(results, "segments in all")
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == []
+
+
+def test_csv_coordinates_are_bounded_like_every_path_point(tmp_path):
+    """A marker at 1e300 mm was fitted through silently; a target shape point at 1e300 reached the search.
+    Both readers refuse a coordinate past COORD_MM naming line and column (NaN and inf as not finite)."""
+    src = Path(__file__).parents[1] / "examples" / "data" / "zigzag_w7_markers.csv"
+    header, *rows = src.read_text().splitlines()
+    names = header.split(",")
+    cases, want = [], {}
+    for k, (col, value) in enumerate(itertools.product((2, 6, 24, len(names) - 1), ("1e300", "-1.0000001e7",
+                                                                                   "1e308"))):
+        cells = rows[k % len(rows)].split(",")
+        cells[col] = value
+        body = rows[:k % len(rows)] + [",".join(cells)] + rows[k % len(rows) + 1:]
+        (tmp_path / f"m{k}.csv").write_text("\n".join([header, *body]) + "\n")
+        cid = f"markers-{k}"
+        cases.append({"id": cid, "argv": ["fit", f"m{k}.csv", "--markers", *FIT], "cwd": str(tmp_path)})
+        want[cid] = rf"m{k}\.csv line {k % len(rows) + 2}: {names[col]} must be in \[-1e\+07, 1e\+07\] mm, " \
+                    rf"got {re.escape(f'{float(value):g}')}"
+    for k, (row, col, value) in enumerate(itertools.product((1, 3), (0, 1), ("1e300", "-2e7", "1e308"))):
+        lines = ["0,0", "20,0", "40,2", "55,10"]
+        cells = lines[row].split(",")
+        cells[col] = value
+        lines[row] = ",".join(cells)
+        (tmp_path / f"t{k}.csv").write_text("x_mm,y_mm\n" + "\n".join(lines) + "\n")
+        cid = f"target-{k}"
+        cases.append({"id": cid, "argv": ["design", "--target-shape", f"t{k}.csv", "--at-kpa", "200", "-o", "a.toml"],
+                      "cwd": str(tmp_path)})
+        want[cid] = rf"t{k}\.csv line {row + 2}: {('x_mm', 'y_mm')[col]} must be in \[-1e\+07, 1e\+07\] mm, " \
+                    rf"got {re.escape(f'{float(value):g}')}"
+    results = run_cases(cases)
+    for cid, pattern in want.items():
+        check_error(results[cid], 2, pattern=pattern)
+    check_clean(results, "csv coordinates")

@@ -94,7 +94,7 @@ def read_target_shape(ref: str):
         from ..files.svgfile import svg_centerline
 
         return np.asarray(svg_centerline(ref).points_mm, dtype=np.float64)
-    from ..files.calibfile import read_csv_table  # the size limits of every CSV reader
+    from ..files.calibfile import check_csv_coordinates, read_csv_table  # the limits of every CSV reader
 
     columns, rows = read_csv_table(path)
     if "x_mm" not in columns or "y_mm" not in columns:
@@ -107,7 +107,12 @@ def read_target_shape(ref: str):
             raise DesignFileError(f"target shape {str(path)!r} row {line}: x_mm,y_mm must be two numbers, "
                                   f"got {','.join(row)[:40]!r}") from None
         points.append((x, y))
-    return np.array(points, dtype=np.float64).reshape(-1, 2)
+    xy = np.array(points, dtype=np.float64).reshape(-1, 2)
+    if not np.all(np.isfinite(xy)):
+        line = rows[int(np.argwhere(~np.isfinite(xy))[0][0])][0]
+        raise DesignFileError(f"target shape {str(path)!r} row {line}: x_mm,y_mm must be finite numbers")
+    check_csv_coordinates(path, rows, xy, ("x_mm", "y_mm"))
+    return xy
 
 
 def _settings(args):

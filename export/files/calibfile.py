@@ -74,7 +74,8 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
-from ...patterns.base.validate import CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count, read_input
+from ...patterns.base.validate import (COORD_MM, CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count,
+                                       read_input)
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from ...predict.layoutchoice import LAYOUT_FIELDS
@@ -87,6 +88,7 @@ __all__ = [
     "MarkerData",
     "read_bend_csv",
     "read_csv_table",
+    "check_csv_coordinates",
     "read_marker_csv",
     "read_calibration",
     "write_calibration",
@@ -223,6 +225,19 @@ def _columns(path, columns, rows, names) -> np.ndarray:
     return values
 
 
+def check_csv_coordinates(path, rows, values: np.ndarray, names) -> None:
+    """Refuse a coordinate [mm] beyond ``COORD_MM``, naming the line and column: the bound of every path point.
+
+    ``rows`` are :func:`read_csv_table`'s (line, cells) pairs, ``values`` one row of numbers per
+    row, in the order of ``names``.
+    """
+    far = np.argwhere(np.abs(values) > COORD_MM)
+    if far.size:
+        i, j = far[0]
+        raise DesignFileError(f"{path} line {rows[i][0]}: {names[j]} must be in [-{COORD_MM:g}, {COORD_MM:g}] mm, "
+                              f"got {values[i, j]:g}")
+
+
 def read_bend_csv(path) -> BendData:
     """Read ``pressure_kpa,angle_deg[,branch]`` rows (module docstring).
 
@@ -249,6 +264,7 @@ def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     axes = _AXES if "m1_z" in columns else _AXES[:2]
     names = [f"m{i}_{ax}" for i in range(1, n_markers + 1) for ax in axes]
     values = _columns(path, columns, rows, ["pressure_kpa", *names])
+    check_csv_coordinates(path, rows, values[:, 1:], names)
     markers = values[:, 1:].reshape(len(rows), n_markers, len(axes))
     return MarkerData(frozen_array(values[:, 0]), frozen_array(markers), _branches(path, columns, rows))
 
