@@ -23,10 +23,10 @@ import time
 
 import numpy as np
 
-from embroact.predict.curve import ActuatorModel, curve, pressure_at, sweep
-from embroact.predict.status import VALIDITY_LIMITS, Status
+from embroact.predict.curve import ActuatorModel, curve, pressure_at
+from embroact.predict.status import Status
 
-__all__ = ["timed", "angle_errors", "pressure_errors", "evaluate_method", "summarise", "sweep_throughput"]
+__all__ = ["timed", "angle_errors", "pressure_errors", "evaluate_method", "summarise"]
 
 #: Per-design timing budget [s] and repeat cap; at least one run always.
 TIME_BUDGET_S = 0.25
@@ -70,7 +70,9 @@ def _failed(status: np.ndarray, theta_ref_deg: np.ndarray) -> np.ndarray:
     """Points whose status is not the reference's: INFLATION below P0; above it BENDING, or a validity
     limit (COILED, KINKED, OVERSTRETCHED: a stable equilibrium the model answers, flagged as unlike a real
     sleeve)."""
-    bending = np.isin(status, [int(Status.BENDING)] + [int(s) for s in VALIDITY_LIMITS])
+    from stability import ANSWERED
+
+    bending = np.isin(status, ANSWERED)
     return np.where(theta_ref_deg == 0.0, status != Status.INFLATION, ~bending)
 
 
@@ -119,17 +121,3 @@ def summarise(per_design: list[dict], n_pressures: int) -> dict:
         "exceptions": sorted({r["error"] for r in per_design if r.get("error")}),
         "resolved": sorted({r["resolved"] for r in per_design if "resolved" in r}),
     }
-
-
-def sweep_throughput(models, pressures_kpa, *, rtol: float | None = None, repeats: int = 3) -> dict:
-    """Design-pressure evaluations per second of one vectorised ``sweep`` call (median of repeats after a warm-up),
-    and the points that needed a solve (above P0) per second."""
-    kwargs = {} if rtol is None else {"rtol": rtol}
-    c = sweep(models, pressures_kpa, **kwargs)  # warm-up; its answer gives the counts
-    _, times = timed(lambda: sweep(models, pressures_kpa, **kwargs), budget_s=float("inf"), max_repeats=repeats)
-    n = len(models) * len(pressures_kpa)
-    solved = int((c.status != Status.INFLATION).sum())  # inflation points need no solve
-    med = statistics.median(times)
-    return {"designs": len(models), "pressures": len(pressures_kpa), "evaluations": n, "time_s": med,
-            "evals_per_s": n / med, "solved_points": solved, "solved_per_s": solved / med, "method": c.method,
-            "rtol": rtol, "bending_points": int((c.status == Status.BENDING).sum())}

@@ -9,6 +9,11 @@ per size (a round checks each design often enough to take about as long as the
 
 Target (issue 17): 300 actuators at most 35x the time of 10 (linear: 30x).
 
+Model rules (EA401-EA406, :func:`identical_model_rules`): a design of 100 and one of 1000
+identical small zigzags (the scale benchmark's grid), each check on a fresh analysis with the
+model caches emptied, timed in paired rounds (``benchmarks/run.py`` reports the ratio; target:
+1000 at most 3x the time of 100, the work shared between identical actuators done once).
+
 Run: ``python benchmarks/rules_scaling.py [--repeats 15]``; prints one JSON object.
 """
 from __future__ import annotations
@@ -16,6 +21,7 @@ from __future__ import annotations
 import argparse
 import gc
 import json
+import statistics
 import time
 
 SIZES = (10, 100, 300)
@@ -68,6 +74,31 @@ def measure(repeats: int) -> dict:
         "findings": findings,
         "work": work,
     }
+
+
+def identical_model_rules(rounds: int, sizes=(100, 1000)) -> dict:
+    """Paired times of the model rules on ``sizes`` identical actuators (module docstring)."""
+    from run import paired_ratio, paired_rounds
+    from scale_bench import grid_design
+
+    from embroact.patterns.design import design_from_dict
+    from embroact.predict import curve as C
+    from embroact.predict.analysis import analyse
+    from embroact.predict.rules import check_model
+
+    analyses = {n: analyse(design_from_dict(grid_design(n))) for n in sizes}
+
+    def check(a):
+        a._curves.clear()  # a fresh analysis: no curve kept, no branch or lock-up cached
+        C._cached_branch.cache_clear()
+        C._cached_lockup.cache_clear()
+        return check_model(a)
+
+    findings = {n: len(check(a)) for n, a in analyses.items()}
+    times = paired_rounds({n: [lambda a=a: check(a)] for n, a in analyses.items()}, rounds)
+    lo, hi = sizes
+    return {"sizes": list(sizes), "findings": findings, "median_s": {n: statistics.median(t) for n, t in times.items()},
+            "ratio": paired_ratio(times, hi, lo), "linear_ratio": hi / lo}
 
 
 def main(argv=None) -> int:

@@ -33,17 +33,20 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import charts  # noqa: E402
 import model_bench  # noqa: E402
+import rules_scaling  # noqa: E402
 import scale_bench  # noqa: E402
 import stability  # noqa: E402
 import stitch_bench  # noqa: E402
 from baseline_scipy import baseline_of  # noqa: E402
-from competitor_numpy import competitor_of  # noqa: E402
+from competitor_numpy import DENSE_POINTS, DENSE_STEPS, competitor_batch, competitor_of  # noqa: E402
 from sample import reference_points, sample_designs  # noqa: E402
 
-from embroact.predict.curve import METHODS, curve  # noqa: E402
+from embroact.predict.curve import METHODS, curve, sweep  # noqa: E402
+from embroact.predict.status import Status  # noqa: E402
 
 __all__ = ["Config", "CONFIGS", "main", "run", "targets", "write_charts", "markdown_table", "markdown_targets",
-           "markdown_notes", "update_readme"]
+           "markdown_notes", "markdown_stability", "update_readme", "readme_blocks", "paired_rounds", "paired_ratio",
+           "README_BLOCKS", "READMES"]
 
 #: The default method, "the closed form as printed" baseline and its printed-form twin.
 AUTO, PRINTED = "auto", "printed-analytic-trace"
@@ -65,26 +68,35 @@ class Config:
     long_path_mm: float
     long_path_runs: int
     scale_runs: int
+    curve_rounds: int
+    sweep_rounds: int
+    rules_rounds: int
 
 
 CONFIGS = {
     "full": Config(n_designs=12, n_pressures=200, time_budget_s=0.25, baseline_designs=4, baseline_points=6,
                    stability_grid="full", sweep_designs=1000, cli_runs=11, long_path_mm=10_000.0, long_path_runs=3,
-                   scale_runs=3),
+                   scale_runs=3, curve_rounds=31, sweep_rounds=7, rules_rounds=5),
     "quick": Config(n_designs=2, n_pressures=12, time_budget_s=0.0, baseline_designs=1, baseline_points=2,
                     stability_grid="quick", sweep_designs=8, cli_runs=1, long_path_mm=500.0, long_path_runs=1,
-                    scale_runs=0),
+                    scale_runs=0, curve_rounds=3, sweep_rounds=2, rules_rounds=0),
 }
 
 #: Targets (issue 17: ratios measured in the same run, sizes, limits): name -> (unit, comparison, limit).
 TARGETS = {
     "auto_angle_err_max_deg": ("deg", "<=", 1e-9),
     "competitor_angle_err_max_deg": ("deg", "<=", 1e-9),
+    "dense_angle_err_max_deg": ("deg", "<=", 1e-9),
     "auto_speedup_vs_competitor": ("x", ">=", 1.5),
     "auto_over_closed_form_eval": ("x", "<=", 5.0),
     "one_over_200_pressures": ("ratio", "<=", 0.15),
+    "cold_speedup_vs_competitor": ("x", ">=", 1.5),
+    "cold_speedup_vs_dense": ("x", ">=", 1.5),
+    "cold_one_over_200_pressures": ("ratio", "<=", 0.2),
     "sweep_speedup_vs_competitor": ("x", ">=", 1.5),
+    "sweep_competitor_agrees_deg": ("deg", "<=", 1e-9),
     "auto_speedup_vs_scipy": ("x", ">=", 1000.0),
+    "model_rules_1000_over_100_identical": ("x", "<=", 3.0),
     "build_over_import_floor": ("x", "<=", 2.5),
     "check_dst_over_import_floor": ("x", "<=", 1.5),
     "help_over_argparse": ("x", "<=", 1.5),
@@ -121,33 +133,101 @@ def _methods(cfg: Config, designs, points) -> dict:
     return out
 
 
+#: The curve section's variants, timed in the same rounds: name -> what one call runs (per design).
+CURVE_VARIANTS = ("auto", "auto_one", "auto_cold", "auto_cold_one", "competitor", "dense", "eval")
+
+
+def paired_rounds(calls: dict, rounds: int) -> dict:
+    """Times [s] of every variant in each round: ``calls`` maps a name to a list of zero-argument
+    functions (one per design, or per item), each called once per round; the variants take turns in
+    each round (the order rotates from round to round), so a ratio of two variants compares times
+    taken under the same load. Returns name -> list of per-round totals.
+
+    Examples
+    --------
+    >>> t = paired_rounds({"a": [lambda: None], "b": [lambda: None, lambda: None]}, 3)
+    >>> sorted(t), len(t["a"])
+    (['a', 'b'], 3)
+    """
+    import gc
+
+    names = list(calls)
+    out = {n: [] for n in names}
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        for r in range(rounds):
+            order = names[r % len(names):] + names[:r % len(names)]
+            per = dict.fromkeys(names, 0.0)
+            for k in range(max(len(calls[n]) for n in names)):  # design by design, every variant in turn
+                for n in order:
+                    if k < len(calls[n]):
+                        t = time.perf_counter()
+                        calls[n][k]()
+                        per[n] += time.perf_counter() - t
+            for n in names:
+                out[n].append(per[n])
+    finally:
+        if enabled:
+            gc.enable()
+    return out
+
+
+def paired_ratio(times: dict, num: str, den: str) -> dict:
+    """min / median / max over rounds of ``times[num][r] / times[den][r]`` (:func:`paired_rounds`)."""
+    r = sorted(a / b for a, b in zip(times[num], times[den]))
+    return {"min": r[0], "median": statistics.median(r), "max": r[-1], "rounds": len(r)}
+
+
+def _fresh_models(model, n: int, tag: str) -> list:
+    """``n`` copies of ``model`` that share nothing cached with it (a new calibration label each)."""
+    return [replace(model, calibration=f"{tag} {k}") for k in range(n)]
+
+
 def _competitor(cfg: Config, designs, points, methods) -> dict:
-    """The numpy competitor, one closed-form evaluation and 1-pressure curves, per design (same timer as methods)."""
-    rows = []
-    auto = {r["design"]: r for r in methods[AUTO]["per_design"]}
+    """The curve section, every ratio paired: in each of ``cfg.curve_rounds`` rounds every variant runs once
+    per design, interleaved (:func:`paired_rounds`). Variants: ``auto`` (repeated calls on one model: its
+    branch table kept), ``auto_one`` (the same with only the last pressure), ``auto_cold`` and
+    ``auto_cold_one`` (a first call on a model: a new model each call, built before the timing), the
+    competitor (no cache: every call is a first call), the dense-grid version and one closed-form
+    evaluation of the competitor at the 200 reference angles."""
+    rounds = cfg.curve_rounds
+    calls = {n: [] for n in CURVE_VARIANTS}
+    errs = {"competitor": [], "dense": []}
     for d, (p, th) in zip(designs, points):
         comp = competitor_of(d.model)
-        got, t_comp = model_bench.timed(lambda: comp.theta_deg(p), budget_s=cfg.time_budget_s)
-        _, t_eval = model_bench.timed(lambda: comp.pressure_mpa(np.radians(th)), budget_s=cfg.time_budget_s)
-        _, t_one = model_bench.timed(lambda: curve(d.model, p[-1:]), budget_s=cfg.time_budget_s)
-        # a first call on a model (nothing cached for it yet): a new calibration label makes a new model
-        fresh = (replace(d.model, calibration=f"cold {k}") for k in itertools.count())
-        _, t_cold = model_bench.timed(lambda: curve(next(fresh), p), budget_s=cfg.time_budget_s)
-        rows.append({"design": d.name, "time_s": statistics.median(t_comp), "eval_time_s": statistics.median(t_eval),
-                     "one_pressure_time_s": statistics.median(t_one), "auto_time_s": auto[d.name]["time_s"],
-                     "auto_cold_time_s": statistics.median(t_cold),
-                     "solved_points": int((th != 0.0).sum()),
-                     "angle_err_deg": float(model_bench.angle_errors(got, th).max())})
-    med = {k: statistics.median(r[k] for r in rows) for k in ("time_s", "eval_time_s", "one_pressure_time_s",
-                                                                  "auto_time_s", "auto_cold_time_s")}
-    return {"designs": rows, "time_per_curve_ms": med["time_s"] * 1e3, "eval_ms": med["eval_time_s"] * 1e3,
-            "one_pressure_ms": med["one_pressure_time_s"] * 1e3, "auto_ms": med["auto_time_s"] * 1e3,
-            "auto_cold_ms": med["auto_cold_time_s"] * 1e3,
-            "angle_err_max_deg": max(r["angle_err_deg"] for r in rows),
-            "solved_per_s": sum(r["solved_points"] for r in rows) / sum(r["time_s"] for r in rows),
-            "auto_speedup": med["time_s"] / med["auto_time_s"],
-            "auto_over_eval": med["auto_time_s"] / med["eval_time_s"],
-            "one_over_200": med["one_pressure_time_s"] / med["auto_time_s"]}
+        errs["competitor"].append(float(model_bench.angle_errors(comp.theta_deg(p), th).max()))
+        errs["dense"].append(float(model_bench.angle_errors(
+            comp.theta_deg(p, grid_points=DENSE_POINTS, steps=DENSE_STEPS), th).max()))
+        curve(d.model, p)  # warm: the branch table is kept from here on
+        cold, cold_one = iter(_fresh_models(d.model, rounds, "cold")), iter(_fresh_models(d.model, rounds, "cold1"))
+        angles = np.radians(th)
+        calls["auto"].append(lambda m=d.model, p=p: curve(m, p))
+        calls["auto_one"].append(lambda m=d.model, p=p[-1:]: curve(m, p))
+        calls["auto_cold"].append(lambda it=cold, p=p: curve(next(it), p))
+        calls["auto_cold_one"].append(lambda it=cold_one, p=p[-1:]: curve(next(it), p))
+        calls["competitor"].append(lambda m=d.model, p=p: competitor_of(m).theta_deg(p))
+        calls["dense"].append(lambda m=d.model, p=p: competitor_of(m).theta_deg(p, grid_points=DENSE_POINTS,
+                                                                                steps=DENSE_STEPS))
+        calls["eval"].append(lambda c=comp, a=angles: c.pressure_mpa(a))
+    times = paired_rounds(calls, rounds)
+    n = len(designs)
+    per_curve_ms = {k: statistics.median(v) / n * 1e3 for k, v in times.items()}
+    ratios = {"auto_speedup": paired_ratio(times, "competitor", "auto"),
+              "auto_over_eval": paired_ratio(times, "auto", "eval"),
+              "one_over_200": paired_ratio(times, "auto_one", "auto"),
+              "cold_speedup": paired_ratio(times, "competitor", "auto_cold"),
+              "cold_speedup_vs_dense": paired_ratio(times, "dense", "auto_cold"),
+              "cold_one_over_200": paired_ratio(times, "auto_cold_one", "auto_cold"),
+              "cold_over_warm": paired_ratio(times, "auto_cold", "auto")}
+    solved = sum(int((th != 0.0).sum()) for _, th in points)
+    return {"rounds": rounds, "per_curve_ms": per_curve_ms,
+            "per_curve_min_ms": {k: min(v) / n * 1e3 for k, v in times.items()},
+            "ratios": ratios, "angle_err_max_deg": max(errs["competitor"]),
+            "dense_angle_err_max_deg": max(errs["dense"]), "dense": {"grid_points": DENSE_POINTS,
+                                                                     "secant_steps": DENSE_STEPS},
+            "time_per_curve_ms": per_curve_ms["competitor"], "auto_ms": per_curve_ms["auto"],
+            "solved_points": solved}
 
 
 def _fmt(v, spec: str) -> str:
@@ -182,19 +262,34 @@ def _baseline(cfg: Config, designs, points, methods) -> dict:
 
 
 def _throughput(cfg: Config) -> dict:
+    """``sweep`` of many designs against the competitor vectorised across the same designs (one call each,
+    every ratio paired over ``cfg.sweep_rounds`` rounds), at the default rtol and at 1e-6, and against a
+    Python loop of ``curve()`` on the first 100 designs."""
     models = [d.model for d in sample_designs(cfg.sweep_designs, seed=7)]
     pressures = np.linspace(0.0, 400.0, 200 if cfg.sweep_designs > 100 else 12)
-    out = {"default_rtol": model_bench.sweep_throughput(models, pressures),
-           "rtol_1e-6": model_bench.sweep_throughput(models, pressures, rtol=1e-6)}
     few = models[: min(100, len(models))]
-    t = time.perf_counter()
-    for m in few:
-        curve(m, pressures)
-    loop = (time.perf_counter() - t) / len(few)
-    out["loop_of_curve_per_design_ms"] = loop * 1e3
-    out["vectorised_per_design_ms"] = out["default_rtol"]["time_s"] / len(models) * 1e3
-    out["vectorised_over_loop"] = loop / (out["default_rtol"]["time_s"] / len(models))
-    return out
+    ref = sweep(models, pressures)  # warm-up; its answer gives the counts and the competitor's agreement
+    comp = competitor_batch(models).theta_deg_rows(pressures)
+    bending = ref.status == int(Status.BENDING)
+    times = paired_rounds({"sweep": [lambda: sweep(models, pressures)],
+                           "sweep_rtol_1e-6": [lambda: sweep(models, pressures, rtol=1e-6)],
+                           "competitor": [lambda: competitor_batch(models).theta_deg_rows(pressures)],
+                           "loop": [lambda: [curve(m, pressures) for m in few]]}, cfg.sweep_rounds)
+    n = len(models) * len(pressures)
+    solved = int((ref.status != Status.INFLATION).sum())
+    med = {k: statistics.median(v) for k, v in times.items()}
+    out = {k: {"designs": len(models), "pressures": len(pressures), "evaluations": n, "time_s": med[k],
+               "evals_per_s": n / med[k], "solved_points": solved, "solved_per_s": solved / med[k]}
+           for k in ("sweep", "sweep_rtol_1e-6", "competitor")}
+    loop = med["loop"] / len(few)
+    return {"default_rtol": out["sweep"], "rtol_1e-6": out["sweep_rtol_1e-6"], "competitor": out["competitor"],
+            "rounds": cfg.sweep_rounds,
+            "sweep_speedup_vs_competitor": paired_ratio(times, "competitor", "sweep"),
+            "competitor_vs_sweep_max_deg": float(np.abs(comp - ref.theta_deg)[bending].max()),
+            "loop_of_curve_per_design_ms": loop * 1e3,
+            "vectorised_per_design_ms": med["sweep"] / len(models) * 1e3,
+            "vectorised_over_loop": {k: v * len(models) / len(few) for k, v in
+                                     paired_ratio(times, "loop", "sweep").items() if k != "rounds"}}
 
 
 def _stability(cfg: Config) -> dict:
@@ -239,11 +334,17 @@ def targets(res: dict) -> dict:
     values = {
         "auto_angle_err_max_deg": auto["angle_err_max_deg"],
         "competitor_angle_err_max_deg": comp["angle_err_max_deg"],
-        "auto_speedup_vs_competitor": comp["auto_speedup"],
-        "auto_over_closed_form_eval": comp["auto_over_eval"],
-        "one_over_200_pressures": comp["one_over_200"],
-        "sweep_speedup_vs_competitor": res["throughput"]["default_rtol"]["solved_per_s"] / comp["solved_per_s"],
+        "dense_angle_err_max_deg": comp["dense_angle_err_max_deg"],
+        "auto_speedup_vs_competitor": comp["ratios"]["auto_speedup"]["median"],
+        "auto_over_closed_form_eval": comp["ratios"]["auto_over_eval"]["median"],
+        "one_over_200_pressures": comp["ratios"]["one_over_200"]["median"],
+        "cold_speedup_vs_competitor": comp["ratios"]["cold_speedup"]["median"],
+        "cold_speedup_vs_dense": comp["ratios"]["cold_speedup_vs_dense"]["median"],
+        "cold_one_over_200_pressures": comp["ratios"]["cold_one_over_200"]["median"],
+        "sweep_speedup_vs_competitor": res["throughput"]["sweep_speedup_vs_competitor"]["median"],
+        "sweep_competitor_agrees_deg": res["throughput"]["competitor_vs_sweep_max_deg"],
         "auto_speedup_vs_scipy": base["speedup_auto"],
+        "model_rules_1000_over_100_identical": res["rules"]["ratio"]["median"] if res.get("rules") else None,
         "build_over_import_floor": cli["build_over_floor"],
         "check_dst_over_import_floor": cli["check_dst_over_floor"],
         "help_over_argparse": cli["help_over_argparse"],
@@ -279,6 +380,10 @@ def _pareto_points(res: dict) -> list[dict]:
                 "error_deg": b["angle_err_max_deg"], "kind": "baseline"})
     pts.append({"label": "numpy competitor (closed form, table, 4 secant steps)", "time_ms": c["time_per_curve_ms"],
                 "error_deg": c["angle_err_max_deg"], "kind": "baseline"})
+    pts.append({"label": f"dense-grid numpy ({c['dense']['grid_points']} points, {c['dense']['secant_steps']} steps)",
+                "time_ms": c["per_curve_ms"]["dense"], "error_deg": c["dense_angle_err_max_deg"], "kind": "baseline"})
+    pts.append({"label": "auto, first call on a new model", "time_ms": c["per_curve_ms"]["auto_cold"],
+                "error_deg": res["methods"][AUTO]["angle_err_max_deg"], "kind": "auto"})
     return [p for p in pts if not (p["kind"] == "method" and p["label"] == res["methods"][AUTO]["resolved"][0])]
 
 
@@ -331,14 +436,31 @@ def markdown_notes(res: dict) -> str:
                                                        else ""))
         + f"; 100 tiny actuators +-999,999 mm apart: exit {sc['far_apart']['rc']} in {sc['far_apart']['s']:.2f} s"
         + (f" (`{sc['far_apart']['stderr'][0]}`)" if sc['far_apart']['stderr'] else "") + "."]
+    r, ms = c["ratios"], c["per_curve_ms"]
+
+    def x(k):
+        return f"{r[k]['median']:.3g} x [{r[k]['min']:.3g}, {r[k]['max']:.3g}]"
+
+    ru = res.get("rules")
+    rules_lines = [] if not ru else [
+        f"* Model rules (EA401-EA406) on identical small zigzags, a fresh analysis each time: "
+        f"{' / '.join(str(n) for n in ru['sizes'])} actuators in "
+        f"{' / '.join(f'{v:.3g}' for v in ru['median_s'].values())} s (**{ru['ratio']['median']:.3g} x** "
+        f"[{ru['ratio']['min']:.3g}, {ru['ratio']['max']:.3g}], {ru['ratio']['rounds']} paired rounds; linear would be "
+        f"{ru['linear_ratio']:.3g} x): the curve and the lock-up search of identical models are made once."]
     return "\n".join([
-        f"* `auto` against the numpy competitor (`competitor_numpy.py`: closed form, table + 4 secant steps, "
-        f"{c['angle_err_max_deg']:.1e} deg): {c['auto_ms']:.3g} ms against {c['time_per_curve_ms']:.3g} ms per 200-pressure "
-        f"curve (**{c['auto_speedup']:.3g} x**); one closed-form evaluation at the 200 angles {c['eval_ms']:.3g} ms "
-        f"(auto = {c['auto_over_eval']:.3g} evaluations); a 1-pressure curve {c['one_pressure_ms']:.3g} ms "
-        f"({c['one_over_200']:.2f} of a 200-pressure one). These are repeated calls on one model, as the studio and "
-        f"inverse design make them (its tabulation is kept); a first call on a model takes "
-        f"{c.get('auto_cold_ms', float('nan')):.3g} ms.",
+        f"* Curves, every ratio paired ({c['rounds']} interleaved rounds over the {len(res['designs'])} designs; median "
+        f"[min, max] of the per-round ratios): repeated calls on one model (its branch table kept, as the studio and "
+        f"inverse design make them) `auto` {ms['auto']:.3g} ms per 200-pressure curve against the competitor's "
+        f"{ms['competitor']:.3g} ms (`competitor_numpy.py`: closed form, table + 4 secant steps, "
+        f"{c['angle_err_max_deg']:.1e} deg; **{x('auto_speedup')}**); a first call on a new model {ms['auto_cold']:.3g} ms: "
+        f"**{x('cold_speedup')}** faster than the competitor's first call (it keeps nothing: every call is a first "
+        f"call), {x('cold_speedup_vs_dense')} faster than the dense-grid version ({ms['dense']:.3g} ms: "
+        f"{c['dense']['grid_points']} points, {c['dense']['secant_steps']} secant steps, "
+        f"{c['dense_angle_err_max_deg']:.1e} deg), {x('cold_over_warm')} a repeated call. One pressure: "
+        f"{ms['auto_one']:.3g} ms repeated ({x('one_over_200')} of 200), {ms['auto_cold_one']:.3g} ms first "
+        f"({x('cold_one_over_200')} of a first 200-pressure call); one closed-form evaluation at the 200 angles "
+        f"{ms['eval']:.3g} ms (a repeated `auto` curve = {x('auto_over_eval')} evaluations).",
         f"* `auto` against the scipy baseline (same {len(b['designs'])} designs): {b['auto_time_per_curve_ms']:.3g} ms "
         f"against {b['time_per_curve_ms'] / 1e3:.3g} s per curve, **{b['speedup_auto']:.3g} times faster**, with a "
         f"maximum angle error of {b['auto_angle_err_max_deg']:.1e} deg against {b['angle_err_max_deg']:.1e} deg.",
@@ -346,12 +468,14 @@ def markdown_notes(res: dict) -> str:
         f"{pr['time_ratio_to_auto']:.3g} times slower and its largest angle error ({pr['angle_err_max_deg']:.1e} deg) "
         f"is {pr['error_ratio_to_auto']:.2g} times `auto`'s.",
         f"* Sweeps: `sweep` of {tp['default_rtol']['designs']} designs x {tp['default_rtol']['pressures']} pressures "
-        f"in {tp['default_rtol']['time_s'] * 1e3:.0f} ms = **{tp['default_rtol']['evals_per_s']:.3g} design-pressure "
-        f"evaluations/s** ({tp['rtol_1e-6']['evals_per_s']:.3g}/s at rtol 1e-6); counting only the "
-        f"{tp['default_rtol']['solved_points']} points above P0 (the others need no solve), "
-        f"{tp['default_rtol']['solved_per_s']:.3g} solved points/s against the competitor's {c['solved_per_s']:.3g}/s; "
+        f"in {tp['default_rtol']['time_s'] * 1e3:.0f} ms = {tp['default_rtol']['evals_per_s']:.3g} design-pressure "
+        f"evaluations/s ({tp['rtol_1e-6']['evals_per_s']:.3g}/s at rtol 1e-6); the competitor vectorised across the "
+        f"same designs (one call, each row its own table) {tp['competitor']['time_s'] * 1e3:.0f} ms: `sweep` "
+        f"**{tp['sweep_speedup_vs_competitor']['median']:.3g} x** [{tp['sweep_speedup_vs_competitor']['min']:.3g}, "
+        f"{tp['sweep_speedup_vs_competitor']['max']:.3g}] ({tp['rounds']} paired rounds; the two agree to "
+        f"{tp['competitor_vs_sweep_max_deg']:.1e} deg on the bending points); "
         f"{tp['vectorised_per_design_ms']:.3g} ms per design against {tp['loop_of_curve_per_design_ms']:.3g} ms in a "
-        f"loop of `curve()` ({tp['vectorised_over_loop']:.3g} times).",
+        f"loop of `curve()` ({tp['vectorised_over_loop']['median']:.3g} times).",
         f"* Stitch generation on a {st['needle_rate'][0]['length_mm'] / 1000:g} m curved path: {rates}.",
         f"* The {ld['length_mm'] / 1000:g} m zigzag design ({ld['stitches']} stitches): generated in "
         f"{ld['generate_s'] * 1e3:.0f} ms, checked (every rule, {ld['findings']} findings) in {ld['check_s'] * 1e3:.0f} ms, "
@@ -367,17 +491,51 @@ def markdown_notes(res: dict) -> str:
         f"{', '.join(st['help_heavy_imports']) or 'none of numpy, shapely, trimesh, scipy'}.",
         f"* Machine: {res['machine']['cpus']} cores, Python {res['machine']['python']}, load average at the start "
         f"{res['machine']['load_average'][0]:.2f} (other jobs were running); whole run {res['elapsed_s']:.0f} s.",
-    ] + scale_lines)
+    ] + rules_lines + scale_lines)
+
+
+def markdown_stability(res: dict) -> str:
+    """The table of where each method is within the stability map's tolerance, from a results dict."""
+    st, classes = res["stability"]["summary"], res["stability"]["grid"]["classes"]
+    failed = classes[stability.FAILED_CLASS]
+
+    def start(v):
+        return "never" if v is None else f"{v:.2g}"
+
+    lines = ["| method | zigzag: within 1e-6 rel. from [deg] | cross: from [deg] | failed cells (zigzag / cross) | "
+             "largest error on the sample [deg] |", "|---|---:|---:|---:|---:|"]
+    for m in METHODS:
+        z, x = st[m]["zigzag"], st[m]["cross"]
+        lines.append(f"| `{m}` | {start(z['within_tolerance_from_deg'])} | {start(x['within_tolerance_from_deg'])} | "
+                     f"{z['counts'][failed]} / {x['counts'][failed]} | {res['methods'][m]['angle_err_max_deg']:.1e} |")
+    return "\n".join(lines)
+
+
+#: The generated blocks of a README: name -> the function that writes it from a results dict.
+README_BLOCKS = {"targets": markdown_targets, "methods": markdown_table, "notes": markdown_notes,
+                 "stability": markdown_stability}
+#: The READMEs whose blocks come from the committed results.json.
+READMES = (Path(__file__).resolve().parent / "README.md", Path(__file__).resolve().parents[1] / "README.md")
+
+
+def readme_blocks(text: str) -> dict:
+    """The generated blocks found in a README's text: name -> body (between the markers)."""
+    out = {}
+    for name in README_BLOCKS:
+        begin, end = f"<!-- begin:{name} -->\n", f"\n<!-- end:{name} -->"
+        if begin in text:
+            out[name] = text.split(begin, 1)[1].split(end, 1)[0]
+    return out
 
 
 def update_readme(res: dict, path: Path) -> None:
-    """Replace the blocks between ``<!-- begin:NAME -->`` and ``<!-- end:NAME -->`` in the README."""
+    """Replace the body of each ``<!-- begin:NAME -->`` ... ``<!-- end:NAME -->`` block of the README by the
+    text :data:`README_BLOCKS` makes from ``res``."""
     text = path.read_text()
-    for name, body in (("targets", markdown_targets(res)), ("methods", markdown_table(res)),
-                       ("notes", markdown_notes(res))):
+    for name in readme_blocks(text):
         begin, end = f"<!-- begin:{name} -->", f"<!-- end:{name} -->"
         head, rest = text.split(begin, 1)
-        text = head + begin + "\n" + body + "\n" + end + rest.split(end, 1)[1]
+        text = head + begin + "\n" + README_BLOCKS[name](res) + "\n" + end + rest.split(end, 1)[1]
     path.write_text(text)
 
 
@@ -419,17 +577,21 @@ def run(cfg: Config, out_dir: Path) -> dict:
     b = res["baseline_scipy"]
     _log(f"  scipy {b['time_per_curve_ms']:.4g} ms/curve (auto {b['auto_time_per_curve_ms']:.3g} ms on the same "
          f"designs: {b['speedup_auto']:.3g}x), angle err {b['angle_err_max_deg']:.2e} deg")
-    _log("numpy competitor (closed form + secant steps), one closed-form evaluation, 1-pressure curves:")
+    _log(f"curves, paired rounds ({cfg.curve_rounds}): auto warm and cold, the competitor, the dense grid:")
     res["competitor"] = _competitor(cfg, designs, points, res["methods"])
-    c = res["competitor"]
-    _log(f"  competitor {c['time_per_curve_ms']:.3f} ms/curve (err {c['angle_err_max_deg']:.1e} deg), one evaluation "
-         f"{c['eval_ms']:.3f} ms, auto {c['auto_ms']:.3f} ms, auto 1 pressure {c['one_pressure_ms']:.3f} ms, "
-         f"auto first call on a model {c['auto_cold_ms']:.3f} ms")
-    _log("sweep throughput:")
+    c, r = res["competitor"], res["competitor"]["ratios"]
+    _log("  ms/curve " + ", ".join(f"{k} {v:.3f}" for k, v in c["per_curve_ms"].items()))
+    _log("  ratios (median [min, max]) " + ", ".join(f"{k} {v['median']:.3g} [{v['min']:.3g}, {v['max']:.3g}]"
+                                                  for k, v in r.items()))
+    _log(f"sweep against the competitor vectorised across designs, paired rounds ({cfg.sweep_rounds}):")
     res["throughput"] = _throughput(cfg)
     tp = res["throughput"]
-    _log(f"  {tp['default_rtol']['evals_per_s']:.3g} evals/s (rtol 1e-6: {tp['rtol_1e-6']['evals_per_s']:.3g}); "
-         f"vectorised {tp['vectorised_over_loop']:.3g}x a loop of curve()")
+    _log(f"  sweep {tp['default_rtol']['time_s'] * 1e3:.0f} ms, competitor {tp['competitor']['time_s'] * 1e3:.0f} ms: "
+         f"{tp['sweep_speedup_vs_competitor']['median']:.3g}x (agree to {tp['competitor_vs_sweep_max_deg']:.1e} deg)")
+    if cfg.rules_rounds:
+        _log("model rules on identical actuators, paired rounds:")
+        res["rules"] = rules_scaling.identical_model_rules(cfg.rules_rounds)
+        _log(f"  {res['rules']['median_s']} s: {res['rules']['ratio']['median']:.3g}x")
     _log("stability maps:")
     res["stability"] = _stability(cfg)
     _log("stitches, files, command line:")
@@ -457,6 +619,14 @@ def write_charts(res: dict, out_dir: Path) -> None:
         maps, g["theta_abs_deg"], {pt: (g["row_labels"][pt], g["rows"][pt]) for pt in _PATTERNS}, g["classes"]))
 
 
+def _update_readmes(res: dict, out: Path) -> None:
+    """The README of ``out`` (and, when ``out`` is this folder, the project's README) from ``res``."""
+    paths = READMES if out.resolve() == READMES[0].parent else (out / "README.md",)
+    for path in paths:
+        if path.exists():
+            update_readme(res, path)
+
+
 def main(argv=None) -> int:
     """Command line; returns 0 (targets are reported, not enforced: this is a benchmark)."""
     ap = argparse.ArgumentParser(description="embroact benchmarks (speed against accuracy)")
@@ -472,12 +642,11 @@ def main(argv=None) -> int:
     if args.replot:
         res = json.loads((args.out / "results.json").read_text())
         write_charts(res, args.out)
-        if (args.out / "README.md").exists():
-            update_readme(res, args.out / "README.md")
+        _update_readmes(res, args.out)
         return 0
     res = run(CONFIGS["quick" if args.quick else "full"], args.out)
-    if (args.out / "README.md").exists() and not args.quick:
-        update_readme(json.loads((args.out / "results.json").read_text()), args.out / "README.md")
+    if not args.quick:
+        _update_readmes(json.loads((args.out / "results.json").read_text()), args.out)
     _log("\n" + markdown_table(res) + "\n\n" + markdown_targets(res) + "\n")
     _log(f"wrote results.json, pareto.svg, stability.svg to {args.out} in {res['elapsed_s']:.0f} s")
     return 0

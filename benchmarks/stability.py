@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from embroact.predict.curve import curve, lockup
-from embroact.predict.status import Status
+from embroact.predict.status import VALIDITY_LIMITS, Status
 from sample import design, reference_point
 
 __all__ = ["CLASSES", "REL_TOL", "GRID", "classify", "panel_designs", "panel_reference", "method_panel"]
@@ -44,6 +44,8 @@ CLASSES = (("rel. error <= 1e-9", 1e-9), ("<= tolerance 1e-6", REL_TOL), ("<= 1e
            ("> 1e-2 (wrong)", math.inf), ("FAILED / exception / wrong status", None),
            ("no equilibrium (past branch end)", None))
 FAILED_CLASS, NO_EQUILIBRIUM_CLASS = 4, 5
+#: Statuses that answer the cell (the methods table counts the same ones as not failed).
+ANSWERED = [int(Status.BENDING)] + [int(s) for s in VALIDITY_LIMITS]
 THETA_MIN_DEG, THETA_MAX_DEG = 1e-7, 330.0
 CROSS_WIDTH_MM = 7.0
 #: G [MPa] of the map designs: the paper's fits for w = 7 mm (zigzag) and alpha0 = 60 deg (cross).
@@ -104,7 +106,8 @@ def method_panel(panel: dict, method: str) -> dict:
             notes.add(f"{d.name}: {type(exc).__name__}: {str(exc)[:120]}")
             continue
         e = np.maximum(np.abs(c.theta_deg - th[i, ok]) - panel["input_floor_deg"][i, ok], 0.0) / np.abs(th[i, ok])
-        bad = (c.status != Status.BENDING) | ~np.isfinite(e)
+        # a validity limit (COILED, KINKED, OVERSTRETCHED) is an answered equilibrium, as in the methods table
+        bad = ~np.isin(c.status, ANSWERED) | ~np.isfinite(e)
         notes.update(f"status {Status(int(s)).name}" for s in c.status[bad])
         err[i, ok] = np.where(bad, np.inf, e)
     cls = np.where(np.isnan(err), NO_EQUILIBRIUM_CLASS, classify(np.where(np.isnan(err), 0.0, err)))

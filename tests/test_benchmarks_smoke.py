@@ -54,9 +54,13 @@ def test_targets_report_the_measured_values(quick):
     t = res["targets"]
     assert t["auto_angle_err_max_deg"]["value"] == res["methods"]["auto"]["angle_err_max_deg"]
     c = res["competitor"]
-    assert t["auto_speedup_vs_competitor"]["value"] == c["auto_speedup"]
-    assert t["one_over_200_pressures"]["value"] == c["one_over_200"]
+    assert t["auto_speedup_vs_competitor"]["value"] == c["ratios"]["auto_speedup"]["median"]
+    assert t["one_over_200_pressures"]["value"] == c["ratios"]["one_over_200"]["median"]
+    assert t["cold_speedup_vs_dense"]["value"] == c["ratios"]["cold_speedup_vs_dense"]["median"]
+    for r in c["ratios"].values():  # paired: every ratio from the same rounds
+        assert r["rounds"] == bench_run.CONFIGS["quick"].curve_rounds and r["min"] <= r["median"] <= r["max"]
     assert c["angle_err_max_deg"] < 1e-9  # the competitor is as accurate as auto (against the mpmath reference)
+    assert c["dense_angle_err_max_deg"] < 1e-9  # and so is the dense-grid version
     assert t["help_heavy_imports"] == {"value": 0, "unit": "modules", "target": "== 0", "pass": True}
     tp = res["throughput"]["default_rtol"]
     assert tp["evaluations"] == tp["designs"] * tp["pressures"]
@@ -156,3 +160,38 @@ def test_scipy_baseline_matches_the_reference_to_its_own_accuracy():
 def test_stability_classes_follow_the_tolerance():
     err = np.array([0.0, 1e-9, 2e-9, stability.REL_TOL, 2e-6, 1e-2, 0.5, np.inf])
     assert stability.classify(err).tolist() == [0, 0, 1, 1, 2, 2, 3, stability.FAILED_CLASS]
+
+
+def test_paired_rounds_time_every_variant_in_every_round_and_ratios_pair_them():
+    ticks = []
+    t = bench_run.paired_rounds({"a": [lambda: ticks.append("a")] * 2, "b": [lambda: ticks.append("b")]}, 4)
+    assert len(t["a"]) == len(t["b"]) == 4 and ticks.count("a") == 8 and ticks.count("b") == 4
+    r = bench_run.paired_ratio({"x": [2.0, 6.0, 3.0], "y": [1.0, 2.0, 3.0]}, "x", "y")
+    assert r == {"min": 1.0, "median": 2.0, "max": 3.0, "rounds": 3}  # per round: 2, 3, 1
+
+
+def test_the_vectorised_competitor_gives_the_competitors_angles():
+    from competitor_numpy import competitor_batch, competitor_of
+
+    designs = sample_designs(4)
+    p = np.linspace(0.0, 300.0, 25)
+    rows = competitor_batch([d.model for d in designs]).theta_deg_rows(p)
+    for d, row in zip(designs, rows):
+        c = curve(d.model, p)
+        ok = c.status == 1  # BENDING: both answer the same equilibrium
+        assert np.abs(row[ok] - competitor_of(d.model).theta_deg(p)[ok]).max() < 1e-9
+        assert np.abs(row[ok] - c.theta_deg[ok]).max() < 1e-9 and (row[c.theta_deg == 0.0] == 0.0).all()
+
+
+@pytest.mark.parametrize("readme", bench_run.READMES, ids=lambda p: str(p.relative_to(p.parents[1])))
+def test_readme_speed_and_stability_text_is_the_committed_results(readme):
+    """The generated blocks of both READMEs are what run.py writes from the committed results.json."""
+    res = json.loads((BENCH / "results.json").read_text())
+    blocks = bench_run.readme_blocks(readme.read_text())
+    assert {"targets", "notes", "stability"} <= set(blocks)
+    for name, body in blocks.items():
+        assert body == bench_run.README_BLOCKS[name](res), name
+
+
+def test_a_coiled_cell_is_answered_not_failed():
+    assert int(stability.Status.COILED) in stability.ANSWERED and int(stability.Status.FAILED) not in stability.ANSWERED
