@@ -47,7 +47,7 @@ from .base.arrays import frozen_array
 from .base.errors import ParameterError, PathError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import check_coordinates
-from .spatial import self_crossings
+from .spatial import SegmentIndex, self_crossings
 
 __all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
 
@@ -85,6 +85,7 @@ class Centerline:
     _s: np.ndarray = field(init=False, repr=False)
     _theta: np.ndarray = field(init=False, repr=False)
     _turn: np.ndarray = field(init=False, repr=False)
+    _index: SegmentIndex | None = field(init=False, repr=False, default=None)
 
     def __post_init__(self) -> None:
         pts = _clean_points(self.points_mm)
@@ -454,10 +455,12 @@ class Centerline:
         return s, off
 
     def _closest_s(self, p: np.ndarray) -> np.ndarray:
-        """Arc length of the closest polyline point to each of ``p`` (STRtree over segments)."""
+        """Arc length of the closest polyline point to each of ``p`` (the path's :class:`SegmentIndex`, made
+        on first use and kept)."""
         a, b = self.points_mm[:-1], self.points_mm[1:]
-        tree = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
-        _, seg = tree.query_nearest(shapely.points(p), all_matches=False)
+        if self._index is None:
+            object.__setattr__(self, "_index", SegmentIndex(self.points_mm))
+        seg = self._index.nearest(p)
         d = b[seg] - a[seg]
         u = np.einsum("ij,ij->i", p - a[seg], d) / np.einsum("ij,ij->i", d, d)
         return self._s[seg] + np.clip(u, 0.0, 1.0) * np.diff(self._s)[seg]

@@ -97,4 +97,5 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
         angle_deg=angle,
         length_mm=float(s[pts].max() - s[pts].min()),
         passes=passes,
+        start_mm=float(s[pts].min()),
     )

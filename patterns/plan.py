@@ -86,6 +86,8 @@ class Realised:
         Embroidered length along the centerline, first to last leg [mm].
     passes : int
         Number of passes over the path (1 for zigzag).
+    start_mm : float
+        Arc length along the centerline where the legs start (the first leg's nearer end) [mm].
     """
 
     width_mm: float
@@ -93,6 +95,7 @@ class Realised:
     angle_deg: float
     length_mm: float
     passes: int = 1
+    start_mm: float = 0.0
 
 
 @dataclass(frozen=True, slots=True)

@@ -3,6 +3,8 @@
 * :class:`TubeIndex`: every tube's axis segments in one shapely STRtree, so points
   near any tube, the nearest tube of each point and the legs crossing any tube
   are found with one bounded query each, whatever the number of tubes.
+* :class:`SegmentIndex`: the nearest segment of one long path for many points, by
+  buckets (linear in path length and points; one index per path).
 * :func:`needle_density`: needle points within a radius of each point, by a grid
   of buckets one radius wide (numpy only: no scipy import for a few hundred or a
   few hundred thousand points).
@@ -28,10 +30,12 @@ import shapely
 
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["TubeIndex", "Crossings", "needle_density", "self_crossings", "corridor_hits"]
+__all__ = ["TubeIndex", "SegmentIndex", "Crossings", "needle_density", "self_crossings", "corridor_hits"]
 
-#: Candidate pairs examined at once by :func:`needle_density` (bounds its memory).
+#: Candidate pairs examined at once by :func:`needle_density` and :class:`SegmentIndex` (bounds their memory).
 _PAIR_CHUNK = 2_000_000
+#: Factor between the cell sizes of :class:`SegmentIndex`'s successive buckets.
+_CELL_GROWTH = 4.0
 
 
 class Crossings:
@@ -147,6 +151,119 @@ class TubeIndex:
         order = np.lexsort((j, s_mm, tube))
         return Crossings(j[order], tube[order], s_mm[order], (dot / np.abs(cross))[order],
                          (dot / self._len[k])[order])
+
+
+class SegmentIndex:
+    """The nearest segment of one polyline for many points, in time linear in points and segments.
+
+    Buckets of one cell size ``c`` (at first the longest segment, at least twice the median
+    one) hold every segment whose bounding box meets them; a point's candidates are the
+    segments of its cell and the eight around it, which hold its nearest segment whenever
+    that lies within ``c``. Points left over are asked again on buckets 4x coarser, and the
+    few far from the whole path by one STRtree (shapely's nearest query alone grows faster
+    than linearly on long paths: 13 us per point on 1,000 segments, 170 us on 100,000).
+    Each cell size's buckets are made once per index.
+
+    Parameters
+    ----------
+    xy_mm : (n, 2) array
+        Polyline vertices [mm], n >= 2 (zero-length segments allowed).
+
+    Examples
+    --------
+    >>> idx = SegmentIndex([(0, 0), (10, 0), (10, 10)])
+    >>> idx.nearest(np.array([(5.0, 1.0), (11.0, 8.0), (500.0, 3.0)])).tolist()
+    [0, 1, 1]
+    """
+
+    __slots__ = ("_a", "_d", "_len2", "_c0", "_span", "_grids", "_tree")
+
+    def __init__(self, xy_mm) -> None:
+        xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
+        self._a, self._d = xy[:-1], np.diff(xy, axis=0)
+        self._len2 = np.einsum("ij,ij->i", self._d, self._d)
+        length = np.sqrt(self._len2)
+        self._c0 = max(float(length.max()), 2.0 * float(np.median(length)), 1e-9)
+        self._span = float(np.ptp(xy, axis=0).max())
+        self._grids = {}
+        self._tree = None
+
+    def _grid(self, c: float):
+        """Buckets of cell size ``c``: (cell offset, row width, sorted cell keys, segment per key)."""
+        if c not in self._grids:
+            a, b = self._a, self._a + self._d
+            lo = np.floor(np.minimum(a, b) / c).astype(np.int64)
+            hi = np.floor(np.maximum(a, b) / c).astype(np.int64)
+            base = lo.min(axis=0) - 1
+            width = int(hi[:, 1].max() - base[1]) + 3
+            seg = np.arange(len(a))
+            keys, owners = [], []
+            for dx in (0, 1):
+                for dy in (0, 1):
+                    m = (lo[:, 0] + dx <= hi[:, 0]) & (lo[:, 1] + dy <= hi[:, 1])
+                    keys.append((lo[m, 0] + dx - base[0]) * width + (lo[m, 1] + dy - base[1]))
+                    owners.append(seg[m])
+            keys, owners = np.concatenate(keys), np.concatenate(owners)
+            order = np.argsort(keys, kind="stable")
+            self._grids[c] = (base, width, keys[order], owners[order])
+        return self._grids[c]
+
+    def nearest(self, p: np.ndarray) -> np.ndarray:
+        """Index of the nearest segment to each point of ``p`` ((m, 2) [mm]; a tie: either segment)."""
+        out = np.full(len(p), -1, dtype=np.int64)
+        todo = np.arange(len(p))
+        c = self._c0
+        while todo.size and c <= 4.0 * self._span + self._c0:
+            seg, d2 = self._pass(p[todo], c)
+            found = (seg >= 0) & (d2 <= c * c)
+            out[todo[found]] = seg[found]
+            todo = todo[~found]
+            c *= _CELL_GROWTH
+        if todo.size:  # far from the path: the tree
+            if self._tree is None:
+                self._tree = shapely.STRtree(shapely.linestrings(np.stack([self._a, self._a + self._d], axis=1)))
+            _, k = self._tree.query_nearest(shapely.points(p[todo]), all_matches=False)
+            out[todo] = k
+        return out
+
+    def _pass(self, p, c):
+        """(nearest segment among the 3 x 3 cells around each point or -1, its squared distance), in chunks."""
+        base, width, keys, owners = self._grid(c)
+        cell = np.floor(p / c).astype(np.int64) - base
+        nb = ((cell[:, 0:1] + np.array([-1, -1, -1, 0, 0, 0, 1, 1, 1])) * width
+              + cell[:, 1:2] + np.array([-1, 0, 1, -1, 0, 1, -1, 0, 1]))
+        lo = np.searchsorted(keys, nb, side="left").ravel()
+        hi = np.searchsorted(keys, nb, side="right").ravel()
+        size = hi - lo
+        per_point = size.reshape(-1, 9).sum(axis=1)
+        best = np.full(len(p), -1, dtype=np.int64)
+        best_d2 = np.full(len(p), np.inf)
+        ends = np.cumsum(per_point)
+        start = 0
+        while start < len(p):
+            stop = max(start + 1, int(np.searchsorted(ends, ends[start] - per_point[start] + _PAIR_CHUNK,
+                                                       side="right")))
+            sz = size[9 * start:9 * stop]
+            owner = np.repeat(np.repeat(np.arange(start, stop), 9), sz)
+            offs = np.cumsum(sz) - sz
+            idx = np.repeat(lo[9 * start:9 * stop] - offs, sz) + np.arange(int(sz.sum()))
+            seg = owners[idx]
+            r = p[owner] - self._a[seg]
+            dd = self._d[seg]
+            t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
+            r -= t[:, None] * dd
+            d2 = np.einsum("ij,ij->i", r, r)
+            counts = per_point[start:stop]
+            has = counts > 0
+            if owner.size:
+                group = (np.cumsum(counts) - counts)[has]
+                low = np.minimum.reduceat(d2, group)
+                pos = np.flatnonzero(d2 == np.repeat(low, counts[has]))
+                pick = pos[np.r_[True, owner[pos][1:] != owner[pos][:-1]]]  # the first minimum of each point
+                best[owner[pick]] = seg[pick]
+                best_d2[owner[pick]] = d2[pick]
+            start = stop
+        return best, best_d2
 
 
 def needle_density(xy_mm, radius_mm: float = 0.5) -> np.ndarray:

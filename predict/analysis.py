@@ -742,22 +742,13 @@ def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAn
                             f"(ActuatorAnalysis.segments)", tuple(segs))
 
 
-def _first_leg_mm(plan: StitchPlan, index: int) -> float:
-    """Arc length where actuator ``index`` of ``plan`` starts its legs (both ends of every LEG stitch) [mm]."""
-    from ..patterns.plan import Role
-
-    legs = np.flatnonzero((plan.actuator == index) & (plan.roles == Role.LEG))
-    s, _ = plan.actuators[index].centerline.project(plan.xy_mm[np.concatenate([legs - 1, legs])])
-    return float(s.min())
-
-
 def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
     act = plan.actuators[index]
     if act.segments:
         return _analyse_segments(spec, act, sets)
     derived = derive(act)
     choice, error = _model_of(derived, spec.model, sets)
-    return ActuatorAnalysis(spec, act, derived, choice, error, first_leg_mm=_first_leg_mm(plan, index))
+    return ActuatorAnalysis(spec, act, derived, choice, error, first_leg_mm=act.realised.start_mm)
 
 
 def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),

@@ -97,3 +97,20 @@ def test_tube_other_than_the_calibrated_one_is_noted():
     a = analyse(design, calibration_sets=[_lab_set()]).actuators[0]
     assert a.choice.notes == ("tube outer_radius_mm 1.6 (calibrated with 1.5)",)
     assert ModelSettings().p0_source.value == "calibration"
+
+
+def test_first_leg_is_where_the_projected_legs_start():
+    """The analysis takes the legs' start from the measurement of the generated stitches; it is the
+    smallest arc length of both ends of every leg, projected again here on a curved, moved path."""
+    from embroact.patterns.plan import Role
+
+    d = design_from_dict({"name": "s", "actuator": [{"name": "A", "pattern": "cross", "width_mm": 7.0,
+                                                      "interval_mm": 1.4, "angle_deg": 30.0, "origin_mm": [40, -20],
+                                                      "path": [[60.0 * np.sin(t), 60.0 * (1.0 - np.cos(t))]
+                                                               for t in np.linspace(0.0, 1.2, 40)]}]})
+    a = analyse(d)
+    plan = a.plan
+    legs = np.flatnonzero((plan.actuator == 0) & (plan.roles == Role.LEG))
+    s, _ = plan.actuators[0].centerline.project(plan.xy_mm[np.concatenate([legs - 1, legs])])
+    assert a.actuators[0].first_leg_mm == pytest.approx(float(s.min()), abs=1e-9)
+    assert 0.0 < a.actuators[0].first_leg_mm < 10.0

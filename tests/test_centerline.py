@@ -305,3 +305,54 @@ def test_import_patterns_is_light():
     code = "import sys, embroact.patterns; print(any(m.split('.')[0] in ('scipy', 'trimesh') for m in sys.modules))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+@given(st.integers(2, 60), st.integers(0, 2**31 - 1))
+@settings(max_examples=40, deadline=None)
+def test_segment_index_finds_the_nearest_segment_as_brute_force_does(n, seed):
+    """Against the distance to every segment: random polylines (zero-length segments, long and short ones)
+    and points near, on and far from them."""
+    from embroact.patterns.spatial import SegmentIndex
+
+    rng = np.random.default_rng(seed)
+    xy = np.cumsum(rng.normal(0.0, 1.0, (n, 2)) * rng.choice([0.0, 0.1, 1.0, 20.0], (n, 1)), axis=0)
+    p = np.concatenate([xy[rng.integers(0, n, 30)] + rng.normal(0.0, 2.0, (30, 2)), xy[:3],
+                        rng.normal(0.0, 500.0, (10, 2))])
+    a, d = xy[:-1], np.diff(xy, axis=0)
+
+    def dist(seg, q):
+        r = q - a[seg]
+        len2 = np.einsum("ij,ij->i", d[seg], d[seg])
+        t = np.clip(np.einsum("ij,ij->i", r, d[seg]) / np.where(len2 > 0, len2, 1.0), 0.0, 1.0)
+        return np.hypot(*(r - t[:, None] * d[seg]).T)
+
+    every = np.array([dist(np.full(len(p), k), p) for k in range(n - 1)])
+    got = dist(SegmentIndex(xy).nearest(p), p)
+    assert np.allclose(got, every.min(axis=0), rtol=0.0, atol=1e-9)
+
+
+def test_project_on_a_long_path_is_linear_and_builds_its_index_once():
+    """A 10x longer sine path (10x the points) costs about 10x, not 100x; the index is made on the first
+    projection and kept (counted, not timed: the second call builds nothing)."""
+    from embroact.patterns import spatial
+
+    x = np.linspace(0.0, 20_000.0, 20_001)
+    c = Centerline.from_points(np.column_stack([x, 20.0 * np.sin(x / 30.0)]))
+    made = []
+    original = spatial.SegmentIndex._grid
+
+    def counted(self, cell):
+        made.append(cell not in self._grids)
+        return original(self, cell)
+
+    spatial.SegmentIndex._grid = counted
+    try:
+        q = c.offset_point_at(np.linspace(0.0, c.length_mm, 5000), 3.0)
+        s1, off1 = c.project(q)
+        first = sum(made)
+        s2, _ = c.project(q)
+    finally:
+        spatial.SegmentIndex._grid = original
+    assert first >= 1 and sum(made) == first  # no bucket made again
+    assert np.allclose(off1, 3.0, atol=1e-6) and np.array_equal(s1, s2)
+    assert np.allclose(s1, np.linspace(0.0, c.length_mm, 5000), atol=1e-6)

@@ -44,3 +44,25 @@ def test_summary_line_names_five_actuators_per_code_and_counts_the_rest():
     line = summary_line(fs)
     assert SUMMARY_NAMES == 5 and "\n" not in line and len(line) < 200
     assert line.endswith("EA403 (A0, A1, A2, A3, A4 and 995 more), EA405 (B)")
+
+
+def test_a_path_longer_than_the_hoop_is_refused_before_anything_is_generated(tmp_path, monkeypatch, capsys):
+    """EA306 from the paths alone: a 3 m straight zigzag in a 1 m hoop is refused with the rule's code, no
+    stitch generated and nothing written; --force still builds (the rule then reports it on the records)."""
+    from embroact.export.cli.main import main
+    from embroact.patterns import design as design_module
+
+    src = tmp_path / "long.toml"
+    src.write_text('name = "long"\n[machine]\nhoop_width_mm = 1000.0\nhoop_height_mm = 1000.0\n[[actuator]]\n'
+                   'name = "A"\npattern = "zigzag"\nwidth_mm = 7.0\ninterval_mm = 2.0\nlength_mm = 3000.0\n')
+    out = tmp_path / "out"
+    out.mkdir()
+    generated = []
+    real = design_module.generate_actuator
+    monkeypatch.setattr(design_module, "generate_actuator", lambda *a, **k: generated.append(1) or real(*a, **k))
+    assert main(["build", str(src), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "EA306 the actuator paths alone span 3000.0 x 0.0 mm, more than the 1000 x 1000 mm hoop" in err
+    assert generated == [] and list(out.iterdir()) == []
+    assert main(["build", str(src), "--out", str(out), "--force", "--no-previews", "--mesh-format", "none"]) == 0
+    assert generated and any(p.suffix == ".dst" for p in out.iterdir())

@@ -75,6 +75,7 @@ def run(args) -> int:
     from .args import check_shape_flags
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
+    from ...patterns.rules.tubes import hoop_overflow
     from .target import analyse_target, gate, load_target, summary_line
 
     formats = parse_formats(args.format) if args.format is not None else None
@@ -85,8 +86,11 @@ def run(args) -> int:
 
         check_speed_spm(args.speed_spm)
     target = load_target(args, design_path=args.design)
-    analysis = analyse_target(target)
     try:
+        early = None if args.force or target.design is None else hoop_overflow(target.design)
+        if early is not None:  # decided from the paths alone: refused before generating anything
+            raise DesignRuleError((early,))
+        analysis = analyse_target(target)
         res = build(target.design, args.out, formats=formats, force=args.force, split_long=args.split_long,
                     cord_stop=args.cord_stop,
                     speed_spm=args.speed_spm, analysis=analysis, stages=_stages(args))

@@ -37,7 +37,7 @@ from ..plan import Command
 from ..spatial import self_crossings
 from .engine import Hits, Subject
 
-__all__ = ["TUBE_RULES", "hoop_window", "hoop_centre_mm"]
+__all__ = ["TUBE_RULES", "hoop_window", "hoop_centre_mm", "hoop_overflow", "HOOP_PRECHECK_SLACK_MM"]
 
 _DF = Inputs.DESIGNS | Inputs.FILES
 
@@ -208,6 +208,42 @@ def hoop(s: Subject) -> Hits:
     return Hits(outside, lambda j: (
         f"{Command(int(s.layout.commands[outside[j]])).name.lower()} record outside the {cfg.hoop_width_mm:g} x "
         f"{cfg.hoop_height_mm:g} mm hoop; the design spans {size[0]:.1f} x {size[1]:.1f} mm"))
+
+
+#: How far a design's records may stay inside its paths' bounding box at each end [mm] (the unstitched
+#: start and end of a path, and the half width): :func:`hoop_overflow` refuses only past this.
+HOOP_PRECHECK_SLACK_MM = 50.0
+
+
+def hoop_overflow(design) -> Finding | None:
+    """EA306 decided before anything is generated: a finding when the actuator paths alone span more than
+    the hoop by more than each actuator's width and :data:`HOOP_PRECHECK_SLACK_MM` at both ends (the
+    records cannot fit then); None when the design may fit (the rule itself then decides on the records).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> d = design_from_dict({"name": "x", "machine": {"hoop_width_mm": 200.0, "hoop_height_mm": 200.0},
+    ...                       "actuator": [{"name": "A", "pattern": "zigzag", "width_mm": 7.0, "interval_mm": 1.0,
+    ...                                     "length_mm": 900.0}]})
+    >>> hoop_overflow(d).message
+    'the actuator paths alone span 900.0 x 0.0 mm, more than the 200 x 200 mm hoop; nothing generated'
+    >>> from embroact.patterns.design import default_design
+    >>> hoop_overflow(default_design()) is None
+    True
+    """
+    machine = design.machine
+    if machine.hoop_width_mm is None or machine.hoop_height_mm is None or not design.actuators:
+        return None
+    pts = [a.centerline.points_mm for a in design.actuators]
+    lo = np.min([p.min(axis=0) for p in pts], axis=0)
+    hi = np.max([p.max(axis=0) for p in pts], axis=0)
+    slack = 2.0 * HOOP_PRECHECK_SLACK_MM + max(a.params.width_mm for a in design.actuators)
+    size = hi - lo
+    if not np.any(size - slack > np.array([machine.hoop_width_mm, machine.hoop_height_mm])):
+        return None
+    return RULES.finding("EA306", f"the actuator paths alone span {size[0]:.1f} x {size[1]:.1f} mm, more than the "
+                                  f"{machine.hoop_width_mm:g} x {machine.hoop_height_mm:g} mm hoop; nothing generated")
 
 
 def _held_gaps(s_mm: np.ndarray, half_mm: np.ndarray, length_mm: float) -> list[tuple[float, float]]:
