@@ -10,8 +10,8 @@ subprocess timed by wall clock with its peak memory from ``resource.getrusage``
   refused up front (exit code and message);
 * one zigzag along a sine meander (amplitude 20 mm, wavelength 200 mm) of 1 m and
   of 10 m: time ratio and the size of the 10 m design's ``shape3d.svg``;
-* 100 tiny actuators placed +-999,999 mm apart: refused by the record count before
-  anything is generated (time and the message).
+* 100 tiny actuators placed +-999,999 mm apart: refused before anything is generated
+  (by the hoop from the paths alone, exit 1, or by the record count, exit 2; time and the message).
 
 Examples
 --------

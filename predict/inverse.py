@@ -56,7 +56,8 @@ from .shape import planar_chain_mm
 from .status import Status
 
 __all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
-           "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature"]
+           "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
+           "DEFAULT_TIME_LIMIT_S"]
 
 #: Values of ``pattern`` for a target bend.
 PATTERN_CHOICES = PATTERN_KINDS.names() + ("any",)
@@ -78,6 +79,12 @@ _FIT_PLAUSIBLE_MM = 0.25
 _SHAPE_GOOD_MM = 0.2
 #: Shortest segment the curvature fit may make [mm].
 _MIN_SEGMENT_MM = 8.0
+#: Default time limit of a target-shape search [s] (``design_shape(time_limit_s=...)``, ``--time-limit``).
+DEFAULT_TIME_LIMIT_S = 60.0
+#: Reachability of a target shape (:func:`curvature_range`, :func:`shape_unreachable`): the segment length of
+#: the one scan per pattern [mm], the arc window over which the target's turning is compared with it [mm],
+#: the relative slack (the scan at one length stands for every length) and an absolute slack [rad].
+_REACH_LENGTH_MM, _REACH_WINDOW_MM, _REACH_SLACK, _REACH_TURN_RAD = 100.0, 5.0, 1.1, 0.02
 
 
 
@@ -751,9 +758,66 @@ def _nominal_xy(model: _Model, spaces, x, lengths, sj, legs) -> tuple[np.ndarray
     return planar_chain_mm(np.asarray(pieces)[keep], np.asarray(bends)[keep], sj), status
 
 
+def curvature_range(model: _Model, spaces: dict) -> tuple[float, float]:
+    """(most negative, most positive) curvature [1/mm] a segment reaches at the model's pressure in a valid state,
+    over every design space: one scan per pattern at ``_REACH_LENGTH_MM``. The model's P(theta) depends on the
+    length only through theta / l0, so a scan at one length gives the curvature at every length (the realised
+    geometry moves a little with length: ``_REACH_SLACK``)."""
+    lo = hi = 0.0
+    for space in spaces.values():
+        x, theta, status = model.table(space, _REACH_LENGTH_MM)
+        ok = np.isin(status, _VALID)
+        if not ok.any():
+            continue
+        l0 = np.array([_legs(space.params(float(v)), _REACH_LENGTH_MM)[1] for v in x[ok]])
+        kappa = np.radians(theta[ok]) / l0
+        lo, hi = min(lo, float(kappa.min())), max(hi, float(kappa.max()))
+    return lo, hi
+
+
+def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, float]) -> str | None:
+    """Why no chain of segments with curvatures in ``kappa_range`` [1/mm] follows the resampled target
+    (``sj``, ``xy`` as :func:`design_shape` resamples it), or None when it may: the heading at the clamp
+    (a bent strip leaves the clamp along +x, its chord turning at most half the curvature times its length)
+    and the turning over every arc window of ``_REACH_WINDOW_MM`` (a corner, a bend too tight for any design,
+    or a turn in a direction no pattern bends). Decided from the target and the range alone.
+
+    Examples
+    --------
+    >>> sj = np.linspace(0.0, 100.0, 201)
+    >>> shape_unreachable(sj, np.column_stack([sj, 0.0 * sj]), (-0.02, 0.03)) is None
+    True
+    >>> corner = np.column_stack([np.minimum(sj, 50.0), np.maximum(sj - 50.0, 0.0)])
+    >>> shape_unreachable(sj, corner, (-0.02, 0.03))
+    'turns by +90.0 deg in the 5 mm from 45.5 mm along it; no design bends more than +8.6 deg there (curvature 0.03 /mm)'
+    """
+    lo, hi = kappa_range
+    step = float(sj[1] - sj[0])
+    d = np.diff(xy, axis=0)
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    top = max(-lo, hi)
+    first = math.degrees(heading[0])
+    allowed = math.degrees(_REACH_SLACK * top * step / 2.0 + _REACH_TURN_RAD)
+    if abs(first) > allowed:
+        return (f"leaves the clamp heading {first:+.1f} deg from +x; a bent strip leaves it along +x (within "
+                f"{allowed:.1f} deg over its first {step:.2g} mm)")
+    n = max(1, int(math.ceil(_REACH_WINDOW_MM / step)))
+    if len(heading) <= n:
+        return None
+    turn = heading[n:] - heading[:-n]
+    span = n * step
+    for k, bound, word in ((int(np.argmax(turn)), hi, "more"), (int(np.argmin(turn)), lo, "more negatively")):
+        limit = _REACH_SLACK * bound * span + math.copysign(_REACH_TURN_RAD, bound if bound else turn[k])
+        if (turn[k] > limit) if word == "more" else (turn[k] < limit):
+            return (f"turns by {math.degrees(turn[k]):+.1f} deg in the {span:.3g} mm from {sj[k + 1]:.3g} mm along it; "
+                    f"no design bends {word} than {math.degrees(bound * span):+.1f} deg there (curvature "
+                    f"{bound:.2g} /mm)")
+    return None
+
+
 def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tube: Tube = Tube(),
                  settings: ModelSettings = ModelSettings(), sets: Iterable = (), allow_extrapolation: bool = False,
-                 name: str = "A1") -> ShapeResult:
+                 name: str = "A1", time_limit_s: float = DEFAULT_TIME_LIMIT_S, progress=None) -> ShapeResult:
     """The segmented actuator whose fabric line bends into ``target_xy_mm`` at ``pressure_kpa``.
 
     Parameters
@@ -767,19 +831,41 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         At most this many segments, in [1, 12].
     tube, settings, sets, allow_extrapolation, name
         As for :func:`design_bend`.
+    time_limit_s : float
+        Wall-clock budget of the search [s], in (0, 86400]: no new curvature fit is polished once it is
+        spent; the best design so far is returned (its statement says so), or, with none yet, a
+        ParameterError asks for a larger limit.
+    progress : callable, optional
+        ``progress(message)`` at each step of the search (the command prints them on a terminal).
 
     Returns
     -------
     ShapeResult
+
+    Raises
+    ------
+    ParameterError
+        Bad input; a target no design can follow (:func:`shape_unreachable`, decided before any search);
+        no design within the time limit.
     """
+    import time
+
+    start = time.monotonic()
     p = check_target_pressure(pressure_kpa)
     if isinstance(max_segments, bool) or not isinstance(max_segments, int) or not 1 <= max_segments <= 12:
         raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r}")
+    limit = check_range("time_limit_s", time_limit_s, low=0.0, high=86400.0, high_inclusive=True)
+    say = progress if progress is not None else (lambda message: None)
     sets = tuple(sets)
     sj, xy, length = _resample(target_xy_mm)
     model = _Model(p, tube, settings, sets)
     spaces = {k: design_space(k, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
               for k in PATTERN_KINDS.names()}
+    reach = curvature_range(model, spaces)
+    why = shape_unreachable(sj, xy, reach)
+    if why is not None:
+        raise ParameterError(f"target shape at pressure_kpa {p:g}: not reachable by any design: it {why}")
+    say(f"reachable curvature at {p:g} kPa: {reach[0]:+.3g} to {reach[1]:+.3g} /mm; fitting the target")
     fits = []
     for n in range(1, max_segments + 1):
         fits.append(fit_curvature(xy, n))
@@ -790,6 +876,10 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     plausible = [f for f in fits if f[2] <= max(_FIT_PLAUSIBLE_MM, 1.25 * min(g[2] for g in fits))]
     results, failures = [], []
     for lengths, kappa, rmse_fit in plausible:
+        if time.monotonic() - start > limit:
+            failures.append(f"time limit {limit:g} s reached before {len(lengths)} segments were tried")
+            break
+        say(f"trying {len(lengths)} segment(s) (curvature fit RMSE {rmse_fit:.3f} mm; {time.monotonic() - start:.1f} s)")
         try:
             r = _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name, p)
         except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
@@ -799,9 +889,13 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         if r.reached and r.rmse_mm <= _SHAPE_GOOD_MM:
             return r
     if not results:
-        raise ParameterError(f"target shape at pressure_kpa {p:g}: no design found; " + "; ".join(failures))
+        more = "; raise the time limit" if failures and failures[-1].startswith("time limit") else ""
+        raise ParameterError(f"target shape at pressure_kpa {p:g}: no design found; " + "; ".join(failures) + more)
     reached = [r for r in results if r.reached]
-    return min(reached or results, key=lambda r: (r.rmse_mm, len(r.segments)))
+    best = min(reached or results, key=lambda r: (r.rmse_mm, len(r.segments)))
+    if failures and failures[-1].startswith("time limit"):
+        best = dataclasses.replace(best, statement=f"{best.statement} ({failures[-1]})")
+    return best
 
 
 def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,

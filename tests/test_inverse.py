@@ -81,3 +81,45 @@ def test_shape_round_trip(seed):
     again = np.sqrt(np.mean(np.sum((shape.profile_mm(s) - r.target_xy_mm) ** 2, axis=1)))
     assert again == pytest.approx(r.rmse_mm, abs=1e-5)  # (lengths written to 0.01 mm: samples shift by < 1e-4)
     assert design_to_dict(design_shape(xy, PRESSURE_KPA).design) == design_to_dict(r.design)
+
+
+@pytest.mark.parametrize("xy, why", [
+    (np.array([[0.0, 0.0], [50.0, 0.0], [50.0, 50.0]]), "turns by +90.0 deg"),  # a sharp corner
+    (np.column_stack([np.zeros(40), np.linspace(0.0, 100.0, 40)]), "leaves the clamp heading +90.0 deg"),
+    (np.column_stack([10.0 * np.sin(np.linspace(0, 6.0, 200)), 10.0 * (1 - np.cos(np.linspace(0, 6.0, 200)))]),
+     "no design bends more than"),  # a 10 mm radius circle: tighter than any pattern bends at 200 kPa
+])
+def test_a_target_no_design_can_follow_is_refused_before_the_search(xy, why, monkeypatch):
+    import embroact.predict.inverse as inv
+
+    tried = []
+    monkeypatch.setattr(inv, "_shape_attempt", lambda *a, **k: tried.append(1))
+    with pytest.raises(ParameterError, match="not reachable by any design") as exc:
+        design_shape(xy, PRESSURE_KPA)
+    assert why in str(exc.value) and tried == []
+
+
+def test_reachable_curvature_holds_every_round_trip_target():
+    """The reachability check refuses nothing the forward model made: the seeded targets' turning fits."""
+    import embroact.predict.inverse as inv
+    from embroact.patterns.design import ModelSettings
+    from embroact.patterns.params import Tube
+
+    model = inv._Model(PRESSURE_KPA, Tube(), ModelSettings(), ())
+    spaces = {k: inv.design_space(k) for k in ("zigzag", "cross")}
+    lo, hi = inv.curvature_range(model, spaces)
+    assert lo < 0.0 < hi
+    for seed in range(8):
+        _, xy = target_shape(seed)
+        sj, pts, _ = inv._resample(xy)
+        assert inv.shape_unreachable(sj, pts, (lo, hi)) is None, seed
+
+
+def test_the_time_limit_stops_the_search_and_progress_reports_it():
+    _, xy = target_shape(0)
+    said = []
+    with pytest.raises(ParameterError, match="time limit 1e-09 s reached.*raise the time limit"):
+        design_shape(xy, PRESSURE_KPA, time_limit_s=1e-9, progress=said.append)
+    assert said and said[0].startswith("reachable curvature at 200 kPa")
+    with pytest.raises(ParameterError, match="time_limit_s"):
+        design_shape(xy, PRESSURE_KPA, time_limit_s=0.0)

@@ -6,7 +6,7 @@ Target bend (one actuator)::
 
 Target shape (a segmented actuator)::
 
-    embroact design --target-shape SHAPE.csv --at-kpa 200 [--max-segments 6] -o design.toml [--svg FILE]
+    embroact design --target-shape SHAPE.csv --at-kpa 200 [--max-segments 6] [--time-limit 60] -o design.toml [--svg FILE]
 
 ``SHAPE`` is a CSV of ``x_mm,y_mm`` points (header row ``x_mm,y_mm``) or an SVG drawing's
 path (``drawing.svg`` or ``drawing.svg#id``, real units, y up after reading): the fabric line
@@ -14,7 +14,10 @@ wanted at ``--at-kpa``, from the clamped end (moved to the origin) heading +x th
 the back of the fabric (where positive bends turn). The overlay of the predicted shape on the
 target goes to ``--svg`` (default ``<design stem>-shape.svg``). The search is
 :mod:`embroact.predict.inverse`; the answer names the design's predicted bend or shape error,
-and for a target it cannot reach, the nearest design and why. Both files are written
+and for a target it cannot reach, the nearest design and why. A target no design can follow (a
+corner, a bend tighter than any pattern reaches at that pressure, a start not heading +x) is
+refused before the search; the search stops at ``--time-limit`` with the best design so far,
+and on a terminal says what it is doing. Both files are written
 atomically; the same target writes the same bytes.
 
 Examples
@@ -60,6 +63,9 @@ def add_arguments(parser, name: str) -> None:
     space.add_argument("--pattern", choices=_PATTERNS, default="any", help="target bend: pattern to use (default any)")
     space.add_argument("--length-mm", type=float, default=100.0, help="target bend: actuator length [mm] (default 100)")
     space.add_argument("--max-segments", type=int, default=6, help="target shape: at most this many segments (default 6)")
+    space.add_argument("--time-limit", type=float, default=None, metavar="S",
+                       help="target shape: seconds the search may take; then the best design so far is written "
+                            "(default 60; a target no design can follow is refused at once)")
     space.add_argument("--allow-extrapolation", action="store_true",
                        help="search beyond the calibrated range (predictions there are extrapolated)")
     space.add_argument("--name", default="A1", help="actuator name in the written design (default A1)")
@@ -157,8 +163,14 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
     from ...predict.inverse import design_shape
     from ..pictures.shapefit import shape_overlay_svg
 
+    from ...predict.inverse import DEFAULT_TIME_LIMIT_S
+
+    progress = (lambda message: print(f"design: {message}", file=sys.stderr, flush=True)) if sys.stderr.isatty() \
+        else None  # on a terminal: what the search is doing
     r = design_shape(read_target_shape(args.target_shape), args.at_kpa, max_segments=args.max_segments, tube=tube,
-                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name)
+                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
+                     time_limit_s=DEFAULT_TIME_LIMIT_S if args.time_limit is None else args.time_limit,
+                     progress=progress)
     lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
              f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
