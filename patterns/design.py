@@ -107,6 +107,7 @@ __all__ = [
     "ActuatorSpec",
     "Design",
     "design_from_dict",
+    "check_design_records",
     "design_to_dict",
     "default_design",
     "generate_actuator",
@@ -792,6 +793,25 @@ def _travel_records(design: Design) -> int:
     return total
 
 
+def check_design_records(design: Design) -> None:
+    """PatternError when ``design`` would need more than :data:`~embroact.patterns.assemble.MAX_RECORDS`
+    records, travel jumps between actuators included; counted from the parameters, nothing generated.
+
+    Examples
+    --------
+    >>> check_design_records(default_design()) is None
+    True
+    """
+    stitched = sum(_records(spec, design.tube) for spec in design.actuators) + _placement_records(design)
+    travel = _travel_records(design)
+    if stitched + travel > MAX_RECORDS:
+        raise PatternError(
+            f"design would need about {stitched + travel:.3g} records ({travel:.3g} of them travel jumps between "
+            f"actuators) over {len(design.actuators)} actuators, more than the limit {MAX_RECORDS:,}; use larger "
+            "interval_mm values, shorter paths, fewer actuators or actuators closer together"
+        )
+
+
 def build_plan(design: Design) -> StitchPlan:
     """Generate every actuator of ``design`` and join them (see :func:`join_plans`); with
     ``machine.placement_line`` each actuator's placement line comes before its cord-in stop.
@@ -820,14 +840,7 @@ def build_plan(design: Design) -> StitchPlan:
     >>> [a.name for a in plan.actuators], plan.stitch_count
     (['A1'], 106)
     """
-    stitched = sum(_records(spec, design.tube) for spec in design.actuators) + _placement_records(design)
-    travel = _travel_records(design)
-    if stitched + travel > MAX_RECORDS:
-        raise PatternError(
-            f"design would need about {stitched + travel:.3g} records ({travel:.3g} of them travel jumps between "
-            f"actuators) over {len(design.actuators)} actuators, more than the limit {MAX_RECORDS:,}; use larger "
-            "interval_mm values, shorter paths, fewer actuators or actuators closer together"
-        )
+    check_design_records(design)
     plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
     if design.machine.placement_line:
         plans = [with_placement(p, design.machine.placement_stitch_mm) for p in plans]

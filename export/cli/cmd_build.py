@@ -75,6 +75,7 @@ def run(args) -> int:
     from .args import check_shape_flags
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
+    from ...patterns.design import check_design_records
     from ...patterns.rules.tubes import hoop_overflow
     from .target import analyse_target, gate, load_target, summary_line
 
@@ -87,6 +88,8 @@ def run(args) -> int:
         check_speed_spm(args.speed_spm)
     target = load_target(args, design_path=args.design)
     try:
+        if target.design is not None:
+            check_design_records(target.design)  # the record limit first (a parameter error), then the hoop
         early = None if args.force or target.design is None else hoop_overflow(target.design)
         if early is not None:  # decided from the paths alone: refused before generating anything
             raise DesignRuleError((early,))
