@@ -458,9 +458,11 @@ class Centerline:
         """Arc length of the closest polyline point to each of ``p`` (the path's :class:`SegmentIndex`, made
         on first use and kept)."""
         a, b = self.points_mm[:-1], self.points_mm[1:]
-        if self._index is None:
-            object.__setattr__(self, "_index", SegmentIndex(self.points_mm))
-        seg = self._index.nearest(p)
+        index = self._index
+        if index is None:
+            index = SegmentIndex(self.points_mm)
+            object.__setattr__(self, "_index", index)
+        seg = index.nearest(p)
         d = b[seg] - a[seg]
         u = np.einsum("ij,ij->i", p - a[seg], d) / np.einsum("ij,ij->i", d, d)
         return self._s[seg] + np.clip(u, 0.0, 1.0) * np.diff(self._s)[seg]

@@ -185,8 +185,8 @@ class SegmentIndex:
         length = np.sqrt(self._len2)
         self._c0 = max(float(length.max()), 2.0 * float(np.median(length)), 1e-9)
         self._span = float(np.ptp(xy, axis=0).max())
-        self._grids = {}
-        self._tree = None
+        self._grids: dict[float, tuple] = {}
+        self._tree: shapely.STRtree | None = None
 
     def _grid(self, c: float):
         """Buckets of cell size ``c``: (cell offset, row width, sorted cell keys, segment per key)."""
@@ -197,13 +197,12 @@ class SegmentIndex:
             base = lo.min(axis=0) - 1
             width = int(hi[:, 1].max() - base[1]) + 3
             seg = np.arange(len(a))
-            keys, owners = [], []
+            parts = []
             for dx in (0, 1):
                 for dy in (0, 1):
                     m = (lo[:, 0] + dx <= hi[:, 0]) & (lo[:, 1] + dy <= hi[:, 1])
-                    keys.append((lo[m, 0] + dx - base[0]) * width + (lo[m, 1] + dy - base[1]))
-                    owners.append(seg[m])
-            keys, owners = np.concatenate(keys), np.concatenate(owners)
+                    parts.append(((lo[m, 0] + dx - base[0]) * width + (lo[m, 1] + dy - base[1]), seg[m]))
+            keys, owners = np.concatenate([k for k, _ in parts]), np.concatenate([o for _, o in parts])
             order = np.argsort(keys, kind="stable")
             self._grids[c] = (base, width, keys[order], owners[order])
         return self._grids[c]
@@ -220,9 +219,10 @@ class SegmentIndex:
             todo = todo[~found]
             c *= _CELL_GROWTH
         if todo.size:  # far from the path: the tree
-            if self._tree is None:
-                self._tree = shapely.STRtree(shapely.linestrings(np.stack([self._a, self._a + self._d], axis=1)))
-            _, k = self._tree.query_nearest(shapely.points(p[todo]), all_matches=False)
+            tree = self._tree
+            if tree is None:
+                tree = self._tree = shapely.STRtree(shapely.linestrings(np.stack([self._a, self._a + self._d], axis=1)))
+            _, k = tree.query_nearest(shapely.points(p[todo]), all_matches=False)
             out[todo] = k
         return out
 
