@@ -46,6 +46,7 @@ def run(args) -> int:
     from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_writable_dir
     from ..studio.serve import check_port
+    from .signals import serving
     from .target import load_target
 
     check_port(args.port)  # before the extra is looked for and the design read
@@ -56,4 +57,6 @@ def run(args) -> int:
     from ..studio.session import Studio
 
     target = load_target(args, design_path=args.design)
-    return serve(Studio(target.design, out, target.calibration_sets), port=args.port, browser=not args.no_browser)
+    studio = Studio(target.design, out, target.calibration_sets)
+    with serving():  # until stopped: no time limit; Ctrl-C and SIGTERM end it gracefully
+        return serve(studio, port=args.port, browser=not args.no_browser)

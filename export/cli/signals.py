@@ -38,7 +38,7 @@ from typing import Iterator
 
 from ...patterns.base.errors import SolverError
 
-__all__ = ["watchdog", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
+__all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
@@ -69,6 +69,26 @@ def _on_sigterm(signum, frame):
     raise Terminated()
 
 
+#: Set while a server runs (:func:`serving`): its event loop answers signals itself, and it has no time limit.
+_SERVING = threading.Event()
+
+
+@contextlib.contextmanager
+def serving() -> Iterator[None]:
+    """Run a server in the block: no time limit, and signals left to the server's own handlers.
+
+    ``embroact studio`` runs until stopped; uvicorn ends it gracefully on Ctrl-C or SIGTERM
+    (closing connections, removing the launcher page), which the watchdog must not cut short.
+    """
+    if threading.current_thread() is threading.main_thread():
+        signal.setitimer(signal.ITIMER_REAL, 0)
+    _SERVING.set()
+    try:
+        yield
+    finally:
+        _SERVING.clear()
+
+
 def _guard(read_fd: int, done: threading.Event, time_limit_s: float) -> None:
     """The watchdog thread: wait for a signal byte; give the main thread GRACE_S; then end the process."""
     from ..files.atomic import abandon_staged
@@ -82,7 +102,7 @@ def _guard(read_fd: int, done: threading.Event, time_limit_s: float) -> None:
         if not data or done.is_set():
             return
         hits = [b for b in data if b in wanted]
-        if not hits:
+        if not hits or _SERVING.is_set():
             continue
         if done.wait(GRACE_S):
             return  # the main thread handled it
