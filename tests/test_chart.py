@@ -57,35 +57,35 @@ def test_nice_ticks_rejects_reversed_range():
 
 # ----------------------------------------------------------------------------- mapping
 def test_scale_maps_corners_and_midpoints():
-    sc = Scale(0.0, 300.0, -50.0, 150.0, left_px=64.0, top_px=46.0, width_px=466.0, height_px=342.0)
-    assert sc.x_px(0.0) == 64.0 and sc.x_px(300.0) == 64.0 + 466.0
-    assert sc.x_px(150.0) == pytest.approx(64.0 + 233.0)
+    sc = Scale(0.0, 300.0, -50.0, 150.0, left_px=64.0, top_px=46.0, width_px=640.0, height_px=342.0)
+    assert sc.x_px(0.0) == 64.0 and sc.x_px(300.0) == 64.0 + 640.0
+    assert sc.x_px(150.0) == pytest.approx(64.0 + 320.0)
     assert sc.y_px(150.0) == 46.0 and sc.y_px(-50.0) == 46.0 + 342.0
     assert sc.y_px(0.0) == pytest.approx(46.0 + 342.0 * 150.0 / 200.0)
 
 
 def test_chart_scale_for_default_size():
-    # ticks: x 0..300 (step 50), y 0..100 (step 20); plot box 720 - 64 - 190 wide, 440 - 46 - 52 high
+    # ticks: x 0..300 (step 50), y 0..100 (step 20); plot box 720 - 64 - 16 wide (legend below), 440 - 46 - 52 high
     sc = chart_scale([_simple()])
     assert (sc.x_min_kpa, sc.x_max_kpa, sc.y_min_deg, sc.y_max_deg) == (0.0, 300.0, 0.0, 100.0)
-    assert (sc.left_px, sc.top_px, sc.width_px, sc.height_px) == (64.0, 46.0, 466.0, 342.0)
+    assert (sc.left_px, sc.top_px, sc.width_px, sc.height_px) == (64.0, 46.0, 640.0, 342.0)
 
 
 def test_polyline_points_land_on_hand_computed_coordinates():
     root = _parse(bend_chart_svg([_simple()]))
     (line,) = [e for e in root.iter(SVG + "polyline") if e.get("class") == "curve"]
-    expected = [(64.0, 388.0), (64.0 + 466.0 / 3, 388.0), (64.0 + 2 * 466.0 / 3, 46.0 + 171.0), (530.0, 46.0)]
+    expected = [(64.0, 388.0), (64.0 + 640.0 / 3, 388.0), (64.0 + 2 * 640.0 / 3, 46.0 + 171.0), (704.0, 46.0)]
     assert np.abs(_points(line) - np.array(expected)).max() <= 0.006  # coordinates are written to 0.01
 
 
 def test_p0_line_and_measured_points():
     root = _parse(bend_chart_svg([_simple()]))
     (p0,) = [e for e in root.iter(SVG + "line") if e.get("class") == "p0"]
-    assert float(p0.get("x1")) == pytest.approx(64.0 + 466.0 / 2, abs=0.006)
+    assert float(p0.get("x1")) == pytest.approx(64.0 + 640.0 / 2, abs=0.006)
     assert float(p0.get("y1")) == 46.0 and float(p0.get("y2")) == 388.0
     circles = [e for e in root.iter(SVG + "circle") if e.get("class") == "measured"]
     got = [(float(c.get("cx")), float(c.get("cy"))) for c in circles]
-    want = [(64 + 466 * 120 / 300, 46 + 342 * 0.9), (64 + 466 * 240 / 300, 46 + 342 * 0.2)]
+    want = [(64 + 640 * 120 / 300, 46 + 342 * 0.9), (64 + 640 * 240 / 300, 46 + 342 * 0.2)]
     assert np.abs(np.array(got) - np.array(want)).max() <= 0.006
 
 
@@ -93,7 +93,7 @@ def test_status_bands_split_halfway_between_samples():
     root = _parse(bend_chart_svg([_simple()]))
     rects = [e for e in root.iter(SVG + "rect") if (e.get("class") or "").startswith("status")]
     spans = [(e.get("class").split()[1], float(e.get("x")), float(e.get("x")) + float(e.get("width"))) for e in rects]
-    x = lambda p: 64 + 466 * p / 300  # noqa: E731
+    x = lambda p: 64 + 640 * p / 300  # noqa: E731
     assert [s[0] for s in spans] == ["inflation", "bending", "locked"]
     assert spans[0][1:] == pytest.approx((x(0), x(150)), abs=0.011)
     assert spans[1][1:] == pytest.approx((x(150), x(250)), abs=0.011)
@@ -115,7 +115,7 @@ def test_several_series_get_ribbons_and_negative_angles():
     last = _points(lines[1])[-1]
     assert np.abs(last - [sc.x_px(300.0), sc.y_px(-48.0)]).max() <= 0.006
     ribbons = [e for e in root.iter(SVG + "rect") if (e.get("class") or "").startswith("status")]
-    assert {float(e.get("height")) for e in ribbons} == {6.0}
+    assert {float(e.get("height")) for e in ribbons} == {8.0}  # 9 px rows, 1 px apart
     assert "lock-up" in svg and "unstable" in svg and ">B<" in svg
 
 
@@ -169,7 +169,7 @@ def test_beyond_validity_is_dashed_clipped_and_shaded_fill_values_not_drawn():
     polys = [e for e in root.iter(SVG + "polyline")]
     (curve,) = [e for e in polys if e.get("class") == "curve"]
     (beyond,) = [e for e in polys if e.get("class") == "beyond"]
-    x = lambda p: 64 + 466 * p / 300  # noqa: E731
+    x = lambda p: 64 + 640 * p / 300  # noqa: E731
     assert _points(curve)[:, 0] == pytest.approx([x(0), x(100), x(200)], abs=0.006)
     # from the last valid point (200 kPa, 100 deg: the top of the box) to 250 kPa, clipped to the box
     assert _points(beyond)[0] == pytest.approx([x(200), 46.0], abs=0.006)
@@ -190,7 +190,7 @@ def test_band_polygon_follows_low_then_high_edge_over_drawn_points():
     assert (sc.y_min_deg, sc.y_max_deg) == (0.0, 100.0)  # the band's high edge at 200 kPa, not 2500
     root = _parse(bend_chart_svg([s]))
     (band,) = [e for e in root.iter(SVG + "polygon") if e.get("class") == "band"]
-    x = lambda p: 64 + 466 * p / 300  # noqa: E731
+    x = lambda p: 64 + 640 * p / 300  # noqa: E731
     y = lambda a: 46 + 342 * (100 - a) / 100  # noqa: E731
     want = [(x(0), y(0)), (x(100), y(30)), (x(200), y(60)), (x(200), y(100)), (x(100), y(50)), (x(0), y(0))]
     assert np.abs(_points(band) - np.array(want)).max() <= 0.006

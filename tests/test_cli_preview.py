@@ -49,7 +49,8 @@ def test_bend_chart_has_one_point_per_pressure(tmp_path, capsys):
     assert main(["preview", "bend", "-o", str(out), "--pressure-kpa", "0:300:25"]) == 0
     assert "13 pressures" in capsys.readouterr().out
     lines = [e for e in ET.parse(out).getroot().iter(SVG + "polyline") if e.get("class") == "curve"]
-    assert sum(len(e.get("points").split()) for e in lines) == 13
+    # the 13 pressures and the curve's breakpoint, P0 = 85 kPa (the inflation part ends there)
+    assert sum(len(e.get("points").split()) for e in lines) == 14
 
 
 def test_design_file_with_two_actuators(tmp_path):

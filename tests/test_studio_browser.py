@@ -171,8 +171,16 @@ def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_pa
     from embroact.predict.inverse import design_bend
 
     width = design_bend(90.0, 150.0, pattern="zigzag").best.params.width_mm
-    assert float(page.input_value("#f-actuator-0--width_mm")) == pytest.approx(width, rel=1e-12)
+    # the field shows 6 significant digits; the design keeps every digit (the saved file reads back the width)
+    assert page.input_value("#f-actuator-0--width_mm") == repr(float(f"{width:.6g}"))
     assert page.input_value("#f-actuator-0--interval_mm") == "1"
+    page.fill("#save-name", "applied.toml")
+    page.click("#save")
+    page.wait_for_function("() => document.getElementById('output-result').textContent.startsWith('saved')",
+                           timeout=30_000)
+    from embroact.export.files.designfile import load_design
+
+    assert load_design(out / "applied.toml").actuators[0].params.width_mm == pytest.approx(width, rel=1e-15)
     assert [p for p in problems if "status of 403" not in p] == []
 
 

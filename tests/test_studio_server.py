@@ -257,7 +257,7 @@ def test_inverse_design_gives_edits_that_reach_the_target(client):
 
 def test_the_3d_view_is_the_mesh_picture(client):
     r = client.get("/api/shape3d?pressure_kpa=200", headers=AUTH).json()
-    assert r["svg"].startswith("<svg") and 'class="mesh"' in r["svg"] and "A1: 200 kPa" in r["svg"]
+    assert r["svg"].startswith("<svg") and 'class="mesh"' in r["svg"] and "3D shape at 200 kPa" in r["svg"]
 
 
 # ------------------------------------------------------------------ the command
@@ -403,14 +403,14 @@ def test_a_target_shape_is_proposed_then_applied(client):
 
 
 def test_the_slider_marks_the_pressure_where_a_widened_chart_draws_it(out_dir):
-    """The hook's long segment legends widen the build's chart: the slider's dots sit on its curves."""
+    """The hook's long segment legends sit below the build's chart: the slider's dots sit on its curves."""
     import xml.etree.ElementTree as ET
     from pathlib import Path
 
     design = load_design(Path(__file__).resolve().parents[1] / "examples" / "designed_hook.toml")
     chart = ET.fromstring(Studio(design, out_dir).views(200.0)["chart_svg"])
     ns = "{http://www.w3.org/2000/svg}"
-    assert float(chart.get("width")) > 720.0  # widened (else this test would not show anything)
+    assert float(chart.get("width")) == 720.0  # the legend below the plot: the plot keeps the chart's width
     vertices = [tuple(map(float, p.split(","))) for e in chart.iter(ns + "polyline") if e.get("class") == "curve"
                 for p in e.get("points").split()]
     dots = chart.findall(f".//{ns}circle[@class='pressure-dot']")
@@ -418,3 +418,35 @@ def test_the_slider_marks_the_pressure_where_a_widened_chart_draws_it(out_dir):
     for dot in dots:
         x, y = float(dot.get("cx")), float(dot.get("cy"))
         assert min(abs(vx - x) + abs(vy - y) for vx, vy in vertices) < 0.02
+
+
+@pytest.mark.parametrize("example", ["three_actuators.toml", "designed_hook.toml", None])
+def test_the_worksheet_panel_shows_the_numbers_build_writes(out_dir, tmp_path, example):
+    """The studio's worksheet figures equal worksheet.json of 'embroact build' (its jumps were 0 where build's was 1)."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "examples"
+    design = default_design() if example is None else load_design(root / example)
+    panel = Studio(design, out_dir).views(100.0)["worksheet"]
+    built = tmp_path / "built"
+    built.mkdir()
+    argv = ["build", "--out", str(built), "--no-previews", "--force"] + ([] if example is None else [str(root / example)])
+    assert main(argv) in (0, 1)
+    sheet = json.loads((built / "worksheet.json").read_text())
+    for key, value in panel.items():
+        if key == "actuators":
+            for a, b in zip(value, sheet["actuators"]):
+                assert {k: b[k] for k in a} == a
+        else:
+            assert sheet[key] == value, key
+    assert panel["jump_count"] == sheet["jump_count"] and "jump_count" in panel
+
+
+def test_an_unreachable_shape_is_drawn_over_its_target_but_never_applied(client):
+    # a quarter circle at 20 kPa: below every P0 of the calibration table, no pattern bends at all
+    arc = "M 0 0 A 63.662 63.662 0 0 0 63.662 -63.662"
+    res = client.post("/api/inverse-shape", json={"path_d": arc, "pressure_kpa": 20}, headers=AUTH).json()
+    assert res["reached"] is False
+    assert res["svg"].startswith("<svg") and 'class="target"' in res["svg"] and 'class="predicted"' in res["svg"]
+    r = client.post("/api/apply-proposal", json={}, headers=AUTH)
+    assert r.status_code == 400 and r.json()["error"].startswith("no inverse-design proposal")

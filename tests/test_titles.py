@@ -71,4 +71,4 @@ def test_3d_title_of_many_actuators_fits_the_picture(paper):
     lines = _titles(svg)
     assert len(lines) == 3 and lines[-1][1].endswith(ELLIPSIS)
     assert all(12 + text_width_px(t, s) <= 480 - 12 for s, t in lines)
-    assert lines[0][1].startswith("3D shape at actuator number 0: 100 kPa")
+    assert lines[0][1].startswith("3D shape: actuator number 0 at 100 kPa")

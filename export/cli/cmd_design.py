@@ -129,19 +129,16 @@ def _settings(args):
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
 
-def _params_text(params) -> str:
-    return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
-
-
 def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str]]:
     from ...predict.inverse import design_bend
+    from ..pictures.shapefit import params_text
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name)
     lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
     for label, c in [("best", r.best)] + [(f"runner-up {i + 1}", c) for i, c in enumerate(r.runners_up)]:
         miss = c.theta_deg - r.target_deg
-        lines.append(f"{label}: {c.pattern} {_params_text(c.params)} -> {c.theta_deg:.3f} deg"
+        lines.append(f"{label}: {c.pattern} {params_text(c.params)} -> {c.theta_deg:.3f} deg"
                      + (f" (misses the target by {miss:+.1f} deg)" if abs(miss) > 0.05 else "")
                      + f"; P0 {c.p0_kpa:.1f} kPa, G {c.g_mpa:.4g} MPa")
         margin = "" if c.margin_kpa == float("inf") else f" ({c.margin_kpa:.1f} kPa above the target pressure)"
@@ -158,10 +155,8 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str]]:
 
 
 def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
-    import numpy as np
-
     from ...predict.inverse import design_shape
-    from ..pictures.shapefit import shape_overlay_svg
+    from ..pictures.shapefit import design_shape_svg, params_text
 
     from ...predict.inverse import DEFAULT_TIME_LIMIT_S
 
@@ -176,17 +171,11 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
     for i, s in enumerate(r.segments):
         note = f"  ({s.note})" if s.note else ""
-        lines.append(f"segment {i}: {s.pattern} {_params_text(s.params)} length_mm={s.length_mm:g} -> "
+        lines.append(f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} -> "
                      f"{s.theta_deg:+.2f} deg{note}")
     if r.warnings:
         lines.append(f"rule findings: {', '.join(r.warnings)}")
-    bounds = np.cumsum([s.length_mm for s in r.segments])[:-1]
-    caption = [f"{r.statement} at {r.pressure_kpa:g} kPa; tip {r.tip_error_mm:.2f} mm off"]
-    caption += [f"segment {i}: {s.pattern} {_params_text(s.params)} length_mm={s.length_mm:g} ({s.theta_deg:+.1f} deg)"
-                for i, s in enumerate(r.segments)]
-    svg = shape_overlay_svg(r.target_xy_mm, r.predicted_xy_mm, bounds.tolist(), caption=caption,
-                            title=f"Predicted shape over the target at {r.pressure_kpa:g} kPa")
-    return r.as_dict(), r.design, lines, svg
+    return r.as_dict(), r.design, lines, design_shape_svg(r)
 
 
 def run(args) -> int:

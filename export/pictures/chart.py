@@ -45,7 +45,8 @@ import numpy as np
 
 from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import ParameterError
-from .titles import fit_title
+from .labels import Box, Placer
+from .titles import fit_title, text_width_px
 
 __all__ = ["STATUS_STYLE", "DRAWN_STATES", "BEYOND_VALIDITY", "Scale", "Series", "nice_ticks", "chart_scale",
            "bend_chart_svg"]
@@ -77,9 +78,13 @@ _DECIMALS = 2  # SVG coordinates are rounded to 0.01 user unit: stable bytes, sm
 _TICK_STEPS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0)  # two decades: rounding can push past the first
 _FONT = "font-family:Helvetica,Arial,sans-serif"
 _TITLE_RIGHT_PX = 10.0  # the title's margin to the chart's right edge
-_RIBBON_PX = 7.0
-_LEGEND_MIN_PX = 190.0
-_CHAR_PX = 6.2
+_RIBBON_PX = 9.0
+_RIBBON_FONT_PX = 8.0
+_P0_FONT_PX = 10.0
+_RIGHT_MIN_PX = 16.0
+_LEGEND_ROW_PX = 18.0
+_LEGEND_FONT_PX = 11.0
+_KEY_PX = 22.0
 
 
 def _frozen(values) -> np.ndarray:
@@ -267,12 +272,12 @@ def _ribbons_px(series: Sequence[Series]) -> float:
     return _RIBBON_PX * with_status if len(series) > 1 else 0.0
 
 
-def _legend_px(series: Sequence[Series]) -> float:
-    """Legend column width: room for the longest series label (about 6.2 px per character at 11 px).
-
-    The minimum fits every status text.
-    """
-    return max(_LEGEND_MIN_PX, 44.0 + _CHAR_PX * max(len(s.label) for s in series))
+def _right_px(series: Sequence[Series]) -> float:
+    """Room right of the plot: the status strips' names when there are several curves."""
+    if len(series) < 2:
+        return _RIGHT_MIN_PX
+    names = [_strip_name(s.label) for s in series if s.status is not None]
+    return max([_RIGHT_MIN_PX] + [8.0 + text_width_px(n, _RIBBON_FONT_PX) for n in names])
 
 
 def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px: float = 440.0) -> Scale:
@@ -280,10 +285,9 @@ def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px:
 
     The pressure axis starts at 0 kPa and the angle axis always includes 0 deg; it spans
     the drawn states (and their band) and the measured points only, never the formula's
-    angles past a validity limit or fill values. The legend column on the right is as
-    wide as its longest label.
+    angles past a validity limit or fill values. The legend sits below the plot, so the
+    plot keeps the chart's width (less the status strips' names on its right).
     """
-    legend_px = _legend_px(series)
     xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
                                                      if s.measured_pressure_kpa is not None])
     ys = _finite([s.theta_deg[s.drawn()] for s in series]
@@ -293,7 +297,8 @@ def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px:
     xt = nice_ticks(0.0, float(xs.max()) if xs.size else 1.0)
     yt = nice_ticks(min(0.0, float(ys.min()) if ys.size else 0.0), max(0.0, float(ys.max()) if ys.size else 1.0))
     left, top, bottom = 64.0, 46.0, 52.0 + _ribbons_px(series)
-    return Scale(xt[0], xt[-1], yt[0], yt[-1], left, top, width_px - left - legend_px, height_px - top - bottom)
+    return Scale(xt[0], xt[-1], yt[0], yt[-1], left, top, width_px - left - _right_px(series),
+                 height_px - top - bottom)
 
 
 def _fmt(v: float) -> str:
@@ -325,8 +330,7 @@ def _status_spans(s: Series) -> list[tuple[str, float, float]]:
     return spans
 
 
-def _draw_status(dwg, g, series: Sequence[Series], sc: Scale) -> list[str]:
-    used: list[str] = []
+def _draw_status(dwg, g, series: Sequence[Series], sc: Scale) -> None:
     rows = [s for s in series if s.status is not None]
     for k, s in enumerate(rows):
         if len(series) == 1:
@@ -337,9 +341,6 @@ def _draw_status(dwg, g, series: Sequence[Series], sc: Scale) -> list[str]:
             x0, x1 = float(sc.x_px(a)), float(sc.x_px(b))
             g.add(dwg.rect((_fmt(x0), _fmt(y0)), (_fmt(x1 - x0), _fmt(h)), fill=STATUS_STYLE[name][0],
                            **{"class": f"status {name}", "data-series": str(series.index(s))}))
-            if name not in used:
-                used.append(name)
-    return used
 
 
 def _draw_axes(dwg, g, sc: Scale, xt, yt, ribbons_px: float) -> None:
@@ -399,45 +400,129 @@ def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
         x = _fmt(sc.x_px(s.p0_kpa))
         g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(sc.top_px + sc.height_px)), stroke=colour,
                        stroke_width=1.2, stroke_dasharray="5,3", **{"class": "p0", "data-series": str(k)}))
-        g.add(dwg.text(f"P0 {s.p0_kpa:.0f}", insert=(_fmt(sc.x_px(s.p0_kpa) + 3), _fmt(sc.top_px + 12 + 12 * k)),
-                       font_size=10, fill=colour))
     if s.measured_pressure_kpa is not None:
         for x, y in zip(sc.x_px(s.measured_pressure_kpa), sc.y_px(s.measured_theta_deg)):
             g.add(dwg.circle((_fmt(x), _fmt(y)), 3.2, fill="#fff", stroke=colour, stroke_width=1.5,
                              **{"class": "measured", "data-series": str(k)}))
 
 
-def _draw_legend(dwg, g, series: Sequence[Series], used: list[str], sc: Scale) -> None:
-    x, y = sc.left_px + sc.width_px + 16.0, sc.top_px + 6.0
+def _curve_points_px(s: Series, sc: Scale) -> list[np.ndarray]:
+    """The drawn runs of a series in SVG units (what the P0 labels keep off)."""
+    order = np.argsort(s.pressure_kpa, kind="stable")
+    p, t = s.pressure_kpa[order], s.theta_deg[order]
+    shown = np.isfinite(t) & (s.drawn()[order] | s.beyond_validity()[order])
+    return [np.column_stack([sc.x_px(p[a:b]), np.clip(sc.y_px(t[a:b]), sc.top_px, sc.top_px + sc.height_px)])
+            for a, b in _runs(shown)]
+
+
+def _draw_p0_labels(dwg, g, series: Sequence[Series], sc: Scale) -> None:
+    """Each P0 mark's value beside its line, placed clear of every curve and of the other P0 labels."""
+    placer = Placer(Box(sc.left_px + 1.0, sc.top_px + 1.0, sc.left_px + sc.width_px - 1.0,
+                        sc.top_px + sc.height_px - 1.0), margin=1.0)
+    for s in series:
+        for pts in _curve_points_px(s, sc):
+            placer.block_polyline(pts)
+    marked = [s for s in series if s.p0_kpa is not None and sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa]
+    for s in marked:  # the dashed P0 lines: a label sits beside its own line, never across another
+        placer.block_polyline([(sc.x_px(s.p0_kpa), sc.top_px), (sc.x_px(s.p0_kpa), sc.top_px + sc.height_px)])
+    rows = np.arange(sc.top_px + 12.0, sc.top_px + sc.height_px - 4.0, 12.0)
     for k, s in enumerate(series):
-        colour = PALETTE[k % len(PALETTE)]
-        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + 22), _fmt(y)), stroke=colour, stroke_width=2))
-        g.add(dwg.text(s.label, insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11, **{"class": "legend"}))
-        y += 18.0
-    if any(s.measured_pressure_kpa is not None for s in series):
-        g.add(dwg.circle((_fmt(x + 11), _fmt(y)), 3.2, fill="#fff", stroke="#333", stroke_width=1.5))
-        g.add(dwg.text("measured", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
-        y += 18.0
-    if any(s.p0_kpa is not None for s in series):
-        g.add(dwg.line((_fmt(x + 11), _fmt(y - 7)), (_fmt(x + 11), _fmt(y + 7)), stroke="#333",
-                       stroke_dasharray="5,3"))
-        g.add(dwg.text("P0 (transition)", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
-        y += 18.0
-    if any(s.theta_low_deg is not None for s in series):
-        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (22, 12), fill="#333", fill_opacity=_BAND_OPACITY))
-        g.add(dwg.text("1-sigma band", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
-        y += 18.0
-    if any(s.beyond_validity().any() for s in series):
-        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + 22), _fmt(y)), stroke="#333", stroke_width=1,
-                       stroke_dasharray="2,3"))
-        g.add(dwg.text("formula past validity", insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
-        y += 18.0
-    y += 6.0
-    for name in used:
-        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (22, 12), fill=STATUS_STYLE[name][0], stroke="#999",
+        if s.p0_kpa is None or not sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa:
+            continue
+        x = float(sc.x_px(s.p0_kpa))
+        text = f"P0 {s.p0_kpa:.0f}"
+        lab = placer.place_along(text, [(x, float(y)) for y in rows], _P0_FONT_PX, gap=3.0)
+        g.add(dwg.text(text, insert=(_fmt(lab.x), _fmt(lab.y)), font_size=_P0_FONT_PX, fill=PALETTE[k % len(PALETTE)],
+                       text_anchor=lab.anchor, **{"class": "p0-label", "data-series": str(k)}))
+
+
+def _strip_name(label: str) -> str:
+    """A status strip's name: the series label up to its first ``,`` or ``:`` (the actuator's name)."""
+    for sep in (":", ","):
+        label = label.split(sep)[0]
+    return label
+
+
+def _draw_strip_names(dwg, g, series: Sequence[Series], sc: Scale) -> None:
+    """Under several curves each status strip is named at its right end."""
+    if len(series) < 2:
+        return
+    rows = [s for s in series if s.status is not None]
+    for k, s in enumerate(rows):
+        y = sc.top_px + sc.height_px + 2.0 + k * _RIBBON_PX + _RIBBON_PX - 1.5
+        g.add(dwg.text(_strip_name(s.label), insert=(_fmt(sc.left_px + sc.width_px + 4.0), _fmt(y)),
+                       font_size=_RIBBON_FONT_PX, fill=PALETTE[series.index(s) % len(PALETTE)],
+                       **{"class": "strip-name"}))
+
+
+def _legend_items(series: Sequence[Series], used: list[str]) -> list[tuple[str, object, str]]:
+    """(kind, key, text) of every legend entry: each series, then the marks and the shaded states drawn."""
+    items: list[tuple[str, object, str]] = [("series", k, s.label) for k, s in enumerate(series)]
+    marks = (("measured", any(s.measured_pressure_kpa is not None for s in series), "measured"),
+             ("p0", any(s.p0_kpa is not None for s in series), "P0 (transition)"),
+             ("band", any(s.theta_low_deg is not None for s in series), "1-sigma band"),
+             ("beyond", any(s.beyond_validity().any() for s in series), "formula past validity"))
+    items += [("mark", kind, text) for kind, present, text in marks if present]
+    if len(series) > 1 and used:
+        items.append(("note", None, "each curve's state, in its strip under the plot:"))
+    items += [("state", name, STATUS_STYLE[name][1]) for name in used]
+    return items
+
+
+def _legend_rows(items, width_px: float) -> list[list[tuple[str, object, str, float]]]:
+    """Items flowed into rows of ``width_px``: each series on a row of its own (shortened to fit), the rest side by side."""
+    rows: list[list] = []
+    used = width_px
+    for kind, key, text in items:
+        if kind == "series":
+            text = fit_title(text, width_px - _KEY_PX - 6.0, font_px=_LEGEND_FONT_PX, small_px=_LEGEND_FONT_PX,
+                             max_lines=1).lines[0]
+        w = _key_px(kind) + text_width_px(text, _LEGEND_FONT_PX) + 16.0
+        if kind in ("series", "note") or used + w > width_px or (rows and rows[-1][0][0] in ("series", "note")):
+            rows.append([])
+            used = 0.0
+        rows[-1].append((kind, key, text, used))
+        used += w
+    return rows
+
+
+def _key_px(kind: str) -> float:
+    """Width of an entry's symbol and the space after it (a note has none)."""
+    return 0.0 if kind == "note" else _KEY_PX + 6.0
+
+
+def _legend_height_px(series: Sequence[Series], used: list[str], width_px: float) -> float:
+    return _LEGEND_ROW_PX * len(_legend_rows(_legend_items(series, used), width_px)) + 8.0
+
+
+def _draw_key(dwg, g, kind: str, key, x: float, y: float) -> None:
+    """The symbol of a legend entry, ``_KEY_PX`` wide, centred on height ``y``."""
+    if kind == "series":
+        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + _KEY_PX), _fmt(y)), stroke=PALETTE[key % len(PALETTE)],
+                       stroke_width=2))
+    elif kind == "state":
+        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (_KEY_PX, 12), fill=STATUS_STYLE[key][0], stroke="#999",
                        stroke_width=0.5))
-        g.add(dwg.text(STATUS_STYLE[name][1], insert=(_fmt(x + 28), _fmt(y + 4)), font_size=11))
-        y += 18.0
+    elif key == "measured":
+        g.add(dwg.circle((_fmt(x + _KEY_PX / 2), _fmt(y)), 3.2, fill="#fff", stroke="#333", stroke_width=1.5))
+    elif key == "p0":
+        g.add(dwg.line((_fmt(x + _KEY_PX / 2), _fmt(y - 7)), (_fmt(x + _KEY_PX / 2), _fmt(y + 7)), stroke="#333",
+                       stroke_dasharray="5,3"))
+    elif key == "band":
+        g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (_KEY_PX, 12), fill="#333", fill_opacity=_BAND_OPACITY))
+    else:  # beyond validity
+        g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + _KEY_PX), _fmt(y)), stroke="#333", stroke_width=1,
+                       stroke_dasharray="2,3"))
+
+
+def _draw_legend(dwg, g, series: Sequence[Series], used: list[str], x0: float, y0: float, width_px: float) -> None:
+    for r, row in enumerate(_legend_rows(_legend_items(series, used), width_px)):
+        y = y0 + r * _LEGEND_ROW_PX
+        for kind, key, text, dx in row:
+            if kind != "note":
+                _draw_key(dwg, g, kind, key, x0 + dx, y)
+            g.add(dwg.text(text, insert=(_fmt(x0 + dx + _key_px(kind)), _fmt(y + 4)), font_size=_LEGEND_FONT_PX,
+                           **{"class": "legend"}))
 
 
 def bend_chart_svg(
@@ -456,7 +541,8 @@ def bend_chart_svg(
     title : str
         Chart title.
     width_px, height_px : float
-        Drawing size in SVG user units (px), at least 320 x 240.
+        Size of the chart in SVG user units (px), at least 320 x 240; the legend is drawn
+        below it, one row per series and rows of marks and states, and adds to the height.
 
     Returns
     -------
@@ -474,19 +560,24 @@ def bend_chart_svg(
     sc = chart_scale(series, width_px=width_px, height_px=height_px)
     xt = nice_ticks(sc.x_min_kpa, sc.x_max_kpa)
     yt = nice_ticks(sc.y_min_deg, sc.y_max_deg)
-    dwg = Drawing(size=(_fmt(width_px), _fmt(height_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(height_px)}")
-    dwg.add(dwg.rect((0, 0), (_fmt(width_px), _fmt(height_px)), fill="#fff"))
+    used = [name for name in STATUS_STYLE if any(s.status is not None and name in s.status for s in series)]
+    legend_w = width_px - 16.0 - _TITLE_RIGHT_PX
+    total_px = height_px + _legend_height_px(series, used, legend_w)
+    dwg = Drawing(size=(_fmt(width_px), _fmt(total_px)), viewBox=f"0 0 {_fmt(width_px)} {_fmt(total_px)}")
+    dwg.add(dwg.rect((0, 0), (_fmt(width_px), _fmt(total_px)), fill="#fff"))
     clip = dwg.defs.add(dwg.clipPath(id="plot-box"))
     clip.add(dwg.rect((_fmt(sc.left_px), _fmt(sc.top_px)), (_fmt(sc.width_px), _fmt(sc.height_px))))
     g = dwg.g(style=_FONT)
     dwg.add(g)
-    used = _draw_status(dwg, g, series, sc)
+    _draw_status(dwg, g, series, sc)
     for k, s in enumerate(series):
         _draw_band(dwg, g, k, s, sc)
     _draw_axes(dwg, g, sc, xt, yt, _ribbons_px(series))
     for k, s in enumerate(series):
         _draw_series(dwg, g, k, s, sc)
-    _draw_legend(dwg, g, series, used, sc)
+    _draw_p0_labels(dwg, g, series, sc)
+    _draw_strip_names(dwg, g, series, sc)
+    _draw_legend(dwg, g, series, used, 16.0, height_px + 6.0, legend_w)
     fitted = fit_title(title, width_px - sc.left_px - _TITLE_RIGHT_PX)  # two lines of 12 px above the plot at most
     for k, line in enumerate(fitted.lines):
         y = 22 if len(fitted.lines) == 1 else 17 + 15 * k

@@ -41,7 +41,8 @@ import numpy as np
 
 from ...patterns.base.errors import check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
-from .titles import fit_title
+from .labels import Box, Placer, text_box
+from .titles import fit_title, text_width_px
 
 __all__ = ["view_rotation", "mesh_svg", "picture_tolerance_mm", "PICTURE_TOLERANCE_PX"]
 
@@ -55,6 +56,12 @@ _MAX_TOLERANCE_MM = 10.0
 _AMBIENT = 0.45
 _LIGHT = np.array([-0.35, 0.55, 0.75]) / np.linalg.norm([-0.35, 0.55, 0.75])
 _MARGIN_PX = 12.0
+_NAME_PX = 12.0
+_KEY_ROW_PX = 20.0
+# Each triangle is stroked in its own fill this wide: adjacent triangles overlap, no background shows through the
+# anti-aliased shared edges (0.4 px left faint seams across the fabric in Chromium)
+_SEAM_PX = 0.9
+_FONT = "font-family:Helvetica,Arial,sans-serif"
 _SPLIT_FRACTION = 0.04
 _HANGING = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
 
@@ -163,18 +170,19 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     # long thin triangles defeat depth sorting: split them to a fraction of the shape's
     # size, or of the whole drawing when it holds many shapes
     split = _SPLIT_FRACTION * max(max(s.bent.path.length_mm for s in shapes), float(_extent_mm(shapes, rot).max()))
-    tris, cols, hidden = [], [], []
-    for s in shapes:
+    tris, cols, hidden, owner = [], [], [], []
+    for k, s in enumerate(shapes):
         for b in s.bodies:
             v, f, parent = subdivide_to_size(b.vertices, b.faces, split)
             tris.append(v[f] @ rot.T)
             cols.append(np.tile(np.array(b.colour[:3], dtype=float), (len(f), 1)))
             hidden.append(_behind_fabric(s, b, rot)[parent])
-    tri, col, behind = np.concatenate(tris), np.concatenate(cols), np.concatenate(hidden)
+            owner.append(np.full(len(f), k))
+    tri, col, behind, who = np.concatenate(tris), np.concatenate(cols), np.concatenate(hidden), np.concatenate(owner)
     n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     norm = np.linalg.norm(n, axis=1)
     keep = (n[:, 2] > 0) & (norm > 0)
-    tri, col, behind, n = tri[keep], col[keep], behind[keep], n[keep] / norm[keep, None]
+    tri, col, behind, who, n = tri[keep], col[keep], behind[keep], who[keep], n[keep] / norm[keep, None]
     shade = _AMBIENT + (1.0 - _AMBIENT) * np.clip(n @ _LIGHT, 0.0, 1.0)
     rgb = np.clip(col * shade[:, None], 0, 255).round().astype(int)
     # parts behind the fabric first, then everything far to near
@@ -182,20 +190,57 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
     scale = _scale_px_per_mm(hi - lo, width)
     fitted = fit_title(title, width - 2 * _MARGIN_PX, font_px=14.0, small_px=12.0, max_lines=3) if title else None
-    top = 15.0 + 15.0 * len(fitted.lines) if fitted else _MARGIN_PX
-    height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX
+    top = (15.0 + 15.0 * len(fitted.lines) if fitted else _MARGIN_PX) + _NAME_PX * 1.6
+    height = (hi[1] - lo[1]) * scale + top + _MARGIN_PX + _KEY_ROW_PX
     dwg = Drawing(size=(f"{width:.0f}", f"{height:.0f}"), viewBox=f"0 0 {width:.0f} {height:.0f}")
     dwg.add(dwg.rect((0, 0), (f"{width:.0f}", f"{height:.0f}"), fill="#fff"))
-    g = dwg.g(stroke_width=0.4, stroke_linejoin="round", **{"class": "mesh"})
+    g = dwg.g(stroke_width=_SEAM_PX, stroke_linejoin="round", **{"class": "mesh"})
     dwg.add(g)
     px = np.empty_like(tri[:, :, :2])
     px[:, :, 0] = _MARGIN_PX + (tri[:, :, 0] - lo[0]) * scale
     px[:, :, 1] = top + (hi[1] - tri[:, :, 1]) * scale
     lines, font_px = (fitted.lines, fitted.font_px) if fitted else ((), 0.0)
+    placer = Placer(Box(0.0, 0.0, width, height), margin=2.0)
     for k, line in enumerate(lines):
         dwg.add(dwg.text(line, insert=(_MARGIN_PX, 20 + 15 * k), font_size=f"{font_px:g}", font_weight="bold",
-                         style="font-family:Helvetica,Arial,sans-serif"))
+                         style=_FONT))
+        placer.block_box(text_box(line, _MARGIN_PX, 20 + 15 * k, font_px))
+    _draw_names(dwg, placer, [s.name for s in shapes], px, who)
+    _draw_key(dwg, shapes, height - _MARGIN_PX)
     return _with_polygons(dwg.tostring(), g.tostring(), px[order].reshape(-1, 6).tolist(), rgb[order].tolist())
+
+
+_KEY_TEXT = (("fabric", "fabric"), ("tube", "tube (thread side)"), ("rail", "rails (leg ends)"))
+
+
+def _draw_key(dwg, shapes, y: float) -> None:
+    """Which colour is which part: the fabric strip, the tube on the thread side, the rails."""
+    colours: dict[str, tuple] = {}
+    for s in shapes:
+        for b in s.bodies:
+            colours.setdefault(b.name.split("_")[0], b.colour[:3])
+    x = _MARGIN_PX
+    for part, text in _KEY_TEXT:
+        if part not in colours:
+            continue
+        dwg.add(dwg.rect((f"{x:.1f}", f"{y - 9:.1f}"), (12, 10), fill="#%02x%02x%02x" % tuple(colours[part]),
+                         stroke="#555", stroke_width=0.5))
+        dwg.add(dwg.text(text, insert=(f"{x + 16:.1f}", f"{y:.1f}"), font_size=f"{_NAME_PX - 1:g}", style=_FONT,
+                         **{"class": "key"}))
+        x += 16 + text_width_px(text, _NAME_PX - 1) + 14
+
+
+def _draw_names(dwg, placer: Placer, names, px: np.ndarray, who: np.ndarray) -> None:
+    """Each shape's name above its highest point (the clamp of a hanging strip), clear of the other names."""
+    for k, name in enumerate(names):
+        pts = px[who == k].reshape(-1, 2)
+        if not len(pts):
+            continue
+        top = pts[np.argmin(pts[:, 1])]
+        lab = placer.place(name, (float(top[0]), float(top[1])), _NAME_PX, gap=3.0,
+                           directions=((0, -1), (1, -1), (-1, -1), (1, 0), (-1, 0), (0, 1)))
+        dwg.add(dwg.text(name, insert=(f"{lab.x:.1f}", f"{lab.y:.1f}"), font_size=f"{_NAME_PX:g}", style=_FONT,
+                         text_anchor=lab.anchor, fill="#222", **{"class": "name"}))
 
 
 def _with_polygons(svg: str, group: str, points, colours) -> str:

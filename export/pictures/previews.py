@@ -47,6 +47,8 @@ __all__ = [
     "model_caption",
     "actuator_series",
     "bend_series",
+    "breakpoints_kpa",
+    "chart_curves",
     "bend_chart",
     "bend_chart_width_px",
     "side_panels",
@@ -255,12 +257,38 @@ def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, b
             for s in actuator_series(a, c, measured.get(a.name), b)]
 
 
+def breakpoints_kpa(analysis) -> tuple[float, ...]:
+    """Where a curve of the design changes branch: the transition pressure P0 of every actuator and
+    segment with a model, ascending, each once."""
+    models = [p.model for a in analysis.actuators for p in (a.segments or (a,)) if p.choice is not None]
+    return tuple(sorted({float(m.p0_kpa) for m in models}))
+
+
+def chart_curves(analysis, curves) -> tuple:
+    """``curves`` at their own pressures and at every breakpoint among them (:func:`breakpoints_kpa`).
+
+    Sampled there, each drawn curve's inflation part ends exactly at its P0 and its bending branch
+    starts there, instead of a chord from the last inflation sample to the first bending one."""
+    grids = {tuple(float(p) for p in c.pressure_kpa) for c in curves}
+    if len(grids) != 1:
+        return tuple(curves)
+    grid = grids.pop()
+    extra = [p for p in breakpoints_kpa(analysis) if grid[0] < p < grid[-1] and p not in grid]
+    return tuple(curves) if not extra else analysis.curves(sorted(grid + tuple(extra)))
+
+
 def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None, bands=None) -> str:
     """The bend chart SVG of an analysed design: the legend gives each actuator's G and P0 and where they
-    came from, the title the tube law and tube; a fitted calibration's 1-sigma band is shaded."""
+    came from, the title the tube law and tube; a fitted calibration's 1-sigma band is shaded.
+
+    The curves are drawn at their pressures and breakpoints (:func:`chart_curves`); ``bands``, when
+    given for other pressures, are taken again at those."""
     caption = model_caption(analysis)
     title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
-    series = bend_series(analysis, curves, measured, bands)
+    drawn = chart_curves(analysis, curves)
+    if len(drawn[0].pressure_kpa) != len(curves[0].pressure_kpa):  # bands at the new pressures
+        bands = None
+    series = bend_series(analysis, drawn, measured, bands)
     return bend_chart_svg(series, title=title, width_px=bend_chart_width_px(series))
 
 
@@ -307,14 +335,18 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
 
 
 def shape3d_title(pressures: Mapping[str, float]) -> str:
-    """Title of the 3D picture: the pressure of each actuator's shape.
+    """Title of the 3D picture: the pressure of each actuator's shape (one pressure when they agree).
 
     Examples
     --------
     >>> shape3d_title({"A1": 150.0, "A2": 87.5})
-    '3D shape at A1: 150 kPa, A2: 87.5 kPa'
+    '3D shape: A1 at 150 kPa, A2 at 87.5 kPa'
+    >>> shape3d_title({"A1": 300.0})
+    '3D shape at 300 kPa'
     """
-    return "3D shape at " + ", ".join(f"{n}: {p:g} kPa" for n, p in pressures.items())
+    if len(set(pressures.values())) == 1:
+        return f"3D shape at {next(iter(pressures.values())):g} kPa"
+    return "3D shape: " + ", ".join(f"{n} at {p:g} kPa" for n, p in pressures.items())
 
 
 def check_side_states(value, *, name: str = "side_states") -> int:

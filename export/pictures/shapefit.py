@@ -23,7 +23,7 @@ import numpy as np
 
 from ...patterns.base.errors import ParameterError
 
-__all__ = ["shape_overlay_svg"]
+__all__ = ["params_text", "shape_overlay_svg", "design_shape_svg"]
 
 _PX_PER_MM = 3.0
 _MARGIN_MM = 10.0
@@ -93,3 +93,27 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
     root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
     return dwg.tostring()
+
+
+def params_text(params) -> str:
+    """Pattern parameters as ``key=value`` words (5 significant digits).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> params_text(ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    'width_mm=7 interval_mm=1'
+    """
+    return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
+
+
+def design_shape_svg(result) -> str:
+    """The answer of :func:`embroact.predict.inverse.design_shape` drawn over its target, captioned with the
+    statement, the tip error and each segment (what ``embroact design --target-shape --svg`` writes and the
+    studio shows)."""
+    bounds = np.cumsum([s.length_mm for s in result.segments])[:-1]
+    caption = [f"{result.statement} at {result.pressure_kpa:g} kPa; tip {result.tip_error_mm:.2f} mm off"]
+    caption += [f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} ({s.theta_deg:+.1f} deg)"
+                for i, s in enumerate(result.segments)]
+    return shape_overlay_svg(result.target_xy_mm, result.predicted_xy_mm, bounds.tolist(), caption=caption,
+                             title=f"Predicted shape over the target at {result.pressure_kpa:g} kPa")

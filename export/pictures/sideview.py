@@ -44,6 +44,7 @@ from ...patterns.base.errors import ParameterError, check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
 from ...predict.shape import BentShape
 from .chart import PALETTE
+from .labels import Box, Placer, text_box
 
 __all__ = ["FABRIC_THICKNESS_MM", "SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg"]
 
@@ -56,6 +57,11 @@ _MARGIN_MM = 8.0
 _LEGEND_ROW_MM = 6.0
 _LEGEND_WIDTH_MM = 50.0
 _FONT = "font-family:Helvetica,Arial,sans-serif"
+_PANEL_FONT_MM = 4.5
+_LEGEND_FONT_MM = 3.6
+_TIP_FONT_MM = 3.5
+_SIDE_FONT_MM = 3.0
+_SAME_TIP_MM = 1.5  # tips closer than this get one label ("1,2")
 
 
 @dataclass(frozen=True, slots=True)
@@ -199,31 +205,63 @@ def _pts(xz: np.ndarray, dx: float, dy: float) -> list[tuple[float, float]]:
     return [(round(float(x) + dx, 3), round(dy - float(z), 3)) for x, z in xz]
 
 
-def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, left: float, legend_y: float) -> None:
+def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, left: float, legend_y: float,
+                placer: Placer, title_y: float) -> list[tuple[tuple[float, float], list[int]]]:
+    """Draw the panel's title, states, legend and clamp; return its tips (SVG point, state numbers there)."""
     r0 = panel.r0_mm
     g = dwg.g(**{"class": "panel"})
     parent.add(g)
+    g.add(dwg.text(panel.label, insert=(left, round(title_y, 3)), font_size=_PANEL_FONT_MM, font_weight="bold",
+                   **{"class": "panel-title"}))
+    tips: list[tuple[tuple[float, float], list[int]]] = []
     for k, (p, t, shape, lines) in enumerate(states):
         colour = PALETTE[k % len(PALETTE)]
         sg = dwg.g(**{"class": "state", "data-pressure-kpa": f"{p:g}", "data-theta-deg": f"{t:.6g}"})
         g.add(sg)
-        sg.add(dwg.polygon(_pts(_band(lines, 0.0, 2.0 * r0), dx, dy), fill=colour, fill_opacity=0.25,
-                           stroke=colour, stroke_width=0.25, **{"class": "tube"}))
+        tube = _pts(_band(lines, 0.0, 2.0 * r0), dx, dy)
+        sg.add(dwg.polygon(tube, fill=colour, fill_opacity=0.25, stroke=colour, stroke_width=0.25,
+                           **{"class": "tube"}))
         sg.add(dwg.polygon(_pts(_band(lines, -FABRIC_THICKNESS_MM, 0.0), dx, dy), fill=colour,
                            stroke=colour, stroke_width=0.3, **{"class": "fabric"}))
+        placer.block_polyline(tube + tube[:1])
         if panel.marks_mm:
             on_tube = shape.points(list(panel.marks_mm), [(0.0, r0)])[:, 0, :]
             for x, y in _pts(np.column_stack([on_tube[:, 2], -on_tube[:, 0]]), dx, dy):
                 sg.add(dwg.circle((x, y), 0.9, fill="#fff", stroke=colour, stroke_width=0.35, **{"class": "mark"}))
         tip = _pts(lines[r0][-1:], dx, dy)[0]
         sg.add(dwg.circle(tip, 1.0, fill=colour))
-        sg.add(dwg.text(f"{k + 1}", insert=(tip[0] + 1.6, tip[1] + 1.2), font_size=3.5, fill=colour))
+        placer.block_box(Box(tip[0] - 1.0, tip[1] - 1.0, tip[0] + 1.0, tip[1] + 1.0))
+        same = [n for n, (q, _) in enumerate(tips) if math.dist(q, tip) < _SAME_TIP_MM]
+        if same:  # a state ending where an earlier one ends: one label for both
+            tips[same[0]][1].append(k)
+        else:
+            tips.append((tip, [k]))
         y = legend_y + k * _LEGEND_ROW_MM
         sg.add(dwg.rect((left, y - 3.0), (4.0, 4.0), fill=colour))
         legend = f"{k + 1}: {p:g} kPa, {t:.1f} deg" if math.isfinite(p) else f"{k + 1}: {t:.1f} deg"
-        sg.add(dwg.text(legend, insert=(left + 5.5, y + 0.6), font_size=3.6))
-    g.add(dwg.rect((dx - 3.0, dy - 4.0), (2.0 * r0 + 6.0, 4.0), fill="#444", **{"class": "clamp"}))
-    g.add(dwg.text(panel.label, insert=(left, dy - 8.0), font_size=4.5, font_weight="bold"))
+        sg.add(dwg.text(legend, insert=(left + 5.5, y + 0.6), font_size=_LEGEND_FONT_MM))
+        placer.block_box(text_box(legend, left + 5.5, y + 0.6, _LEGEND_FONT_MM).union(Box(left, y - 3.0, left, y)))
+    clamp = (dx - 3.0, dy - 4.0, 2.0 * r0 + 6.0, 4.0)
+    g.add(dwg.rect(clamp[:2], clamp[2:], fill="#444", **{"class": "clamp"}))
+    placer.block_box(Box(clamp[0], clamp[1], clamp[0] + clamp[2], clamp[1] + clamp[3]))
+    return tips
+
+
+def _draw_sides(dwg, parent, panel: SidePanel, dx: float, dy: float, placer: Placer) -> None:
+    """Name the two faces at the clamp: the fabric to its left (-x), the tube on the thread side to its right."""
+    for text, x, direction in (("fabric", dx - 3.0, (-1, 0)), ("tube", dx + 2.0 * panel.r0_mm + 3.0, (1, 0))):
+        lab = placer.place(text, (x, dy - 2.0), _SIDE_FONT_MM, gap=0.8, directions=(direction, (direction[0], -1)))
+        parent.add(dwg.text(text, insert=(round(lab.x, 3), round(lab.y, 3)), font_size=_SIDE_FONT_MM,
+                            text_anchor=lab.anchor, fill="#555", **{"class": "side-name"}))
+
+
+def _draw_tips(dwg, parent, tips, placer: Placer) -> None:
+    """Each tip numbered by its state(s), placed clear of the other labels and the drawing."""
+    for tip, ks in tips:
+        text = ",".join(str(k + 1) for k in ks)
+        lab = placer.place(text, tip, _TIP_FONT_MM, gap=1.4)
+        parent.add(dwg.text(text, insert=(round(lab.x, 3), round(lab.y, 3)), font_size=_TIP_FONT_MM,
+                            text_anchor=lab.anchor, fill=PALETTE[ks[0] % len(PALETTE)], **{"class": "tip"}))
 
 
 def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side view, clamped top)") -> str:
@@ -239,7 +277,7 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
         raise ParameterError("panels must hold at least one side view")
     states = [_state_lines(p) for p in panels]
     bounds = [_panel_bounds(p, s) for p, s in zip(panels, states)]
-    top = max(b[3] for b in bounds) + 22.0
+    top = max(b[3] for b in bounds) + 24.0
     bottom = min(b[1] for b in bounds)
     legend_y = top - bottom + 6.0
     rows = max(len(s) for s in states)
@@ -247,17 +285,27 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     for b in bounds:
         lefts.append(x)
         x += max(b[2] - b[0], _LEGEND_WIDTH_MM) + _PANEL_GAP_MM
-    width = x - _PANEL_GAP_MM + _MARGIN_MM + 20.0
+    width = max(x - _PANEL_GAP_MM + _MARGIN_MM + 20.0, text_box(title, 0.0, 0.0, 5.0).x1 + 2 * _MARGIN_MM)
     height = legend_y + rows * _LEGEND_ROW_MM + _MARGIN_MM
     dwg = Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
                   viewBox=f"0 0 {width:.3f} {height:.3f}")
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)
     dwg.add(root)
+    placer = Placer(Box(0.0, 0.0, width, height), margin=0.3)
     root.add(dwg.text(title, insert=(_MARGIN_MM, 7.0), font_size=5, font_weight="bold"))
-    for panel, s, b, left in zip(panels, states, bounds, lefts):
-        _draw_panel(dwg, root, panel, s, left - b[0], top, left, legend_y)
+    placer.block_box(text_box(title, _MARGIN_MM, 7.0, 5.0))
     bar_x, bar_y = width - _MARGIN_MM - 10.0, height - _MARGIN_MM
     root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
     root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
+    placer.block_box(text_box("10 mm", bar_x + 5.0, bar_y - 1.5, 3.5, "middle").union(Box(bar_x, bar_y, bar_x + 10, bar_y)))
+    title_y = top - max(b[3] for b in bounds) - 3.0  # above the highest drawing: a coil never runs through it
+    for panel, left in zip(panels, lefts):
+        placer.block_box(text_box(panel.label, left, title_y, _PANEL_FONT_MM))
+    tips = [_draw_panel(dwg, root, panel, s, left - b[0], top, left, legend_y, placer, title_y)
+            for panel, s, b, left in zip(panels, states, bounds, lefts)]
+    for panel, b, left in zip(panels, bounds, lefts):
+        _draw_sides(dwg, root, panel, left - b[0], top, placer)
+    for panel_tips in tips:
+        _draw_tips(dwg, root, panel_tips, placer)
     return dwg.tostring()

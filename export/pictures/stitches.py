@@ -22,7 +22,7 @@ Examples
 >>> import xml.etree.ElementTree as ET
 >>> root = ET.fromstring(plan_svg(plan))
 >>> root.get("width"), root.get("viewBox")
-('55.5mm', '-8 -11.5 55.5 37.8')
+('55.5mm', '-8 -11.5 55.5 54.8')
 """
 from __future__ import annotations
 
@@ -32,6 +32,8 @@ from ...patterns.base.errors import check_range
 from ...patterns.kinds import pattern_kind
 from ...patterns.plan import Command, Role, StitchPlan
 from ..machine.census import COLOR_FORMATS
+from .labels import Box, Placer
+from .titles import text_width_px
 
 __all__ = ["RAMP", "PLACEMENT_COLOUR", "plan_svg"]
 
@@ -46,6 +48,15 @@ _TEXT_ROW_MM = 3.6
 _SCALE_CANDIDATES_MM = (1, 2, 5, 10, 20, 50, 100, 200, 500)
 _CHAR_EM = 0.55  # mean glyph advance of a sans-serif font, in font sizes (to size the text area)
 _FONT = "font-family:Helvetica,Arial,sans-serif"
+_MARK_FONT_MM = 2.0
+# stop and trim labels: beside the mark, above or below it, before the diagonals
+_MARK_DIRECTIONS = ((1, -1), (1, 1), (-1, -1), (-1, 1), (0, -1), (0, 1), (1, 0), (-1, 0))
+_PLACEMENT_DASH = "0.6,0.3"
+STOP_COLOUR, TRIM_COLOUR, TIE_IN_COLOUR, TIE_OFF_COLOUR = "#c51b7d", "#542788", "#1a9850", "#d73027"
+TRAVEL_COLOUR, CORRIDOR_COLOUR, TUBE_COLOUR, RAIL_COLOUR = "#888888", "#d9d9d9", "#b0b0b0", "#2a9d8f"
+_LEGEND_FONT_MM = 2.0
+_LEGEND_ROW_MM = 3.4
+_LEGEND_KEY_MM = 4.0  # width of a legend entry's symbol
 
 
 def _f(v: float) -> str:
@@ -136,7 +147,9 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     pad = 3.0
     text_w = max(len(t) for t in texts) * _CHAR_EM * _FONT_MM
     width = max(fab_hi[0] - fab_lo[0], text_w) + 2 * pad
-    text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0
+    entries = _legend_entries(plan)
+    legend_rows = _legend_rows(entries, max(fab_hi[0] - fab_lo[0], text_w))
+    text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0 + len(legend_rows) * _LEGEND_ROW_MM
     height = (fab_hi[1] - fab_lo[1]) + 2 * pad + text_h
     vx, vy = fab_lo[0] - pad, -fab_hi[1] - pad
     dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
@@ -144,20 +157,23 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     layer = {name: dwg.add(dwg.g(id=name)) for name in (
         "fabric", "corridor", "tube", "centerline", "rails", "travel", "placement", "legs", "needle-points", "ties",
         "stops",
-        "trims", "scale-bar", "params")}
+        "trims", "scale-bar", "params", "legend")}
     layer["fabric"].add(dwg.rect((_f(fab_lo[0]), _f(-fab_hi[1])), (_f(fab_hi[0] - fab_lo[0]), _f(fab_hi[1] - fab_lo[1])),
                                  fill="#f6f1e7", stroke="#9c8f78", stroke_width="0.3"))
     for a, corr in zip(plan.actuators, corridors):
-        layer["corridor"].add(dwg.path(d=_ring_path(_geom_xy(corr)), fill="#d9d9d9", fill_opacity="0.6", stroke="none"))
+        layer["corridor"].add(dwg.path(d=_ring_path(_geom_xy(corr)), fill=CORRIDOR_COLOUR, fill_opacity="0.6", stroke="none"))
         tube = a.centerline.as_linestring().buffer(a.tube.outer_radius_mm, cap_style="flat")
-        layer["tube"].add(dwg.path(d=_ring_path(_geom_xy(tube)), fill="#b0b0b0", stroke="#707070", stroke_width="0.1"))
+        layer["tube"].add(dwg.path(d=_ring_path(_geom_xy(tube)), fill=TUBE_COLOUR, stroke="#707070", stroke_width="0.1"))
         layer["centerline"].add(dwg.polyline(_pts_list(a.centerline.points_mm), fill="none", stroke="#505050",
                                              stroke_width="0.1", stroke_dasharray="1,0.6"))
         for rail in a.rails():
-            layer["rails"].add(dwg.polyline(_pts_list(np.asarray(rail.coords)), fill="none", stroke="#2a9d8f",
+            layer["rails"].add(dwg.polyline(_pts_list(np.asarray(rail.coords)), fill="none", stroke=RAIL_COLOUR,
                                             stroke_width="0.1", stroke_dasharray="0.4,0.4"))
-    _draw_records(dwg, layer, plan, pr, lw, show_points, machine)
-    _draw_scale_and_text(dwg, layer, texts, fab_lo[0], -fab_lo[1] + pad + 2.0, fab_hi[0] - fab_lo[0])
+    placer = Placer(Box(fab_lo[0], -fab_hi[1], fab_hi[0], -fab_lo[1]), margin=0.2)
+    _draw_records(dwg, layer, plan, pr, lw, show_points, machine, placer)
+    y_text = -fab_lo[1] + pad + 2.0
+    _draw_scale_and_text(dwg, layer, texts, fab_lo[0], y_text, fab_hi[0] - fab_lo[0])
+    _draw_legend(dwg, layer["legend"], entries, fab_lo[0], y_text + 1.0 + (len(texts) + 1) * _TEXT_ROW_MM, width - 2 * pad)
     return dwg.tostring()
 
 
@@ -199,7 +215,8 @@ def _stop_marks(plan: StitchPlan, machine) -> list[tuple[np.ndarray, str]]:
     return marks
 
 
-def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool, machine=None) -> None:
+def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool, machine,
+                  placer: Placer) -> None:
     cmds, xy = plan.commands, plan.xy_mm
     stitch = cmds == Command.STITCH
     # legs: consecutive STITCH records, binned by sewing order into one path per colour; the stitches of a
@@ -208,8 +225,8 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
     placed = joined & (plan.roles[1:] == Role.PLACEMENT)
     if placed.any():
         d = _segments_d(xy, np.flatnonzero(placed))
-        layer["placement"].add(dwg.path(d=d, fill="none", stroke=PLACEMENT_COLOUR, stroke_width=_f(1.5 * lw),
-                                        stroke_linecap="round"))
+        layer["placement"].add(dwg.path(d=d, fill="none", stroke=PLACEMENT_COLOUR, stroke_width=_f(2.5 * lw),
+                                        stroke_dasharray=_PLACEMENT_DASH, stroke_linecap="butt"))
     legs = np.flatnonzero(joined & ~placed)
     if len(legs):
         bins = np.minimum((np.arange(len(legs)) * _RAMP_BINS) // len(legs), _RAMP_BINS - 1)
@@ -226,7 +243,8 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
     lead = f"M {_pts(origin)} L {_pts(xy[0])} " if len(xy) and np.any(np.abs(xy[0] - origin) > 0.05) else ""
     if moves or lead:  # the frame's move from the machine's start point (the origin) to the first record too
         d = lead + _segments_d(xy, np.array(moves, dtype=np.int64) - 1)
-        layer["travel"].add(dwg.path(d=d, fill="none", stroke="#888888", stroke_width="0.15", stroke_dasharray="0.8,0.5"))
+        layer["travel"].add(dwg.path(d=d, fill="none", stroke=TRAVEL_COLOUR, stroke_width="0.15",
+                                     stroke_dasharray="0.8,0.5"))
     if show_points:
         for x, y in xy[stitch]:
             layer["needle-points"].add(dwg.circle((_f(x), _f(-y)), _f(pr), fill="#111111"))
@@ -234,24 +252,45 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
     for i in np.flatnonzero(stitch & (plan.roles == Role.TIE_IN)):
         x, y = xy[i]
         layer["ties"].add(dwg.polygon([(_f(x), _f(-y - s)), (_f(x - s), _f(-y + s)), (_f(x + s), _f(-y + s))],
-                                      fill="none", stroke="#1a9850", stroke_width="0.12", **{"class": "tie-in"}))
+                                      fill="none", stroke=TIE_IN_COLOUR, stroke_width="0.12", **{"class": "tie-in"}))
     for i in np.flatnonzero(stitch & (plan.roles == Role.TIE_OFF)):
         x, y = xy[i]
-        layer["ties"].add(dwg.rect((_f(x - s / 2), _f(-y - s / 2)), (_f(s), _f(s)), fill="none", stroke="#d73027",
+        layer["ties"].add(dwg.rect((_f(x - s / 2), _f(-y - s / 2)), (_f(s), _f(s)), fill="none", stroke=TIE_OFF_COLOUR,
                                    stroke_width="0.12", **{"class": "tie-off"}))
-    for (x, y), label in _stop_marks(plan, machine):
+    _draw_marks(dwg, layer, plan, placer, legs, _stop_marks(plan, machine))
+
+
+def _draw_marks(dwg, layer, plan: StitchPlan, placer: Placer, legs: np.ndarray, stop_marks) -> None:
+    """Stop circles and trim crosses, each labelled clear of the stitches, the marks and the other labels."""
+    cmds, xy = plan.commands, plan.xy_mm
+    pts = np.column_stack([xy[:, 0], -xy[:, 1]])
+    placer.block_segments(np.hstack([pts[legs], pts[legs + 1]]))
+    stops = [(float(p[0]), -float(p[1]), label) for p, label in stop_marks]
+    trims = np.flatnonzero(cmds == Command.TRIM)
+    for x, y, _ in stops:
+        placer.block_box(Box(x - 1.2, y - 1.2, x + 1.2, y + 1.2))
+    for i in trims:
+        placer.block_box(Box(pts[i, 0] - 0.8, pts[i, 1] - 0.8, pts[i, 0] + 0.8, pts[i, 1] + 0.8))
+    for x, y, label in stops:
         g = layer["stops"].add(dwg.g(**{"class": "before-start" if label.startswith("before") else "stop"}))
-        g.add(dwg.circle((_f(x), _f(-y)), "1.2", fill="none", stroke="#c51b7d", stroke_width="0.25"))
-        g.add(dwg.text(label, insert=(_f(x + 1.6), _f(-y - 1.4)), font_size=_f(_FONT_MM * 0.8), fill="#c51b7d",
-                       style=_FONT))
-    for n, i in enumerate(np.flatnonzero(cmds == Command.TRIM), start=1):
-        x, y = xy[i]
+        g.add(dwg.circle((_f(x), _f(y)), "1.2", fill="none", stroke=STOP_COLOUR, stroke_width="0.25"))
+        _label(dwg, g, placer, label, (x, y), 1.6, STOP_COLOUR)
+    for n, i in enumerate(trims, start=1):
+        x, y = pts[i]
         g = layer["trims"].add(dwg.g(**{"class": "trim"}))
-        c = 0.8
-        g.add(dwg.path(d=f"M {_f(x - c)},{_f(-y - c)} L {_f(x + c)},{_f(-y + c)} M {_f(x - c)},{_f(-y + c)} "
-                         f"L {_f(x + c)},{_f(-y - c)}", stroke="#542788", stroke_width="0.25", fill="none"))
-        g.add(dwg.text(f"TRIM {n}", insert=(_f(x + 1.2), _f(-y + 2.4)), font_size=_f(_FONT_MM * 0.8),
-                       fill="#542788", style=_FONT))
+        g.add(dwg.path(d=_cross_d(x, y, 0.8), stroke=TRIM_COLOUR, stroke_width="0.25", fill="none"))
+        _label(dwg, g, placer, f"TRIM {n}", (x, y), 1.2, TRIM_COLOUR)
+
+
+def _cross_d(x: float, y: float, c: float) -> str:
+    """Path data of an x-shaped cross of half size ``c`` at SVG point (x, y)."""
+    return f"M {_f(x - c)},{_f(y - c)} L {_f(x + c)},{_f(y + c)} M {_f(x - c)},{_f(y + c)} L {_f(x + c)},{_f(y - c)}"
+
+
+def _label(dwg, g, placer: Placer, text: str, at, gap: float, colour: str) -> None:
+    lab = placer.place(text, at, _MARK_FONT_MM, gap=gap, directions=_MARK_DIRECTIONS)
+    g.add(dwg.text(text, insert=(_f(lab.x), _f(lab.y)), font_size=_f(_MARK_FONT_MM), fill=colour, style=_FONT,
+                   text_anchor=lab.anchor))
 
 
 def _draw_scale_and_text(dwg, layer, texts: list[str], x0: float, y0: float, avail: float) -> None:
@@ -262,3 +301,79 @@ def _draw_scale_and_text(dwg, layer, texts: list[str], x0: float, y0: float, ava
     for n, line in enumerate(texts, start=1):
         layer["params"].add(dwg.text(line, insert=(_f(x0), _f(y0 + 1.0 + n * _TEXT_ROW_MM)), font_size=_f(_FONT_MM),
                                      style=_FONT))
+
+
+def _legend_entries(plan: StitchPlan) -> list[str]:
+    """The legend's entries: every kind of mark this preview draws."""
+    cmds, roles = plan.commands, plan.roles
+    stitch = cmds == Command.STITCH
+    out = ["ramp", "corridor", "tube", "rails"]
+    if (stitch & (roles == Role.PLACEMENT)).any():
+        out.append("placement")
+    out += [name for name, present in (
+        ("tie-in", (stitch & (roles == Role.TIE_IN)).any()), ("tie-off", (stitch & (roles == Role.TIE_OFF)).any()),
+        ("travel", bool(np.isin(cmds, (Command.JUMP, Command.STOP)).any())), ("stop", (cmds == Command.STOP).any()),
+        ("trim", (cmds == Command.TRIM).any())) if present]
+    return out
+
+
+_LEGEND_TEXT = {
+    "ramp": "legs in sewing order: first to last", "corridor": "tube corridor (no needle)", "tube": "tube",
+    "rails": "rails (leg ends)", "placement": "placement line (sewn before the tube)", "tie-in": "tie-in",
+    "tie-off": "tie-off", "travel": "travel (jump)", "stop": "stop: lay the tube", "trim": "trim",
+}
+
+
+def _entry_mm(name: str) -> float:
+    return _LEGEND_KEY_MM + 1.0 + text_width_px(_LEGEND_TEXT[name], _LEGEND_FONT_MM) + 3.0
+
+
+def _legend_rows(entries: list[str], width_mm: float) -> list[list[str]]:
+    """Entries flowed into rows no wider than ``width_mm``."""
+    rows: list[list[str]] = [[]]
+    used = 0.0
+    for name in entries:
+        w = _entry_mm(name)
+        if rows[-1] and used + w > width_mm:
+            rows.append([])
+            used = 0.0
+        rows[-1].append(name)
+        used += w
+    return rows
+
+
+def _draw_key(dwg, g, name: str, x: float, y: float) -> None:
+    """The symbol of legend entry ``name``, ``_LEGEND_KEY_MM`` wide, centred on height ``y``."""
+    k = _LEGEND_KEY_MM
+    if name == "ramp":
+        for j in range(len(RAMP)):
+            g.add(dwg.rect((_f(x + j * k / len(RAMP)), _f(y - 0.5)), (_f(k / len(RAMP)), "1"), fill=_ramp(j / (len(RAMP) - 1))))
+    elif name in ("corridor", "tube"):
+        g.add(dwg.rect((_f(x), _f(y - 0.9)), (_f(k), "1.8"), fill=CORRIDOR_COLOUR if name == "corridor" else TUBE_COLOUR,
+                       stroke="#707070" if name == "tube" else "none", stroke_width="0.1"))
+    elif name in ("rails", "travel", "placement"):
+        style = {"rails": (RAIL_COLOUR, "0.1", "0.4,0.4"), "travel": (TRAVEL_COLOUR, "0.15", "0.8,0.5"),
+                 "placement": (PLACEMENT_COLOUR, "0.3", _PLACEMENT_DASH)}[name]
+        g.add(dwg.line((_f(x), _f(y)), (_f(x + k), _f(y)), stroke=style[0], stroke_width=style[1],
+                       stroke_dasharray=style[2]))
+    elif name == "tie-in":
+        g.add(dwg.polygon([(_f(x + k / 2), _f(y - 0.5)), (_f(x + k / 2 - 0.5), _f(y + 0.5)), (_f(x + k / 2 + 0.5), _f(y + 0.5))],
+                          fill="none", stroke=TIE_IN_COLOUR, stroke_width="0.12"))
+    elif name == "tie-off":
+        g.add(dwg.rect((_f(x + k / 2 - 0.25), _f(y - 0.25)), ("0.5", "0.5"), fill="none", stroke=TIE_OFF_COLOUR,
+                       stroke_width="0.12"))
+    elif name == "stop":
+        g.add(dwg.circle((_f(x + k / 2), _f(y)), "1", fill="none", stroke=STOP_COLOUR, stroke_width="0.25"))
+    else:  # trim
+        g.add(dwg.path(d=_cross_d(x + k / 2, y, 0.7), stroke=TRIM_COLOUR, stroke_width="0.25", fill="none"))
+
+
+def _draw_legend(dwg, g, entries: list[str], x0: float, y0: float, width_mm: float) -> None:
+    """The legend rows from ``y0`` (the first row's baseline) down."""
+    for r, row in enumerate(_legend_rows(entries, width_mm)):
+        x, y = x0, y0 + r * _LEGEND_ROW_MM
+        for name in row:
+            _draw_key(dwg, g, name, x, y - 0.6)
+            g.add(dwg.text(_LEGEND_TEXT[name], insert=(_f(x + _LEGEND_KEY_MM + 1.0), _f(y)),
+                           font_size=_f(_LEGEND_FONT_MM), style=_FONT))
+            x += _entry_mm(name)

@@ -33,6 +33,7 @@ import numpy as np
 
 from ...patterns.plan import StitchPlan
 from ...patterns.rules.tubes import hoop_centre_mm
+from .labels import Box, Placer
 from .stitches import _f, _pts_list
 
 __all__ = ["template_svg", "start_from_centre", "SCALE_BAR_MM"]
@@ -108,9 +109,13 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
     layer = {name: dwg.add(dwg.g(id=name)) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
     _draw_hoop(dwg, layer["hoop"], h_lo, h_hi)
-    _cross(dwg, layer["start"], np.zeros(2), 3.0, "#c51b7d", f"start: {start_from_centre(plan)} of the hoop centre")
+    placer = Placer(Box(vx, vy, vx + width, vy + height - text_h), margin=0.3)
+    for a, parts in zip(plan.actuators, laid):  # every tube and its free ends first: no label is written over one
+        for part in parts:  # the axis and the two free ends
+            placer.block_polyline(np.column_stack([part[:, 0], -part[:, 1]]))
+    _cross(dwg, layer["start"], np.zeros(2), 3.0, "#c51b7d", f"start: {start_from_centre(plan)} of the hoop centre", placer)
     for k, (a, parts) in enumerate(zip(plan.actuators, laid)):
-        _draw_tube(dwg, layer["tubes"], a, parts, k)
+        _draw_tube(dwg, layer["tubes"], a, parts, k, placer)
     x0, y0 = lo[0] + _BORDER_MM, -lo[1] + _BORDER_MM
     g = layer["scale-bar"]
     g.add(dwg.rect((_f(x0), _f(y0)), (_f(SCALE_BAR_MM), "1"), fill=_INK, id="scale-bar-10mm"))
@@ -122,14 +127,21 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     return dwg.tostring()
 
 
-def _cross(dwg, group, p: np.ndarray, size: float, colour: str, label: str) -> None:
+def _cross(dwg, group, p: np.ndarray, size: float, colour: str, label: str, placer: Placer) -> None:
     x, y = p
     g = group.add(dwg.g(**{"class": "mark"}))
     g.add(dwg.path(d=f"M {_f(x - size)},{_f(-y - size)} L {_f(x + size)},{_f(-y + size)} "
                      f"M {_f(x - size)},{_f(-y + size)} L {_f(x + size)},{_f(-y - size)}",
                    stroke=colour, stroke_width="0.3", fill="none"))
-    g.add(dwg.text(label, insert=(_f(x + size + 0.8), _f(-y + size + 2.0)), font_size=_f(_FONT_MM * 0.8),
-                   fill=colour, style=_FONT))
+    placer.block_box(Box(x - size, -y - size, x + size, -y + size))
+    _text(dwg, g, placer, label, (x, -y), size + 0.8, _FONT_MM * 0.8, fill=colour)
+
+
+def _text(dwg, g, placer: Placer, text: str, at, gap: float, font_mm: float, **extra) -> None:
+    """``text`` placed near SVG point ``at``, clear of the tubes and the labels placed before."""
+    lab = placer.place(text, at, font_mm, gap=gap)
+    g.add(dwg.text(text, insert=(_f(lab.x), _f(lab.y)), font_size=_f(font_mm), style=_FONT, text_anchor=lab.anchor,
+                   **extra))
 
 
 def _draw_hoop(dwg, group, lo: np.ndarray, hi: np.ndarray) -> None:
@@ -146,7 +158,7 @@ def _draw_hoop(dwg, group, lo: np.ndarray, hi: np.ndarray) -> None:
     marks.add(dwg.path(d=ticks, **{"class": "centre-ticks"}))
 
 
-def _draw_tube(dwg, group, act, parts, k: int) -> None:
+def _draw_tube(dwg, group, act, parts, k: int, placer: Placer) -> None:
     pts, head, tail = parts
     r = act.tube.outer_radius_mm
     g = group.add(dwg.g(id=f"tube-{k + 1}", **{"class": "tube"}))
@@ -159,14 +171,10 @@ def _draw_tube(dwg, group, act, parts, k: int) -> None:
     for end in (head, tail):
         g.add(dwg.polyline(_pts_list(end), fill="none", stroke=_TUBE, stroke_width=_f(2 * r), stroke_opacity="0.25",
                            stroke_dasharray="3,1.5", **{"class": "free-end"}))
-    for label, p, q in (("connector", head[0], head[1]), ("sealed", tail[1], tail[0])):
-        n = _unit(np.array([-(q - p)[1], (q - p)[0]]))  # left of the tube, beside its end
-        at = p + n * (r + 2.0)
+    for label, p in (("connector", head[0]), ("sealed", tail[1])):
         g.add(dwg.circle((_f(p[0]), _f(-p[1])), _f(r), fill="none", stroke=_INK, stroke_width="0.3",
                          **{"class": f"{label}-end"}))
-        g.add(dwg.text(label, insert=(_f(at[0]), _f(-at[1])), font_size=_f(_FONT_MM * 0.8), style=_FONT,
-                       text_anchor="middle"))
-    side = _unit(np.array([-(pts[1] - pts[0])[1], (pts[1] - pts[0])[0]]))
-    at = pts[0] + side * (r + 3.5)
-    g.add(dwg.text(f"{k + 1}: {act.name}", insert=(_f(at[0]), _f(-at[1])), font_size=_f(_FONT_MM * 1.2), style=_FONT,
-                   fill=_TUBE, **{"class": "name"}))
+        placer.block_box(Box(p[0] - r, -p[1] - r, p[0] + r, -p[1] + r))
+        _text(dwg, g, placer, label, (p[0], -p[1]), r + 1.0, _FONT_MM * 0.8)
+    _text(dwg, g, placer, f"{k + 1}: {act.name}", (pts[0][0], -pts[0][1]), r + 2.0, _FONT_MM * 1.2, fill=_TUBE,
+          **{"class": "name"})

@@ -43,11 +43,11 @@ body{font-family:Helvetica,Arial,sans-serif;margin:24px auto;max-width:1100px;co
 h1{font-size:24px;margin-bottom:4px}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:3px;margin-top:28px}
 .sub{color:#666;margin-top:0}
 figure{margin:8px 0;overflow-x:auto}figure svg{max-width:100%;height:auto;border:1px solid #eee;box-sizing:border-box}
-#stitches svg{width:100%;max-height:80vh}
 summary{cursor:pointer;font-size:14px;margin:6px 0}
 table{border-collapse:collapse;font-size:13px;margin:8px 0}
 th,td{border:1px solid #ddd;padding:3px 8px;text-align:left;vertical-align:top}
 th{background:#f4f4f4}td.num{text-align:right;font-variant-numeric:tabular-nums}
+table.sub{margin:0;font-size:12px}table.sub th{background:#fafafa;font-weight:normal}td ul{margin:0;padding-left:16px}
 .error{background:#fde2e2}.warning{background:#fff4d6}.info{background:#e8f1fb}
 .ok{color:#2a7a2a}.note{color:#666;font-size:12px}
 ul.stops{font-size:13px}
@@ -134,12 +134,49 @@ def _num(v) -> str:
     return _e(f"{v:.6g}" if isinstance(v, float) else v)
 
 
+#: Name endings and the unit they stand for: ``size_mm`` is written "size [mm]".
+_UNITS = (("_kpa", "kPa"), ("_mpa", "MPa"), ("_deg", "deg"), ("_mm", "mm"), ("_spm", "stitches/min"),
+          ("_m", "m"), ("_s", "s"))
+
+
+def _label(key) -> str:
+    """A key as a heading: underscores as spaces, a unit ending as the unit in brackets."""
+    key = str(key)
+    for end, unit in _UNITS:
+        if key.endswith(end) and len(key) > len(end):
+            return f"{key[:-len(end)].replace('_', ' ')} [{unit}]"
+    return key.replace("_", " ")
+
+
+def _value(v) -> str:
+    """HTML of one value: numbers to 6 digits, yes/no, lists of numbers in one line, lists of text as a
+    list, a mapping as a sub-table of its keys, a list of mappings as a sub-table with a row each."""
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if v is None or isinstance(v, (int, float, str)):
+        return _num(v)
+    if isinstance(v, Mapping):
+        if not v:
+            return ""
+        rows = "".join(f"<tr><th>{_e(_label(k))}</th>{_cell(x)}</tr>" for k, x in v.items())
+        return f'<table class="sub">{rows}</table>'
+    items = list(v)
+    if not items:
+        return ""
+    if all(isinstance(x, Mapping) for x in items):
+        keys = list(dict.fromkeys(k for x in items for k in x))
+        head = "".join(f"<th>{_e(_label(k))}</th>" for k in keys)
+        rows = "".join(f"<tr>{''.join(_cell(x.get(k)) for k in keys)}</tr>" for x in items)
+        return f'<table class="sub"><tr>{head}</tr>{rows}</table>'
+    if all(isinstance(x, str) for x in items) and len(items) > 1:
+        return "<ul>" + "".join(f"<li>{_e(x)}</li>" for x in items) + "</ul>"
+    return ", ".join(_value(x) for x in items)  # each item escaped once
+
+
 def _cell(v) -> str:
     if isinstance(v, (int, float)) and not isinstance(v, bool):
         return f'<td class="num">{_num(v)}</td>'
-    if isinstance(v, list):
-        return f"<td>{', '.join(_num(x) for x in v)}</td>"  # _num escapes each item once
-    return f"<td>{_e(v)}</td>"
+    return f"<td>{_value(v)}</td>"
 
 
 def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
@@ -163,7 +200,8 @@ def _derived_table(actuators: Sequence[Mapping]) -> str:
         return '<p class="note">no actuators</p>'
     head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in parts)
     body = "".join(
-        f"<tr><th>{_e(k)}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in parts)}</tr>" for k in rows
+        f"<tr><th>{_e(_label(k))}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in parts)}</tr>"
+        for k in rows
     )
     return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>" + _segments_table(actuators)
 
@@ -220,27 +258,27 @@ def _findings_table(findings: Sequence[Mapping]) -> str:
     return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
+#: Worksheet entries shown elsewhere in the report (the findings) or as their own list (the stops).
+_WORKSHEET_APART = ("actuators", "stops", "findings")
+
+
 def _worksheet_html(ws: Mapping | None) -> str:
+    """The worksheet as tables of values with units: the whole design, then one column per actuator
+    (nested values, a segment's geometry, as sub-tables)."""
     if not ws:
         return '<p class="note">no worksheet</p>'
-    scalars = [(k, v) for k, v in ws.items() if not isinstance(v, (list, dict))]
-    size = ws.get("size_mm")
-    table = "".join(f"<tr><th>{_e(k)}</th>{_cell(v)}</tr>" for k, v in scalars)
-    if size:
-        table += f"<tr><th>size_mm</th>{_cell(size)}</tr>"
+    table = "".join(f"<tr><th>{_e(_label(k))}</th>{_cell(v)}</tr>" for k, v in ws.items() if k not in _WORKSHEET_APART)
     out = [f"<table>{table}</table>"]
     if ws.get("stops"):
         out.append("<h3>Stop sequence</h3><ul class=\"stops\">" + "".join(f"<li>{_e(s)}</li>" for s in ws["stops"])
                    + "</ul>")
     acts = ws.get("actuators") or []
     if acts:
-        keys = [k for k in acts[0] if k not in ("derived", "name", "adjustments", "segments")]
-        head = "".join(f"<th>{_e(k)}</th>" for k in keys)
-        rows = "".join(f"<tr><th>{_e(a.get('name'))}</th>{''.join(_cell(a.get(k)) for k in keys)}</tr>" for a in acts)
-        notes = [f"{a.get('name')}: {s}" for a in acts for s in a.get("adjustments") or []]
+        keys = [k for k in dict.fromkeys(k for a in acts for k in a) if k != "name"]
+        head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in acts)
+        rows = "".join(f"<tr><th>{_e(_label(k))}</th>{''.join(_cell(a.get(k)) for a in acts)}</tr>" for k in keys
+                       if any(a.get(k) not in (None, [], {}) for a in acts))
         out.append(f"<h3>Per actuator</h3><table><tr><th>actuator</th>{head}</tr>{rows}</table>")
-        if notes:
-            out.append("<ul class=\"stops\">" + "".join(f"<li>{_e(n)}</li>" for n in notes) + "</ul>")
     return "".join(out)
 
 

@@ -86,13 +86,18 @@ class Studio:
             return self._cache[key]
         from ...predict.analysis import analyse
         from ...predict.rules import check_design
+        from ..machine.formats import encode
         from ..report.worksheet import worksheet
         from .views import stitches_svg
 
         analysis = analyse(design, calibration_sets=self.calibration_sets)
         findings = check_design(analysis)
+        try:  # the counts, pauses and set-up of the machine file 'build' writes, read back from its bytes
+            _, machine = encode(analysis.plan, design.machine.format, cord_stop=design.machine.cord_stop)
+        except EmbroactError:  # a file 'build' would refuse (the findings say why): the plan's own counts
+            machine = None
         ws = worksheet(analysis.plan, design, speed_spm=design.machine.speed_spm, findings=findings,
-                       analysis=analysis)
+                       analysis=analysis, machine=machine)
         entry = (analysis, findings, stitches_svg(analysis.plan, findings), ws)
         self._cache[key] = entry
         while len(self._cache) > CACHED_ANALYSES:
@@ -250,9 +255,11 @@ class Studio:
                                   sets=self.calibration_sets, name=spec.name)
         table = design_form(result.design)["actuator"][0]
         table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
-        with self._lock:
-            self._proposal = (index, spec.name, table)
-        return {**result.as_dict(), "actuator": spec.name}
+        with self._lock:  # only a reachable answer is offered: an unreachable one is shown, never applied
+            self._proposal = (index, spec.name, table) if result.reached else None
+        from ..pictures.shapefit import design_shape_svg
+
+        return {**result.as_dict(), "actuator": spec.name, "svg": design_shape_svg(result)}
 
     @contextlib.contextmanager
     def _searching(self):
@@ -279,7 +286,7 @@ class Studio:
         """
         with self._lock:
             if self._proposal is None:
-                raise ParameterError("no inverse-design proposal to apply: design a shape first")
+                raise ParameterError("no inverse-design proposal to apply: design a reachable shape first")
             index, name, table = self._proposal
             if index >= len(self.form["actuator"]) or self.design.actuators[index].name != name:
                 self._proposal = None

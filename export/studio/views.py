@@ -97,7 +97,7 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
     try:
         curves = analysis.curves()
-        series, svg = pv.bend_series(analysis, curves), pv.bend_chart(analysis, curves)
+        series, svg = pv.bend_series(analysis, pv.chart_curves(analysis, curves)), pv.bend_chart(analysis, curves)
         thetas = [t for b in bends for t in [b["theta_deg"], *b["segment_theta_deg"]]]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")

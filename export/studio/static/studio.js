@@ -90,6 +90,13 @@ function buildFields(fields) {
   }
 }
 
+function fieldText(value) {
+  // a field's value as shown: numbers to 6 significant digits (the design keeps every digit until a field is edited)
+  if (value === null || value === undefined) return "";
+  if (typeof value !== "number") return String(value);
+  return String(Number(value.toPrecision(6)));
+}
+
 function showFields(fields) {
   const keys = fields.map((f) => f.key).join("|");
   if (keys !== state.fieldKeys) {
@@ -99,7 +106,7 @@ function showFields(fields) {
   for (const f of fields) {
     const input = $(fieldId(f.key));
     if (input === document.activeElement && input.classList.contains("invalid")) continue;  // being corrected
-    input.value = f.value === null || f.value === undefined ? "" : String(f.value);
+    input.value = fieldText(f.value);
     input.classList.remove("invalid");
     $("m-" + fieldId(f.key).slice(2)).textContent = "";
   }
@@ -317,11 +324,12 @@ async function inverse() {
   resultText("inv-result", `${res.data.statement}\nbest: ${b.pattern}, ${params}: ${fmt(b.theta_deg, 2)} deg; ` +
     `limit ${b.limit}; ${fmt(b.sensitivity_deg_per_0p1mm_width, 2)} deg per 0.1 mm of width`, !res.data.reached);
   state.inverse = res.data.values;
-  $("inv-apply").hidden = false;
+  $("inv-apply").hidden = !res.data.reached;  // offered only for a design that bends as wanted
 }
 
 async function inverseShape() {
   resultText("shape-result", "searching...");
+  $("shape-fit").innerHTML = "";
   $("shape-apply").hidden = true;
   const res = await api("api/inverse-shape", {
     path_d: $("shape-d").value, pressure_kpa: $("shape-pressure").value,
@@ -335,7 +343,8 @@ async function inverseShape() {
     Object.entries(s.params).map(([p, x]) => `${p} ${fmt(x, 3)}`).join(", ") + `, length_mm ${fmt(s.length_mm, 2)}`);
   resultText("shape-result", `${res.data.statement}\nRMSE ${fmt(res.data.rmse_mm, 3)} mm, tip ` +
     `${fmt(res.data.tip_error_mm, 2)} mm off\n${segs.join("\n")}`, !res.data.reached);
-  $("shape-apply").hidden = false;
+  $("shape-fit").innerHTML = res.data.svg;  // the predicted shape drawn over the target
+  $("shape-apply").hidden = !res.data.reached;  // offered only for a reachable shape
 }
 
 function start() {
