@@ -442,10 +442,16 @@ def test_the_worksheet_panel_shows_the_numbers_build_writes(out_dir, tmp_path, e
     assert panel["jump_count"] == sheet["jump_count"] and "jump_count" in panel
 
 
-def test_an_unreachable_shape_is_drawn_over_its_target_but_never_applied(client):
-    # a quarter circle at 20 kPa: below every P0 of the calibration table, no pattern bends at all
+def test_an_unreachable_shape_is_drawn_over_its_target_but_never_applied(client, monkeypatch):
+    # the search's own answer for a quarter circle, marked not reached (a shape the rules let it only approach)
+    import dataclasses
+
+    import embroact.predict.inverse as inverse
+
+    real = inverse.design_shape
+    monkeypatch.setattr(inverse, "design_shape", lambda *a, **k: dataclasses.replace(real(*a, **k), reached=False))
     arc = "M 0 0 A 63.662 63.662 0 0 0 63.662 -63.662"
-    res = client.post("/api/inverse-shape", json={"path_d": arc, "pressure_kpa": 20}, headers=AUTH).json()
+    res = client.post("/api/inverse-shape", json={"path_d": arc, "pressure_kpa": 150}, headers=AUTH).json()
     assert res["reached"] is False
     assert res["svg"].startswith("<svg") and 'class="target"' in res["svg"] and 'class="predicted"' in res["svg"]
     r = client.post("/api/apply-proposal", json={}, headers=AUTH)
