@@ -47,6 +47,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "fit": ("cmd_fit", "fit G and P0 to measured (pressure, angle) data"),
     "preview": ("cmd_preview", "render a single preview (stitches, bend chart, side view, 3D)"),
     "design": ("cmd_design", "inverse design: the design that bends as wanted (a bend or a shape at a pressure)"),
+    "calibrate": ("cmd_calibrate", "calibration coupon: test actuators to sew, marker sheets, a measurement sheet"),
     "studio": ("cmd_studio", "designer in the browser: edit a design, see stitches and predicted bend live"),
 }
 

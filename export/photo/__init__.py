@@ -1,0 +1,1 @@
+"""Photo measurement: marker sheets to print, and (with the ``measure`` extra) marker detection."""

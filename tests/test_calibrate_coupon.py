@@ -1,0 +1,131 @@
+"""``embroact calibrate coupon``: the coupon builds, checks clean, decodes to its needle points in every
+format (pystitch's readers), and its sheets list what the measurement and the fit need."""
+import csv
+import importlib
+import io
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+from embroact.export.cli.main import main
+from embroact.export.files.designfile import load_design
+from embroact.export.machine.formats import FORMATS
+from embroact.patterns.design import build_plan
+from embroact.patterns.plan import Command as C
+from embroact.predict.analysis import analyse
+from embroact.predict.coupon import plan_coupon
+from embroact.predict.rules import check_design
+from embroact.predict.sleeve import neutral_angle_deg
+
+pe = pytest.importorskip("pystitch")
+ALL = sorted(FORMATS)
+
+
+@pytest.fixture(scope="module")
+def coupon_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("coupon")
+    assert main(["calibrate", "coupon", "--out", str(out), "--format", ",".join(ALL)]) == 0
+    return out
+
+
+def _read_back(path, fmt):
+    reader = importlib.import_module(f"pystitch.{fmt.capitalize()}Reader")
+    with open(path, "rb") as fh:
+        data = fh.read()
+    return pe.EmbPattern.read_embroidery(reader, io.BytesIO(data), {"trim_at": None, "trim_distance": None,
+                                                                    "clipping": False})
+
+
+def test_coupon_spans_the_design_space():
+    c = plan_coupon()
+    zig = [a.width_mm for a in c.actuators if a.pattern == "zigzag"]
+    cross = [a.angle_deg for a in c.actuators if a.pattern == "cross"]
+    assert zig == [5.0, 6.0, 7.0, 8.0, 9.0]  # 10/3 to 6 tube radii of the 1.5 mm tube, on the 0.2 mm grid
+    neutral = float(neutral_angle_deg(7.0, 1.5))
+    below, above = [a for a in cross if a < neutral], [a for a in cross if a > neutral]
+    assert len(below) == len(above) == 3
+    assert min(abs(a - neutral) for a in cross) >= 5.0  # band 3 deg + 2
+    # each cross angle is one the pattern sews exactly: tan(alpha0) = n s / (2 w), n whole
+    for a in cross:
+        n = 2 * 7.0 * math.tan(math.radians(a)) / 1.4
+        assert abs(n - round(n)) < 1e-4
+    # every cross leg w / cos(alpha0) stays below the 12.1 mm machine maximum
+    assert max(7.0 / math.cos(math.radians(a)) for a in cross) < 12.1
+    assert [a.order for a in c.actuators] == list(range(1, 12))
+    assert c.hoops == 2 and all(a.label.startswith(f"{a.order:02d} ") for a in c.actuators)
+
+
+def test_coupon_builds_and_checks_clean(coupon_dir):
+    names = sorted(os.listdir(coupon_dir))
+    assert names == ["board.svg", "coupon-hoop1.toml", "coupon-hoop2.toml", "coupon.json", "fins.svg", "hoop1",
+                     "hoop2", "measurements.csv"]
+    for h in (1, 2):
+        files = sorted(os.listdir(coupon_dir / f"hoop{h}"))
+        assert {"template.svg", "worksheet.txt", "worksheet.json", "preview.svg"} <= set(files)
+        assert {f"coupon-hoop{h}.{fmt}" for fmt in ALL} <= set(files)
+        design = load_design(coupon_dir / f"coupon-hoop{h}.toml")
+        findings = check_design(analyse(design), format=ALL)
+        assert not [f for f in findings if f.is_error]
+        # only the model's own notes (the demonstration calibration's predictions) remain
+        assert all(f.code.startswith("EA4") for f in findings), [f.code for f in findings]
+        for fmt in ("dst", "pes"):
+            assert main(["check", str(coupon_dir / f"hoop{h}" / f"coupon-hoop{h}.{fmt}")]) == 0
+
+
+@pytest.mark.parametrize("fmt", ALL)
+def test_coupon_files_decode_to_its_needle_points(coupon_dir, fmt):
+    for h in (1, 2):
+        plan = build_plan(load_design(coupon_dir / f"coupon-hoop{h}.toml"))
+        want = np.asarray(plan.xy_mm[plan.commands == C.STITCH])
+        back = _read_back(coupon_dir / f"hoop{h}" / f"coupon-hoop{h}.{fmt}", fmt)
+        got = np.array([(x / 10.0, -y / 10.0) for x, y, c in back.stitches if (c & pe.COMMAND_MASK) == pe.STITCH])
+        assert got.shape == want.shape
+        # same points, in order, on the formats' 0.1 mm grid (the file's origin is its first point)
+        assert np.abs((got - got[0]) - (want - want[0])).max() <= 0.1 + 1e-9
+
+
+def test_measurement_sheet_rows(coupon_dir):
+    with open(coupon_dir / "measurements.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    doc = json.loads((coupon_dir / "coupon.json").read_text())
+    steps = doc["pressures_kpa"]
+    assert steps[0] == 0 and steps[-1] == 300 and len(steps) == 13
+    assert len(rows) == 11 * (2 * len(steps) - 1)
+    first = [r for r in rows if r["actuator"] == "01 zigzag w5.0"]
+    assert [r["branch"] for r in first].count("loading") == 13 and [r["branch"] for r in first].count("unloading") == 12
+    assert [float(r["pressure_kpa"]) for r in first] == steps + steps[-2::-1]
+    assert all(r["bend_deg"] == "" for r in rows)
+    # every actuator named in the sheet is in its hoop's design file
+    for r in rows[:: 2 * len(steps) - 1]:
+        assert r["actuator"] in [a.name for a in load_design(coupon_dir / r["design"]).actuators]
+    # marker ids: each actuator its own block of 11
+    ids = [tuple(a["marker_ids"]) for a in doc["actuators"]]
+    assert len(set(i for block in ids for i in block)) == 11 * 11 and min(min(b) for b in ids) == 8
+
+
+def test_marker_sheets(coupon_dir):
+    fins = (coupon_dir / "fins.svg").read_text()
+    assert fins.count('class="marker"') == 11 * 11 and 'id="scale-bar"' in fins
+    board = (coupon_dir / "board.svg").read_text()
+    assert board.count('class="marker"') == 8 and 'id="scale-bar"' in board
+
+
+def test_aruco_table_is_opencvs():
+    cv2 = pytest.importorskip("cv2")
+    from embroact.export.photo.arucobits import marker_cells
+
+    d = cv2.aruco.getPredefinedDictionary(cv2.aruco.DICT_4X4_250)
+    for i in range(250):
+        img = cv2.aruco.generateImageMarker(d, i, 6)
+        assert np.array_equal((img[1:5, 1:5] > 127).astype(int), np.array(marker_cells(i))), i
+
+
+def test_bad_values_are_one_line(tmp_path, capsys):
+    assert main(["calibrate", "coupon", "--out", str(tmp_path), "--patterns", "zigzag,spiral"]) == 2
+    assert "patterns must list" in capsys.readouterr().err
+    assert main(["calibrate", "coupon", "--out", str(tmp_path), "--angle-range-deg", "30:40"]) == 2
+    assert "neutral angle" in capsys.readouterr().err
+    assert main(["calibrate", "coupon", "--out", str(tmp_path), "--hoop-width-mm", "90"]) == 2
+    assert os.listdir(tmp_path) == []
