@@ -102,7 +102,7 @@ def test_measurement_sheet_rows(coupon_dir):
         assert r["actuator"] in [a.name for a in load_design(coupon_dir / r["design"]).actuators]
     # marker ids: each actuator its own block of 11
     ids = [tuple(a["marker_ids"]) for a in doc["actuators"]]
-    assert len(set(i for block in ids for i in block)) == 11 * 11 and min(min(b) for b in ids) == 8
+    assert len({i for block in ids for i in block}) == 11 * 11 and min(min(b) for b in ids) == 8
 
 
 def test_marker_sheets(coupon_dir):
