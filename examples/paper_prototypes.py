@@ -7,7 +7,10 @@ l0 = 100 mm.  For each one this script
 1. generates the stitches and measures the realised width and leg angle, from which
    the sleeve radius r0, thread angle beta0 and the transition pressure P0 follow
    (docs/model.md sections 2-3; default tube r_f = 1.5 mm, d_f = 1.0 mm, G_e = 0.13 MPa);
-2. takes G and P0 from the calibration set "paper-2025" (the paper's fitted values);
+2. takes G and P0 from the calibration set "paper-2025" (the paper's fitted values: demonstration
+   data, fitted on a tube whose size the paper does not give; with the default tube the w = 5 mm
+   zigzag coils far below the paper's measured ~155 deg at 290 kPa, and the table marks such states
+   as ``embroact predict`` reports them: C coiled, K kinked, S overstretched);
 3. predicts the bend angle from 0 to 300 kPa and reports its direction and lock-up.
 
 What to look for: P0 from geometry for w = 5, 7, 9 mm close to the paper's predicted
@@ -104,8 +107,10 @@ def prototype(name, params, geometry: str, tube: Tube) -> dict:
     }
 
 
-#: Table marks of point states other than bending / inflation.
-_MARKS = {"LOCKED": "L", "UNSTABLE": "U", "OUT_OF_DOMAIN": "D", "FAILED": "F"}
+#: Table marks of point states other than bending / inflation: the branch ends, and the validity
+#: limits past which ``embroact predict`` reports the state as COILED, KINKED or OVERSTRETCHED.
+_MARKS = {"LOCKED": "L", "UNSTABLE": "U", "OUT_OF_DOMAIN": "D", "FAILED": "F", "COILED": "C", "KINKED": "K",
+          "OVERSTRETCHED": "S"}
 
 
 def _fmt(v, spec="8.2f") -> str:
@@ -130,7 +135,8 @@ def table(rows) -> str:
         )
     neutral = rows[-1]["neutral_angle_deg"]
     lines.append(f"cross neutral angle (tan beta0 = 1/2) for w = 7 mm: alpha0 = {neutral:.2f} deg; "
-                 f"model method {rows[0]['method']}; calibration paper-2025")
+                 f"model method {rows[0]['method']}; calibration paper-2025 (demonstration data, not a "
+                 "calibration of your materials: embroact calibrate coupon makes one)")
     lines.append("alpha0: requested, real: realised by the generator; w realised; "
                  "marks: " + ", ".join(f"{m} {name.lower()}" for name, m in _MARKS.items()))
     return "\n".join(line.rstrip() for line in lines)

@@ -124,8 +124,10 @@ def read_target_shape(ref: str):
 def _settings(args):
     from ...patterns.design import ModelSettings
     from ..files.calibfile import calibration_reference
+    from .target import note_demo_calibration
 
     name, sets = calibration_reference(args.calibration, Path.cwd())
+    note_demo_calibration({name})
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
 

@@ -47,7 +47,7 @@ def run(args) -> int:
     from ..files.atomic import check_writable_dir
     from ..studio.serve import check_port
     from .signals import serving
-    from .target import load_target
+    from .target import load_target, note_demo_calibration
 
     check_port(args.port)  # before the extra is looked for and the design read
     out = check_writable_dir(check_output_name("--out", args.out))
@@ -57,6 +57,7 @@ def run(args) -> int:
     from ..studio.session import Studio
 
     target = load_target(args, design_path=args.design)
+    note_demo_calibration({a.model.calibration for a in target.design.actuators})
     studio = Studio(target.design, out, target.calibration_sets)
     with serving():  # until stopped: no time limit; Ctrl-C and SIGTERM end it gracefully
         return serve(studio, port=args.port, browser=not args.no_browser)

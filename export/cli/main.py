@@ -48,6 +48,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "preview": ("cmd_preview", "render a single preview (stitches, bend chart, side view, 3D)"),
     "design": ("cmd_design", "inverse design: the design that bends as wanted (a bend or a shape at a pressure)"),
     "calibrate": ("cmd_calibrate", "calibration coupon: test actuators to sew, marker sheets, a measurement sheet"),
+    "measure": ("cmd_measure", "bend from photos: markers found with OpenCV, one row per photo (extra: measure)"),
     "studio": ("cmd_studio", "designer in the browser: edit a design, see stitches and predicted bend live"),
 }
 
@@ -269,6 +270,9 @@ def _run(module, args, debug: bool) -> int:
         with warnings.catch_warnings():
             if not debug:
                 warnings.simplefilter("ignore", RuntimeWarning)
+            from .target import reset_notes
+
+            reset_notes()
             code = int(module.run(args))
             if sys.stdout is not None:
                 sys.stdout.flush()

@@ -31,7 +31,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...predict.calibration import CalibrationSet
 
 __all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "load_target",
-           "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS"]
+           "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS", "DEMO_CALIBRATION", "DEMO_NOTE",
+           "note_demo_calibration", "reset_notes"]
 
 #: Values of ``--p0-source`` and ``--tube-law`` (the enums' values; a test holds them equal, so
 #: that ``--help`` needs no numpy).
@@ -178,10 +179,42 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
 
 
 def analyse_target(target: Target):
-    """The :class:`~embroact.predict.analysis.DesignAnalysis` of a target."""
+    """The :class:`~embroact.predict.analysis.DesignAnalysis` of a target (and the demonstration note, once)."""
     from ...predict.analysis import analyse
 
-    return analyse(target.design, calibration_sets=target.calibration_sets)
+    analysis = analyse(target.design, calibration_sets=target.calibration_sets)
+    note_demo_calibration(_calibrations_used(analysis))
+    return analysis
+
+
+#: The built-in demonstration set, and the line a command prints once when it uses it.
+DEMO_CALIBRATION = "paper-2025"
+DEMO_NOTE = ("note: calibration 'paper-2025' is the paper's demonstration data, not a calibration of your tube, "
+             "thread and fabric; 'embroact calibrate coupon' makes one (docs/calibration.md)")
+_NOTED: list[bool] = []
+
+
+def _calibrations_used(analysis) -> set[str]:
+    """Names of the calibration sets the analysis's models took G or P0 from."""
+    names = set()
+    for a in analysis.actuators:
+        for part in (list(a.segments) or [a]):
+            c = getattr(part, "choice", None)
+            if c is not None and c.calibration is not None:
+                names.add(c.calibration.name)
+    return names
+
+
+def note_demo_calibration(names, stream=None) -> None:
+    """Print :data:`DEMO_NOTE` on stderr when ``names`` holds the demonstration set, once per command run."""
+    if DEMO_CALIBRATION in names and not _NOTED:
+        _NOTED.append(True)
+        print(f"embroact: {DEMO_NOTE}", file=stream or sys.stderr)
+
+
+def reset_notes() -> None:
+    """Forget that the note was printed (each command run starts afresh)."""
+    _NOTED.clear()
 
 
 #: Actuators the summary line names per rule code (the rest are counted: the line stays one line).

@@ -1,0 +1,51 @@
+"""The annotated picture of a measured photo: what ``embroact measure`` found and read.
+
+Board markers outlined in green, fin markers in blue, the fabric-line points the fins give
+as red dots, the fitted centreline in red, and per actuator its reading; a header line
+with the pressure, the branch and the board's tilt. The picture is scaled to at most
+:data:`MAX_WIDTH_PX` wide and encoded as JPEG (OpenCV).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .detect import PhotoReading, require_cv2
+
+__all__ = ["MAX_WIDTH_PX", "annotated_jpeg"]
+
+MAX_WIDTH_PX = 1600
+_GREEN, _BLUE, _RED, _WHITE, _BLACK = (40, 170, 40), (200, 90, 20), (30, 30, 220), (255, 255, 255), (0, 0, 0)
+
+
+def _text(cv2, img, text: str, org, scale: float) -> None:
+    for colour, width in ((_WHITE, 5), (_BLACK, 2)):
+        cv2.putText(img, text, (int(org[0]), int(org[1])), cv2.FONT_HERSHEY_SIMPLEX, scale, colour, width, cv2.LINE_AA)
+
+
+def annotated_jpeg(image, reading: PhotoReading, header: str, labels: dict[int, str]) -> bytes:
+    """JPEG bytes of ``image`` (grey or colour) with ``reading`` drawn on it; ``labels``: block -> name."""
+    cv2 = require_cv2()
+    img = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
+    scale = min(1.0, MAX_WIDTH_PX / img.shape[1])
+    if scale < 1.0:
+        img = cv2.resize(img, (round(img.shape[1] * scale), round(img.shape[0] * scale)), interpolation=cv2.INTER_AREA)
+    width = max(1, round(2 * img.shape[1] / 1200))
+
+    def px(points) -> np.ndarray:
+        return np.round(np.asarray(points) * scale).astype(np.int32)
+
+    for quad in reading.board_corners_px:
+        cv2.polylines(img, [px(quad)], True, _GREEN, width + 1, cv2.LINE_AA)
+    for b in reading.blocks:
+        for quad in b.corners_px:
+            cv2.polylines(img, [px(quad)], True, _BLUE, width, cv2.LINE_AA)
+        line = px(reading.to_pixels(b.strip.centreline_mm))
+        cv2.polylines(img, [line], False, _RED, width + 1, cv2.LINE_AA)
+        for p in px(reading.to_pixels(b.strip.points_mm)):
+            cv2.circle(img, (int(p[0]), int(p[1])), width + 2, _RED, -1, cv2.LINE_AA)
+        start = px(reading.to_pixels(b.strip.points_mm[:1]))[0]
+        _text(cv2, img, f"{labels.get(b.block, f'block {b.block}')}: {b.strip.reading_deg:.1f} deg",
+              (start[0] + 10, start[1] - 14), 0.5 * img.shape[1] / 1200)
+    _text(cv2, img, header, (12, 30), 0.7 * img.shape[1] / 1200)
+    ok, data = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, 90])
+    return bytes(data) if ok else b""
