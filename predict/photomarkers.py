@@ -215,13 +215,15 @@ class StripReading:
     def centreline_at(self, s_mm) -> np.ndarray:
         """Fitted fabric-line points at arc lengths ``s_mm`` from the first marker [mm], (k, 2)."""
         s = np.asarray(s_mm, dtype=np.float64).reshape(-1)
+        if self._start is None or self._lengths is None or self._kappa is None:
+            raise ParameterError("centreline_at needs a reading made by read_strip")
         return _chain_points(self._start, self._heading, self._lengths, self._kappa, s)
 
     # fit pose: not part of the reading's value
-    _start: np.ndarray = field(default=None, repr=False, compare=False)  # type: ignore[assignment]
+    _start: np.ndarray | None = field(default=None, repr=False, compare=False)
     _heading: float = field(default=0.0, repr=False, compare=False)
-    _lengths: np.ndarray = field(default=None, repr=False, compare=False)  # type: ignore[assignment]
-    _kappa: np.ndarray = field(default=None, repr=False, compare=False)  # type: ignore[assignment]  # counter-clockwise
+    _lengths: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _kappa: np.ndarray | None = field(default=None, repr=False, compare=False)  # counter-clockwise
 
 
 def _chain_points(start, heading, lengths, kappa, s) -> np.ndarray:

@@ -41,7 +41,11 @@ PATTERNS = PATTERN_KINDS.names()
 
 def add_arguments(parser, name: str) -> None:
     """Options of ``embroact fit``."""
-    parser.add_argument("data", metavar="DATA.csv", help="pressure_kpa,angle_deg[,branch] rows (or markers with --markers)")
+    parser.add_argument("data", metavar="DATA.csv", nargs="?",
+                        help="pressure_kpa,angle_deg[,branch] rows (or markers with --markers)")
+    parser.add_argument("--sheet", metavar="SHEET.csv",
+                        help="a whole coupon measurement sheet (embroact calibrate coupon, filled by embroact measure): "
+                             "fit every actuator, write one profile, report leave-one-out errors")
     design = parser.add_argument_group("design (quick parameters or a design file)")
     design.add_argument(
         "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
@@ -165,7 +169,7 @@ def _data(args, derived, choice):
     return m.pressure_kpa, theta, m.branch, note
 
 
-def _materials(items):
+def materials_of(items):
     from ...patterns.base.errors import ParameterError
 
     out = {}
@@ -207,7 +211,7 @@ def _write_set(args, act, results, layout, old):
             raise ParameterError(f"the measurement ({now}) differs from the set's ({old.measurement}) in {args.output!r}")
         cset = old.with_points(points)
     else:
-        cset = CalibrationSet(name, points, args.description, _materials(args.material), tube=tube,
+        cset = CalibrationSet(name, points, args.description, materials_of(args.material), tube=tube,
                               tube_law=args.tube_law, marker_layout=layout)
     write_calibration(args.output, cset)
     return cset
@@ -240,6 +244,14 @@ def _table(derived, results, note, cset, path) -> str:
 
 def run(args) -> int:
     """Read the data, fit, print, write the calibration set; return the exit code."""
+    if args.sheet is not None:
+        from .fitsheet import run_sheet
+
+        return run_sheet(args)
+    if args.data is None:
+        from ...patterns.base.errors import ParameterError
+
+        raise ParameterError("give the measurements: DATA.csv (one sample) or --sheet SHEET.csv (a whole coupon)")
     from ...predict.fit import fit_design
     from ..files.atomic import check_command_files
     from .args import input_files

@@ -166,7 +166,7 @@ def run(args) -> int:
     from ..photo.annotate import annotated_jpeg
 
     os.makedirs(pic_dir, exist_ok=True)
-    files = {out_path: text.encode("utf-8")}
+    files: dict[str | os.PathLike, bytes] = {out_path: text.encode("utf-8")}
     lines = {}
     for photo, (p, branch), reading, gray in results:
         stem = os.path.splitext(os.path.basename(photo))[0]

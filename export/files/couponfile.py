@@ -116,7 +116,7 @@ def read_sheet(path: str | os.PathLike) -> tuple[SheetRow, ...]:
         if missing:
             raise ParameterError(f"{path}: measurement sheet needs the column(s) {', '.join(missing)} "
                                  f"(see embroact calibrate coupon)")
-        rows = []
+        rows: list[SheetRow] = []
         for i, r in enumerate(reader, start=2):
             if len(rows) >= _MAX_ROWS:
                 raise ParameterError(f"{path}: a measurement sheet holds at most {_MAX_ROWS:,} rows")
