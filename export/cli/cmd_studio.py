@@ -57,7 +57,7 @@ def run(args) -> int:
     from ..studio.session import Studio
 
     target = load_target(args, design_path=args.design)
-    note_demo_calibration({a.model.calibration for a in target.design.actuators})
+    note_demo_calibration({a.model.calibration for a in target.design.actuators}, now=True)
     studio = Studio(target.design, out, target.calibration_sets)
     with serving():  # until stopped: no time limit; Ctrl-C and SIGTERM end it gracefully
         return serve(studio, port=args.port, browser=not args.no_browser)

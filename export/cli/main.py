@@ -270,10 +270,11 @@ def _run(module, args, debug: bool) -> int:
         with warnings.catch_warnings():
             if not debug:
                 warnings.simplefilter("ignore", RuntimeWarning)
-            from .target import reset_notes
+            from .target import print_notes, reset_notes
 
             reset_notes()
             code = int(module.run(args))
+            print_notes()  # the demonstration-calibration note, once, after the command's own output
             if sys.stdout is not None:
                 sys.stdout.flush()
         return code

@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "load_target",
            "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS", "DEMO_CALIBRATION", "DEMO_NOTE",
-           "note_demo_calibration", "reset_notes"]
+           "note_demo_calibration", "print_notes", "reset_notes"]
 
 #: Values of ``--p0-source`` and ``--tube-law`` (the enums' values; a test holds them equal, so
 #: that ``--help`` needs no numpy).
@@ -191,7 +191,8 @@ def analyse_target(target: Target):
 DEMO_CALIBRATION = "paper-2025"
 DEMO_NOTE = ("note: calibration 'paper-2025' is the paper's demonstration data, not a calibration of your tube, "
              "thread and fabric; 'embroact calibrate coupon' makes one (docs/calibration.md)")
-_NOTED: list[bool] = []
+#: Whether the running command used the demonstration set, and whether the note is out.
+_NOTE = {"used": False, "printed": False}
 
 
 def _calibrations_used(analysis) -> set[str]:
@@ -205,16 +206,29 @@ def _calibrations_used(analysis) -> set[str]:
     return names
 
 
-def note_demo_calibration(names, stream=None) -> None:
-    """Print :data:`DEMO_NOTE` on stderr when ``names`` holds the demonstration set, once per command run."""
-    if DEMO_CALIBRATION in names and not _NOTED:
-        _NOTED.append(True)
-        print(f"embroact: {DEMO_NOTE}", file=stream or sys.stderr)
+def note_demo_calibration(names, *, now: bool = False) -> None:
+    """Remember that the command uses the demonstration set when ``names`` holds it.
+
+    The note is one line on stderr, printed once per command run by :func:`print_notes` when
+    the command is done (after its own output), or at once with ``now`` (a server that runs
+    until it is stopped).
+    """
+    if DEMO_CALIBRATION in names:
+        _NOTE["used"] = True
+        if now:
+            print_notes()
+
+
+def print_notes() -> None:
+    """Print the demonstration note if the command used that set and it is not printed yet."""
+    if _NOTE["used"] and not _NOTE["printed"]:
+        _NOTE["printed"] = True
+        print(f"embroact: {DEMO_NOTE}", file=sys.stderr)
 
 
 def reset_notes() -> None:
-    """Forget that the note was printed (each command run starts afresh)."""
-    _NOTED.clear()
+    """Forget the note (each command run starts afresh)."""
+    _NOTE.update(used=False, printed=False)
 
 
 #: Actuators the summary line names per rule code (the rest are counted: the line stays one line).

@@ -2,7 +2,7 @@
 
 Board markers outlined in green, fin markers in blue, the fabric-line points the fins give
 as red dots, the fitted centreline in red, and per actuator its reading; a header line
-with the pressure, the branch and the board's tilt. The picture is scaled to at most
+with the pressure, the branch and the board's tilt, then one line per actuator. The picture is scaled to at most
 :data:`MAX_WIDTH_PX` wide and encoded as JPEG (OpenCV).
 """
 from __future__ import annotations
@@ -43,9 +43,10 @@ def annotated_jpeg(image, reading: PhotoReading, header: str, labels: dict[int, 
         cv2.polylines(img, [line], False, _RED, width + 1, cv2.LINE_AA)
         for p in px(reading.to_pixels(b.strip.points_mm)):
             cv2.circle(img, (int(p[0]), int(p[1])), width + 2, _RED, -1, cv2.LINE_AA)
-        start = px(reading.to_pixels(b.strip.points_mm[:1]))[0]
-        _text(cv2, img, f"{labels.get(b.block, f'block {b.block}')}: {b.strip.reading_deg:.1f} deg",
-              (start[0] + 10, start[1] - 14), 0.5 * img.shape[1] / 1200)
-    _text(cv2, img, header, (12, 30), 0.7 * img.shape[1] / 1200)
+    size = 0.7 * img.shape[1] / 1200
+    _text(cv2, img, header, (12, 30 * size / 0.7), size)
+    for k, b in enumerate(reading.blocks):  # one line per actuator under the header, clear of the fins
+        _text(cv2, img, f"{labels.get(b.block, f'block {b.block}')}: {b.strip.reading_deg:.1f} deg "
+                        f"(centreline fit rms {b.strip.rms_mm:.2f} mm)", (12, (62 + 30 * k) * size / 0.7), size)
     ok, data = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, 90])
     return bytes(data) if ok else b""
