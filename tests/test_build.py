@@ -152,6 +152,7 @@ def test_cli_build_prints_its_warnings_in_one_line(tmp_path, capsys):
     example = Path(__file__).resolve().parent.parent / "examples" / "three_actuators.toml"
     assert main(["build", str(example), "--out", str(tmp_path), "--no-previews"]) == 0
     err = capsys.readouterr().err.splitlines()
+    assert "demonstration data" in err.pop()  # the paper-2025 note comes last, once
     findings = check_design(analyse(load_design(example)))
     warned = sorted({f.code for f in findings if f.severity.value == "warning"})
     assert warned and err == [f"design rules: {summary_line(findings)}"]

@@ -160,6 +160,7 @@ def test_gate_prints_a_few_errors_per_rule_and_counts_the_rest(tmp_path, capsys)
     argv = ["zigzag", "--width-mm", "14", "--interval-mm", "1", "-o", str(tmp_path / "x.dst")]
     assert main(argv) == 1
     lines = capsys.readouterr().err.splitlines()
+    assert "demonstration data" in lines.pop()  # the paper-2025 note comes last, once
     assert lines[0].startswith("design rules: 200 errors, ") and lines[-1].endswith("nothing written "
                                                                                      "(use --force to write anyway)")
     assert len(lines) == 1 + 2 * (GATE_ERRORS_PER_CODE + 1) + 1
@@ -178,9 +179,10 @@ def test_warnings_are_one_line_and_json_has_the_model(tmp_path, capsys):
     """The paper's zigzag bends past 180 deg at 300 kPa (EA403): written, with one summary line on stderr."""
     assert main(ZZ + ["-o", str(tmp_path / "a.dst"), "--json"]) == 0
     captured = capsys.readouterr()
-    assert captured.err.splitlines() == [line for line in captured.err.splitlines()
-                                         if line.startswith("design rules: 0 errors")]
-    assert len(captured.err.splitlines()) == 1 and "EA403 (A1)" in captured.err
+    err = captured.err.splitlines()
+    assert "demonstration data" in err.pop()  # the paper-2025 note comes last, once
+    assert err == [line for line in err if line.startswith("design rules: 0 errors")]
+    assert len(err) == 1 and "EA403 (A1)" in captured.err
     doc = json.loads(captured.out)
     assert (doc["model"]["g_mpa"], doc["model"]["p0_kpa"]) == (2.7, 85.0)
     assert doc["model"]["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"
