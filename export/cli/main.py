@@ -274,7 +274,8 @@ def _run(module, args, debug: bool) -> int:
 
             reset_notes()
             code = int(module.run(args))
-            print_notes()  # the demonstration-calibration note, once, after the command's own output
+            if not getattr(args, "json", False):  # machine-readable runs keep stderr for errors
+                print_notes()  # the demonstration-calibration note, once, after the command's own output
             if sys.stdout is not None:
                 sys.stdout.flush()
         return code

@@ -210,8 +210,8 @@ def note_demo_calibration(names, *, now: bool = False) -> None:
     """Remember that the command uses the demonstration set when ``names`` holds it.
 
     The note is one line on stderr, printed once per command run by :func:`print_notes` when
-    the command is done (after its own output), or at once with ``now`` (a server that runs
-    until it is stopped).
+    the command is done (after its own output; not with ``--json``, whose stderr holds errors
+    only), or at once with ``now`` (a server that runs until it is stopped).
     """
     if DEMO_CALIBRATION in names:
         _NOTE["used"] = True
