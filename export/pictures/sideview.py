@@ -255,6 +255,22 @@ def _draw_sides(dwg, parent, panel: SidePanel, dx: float, dy: float, placer: Pla
                             text_anchor=lab.anchor, fill="#555", **{"class": "side-name"}))
 
 
+def _draw_segment_names(dwg, parent, panel: SidePanel, states, dx: float, dy: float, placer: Placer) -> None:
+    """A segmented actuator's segments (between its ``marks_mm``) numbered beside the middle of each, on the
+    first state drawn."""
+    if not panel.segment_lengths_mm or not panel.marks_mm or not states:
+        return
+    shape = states[0][2]
+    ends = np.array([0.0, *sorted(panel.marks_mm), panel.length_mm])
+    middles = ((ends[:-1] + ends[1:]) / 2.0).tolist()
+    on_tube = shape.points(middles, [(0.0, 2.0 * panel.r0_mm)])[:, 0, :]
+    for k, (x, y) in enumerate(_pts(np.column_stack([on_tube[:, 2], -on_tube[:, 0]]), dx, dy)):
+        text = f"segment {k}"
+        lab = placer.place(text, (x, y), _SIDE_FONT_MM, gap=1.0, directions=((1, 0), (-1, 0), (1, -1), (1, 1)))
+        parent.add(dwg.text(text, insert=(round(lab.x, 3), round(lab.y, 3)), font_size=_SIDE_FONT_MM,
+                            text_anchor=lab.anchor, fill="#555", **{"class": "segment-name"}))
+
+
 def _draw_tips(dwg, parent, tips, placer: Placer) -> None:
     """Each tip numbered by its state(s), placed clear of the other labels and the drawing."""
     for tip, ks in tips:
@@ -304,8 +320,9 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
         placer.block_box(text_box(panel.label, left, title_y, _PANEL_FONT_MM))
     tips = [_draw_panel(dwg, root, panel, s, left - b[0], top, left, legend_y, placer, title_y)
             for panel, s, b, left in zip(panels, states, bounds, lefts)]
-    for panel, b, left in zip(panels, bounds, lefts):
+    for panel, s_, b, left in zip(panels, states, bounds, lefts):
         _draw_sides(dwg, root, panel, left - b[0], top, placer)
+        _draw_segment_names(dwg, root, panel, s_, left - b[0], top, placer)
     for panel_tips in tips:
         _draw_tips(dwg, root, panel_tips, placer)
     return dwg.tostring()
