@@ -54,7 +54,11 @@ def test_misplaced_leg_in_a_dst_is_found_at_its_record(tmp_path, capsys):
     doc = json.loads(capsys.readouterr().out)
     errors = [f for f in doc["findings"] if f["severity"] == "error"]
     assert [(f["code"], f["stitch_index"]) for f in errors] == [("EA101", index[0])]
-    assert doc["counts"] == {"error": 1, "warning": 0, "info": 0} and doc["format"] == "dst"
+    # the warnings: pystitch's header (EA505: ST counts a trim as one record, +Y leaves out the trim's jump)
+    assert doc["counts"] == {"error": 1, "warning": 2, "info": 0} and doc["format"] == "dst"
+    # the needle point's number: the stitch records before it, as the suite's own decoder reads the file
+    before = sum(r.kind == "stitch" for r in dst_decoder.decode(path.read_bytes()).records[:index[0]])
+    assert errors[0]["needle_point"] == before and errors[0]["at_needle"]
     assert "0.30 mm" in errors[0]["message"]
 
 
@@ -64,9 +68,10 @@ def test_table_grouped_by_severity(tmp_path, capsys):
     assert main(["check", str(path), "--tube-path", "0,0 100,0"]) == 1
     out = capsys.readouterr().out
     lines = out.splitlines()
-    assert lines[0] == f"{path}: embroidery file, format dst, 1 tube(s): 1 error, 0 warnings, 0 info"
+    assert lines[0] == f"{path}: embroidery file, format dst, 1 tube(s): 1 error, 2 warnings, 0 info"
     assert lines[2] == "ERRORS"
-    assert lines[3].startswith(f"  EA101  needle in tube corridor  [tube 1, stitch {index[0]} at (")
+    before = sum(r.kind == "stitch" for r in dst_decoder.decode(path.read_bytes()).records[:index[0]])
+    assert lines[3].startswith(f"  EA101  needle in tube corridor  [tube 1, needle point {before} (record {index[0]}) at (")
     assert lines[5].strip().startswith("fix: ")
 
 
@@ -81,11 +86,12 @@ def test_clean_file_and_tube_toml(tmp_path, capsys):
     tubes.write_text('[[tube]]\nname = "A1"\npath_mm = [[0, 0], [100, 0]]\n[machine]\nhoop_width_mm = 50.0\n'
                      'hoop_height_mm = 50.0\n')
     assert main(["check", str(path), "--tube-path", "0,0 100,0"]) == 0
-    assert capsys.readouterr().out.strip().endswith("1 tube(s): no findings")
+    # only pystitch's header (EA505: ST counts the trim as one record, +Y leaves out its jump): warnings
+    assert "1 tube(s): 0 errors, 2 warnings, 0 info" in capsys.readouterr().out
     # the hoop from the tube file is too small for the 100 mm design
     assert main(["check", str(path), "--tube", str(tubes), "--json"]) == 1
     codes = {f["code"] for f in json.loads(capsys.readouterr().out)["findings"]}
-    assert codes == {"EA306"}
+    assert codes == {"EA306", "EA505"}
     assert main(["check", str(path)]) == 0
     assert "no tube given (tube rules skipped)" in capsys.readouterr().out
 

@@ -61,7 +61,14 @@ def test_records_in_the_files_own_order(tmp_path):
 def test_clean_design_file_has_no_findings(tmp_path):
     plan = _plan()
     path = _write(tmp_path / "ok.dst", plan.xy_mm, plan.commands)
-    assert check_file(path, [TUBE]) == ()
+    # only pystitch's header, EA505 warnings: ST counts the trim (3 jump records) as one record, and +Y leaves
+    # out the trim's first jump (+0.2 mm above the last needle point, 3.5 mm up)
+    st = int(dst_decoder.decode(path.read_bytes()).header["ST"])
+    found = check_file(path, [TUBE])
+    assert {f.code for f in found} == {"EA505"} and not any(f.is_error for f in found)
+    assert sorted(f.message for f in found) == [
+        "header +Y 35, but the body reaches 37 units above the start point",
+        f"header ST {st}, but the body holds {st + 2} records (the end record included)"]
 
 
 def test_misplaced_leg_found_at_the_files_record_index(tmp_path):

@@ -260,11 +260,28 @@ def test_ea305_end_margin_outside_hoop():
 
 
 def test_ea306_outside_hoop_including_jumps():
-    # span 0..120 in a 100 mm hoop centred at 60 -> [10, 110]: x = 0 (a jump) and 120 are out
+    # needle points and the start point span 0..120: a 100 mm hoop centred at 60 -> [10, 110]: x = 0 (a jump)
+    # and 120 are out
     xy = [(0.0, 0.0), (15.0, 3.5), (60.0, -3.5), (120.0, 3.5)]
     hits = _hits(_check(_layout(xy, [J, S, S, S], tubes=()), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA306")
     assert [f.stitch_index for f in hits] == [0, 3] and hits[0].message.startswith("jump record")
     assert not _hits(_check(_layout(xy[1:3], tubes=()), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA306")
+
+
+def test_ea306_a_stray_travel_is_one_finding_and_moves_no_stitch_out():
+    """A 300 mm excursion by 25 jumps of 12 mm in the middle of 60 mm of stitching: the hoop stays centred on
+    the needle points, the travel's first record is the one finding."""
+    stitches = [(1.0 * k, 3.5 * (-1) ** k) for k in range(61)]
+    out = [(60.0 + 12.0 * k, 3.5) for k in range(1, 26)]
+    back = [(60.0 + 12.0 * k, 3.5) for k in range(24, -1, -1)]
+    xy = stitches + out + back + [(59.0, -3.5)]
+    cmds = [S] * 61 + [J] * 50 + [S]
+    hits = _hits(_check(_layout(xy, cmds, tubes=()), hoop_width_mm=100.0, hoop_height_mm=100.0), "EA306")
+    # hoop [-20, 80] x [-50, 50] (needle points and start point 0..60): the first jump outside is to x = 84
+    # (record 62); the run goes out and back
+    assert [f.stitch_index for f in hits] == [62]
+    # farthest: x = 60 + 300 = 360, the hoop centre at x = 30 (needle points 0..60): 330 mm
+    assert hits[0].message.startswith("a travel of 47 jump records outside") and "up to 330.0 mm" in hits[0].message
 
 
 # --------------------------------------------------------------------- EA5xx

@@ -228,7 +228,7 @@ def test_tube_queries_do_not_grow_with_the_number_of_tubes(monkeypatch):
 def test_findings_past_the_cap_are_not_built(monkeypatch):
     n = 5000
     xy = np.column_stack([np.arange(n, dtype=float), np.zeros(n)])  # 5 m of records in a 200 mm hoop
-    lay = Layout.from_points(xy, [J] * n, [-1] * n, tubes=())
+    lay = Layout.from_points(xy, [S] * n, [-1] * n, tubes=())  # needle points (a run of jumps outside is one finding)
     built = []
     real = engine.Subject.point
     monkeypatch.setattr(engine.Subject, "point", lambda self, *a, **k: built.append(1) or real(self, *a, **k))

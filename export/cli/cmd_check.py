@@ -4,10 +4,13 @@ A ``.toml`` input is an embroact design: it is generated and every rule runs
 (geometry, pattern, file structure, model). Any other input is an embroidery file
 read with pyembroidery, checked against the tube(s) given with ``--tube-path``
 (repeatable, one per tube, ``"x1,y1 x2,y2 ..."`` in mm in the file's frame as
-pyembroidery reads it: 0.1 mm units divided by 10, y down; or ``drawing.svg#tube1``, a
+pyembroidery reads it: 0.1 mm units divided by 10, y down; SVG path data as ``--path``
+takes it, ``"M 0 0 L 100 0"``, in that same y-down frame; or ``drawing.svg#tube1``, a
 drawn path in page mm, y down, the frame a design built from that drawing is sewn in; see
 :mod:`embroact.export.machine.filecheck`) or ``--tube TUBES.toml``; findings name the
-record index in the file's own order.
+needle point (counted from 0, the same in every format) with the record index in the
+file's own order alongside, and give fixes for the file's author. When no needle point
+lies near any tube the finding says which frame the path is read in.
 
 Exit codes: 0 no errors (warnings allowed); 1 at least one error; 2 unusable input
 (missing, truncated or garbage file, bad option), one line on stderr.
@@ -37,9 +40,10 @@ def add_arguments(parser, name: str) -> None:
     add_model_arguments(parser.add_argument_group("model (design files only; overrides the design's "
                                                   "[actuator.model], as for predict and build)"))
     tube = parser.add_argument_group("tube (embroidery files only)")
-    tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'|FILE.svg#ID",
-                      help="tube axis in mm, file frame (0.1 mm units / 10, y down), or a path of an SVG drawing "
-                           "(drawing.svg#tube1: page mm, y down); repeat for several tubes")
+    tube.add_argument("--tube-path", action="append", default=[], metavar="'x1,y1 x2,y2 ...'|SVG_D|FILE.svg#ID",
+                      help="tube axis in mm, file frame (0.1 mm units / 10, y down): points, SVG path data "
+                           "('M 0 0 L 100 0', as --path takes), or a path of an SVG drawing (drawing.svg#tube1: "
+                           "page mm, y down); repeat for several tubes")
     add_tube_arguments(tube, fields=("outer_radius_mm", "clearance_mm"))
     tube.add_argument("--end-margin-mm", type=float, default=0.0,
                       help="free tube beyond each end of the path [mm] (default 0)")
@@ -87,7 +91,7 @@ def _check_file(args):
     own = machine.pop("format", None)
     settings = file_rule_settings(records, format=args.format or own, **machine)
     fmt = settings.format
-    findings = check_file(args.input, tubes, settings=settings)
+    findings = check_file(args.input, tubes, settings=settings, records=records)
     return findings, {"kind": "embroidery file", "name": args.input, "format": fmt, "tubes": len(tubes),
                       "records": len(records)}
 

@@ -79,7 +79,7 @@ def commands_markdown() -> str:
 
     Examples
     --------
-    >>> "| `--tube-path 'x1,y1 x2,y2 ...'\\\\|FILE.svg#ID` |" in commands_markdown()  # | escaped in a table
+    >>> "| `--tube-path 'x1,y1 x2,y2 ...'\\\\|SVG_D\\\\|FILE.svg#ID` |" in commands_markdown()  # | escaped in a table
     True
     """
     from .main import COMMANDS, _command_parser

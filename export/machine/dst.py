@@ -27,6 +27,8 @@ b'LA:demo            \\rST:'
 """
 from __future__ import annotations
 
+import numpy as np
+
 from ...patterns.base.errors import ExportError
 
 __all__ = ["HEADER_SIZE", "END_BYTE", "COLOR_BYTE", "decode_moves", "build_header", "fix_dst", "header_fields"]
@@ -48,20 +50,30 @@ _WEIGHTS = {
 }
 
 
+def move_array(body: bytes) -> tuple[np.ndarray, np.ndarray]:
+    """Every record's move ``(n, 2)`` [0.1 mm, y up] and third byte ``(n,)``, up to and including the end
+    record (all records of a body without one), decoded at once.
+
+    >>> moves, b3 = move_array(bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xF3, 0x01, 0x00, 0x03]))
+    >>> moves.tolist(), b3.tolist()
+    ([[1, 0], [0, 0]], [3, 243])
+    """
+    rec = np.frombuffer(body[:len(body) - len(body) % 3], dtype=np.uint8).reshape(-1, 3)
+    end = np.flatnonzero(rec[:, 2] == END_BYTE)
+    rec = rec[:int(end[0]) + 1] if len(end) else rec
+    weights = np.zeros((3, 8, 2), dtype=np.int64)
+    for (b, bit), w in _WEIGHTS.items():
+        weights[b, bit] = w
+    bits = (rec[:, :, None] >> np.arange(8, dtype=np.uint8)) & 1  # (n, byte, bit)
+    moves = np.einsum("nbk,bkd->nd", bits.astype(np.int64), weights)
+    moves[np.isin(rec[:, 2], (END_BYTE, COLOR_BYTE))] = 0
+    return moves, rec[:, 2].copy()
+
+
 def decode_moves(body: bytes) -> list[tuple[int, int, int]]:
     """``(dx, dy, byte3)`` per record up to and including the end record (0.1 mm, y up)."""
-    out = []
-    for i in range(0, len(body) - len(body) % 3, 3):
-        rec = body[i : i + 3]
-        dx = dy = 0
-        if rec[2] not in (END_BYTE, COLOR_BYTE):
-            for (b, bit), (wx, wy) in _WEIGHTS.items():
-                if rec[b] >> bit & 1:
-                    dx, dy = dx + wx, dy + wy
-        out.append((dx, dy, rec[2]))
-        if rec[2] == END_BYTE:
-            break
-    return out
+    moves, b3 = move_array(body)
+    return [(int(dx), int(dy), int(b)) for (dx, dy), b in zip(moves.tolist(), b3.tolist())]
 
 
 def build_header(moves: list[tuple[int, int, int]], *, label: str) -> bytes:

@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -77,6 +78,8 @@ __all__ = [
     "readable_suffixes",
     "default_format",
     "file_rule_settings",
+    "dst_header_faults",
+    "FILE_FIXES",
 ]
 
 _DST_RECORD_BYTES = 3
@@ -237,8 +240,24 @@ def read_records(path: str | os.PathLike) -> FileRecords:
 
 
 def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
-    """Points from ``"x1,y1 x2,y2 ..."`` [mm]; one-line :class:`ParameterError` on bad text."""
-    usage = f"{name} must be 'x1,y1 x2,y2 ...' with at least 2 points in mm"
+    """Points from ``"x1,y1 x2,y2 ..."`` or SVG path data (``"M 0 0 L 100 0"``, as ``--path`` takes;
+    SVG's frame, y down, is the file's frame) [mm]; one-line :class:`ParameterError` on bad text.
+
+    >>> parse_tube_path("M 0 0 h 100 v -20").tolist()
+    [[0.0, 0.0], [100.0, 0.0], [100.0, -20.0]]
+    """
+    usage = f"{name} must be 'x1,y1 x2,y2 ...' with at least 2 points in mm, or SVG path data ('M 0 0 L 100 0')"
+    if str(text).lstrip()[:1] in ("M", "m"):
+        from ...patterns.base.errors import PatternError
+        from ...patterns.svgpath import flatten, parse_d
+
+        try:
+            pts = np.asarray(flatten(parse_d(str(text))), dtype=np.float64)
+        except PatternError as exc:
+            raise ParameterError(f"{name}: {exc}") from None
+        if pts.ndim != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
+            raise ParameterError(f"{usage}, got {text!r}")
+        return _in_range(pts, name)
     try:
         pts = np.array([[float(v) for v in pair.split(",")] for pair in str(text).split()], dtype=np.float64)
     except ValueError:
@@ -337,13 +356,115 @@ def file_rule_settings(records: FileRecords, *, format: str | None = None, **mac
     return RuleSettings.for_machine(MachineSettings(), format=format or default_format(records), **machine)
 
 
+#: Fixes for the author of an embroidery file (the rules' own fixes are worded for embroact designs).
+FILE_FIXES = {
+    "EA101": "re-digitise with the needle points beside the tube (a wider pattern), or check the tube path",
+    "EA102": "re-digitise with a shorter maximum stitch, or split this leg into stitches beside the tube",
+    "EA103": "split this leg (re-digitise with a maximum stitch within the machine's), or raise max_stitch_mm "
+             "in the tube file's [machine] table if the machine sews longer stitches",
+    "EA104": "re-digitise with a longer minimum stitch, or remove this needle point",
+    "EA105": "re-digitise with a longer stitch interval (fewer needle points along the rail)",
+    "EA106": "re-digitise with a longer stitch interval (fewer needle points along the rail)",
+    "EA306": "re-digitise or move the design so that this record lies in the hoop, or give the hoop size in the "
+             "tube file's [machine] table",
+    "EA307": "re-digitise with legs over this stretch of tube, or check the tube path (the file's frame, y down)",
+    "EA308": "give the tube path these legs were digitised for, or re-digitise without them",
+    "EA501": "re-digitise with a trim before this travel, or with shorter travel",
+    "EA502": "re-digitise with a stop (DST: a colour change) before this tube's stitches",
+    "EA503": "re-digitise without this stop, or check that the tube paths given are the file's",
+    "EA504": "split the embroidery into several files",
+    "EA505": "save the file again from the digitising software (the header is rewritten from the records)",
+}
+
+
+def dst_header_faults(data: bytes) -> tuple[str, ...]:
+    r"""The DST header's ST, CO and extent fields that disagree with the records after it.
+
+    ``ST`` must count the 3-byte records (the end record included), ``CO`` the colour-change
+    records (0xC3, DST's stop), ``+X -X +Y -Y`` the largest excursion from the start point in
+    each direction (0.1 mm, y up), over every record.
+
+    Examples
+    --------
+    >>> body = bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xC3, 0x00, 0x00, 0xF3])
+    >>> head = b"LA:x               \rST:      3\rCO:  1\r+X:    1\r-X:    0\r+Y:    0\r-Y:    0\r"
+    >>> dst_header_faults(head.ljust(512, b" ") + body)
+    ()
+    >>> dst_header_faults(head.replace(b"ST:      3", b"ST:     99").ljust(512, b" ") + body)
+    ('header ST 99, but the body holds 3 records (the end record included)',)
+    """
+    from .dst import COLOR_BYTE, move_array
+
+    text = data[:HEADER_SIZE].decode("latin-1")
+    fields = {m.group(1): m.group(2).strip() for m in re.finditer(r"(ST|CO|[+-][XY]):([^\r]*)\r", text)}
+    moves, b3 = move_array(data[HEADER_SIZE:])
+    at = np.vstack([np.zeros((1, 2), np.int64), np.cumsum(moves, axis=0)])
+    (xmin, ymin), (xmax, ymax) = at.min(axis=0).tolist(), at.max(axis=0).tolist()
+    body = {"ST": (len(b3), "records (the end record included)"),
+            "CO": (int(np.count_nonzero(b3 == COLOR_BYTE)), "colour-change (stop) records"),
+            "+X": (xmax, "units right of the start point"), "-X": (-xmin, "units left of the start point"),
+            "+Y": (ymax, "units above the start point"), "-Y": (-ymin, "units below the start point")}
+    faults = []
+    for key, (value, what) in body.items():
+        given = fields.get(key)
+        if given is None or not re.fullmatch(r"[+-]?\d+", given):
+            faults.append(f"header has no {key} number (got {given!r}); the body holds {value} {what}")
+        elif int(given) != value:
+            verb = "holds" if key in ("ST", "CO") else "reaches"
+            faults.append(f"header {key} {int(given)}, but the body {verb} {value} {what}")
+    return tuple(faults)
+
+
+def _split_legs(records: FileRecords, max_stitch_mm: float, trim_run: int) -> np.ndarray:
+    """Jump records inside sewing (a stitch before the run, a stitch after it, nothing else between,
+    fewer than ``trim_run`` jumps: no trim) whose stitch-to-stitch leg is longer than ``max_stitch_mm``
+    and at most twice it: a writer split one long stitch into jump(s) + stitch, and the machine sews
+    the one long leg.  Longer moves are travel (EA501 judges a run that reads as a trim)."""
+    cmds, xy = records.commands, records.xy_mm
+    drop = np.zeros(len(cmds), dtype=bool)
+    jump = np.concatenate([[False], cmds == Command.JUMP, [False]])
+    starts = np.flatnonzero(jump[1:-1] & ~jump[:-2])  # first jump of each run
+    ends = np.flatnonzero(jump[1:-1] & ~jump[2:]) + 1  # the record after each run
+    ok = (starts > 0) & (ends < len(cmds))
+    starts, ends = starts[ok], ends[ok]
+    ok = (cmds[starts - 1] == Command.STITCH) & (cmds[ends] == Command.STITCH) & (ends - starts < trim_run)
+    leg = np.hypot(*(xy[ends] - xy[starts - 1]).T)
+    split = ok & (leg > max_stitch_mm) & (leg <= 2 * max_stitch_mm)
+    for a, b in zip(starts[split], ends[split]):
+        drop[a:b] = True
+    return drop
+
+
+def _frame_hint(layout, records: FileRecords) -> str:
+    """When no needle point lies near any tube: which frame the tube paths are read in."""
+    from ...patterns.rules.layout import FILE_REACH_MM
+    from ...patterns.spatial import TubeIndex
+
+    needles = records.xy_mm[records.commands == Command.STITCH]
+    if not layout.tubes or np.any(layout.owner >= 0):
+        return ""
+    flipped = [np.asarray(t.path.coords) * (1.0, -1.0) for t in layout.tubes]
+    if len(TubeIndex(flipped).nearest(needles, FILE_REACH_MM)[0]) > len(needles) / 2:
+        return ("; with y negated the tube path lies on the stitches: it was given y up (an embroact design's "
+                "plan frame), and files are read y down (plan (x, y) is file (x, -y))")
+    return (f"; no needle point lies within {FILE_REACH_MM:g} mm of any tube: tube paths are in the file's frame "
+            "(0.1 mm units / 10, y down, origin at the file's start point)")
+
+
 def check_file(
     path: str | os.PathLike,
     tubes,
     *,
     settings: RuleSettings | None = None,
+    records: FileRecords | None = None,
 ) -> tuple[Finding, ...]:
     """Read an embroidery file and run the design rules for files against ``tubes``.
+
+    Besides the rules on its records: a DST file's header is held against them (EA505); a
+    long stitch a writer split into jump(s) + stitch is checked as the one leg the machine
+    sews (EA103 names it); each finding gives its place as a needle-point number with the
+    record number alongside (both counted from 0), the same for every format, and a fix for
+    the file's author.
 
     Parameters
     ----------
@@ -354,15 +475,51 @@ def check_file(
     settings : RuleSettings, optional
         Defaults to :func:`file_rule_settings`: the file's own format, the default
         machine's stitch limits and hoop.
+    records : FileRecords, optional
+        ``read_records(path)`` when the caller has read it already (the file is not read twice).
 
     Returns
     -------
     tuple of Finding
-        Worst first; ``stitch_index`` is the record index in the file.
+        Worst first; ``stitch_index`` is the record index in the file, ``needle_point`` the
+        needle point there (or the last one before it).
     """
+    from dataclasses import replace
+
     from ...predict.sleeve_rules import check_layout
 
-    records = read_records(path)
+    records = read_records(path) if records is None else records
     settings = settings or file_rule_settings(records)
-    layout = layout_from_records(records.xy_mm, records.commands, tuple(tubes))
-    return check_layout(layout, settings)
+    faults = dst_header_faults(read_input(str(path), MACHINE_FILE_BYTES, "embroidery file")) \
+        if records.suffix == "dst" else ()
+    drop = _split_legs(records, settings.max_stitch_mm, settings.trim_jump_count)
+    keep = np.flatnonzero(~drop)
+    layout = layout_from_records(records.xy_mm[keep], records.commands[keep], tuple(tubes), index=keep,
+                                 header_faults=faults)
+    hint = _frame_hint(layout, records)
+    merged = {int(j) for j in np.flatnonzero(drop[:-1] & ~drop[1:]) + 1}  # the stitch after each dropped run
+    needle_count = np.cumsum(records.commands == Command.STITCH)
+    out = []
+    for f in check_layout(layout, settings):
+        if f.code == "EA102" and f.stitch_index in merged:
+            continue  # the file already splits it: EA103 names the long leg
+        message = f.message
+        if f.code == "EA103" and f.stitch_index in merged:
+            r = f.stitch_index
+            first = r - 1
+            while first > 0 and drop[first - 1]:
+                first -= 1
+            message += (f"; written as {r - first} jump record(s) + 1 stitch (records {first} to {r}): the machine "
+                        "sews one leg from the needle point before")
+        if f.code == "EA307" and hint:
+            message += hint
+        more = re.fullmatch(r"(\d+ more findings of this rule, from )stitch (\d+) on", message)
+        if more:  # the capped rule's closing finding: its first record, as a file's places are given
+            r = int(more.group(2))
+            message = f"{more.group(1)}record {r} on (needle point {int(needle_count[r]) - 1})"
+        extra = {}
+        if f.stitch_index is not None:
+            r = int(f.stitch_index)
+            extra = {"needle_point": int(needle_count[r]) - 1, "at_needle": bool(records.commands[r] == Command.STITCH)}
+        out.append(replace(f, message=message, fix=FILE_FIXES.get(f.code, f.fix), **extra))
+    return tuple(out)

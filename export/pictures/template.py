@@ -70,13 +70,13 @@ def start_from_centre(plan: StitchPlan) -> str:
     >>> start_from_centre(build_plan(default_design()))
     '50.0 mm left, 0.0 mm up'
     """
-    dx, dy = -hoop_centre_mm(plan.xy_mm) + 0.0
+    dx, dy = -hoop_centre_mm(plan.xy_mm, plan.commands) + 0.0
     return f"{abs(dx):.1f} mm {'right' if dx >= 0 else 'left'}, {abs(dy):.1f} mm {'up' if dy >= 0 else 'down'}"
 
 
 def _hoop_box(plan: StitchPlan, hoop_mm: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
     """The hoop's sewing field centred on the records' bounding box (as EA306 places it)."""
-    centre = hoop_centre_mm(plan.xy_mm)
+    centre = hoop_centre_mm(plan.xy_mm, plan.commands)
     half = np.array(hoop_mm, dtype=np.float64) / 2.0
     return centre - half, centre + half
 

@@ -152,6 +152,12 @@ class Finding:
         How many findings this one stands for: 1, or for the finding that closes a capped
         rule ("N more findings of this rule"), N. Summaries count findings by it, so they
         count every finding, shown or not.
+    needle_point : int or None
+        Embroidery files: the needle point at the record (counted from 0), or the last one
+        before it when the record is no needle record (``at_needle`` False); the same place
+        has the same number in every format, whatever records the format adds.
+    at_needle : bool
+        The record is the needle point ``needle_point``.
     """
 
     code: str
@@ -163,6 +169,8 @@ class Finding:
     fix: str = ""
     title: str = ""
     count: int = 1
+    needle_point: int | None = None
+    at_needle: bool = True
 
     @property
     def is_error(self) -> bool:
@@ -174,8 +182,14 @@ class Finding:
         parts = []
         if self.actuator is not None:
             parts.append(self.actuator)
-        if self.stitch_index is not None:
+        if self.stitch_index is not None and self.needle_point is None:
             parts.append(f"stitch {self.stitch_index}")
+        elif self.stitch_index is not None and self.at_needle:
+            parts.append(f"needle point {self.needle_point} (record {self.stitch_index})")
+        elif self.stitch_index is not None and self.needle_point < 0:
+            parts.append(f"record {self.stitch_index}, before the first needle point")
+        elif self.stitch_index is not None:
+            parts.append(f"record {self.stitch_index}, after needle point {self.needle_point}")
         where = ", ".join(parts)
         if self.xy_mm is not None:
             where += f"{' ' if where else ''}at ({self.xy_mm[0]:.2f}, {self.xy_mm[1]:.2f}) mm"
@@ -193,6 +207,7 @@ class Finding:
             "xy_mm": None if self.xy_mm is None else [self.xy_mm[0], self.xy_mm[1]],
             "fix": self.fix,
             "count": self.count,
+            **({} if self.needle_point is None else {"needle_point": self.needle_point, "at_needle": self.at_needle}),
         }
 
 

@@ -112,6 +112,9 @@ class Layout:
     before_tube : ndarray of bool
         True for a record sewn before its own tube was laid (a placement line): it can neither
         pierce nor hold that tube.
+    header_faults : tuple of str
+        Fields of an embroidery file's header that disagree with its records (rule EA505), as
+        found when the file was read; empty for designs.
     """
 
     xy_mm: np.ndarray
@@ -120,9 +123,11 @@ class Layout:
     tubes: tuple[TubeLayout, ...]
     index: np.ndarray
     before_tube: np.ndarray
+    header_faults: tuple[str, ...] = ()
 
     @classmethod
-    def from_points(cls, xy_mm, commands, owner, *, tubes, index=None, before_tube=None) -> "Layout":
+    def from_points(cls, xy_mm, commands, owner, *, tubes, index=None, before_tube=None,
+                    header_faults=()) -> "Layout":
         """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1,
         ``before_tube`` to all False."""
         xy = frozen_array(xy_mm).reshape(-1, 2)
@@ -140,7 +145,7 @@ class Layout:
         tubes = tuple(tubes)
         if n and not (-1 <= arrays[2].min() and arrays[2].max() < len(tubes)):
             raise ParameterError(f"owner must be in [-1, {len(tubes)}) (tube indices), got {arrays[2].max()}")
-        return cls(arrays[0], arrays[1], arrays[2], tubes, arrays[3], arrays[4])
+        return cls(arrays[0], arrays[1], arrays[2], tubes, arrays[3], arrays[4], tuple(header_faults))
 
     def __len__(self) -> int:
         return len(self.xy_mm)
@@ -169,7 +174,8 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
     return Layout.from_points(plan.xy_mm, plan.commands, owner, tubes=tubes, before_tube=plan.roles == Role.PLACEMENT)
 
 
-def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_MM, index=None) -> Layout:
+def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_MM, index=None,
+                        header_faults=()) -> Layout:
     """A layout for records without owners (an embroidery file): assign needle points to tubes.
 
     Each needle point belongs to the nearest tube closer than ``reach_mm`` (else to
@@ -194,6 +200,8 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
         Needle points further than this from every tube belong to none [mm].
     index : array (n,), optional
         Index to report per record (default 0..n-1).
+    header_faults : sequence of str
+        Header fields that disagree with the records (:attr:`Layout.header_faults`).
     """
     check_range("reach_mm", reach_mm, low=0.0, high=1e4)
     xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
@@ -212,7 +220,8 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
     )
     before = _before_tube(len(xy), np.flatnonzero(cmds == Command.STOP), np.split(needles[hit][order], cuts), groups,
                           tubes)
-    return Layout.from_points(xy, cmds, owner, tubes=out, index=index, before_tube=before)
+    return Layout.from_points(xy, cmds, owner, tubes=out, index=index, before_tube=before,
+                              header_faults=header_faults)
 
 
 def _before_tube(n: int, stops: np.ndarray, records, dists, tubes) -> np.ndarray:

@@ -9,7 +9,10 @@ Examples
 --------
 >>> from embroact.patterns.rules.machine import MACHINE_RULES
 >>> [r.code for r in MACHINE_RULES]
-['EA501', 'EA502', 'EA503', 'EA504']
+['EA501', 'EA502', 'EA503', 'EA504', 'EA505']
+
+EA505 holds a file's header against its records: the file check reads the header when it
+reads the file (:attr:`embroact.patterns.rules.layout.Layout.header_faults`).
 """
 from __future__ import annotations
 
@@ -120,5 +123,17 @@ def record_count(s: Subject) -> list[Finding]:
     return [RULES.finding("EA504", f"{n} machine records, limit {limit} ({s.settings.format.upper()})")]
 
 
-MACHINE_RULES = (jump_runs, missing_stop, unexpected_stop, record_count)
+@RULES.rule("EA505", Severity.WARNING, "header disagrees with the records",
+            "A field of an embroidery file's header (DST: ST the 3-byte records, end record included; CO the "
+            "colour-change records; +X -X +Y -Y the largest excursion from the start point each way, 0.1 mm, "
+            "y up) does not match the records that follow it. Machines that read the header may refuse the "
+            "file or judge its size wrongly (pystitch and pyembroidery count a trim as one record in ST and "
+            "write the extents from signed, y-down bounds). One finding per field.",
+            "Rewrite the header from the records (save the file again from the digitising software).",
+            Inputs.FILES)
+def header(s: Subject) -> list[Finding]:
+    return [RULES.finding("EA505", fault) for fault in s.layout.header_faults]
+
+
+MACHINE_RULES = (jump_runs, missing_stop, unexpected_stop, record_count, header)
 """The EA5xx rules, in code order."""

@@ -24,7 +24,7 @@ Examples
 --------
 >>> from embroact.patterns.rules.tubes import TUBE_RULES
 >>> [r.code for r in TUBE_RULES]
-['EA301', 'EA302', 'EA303', 'EA304', 'EA305', 'EA306', 'EA307']
+['EA301', 'EA302', 'EA303', 'EA304', 'EA305', 'EA306', 'EA307', 'EA308']
 """
 from __future__ import annotations
 
@@ -147,14 +147,18 @@ def actuators_close(s: Subject) -> list[Finding]:
     return out
 
 
-def hoop_centre_mm(xy_mm: np.ndarray) -> np.ndarray:
-    """Where the hoop's centre goes [mm]: the middle of the records' bounding box (the origin without records).
+def hoop_centre_mm(xy_mm: np.ndarray, commands: np.ndarray) -> np.ndarray:
+    """Where the hoop's centre goes [mm]: the middle of the bounding box of the needle points and the
+    start point (the origin, where the needle is when the machine starts).  Jumps do not move it: a
+    stray travel must not push good stitches out of the hoop.
 
-    >>> hoop_centre_mm(np.array([[0.0, -5.0], [100.0, 5.0]])).tolist()
+    >>> S, J = Command.STITCH, Command.JUMP
+    >>> hoop_centre_mm(np.array([[10.0, -5.0], [100.0, 5.0], [400.0, 0.0]]), np.array([S, S, J])).tolist()
     [50.0, 0.0]
     """
     xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
-    return (xy.min(axis=0) + xy.max(axis=0)) / 2.0 if len(xy) else np.zeros(2)
+    xy = np.vstack([np.zeros((1, 2)), xy[np.asarray(commands) == Command.STITCH]])
+    return (xy.min(axis=0) + xy.max(axis=0)) / 2.0
 
 
 def hoop_window(s: Subject):
@@ -162,7 +166,7 @@ def hoop_window(s: Subject):
     cfg, xy = s.settings, s.layout.xy_mm
     if cfg.hoop_width_mm is None or cfg.hoop_height_mm is None or len(xy) == 0:
         return None
-    centre = hoop_centre_mm(xy)
+    centre = hoop_centre_mm(xy, s.layout.commands)
     half = np.array([cfg.hoop_width_mm, cfg.hoop_height_mm]) / 2.0
     return centre - half, centre + half
 
@@ -193,8 +197,9 @@ def end_margins(s: Subject) -> list[Finding]:
 
 @RULES.rule("EA306", Severity.ERROR, "outside the hoop",
             "A record (stitch, jump or trim excursion) lies outside the hoop's sewing field "
-            "(machine.hoop_width_mm x machine.hoop_height_mm, centred on the design; embroidery files get the "
-            "default machine's 200 x 200 mm hoop unless told otherwise).",
+            "(machine.hoop_width_mm x machine.hoop_height_mm, centred on the needle points and the start point; "
+            "embroidery files get the default machine's 200 x 200 mm hoop unless told otherwise). A run of jumps outside is one "
+            "finding, on its first record.",
             "Use a larger hoop or make the design smaller.", _DF)
 def hoop(s: Subject) -> Hits:
     window = hoop_window(s)
@@ -203,11 +208,24 @@ def hoop(s: Subject) -> Hits:
         return Hits(np.zeros(0, np.int64), str)
     lo, hi = window
     tol = cfg.tolerances.length_mm
-    outside = np.flatnonzero(np.any((xy < lo - tol) | (xy > hi + tol), axis=1))
-    size = xy.max(axis=0) - xy.min(axis=0)
-    return Hits(outside, lambda j: (
-        f"{Command(int(s.layout.commands[outside[j]])).name.lower()} record outside the {cfg.hoop_width_mm:g} x "
-        f"{cfg.hoop_height_mm:g} mm hoop; the design spans {size[0]:.1f} x {size[1]:.1f} mm"))
+    cmds = s.layout.commands
+    out = np.any((xy < lo - tol) | (xy > hi + tol), axis=1)
+    # a travel outside is one finding, on its first record: the jumps after it in the same run are not
+    jump = cmds == Command.JUMP
+    outside = np.flatnonzero(out & ~(jump & np.concatenate([[False], out[:-1] & jump[:-1]])))
+    needles = xy[cmds == Command.STITCH]
+    size = np.ptp(needles if len(needles) else xy, axis=0)
+
+    def message(j: int) -> str:
+        i = outside[j]
+        run = 1
+        while jump[i] and i + run < len(xy) and jump[i + run] and out[i + run]:
+            run += 1
+        far = float(np.abs(xy[i:i + run] - (lo + hi) / 2.0).max())
+        what = f"a travel of {run} jump records" if run > 1 else f"{Command(int(cmds[i])).name.lower()} record"
+        return (f"{what} outside the {cfg.hoop_width_mm:g} x {cfg.hoop_height_mm:g} mm hoop (up to {far:.1f} mm "
+                f"from its centre); the needle points span {size[0]:.1f} x {size[1]:.1f} mm")
+    return Hits(outside, message)
 
 
 #: How far a design's records may stay inside its paths' bounding box at each end [mm] (the unstitched
@@ -289,5 +307,45 @@ def couching(s: Subject) -> list[Finding]:
     return out
 
 
-TUBE_RULES = (turning, self_intersection, corridors_overlap, actuators_close, end_margins, hoop, couching)
+@RULES.rule("EA308", Severity.ERROR, "legs over no tube",
+            "Legs of thread longer than the tube's outer diameter that lie wholly beyond an end of every tube "
+            "(an embroidery file checked against a tube path shorter than its embroidery): nothing is couched "
+            "there. A run of such legs is one finding.",
+            "Give the tube path the embroidery was made for, or remove the legs that couch nothing.", Inputs.FILES)
+def uncovered_legs(s: Subject) -> Hits:
+    lay = s.layout
+    legs = np.flatnonzero(s.consecutive)
+    if not lay.tubes or not len(legs):
+        return Hits(np.zeros(0, np.int64), str)
+    legs = legs[np.hypot(*(lay.xy_mm[legs] - lay.xy_mm[legs - 1]).T) > 2.0 * min(t.outer_radius_mm for t in lay.tubes)]
+    if not len(legs):
+        return Hits(np.zeros(0, np.int64), str)
+    a, b = lay.xy_mm[legs - 1], lay.xy_mm[legs]
+    tol = s.settings.tolerances.length_mm
+    beyond = np.ones(len(legs), dtype=bool)
+    lines, on_some = shapely.linestrings(np.stack([a, b], axis=1)), np.zeros(len(legs), dtype=bool)
+    for t in lay.tubes:  # beyond this tube: off its body, and both ends past the same end of its path
+        sa, sb = shapely.line_locate_point(t.path, shapely.points(a)), shapely.line_locate_point(t.path, shapely.points(b))
+        past = ((sa <= tol) & (sb <= tol)) | ((sa >= t.path.length - tol) & (sb >= t.path.length - tol))
+        on = shapely.intersects(lines, t.path.buffer(t.outer_radius_mm))
+        on_some |= on
+        beyond &= past & ~on
+    bad = np.flatnonzero(beyond)
+    if not len(bad) or not on_some.any():  # no leg on any tube: a wrong tube path, EA307's finding
+        return Hits(np.zeros(0, np.int64), str)
+    starts = bad[np.concatenate([[True], np.diff(bad) > 1])]  # runs of neighbouring legs (among all legs)
+    ends = bad[np.concatenate([np.diff(bad) > 1, [True]])]
+    index = legs[starts]
+
+    def message(j: int) -> str:
+        n = int(ends[j] - starts[j] + 1)
+        first, last = lay.xy_mm[legs[starts[j]] - 1], lay.xy_mm[legs[ends[j]]]
+        span = float(np.hypot(*(last - first)))
+        return (f"{n} leg{'s' * (n != 1)} from here ({span:.1f} mm of embroidery) beyond the end of every tube "
+                "cross no tube: nothing is couched there")
+    return Hits(index, message, owner=np.full(len(index), -1))
+
+
+TUBE_RULES = (turning, self_intersection, corridors_overlap, actuators_close, end_margins, hoop, couching,
+              uncovered_legs)
 """The EA3xx rules, in code order."""
