@@ -182,14 +182,13 @@ class Finding:
         parts = []
         if self.actuator is not None:
             parts.append(self.actuator)
-        if self.stitch_index is not None and self.needle_point is None:
-            parts.append(f"stitch {self.stitch_index}")
-        elif self.stitch_index is not None and self.at_needle:
-            parts.append(f"needle point {self.needle_point} (record {self.stitch_index})")
-        elif self.stitch_index is not None and self.needle_point < 0:
-            parts.append(f"record {self.stitch_index}, before the first needle point")
-        elif self.stitch_index is not None:
-            parts.append(f"record {self.stitch_index}, after needle point {self.needle_point}")
+        n, r = self.needle_point, self.stitch_index
+        if r is not None and n is None:
+            parts.append(f"stitch {r}")
+        elif r is not None and n is not None:
+            parts.append(f"needle point {n} (record {r})" if self.at_needle else
+                         f"record {r}, before the first needle point" if n < 0 else
+                         f"record {r}, after needle point {n}")
         where = ", ".join(parts)
         if self.xy_mm is not None:
             where += f"{' ' if where else ''}at ({self.xy_mm[0]:.2f}, {self.xy_mm[1]:.2f}) mm"
