@@ -22,7 +22,8 @@ THREE = {"name": "three", "actuator": [
 
 def test_default_design_outputs(tmp_path):
     res = build(default_design(), tmp_path)
-    assert res.files == ("paper-zigzag.dst", "worksheet.json", "worksheet.txt", "preview.svg", "template.svg")
+    assert res.files == ("paper-zigzag.dst", "worksheet.json", "worksheet.txt", "preview.svg", "template.svg",
+                         "template-a4.html", "template-letter.html")
     assert sorted(os.listdir(tmp_path)) == sorted(res.files)
     dst = dst_decoder.decode((tmp_path / "paper-zigzag.dst").read_bytes())
     assert sum(r.kind == "stitch" for r in dst.records) == 106
@@ -96,7 +97,7 @@ def test_cli_build_default_and_json(tmp_path, capsys):
     assert main(["build", "--out", str(tmp_path), "--format", "dst,pes", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["files"] == ["paper-zigzag.dst", "paper-zigzag.pes", "worksheet.json", "worksheet.txt", "preview.svg",
-                            "template.svg", "bend.svg", "shape.svg", "shape.glb", "shape3d.svg", "report.json", "report.html"]
+                            "template.svg", "template-a4.html", "template-letter.html", "bend.svg", "shape.svg", "shape.glb", "shape3d.svg", "report.json", "report.html"]
     assert sorted(os.listdir(tmp_path)) == sorted(doc["files"])
     assert doc["actuators"][0]["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
 

@@ -103,6 +103,7 @@ def built(tmp_path_factory):
 def test_build_writes_every_output(built):
     out, res = built
     expected = {"paper-zigzag.dst", "preview.svg", "template.svg", "worksheet.json", "worksheet.txt", "bend.svg", "shape.svg",
+                "template-a4.html", "template-letter.html",
                 "shape.glb", "shape3d.svg", "report.json", "report.html"}
     assert set(res.files) == expected == set(os.listdir(out))
 

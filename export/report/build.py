@@ -10,6 +10,7 @@ Order of work (nothing is written until every output is ready in memory)::
         worksheet.json / worksheet.txt <-- worksheet(plan, findings, models)
         preview.svg                    <-- plan_svg(plan)            |
         template.svg                   <-- template_svg(plan, hoop)  |
+        template-a4.html, -letter.html <-- the template on sheets     |
         stage outputs                  <-- stage(context) for each stage (context.analysis)
                                                   |
                          write every file atomically into out_dir
@@ -42,7 +43,7 @@ Examples
 >>> out = tempfile.mkdtemp()
 >>> res = build_plan_outputs(plan, out, formats=("dst", "pes"))
 >>> sorted(os.listdir(out))
-['demo.dst', 'demo.pes', 'preview.svg', 'template.svg', 'worksheet.json', 'worksheet.txt']
+['demo.dst', 'demo.pes', 'preview.svg', 'template-a4.html', 'template-letter.html', 'template.svg', 'worksheet.json', 'worksheet.txt']
 """
 from __future__ import annotations
 
@@ -273,6 +274,7 @@ def build_plan_outputs(
     machine set-up are those of the first machine file, read back from its bytes.
     """
     from ..pictures.stitches import plan_svg
+    from ..pictures.pages import PAPERS, template_pages_html
     from ..pictures.template import template_svg
 
     d = check_writable_dir(out_dir)
@@ -295,7 +297,10 @@ def build_plan_outputs(
     outputs["worksheet.json"] = (json.dumps(ws.as_dict(), indent=2, sort_keys=True) + "\n").encode("utf-8")
     outputs["worksheet.txt"] = ws.as_text().encode("utf-8")
     outputs["preview.svg"] = plan_svg(plan, machine=machine[0]).encode("utf-8")  # the first format's pauses
-    outputs["template.svg"] = template_svg(plan, getattr(design, "machine", None)).encode("utf-8")  # 1:1 layout
+    template = template_svg(plan, getattr(design, "machine", None))  # 1:1 layout
+    outputs["template.svg"] = template.encode("utf-8")
+    for paper in PAPERS:  # the same on printable sheets, overlapping, each with a check square
+        outputs[f"template-{paper}.html"] = template_pages_html(template, paper, title=plan.name).encode("utf-8")
     for stage in stages:
         ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))
         for name, content in stage(ctx).items():
