@@ -252,7 +252,9 @@ def _noisy_target(path: Path) -> None:
     import numpy as np
 
     rng = np.random.default_rng(3)
-    t = np.cumsum(rng.normal(0, 0.15, 300))
+    # it leaves the clamp along +x and turns one way, within the curvature designs reach at 200 kPa
+    # (a target heading elsewhere, or turning tighter than any design, is refused before any search)
+    t = np.concatenate([np.zeros(4), np.cumsum(rng.uniform(0, 0.025, 296))])
     xy = np.cumsum(np.stack([np.cos(t), np.sin(t)], 1) * 0.5, 0)
     path.write_text("x_mm,y_mm\n" + "".join(f"{x:.4f},{y:.4f}\n" for x, y in xy))
 
