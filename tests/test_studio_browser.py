@@ -232,3 +232,27 @@ def test_a_segmented_actuator_shows_each_segments_numbers(studio_page, tmp_path)
             assert page.inner_text(f"#angle-0-{k}") == f"{a['segment_theta_deg'][k]:.2f}"
         assert page.query_selector("#width-0") is None  # no whole-actuator geometry: it has none
         page.close()
+
+
+def test_the_views_keep_their_size_across_edits_and_no_field_name_is_clipped(studio_page):
+    """Fixed layout: the page and each view box keep their size whatever the views draw (a coil, a tall 3D shape)."""
+    page, url, out, problems = studio_page
+    boxes = "#stitches, #chart, #side, #shape3d, #numbers"
+
+    def sizes():  # each view's place and size on the page (what follows them, findings and worksheet, may grow)
+        page.wait_for_selector("#shape3d svg", timeout=60_000)
+        return page.evaluate("sel => [...document.querySelectorAll(sel)].map(e => e.getBoundingClientRect())"
+                             ".map(r => [r.left, r.top + window.scrollY, r.width, r.height])", boxes)
+
+    before = sizes()
+    for values in ({"actuator[0].width_mm": "4"}, {"actuator[0].length_mm": "160"}):
+        version = page.get_attribute("body", "data-version")
+        key, value = next(iter(values.items()))
+        field = "#f-" + key.replace("[", "-").replace("].", "--")
+        page.fill(field, value)
+        page.press(field, "Enter")
+        wait_for_update(page, version)
+        assert sizes() == before, values
+    clipped = page.evaluate("[...document.querySelectorAll('.field span.key')]"
+                            ".filter(e => e.scrollWidth > e.clientWidth + 1).map(e => e.textContent)")
+    assert clipped == []
