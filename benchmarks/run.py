@@ -104,6 +104,8 @@ TARGETS = {
     "build_100_over_10_actuators": ("x", "<=", 12.0),
     "build_100_actuators_peak_mb": ("MB", "<", 300.0),
     "build_10m_over_1m_path": ("x", "<=", 12.0),
+    "analyse_100m_over_10m_path": ("x", "<=", 12.0),
+    "path_past_limits_refused_s": ("s", "<", 1.0),
     "shape3d_10m_mb": ("MB", "<", 2.0),
     "report_100_actuators_mb": ("MB", "<", 5.0),
     "build_1000_actuators_ok": ("ok", "==", 1),
@@ -364,6 +366,9 @@ def targets(res: dict) -> dict:
             "build_1000_actuators_ok": None if big is None else int(
                 (big["rc"] == 0 and big["s"] < scale_bench.LIMIT_1000_S and big["peak_mb"] < scale_bench.LIMIT_1000_MB)
                 or (big["rc"] == 2 and big["s"] < scale_bench.LIMIT_1000_S)),
+            "analyse_100m_over_10m_path": sc["long_paths"]["ratio"]["median"],
+            "path_past_limits_refused_s": sc["long_paths"]["refused"]["s"] if sc["long_paths"]["refused"]["rc"] in (1, 2)
+            and not sc["long_paths"]["refused"]["sizes_mb"] else math.inf,
             "far_apart_refused_s": sc["far_apart"]["s"] if sc["far_apart"]["rc"] in (1, 2) and not
             sc["far_apart"]["sizes_mb"] else math.inf,
         })
@@ -437,6 +442,11 @@ def markdown_notes(res: dict) -> str:
            f"; 1000 zigzags: exit {sc['grid']['1000']['rc']} in {sc['grid']['1000']['s']:.1f} s, peak "
            f"{sc['grid']['1000']['peak_mb']:.0f} MB" + (f" ({sc['grid']['1000']['stderr'][0]})" if sc['grid']['1000']['rc']
                                                        else ""))
+        + (f"; a 10 m / 100 m meander generated and analysed in process {' / '.join(f'{v:.3g}' for v in sc['long_paths']['median_s'].values())} s "
+           f"(**{sc['long_paths']['ratio']['median']:.3g} x** [{sc['long_paths']['ratio']['min']:.3g}, "
+           f"{sc['long_paths']['ratio']['max']:.3g}], linear 10 x), its build refused before generating (exit "
+           f"{sc['long_paths']['refused']['rc']}) in {sc['long_paths']['refused']['s']:.2f} s (`"
+           f"{(sc['long_paths']['refused']['stderr'] or [''])[0]}`)" if "long_paths" in sc else "")
         + f"; 100 tiny actuators +-999,999 mm apart: exit {sc['far_apart']['rc']} in {sc['far_apart']['s']:.2f} s"
         + (f" (`{sc['far_apart']['stderr'][0]}`)" if sc['far_apart']['stderr'] else "") + "."]
     r, ms = c["ratios"], c["per_curve_ms"]
@@ -602,6 +612,10 @@ def run(cfg: Config, out_dir: Path) -> dict:
     if cfg.scale_runs:
         _log("scale (fresh build processes):")
         res["scale"] = scale_bench.scale(cfg.scale_runs)
+        res["scale"]["long_paths"] = scale_bench.long_paths(cfg.scale_runs)
+        lp = res["scale"]["long_paths"]
+        _log(f"  10 m / 100 m meander analysed {lp['median_s']}: {lp['ratio']['median']:.3g}x; 100 m build refused "
+             f"(exit {lp['refused']['rc']}) in {lp['refused']['s']:.2f} s")
     for r in res["stitches"]["needle_rate"]:
         _log(f"  {r['pattern']}: {r['needle_points']} needle points on {r['length_mm']:g} mm in "
              f"{r['time_s'] * 1e3:.1f} ms = {r['points_per_s']:.3g} points/s")

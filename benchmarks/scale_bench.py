@@ -10,6 +10,8 @@ subprocess timed by wall clock with its peak memory from ``resource.getrusage``
   refused up front (exit code and message);
 * one zigzag along a sine meander (amplitude 20 mm, wavelength 200 mm) of 1 m and
   of 10 m: time ratio and the size of the 10 m design's ``shape3d.svg``;
+* :func:`long_paths`: a 10 m and a 100 m meander generated and analysed in process (paired
+  rounds), and the 100 m design's build refused before anything is generated;
 * 100 tiny actuators placed +-999,999 mm apart: refused before anything is generated
   (by the hoop from the paths alone, exit 1, or by the record count, exit 2; time and the message).
 
@@ -31,7 +33,7 @@ import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["grid_design", "meander_design", "far_apart_design", "run_build", "scale"]
+__all__ = ["grid_design", "meander_design", "far_apart_design", "run_build", "scale", "long_paths"]
 
 #: Small zigzag of the actuator grid: length, width, interval [mm]; grid pitch along and across the tubes
 #: [mm] (room for the tube's end margins in line, for the corridors side by side).
@@ -121,6 +123,30 @@ def _median_build(design: dict, tmp: Path, runs: int) -> dict:
     out["s"] = statistics.median(r["s"] for r in results)
     out["runs"] = runs
     return out
+
+
+def long_paths(rounds: int, lengths_mm=(10_000.0, 100_000.0)) -> dict:
+    """A zigzag along a 10 m and a 100 m sine meander generated and analysed in this process (``analyse``:
+    stitches, measurement, model), every round a fresh design of each (nothing cached), paired over
+    ``rounds``; and the 100 m design built in a fresh process, refused before generating (its path alone
+    spans more than any hoop): wall time of that refusal."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from run import paired_ratio, paired_rounds
+
+    from embroact.patterns.design import design_from_dict
+    from embroact.predict.analysis import analyse
+
+    dicts = {mm: meander_design(mm) for mm in lengths_mm}
+    fresh = {mm: iter([design_from_dict(d) for _ in range(rounds)]) for mm, d in dicts.items()}
+    times = paired_rounds({mm: [lambda it=it: analyse(next(it))] for mm, it in fresh.items()}, rounds)
+    lo, hi = lengths_mm
+    with tempfile.TemporaryDirectory() as tmp:
+        t = time.perf_counter()
+        refused = run_build(dicts[hi], Path(tmp) / "long")
+        refused["s"] = time.perf_counter() - t
+    return {"lengths_mm": list(lengths_mm), "median_s": {f"{mm / 1000:g}m": statistics.median(v)
+                                                        for mm, v in times.items()},
+            "ratio": paired_ratio(times, hi, lo), "refused": refused}
 
 
 def scale(runs: int, *, big: bool = True) -> dict:

@@ -88,7 +88,7 @@ import enum
 from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
 from .base.choices import check_choice
 from .base.display import repr_svg
-from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .base.errors import CommandLimitError, DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
@@ -477,6 +477,21 @@ def _pair(value, where: str) -> tuple[float, float]:
     return (_number(value[0], f"{where}[0]"), _number(value[1], f"{where}[1]"))
 
 
+def _points(values: list, where: str):
+    """A path's ``[x, y]`` points as an (n, 2) array; a bad one named as :func:`_pair` names it (checked point
+    by point only then: a long path's points are read in one pass)."""
+    number = (int, float)  # not bool
+    if all(type(v) in (list, tuple) and len(v) == 2 and type(v[0]) in number and type(v[1]) in number
+           for v in values):
+        try:
+            xy = np.array(values, dtype=np.float64).reshape(-1, 2)
+        except OverflowError:  # an integer too large for a float: named below
+            xy = None
+        if xy is not None and np.isfinite(xy).all():
+            return xy
+    return [_pair(v, f"{where}[{i}]") for i, v in enumerate(values)]
+
+
 def _build(path: str, cls, kwargs: dict):
     """Construct a value, turning its ParameterError into a DesignFileError with the key path."""
     try:
@@ -515,7 +530,7 @@ def _centerline(a: dict, path: str) -> Centerline:
     if not isinstance(raw, (str, list)):
         raise DesignFileError(f"{path}.path: must be an SVG path string or a list of [x, y] points, got {raw!r}")
     if isinstance(raw, list):
-        raw = [_pair(p, f"{path}.path[{i}]") for i, p in enumerate(raw)]
+        raw = _points(raw, f"{path}.path")
     try:
         return as_centerline(raw).transformed(origin_mm=origin, rotation_deg=rotation)
     except EmbroactError as exc:
@@ -695,6 +710,8 @@ def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
             return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
         kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
         return pattern_kind(spec.pattern).generate(spec.centerline, spec.params, **kwargs)
+    except CommandLimitError:  # the command's own limit, not this actuator's
+        raise
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
@@ -762,6 +779,8 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
                              spec.options)
         stations = kind.stations(spec.centerline.length_mm, spec.params, **spec.kind_options)
         return check_record_count(stations, spec.options)
+    except CommandLimitError:  # the command's own limit, not this actuator's
+        raise
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 

@@ -82,9 +82,12 @@ _MIN_SEGMENT_MM = 8.0
 #: Default time limit of a target-shape search [s] (``design_shape(time_limit_s=...)``, ``--time-limit``).
 DEFAULT_TIME_LIMIT_S = 60.0
 #: Reachability of a target shape (:func:`curvature_range`, :func:`shape_unreachable`): the segment length of
-#: the one scan per pattern [mm], the arc window over which the target's turning is compared with it [mm],
-#: the relative slack (the scan at one length stands for every length) and an absolute slack [rad].
-_REACH_LENGTH_MM, _REACH_WINDOW_MM, _REACH_SLACK, _REACH_TURN_RAD = 100.0, 5.0, 1.1, 0.02
+#: the one scan per pattern [mm], the relative slack (the scan at one length stands for every length), the
+#: start over which the heading at the clamp is taken [mm] and its slack [deg] (also of the whole bend), the
+#: window of a corner [mm] and its slack [deg] (a noisy target, a random walk of 9 deg per 0.5 mm, stays within).
+_REACH_LENGTH_MM, _REACH_SLACK = 100.0, 1.1
+_REACH_WINDOW_MM, _REACH_HEADING_DEG = 5.0, 30.0
+_REACH_CORNER_MM, _REACH_CORNER_DEG = 2.0, 60.0
 
 
 
@@ -776,11 +779,13 @@ def curvature_range(model: _Model, spaces: dict) -> tuple[float, float]:
 
 
 def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, float]) -> str | None:
-    """Why no chain of segments with curvatures in ``kappa_range`` [1/mm] follows the resampled target
-    (``sj``, ``xy`` as :func:`design_shape` resamples it), or None when it may: the heading at the clamp
-    (a bent strip leaves the clamp along +x, its chord turning at most half the curvature times its length)
-    and the turning over every arc window of ``_REACH_WINDOW_MM`` (a corner, a bend too tight for any design,
-    or a turn in a direction no pattern bends). Decided from the target and the range alone.
+    """Why no chain of segments with curvatures in ``kappa_range`` [1/mm] can follow the resampled target
+    (``sj``, ``xy`` as :func:`design_shape` resamples it), or None when one may come near it. Only clear
+    cases, so that a noisy target still gets its nearest design: the heading at the clamp (a bent strip
+    leaves it along +x; the mean heading of the first ``_REACH_WINDOW_MM`` may differ by at most what the
+    curvature allows plus ``_REACH_HEADING_DEG``), a corner (a turn within ``_REACH_CORNER_MM`` beyond what
+    the curvature allows by ``_REACH_CORNER_DEG``) and the whole target's bend (its net turning beyond the
+    range times its length by ``_REACH_HEADING_DEG``). Decided from the target and the range alone.
 
     Examples
     --------
@@ -789,29 +794,33 @@ def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, 
     True
     >>> corner = np.column_stack([np.minimum(sj, 50.0), np.maximum(sj - 50.0, 0.0)])
     >>> shape_unreachable(sj, corner, (-0.02, 0.03))
-    'turns by +90.0 deg in the 5 mm from 45.5 mm along it; no design bends more than +8.6 deg there (curvature 0.03 /mm)'
+    'turns by +90.0 deg in the 2 mm from 48.5 mm along it (a corner): no design turns more than +3.8 deg there'
     """
     lo, hi = kappa_range
     step = float(sj[1] - sj[0])
     d = np.diff(xy, axis=0)
     heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
     top = max(-lo, hi)
-    first = math.degrees(heading[0])
-    allowed = math.degrees(_REACH_SLACK * top * step / 2.0 + _REACH_TURN_RAD)
-    if abs(first) > allowed:
-        return (f"leaves the clamp heading {first:+.1f} deg from +x; a bent strip leaves it along +x (within "
-                f"{allowed:.1f} deg over its first {step:.2g} mm)")
-    n = max(1, int(math.ceil(_REACH_WINDOW_MM / step)))
-    if len(heading) <= n:
-        return None
-    turn = heading[n:] - heading[:-n]
-    span = n * step
-    for k, bound, word in ((int(np.argmax(turn)), hi, "more"), (int(np.argmin(turn)), lo, "more negatively")):
-        limit = _REACH_SLACK * bound * span + math.copysign(_REACH_TURN_RAD, bound if bound else turn[k])
-        if (turn[k] > limit) if word == "more" else (turn[k] < limit):
-            return (f"turns by {math.degrees(turn[k]):+.1f} deg in the {span:.3g} mm from {sj[k + 1]:.3g} mm along it; "
-                    f"no design bends {word} than {math.degrees(bound * span):+.1f} deg there (curvature "
-                    f"{bound:.2g} /mm)")
+    n = min(len(heading), max(1, int(math.ceil(_REACH_WINDOW_MM / step))))
+    start = math.degrees(float(heading[:n].mean()))
+    allowed = math.degrees(_REACH_SLACK * top * n * step / 2.0) + _REACH_HEADING_DEG
+    if abs(start) > allowed:
+        return (f"leaves the clamp heading {start:+.1f} deg from +x over its first {n * step:.3g} mm; a bent strip "
+                f"leaves it along +x (within {allowed:.1f} deg there)")
+    n = max(1, int(math.ceil(_REACH_CORNER_MM / step)))
+    if len(heading) > n:
+        turn = np.degrees(heading[n:] - heading[:-n])
+        up, down = (math.degrees(_REACH_SLACK * k * n * step) for k in (hi, lo))
+        for k, bound in ((int(np.argmax(turn - up)), up), (int(np.argmin(turn - down)), down)):
+            if abs(turn[k] - bound) > _REACH_CORNER_DEG and (turn[k] > bound if bound > 0 else turn[k] < bound):
+                return (f"turns by {turn[k]:+.1f} deg in the {n * step:.3g} mm from {sj[k + 1]:.3g} mm along it (a "
+                        f"corner): no design turns more than {bound:+.1f} deg there")
+    net = math.degrees(float(heading[-1] - heading[0]))
+    length = float(sj[-1])
+    for bound in (math.degrees(_REACH_SLACK * hi * length), math.degrees(_REACH_SLACK * lo * length)):
+        if (net > bound + _REACH_HEADING_DEG) if bound > 0 else (net < bound - _REACH_HEADING_DEG):
+            return (f"bends by {net:+.1f} deg over its {length:.3g} mm; no design bends more than {bound:+.1f} deg "
+                    f"over that length at this pressure (curvature {bound / math.degrees(length):+.2g} /mm)")
     return None
 
 

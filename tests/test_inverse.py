@@ -86,6 +86,7 @@ def test_shape_round_trip(seed):
 @pytest.mark.parametrize("xy, why", [
     (np.array([[0.0, 0.0], [50.0, 0.0], [50.0, 50.0]]), "turns by +90.0 deg"),  # a sharp corner
     (np.column_stack([np.zeros(40), np.linspace(0.0, 100.0, 40)]), "leaves the clamp heading +90.0 deg"),
+    (np.array([[0.0, 0.0], [50.0, 0.0], [20.0, 0.0]]), "turns by +180.0 deg"),  # doubling back
     (np.column_stack([10.0 * np.sin(np.linspace(0, 6.0, 200)), 10.0 * (1 - np.cos(np.linspace(0, 6.0, 200)))]),
      "no design bends more than"),  # a 10 mm radius circle: tighter than any pattern bends at 200 kPa
 ])
@@ -100,7 +101,8 @@ def test_a_target_no_design_can_follow_is_refused_before_the_search(xy, why, mon
 
 
 def test_reachable_curvature_holds_every_round_trip_target():
-    """The reachability check refuses nothing the forward model made: the seeded targets' turning fits."""
+    """The reachability check refuses nothing the forward model made (the seeded targets), nor a noisy
+    target (a random walk of 0.15 rad per 0.5 mm: its nearest design is still wanted)."""
     import embroact.predict.inverse as inv
     from embroact.patterns.design import ModelSettings
     from embroact.patterns.params import Tube
@@ -109,8 +111,10 @@ def test_reachable_curvature_holds_every_round_trip_target():
     spaces = {k: inv.design_space(k) for k in ("zigzag", "cross")}
     lo, hi = inv.curvature_range(model, spaces)
     assert lo < 0.0 < hi
-    for seed in range(8):
-        _, xy = target_shape(seed)
+    rng = np.random.default_rng(3)
+    t = np.cumsum(rng.normal(0, 0.15, 300))
+    walk = np.cumsum(np.stack([np.cos(t), np.sin(t)], 1) * 0.5, 0)
+    for seed, xy in [(seed, target_shape(seed)[1]) for seed in range(8)] + [("noisy", walk)]:
         sj, pts, _ = inv._resample(xy)
         assert inv.shape_unreachable(sj, pts, (lo, hi)) is None, seed
 

@@ -36,7 +36,7 @@ import sys
 import threading
 from typing import Iterator
 
-from ...patterns.base.errors import SolverError
+from ...patterns.base.errors import CommandLimitError
 
 __all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
 
@@ -56,7 +56,7 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
 
 
-class TimeLimitError(SolverError):
+class TimeLimitError(CommandLimitError):
     """The command ran past its time limit (a one-line error, exit code 4)."""
 
 
