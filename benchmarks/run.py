@@ -442,7 +442,8 @@ def markdown_notes(res: dict) -> str:
            f"; 1000 zigzags: exit {sc['grid']['1000']['rc']} in {sc['grid']['1000']['s']:.1f} s, peak "
            f"{sc['grid']['1000']['peak_mb']:.0f} MB" + (f" ({sc['grid']['1000']['stderr'][0]})" if sc['grid']['1000']['rc']
                                                        else ""))
-        + (f"; a 10 m / 100 m meander generated and analysed in process {' / '.join(f'{v:.3g}' for v in sc['long_paths']['median_s'].values())} s "
+        + (f"; a 10 m / 100 m meander generated and analysed in process {sc['long_paths']['median_s']['10m']:.3g} / "
+           f"{sc['long_paths']['median_s']['100m']:.3g} s "
            f"(**{sc['long_paths']['ratio']['median']:.3g} x** [{sc['long_paths']['ratio']['min']:.3g}, "
            f"{sc['long_paths']['ratio']['max']:.3g}], linear 10 x), its build refused before generating (exit "
            f"{sc['long_paths']['refused']['rc']}) in {sc['long_paths']['refused']['s']:.2f} s (`"
@@ -455,10 +456,11 @@ def markdown_notes(res: dict) -> str:
         return f"{r[k]['median']:.3g} x [{r[k]['min']:.3g}, {r[k]['max']:.3g}]"
 
     ru = res.get("rules")
+    ru_s = ru["median_s"] if ru else {}
     rules_lines = [] if not ru else [
         f"* Model rules (EA401-EA406) on identical small zigzags, a fresh analysis each time: "
         f"{' / '.join(str(n) for n in ru['sizes'])} actuators in "
-        f"{' / '.join(f'{v:.3g}' for v in ru['median_s'].values())} s (**{ru['ratio']['median']:.3g} x** "
+        f"{' / '.join(f'{ru_s[str(n)]:.3g}' for n in ru['sizes'])} s (**{ru['ratio']['median']:.3g} x** "
         f"[{ru['ratio']['min']:.3g}, {ru['ratio']['max']:.3g}], {ru['ratio']['rounds']} paired rounds; linear would be "
         f"{ru['linear_ratio']:.3g} x): the curve and the lock-up search of identical models are made once."]
     return "\n".join([
@@ -466,9 +468,9 @@ def markdown_notes(res: dict) -> str:
         f"[min, max] of the per-round ratios): repeated calls on one model (its branch table kept, as the studio and "
         f"inverse design make them) `auto` {ms['auto']:.3g} ms per 200-pressure curve against the competitor's "
         f"{ms['competitor']:.3g} ms (`competitor_numpy.py`: closed form, table + 4 secant steps, "
-        f"{c['angle_err_max_deg']:.1e} deg; **{x('auto_speedup')}**); a first call on a new model {ms['auto_cold']:.3g} ms: "
-        f"**{x('cold_speedup')}** faster than the competitor's first call (it keeps nothing: every call is a first "
-        f"call), {x('cold_speedup_vs_dense')} faster than the dense-grid version ({ms['dense']:.3g} ms: "
+        f"{c['angle_err_max_deg']:.1e} deg; speed-up **{x('auto_speedup')}**); a first call on a new model "
+        f"{ms['auto_cold']:.3g} ms: speed-up **{x('cold_speedup')}** over the competitor's first call (it keeps "
+        f"nothing: every call is a first call), {x('cold_speedup_vs_dense')} over the dense-grid version ({ms['dense']:.3g} ms: "
         f"{c['dense']['grid_points']} points, {c['dense']['secant_steps']} secant steps, "
         f"{c['dense_angle_err_max_deg']:.1e} deg), {x('cold_over_warm')} a repeated call. One pressure: "
         f"{ms['auto_one']:.3g} ms repeated ({x('one_over_200')} of 200), {ms['auto_cold_one']:.3g} ms first "
