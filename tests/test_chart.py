@@ -214,3 +214,15 @@ def test_chart_of_a_model_curve_with_validity_statuses():
     c = curve(ActuatorModel.from_derived(d, g_mpa=0.8, p0_kpa=50.0), np.arange(0.0, 301.0, 10.0))
     sc = chart_scale([Series.from_curve(c, label="w5")])
     assert sc.y_max_deg <= 400.0 and float(np.max(c.theta_deg)) > 2000.0
+
+
+def test_status_bands_change_at_p0_when_a_sample_sits_there():
+    # a breakpoint sample at P0 (the views sample there): inflation shaded up to P0 itself, not halfway on
+    s = Series("A", [0, 50, 84.5, 90, 100], [0.0, 0.0, 0.0, 3.0, 8.0],
+               status=["inflation"] * 3 + ["bending"] * 2, p0_kpa=84.5)
+    root = _parse(bend_chart_svg([s]))
+    rects = [e for e in root.iter(SVG + "rect") if (e.get("class") or "").startswith("status")]
+    x = lambda p: 64 + 640 * p / 100  # noqa: E731  (ticks 0..100 kPa, plot 640 px wide)
+    spans = [(e.get("class").split()[1], float(e.get("x")), float(e.get("x")) + float(e.get("width"))) for e in rects]
+    assert spans == [("inflation", pytest.approx(x(0)), pytest.approx(x(84.5))),
+                     ("bending", pytest.approx(x(84.5)), pytest.approx(x(100)))]

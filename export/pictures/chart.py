@@ -316,11 +316,15 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 def _status_spans(s: Series) -> list[tuple[str, float, float]]:
-    """(status, p_from, p_to) spans; boundaries halfway between samples of different status."""
+    """(status, p_from, p_to) spans; boundaries halfway between samples of different status, except at a
+    sample at the series' P0 (a breakpoint: the state changes there)."""
     p, status = s.pressure_kpa, s.status or ()
     order = np.argsort(p, kind="stable")
     p, names = p[order], [status[i] for i in order]
     edges = np.concatenate([[p[0]], (p[1:] + p[:-1]) / 2.0, [p[-1]]])
+    if s.p0_kpa is not None:
+        at = np.flatnonzero(p[:-1] == s.p0_kpa)
+        edges[at + 1] = s.p0_kpa
     spans: list[tuple[str, float, float]] = []
     for i, name in enumerate(names):
         if spans and spans[-1][0] == name:
