@@ -23,6 +23,8 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     cord_stop = "sequence"           # DST/EXP cord-in stop: "sequence" (one stop code) or "double"
     placement_line = false           # sew a running stitch along each tube axis before its cord-in stop
     placement_stitch_mm = 2.5        # its longest stitch, within [min_stitch_mm, max_stitch_mm]
+    origin = "center"                # machine file's start point: "center" (of the design's extent),
+                                     # "first-stitch" or [x, y] (mm, plan frame); patterns/origin.py
     [operation]
     max_pressure_kpa = 300.0
     max_bend_deg = 180.0
@@ -97,6 +99,7 @@ from .limits import format_limit
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, check_segments, segment_stations, segmented
+from .origin import MachineOrigin, check_origin, to_machine_frame
 from .placement import placement_records, with_placement
 from .stops import cord_stop as _cord_stop
 
@@ -157,6 +160,10 @@ class MachineSettings:
     placement_stitch_mm : float
         Longest running stitch of the placement line [mm]; with ``placement_line`` it must lie
         in [min_stitch_mm, max_stitch_mm].
+    origin : str or tuple of float
+        The machine file's start point (:mod:`embroact.patterns.origin`): ``"center"`` (the
+        centre of the design's extent, default), ``"first-stitch"`` or a point ``(x, y)``
+        [mm, plan frame].
 
     Examples
     --------
@@ -177,8 +184,10 @@ class MachineSettings:
     cord_stop: str = "sequence"
     placement_line: bool = False
     placement_stitch_mm: float = 2.5
+    origin: str | tuple[float, float] = "center"
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "origin", check_origin(self.origin))
         if not isinstance(self.format, str):
             raise ParameterError(f"format must be a string, got {self.format!r}")
         object.__setattr__(self, "format", format_limit(self.format).name)
@@ -501,13 +510,15 @@ def _build(path: str, cls, kwargs: dict):
 
 
 def _numbers_table(value, path: str, cls, strings: tuple[str, ...] = (), optional: tuple[str, ...] = (),
-                   flags: tuple[str, ...] = ()):
+                   flags: tuple[str, ...] = (), as_given: tuple[str, ...] = ()):
     keys = _names(cls)
     table = _table(value, path, keys)
     kwargs: dict[str, object] = {}
     for key, v in table.items():
         where = _where(path, key)
-        if key in strings:
+        if key in as_given:  # checked by cls itself
+            kwargs[key] = v
+        elif key in strings:
             kwargs[key] = _string(v, where)
         elif key in flags:
             kwargs[key] = _flag(v, where)
@@ -652,7 +663,7 @@ def design_from_dict(d) -> Design:
         name=_build("name", check_name, {"name": "name", "value": _string(top.get("name", "design"), "name")}),
         tube=_numbers_table(top.get("tube", {}), "tube", Tube),
         machine=_numbers_table(top.get("machine", {}), "machine", MachineSettings, ("format", "cord_stop"),
-                                flags=("placement_line",)),
+                                flags=("placement_line",), as_given=("origin",)),
         operation=_numbers_table(top.get("operation", {}), "operation", OperationSettings),
         actuators=specs,
     )
@@ -800,7 +811,7 @@ def _travel_records(design: Design) -> int:
     widens each path end by the pattern's half width (where the first and last needle
     points can lie; a placement line starts at the path's end), split as :func:`_jumps` splits them."""
     step = design.machine.max_stitch_mm - DEFAULT_TOLERANCES.machine_grid_mm
-    ends = [(np.zeros(2), 0.0)]
+    ends = [_start_estimate(design)]
     total = 0
     for spec in design.actuators:
         pts = spec.centerline.points_mm
@@ -810,6 +821,18 @@ def _travel_records(design: Design) -> int:
         total += max(1, math.ceil((float(np.max(np.abs(first - last))) + reach + half) / step))
         ends.append((pts[-1], half))
     return total
+
+
+def _start_estimate(design: Design) -> tuple[np.ndarray, float]:
+    """The machine's start point before generating, and how far the real one can lie from it [mm]."""
+    origin = design.machine.origin
+    half = max(spec.params.width_mm / 2.0 for spec in design.actuators)
+    if origin == MachineOrigin.CENTER.value:  # the records' box is the paths' box widened by at most a half width
+        pts = np.vstack([spec.centerline.points_mm for spec in design.actuators])
+        return (pts.min(axis=0) + pts.max(axis=0)) / 2.0, half
+    if origin == MachineOrigin.FIRST_STITCH.value:
+        return design.actuators[0].centerline.points_mm[0], half
+    return np.asarray(origin, dtype=np.float64), 0.0
 
 
 def check_design_records(design: Design) -> None:
@@ -846,7 +869,8 @@ def build_plan(design: Design) -> StitchPlan:
     Returns
     -------
     StitchPlan
-        Every actuator in order, travel jumps between them, one END.
+        Every actuator in order, travel jumps between them, one END; in the machine frame:
+        moved so that ``machine.origin`` (:mod:`embroact.patterns.origin`) is (0, 0).
 
     Raises
     ------
@@ -863,4 +887,5 @@ def build_plan(design: Design) -> StitchPlan:
     plans = [generate_actuator(spec, design.tube) for spec in design.actuators]
     if design.machine.placement_line:
         plans = [with_placement(p, design.machine.placement_stitch_mm) for p in plans]
-    return join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)
+    joined = join_plans(plans, name=design.name, max_jump_mm=design.machine.max_stitch_mm)
+    return to_machine_frame(joined, design.machine.origin)

@@ -158,6 +158,9 @@ class StitchPlan:
         Index into ``actuators`` per record, -1 for design-level records (END).
     actuators : tuple of ActuatorPlan
     name : str
+    origin_mm : tuple of float
+        Where the plan's (0, 0), the machine's start point, lies in the design's own frame
+        [mm, y up] (:func:`embroact.patterns.origin.to_machine_frame` moved the plan by it).
 
     Examples
     --------
@@ -175,6 +178,7 @@ class StitchPlan:
     actuator: np.ndarray
     actuators: tuple[ActuatorPlan, ...] = ()
     name: str = "embroact"
+    origin_mm: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
         xy = np.asarray(self.xy_mm, dtype=np.float64).reshape(-1, 2)
@@ -335,4 +339,5 @@ class StitchPlan:
         [[9.0, 0.0]]
         """
         m = self.actuator == index
-        return StitchPlan(self.xy_mm[m], self.commands[m], self.roles[m], self.actuator[m], self.actuators, self.name)
+        return StitchPlan(self.xy_mm[m], self.commands[m], self.roles[m], self.actuator[m], self.actuators, self.name,
+                          self.origin_mm)

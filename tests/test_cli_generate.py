@@ -28,7 +28,8 @@ def test_zigzag_writes_the_paper_actuator(tmp_path, capsys):
     dst = dst_decoder.decode(out.read_bytes())
     pts = np.array([(r.x, r.y) for r in dst.records if r.kind == "stitch"]) / 10.0
     plan = zigzag(Centerline.straight(100.0), ZigzagParams(7.0, 1.0), name="A1")
-    assert np.abs(pts - plan.xy_mm[plan.commands == 0]).max() <= 0.05 + 1e-9
+    centre = (plan.xy_mm.min(axis=0) + plan.xy_mm.max(axis=0)) / 2.0  # the file starts at the design's centre
+    assert np.abs(pts - (plan.xy_mm[plan.commands == 0] - centre)).max() <= 0.05 + 1e-9
     assert dst.header["CO"].strip() == "1"
 
 
@@ -56,7 +57,7 @@ def test_worksheet_and_preview(tmp_path, capsys):
     ws = json.loads((tmp_path / "act.worksheet.json").read_text())
     assert ws["actuators"][0]["tube_cut_mm"] == 160.0
     text = (tmp_path / "act.worksheet.txt").read_text()
-    assert "stop 1: lay tube for actuator A1 (160 mm cut): its axis runs from (0.0, 0.0) to (100.0, 0.0) mm" in text
+    assert "stop 1: lay tube for actuator A1 (160 mm cut): its axis runs from (-50.0, 0.0) to (50.0, 0.0) mm" in text
     assert ws["machine_format"] == "dst" and ws["stop_count"] == 1
     assert svg.read_text().startswith("<svg")
 

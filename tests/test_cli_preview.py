@@ -1,7 +1,9 @@
 """``embroact preview``: every kind, pressure parsing, one-line errors, lazy trimesh."""
+import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -67,7 +69,7 @@ def test_design_file_with_two_actuators(tmp_path):
     import trimesh
 
     mesh = trimesh.load(stl, force="mesh")
-    assert len(mesh.faces) > 0 and mesh.bounds[1][1] > 30.0  # second actuator sits at y = 30
+    assert len(mesh.faces) > 0 and mesh.bounds[1][1] - mesh.bounds[0][1] > 30.0  # the actuators lie 30 mm apart
 
 
 def test_stitches_and_mesh_picture(tmp_path, capsys):
@@ -153,3 +155,26 @@ def test_json_output_names_file_kind_and_counts(tmp_path, capsys):
     assert act["model"]["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"
     assert act["curve"]["status"][0] == "INFLATION" and act["curve"]["pressure_kpa"] == doc["pressure_kpa"]
     assert out.exists()
+
+
+def test_stitches_of_a_machine_file_are_its_records_to_scale(tmp_path, capsys):
+    """preview stitches x.dst: one needle-point dot per stitch pystitch reads, at its place (y flipped)."""
+    import xml.etree.ElementTree as ET
+
+    import pystitch
+
+    dst, svg = tmp_path / "three.dst", tmp_path / "three.svg"
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    assert main(["build", str(examples / "three_actuators.toml"), "--out", str(tmp_path), "--no-previews"]) == 0
+    shutil.move(tmp_path / "three-actuators.dst", dst)
+    capsys.readouterr()
+    assert main(["preview", "stitches", str(dst), "-o", str(svg)]) == 0
+    assert capsys.readouterr().out.startswith(f"wrote {svg}: stitches of three.dst, ")
+    stitches = [(x / 10.0, y / 10.0) for x, y, c in pystitch.read(str(dst)).stitches if c == pystitch.STITCH]
+    ns = {"svg": "http://www.w3.org/2000/svg"}
+    dots = ET.parse(svg).getroot().findall(".//svg:g[@id='needle-points']/svg:circle", ns)
+    assert len(dots) == len(stitches) == 292
+    drawn = sorted((float(d.get("cx")), float(d.get("cy"))) for d in dots)  # SVG y down: the file's own y
+    np.testing.assert_allclose(drawn, sorted(stitches), atol=1e-3)
+    assert main(["preview", "bend", str(dst), "-o", str(tmp_path / "b.svg")]) == 2
+    assert "previews the stitches only" in capsys.readouterr().err

@@ -112,3 +112,27 @@ def test_glb_and_measured_mesh_load_no_trimesh(tmp_path):
             "mesh_svg(m); print(m.max_deviation_mm <= 0.05, [k for k in ('trimesh', 'scipy') if k in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split("\n")[0] == "True []"
+
+
+def test_vertex_normals_are_unit_outward_and_agree_with_trimesh():
+    """NORMAL of every body: unit length, one per position, and the area-weighted normals trimesh's face
+    normals, areas and vertex-face incidence give for the same triangles (as trimesh reads the file)."""
+    m = actuator_mesh(PlanarPath.from_centerline(_arc()), 120.0, width_mm=W, r0_mm=R0, name="A1")
+    data = mesh_bytes(m, ".glb")
+    doc, blob = _chunks(data)
+    for mesh in doc["meshes"]:
+        attrs = mesh["primitives"][0]["attributes"]
+        pos, nor = doc["accessors"][attrs["POSITION"]], doc["accessors"][attrs["NORMAL"]]
+        assert (nor["count"], nor["type"], nor["componentType"]) == (pos["count"], "VEC3", 5126)
+        view = doc["bufferViews"][nor["bufferView"]]
+        assert view["byteOffset"] + view["byteLength"] <= len(blob) and view["byteLength"] == 12 * nor["count"]
+        n = np.frombuffer(blob, dtype="<f4", count=nor["count"] * 3, offset=view["byteOffset"]).reshape(-1, 3)
+        np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-6)  # glTF: unit normals
+    scene = trimesh.load(trimesh.util.wrap_as_stream(data), file_type="glb", process=False)
+    for b in m.bodies:
+        got = scene.geometry[f"A1.{b.name}"]
+        read = np.asarray(got.vertex_normals)  # the file's NORMAL, as trimesh reads it
+        t = trimesh.Trimesh(np.asarray(got.vertices, float), np.asarray(got.faces), process=False)
+        ref = t.faces_sparse @ (t.face_normals * t.area_faces[:, None])  # trimesh's area-weighted sum per vertex
+        ref /= np.linalg.norm(ref, axis=1)[:, None]
+        assert np.einsum("ij,ij->i", read, ref).min() > 1.0 - 1e-5, b.name

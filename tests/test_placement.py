@@ -138,7 +138,8 @@ def test_file_check_and_stop_in_the_records(tmp_path, capsys):
     import dst_decoder
 
     out = tmp_path / "a.dst"
-    assert main(["zigzag", "--width-mm", "7", "--length-mm", "100", "-o", str(out), "--placement-line"]) == 0
+    assert main(["zigzag", "--width-mm", "7", "--length-mm", "100", "-o", str(out), "--placement-line",
+                 "--origin", "0,0"]) == 0  # the file's frame is the path's
     assert "152 stitches" in capsys.readouterr().out  # 106 of the plain actuator + 46
     kinds = [r.kind for r in dst_decoder.decode(out.read_bytes()).records]
     assert kinds.index("stop") > 46 and kinds.count("stop") == 1

@@ -142,8 +142,10 @@ def test_generated_designs_are_couched():
 
 
 def _dst(tmp_path):
+    """A 100 mm zigzag whose file starts at its path's start (--origin 0,0): file frame = path frame."""
     out = tmp_path / "z.dst"
-    assert main(["zigzag", "--width-mm", "7", "--interval-mm", "1", "--length-mm", "100", "-o", str(out)]) == 0
+    assert main(["zigzag", "--width-mm", "7", "--interval-mm", "1", "--length-mm", "100", "-o", str(out),
+                 "--origin", "0,0"]) == 0
     return out
 
 

@@ -209,7 +209,8 @@ def test_tight_sleeve_is_checked_on_every_segment():
     for f, w in zip(found, (3.05, 3.2)):
         assert f"by only {_r0(w) - 1.5:.3f} mm" in f.message
     starts = [s.plan.first_leg_mm for s in a.actuators[0].segments[1:]]
-    assert [float(f.xy_mm[0]) for f in found] == pytest.approx(starts, abs=1e-9)  # where each segment's legs start
+    x0 = a.plan.origin_mm[0]  # findings are placed in the machine frame; the path starts at the design's x = 0
+    assert [float(f.xy_mm[0]) + x0 for f in found] == pytest.approx(starts, abs=1e-9)  # where each segment's legs start
 
 
 def test_preview_mesh_json_gives_each_segments_bend(tmp_path, capsys, hook):

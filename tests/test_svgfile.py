@@ -74,8 +74,15 @@ def test_hand_values_of_the_drawing():
     np.testing.assert_allclose(_tube1_page_mm()[[0, -1]], [[40.0, 60.0], [140.0, 60.0]], atol=1e-5)
 
 
+def _origin_mm():
+    """Where the example's machine file starts in its design (plan frame): the centre of its extent."""
+    from embroact.patterns.design import build_plan
+
+    return np.array(build_plan(load_design(EXAMPLES / "inkscape_tubes.toml")).origin_mm)
+
+
 def test_decoded_dst_lies_on_the_drawn_paths_within_0p1_mm(example_dst):
-    zig, arc = _actuator_stitches(example_dst)
+    zig, arc = (p + _origin_mm() for p in _actuator_stitches(example_dst))  # the file's frame -> the drawing's
     # zigzag on the S-curve: every needle point on a rail, w/2 from the drawn curve
     curve = shapely.LineString(_tube1_page_mm() * [1.0, -1.0])  # plan frame = DST frame: y up
     d = shapely.distance(curve, shapely.points(zig))
@@ -97,29 +104,39 @@ def test_quick_command_takes_the_same_path_and_check_agrees(tmp_path, capsys, ex
     _, arc_design = _actuator_stitches(example_dst)
     out = tmp_path / "arc.dst"
     ref = f"{DRAWING}#tube2"
+    ox, oy = _origin_mm()
     assert main(["cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45", "--name", "arc",
-                 "--path", ref, "-o", str(out)]) == 0
+                 "--path", ref, "-o", str(out), "--origin", f"{ox:g},{oy:g}"]) == 0  # the design's start point
     (arc_quick,) = _actuator_stitches(out.read_bytes())
     np.testing.assert_array_equal(arc_quick, arc_design)  # the same needle points, design or quick command
     capsys.readouterr()
-    # check speaks the file's frame (y down): the drawing's own page coordinates
-    assert main(["check", str(out), "--tube-path", ref, "--json"]) == 0
+    # check speaks the file's frame (y down); --origin-mm places the drawing's page coordinates in it
+    at = ["--origin-mm", f"{ox:g},{-oy:g}"]
+    assert main(["check", str(out), "--tube-path", ref, "--json", *at]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["tubes"] == 1 and not [f for f in doc["findings"] if f["code"] == "EA101"]
     # control: the same tube drawn 3 mm lower puts the rail's needle points inside its corridor
     moved = tmp_path / "moved.svg"  # the layer moved 3 mm (11.338583 px) further down
     moved.write_text(DRAWING.read_text().replace("translate(-37.795276,75.590551)", "translate(-37.795276,86.929134)"))
-    assert main(["check", str(out), "--tube-path", f"{moved}#tube2", "--json"]) == 1
+    assert main(["check", str(out), "--tube-path", f"{moved}#tube2", "--json", *at]) == 1
     assert any(f["code"] == "EA101" for f in json.loads(capsys.readouterr().out)["findings"])
 
 
 def test_check_design_against_its_own_drawing(tmp_path, capsys, example_dst):
     dst = tmp_path / "d.dst"
     dst.write_bytes(example_dst)
-    assert main(["check", str(dst), "--tube-path", f"{DRAWING}#tube1", "--tube-path", f"{DRAWING}#cross tube",
-                 "--json"]) == 0
+    ox, oy = _origin_mm()
+    tubes = ["--tube-path", f"{DRAWING}#tube1", "--tube-path", f"{DRAWING}#cross tube"]
+    assert main(["check", str(dst), *tubes, "--origin-mm", f"{ox:g},{-oy:g}", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["tubes"] == 2 and doc["counts"]["error"] == 0
+    # the worksheet states that origin for this check
+    out = tmp_path / "out"
+    out.mkdir()
+    assert main(["build", str(EXAMPLES / "inkscape_tubes.toml"), "--out", str(out), "--no-previews"]) == 0
+    assert f"--origin-mm {ox:g},{-oy:g})" in (out / "worksheet.txt").read_text(encoding="utf-8")
+    capsys.readouterr()
+    assert main(["check", str(dst), *tubes, "--json"]) == 1  # without it, the drawing's frame is not the file's
 
 
 # ---------------------------------------------------------------------- units, viewBox, transforms

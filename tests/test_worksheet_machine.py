@@ -47,9 +47,15 @@ def test_stop_at_the_origin_is_worded_for_the_stop_codes_left():
 
 
 def test_start_point_is_placed_from_the_hoop_centre_on_sheet_and_template():
-    """The default design: its records span x from the start point to 100 mm right of it, so the hoop
-    centred on them has the start point 50 mm left of its centre."""
-    plan = build_plan(default_design())
+    """The default design with its origin at its path's start: its records span x from the start point to
+    100 mm right of it, so the hoop centred on them has the start point 50 mm left of its centre; with the
+    default origin (the centre of the design's extent) the start point is the hoop's centre."""
+    import dataclasses
+
+    d = default_design()
+    centred = build_plan(d)
+    assert "start: 0.0 mm right, 0.0 mm up of the hoop centre" in template_svg(centred)
+    plan = build_plan(dataclasses.replace(d, machine=dataclasses.replace(d.machine, origin=(0.0, 0.0))))
     xy = plan.xy_mm
     assert np.isclose(xy[:, 0].min(), 0.0, atol=0.05) and np.isclose(xy[:, 0].max(), 100.0, atol=0.05)
     sheet = worksheet(plan, machine=encode(plan, "dst")[1])

@@ -21,7 +21,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from .target import add_model_arguments, add_placement_argument
+from .target import add_model_arguments, add_placement_argument, add_origin_argument
 
 __all__ = ["add_arguments", "run"]
 
@@ -54,6 +54,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                              "stops programmed in the needle sequence) or two in a row (double: stops a "
                              "multi-needle machine in automatic mode too); default: the design's, sequence")
     add_placement_argument(parser)
+    add_origin_argument(parser)
     parser.add_argument("--speed-spm", type=float,
                         help="machine speed for the worksheet [stitches/min] (default: the design's, 600)")
     parser.add_argument("--pressure-kpa", help="pressures for the bend chart, 'start:stop:step' or a list "

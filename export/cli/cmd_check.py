@@ -48,14 +48,14 @@ def add_arguments(parser, name: str) -> None:
     tube.add_argument("--end-margin-mm", type=float, default=0.0,
                       help="free tube beyond each end of the path [mm] (default 0)")
     tube.add_argument("--tube", metavar="TUBES.toml", help="tubes (and [machine] limits) from a TOML file")
+    tube.add_argument("--origin-mm", metavar="X,Y",
+                      help="where the file's start point lies in the frame of the --tube-path paths [mm, y down: a "
+                           "drawing's page], as the build's worksheet states it (default 0,0: the paths are in the "
+                           "file's own frame)")
     parser.add_argument("--format", choices=sorted(FORMAT_LIMITS),
                         help="target machine format (default: the design's machine.format, or the file's own)")
     parser.add_argument("--json", action="store_true", help="machine-readable output")
     parser.add_argument("--rules", action="store_true", help="print the table of every rule (Markdown) and exit")
-
-
-#: Model flags (target.add_model_arguments) that only a design file uses.
-_MODEL_FLAGS = ("g_mpa", "p0_kpa", "p0_source", "calibration", "tube_law")
 
 
 def _check_design(args):
@@ -69,20 +69,39 @@ def _check_design(args):
     return findings, {"kind": "design", "name": design.name, "format": fmt, "actuators": len(design.actuators)}
 
 
+def _point_mm(text: str):
+    """``--origin-mm``'s ``X,Y`` [mm] as an array (finite, within the coordinate bound)."""
+    import numpy as np
+
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.origin import check_origin
+
+    try:
+        point = check_origin([float(v) for v in str(text).split(",")])
+    except (ValueError, ParameterError):
+        raise ParameterError(f"--origin-mm must be X,Y in mm, got {text!r:.60}") from None
+    return np.array(point)
+
+
 def _check_file(args):
+    import numpy as np
+
     from ...patterns.base.errors import ParameterError
     from ..machine.filecheck import check_file, file_rule_settings, load_tube_file, parse_tube_path, read_records, tube_layout
 
     if args.tube and args.tube_path:
         raise ParameterError("give either --tube TUBES.toml or --tube-path, not both")
+    if args.origin_mm is not None and not args.tube_path:
+        raise ParameterError("--origin-mm places the --tube-path paths; give it with --tube-path")
     machine: dict = {}
     if args.tube:
         tubes, machine = load_tube_file(args.tube)
     else:
         from ..files.svgfile import is_svg_ref, read_svg_path
 
+        origin = np.zeros(2) if args.origin_mm is None else _point_mm(args.origin_mm)
         tubes = tuple(
-            tube_layout(read_svg_path(text).points_mm if is_svg_ref(text) else parse_tube_path(text),
+            tube_layout((read_svg_path(text).points_mm if is_svg_ref(text) else parse_tube_path(text)) - origin,
                         name=f"tube {i + 1}", outer_radius_mm=args.outer_radius_mm,
                         clearance_mm=args.clearance_mm, end_margin_mm=args.end_margin_mm)
             for i, text in enumerate(args.tube_path)
@@ -129,7 +148,9 @@ def run(args) -> int:
     is_design = args.input.lower().endswith(".toml")
     if is_design and (args.tube_path or args.tube):
         raise ParameterError("--tube-path and --tube apply to embroidery files; a design file carries its tubes")
-    model_flags = [f"--{k.replace('_', '-')}" for k in _MODEL_FLAGS if getattr(args, k, None) is not None]
+    from .target import model_flags_given
+
+    model_flags = model_flags_given(args)
     if not is_design and model_flags:
         raise ParameterError(f"{model_flags[0]} applies to design files (the model rules); an embroidery file "
                              "is checked without a model")

@@ -21,7 +21,7 @@ import argparse
 import json
 from pathlib import Path
 
-from .target import add_model_arguments, add_placement_argument, add_quick_arguments
+from .target import add_model_arguments, add_placement_argument, add_origin_argument, add_quick_arguments
 
 __all__ = ["add_arguments", "run"]
 
@@ -40,6 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
                    help="how DST/EXP write the cord-in stop: one stop code (sequence, default) or two in a row "
                         "(double: stops a multi-needle machine in automatic needle mode too)")
     add_placement_argument(o)
+    add_origin_argument(o)
     o.add_argument("--split-long", action="store_true",
                    help="split legs longer than the format allows into stitches outside the tube corridor")
     o.add_argument("--worksheet", action="store_true",

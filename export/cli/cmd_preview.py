@@ -10,6 +10,8 @@ KIND is one of
   Only this kind with ``.stl``, ``.obj`` or ``.ply`` imports trimesh.
 
 Without DESIGN the built-in default design is used (the paper's zigzag actuator).
+``stitches`` also takes any embroidery file embroact reads (``preview stitches x.dst``): its
+records drawn to scale in its own frame (y flipped to the plan's), before sewing.
 Pressures are given as ``START:STOP:STEP`` (inclusive) or a comma list, in kPa.
 
 Examples
@@ -45,7 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact preview``."""
     parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
                         help="; ".join(f"{k}: {v}" for k, v in KINDS.items()))
-    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
+    parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design; "
+                                                  "for stitches also an embroidery file (x.dst, x.pes, ...)")
     add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("-o", "--output", required=True, help="output file")
     parser.add_argument("--pressure-kpa", default=None,
@@ -95,12 +98,43 @@ def run(args) -> int:
     check_shape_flags(args)
     if args.kind != "mesh":
         _svg_only(args.kind, out)
-    text, info = _render(args, out, analyse_target(load_target(args, design_path=args.design)))
+    if _is_machine_file(args.design):
+        text, info = _machine_file_stitches(args, out)
+    else:
+        text, info = _render(args, out, analyse_target(load_target(args, design_path=args.design)))
     if args.json:
         print(json.dumps({"file": str(out), "kind": args.kind, **info}, indent=2, sort_keys=True))
     else:
         print(f"wrote {out}: {text}")
     return 0
+
+
+def _is_machine_file(path: str | None) -> bool:
+    """True for a file name with an embroidery suffix embroact reads (``x.dst``, ``x.PES``, ...)."""
+    from ..machine.filecheck import readable_suffixes
+
+    return path is not None and Path(path).suffix.lower().lstrip(".") in readable_suffixes()
+
+
+def _machine_file_stitches(args, out: Path) -> tuple[str, dict]:
+    """``preview stitches FILE.dst``: the file's records to scale (no design: no tubes, no model)."""
+    from ...patterns.base.errors import ParameterError
+    from ..files.atomic import write_text_atomic
+    from ..machine.filecheck import read_records, records_plan
+    from ..pictures.stitches import plan_svg
+
+    if args.kind != "stitches":
+        raise ParameterError(f"preview {args.kind} needs a design file (TOML); of an embroidery file "
+                             f"({Path(args.design).name}) embroact previews the stitches only")
+    from .target import model_flags_given
+
+    flags = model_flags_given(args)
+    if flags:
+        raise ParameterError(f"{flags[0]} applies to design files; an embroidery file is previewed without a model")
+    plan = records_plan(read_records(args.design))
+    write_text_atomic(out, plan_svg(plan))
+    return (f"stitches of {Path(args.design).name}, {plan.stitch_count} stitches",
+            {"stitch_count": plan.stitch_count, "input": args.design})
 
 
 def _render(args, out: Path, analysis) -> tuple[str, dict]:

@@ -21,6 +21,7 @@ embroact: error: port must be an integer in [0, 65535], got 99999
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 from .target import add_model_arguments
 
@@ -51,13 +52,19 @@ def run(args) -> int:
 
     check_port(args.port)  # before the extra is looked for and the design read
     out = check_writable_dir(check_output_name("--out", args.out))
-    if any(importlib.util.find_spec(m) is None for m in ("starlette", "uvicorn")):
+    if any(importlib.util.find_spec(m) is None for m in ("starlette", "uvicorn", "tomlkit")):
         raise ParameterError(EXTRA_HINT)
     from ..studio.serve import serve
     from ..studio.session import Studio
 
     target = load_target(args, design_path=args.design)
     note_demo_calibration({a.model.calibration for a in target.design.actuators}, now=True)
-    studio = Studio(target.design, out, target.calibration_sets)
+    source = None
+    if args.design is not None:  # the file's own design (no overrides): the save changes only what differs
+        from ..files.calibfile import resolve_calibration_files
+        from ..files.designfile import load_design
+
+        source = (args.design, resolve_calibration_files(load_design(args.design), Path(args.design).parent)[0])
+    studio = Studio(target.design, out, target.calibration_sets, source)
     with serving():  # until stopped: no time limit; Ctrl-C and SIGTERM end it gracefully
         return serve(studio, port=args.port, browser=not args.no_browser)

@@ -30,7 +30,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...patterns.design import Design
     from ...predict.calibration import CalibrationSet
 
-__all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "load_target",
+__all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "add_origin_argument",
+           "parse_origin", "MODEL_FLAGS", "model_flags_given", "load_target",
            "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS", "DEMO_CALIBRATION", "DEMO_NOTE",
            "note_demo_calibration", "print_notes", "reset_notes"]
 
@@ -60,6 +61,15 @@ class Target:
     calibration_sets: tuple
     source: str
     quick: bool
+
+
+#: The model flags add_model_arguments adds (their argparse names).
+MODEL_FLAGS = ("g_mpa", "p0_kpa", "p0_source", "calibration", "tube_law")
+
+
+def model_flags_given(args) -> list[str]:
+    """The model flags given on the command line, as typed (``--g-mpa``)."""
+    return [f"--{k.replace('_', '-')}" for k in MODEL_FLAGS if getattr(args, k, None) is not None]
 
 
 def add_model_arguments(group) -> None:
@@ -108,13 +118,38 @@ def add_placement_argument(group) -> None:
                             "so the operator sees where to lay the tube (design: machine.placement_line)")
 
 
+def add_origin_argument(group) -> None:
+    """``--origin``: the machine file's start point (the design setting ``machine.origin``)."""
+    group.add_argument("--origin", metavar="center|first-stitch|X,Y",
+                       help="where the machine file starts: the centre of the design's extent (default), its first "
+                            "needle point, or a point X,Y of the design [mm, plan frame, y up] (design: machine.origin)")
+
+
+def parse_origin(text: str):
+    """``--origin``'s text -> ``machine.origin`` (``"center"``, ``"first-stitch"`` or ``(x, y)``)."""
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.origin import check_origin
+
+    parts = text.split(",")
+    try:
+        return check_origin([float(p) for p in parts] if len(parts) == 2 else text)
+    except (ValueError, ParameterError):
+        raise ParameterError(f"--origin must be center, first-stitch or X,Y in mm, got {text!r:.60}") from None
+
+
 def _with_placement(design, args):
-    """``design`` with ``machine.placement_line`` on when ``--placement-line`` was given."""
-    if not getattr(args, "placement_line", False):
-        return design
+    """``design`` with ``machine.placement_line`` on when ``--placement-line`` was given, and
+    ``machine.origin`` from ``--origin``."""
     import dataclasses
 
-    return dataclasses.replace(design, machine=dataclasses.replace(design.machine, placement_line=True))
+    machine = {}
+    if getattr(args, "placement_line", False):
+        machine["placement_line"] = True
+    if getattr(args, "origin", None) is not None:
+        machine["origin"] = parse_origin(args.origin)
+    if not machine:
+        return design
+    return dataclasses.replace(design, machine=dataclasses.replace(design.machine, **machine))
 
 
 def _quick_design(args, pattern: str):

@@ -38,21 +38,41 @@ __all__ = ["load_design", "loads_design", "dumps_design", "save_design"]
 
 
 def _svg_paths(data, base_dir) -> object:
-    """``data`` with every actuator ``path = "FILE.svg#name"`` replaced by its points (plan frame)."""
+    """``data`` with every actuator ``path = "FILE.svg#name"`` replaced by its points (plan frame),
+    and, without ``[machine] origin``, the origin a drawing marks (:func:`~.svgfile.svg_origin_mm`)."""
     from ...patterns.svgpath import to_plan
-    from .svgfile import is_svg_ref, read_svg_path
+    from .svgfile import is_svg_ref, read_svg_path, split_ref, svg_origin_mm
 
     acts = data.get("actuator") if isinstance(data, dict) else None
     if not isinstance(acts, list) or not any(isinstance(a, dict) and is_svg_ref(a.get("path")) for a in acts):
         return data
     out = []
+    drawings: dict[str, int] = {}  # file -> the first actuator drawn in it
     for i, a in enumerate(acts):
         if isinstance(a, dict) and is_svg_ref(a.get("path")):
+            drawings.setdefault(split_ref(a["path"])[0], i)
             try:
                 a = {**a, "path": to_plan(read_svg_path(a["path"], base_dir=base_dir).points_mm).tolist()}
             except PathError as exc:
                 raise DesignFileError(f"actuator[{i}].path: {exc}") from None
         out.append(a)
+    machine = data.get("machine", {})
+    if not (isinstance(machine, dict) and "origin" not in machine):
+        return {**data, "actuator": out}
+    marks: dict[tuple[float, float], str] = {}
+    for file, i in drawings.items():
+        try:
+            mark = svg_origin_mm(file, base_dir=base_dir)
+        except PathError as exc:
+            raise DesignFileError(f"actuator[{i}].path: {exc}") from None
+        if mark is not None:
+            marks.setdefault((mark[0], -mark[1] + 0.0), file)
+    if marks:
+        if len(marks) > 1:
+            raise DesignFileError(f"machine.origin: the drawings mark {len(marks)} different origins "
+                                  f"({', '.join(sorted(set(marks.values())))}); mark one, or set [machine] origin")
+        machine = {**machine, "origin": list(next(iter(marks)))}
+        return {**data, "actuator": out, "machine": machine}
     return {**data, "actuator": out}
 
 

@@ -62,7 +62,7 @@ from ...patterns.base.validate import DESIGN_ACTUATORS, check_coordinates, MACHI
 from ...patterns.limits import FORMAT_LIMITS
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
-from ...patterns.plan import Command
+from ...patterns.plan import Command, Role, StitchPlan
 from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
 from .census import RAW_READ, raw_reader
 from .dst import END_BYTE, HEADER_SIZE
@@ -71,6 +71,7 @@ from ..files.tomltext import load_toml
 __all__ = [
     "FileRecords",
     "read_records",
+    "records_plan",
     "parse_tube_path",
     "tube_layout",
     "load_tube_file",
@@ -237,6 +238,31 @@ def read_records(path: str | os.PathLike) -> FileRecords:
     xy.setflags(write=False)
     commands.setflags(write=False)
     return FileRecords(p, suffix, xy, commands)
+
+
+#: Role a file's record is drawn with (a file says nothing of legs, ties or edges: every stitch is a leg).
+_FILE_ROLES = {Command.STITCH: Role.LEG, Command.JUMP: Role.TRAVEL}
+
+
+def records_plan(records: FileRecords) -> StitchPlan:
+    """A file's records as a stitch plan (plan frame: mm, y up; no actuators), for pictures.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from embroact.export.cli.main import main
+    >>> out = os.path.join(tempfile.mkdtemp(), "z.dst")
+    >>> main(["zigzag", "--width-mm", "7", "--interval-mm", "1", "--length-mm", "30", "-o", out]) == 0
+    wrote ...
+    True
+    >>> plan = records_plan(read_records(out))
+    >>> plan.stitch_count, [round(float(v), 1) for v in plan.xy_mm.max(axis=0)]
+    (36, [15.0, 3.7])
+    """
+    roles = np.array([_FILE_ROLES.get(Command(int(c)), Role.CONTROL) for c in records.commands], dtype=np.int8)
+    xy = records.xy_mm * np.array([1.0, -1.0]) + 0.0
+    tube = np.maximum(np.cumsum(records.commands == Command.STOP) - 1, 0)  # stop k lays tube k + 1
+    return StitchPlan(xy, records.commands, roles, tube, (), Path(records.path).stem)
 
 
 def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:

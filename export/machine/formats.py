@@ -360,7 +360,7 @@ class WriteResult:
         --------
         >>> from embroact.patterns.design import build_plan, default_design
         >>> encode(build_plan(default_design()), "dst")[1].as_dict()["pauses_mm"]
-        [[0.7, 3.5]]
+        [[-49.3, 3.5]]
         """
         out = {}
         for k in self.__slots__:

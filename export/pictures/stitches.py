@@ -129,7 +129,8 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     show_points : bool
         Draw a dot at every needle point.
     """
-    from .svgdoc import Drawing
+    from .svgdoc import INKSCAPE, Drawing, svg_id
+    from .svgdoc import layer as inkscape_layer
 
     margin = check_range("margin_mm", margin_mm, low=0.0, high=100.0, low_inclusive=True, high_inclusive=True)
     pr = check_range("point_radius_mm", point_radius_mm, low=0.0, high=5.0, high_inclusive=True)
@@ -152,9 +153,10 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0 + len(legend_rows) * _LEGEND_ROW_MM
     height = (fab_hi[1] - fab_lo[1]) + 2 * pad + text_h
     vx, vy = fab_lo[0] - pad, -fab_hi[1] - pad
-    dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
+    dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"), viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}",
+                  **INKSCAPE)
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
-    layer = {name: dwg.add(dwg.g(id=name)) for name in (
+    layer = {name: dwg.add(dwg.g(**inkscape_layer(name))) for name in (
         "fabric", "corridor", "tube", "centerline", "rails", "travel", "placement", "legs", "needle-points", "ties",
         "stops",
         "trims", "scale-bar", "params", "legend")}
@@ -165,7 +167,8 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
         tube = a.centerline.as_linestring().buffer(a.tube.outer_radius_mm, cap_style="flat")
         layer["tube"].add(dwg.path(d=_ring_path(_geom_xy(tube)), fill=TUBE_COLOUR, stroke="#707070", stroke_width="0.1"))
         layer["centerline"].add(dwg.polyline(_pts_list(a.centerline.points_mm), fill="none", stroke="#505050",
-                                             stroke_width="0.1", stroke_dasharray="1,0.6"))
+                                             stroke_width="0.1", stroke_dasharray="1,0.6", id=svg_id(f"tube-{a.name}"),
+                                             **{"inkscape:label": f"tube-{a.name}"}))
         for rail in a.rails():
             layer["rails"].add(dwg.polyline(_pts_list(np.asarray(rail.coords)), fill="none", stroke=RAIL_COLOUR,
                                             stroke_width="0.1", stroke_dasharray="0.4,0.4"))

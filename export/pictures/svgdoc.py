@@ -29,7 +29,30 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-__all__ = ["Element", "Drawing"]
+__all__ = ["Element", "Drawing", "INKSCAPE", "layer", "svg_id"]
+
+#: Attribute of an ``<svg>`` declaring Inkscape's namespace: ``Drawing(size, **INKSCAPE)``.
+INKSCAPE = {"xmlns:inkscape": "http://www.inkscape.org/namespaces/inkscape"}
+
+
+def layer(name: str) -> dict[str, str]:
+    """Attributes of a group that Inkscape shows as a layer named ``name`` (its id too):
+    ``dwg.g(**layer("tubes"))`` in a drawing made with ``**INKSCAPE``; other readers see a plain ``<g>``.
+
+    >>> layer("tubes")
+    {'id': 'tubes', 'inkscape:groupmode': 'layer', 'inkscape:label': 'tubes'}
+    """
+    return {"id": name, "inkscape:groupmode": "layer", "inkscape:label": name}
+
+
+def svg_id(text: str) -> str:
+    """``text`` as an XML id (letters, digits, ``-``, ``_``, ``.``; others become ``_``).
+
+    >>> svg_id("S-curve 2"), svg_id("1st")
+    ('S-curve_2', '_1st')
+    """
+    out = "".join(c if c.isascii() and (c.isalnum() or c in "-_.") else "_" for c in text)
+    return out if out[:1].isalpha() or out[:1] == "_" else "_" + out
 
 _NAMESPACES = {"xmlns": "http://www.w3.org/2000/svg", "xmlns:xlink": "http://www.w3.org/1999/xlink",
                "xmlns:ev": "http://www.w3.org/2001/xml-events"}

@@ -64,11 +64,15 @@ def _laid(act) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def start_from_centre(plan: StitchPlan) -> str:
-    """Where the machine's start point lies from the hoop centre (the hoop centred on the records).
+    """Where the machine's start point lies from the hoop centre (the hoop centred on the records and the start point).
 
+    >>> import dataclasses
     >>> from embroact.patterns.design import build_plan, default_design
-    >>> start_from_centre(build_plan(default_design()))
-    '50.0 mm left, 0.0 mm up'
+    >>> start_from_centre(build_plan(default_design()))  # the default origin: the design's centre
+    '0.0 mm right, 0.0 mm up'
+    >>> d = default_design()
+    >>> start_from_centre(build_plan(dataclasses.replace(d, machine=dataclasses.replace(d.machine, origin="first-stitch"))))
+    '50.0 mm left, 3.5 mm up'
     """
     dx, dy = -hoop_centre_mm(plan.xy_mm, plan.commands) + 0.0
     return f"{abs(dx):.1f} mm {'right' if dx >= 0 else 'left'}, {abs(dy):.1f} mm {'up' if dy >= 0 else 'down'}"
@@ -90,7 +94,8 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     machine : MachineSettings, optional
         Its ``hoop_width_mm`` x ``hoop_height_mm`` is the hoop drawn (default 200 x 200 mm).
     """
-    from .svgdoc import Drawing
+    from .svgdoc import INKSCAPE, Drawing
+    from .svgdoc import layer as inkscape_layer
 
     hoop = (getattr(machine, "hoop_width_mm", _DEFAULT_HOOP_MM[0]), getattr(machine, "hoop_height_mm",
                                                                           _DEFAULT_HOOP_MM[1]))
@@ -105,9 +110,9 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     width, height = hi[0] - lo[0], hi[1] - lo[1] + text_h
     vx, vy = lo[0], -hi[1]
     dwg = Drawing(size=(f"{_f(width)}mm", f"{_f(height)}mm"),
-                  viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}")
+                  viewBox=f"{_f(vx)} {_f(vy)} {_f(width)} {_f(height)}", **INKSCAPE)
     dwg.add(dwg.rect((_f(vx), _f(vy)), (_f(width), _f(height)), fill="white", id="background"))
-    layer = {name: dwg.add(dwg.g(id=name)) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
+    layer = {name: dwg.add(dwg.g(**inkscape_layer(name))) for name in ("hoop", "start", "tubes", "scale-bar", "notes")}
     _draw_hoop(dwg, layer["hoop"], h_lo, h_hi)
     placer = Placer(Box(vx, vy, vx + width, vy + height - text_h), margin=0.3)
     for a, parts in zip(plan.actuators, laid):  # every tube and its free ends first: no label is written over one
@@ -159,6 +164,8 @@ def _draw_hoop(dwg, group, lo: np.ndarray, hi: np.ndarray) -> None:
 
 
 def _draw_tube(dwg, group, act, parts, k: int, placer: Placer) -> None:
+    from .svgdoc import svg_id
+
     pts, head, tail = parts
     r = act.tube.outer_radius_mm
     g = group.add(dwg.g(id=f"tube-{k + 1}", **{"class": "tube"}))
@@ -167,7 +174,8 @@ def _draw_tube(dwg, group, act, parts, k: int, placer: Placer) -> None:
     ring = np.asarray(outline.exterior.coords) if outline.geom_type == "Polygon" else None
     if ring is not None:
         g.add(dwg.polygon(_pts_list(ring), fill="none", stroke=_TUBE, stroke_width="0.35", **{"class": "tube-outline"}))
-    g.add(dwg.polyline(_pts_list(pts), fill="none", stroke=_TUBE, stroke_width="0.25", **{"class": "axis"}))
+    g.add(dwg.polyline(_pts_list(pts), fill="none", stroke=_TUBE, stroke_width="0.25", id=svg_id(f"tube-{act.name}"),
+                       **{"class": "axis", "inkscape:label": f"tube-{act.name}"}))  # template.svg#tube-NAME reads it back
     for end in (head, tail):
         g.add(dwg.polyline(_pts_list(end), fill="none", stroke=_TUBE, stroke_width=_f(2 * r), stroke_opacity="0.25",
                            stroke_dasharray="3,1.5", **{"class": "free-end"}))

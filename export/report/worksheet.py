@@ -497,8 +497,11 @@ def _start_line(plan: StitchPlan, machine) -> str:
     """Where the machine's start point goes in the hoop (the hoop is centred on the design)."""
     home = (" (a home machine that centres the design in the hoop itself needs no move)"
             if machine is not None and machine.format in COLOR_FORMATS else "")
+    ox, oy = plan.origin_mm
+    where = (f"; it is the design's ({ox:.1f}, {oy:.1f}) mm (plan frame; check the file against the drawing with "
+             f"--origin-mm {ox:g},{-oy + 0.0:g})") if (ox, oy) != (0.0, 0.0) else ""
     return (f"start point (the 'start' cross on the template): {start_from_centre(plan)} of the hoop centre; "
-            f"move the needle there first, or the design is sewn off the hoop's centre{home}")
+            f"move the needle there first, or the design is sewn off the hoop's centre{home}{where}")
 
 
 def check_speed_spm(speed_spm: float) -> float:

@@ -64,10 +64,16 @@ class Studio:
         The only directory the studio writes into.
     calibration_sets : tuple of CalibrationSet
         Sets the design's calibrations name besides the built-in ones (read from files).
+    source : tuple of (path, Design), optional
+        The design file the design was read from and the design the file itself gives (before
+        any command-line override): :meth:`save` then writes that file's text with only the
+        fields that differ changed (:mod:`.roundtrip`), comments and drawing references kept.
     """
 
-    def __init__(self, design, out_dir, calibration_sets: tuple = ()) -> None:
+    def __init__(self, design, out_dir, calibration_sets: tuple = (), source=None) -> None:
         self.out_dir = Path(out_dir)
+        self._source = None if source is None else (Path(source[0]), Path(source[0]).read_text(encoding="utf-8"),
+                                                    design_form(source[1]))
         self.calibration_sets = tuple(calibration_sets)
         self._names = tuple(s.source or s.name for s in self.calibration_sets)  # how a saved design names each
         self.form = design_form(design)
@@ -172,12 +178,21 @@ class Studio:
 
     # -------------------------------------------------------------- outputs
     def save(self, name) -> dict:
-        """Write the design as TOML (:func:`~embroact.export.files.designfile.save_design`) into the output directory."""
+        """Write the design as TOML into the output directory: the design file it was read from with
+        the edited fields changed (:func:`.roundtrip.edited_toml`), else every field
+        (:func:`~embroact.export.files.designfile.save_design`)."""
+        from ..files.atomic import write_text_atomic
         from ..files.designfile import save_design
 
         with self._lock:
             path = output_path(self.out_dir, name, ".toml")
-            save_design(self.design, path)
+            if self._source is None:
+                save_design(self.design, path)
+            else:
+                from .roundtrip import edited_toml
+
+                file, text, form = self._source
+                write_text_atomic(path, edited_toml(text, form, self.form, src_dir=file.parent, dst_dir=path.parent))
         return {"file": path.name, "out_dir": str(self.out_dir)}
 
     def build(self, *, force: bool = False) -> dict:

@@ -8,7 +8,8 @@ Conventions
   ``MAX_SMOOTH_TURN_DEG`` is a corner of radius 0, as for the generators).
 * Tube pairs (EA303, EA304) are found with one spatial index over every tube's
   laid length, so only tubes that come close are compared.
-* The hoop (EA306) is centred on the records' bounding box.
+* The hoop (EA306) is centred on the bounding box of the records and the machine's start
+  point (0, 0) of the file's frame (a design's plan is moved there by its origin policy).
 * Couching (EA307): a leg holds the tube where it lies over it, the stretch of the
   axis within r_f of the leg's crossing measured along the axis (r_f |cot phi| on
   each side for a leg at angle phi to the axis, at most the leg's own extent
@@ -162,7 +163,7 @@ def hoop_centre_mm(xy_mm: np.ndarray, commands: np.ndarray) -> np.ndarray:
 
 
 def hoop_window(s: Subject):
-    """(low, high) corners of the hoop's sewing field centred on the records [mm], or None without a hoop."""
+    """(low, high) corners of the hoop's sewing field centred as :func:`hoop_centre_mm` [mm], or None without a hoop."""
     cfg, xy = s.settings, s.layout.xy_mm
     if cfg.hoop_width_mm is None or cfg.hoop_height_mm is None or len(xy) == 0:
         return None
