@@ -35,7 +35,7 @@ def built(tmp_path_factory):
 @pytest.mark.parametrize("picture, layers", [
     ("template.svg", ["hoop", "start", "tubes", "scale-bar", "notes"]),
     ("preview.svg", ["fabric", "corridor", "tube", "centerline", "rails", "travel", "placement", "legs",
-                     "needle-points", "ties", "stops", "trims", "scale-bar", "params"]),
+                     "needle-points", "ties", "stops", "trims", "scale-bar", "params", "legend"]),
 ])
 def test_pictures_are_in_inkscape_layers(built, picture, layers):
     root = ET.parse(built[0] / picture).getroot()
