@@ -5,8 +5,8 @@ operator starts the machine, which the operator places in the hoop. A design's p
 moved so that this point is the plan frame's (0, 0) (:func:`to_machine_frame`), chosen by
 ``[machine] origin``:
 
-* ``"center"`` (default): the centre of the design's extent (the bounding box of every
-  record), as Ink/Stitch and home machines place a design: start with the needle at the
+* ``"center"`` (default): the centre of the design's extent (the bounding box of its needle
+  points), as Ink/Stitch and home machines place a design: start with the needle at the
   hoop's centre and the design is centred in the hoop;
 * ``"first-stitch"``: the first needle point (the operator puts the needle where sewing
   begins; no travel before it);
@@ -16,8 +16,8 @@ moved so that this point is the plan frame's (0, 0) (:func:`to_machine_frame`), 
   design file names no origin.
 
 The point is rounded to the machine grid (0.1 mm), so every record keeps its place on the
-grid. The hoop rule (EA306) then checks the records *and the start point* in this frame,
-the frame of the written file, so a build and a check of its file agree.
+grid. The hoop rules (EA305, EA306) centre the hoop on the needle points and the start point
+in this frame, the frame of the written file, so a build and a check of its file agree.
 
 Examples
 --------
@@ -97,12 +97,11 @@ def origin_point_mm(plan: StitchPlan, origin: str | tuple[float, float]) -> np.n
     """
     from .plan import Command
 
-    xy = plan.xy_mm
+    stitches = plan.xy_mm[plan.commands == Command.STITCH]
     if origin == MachineOrigin.CENTER.value:
-        point = (xy.min(axis=0) + xy.max(axis=0)) / 2.0 if len(xy) else np.zeros(2)
+        point = (stitches.min(axis=0) + stitches.max(axis=0)) / 2.0 if len(stitches) else np.zeros(2)
     elif origin == MachineOrigin.FIRST_STITCH.value:
-        stitches = np.flatnonzero(plan.commands == Command.STITCH)
-        point = xy[stitches[0]] if len(stitches) else np.zeros(2)
+        point = stitches[0] if len(stitches) else np.zeros(2)
     else:
         point = np.asarray(origin, dtype=np.float64)
     grid = DEFAULT_TOLERANCES.machine_grid_mm
