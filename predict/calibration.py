@@ -427,7 +427,9 @@ class Calibration:
         Other mismatches (e.g. a cross width different from the calibrated one).
     fitted, covariance : tuple
         The fitted parameters and their covariance when the design matches one fitted point
-        exactly (empty when interpolated, averaged or unknown: no band is claimed then).
+        exactly, or, between points that each carry a G and P0 covariance (a profile), the
+        covariance of the interpolated values propagated from theirs (:func:`_propagated`);
+        empty when averaged or unknown: no band is claimed then.
     """
 
     name: str
@@ -563,6 +565,44 @@ def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -
     return merged, notes
 
 
+_PAIR = ("g_mpa", "p0_kpa")
+
+
+def _propagated(merged, interpolate, g: list[float], p0: list[float]):
+    """(fitted, covariance) of interpolated G and P0 from the points' own covariances, or ((), ()).
+
+    Each calibrated coordinate must hold one point fitted for G and P0 with a covariance (the
+    points of a profile, ``embroact fit --sheet``); the points' fits are independent, so with
+    ``d_i = dG/dG_i`` and ``e_i = dP0/dP0_i`` (the interpolation's weights, found by
+    differentiating ``interpolate`` itself, whatever its scheme) the interpolated values have
+    ``var G = sum d_i^2 var G_i``, ``var P0 = sum e_i^2 var P0_i`` and
+    ``cov(G, P0) = sum d_i e_i cov(G_i, P0_i)``. It is the fits' uncertainty carried to the
+    design; the interpolation's own error between coordinates is not in it (the leave-one-out
+    errors of ``fit --sheet`` show that one).
+    """
+    blocks = []
+    for _, group in merged:
+        if len(group) != 1 or not set(_PAIR) <= set(group[0].fitted) or not group[0].covariance:
+            return (), ()
+        pt = group[0]
+        i, j = pt.fitted.index("g_mpa"), pt.fitted.index("p0_kpa")
+        blocks.append((pt.covariance[i][i], pt.covariance[j][j], pt.covariance[i][j]))
+
+    def weights(ys: list[float]) -> list[float]:
+        base = interpolate(ys)
+        out = []
+        for k, y in enumerate(ys):
+            h = 1e-6 * max(abs(y), 1.0)
+            out.append((interpolate(ys[:k] + [y + h] + ys[k + 1:]) - base) / h)
+        return out
+
+    d, e = weights(g), weights(p0)
+    vg = math.fsum(dk * dk * b[0] for dk, b in zip(d, blocks))
+    vp = math.fsum(ek * ek * b[1] for ek, b in zip(e, blocks))
+    c = math.fsum(dk * ek * b[2] for dk, ek, b in zip(d, e, blocks))
+    return _PAIR, ((vg, c), (c, vp))
+
+
 def _mean(values: list[float]) -> float:
     return math.fsum(values) / len(values)
 
@@ -658,6 +698,7 @@ def lookup(
         g_v = _interpolate(xs, g, value, extrapolation)
         p0_v = _interpolate(xs, p0, value, extrapolation)
         ge_v = _interpolate(xs, ge, value, extrapolation) if ge else None
+        fitted, cov = _propagated(merged, lambda ys: _interpolate(xs, ys, value, extrapolation), g, p0)
     label = f"calibration {name!r} extrapolated linearly to {pattern} {axis}={value:g}"
     if not 0.0 < g_v <= _G_MAX_MPA or not 0.0 <= p0_v <= _P_MAX_KPA or (ge_v is not None and ge_v <= 0.0):
         raise ModelDomainError(

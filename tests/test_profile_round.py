@@ -99,3 +99,44 @@ def test_a_disagreeing_coupon_is_flagged(coupon, capsys):
     out = capsys.readouterr().out
     flagged = [line for line in out.splitlines() if line.startswith("disagrees:")]
     assert len(flagged) == 1 and "03 zigzag w7.0" in flagged[0]
+
+
+def test_design_with_a_profile_meets_targets_inside_its_band_about_68_percent(tmp_path_factory, capsys):
+    """50 seeded calibration rounds of a zigzag coupon (loading branch, 2 deg noise): each fitted profile
+    designs for a seeded target; the bend the true profile gives the designed width lies within the
+    reported 1-sigma band about 68 % of the time (binomial sd 6.6 % over 50)."""
+    from embroact.patterns.params import Tube
+    from embroact.predict.curve import ActuatorModel, curve
+    from embroact.predict.profile import CouponData, fit_profile
+    from embroact.export.files.calibfile import write_calibration
+
+    out = tmp_path_factory.mktemp("zig")
+    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--out", str(out)]) == 0
+    capsys.readouterr()
+    with open(out / "measurements.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    acts = {a.name: a.derived for a in analyse(load_design(out / "coupon-hoop1.toml")).actuators}
+    inside, n = 0, 50
+    for seed in range(n):
+        rng = np.random.default_rng(100 + seed)
+        data = []
+        for name, d in acts.items():
+            g, p0 = true_g_p0("zigzag", d.requested_width_mm, 0.0)
+            mine = [r for r in rows if r["actuator"] == name and r["branch"] == "loading"]  # what design uses
+            p = np.array([float(r["pressure_kpa"]) for r in mine])
+            bend = predicted_reading_deg(d, g, p0, p, LAYOUT) + rng.normal(0.0, SIGMA_DEG, p.size)
+            data.append(CouponData(name, d, p, bend, tuple(r["branch"] for r in mine)))
+        cal = tmp_path_factory.mktemp("p") / "prof.toml"
+        write_calibration(cal, fit_profile(data, layout=LAYOUT, name="prof", tube=Tube()).calibration)
+        target, at = float(rng.uniform(60.0, 150.0)), float(rng.uniform(150.0, 220.0))
+        design = cal.parent / "d.toml"
+        assert main(["design", "--bend-deg", f"{target:.3f}", "--at-kpa", f"{at:.3f}", "--pattern", "zigzag",
+                     "--calibration", str(cal), "-o", str(design), "--json"]) == 0
+        best = json.loads(capsys.readouterr().out)["best"]
+        assert best["theta_sd_deg"] is not None and best["theta_sd_deg"] > 0
+        (a,) = analyse(load_design(design)).actuators
+        g, p0 = true_g_p0("zigzag", a.derived.requested_width_mm, 0.0)
+        true = float(curve(ActuatorModel.from_derived(a.derived, g_mpa=g, p0_kpa=p0), [at]).theta_deg[0])
+        inside += abs(true - best["theta_deg"]) <= best["theta_sd_deg"]
+    print(f"true bend inside the reported 1-sigma band: {inside} of {n}")
+    assert 0.5 <= inside / n <= 0.85, inside
