@@ -18,8 +18,9 @@ from embroact.predict.photomarkers import COUPON_LAYOUT
 
 def _photo(seed, **kw):
     rng = np.random.default_rng(seed)
-    side = kw.pop("side", "thread" if seed % 2 else "fabric")
-    truth = pr.strip(kw.pop("theta_deg", rng.uniform(-200.0, 280.0)), rng, side=side)
+    theta = kw.pop("theta_deg", rng.uniform(-200.0, 280.0))
+    side = kw.pop("side", "thread" if theta >= 0 else "fabric")  # outside the bend, as the fin sheet says
+    truth = pr.strip(theta, rng, side=side)
     img = pr.render(truth, rng, side=side, tilt_deg=kw.pop("tilt_deg", rng.uniform(5.0, 25.0)), **kw)
     return truth, img, side
 
@@ -80,11 +81,11 @@ def test_measure_fills_the_coupon_sheet(tmp_path, capsys):
     photos = tmp_path / "photos"
     photos.mkdir()
     truths = {}
-    for name, seed in (("w5_100kPa.png", 21), ("w5_100kPa_down.png", 22)):
-        truth, img, _ = _photo(seed, side="thread")  # block 0: the coupon's first zigzag, fins on the thread side
+    for name, seed, bend in (("w5_100kPa.png", 21, 110.0), ("w5_100kPa_down.png", 22, 95.0)):
+        truth, img, _ = _photo(seed, theta_deg=bend)  # block 0: the coupon's first zigzag, fins on the thread side
         cv2.imwrite(str(photos / name), img)
         truths[name] = truth.reading_deg
-    _, bad, _ = _photo(23, side="thread", hide=0)
+    _, bad, _ = _photo(23, theta_deg=150.0, hide=0)
     cv2.imwrite(str(photos / "w5_150kPa.png"), bad)
     out = tmp_path / "measured.csv"
     capsys.readouterr()
