@@ -62,8 +62,8 @@ __all__ = ["COUPON_LAYOUT", "DEFAULT_BOARD", "PhotoLayout", "ReferenceBoard", "S
 #: error of 1 mrad counts as 0.01 mm of position (a marker's axes are measured over its
 #: whole side, its centre from four corners).
 _TANGENT_WEIGHT_MM = 10.0
-#: Most Gauss-Newton steps of the centreline fit (it converges in 3-5).
-_GN_ITERATIONS = 20
+#: Most Gauss-Newton steps of the centreline fit (it converges in 3-6).
+_GN_ITERATIONS = 12
 
 
 @dataclass(frozen=True, slots=True)
@@ -325,7 +325,7 @@ def _fit_chain(points: np.ndarray, tangent_rad: np.ndarray, s: np.ndarray, lengt
         dx = np.linalg.lstsq(jac, -r, rcond=None)[0]
         x = x + dx
         r = residuals(x)
-        if np.max(np.abs(dx[3:] * lengths)) < 1e-10 and np.max(np.abs(dx[:2])) < 1e-9:
+        if np.max(np.abs(dx[3:] * lengths)) < 1e-9 and np.max(np.abs(dx[:3])) < 1e-7:  # nm, 0.1 urad
             break
     fitted = _chain_points(x[:2], x[2], lengths, x[3:], s)
     rms = float(np.sqrt(np.mean(np.sum((fitted - points) ** 2, axis=1))))

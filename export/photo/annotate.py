@@ -25,10 +25,10 @@ def _text(cv2, img, text: str, org, scale: float) -> None:
 def annotated_jpeg(image, reading: PhotoReading, header: str, labels: dict[int, str]) -> bytes:
     """JPEG bytes of ``image`` (grey or colour) with ``reading`` drawn on it; ``labels``: block -> name."""
     cv2 = require_cv2()
-    img = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
-    scale = min(1.0, MAX_WIDTH_PX / img.shape[1])
-    if scale < 1.0:
-        img = cv2.resize(img, (round(img.shape[1] * scale), round(img.shape[0] * scale)), interpolation=cv2.INTER_AREA)
+    scale = min(1.0, MAX_WIDTH_PX / image.shape[1])
+    img = image if scale == 1.0 else cv2.resize(image, (round(image.shape[1] * scale), round(image.shape[0] * scale)),
+                                                interpolation=cv2.INTER_AREA)
+    img = cv2.cvtColor(img, cv2.COLOR_GRAY2BGR) if img.ndim == 2 else img.copy()
     width = max(1, round(2 * img.shape[1] / 1200))
 
     def px(points) -> np.ndarray:

@@ -118,6 +118,9 @@ def _detect(cv2, gray) -> dict[int, list[np.ndarray]]:
                                                interpolation=cv2.INTER_AREA)
     params = cv2.aruco.DetectorParameters()
     params.cornerRefinementMethod = cv2.aruco.CORNER_REFINE_SUBPIX if scale == 1 else cv2.aruco.CORNER_REFINE_NONE
+    # two adaptive-threshold windows (7 and 17 px) instead of OpenCV's three (3, 13, 23): a marker cell is
+    # 3-8 px on the reduced copy; a third of the detection time
+    params.adaptiveThreshWinSizeMin, params.adaptiveThreshWinSizeMax, params.adaptiveThreshWinSizeStep = 7, 17, 10
     detector = cv2.aruco.ArucoDetector(cv2.aruco.getPredefinedDictionary(cv2.aruco.DICT_4X4_250), params)
     corners, ids, _ = detector.detectMarkers(small)
     found: dict[int, list[np.ndarray]] = {}
