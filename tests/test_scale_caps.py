@@ -66,3 +66,21 @@ def test_a_path_longer_than_the_hoop_is_refused_before_anything_is_generated(tmp
     assert generated == [] and list(out.iterdir()) == []
     assert main(["build", str(src), "--out", str(out), "--force", "--no-previews", "--mesh-format", "none"]) == 0
     assert generated and any(p.suffix == ".dst" for p in out.iterdir())
+
+
+def test_report_tables_show_identical_actuators_once_and_at_most_the_column_cap():
+    """150 identical actuators and one other: two columns and a note; 150 distinct ones: the first 100 and
+    a note naming report.json (which keeps every actuator)."""
+    from embroact.export.report.report import REPORT_MAX_COLUMNS, report_data, report_html, report_json
+
+    same = [{"name": f"A{k}", "derived": {"r0_mm": 2.58}, "model": {"g_mpa": 2.7}} for k in range(150)]
+    other = [{"name": "B", "derived": {"r0_mm": 3.1}, "model": {"g_mpa": 2.7}}]
+    html = report_html(report_data(title="t", actuators=same + other))
+    assert "<th>A0 and 149 identical</th>" in html and "<th>B</th>" in html and "<th>A1</th>" not in html
+    assert "151 columns, identical ones shown once" in html
+    distinct = [{"name": f"A{k}", "derived": {"r0_mm": 2.0 + k / 1000}} for k in range(150)]
+    data = report_data(title="t", actuators=distinct)
+    html = report_html(data)
+    assert f"<th>A{REPORT_MAX_COLUMNS - 1}</th>" in html and f"<th>A{REPORT_MAX_COLUMNS}</th>" not in html
+    assert f"the first {REPORT_MAX_COLUMNS} of 150 shown (report.json has every one)" in html
+    assert '"name": "A149"' in report_json(data)

@@ -189,8 +189,42 @@ def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
     return out
 
 
+#: Columns (actuators, segments) a per-actuator table shows at most; beyond it identical entries share one
+#: column, and past that the first ones are shown with a note (``report.json`` holds every actuator).
+REPORT_MAX_COLUMNS = 100
+
+
+def _summarised(entries: Sequence[Mapping]) -> tuple[list[Mapping], str]:
+    """``entries`` as a table shows them (at most :data:`REPORT_MAX_COLUMNS`) and the note saying what was
+    merged or left out ("" when all are shown as they are).
+
+    Examples
+    --------
+    >>> few, note = _summarised([{"name": f"A{k}", "x": 1} for k in range(150)])
+    >>> [e["name"] for e in few], note
+    (['A0 and 149 identical'], '150 columns, identical ones shown once')
+    """
+    if len(entries) <= REPORT_MAX_COLUMNS:
+        return list(entries), ""
+    groups: dict[str, list[Mapping]] = {}
+    for e in entries:
+        key = json.dumps({k: v for k, v in e.items() if k != "name"}, sort_keys=True, default=str)
+        groups.setdefault(key, []).append(e)
+    shown = [{**g[0], "name": f"{g[0].get('name')} and {len(g) - 1} identical"} if len(g) > 1 else g[0]
+             for g in groups.values()]
+    note = f"{len(entries)} columns, identical ones shown once"
+    if len(shown) > REPORT_MAX_COLUMNS:
+        note += f"; the first {REPORT_MAX_COLUMNS} of {len(shown)} shown (report.json has every one)"
+        shown = shown[:REPORT_MAX_COLUMNS]
+    return shown, note
+
+
+def _noted(note: str) -> str:
+    return f'<p class="note">{_e(note)}</p>' if note else ""
+
+
 def _derived_table(actuators: Sequence[Mapping]) -> str:
-    parts = _parts(actuators)
+    parts, note = _summarised(_parts(actuators))
     rows: list[str] = []
     for a in parts:
         for k in a.get("derived") or {}:
@@ -203,7 +237,7 @@ def _derived_table(actuators: Sequence[Mapping]) -> str:
         f"<tr><th>{_e(_label(k))}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in parts)}</tr>"
         for k in rows
     )
-    return f"<table><tr><th>quantity</th>{head}</tr>{body}</table>" + _segments_table(actuators)
+    return _noted(note) + f"<table><tr><th>quantity</th>{head}</tr>{body}</table>" + _segments_table(actuators)
 
 
 def _segments_table(actuators: Sequence[Mapping]) -> str:
@@ -225,7 +259,7 @@ def _segments_table(actuators: Sequence[Mapping]) -> str:
 
 def _model_table(actuators: Sequence[Mapping]) -> str:
     """G, P0, tube and tube law per actuator (per segment of a segmented one), each with where it came from."""
-    with_model = [a for a in _parts(actuators) if a.get("model")]
+    with_model, note = _summarised([a for a in _parts(actuators) if a.get("model")])
     if not with_model:
         return '<p class="note">no model</p>'
     rows = []
@@ -238,7 +272,7 @@ def _model_table(actuators: Sequence[Mapping]) -> str:
                     f"<td>{_e(tube)}</td><td>{_e('; '.join(m.get('notes') or []))}</td></tr>")
     head = "".join(f"<th>{h}</th>" for h in ("actuator", "G [MPa]", "G from", "P0 [kPa]", "P0 from", "tube law",
                                                "tube", "notes"))
-    return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
+    return _noted(note) + f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
 def _findings_table(findings: Sequence[Mapping]) -> str:
@@ -272,13 +306,13 @@ def _worksheet_html(ws: Mapping | None) -> str:
     if ws.get("stops"):
         out.append("<h3>Stop sequence</h3><ul class=\"stops\">" + "".join(f"<li>{_e(s)}</li>" for s in ws["stops"])
                    + "</ul>")
-    acts = ws.get("actuators") or []
+    acts, note = _summarised(ws.get("actuators") or [])
     if acts:
         keys = [k for k in dict.fromkeys(k for a in acts for k in a) if k != "name"]
         head = "".join(f"<th>{_e(a.get('name'))}</th>" for a in acts)
         rows = "".join(f"<tr><th>{_e(_label(k))}</th>{''.join(_cell(a.get(k)) for a in acts)}</tr>" for k in keys
                        if any(a.get(k) not in (None, [], {}) for a in acts))
-        out.append(f"<h3>Per actuator</h3><table><tr><th>actuator</th>{head}</tr>{rows}</table>")
+        out.append(f"<h3>Per actuator</h3>{_noted(note)}<table><tr><th>actuator</th>{head}</tr>{rows}</table>")
     return "".join(out)
 
 
@@ -293,7 +327,7 @@ def _curve_columns(actuator: Mapping) -> list[Mapping]:
 
 
 def _curve_table(actuators: Sequence[Mapping]) -> str:
-    with_curves = [c for a in actuators if a.get("curve") for c in _curve_columns(a)]
+    with_curves, note = _summarised([c for a in actuators if a.get("curve") for c in _curve_columns(a)])
     if not with_curves:
         return ""
     pressures = with_curves[0]["curve"]["pressure_kpa"]
@@ -306,8 +340,8 @@ def _curve_table(actuators: Sequence[Mapping]) -> str:
                         for a in with_curves)
         rows.append(f"<tr>{_cell(p)}{cells}</tr>")
     banded = any(a.get("band") for a in with_curves)
-    note = " (+- the 1-sigma band of the fitted calibration's covariance)" if banded else ""
-    return (f"<details><summary>Predicted curve ({len(pressures)} pressures){note}</summary><table>"
+    banded_note = " (+- the 1-sigma band of the fitted calibration's covariance)" if banded else ""
+    return (f"<details><summary>Predicted curve ({len(pressures)} pressures){banded_note}</summary>{_noted(note)}<table>"
             f"<tr><th>pressure [kPa]</th>{head}</tr>{''.join(rows)}</table></details>")
 
 
