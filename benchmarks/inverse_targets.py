@@ -57,3 +57,57 @@ def target_shape(seed: int, step_mm: float = 0.25) -> tuple[Design, np.ndarray]:
     shape, _ = analyse(design).shapes("T", [PRESSURE_KPA])[0]
     s = np.linspace(0.0, shape.length_mm, int(round(shape.length_mm / step_mm)) + 1)
     return design, shape.profile_mm(s)
+
+
+#: Seeded target bends (bend_deg, pressure_kpa, pattern): both patterns and directions, 10-300 deg, 80-300 kPa.
+def target_bends(count: int = 30, seed: int = 23) -> list[tuple[float, float, str]]:
+    """``count`` seeded target bends, the same for the same seed."""
+    rng = np.random.default_rng(seed)
+    return [(float(rng.choice([-1.0, 1.0]) * rng.uniform(10.0, 300.0)), float(rng.uniform(80.0, 300.0)),
+             str(rng.choice(["zigzag", "cross"]))) for _ in range(count)]
+
+
+def pystitch_needle_points_mm(data: bytes, origin_mm) -> np.ndarray:
+    """Needle points [mm, plan frame] of a DST file's bytes as pystitch's reader decodes them."""
+    import io
+
+    import pystitch
+    from pystitch import DstReader
+
+    pattern = pystitch.EmbPattern.read_embroidery(DstReader, io.BytesIO(data), {"trim_at": None, "clipping": False})
+    xy = [(x, -y) for x, y, c in pattern.stitches if c & pystitch.COMMAND_MASK == pystitch.STITCH]
+    return np.asarray(xy, dtype=np.float64) / 10.0 + np.asarray(origin_mm, dtype=np.float64)
+
+
+def sewn_bend_deg(design, pressure_kpa: float, decode=pystitch_needle_points_mm) -> tuple[float, object]:
+    """(bend [deg], model) of a one-actuator design recomputed from its DST's decoded needle points.
+
+    The DST is written from the design's plan and decoded by ``decode(bytes, origin_mm)``; the
+    pattern geometry is measured on the decoded points (the plan's roles give which are legs),
+    the sleeve derived from it and G and P0 looked up as ``embroact predict`` does for the
+    design file.
+    """
+    from embroact.export.machine.formats import encode
+    from embroact.patterns.design import build_plan
+    from embroact.patterns.kinds import pattern_kind
+    from embroact.patterns.measure import measure
+    from embroact.patterns.plan import Command
+    from embroact.predict.calibration import model_for
+    from embroact.predict.curve import curve
+    from embroact.predict.derived import derive_from_values
+
+    plan = build_plan(design)
+    data, res = encode(plan, "dst")
+    xy = decode(data, res.origin_mm)
+    roles = plan.roles[plan.commands == Command.STITCH]
+    if len(xy) != len(roles):
+        raise AssertionError(f"the DST holds {len(xy)} needle points, the plan {len(roles)}")
+    spec = design.actuators[0]
+    r = measure(xy, roles, spec.centerline, spec.pattern)
+    p = spec.params
+    angle = pattern_kind(spec.pattern).has_angle
+    d = derive_from_values(spec.pattern, width_mm=r.width_mm, interval_mm=r.interval_mm,
+                           angle_deg=r.angle_deg if angle else 0.0, length_mm=r.length_mm, tube=design.tube,
+                           requested=(p.width_mm, p.interval_mm, p.angle_deg if angle else 0.0))
+    model = model_for(d, spec.model).model
+    return float(curve(model, [pressure_kpa]).theta_deg[0]), model

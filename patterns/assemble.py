@@ -43,6 +43,7 @@ import shapely
 
 from .centerline import Centerline
 from .base.errors import ParameterError, PatternError, PathError
+from .limits import GRID_ROUNDING_MM, on_grid
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Command, Role, StitchPlan
@@ -215,7 +216,7 @@ def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.n
     tie_off = sn + step[1] * (j[1:] % 2)  # k stitches from sn
     s_all = np.concatenate([tie_in, station_s[1:], tie_off])
     o_all = np.concatenate([np.full(k + 1, o0), station_offset_mm[1:], np.full(k, on)])
-    xy = cl.offset_point_at(s_all, o_all)
+    xy = on_grid(cl.offset_point_at(s_all, o_all))  # the points the machine file will hold
     xy = np.vstack([xy, xy[-1], xy[-1]])  # TRIM, END
     n = len(xy)
     commands = np.full(n, Command.STITCH, dtype=np.int8)
@@ -231,7 +232,8 @@ def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.n
 
 def _check_corridor(cl: Centerline, xy: np.ndarray, tube: Tube) -> None:
     line = cl.as_linestring()
-    bad = corridor_hits(line, xy, tube.corridor_radius_mm - DEFAULT_TOLERANCES.length_mm)
+    # the points are on the machine grid: a rail at the corridor's edge may round into it by up to GRID_ROUNDING_MM
+    bad = corridor_hits(line, xy, tube.corridor_radius_mm - GRID_ROUNDING_MM - DEFAULT_TOLERANCES.length_mm)
     if bad.size:
         x, y = xy[bad[0]]
         d = float(shapely.distance(line, shapely.Point(x, y)))

@@ -95,7 +95,7 @@ from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
-from .limits import format_limit
+from .limits import format_limit, on_grid
 from .params import CrossParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, check_segments, segment_stations, segmented
@@ -731,7 +731,7 @@ def _jumps(a: np.ndarray, b: np.ndarray, max_jump_mm: float) -> np.ndarray:
     """Points from ``a`` (excluded) to ``b`` (included), per-axis steps <= max_jump_mm - grid."""
     step = max_jump_mm - DEFAULT_TOLERANCES.machine_grid_mm
     n = max(1, math.ceil(float(np.max(np.abs(b - a))) / step))
-    return a + (b - a) * (np.arange(1, n + 1) / n)[:, None]
+    return on_grid(a + (b - a) * (np.arange(1, n + 1) / n)[:, None])
 
 
 def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> StitchPlan:

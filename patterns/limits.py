@@ -24,6 +24,7 @@ Examples
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,6 +40,8 @@ __all__ = [
     "FORMAT_LIMITS",
     "format_limit",
     "grid_units",
+    "on_grid",
+    "GRID_ROUNDING_MM",
     "record_moves_units",
     "records_needed",
     "framed_first",
@@ -46,6 +49,9 @@ __all__ = [
 
 UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
 """Machine-file units per millimetre (the 0.1 mm grid of every supported format)."""
+
+GRID_ROUNDING_MM = 0.5 * math.sqrt(2.0) * DEFAULT_TOLERANCES.machine_grid_mm
+"""The farthest :func:`on_grid` moves a point [mm]: half a grid step on each axis."""
 
 TRIM_JUMP_RUN = 3
 """Consecutive jump records a machine (and pyembroidery's DST writer) treat as a trim."""
@@ -68,6 +74,10 @@ class FormatLimit:
     trim_as_jumps : bool
         True when the writer encodes a trim as a run of :data:`TRIM_JUMP_RUN` jumps (DST).
     description : str
+    unit_mm : float
+        The format's position unit [mm]: every record is a whole number of them. The stitch
+        plan's needle points are made on this grid (:func:`on_grid`), so a format with another
+        unit must declare it here.
     """
 
     name: str
@@ -76,6 +86,7 @@ class FormatLimit:
     max_records: int
     trim_as_jumps: bool
     description: str
+    unit_mm: float = DEFAULT_TOLERANCES.machine_grid_mm
 
 
 FORMAT_LIMITS: dict[str, FormatLimit] = {
@@ -113,6 +124,22 @@ def grid_units(xy_mm) -> np.ndarray:
     u = np.rint(np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2) * UNITS_PER_MM).astype(np.int64)
     u[u == 0] = 0  # no negative zeros
     return u
+
+
+def on_grid(xy_mm) -> np.ndarray:
+    """Positions [mm] moved to the nearest point of the machine grid, as float mm.
+
+    The generators put every needle point through this once, where the plan is made, so the
+    plan holds the points the machine file will hold (a whole number of units each) and
+    everything measured on the plan (realised width, angle, length, the derived geometry,
+    every prediction) is measured on what the machine sews.
+
+    Examples
+    --------
+    >>> on_grid([(3.0764, -3.0764), (0.04, 12.15)]).tolist()
+    [[3.1, -3.1], [0.0, 12.2]]
+    """
+    return grid_units(xy_mm) / float(UNITS_PER_MM)
 
 
 def record_moves_units(xy_mm) -> np.ndarray:

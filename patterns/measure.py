@@ -31,6 +31,7 @@ import numpy as np
 from .centerline import as_centerline
 from .base.errors import ParameterError, PatternError
 from .kinds import PATTERN_KINDS, Interval, pattern_kind
+from .limits import GRID_ROUNDING_MM
 from .plan import Realised, Role
 from .base.tolerances import DEFAULT_TOLERANCES
 
@@ -83,7 +84,7 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     pts = np.zeros(len(xy), dtype=bool)  # both ends of every leg (a mask: np.union1d would load numpy.ma)
     pts[ends - 1] = pts[ends] = True
     angle = float(np.degrees(np.arctan2(np.abs(ds), np.abs(do))).mean())
-    direction = np.sign(ds[np.abs(ds) > DEFAULT_TOLERANCES.length_mm])
+    direction = np.sign(ds[np.abs(ds) > 2.0 * GRID_ROUNDING_MM])  # a shorter step may be the grid's, not the leg's
     passes = 1 + int(np.count_nonzero(np.diff(direction)))
     if pattern_kind(pattern).interval is Interval.NEEDLE_POINTS:
         interval = float(np.abs(ds).mean())

@@ -32,8 +32,8 @@ Examples
 >>> plan = zigzag(Centerline.straight(10.0), ZigzagParams(7.0, 1.0))
 >>> placed = with_placement(plan, 2.5)
 >>> line = placed.xy_mm[placed.roles == Role.PLACEMENT]
->>> line.round(9).tolist()   # 3 lock stitches at x = 10, 4 of 2.325 mm to x = 0, 2 out to the stop point
-[[10.0, 0.0], [9.3, 0.0], [10.0, 0.0], [9.3, 0.0], [6.975, 0.0], [4.65, 0.0], [2.325, 0.0], [0.0, 0.0], [0.35, 1.75], [0.7, 3.5]]
+>>> line.tolist()   # 3 lock stitches at x = 10, 4 of about 2.325 mm to x = 0, 2 out to the stop point, on the 0.1 mm grid
+[[10.0, 0.0], [9.3, 0.0], [10.0, 0.0], [9.3, 0.0], [7.0, 0.0], [4.6, 0.0], [2.3, 0.0], [0.0, 0.0], [0.4, 1.8], [0.7, 3.5]]
 >>> Command(int(placed.commands[len(line)])).name, placed.xy_mm[len(line)].round(9).tolist()  # the cord-in stop
 ('STOP', [0.7, 3.5])
 >>> len(line) <= placement_records(10.0, 2.5, 3, 3.5)
@@ -47,6 +47,7 @@ import numpy as np
 
 from .assemble import rail_positions, tie_step_mm
 from .base.errors import ParameterError, check_range
+from .limits import on_grid
 from .plan import Command, Role, StitchPlan
 
 __all__ = ["placement_records", "placement_line", "with_placement"]
@@ -87,7 +88,7 @@ def placement_line(centerline, stitch_mm: float, end_mm, *, tie_stitch_mm: float
     axis = centerline.offset_point_at(np.concatenate([ties, run]), np.zeros(len(ties) + len(run)))
     gap = np.asarray(end_mm, dtype=np.float64) - axis[-1]
     pieces = math.ceil(float(np.hypot(*gap)) / stitch_mm)
-    return np.vstack([axis, axis[-1] + gap * (np.arange(1, pieces + 1) / max(pieces, 1))[:, None]])
+    return on_grid(np.vstack([axis, axis[-1] + gap * (np.arange(1, pieces + 1) / max(pieces, 1))[:, None]]))
 
 
 def with_placement(plan: StitchPlan, stitch_mm: float) -> StitchPlan:

@@ -55,6 +55,7 @@ from .assemble import check_pattern_inputs, frame_records
 from .base.errors import EmbroactError, ParameterError
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, KindOf, pattern_kind
+from .limits import on_grid
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
 from .plan import ActuatorPlan, Realised, Role, StitchPlan
@@ -252,7 +253,7 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
         start += seg.length_mm
     plans = []
     for k, (seg, s0, s, o, roles, notes, mirrored) in enumerate(parts):
-        xy = cl.offset_point_at(s, o)
+        xy = on_grid(cl.offset_point_at(s, o))  # as frame_records puts them in the plan
         r = roles.copy()
         r[0] = Role.TIE_IN  # the segment's first point starts its first leg
         realised = measure(xy, r, cl, seg.pattern)

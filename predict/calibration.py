@@ -30,8 +30,10 @@ Lookup scheme
 * Zigzag points are interpolated over ``width_mm``; cross points over ``angle_deg``
   (among the cross points of the width closest to the requested one; a different
   width is reported in ``notes``).
-* Interpolation is piecewise linear in the parameter, separately for ``G`` and ``P0``
-  (and ``G_e`` when every point has one).  Two points of one design (pattern, width,
+* Interpolation is monotone piecewise cubic (PCHIP, :mod:`embroact.predict.pchip`) in the
+  parameter, separately for ``G`` and ``P0`` (and ``G_e`` when every point has one): exact at
+  a calibrated point, continuous with a continuous slope between them, monotone between
+  two points, no snapping to a nearby point.  Two points of one design (pattern, width,
   angle, branch) must be identical: a set that holds two different fits of one design
   is refused, naming both points, rather than averaged.
 * Outside the calibrated range, ``extrapolation="clamp"`` (default) holds the end
@@ -49,7 +51,7 @@ Examples
 (2.7, 85.0, False, False)
 >>> c = lookup("zigzag", width_mm=8.0)
 >>> round(c.g_mpa, 3), round(c.p0_kpa, 1), c.interpolated
-(3.05, 132.5, True)
+(3.165, 123.3, True)
 >>> c = lookup("cross", width_mm=7.0, angle_deg=70.0)
 >>> c.g_mpa, c.p0_kpa, c.extrapolated, (c.range_low, c.range_high)
 (2.9, 200.0, True, (15.0, 60.0))
@@ -69,6 +71,7 @@ from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
 from ..patterns.kinds import PATTERN_KINDS, pattern_kind
 from .markers import MarkerLayout
+from .pchip import pchip
 
 if TYPE_CHECKING:  # pragma: no cover
     from .curve import ActuatorModel
@@ -536,9 +539,10 @@ def get_set(name: str, sets: Iterable[CalibrationSet] | None = None) -> Calibrat
     return found
 
 
-def _coordinate_tolerance(axis: str, value: float) -> float:
-    """How far a point's coordinate on ``axis`` may lie from ``value`` and still be the same design."""
-    return DEFAULT_TOLERANCES.angle_deg if axis == "angle_deg" else DEFAULT_TOLERANCES.spacing_rel * value
+def _same_coordinate(x: float, value: float) -> bool:
+    """True when a point's coordinate is ``value`` itself (to rounding): the calibrated point, not a band
+    around it; the interpolant passes through it, so nearby values differ from it continuously."""
+    return abs(x - value) <= DEFAULT_TOLERANCES.length_mm * max(1.0, abs(value))
 
 
 def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[list, list[str]]:
@@ -608,18 +612,15 @@ def _mean(values: list[float]) -> float:
 
 
 def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str) -> float:
-    """Piecewise-linear y(x); outside the range clamp or extend the end segment."""
+    """Monotone piecewise-cubic y(x) (:func:`~embroact.predict.pchip.pchip`); outside the range clamp or
+    extend the end segment's secant."""
     if len(xs) == 1:
         return ys[0]
-    if x <= xs[0] and extrapolation == "clamp":
-        return ys[0]
-    if x >= xs[-1] and extrapolation == "clamp":
-        return ys[-1]
-    k = 1
-    while k < len(xs) - 1 and x > xs[k]:
-        k += 1
-    x0, x1, y0, y1 = xs[k - 1], xs[k], ys[k - 1], ys[k]
-    return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    if x <= xs[0]:
+        return ys[0] if extrapolation == "clamp" else ys[0] + (ys[1] - ys[0]) * (x - xs[0]) / (xs[1] - xs[0])
+    if x >= xs[-1]:
+        return ys[-1] if extrapolation == "clamp" else ys[-1] + (ys[-1] - ys[-2]) * (x - xs[-1]) / (xs[-1] - xs[-2])
+    return pchip(xs, ys, x)
 
 
 def lookup(
@@ -684,9 +685,8 @@ def lookup(
     has_ge = all(v is not None for group in ge_all for v in group)
     ge = [_mean(group) for group in ge_all] if has_ge else None
 
-    tol = _coordinate_tolerance(axis, value)
-    hit = [i for i, x in enumerate(xs) if abs(x - value) <= tol]
-    extrapolated = value < xs[0] - tol or value > xs[-1] + tol
+    hit = [i for i, x in enumerate(xs) if _same_coordinate(x, value)]
+    extrapolated = not hit and (value < xs[0] or value > xs[-1])
     fitted, cov = (), ()
     if hit:
         i = hit[0]
@@ -791,7 +791,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     ...                        length_mm=100.0, tube=Tube())
     >>> c = model_for(d)
     >>> round(c.model.g_mpa, 4), round(c.model.p0_kpa, 2), c.g_source
-    (4.8667, 166.67, 'calibration paper-2025 (cross, angle_deg=40, interpolated in [15, 60])')
+    (4.0741, 165.93, 'calibration paper-2025 (cross, angle_deg=40, interpolated in [15, 60])')
     >>> c = model_for(d, ModelSettings(g_mpa=2.0, p0_source="geometry"))
     >>> c.g_source, c.p0_source
     ('given', 'geometry (tube law paper at r0 = 2.581 mm)')

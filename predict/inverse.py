@@ -8,10 +8,17 @@ Two questions (docs/model.md, segmented actuators):
   interval is the calibrated one (cross: the nearest that closes the pattern, so the
   angle is sewn as asked). ``theta(P*)`` is tabulated over the parameter with the
   vectorised model (:func:`~embroact.predict.curve.sweep`), every crossing of the target
-  is polished by regula falsi, and each candidate is generated and analysed like any design
-  (the numbers ``embroact predict`` prints). A candidate must be in a valid model state
-  at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass the
-  design rules without errors.
+  is polished by regula falsi, and the bends the space reaches in a valid state are refined
+  to their exact extremes (the verdict: a target outside them is refused with the true
+  extreme). The designs tried are the ones a machine sews: a straight actuator's rails lie
+  at +-w/2 on the machine grid, so a zigzag width steps by 0.2 mm (the grid widths around
+  each crossing are tried); a cross angle is the mean over many legs and is polished on the
+  generated needle points. Each candidate is generated and analysed like any design (the
+  numbers ``embroact predict`` prints for the written file); it must be in a valid model
+  state at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass
+  the design rules without errors; clean candidates rank above ones with warnings. A target
+  no sewable design meets within the tolerance gets the nearest one and the pressure at
+  which that design bends by the target exactly.
 * **target shape** (:func:`design_shape`): which segmented actuator bends into a given
   planar curve at ``P*``? The bent fabric line of a segmented actuator is a chain of
   circular arcs (segments decouple), so its curvature is piecewise constant. The target's
@@ -21,7 +28,9 @@ Two questions (docs/model.md, segmented actuators):
   ``kappa_k L_k`` is then inverted to a pattern parameter at ``P*`` (positive: zigzag
   width, or a cross angle below the neutral angle when no zigzag reaches it; negative:
   a cross angle above it), and all parameters are polished together on the predicted
-  shape of the segmented design (legs, transitions and unbent gaps as generated).
+  shape of the segmented design (legs, transitions and unbent gaps as generated). The widths
+  are then moved to sewable ones and a pattern search on the analysed design (needle points
+  on the machine grid) refines widths, angles and segment boundaries.
 
 Unreachable targets get the best achievable design and a plain ``statement`` of why.
 Everything is deterministic: the same target gives the same design.
@@ -29,23 +38,26 @@ Everything is deterministic: the same target gives the same design.
 Examples
 --------
 >>> from embroact.predict.inverse import design_bend
->>> r = design_bend(90.0, 150.0, pattern="zigzag")
->>> r.reached, r.best.pattern, round(r.best.theta_deg, 3)
-(True, 'zigzag', 90.0)
->>> round(r.best.params.width_mm, 3)
-6.153
+>>> r = design_bend(84.5, 150.0, pattern="zigzag")
+>>> r.reached, r.best.pattern, r.best.params.width_mm, round(r.best.theta_deg, 2)
+(True, 'zigzag', 6.2, 84.53)
+>>> r = design_bend(90.0, 150.0, pattern="zigzag")   # between the sewable widths 6.2 and 6.0 mm
+>>> r.reached, r.in_range, r.best.params.width_mm, round(r.best.theta_deg, 2), round(r.best.exact_pressure_kpa, 1)
+(False, True, 6.2, 84.53, 154.7)
 """
 from __future__ import annotations
 
 import dataclasses
 import functools
+import itertools
 import math
 from dataclasses import dataclass
-from typing import Iterable
+from typing import Any, Iterable
 
 import numpy as np
 
 from ..patterns.base.errors import EmbroactError, ParameterError, check_range
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
 from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
@@ -55,7 +67,8 @@ from .kinds import model_kind
 from .shape import planar_chain_mm
 from .status import Status
 
-__all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
+__all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
+           "Sensitivity", "BendCandidate", "BendResult", "design_bend", "exact_pressure_kpa", "angle_grid_step_deg",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
            "DEFAULT_TIME_LIMIT_S"]
 
@@ -77,6 +90,16 @@ _POLISH_ROUNDS = 6
 _FIT_PLAUSIBLE_MM = 0.25
 #: A reached design this close (RMSE) ends the search over segment counts (fewer segments win) [mm].
 _SHAPE_GOOD_MM = 0.2
+#: Rounds of single-step moves of the sewable (grid) parameters of a designed shape.
+_GRID_ROUNDS = 6
+#: The pattern search reports its progress every this many sewn designs.
+_PROGRESS_EVERY = 25
+#: First step of a continuous parameter (cross angle) in that search [deg], refined to an eighth.
+_SHAPE_ANGLE_STEP_DEG = 0.2
+#: First step of a segment boundary in that search [mm], refined with the angle step.
+_SHAPE_LENGTH_STEP_MM = 1.0
+#: Segments beyond the fewest that fit the curvature tried when the sewable designs miss the target.
+_EXTRA_SEGMENTS = 2
 #: Shortest segment the curvature fit may make [mm].
 _MIN_SEGMENT_MM = 8.0
 #: Default time limit of a target-shape search [s] (``design_shape(time_limit_s=...)``, ``--time-limit``).
@@ -145,6 +168,56 @@ class DesignSpace:
         n = max(1, round(reach / self.interval_mm))
         return CrossParams(self.width_mm, reach / n, float(x))
 
+    @property
+    def grid_step(self) -> float:
+        """Step [mm] between the values of the free parameter a straight actuator sews exactly; 0 for a
+        parameter the sewn legs realise continuously.
+
+        A straight path's rails lie at +-w/2, so a width lands on the machine grid in steps of two grid
+        units (0.2 mm); a cross angle is the mean over many legs whose ends round differently, so the
+        sewn angle follows the asked one closely (the analysed design measures it).
+
+        >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).grid_step, DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4).grid_step
+        (0.2, 0.0)
+        """
+        if self.parameter != "width_mm":
+            return 0.0
+        return 2.0 * DEFAULT_TOLERANCES.machine_grid_mm
+
+    def sewable(self, x: float, spread: int = 1) -> tuple[float, ...]:
+        """The sewable values of the parameter around ``x``: the grid values below and above it and
+        ``spread - 1`` more on each side, inside the range (``(x,)`` for a continuous parameter).
+
+        >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(6.1529)
+        (6.0, 6.2)
+        >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(9.0, spread=2)
+        (8.8, 9.0)
+        """
+        step = self.grid_step
+        if step == 0.0:
+            return (float(x),)
+        k_lo, k_hi = math.floor(x / step + 1e-9), math.ceil(x / step - 1e-9)
+        ks = range(k_lo - spread + 1, k_hi + spread)
+        return tuple(v for v in (round(k * step, 10) for k in ks) if self.low - 1e-9 <= v <= self.high + 1e-9)
+
+    def breaks(self) -> tuple[float, ...]:
+        """Parameter values inside the range where :meth:`params` jumps (a cross pattern's number of leg
+        pitches changes, and with it the interval and the embroidered length); empty for a zigzag.
+
+        >>> [round(b, 3) for b in DesignSpace("cross", "angle_deg", 15.0, 20.0, 7.0, 1.4).breaks()]
+        [16.699]
+        """
+        if not pattern_kind(self.pattern).has_angle:
+            return ()
+        n_lo = 2.0 * self.width_mm * math.tan(math.radians(self.low)) / self.interval_mm
+        n_hi = 2.0 * self.width_mm * math.tan(math.radians(self.high)) / self.interval_mm
+        out = []
+        for n in range(max(0, math.floor(n_lo - 0.5)), math.ceil(n_hi + 0.5)):
+            b = math.degrees(math.atan((n + 0.5) * self.interval_mm / (2.0 * self.width_mm)))
+            if self.low < b < self.high:
+                out.append(b)
+        return tuple(out)
+
     def describe(self) -> str:
         """``"width_mm 5 to 9 (calibrated)"``."""
         return f"{self.parameter} {self.low:g} to {self.high:g} ({'calibrated' if self.calibrated else 'extrapolated'})"
@@ -152,10 +225,12 @@ class DesignSpace:
 
 def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, sets=(), tube: Tube = Tube(),
                  allow_extrapolation: bool = False) -> DesignSpace:
-    """The range a pattern's free parameter may take: the calibration set's coverage.
+    """The range a pattern's free parameter may take: the calibration set's coverage, and for a cross
+    pattern the angles whose legs (``w / cos(alpha0)``, rounded to the machine grid) fit one stitch of the
+    default machine.
 
     >>> design_space("zigzag").describe(), design_space("cross").describe()
-    ('width_mm 5 to 9 (calibrated)', 'angle_deg 15 to 60 (calibrated)')
+    ('width_mm 5 to 9 (calibrated)', 'angle_deg 15 to 54.172 (calibrated)')
     """
     from .calibration import get_set
 
@@ -169,6 +244,12 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     width = float(np.median([p.width_mm for p in points]))
     param = pattern_kind(pattern).calibration_axis
     low, high = cover
+    if pattern_kind(pattern).has_angle:  # a leg w / cos(alpha0) must fit one machine stitch, rounded to the grid
+        from ..patterns.limits import GRID_ROUNDING_MM
+
+        longest = MachineSettings().max_stitch_mm - 2.0 * GRID_ROUNDING_MM
+        if width < longest:
+            high = min(high, math.degrees(math.acos(width / longest)))
     if allow_extrapolation:
         wide = model_kind(pattern).extrapolated_range
         low, high = min(low, wide[0]), max(high, wide[1])
@@ -261,6 +342,49 @@ def _roots(model: _Model, space: DesignSpace, length_mm: float, target_deg: floa
 
 # ---------------------------------------------------------------------------- target bend
 @dataclass(frozen=True, slots=True)
+class Sensitivity:
+    """The bend of a design sewn one machine-grid step off in one parameter.
+
+    The design is generated and analysed again with the parameter one step lower and one
+    step higher: the needle points move on the grid, and the derived geometry, G and P0
+    (from the calibration, at the new coordinate) follow, as they do for any sewn design.
+
+    Attributes
+    ----------
+    parameter : str
+        ``"width_mm"`` or ``"angle_deg"``.
+    step : float
+        One grid step of the parameter [mm or deg]: a width moves its rails by one grid unit
+        each (0.2 mm), an angle moves a leg end by one grid unit along the path.
+    minus_deg, plus_deg : float
+        Change of the bend at the target pressure for one step lower / higher [deg].
+
+    Examples
+    --------
+    >>> s = Sensitivity("width_mm", 0.2, 12.5, -11.3)
+    >>> s.text()
+    'width_mm -0.2: +12.50 deg, +0.2: -11.30 deg'
+    """
+
+    parameter: str
+    step: float
+    minus_deg: float
+    plus_deg: float
+
+    def text(self) -> str:
+        """One line: both steps and what they do."""
+        return f"{self.parameter} -{self.step:.3g}: {self.minus_deg:+.2f} deg, +{self.step:.3g}: {self.plus_deg:+.2f} deg"
+
+    def as_dict(self) -> dict:
+        """JSON-ready, units in the keys."""
+        unit = "mm" if self.parameter.endswith("_mm") else "deg"
+        return {"parameter": self.parameter, f"step_{unit}": self.step, "minus_step_theta_change_deg": self.minus_deg,
+                "plus_step_theta_change_deg": self.plus_deg,
+                "what": "bend change at the target pressure for one machine-grid step, the design generated and "
+                        "analysed again (G, P0 and geometry following)"}
+
+
+@dataclass(frozen=True, slots=True)
 class BendCandidate:
     """One design meeting (or nearest to) a target bend.
 
@@ -281,18 +405,23 @@ class BendCandidate:
         Pressure from the target to that limit [kPa] (``inf``: none).
     range_margin : float
         Distance of the parameter from the nearer end of its range, as a fraction of the range.
-    sensitivity_deg_per_0p1mm : float
-        Change of the bend for 0.1 mm more width, G and P0 held (a sewing error) [deg].
-    sensitivity_deg_per_deg : float or None
-        Change of the bend per degree more angle (cross), G and P0 held [deg/deg].
+    sensitivity : tuple of Sensitivity
+        What one machine-grid step of each design parameter does to the bend at the target
+        pressure, the design generated and analysed again (G, P0 and the geometry following).
     binding : str
         The constraint closest to binding (or that binds, for an unreachable target).
     warnings : tuple of str
-        Codes of design-rule warnings (no candidate has errors).
+        Codes of the design-rule findings (no candidate has errors).
     theta_sd_deg : float or None
         1-sigma uncertainty of the bend from the calibration's covariance
         (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`); None when the calibration
         claims none for this design (interpolated or published values).
+    warning_count : int
+        Design-rule warnings among the findings (a clean candidate ranks first).
+    exact_pressure_kpa : float or None
+        Pressure at which this design bends by the target exactly in a valid state; None if none.
+    findings : tuple of str
+        ``"CODE severity: message"`` of every finding ``embroact check`` gives for the written design.
     """
 
     pattern: str
@@ -304,11 +433,13 @@ class BendCandidate:
     limit: str
     margin_kpa: float
     range_margin: float
-    sensitivity_deg_per_0p1mm: float
-    sensitivity_deg_per_deg: float | None
+    sensitivity: tuple["Sensitivity", ...]
     binding: str
     warnings: tuple[str, ...] = ()
     theta_sd_deg: float | None = None
+    warning_count: int = 0
+    exact_pressure_kpa: float | None = None
+    findings: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """JSON-ready, units in the keys."""
@@ -316,14 +447,34 @@ class BendCandidate:
                 "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
                 "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
                 "range_margin_fraction": self.range_margin,
-                "sensitivity_deg_per_0p1mm_width": self.sensitivity_deg_per_0p1mm,
-                "sensitivity_deg_per_deg_angle": self.sensitivity_deg_per_deg, "binding": self.binding,
-                "warnings": list(self.warnings), "theta_sd_deg": self.theta_sd_deg}
+                "sensitivity": [s.as_dict() for s in self.sensitivity], "binding": self.binding,
+                "warnings": list(self.warnings), "theta_sd_deg": self.theta_sd_deg,
+                "exact_pressure_kpa": self.exact_pressure_kpa, "findings": list(self.findings)}
 
 
 @dataclass(frozen=True, slots=True)
 class BendResult:
-    """The answer to a target bend: the best candidate, the runners-up and whether the target is met."""
+    """The answer to a target bend: the best candidate, the runners-up and whether the target is met.
+
+    Attributes
+    ----------
+    target_deg, pressure_kpa, length_mm : float
+    best : BendCandidate
+        The sewable design meeting the target best (the nearest one when none meets it).
+    runners_up : tuple of BendCandidate
+    reached : bool
+        A sewable design bends within ``tolerance_deg`` of the target in a valid state without
+        rule errors.
+    statement : str
+        The verdict in one line, with the physical reason when the target is not met.
+    in_range : bool
+        The target lies inside the bends the calibrated design space produces in a valid state
+        at the pressure (continuous parameters), whether or not a sewable design meets it.
+    range_deg : tuple of float or None
+        (lowest, highest) such bend over the searched patterns; None when no design has a
+        valid state at the pressure.
+    tolerance_deg : float
+    """
 
     target_deg: float
     pressure_kpa: float
@@ -332,34 +483,70 @@ class BendResult:
     runners_up: tuple[BendCandidate, ...]
     reached: bool
     statement: str
+    in_range: bool = True
+    range_deg: tuple[float, float] | None = None
+    tolerance_deg: float = 0.5
 
     def as_dict(self) -> dict:
         """JSON-ready."""
         return {"target_deg": self.target_deg, "pressure_kpa": self.pressure_kpa, "length_mm": self.length_mm,
                 "reached": self.reached, "statement": self.statement, "best": self.best.as_dict(),
-                "runners_up": [c.as_dict() for c in self.runners_up]}
+                "runners_up": [c.as_dict() for c in self.runners_up], "in_range": self.in_range,
+                "range_deg": None if self.range_deg is None else list(self.range_deg),
+                "tolerance_deg": self.tolerance_deg}
 
 
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
                   pressure_kpa: float) -> Design:
-    return Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=max(pressure_kpa, 1.0),
-                                                                     max_bend_deg=720.0),
+    operation = OperationSettings()
+    operation = dataclasses.replace(operation, max_pressure_kpa=max(operation.max_pressure_kpa, pressure_kpa),
+                                    max_bend_deg=max(operation.max_bend_deg, 720.0))
+    return Design(name, tube, MachineSettings(), operation,
                   (ActuatorSpec(name, params, Centerline.straight(length_mm), model=settings),))
 
 
-def _geometry_sensitivity(derived, model, p: float, *, width_mm: float = 0.0, angle_deg: float = 0.0) -> float:
-    """Bend change at P [deg] when the sewn width/angle is off by the given amounts (G, P0 held)."""
-    from .curve import ActuatorModel, curve
-    from .derived import derive_from_values
+def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, settings: ModelSettings, sets,
+              name: str):
+    """(design, analysis, theta_deg or None, status or None) of the generated one-actuator design."""
+    from .analysis import analyse
+    from .curve import curve
 
-    def theta(sign: float) -> float:
-        d = derive_from_values(derived.pattern, width_mm=derived.width_mm + sign * width_mm,
-                               interval_mm=derived.interval_mm, angle_deg=derived.angle_deg + sign * angle_deg,
-                               length_mm=derived.length_mm, tube=derived.tube)
-        m = ActuatorModel.from_derived(d, g_mpa=model.g_mpa, p0_kpa=model.p0_kpa, tube_law=model.tube_law)
-        return float(curve(m, [p]).theta_deg[0])
+    d = _one_actuator(params, length_mm, tube, settings, name, pressure_kpa)
+    a = analyse(d, calibration_sets=sets)
+    act = a.actuators[0]
+    if act.choice is None:
+        return d, a, None, None
+    c = curve(act.model, [pressure_kpa])
+    return d, a, float(c.theta_deg[0]), int(c.status[0])
 
-    return 0.5 * (theta(1.0) - theta(-1.0))
+
+def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
+    """The turn of a leg of a cross pattern whose end moves one machine-grid unit along the path [deg].
+
+    >>> round(angle_grid_step_deg(7.0, 45.0), 4)
+    0.4063
+    """
+    a = math.radians(angle_deg)
+    return math.degrees(math.atan(math.tan(a) + DEFAULT_TOLERANCES.machine_grid_mm / width_mm) - a)
+
+
+def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float, **kw) -> tuple[Sensitivity, ...]:
+    """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again."""
+    steps = [("width_mm", 2.0 * DEFAULT_TOLERANCES.machine_grid_mm)]
+    if pattern_kind(params.pattern).has_angle:
+        steps.append(("angle_deg", angle_grid_step_deg(params.width_mm, params.angle_deg)))
+    out = []
+    for key, step in steps:
+        change = []
+        for sign in (-1.0, 1.0):
+            moved = dataclasses.replace(params, **{key: round(getattr(params, key) + sign * step, 10)})
+            try:
+                _, _, theta, _ = _analysed(moved, length_mm, pressure_kpa, **kw)
+            except EmbroactError:
+                theta = None
+            change.append(math.nan if theta is None else theta - theta_deg)
+        out.append(Sensitivity(key, step, change[0], change[1]))
+    return tuple(out)
 
 
 def _limits(model, p: float) -> tuple[str, float]:
@@ -382,35 +569,44 @@ def _limits(model, p: float) -> tuple[str, float]:
     return text, p_lim - p
 
 
+def exact_pressure_kpa(model, target_deg: float) -> float | None:
+    """The pressure at which ``model`` bends by ``target_deg`` in a valid state (BENDING), or None.
+
+    >>> from embroact.predict.curve import ActuatorModel, curve
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> p = exact_pressure_kpa(m, 90.0)
+    >>> round(float(curve(m, [p]).theta_deg[0]), 6)
+    90.0
+    """
+    from .curve import pressure_at
+
+    c = pressure_at(model, [target_deg])
+    if int(c.status[0]) != int(Status.BENDING):
+        return None
+    return float(c.pressure_kpa[0])
+
+
 def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
                tube: Tube, settings: ModelSettings, sets, name: str, polish: bool) -> BendCandidate | None:
-    """Generate and analyse the design at x (polishing x on the analysed design); None if it fails the rules."""
-    from .analysis import analyse
-    from .curve import curve
+    """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
+    needle points are on the machine grid); None if it is not in a valid state or fails the rules."""
     from .rules import check_design
 
-    def analysed(v):
-        d = _one_actuator(space.params(v), length_mm, tube, settings, name, pressure_kpa)
-        a = analyse(d, calibration_sets=sets)
-        act = a.actuators[0]
-        if act.choice is None:
-            return d, a, None, None
-        c = curve(act.model, [pressure_kpa])
-        return d, a, float(c.theta_deg[0]), int(c.status[0])
-
-    d, a, theta, status = analysed(x)
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name)
+    d, a, theta, status = _analysed(space.params(x), length_mm, pressure_kpa, **kw)
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
         x0, t0 = x, theta
         x1 = min(max(x + 1e-4 * (space.high - space.low), space.low), space.high)
-        for _ in range(6):
+        for _ in range(8):
             if abs(t0 - target_deg) <= _BEND_TOL_DEG:
                 break
-            _, _, t1, _ = analysed(x1)
+            _, _, t1, _ = _analysed(space.params(x1), length_mm, pressure_kpa, **kw)
             if t1 is None or t1 == t0:
                 break
             x0, x1, t0 = x1, min(max(x1 - (t1 - target_deg) * (x1 - x0) / (t1 - t0), space.low), space.high), t1
-        x = x0
-        d, a, theta, status = analysed(x)
+        x = round(x0, 6)
+        d, a, theta, status = _analysed(space.params(x), length_mm, pressure_kpa, **kw)
     if theta is None or status not in _VALID:
         return None
     findings = check_design(a)
@@ -421,39 +617,149 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     limit, margin = _limits(model, pressure_kpa)
     span = space.high - space.low
     edge = min(x - space.low, space.high - x) / span if span > 0.0 else 0.0  # a one-point calibration: no room
-    s_w = _geometry_sensitivity(act.derived, model, pressure_kpa, width_mm=0.05) * 2.0  # per 0.1 mm
-    s_a = _geometry_sensitivity(act.derived, model, pressure_kpa, angle_deg=0.5) if pattern_kind(space.pattern).has_angle else None
     range_note = (f"the {space.describe()} range: {space.parameter} {x:.4g} is "
                   f"{min(x - space.low, space.high - x):.3g} from its end")
     limit_note = f"{limit} ({margin:.1f} kPa above the target pressure)" if math.isfinite(margin) else limit
     binding = range_note if edge * pressure_kpa <= (margin if math.isfinite(margin) else math.inf) * 0.5 \
         else limit_note
     band = a.bands([pressure_kpa])[0]
-    return BendCandidate(space.pattern, space.params(x), d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
-                         s_w, s_a, binding, tuple(sorted({f.code for f in findings})),
-                         None if band is None else float(band.theta_sd_deg[0]))
+    params = space.params(x)
+    return BendCandidate(space.pattern, params, d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
+                         _sensitivity(params, theta, length_mm, pressure_kpa, **kw), binding,
+                         tuple(sorted({f.code for f in findings})),
+                         None if band is None else float(band.theta_sd_deg[0]),
+                         sum(f.severity.name == "WARNING" for f in findings), exact_pressure_kpa(model, target_deg),
+                         tuple(f"{f.code} {f.severity.name.lower()}: {f.message}" for f in findings))
 
 
-def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, table) -> str:
+#: Bisection (golden-section) steps locating a boundary of the valid states (an extreme of the bend) in the
+#: parameter: a table step of 1/120 of the range shrinks to below 1e-8 of it.
+_EXTREME_STEPS = 32
+
+
+#: Points of the (cheap, model-free) scan that locates the jumps of a pattern's sewn geometry.
+_JUMP_SCAN_POINTS = 2401
+
+
+def _length_jumps(space: DesignSpace, length_mm: float) -> np.ndarray:
+    """(k, 2) parameter values just below and above each jump of the sewn geometry over the range: a cross
+    pattern's leg pitches (:meth:`DesignSpace.breaks`) and its embroidered length, whole intervals of a
+    continuously changing interval, both jump; bisected to 1e-12 of the range. Empty for a zigzag."""
+    if not pattern_kind(space.pattern).has_angle:
+        return np.zeros((0, 2))
+
+    def key(v):  # the whole numbers the sewn geometry is made of: leg pitches, intervals along the length
+        q = space.params(float(v))
+        pitches = round(2.0 * q.width_mm * math.tan(math.radians(q.angle_deg)) / q.interval_mm)
+        return pitches, whole_intervals(length_mm, q.interval_mm)
+
+    x = np.linspace(space.low, space.high, _JUMP_SCAN_POINTS)
+    keys = [key(v) for v in x]
+    out = []
+    for i in range(len(x) - 1):
+        if keys[i] == keys[i + 1]:
+            continue
+        lo, hi = float(x[i]), float(x[i + 1])
+        k_lo = keys[i]
+        while hi - lo > 1e-12 * (space.high - space.low):
+            mid = 0.5 * (lo + hi)
+            if key(mid) == k_lo:
+                lo = mid
+            else:
+                hi = mid
+        out.append((lo, hi))
+    return np.asarray(out, dtype=np.float64).reshape(-1, 2)
+
+
+def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table) -> tuple[float, float] | None:
+    """(lowest, highest) bend at P* in a valid state over the space's continuous parameter; None if none.
+
+    The table brackets every candidate: its valid points, each boundary of the valid states
+    between two table points (bisected, keeping the valid side), each interior extreme of
+    the bend (golden-section search between its neighbours) and both sides of each jump of the
+    sewn geometry (:meth:`DesignSpace.breaks`); all brackets are refined together, one
+    vectorised model evaluation per step.
+    """
     x, theta, status = table
     ok = np.isin(status, _VALID)
     if not ok.any():
+        return None
+
+    def at(values):
+        params = [space.params(float(v)) for v in values]
+        th, st = model.theta(params, [_legs(q, length_mm)[1] for q in params])
+        return np.asarray(th, dtype=np.float64), np.isin(st, _VALID)
+
+    found = [float(v) for v in theta[ok]]
+    jumps = _length_jumps(space, length_mm)
+    if jumps.size:  # where the sewn geometry jumps, either side of it (between jumps the bend is smooth)
+        th, valid = at(np.concatenate([jumps[:, 0], jumps[:, 1]]))
+        found += th[valid].tolist()
+    edge = np.flatnonzero(ok[:-1] != ok[1:])
+    if edge.size:  # boundaries of the valid states: bisect, keep the valid side
+        good = np.where(ok[edge], x[edge], x[edge + 1])
+        bad = np.where(ok[edge], x[edge + 1], x[edge])
+        for _ in range(_EXTREME_STEPS):
+            mid = 0.5 * (good + bad)
+            _, valid = at(mid)
+            good, bad = np.where(valid, mid, good), np.where(valid, bad, mid)
+        found += at(good)[0].tolist()
+    inner = np.arange(1, len(x) - 1)
+    inner = inner[ok[inner - 1] & ok[inner] & ok[inner + 1]]
+    peaks = [(i, s) for s in (1.0, -1.0) for i in inner
+             if s * theta[i] > s * theta[i - 1] and s * theta[i] >= s * theta[i + 1]]  # a plateau is no peak
+    if peaks:  # interior maxima (sign 1) and minima (sign -1): golden section, all at once
+        sign = np.array([s for _, s in peaks])
+        a = np.array([x[i - 1] for i, _ in peaks], dtype=np.float64)
+        b = np.array([x[i + 1] for i, _ in peaks], dtype=np.float64)
+        g = (math.sqrt(5.0) - 1.0) / 2.0
+        for _ in range(_EXTREME_STEPS):
+            c, d = b - g * (b - a), a + g * (b - a)
+            th, valid = at(np.concatenate([c, d]))
+            score = np.where(valid, np.concatenate([sign, sign]) * th, -np.inf)
+            left = score[: len(c)] >= score[len(c):]
+            a, b = np.where(left, a, c), np.where(left, d, b)
+        th, valid = at(0.5 * (a + b))
+        found += th[valid].tolist()
+    return min(found), max(found)
+
+
+def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, bend_range, p0_low_kpa: float) -> str:
+    """One line, in physical terms, why no design of ``space`` bends by the target at the pressure."""
+    if bend_range is None:
+        if pressure_kpa <= p0_low_kpa:
+            return (f"{space.pattern}: {pressure_kpa:g} kPa is below the transition pressure P0 of every calibrated "
+                    f"{space.pattern} design (lowest {p0_low_kpa:.1f} kPa): the tube only inflates, nothing bends")
         return f"{space.pattern}: no valid state at {pressure_kpa:g} kPa anywhere in {space.describe()}"
-    lo, hi = float(theta[ok].min()), float(theta[ok].max())
+    lo, hi = bend_range
     if target_deg > hi:
-        return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at most {hi:+.1f} deg in a valid state over "
+        return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at most {hi:+.2f} deg in a valid state over "
                 f"{space.describe()}")
-    if lo > 0.0:
-        return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at least {lo:+.1f} deg in a valid state over "
-                f"{space.describe()}")
-    return (f"{space.pattern}: at {pressure_kpa:g} kPa its most negative bend in a valid state over "
-            f"{space.describe()} is {lo:+.1f} deg")
+    return (f"{space.pattern}: at {pressure_kpa:g} kPa bends at least {lo:+.2f} deg in a valid state over "
+            f"{space.describe()}")
+
+
+def _lowest_p0_kpa(space: DesignSpace, length_mm: float, model: _Model) -> float:
+    """The lowest transition pressure over the space's table [kPa]."""
+    xs = np.linspace(space.low, space.high, 21)
+    return float(min(model.model(space.params(v), length_mm).p0_kpa for v in xs))
+
+
+def _rank(c: BendCandidate, target_deg: float, p: float):
+    """Clean candidates first, then the closer bend, then the wider margin to limit and range end."""
+    return (c.warning_count > 0, round(abs(c.theta_deg - target_deg), 6), -min(c.margin_kpa / p, 10.0) - c.range_margin,
+            c.pattern)
 
 
 def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", length_mm: float = 100.0,
                 tube: Tube = Tube(), settings: ModelSettings = ModelSettings(), sets: Iterable = (),
-                allow_extrapolation: bool = False, name: str = "A1") -> BendResult:
-    """The single actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
+                allow_extrapolation: bool = False, name: str = "A1", tolerance_deg: float = 0.5) -> BendResult:
+    """The single sewable actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
+
+    The continuous parameter's roots are found on the model; the designs tried are those a
+    machine sews (a zigzag width on the 0.2 mm grid of a straight actuator's rails, a cross
+    angle polished on the generated needle points), each generated and analysed as ``embroact
+    predict`` does, so the reported bend is that of the written file's needle points.
 
     Parameters
     ----------
@@ -470,67 +776,79 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         Search beyond the calibrated range.
     name : str
         The actuator's name in the written design.
+    tolerance_deg : float
+        A sewable design within this of the target meets it [deg], in (0, 10].
 
     Returns
     -------
     BendResult
-        ``reached`` False: ``best`` is the nearest achievable design and ``statement`` says why.
+        ``reached`` False: ``best`` is the nearest sewable design (with the pressure at which it
+        reaches the target exactly, where it does) and ``statement`` says why.
     """
     target = check_range("bend_deg", bend_deg, low=-720.0, high=720.0, high_inclusive=True, low_inclusive=True)
     if target == 0.0:
         raise ParameterError("bend_deg must be non-zero, got 0")
     p = check_target_pressure(pressure_kpa)
     length = check_range("length_mm", length_mm, low=10.0, high=1000.0, low_inclusive=True, high_inclusive=True)
+    tol = check_range("tolerance_deg", tolerance_deg, low=0.0, high=10.0, high_inclusive=True)
     if pattern not in PATTERN_CHOICES:
         raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
     sets = tuple(sets)
     kinds = PATTERN_KINDS.names() if pattern == "any" else (pattern,)
     model = _Model(p, tube, settings, sets)
-    found, reasons, nearest = [], [], []
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name)
+    cands: list[BendCandidate] = []
+    reasons, ranges = [], []
     for kind in kinds:
         space = design_space(kind, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
         table = model.table(space, length)
-        roots = _roots(model, space, length, target, table)
-        for x in roots:
-            cand = _candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
-                              polish=True)
-            if cand is not None and abs(cand.theta_deg - target) <= 0.05:
-                found.append(cand)
-        if not roots:
-            reasons.append(_why_not(space, target, p, table))
-        x, theta, status = table
-        ok = np.flatnonzero(np.isin(status, _VALID))
-        ok = ok[np.unique(x[ok], return_index=True)[1]]  # one entry per parameter value (one-point ranges)
-        for i in ok[np.argsort(np.abs(theta[ok] - target), kind="stable")][:3]:
-            nearest.append((abs(float(theta[i]) - target), space, float(x[i])))
-    nearest.sort(key=lambda t: (t[0], t[1].pattern, t[2]))
-    if found:
-        # best: the widest margin to the nearest limit and range end, in that order of concern
-        found.sort(key=lambda c: (-min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern))
-        others = [t for t in nearest if t[1].pattern not in {c.pattern for c in found}]
-        misses = [_candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
-                             polish=False) for _, space, x in others[:1]]
-        return BendResult(target, p, length, found[0], tuple(found[1:]) + tuple(c for c in misses if c), True,
-                          f"met: {found[0].pattern} bends {found[0].theta_deg:.2f} deg at {p:g} kPa"
-                          + (f"; {'; '.join(reasons)}" if reasons else ""))
-    cands = []
-    for _, space, x in nearest:
-        c = _candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
-                       polish=False)
-        if c is not None:
-            cands.append(c)
+        bend_range = _bend_range(model, space, length, table)
+        if bend_range == (0.0, 0.0):  # only inflation: no design of the space bends at this pressure
+            bend_range = None
+        if bend_range is not None:
+            ranges.append(bend_range)
+        inside = bend_range is not None and bend_range[0] <= target <= bend_range[1]
+        xs = list(_roots(model, space, length, target, table)) if inside else []
+        if not xs:  # the nearest the space comes: its valid table point closest to the target, refined
+            x, theta, status = table
+            ok = np.flatnonzero(np.isin(status, _VALID))
+            xs = [float(x[i]) for i in ok[np.argsort(np.abs(theta[ok] - target), kind="stable")][:1]]
+            if not inside:
+                reasons.append(_why_not(space, target, p, bend_range, _lowest_p0_kpa(space, length, model)))
+        for root in xs:
+            for v in space.sewable(root, spread=2):
+                c = _candidate(space, v, length, p, target, polish=space.grid_step == 0.0 and inside, **kw)
+                if c is not None and all(c.params != o.params for o in cands):
+                    cands.append(c)
+    whole = (min(r[0] for r in ranges), max(r[1] for r in ranges)) if ranges else None
+    in_range = whole is not None and any(r[0] <= target <= r[1] for r in ranges)
     if not cands:
-        raise ParameterError(f"bend_deg {target:g} at pressure_kpa {p:g}: no valid design in any pattern; "
-                             + "; ".join(reasons))
-    cands.sort(key=lambda c: abs(c.theta_deg - target))
+        raise ParameterError(f"bend_deg {target:g} at pressure_kpa {p:g}: no valid sewable design in any pattern; "
+                             + "; ".join(reasons or ["every design fails the design rules or leaves the valid states"]))
+    met = sorted((c for c in cands if in_range and abs(c.theta_deg - target) <= tol), key=lambda c: _rank(c, target, p))
+    if met:
+        best = met[0]
+        others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p)) if c is not best]
+        note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
+        return BendResult(target, p, length, best, tuple(others[:2]), True,
+                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg at {p:g} kPa{note}", in_range, whole,
+                          tol)
+    cands.sort(key=lambda c: (round(abs(c.theta_deg - target), 6), c.warning_count > 0, c.pattern))
     best = cands[0]
-    if not reasons:
-        reasons = [f"the designs bending by {target:g} deg at {p:g} kPa leave the valid model states or fail the "
-                   f"design rules"]
-    statement = (f"not reachable: {'; '.join(reasons)}. Nearest: {best.pattern} with {best.theta_deg:.1f} deg "
-                 f"({best.theta_deg - target:+.1f} deg off)")
-    return BendResult(target, p, length, dataclasses.replace(best, binding="; ".join(reasons)),
-                      tuple(cands[1:3]), False, statement)
+    exact = (f"; it bends by {target:g} deg at {best.exact_pressure_kpa:.1f} kPa" if best.exact_pressure_kpa
+             else f"; it bends by {target:g} deg at no pressure in a valid state")
+    if in_range:
+        why = (f"no sewable design within {tol:g} deg: the machine grid steps "
+               f"{best.sensitivity[0].parameter} by {best.sensitivity[0].step:g}")
+    else:
+        extreme = "at most" if whole is not None and target > whole[1] else "at least"
+        bound = None if whole is None else (whole[1] if target > whole[1] else whole[0])
+        why = "; ".join(reasons) if bound is None else (f"the calibrated designs bend {extreme} {bound:+.2f} deg at "
+                                                        f"{p:g} kPa in a valid state ({'; '.join(reasons)})")
+    statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg "
+                 f"({best.theta_deg - target:+.2f} deg off){exact}")
+    return BendResult(target, p, length, dataclasses.replace(best, binding=why), tuple(cands[1:3]), False, statement,
+                      in_range, whole, tol)
 
 
 # ---------------------------------------------------------------------------- target shape
@@ -677,7 +995,9 @@ class ShapeResult:
         Every segment meets its curvature in a valid state and the design passes the rules.
     statement : str
     warnings : tuple of str
-        Codes of design-rule warnings.
+        Codes of the design-rule findings.
+    findings : tuple of str
+        ``"CODE severity: message"`` of every finding ``embroact check`` gives for the written design.
     """
 
     design: Design
@@ -693,6 +1013,7 @@ class ShapeResult:
     reached: bool
     statement: str
     warnings: tuple[str, ...] = ()
+    findings: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """JSON-ready (without the point arrays)."""
@@ -700,7 +1021,7 @@ class ShapeResult:
                 "rmse_mm": self.rmse_mm, "max_deviation_mm": self.max_deviation_mm,
                 "tip_error_mm": self.tip_error_mm, "tip_angle_error_deg": self.tip_angle_error_deg,
                 "fit_rmse_mm": self.fit_rmse_mm, "segments": [s.as_dict() for s in self.segments],
-                "warnings": list(self.warnings)}
+                "warnings": list(self.warnings), "findings": list(self.findings)}
 
 
 def _branch(x: np.ndarray, theta: np.ndarray, ok: np.ndarray, at: float) -> tuple[float, float]:
@@ -826,7 +1147,8 @@ def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, 
 
 def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tube: Tube = Tube(),
                  settings: ModelSettings = ModelSettings(), sets: Iterable = (), allow_extrapolation: bool = False,
-                 name: str = "A1", time_limit_s: float = DEFAULT_TIME_LIMIT_S, progress=None) -> ShapeResult:
+                 name: str = "A1", time_limit_s: float = DEFAULT_TIME_LIMIT_S, tolerance_mm: float = 0.5,
+                 progress=None) -> ShapeResult:
     """The segmented actuator whose fabric line bends into ``target_xy_mm`` at ``pressure_kpa``.
 
     Parameters
@@ -844,6 +1166,8 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         Wall-clock budget of the search [s], in (0, 86400]: no new curvature fit is polished once it is
         spent; the best design so far is returned (its statement says so), or, with none yet, a
         ParameterError asks for a larger limit.
+    tolerance_mm : float
+        The sewn design meets the shape when its RMSE against the target is at most this [mm], in (0, 100].
     progress : callable, optional
         ``progress(message)`` at each step of the search (the command prints them on a terminal).
 
@@ -864,6 +1188,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     if isinstance(max_segments, bool) or not isinstance(max_segments, int) or not 1 <= max_segments <= 12:
         raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r}")
     limit = check_range("time_limit_s", time_limit_s, low=0.0, high=86400.0, high_inclusive=True)
+    tolerance_mm = check_range("tolerance_mm", tolerance_mm, low=0.0, high=100.0, high_inclusive=True)
     say = progress if progress is not None else (lambda message: None)
     sets = tuple(sets)
     sj, xy, length = _resample(target_xy_mm)
@@ -883,14 +1208,17 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     # fewest segments first, among fits any chain of arcs could be polished from; the first that is
     # reached and close wins, else the closest reached one, else the closest
     plausible = [f for f in fits if f[2] <= max(_FIT_PLAUSIBLE_MM, 1.25 * min(g[2] for g in fits))]
+    # the machine grid steps a zigzag's width: where the fewest segments miss, more segments mix neighbouring widths
+    more = range(len(fits) + 1, min(max_segments, len(fits) + _EXTRA_SEGMENTS) + 1)
     results, failures = [], []
-    for lengths, kappa, rmse_fit in plausible:
+    for lengths, kappa, rmse_fit in itertools.chain(plausible, (fit_curvature(xy, n) for n in more)):
         if time.monotonic() - start > limit:
             failures.append(f"time limit {limit:g} s reached before {len(lengths)} segments were tried")
             break
         say(f"trying {len(lengths)} segment(s) (curvature fit RMSE {rmse_fit:.3f} mm; {time.monotonic() - start:.1f} s)")
         try:
-            r = _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name, p)
+            r = _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name, p,
+                               tolerance_mm, progress)
         except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
             failures.append(f"{len(lengths)} segments: {exc}")
             continue
@@ -907,13 +1235,78 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     return best
 
 
+def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: ModelSettings, p: float) -> Design:
+    """The (segmented) one-actuator design of parameters ``x`` and segment ``lengths``."""
+    segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
+    if len(segs) == 1:
+        spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)
+    else:
+        spec = ActuatorSpec.segmented(name, segs, Centerline.straight(float(lengths.sum())), model=settings)
+    return Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=p, max_bend_deg=720.0), (spec,))
+
+
+def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, progress=None):
+    """The sewable design nearest ``x`` that fits the target best on the analysed (sewn) design.
+
+    Each stepped parameter (a zigzag width) is moved to a value a straight actuator sews exactly;
+    then a pattern search on the analysed design (its needle points on the machine grid) keeps every
+    single move that lowers the position error: a stepped parameter one grid step either way, a
+    continuous one (a cross angle) by 0.2 deg, and, while the error is above ``_SHAPE_GOOD_MM``, a
+    boundary between two segments by 1 mm (the grid's coarse widths are met by segment lengths);
+    the continuous steps are refined to an eighth. Returns ``(x, lengths, (design, analysis, shape, theta))``.
+    """
+    from .analysis import analyse
+
+    tried = [0]
+
+    def evaluate(v, ls):
+        tried[0] += 1
+        if progress is not None and tried[0] % _PROGRESS_EVERY == 1:
+            progress(f"{len(ls)} segment(s) on the machine grid: {tried[0]} sewn designs tried")
+        design = _shape_design(seg_spaces, v, ls, name, tube, settings, p)
+        a = analyse(design, calibration_sets=sets)
+        shape, theta = a.shapes(name, [p])[0]
+        return float(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))), (design, a, shape, theta)
+
+    v = np.array([min(sp.sewable(u), key=lambda g: (abs(g - u), g)) for sp, u in zip(seg_spaces, x)])
+    ls = np.asarray(lengths, dtype=np.float64).copy()
+    cost, found = evaluate(v, ls)
+    angle_step, length_step = _SHAPE_ANGLE_STEP_DEG, _SHAPE_LENGTH_STEP_MM
+    for _ in range(_GRID_ROUNDS):
+        trials = []
+        for i, sp in enumerate(seg_spaces):
+            near = sp.sewable(v[i], spread=2) if sp.grid_step else (v[i] - angle_step, v[i] + angle_step)
+            trials += [(i, round(float(g), 4)) for g in near if g != v[i] and sp.low <= g <= sp.high]
+        moves = []
+        if cost > _SHAPE_GOOD_MM**2:
+            moves = [(b, d) for b in range(len(ls) - 1) for d in (-length_step, length_step)
+                     if min(ls[b] + d, ls[b + 1] - d) >= _MIN_SEGMENT_MM]
+        moved = False
+        for i, g in trials:
+            trial = v.copy()
+            trial[i] = g
+            c, f = evaluate(trial, ls)
+            if c < cost - 1e-12:
+                v, cost, found, moved = trial, c, f, True
+        for b, d in moves:
+            trial = ls.copy()
+            trial[b], trial[b + 1] = round(trial[b] + d, 2), round(trial[b + 1] - d, 2)
+            c, f = evaluate(v, trial)
+            if c < cost - 1e-12:
+                ls, cost, found, moved = trial, c, f, True
+        if not moved:
+            if angle_step <= _SHAPE_ANGLE_STEP_DEG / 8.0:
+                break
+            angle_step, length_step = angle_step / 2.0, length_step / 2.0
+    return v, ls, found
+
+
 def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,
-                   p) -> ShapeResult:
+                   p, tolerance_mm=0.5, progress=None) -> ShapeResult:
     """Design for one curvature fit: choose each segment's pattern, polish the parameters, analyse."""
     from scipy.optimize import least_squares
 
-    from ..patterns.rules import RuleSettings, check_plan
-    from .analysis import analyse
+    from .rules import check_design
 
     lengths = np.round(lengths, 2)
     lengths[-1] = round(length - float(lengths[:-1].sum()), 2)
@@ -944,15 +1337,9 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
             best = (0.0, x)
             break
     x = np.round(best[1] if best is not None else x, 4)
+    x, lengths, (design, a, shape, theta) = _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p,
+                                                     progress)
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
-    if len(segs) == 1:
-        spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)
-    else:
-        spec = ActuatorSpec.segmented(name, segs, Centerline.straight(float(lengths.sum())), model=settings)
-    design = Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=p, max_bend_deg=720.0),
-                    (spec,))
-    a = analyse(design, calibration_sets=sets)
-    shape, theta = a.shapes(name, [p])[0]
     act = a.actuators[0]
     seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]
     curves = a.segment_curves([p])[0]
@@ -962,13 +1349,14 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     t_tgt = math.degrees(math.atan2(*(xy[-1] - xy[-2])[::-1]))
     t_pred = math.degrees(math.atan2(*(pred[-1] - pred[-2])[::-1]))
     angle_err = (t_pred - t_tgt + 180.0) % 360.0 - 180.0
-    findings = check_plan(a.plan, RuleSettings.for_machine(design.machine))
+    findings = check_design(a)  # the gate `embroact check` and `build` run on the written file
     errors = sorted({f.code for f in findings if f.severity.name == "ERROR"})
     notes = [c[3] for c in chosen if c[3]]
     out_segs = tuple(ShapeSegment(sg.params, sg.length_mm, t, float(k), note)
                      for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[3] for c in chosen]))
     rmse = float(np.sqrt(np.mean(dev**2)))
-    reached = not notes and not bad and not errors
+    # a segment whose curvature alone is out of reach may still leave the whole line close: the sewn line decides
+    reached = not bad and not errors and rmse <= tolerance_mm and (not notes or rmse <= _SHAPE_GOOD_MM)
     why = []
     if notes:
         why.append("; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3]))
@@ -976,7 +1364,11 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
         why.append(f"segments {bad} leave the valid model states at {p:g} kPa")
     if errors:
         why.append(f"design-rule errors {', '.join(errors)}")
+    if rmse > tolerance_mm:
+        why.append(f"the sewable designs (zigzag widths in {spaces['zigzag'].grid_step:g} mm steps on the machine "
+                   f"grid) leave an RMSE above {tolerance_mm:g} mm")
     statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm" if reached else
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
     return ShapeResult(design, out_segs, p, xy, pred, rmse, float(dev.max()), float(dev[-1]), float(angle_err),
-                       float(rmse_fit), reached, statement, tuple(sorted({f.code for f in findings})))
+                       float(rmse_fit), reached, statement, tuple(sorted({f.code for f in findings})),
+                       tuple(f"{f.code} {f.severity.name.lower()}: {f.message}" for f in findings))

@@ -91,6 +91,11 @@ def generated_plans():
             [cross(Centerline.straight(50.0, origin_mm=(0.0, 20.0 * k)), CrossParams(7.0, 1.4, 45.0), name=f"C{k + 1}")
              for k in range(3)], name="three-cross")
         plans.append(("three-cross", three_cross))
+        plans.append(("segmented-curved", build_plan(design_from_dict({"name": "seg", "actuator": [{
+            "name": "S", "path": d, "segment": [
+                {"pattern": "zigzag", "width_mm": 6.1529, "interval_mm": 1, "length_mm": 45},
+                {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 46.92,
+                 "length_mm": curve.length_mm - 45}]}]}))))
     return plans
 
 

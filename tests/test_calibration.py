@@ -4,6 +4,7 @@ Expected values are the paper's tables (docs/model.md section 7) and linear inte
 """
 import dataclasses
 
+import numpy as np
 import pytest
 
 from embroact.patterns.base.errors import ModelDomainError, ParameterError
@@ -46,14 +47,56 @@ def test_paper_set_metadata():
     assert len(PAPER_2025.points) == 7
 
 
-def test_interpolation_is_linear_in_the_parameter():
-    c = lookup("zigzag", width_mm=6.0)  # midway 5..7
-    assert c.g_mpa == pytest.approx((0.8 + 2.7) / 2, rel=1e-15)
-    assert c.p0_kpa == pytest.approx((50 + 85) / 2, rel=1e-15)
+def test_interpolation_is_monotone_cubic_in_the_parameter():
+    """PCHIP (Fritsch-Carlson) by hand at w = 6 mm: secants 0.95, 0.35 /mm; slopes 1.25 (end, three-point) and
+    12 / (6 / 0.95 + 6 / 0.35) (middle); the Hermite cubic at t = 1/2."""
+    m0, m1 = 1.25, 12.0 / (6.0 / 0.95 + 6.0 / 0.35)
+    c = lookup("zigzag", width_mm=6.0)
+    assert c.g_mpa == pytest.approx(0.5 * 0.8 + 0.125 * 2 * m0 + 0.5 * 2.7 - 0.125 * 2 * m1, rel=1e-14)
     assert c.interpolated and not c.extrapolated
-    c = lookup("cross", width_mm=7.0, angle_deg=40.0)  # 1/3 of the way from 45 back to 30
-    assert c.g_mpa == pytest.approx(12.0 + (1.3 - 12.0) * 10 / 15, rel=1e-14)
-    assert c.p0_kpa == pytest.approx(160.0 + 10.0 * 10 / 15, rel=1e-14)
+    assert lookup("zigzag", width_mm=7.0).g_mpa == 2.7  # the calibrated value at a calibrated point
+    scipy = pytest.importorskip("scipy.interpolate")
+    for pattern, xs, g, p0 in [("zigzag", [5, 7, 9], [0.8, 2.7, 3.4], [50, 85, 180]),
+                               ("cross", [15, 30, 45, 60], [2.9, 12.0, 1.3, 2.9], [150, 160, 170, 200])]:
+        for x in np.linspace(xs[0], xs[-1], 37):
+            c = lookup(pattern, width_mm=7.0 if pattern == "cross" else x, angle_deg=x if pattern == "cross" else None)
+            assert c.g_mpa == pytest.approx(float(scipy.PchipInterpolator(xs, g)(x)), rel=1e-12)
+            assert c.p0_kpa == pytest.approx(float(scipy.PchipInterpolator(xs, p0)(x)), rel=1e-12)
+            k = int(np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(xs) - 2))
+            assert min(g[k], g[k + 1]) - 1e-12 <= c.g_mpa <= max(g[k], g[k + 1]) + 1e-12  # monotone between points
+
+
+def test_no_snap_band_around_a_calibrated_point():
+    """0.6 um either side of 7 mm: G moves by the slope times the step, not to the calibrated value."""
+    a, b, c = (lookup("zigzag", width_mm=w).g_mpa for w in (6.9994, 7.0, 7.0006))
+    assert b == 2.7 and a < b < c and (c - a) == pytest.approx(2 * 0.0006 * 12.0 / (6.0 / 0.95 + 6.0 / 0.35), rel=1e-3)
+
+
+@pytest.mark.parametrize("pattern", ["zigzag", "cross"])
+def test_bend_is_continuous_over_a_dense_scan(pattern):
+    """10,000 widths (zigzag) / angles (cross) across the calibrated range, at a pressure where most bend: no step
+    of the bend larger than 1.5 x the local slope (the larger neighbouring step) x the step. The embroidered length is
+    held at 100 mm (a cross pattern's whole leg pitches change it in steps, a separate parameter)."""
+    from embroact.patterns.design import ModelSettings
+    from embroact.patterns.params import Tube
+    from embroact.predict.curve import sweep
+    from embroact.predict.inverse import _Model, design_space
+    from embroact.predict.status import Status
+
+    space = design_space(pattern)
+    pressure = 200.0 if pattern == "zigzag" else 260.0
+    model = _Model(pressure, Tube(), ModelSettings(), ())
+    x = np.linspace(space.low, space.high, 10_000)
+    params = [space.params(v) for v in x]
+    c = sweep([model.model(q, 100.0) for q in params], [pressure])
+    th, st = np.asarray(c.theta_deg)[:, 0], np.asarray(c.status)[:, 0]
+    ok = st == int(Status.BENDING)
+    d = np.abs(np.diff(th))
+    both = ok[:-1] & ok[1:]
+    assert both.sum() > 5000
+    local = np.maximum(np.concatenate([[0.0], d[:-1]]), np.concatenate([d[1:], [0.0]]))
+    jumps = both & (d > 1.5 * local + 1e-9)
+    assert not jumps.any(), [(float(x[i]), float(th[i]), float(th[i + 1])) for i in np.flatnonzero(jumps)[:5]]
 
 
 def test_clamp_outside_range_is_flagged():

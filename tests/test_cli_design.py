@@ -18,7 +18,7 @@ def _json(capsys, argv):
     return json.loads(capsys.readouterr().out)
 
 
-@pytest.mark.parametrize("bend, pressure, pattern", [(90.0, 150.0, "zigzag"), (-40.0, 250.0, "cross"),
+@pytest.mark.parametrize("bend, pressure, pattern", [(84.5, 150.0, "zigzag"), (-40.0, 250.0, "cross"),
                                                      (30.0, 220.0, "cross")])
 def test_target_bend_met_as_predict_reads_the_file(tmp_path, capsys, bend, pressure, pattern):
     out = tmp_path / "d.toml"

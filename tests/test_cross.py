@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from embroact.patterns.centerline import Centerline
+from embroact.patterns.limits import GRID_ROUNDING_MM
 from embroact.patterns.cross import MAX_EDGE_STITCH_MM, closing, cross
 from embroact.patterns.base.errors import ParameterError, PatternError
 from embroact.patterns.params import CrossParams, ZigzagParams
@@ -120,8 +121,9 @@ def test_adjustments(angle, adjust, passes, interval, angle_out, note):
     a = plan.actuators[0]
     assert a.adjustments == (note,)
     assert a.realised.passes == passes
-    assert a.realised.interval_mm == pytest.approx(interval, rel=1e-9)
-    assert a.realised.angle_deg == pytest.approx(angle_out, abs=1e-9)
+    # measured on the needle points, which sit on the 0.1 mm machine grid
+    assert a.realised.interval_mm == pytest.approx(interval, abs=0.005)
+    assert a.realised.angle_deg == pytest.approx(angle_out, abs=0.05)
     assert a.params.angle_deg == angle  # the request is kept
     assert closing(CrossParams(7.0, 1.4, angle), adjust)[0] == passes
 
@@ -140,14 +142,16 @@ def test_invariants_on_every_path(name, angle):
     assert_valid_plan(plan, width_mm=7.0, interval_mm=s, angle_deg=alpha, passes=n)
     ds, do, _ = _leg_frame(plan, path)
     leg_angle = np.degrees(np.arctan2(np.abs(ds), np.abs(do)))
-    assert np.max(np.abs(leg_angle - alpha)) <= 0.1  # every leg, in the path frame
+    # every leg, in the path frame, within what rounding its two ends to the machine grid can turn it
+    grid_turn = np.degrees(2 * GRID_ROUNDING_MM * (np.abs(ds) + np.abs(do)) / (ds**2 + do**2))
+    assert np.all(np.abs(leg_angle - alpha) <= 0.1 + grid_turn)
     _, off = path.project(plan.xy_mm[plan.commands == Command.STITCH])
-    np.testing.assert_allclose(np.abs(off), 3.5, rtol=1e-9)  # every needle point on a rail
+    np.testing.assert_allclose(np.abs(off), 3.5, atol=GRID_ROUNDING_MM + 1e-9)  # every needle point on a rail
 
 
 def test_straight_rails_by_shapely_distance():
     plan = cross(Centerline.straight(60.0, rotation_deg=-40.0), PAPER)
-    assert rail_distance_error(plan, plan.commands == Command.STITCH) < 1e-9
+    assert rail_distance_error(plan, plan.commands == Command.STITCH) <= GRID_ROUNDING_MM + 1e-9
 
 
 @pytest.mark.parametrize("name", ["arc_left", "s_curve"])
@@ -159,7 +163,7 @@ def test_parallel_spacing_on_curves(name):
     lo, hi = where.min() + 14.0, where.max() - 14.0
     for f in (-1, 1):
         x = np.sort(where[(family == f) & (where > lo) & (where < hi)])
-        np.testing.assert_allclose(np.diff(x), 1.4, rtol=0.01)
+        np.testing.assert_allclose(np.diff(x), 1.4, atol=2 * GRID_ROUNDING_MM)  # leg ends on the machine grid
 
 
 @pytest.mark.parametrize(
@@ -217,4 +221,8 @@ def test_property_any_cross_on_an_arc(w, s, angle, radius_factor, extra, left):
             cross(path, params)
         return
     plan = cross(path, params)
+    if s_real * (1.0 - w / (2.0 * radius)) < 5 * GRID_ROUNDING_MM:  # leg spacing on the inner rail
+        assert_record_convention(plan)  # near the machine grid: rounding decides the realised values
+        assert_outside_corridor(plan)
+        return
     assert_valid_plan(plan, width_mm=w, interval_mm=s_real, angle_deg=alpha, passes=n)

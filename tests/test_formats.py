@@ -206,16 +206,27 @@ def test_deterministic_bytes(fmt):
     assert encode(plan, fmt)[0] == encode(plan, fmt)[0]
 
 
-@pytest.mark.parametrize("fmt", ["pes", "vp3", "jef", "tbf"])
+@pytest.mark.parametrize("fmt", ALL)
 @pytest.mark.parametrize("label,plan", generated_plans(), ids=lambda v: v if isinstance(v, str) else "")
 def test_generated_round_trip(tmp_path, fmt, label, plan):
+    """A generated plan holds the machine's points: the file, read by pystitch, holds exactly the plan's needle
+    points (no rounding left for the writer), and each is a whole number of the format's unit."""
     path = tmp_path / f"design.{fmt}"
     res = write(plan, path)
     back = pe.read(str(path), dict(RAW))
     got = np.array([(x, -y) for x, y, c in back.stitches if c & pe.COMMAND_MASK == pe.STITCH]) / 10.0
     got = got + np.array(res.origin_mm)
     want = needle_points(plan)
-    assert got.shape == want.shape and np.abs(got - want).max() <= 0.05 + 1e-9
+    unit = FORMAT_LIMITS[fmt].unit_mm
+    assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+    assert np.abs(plan.xy_mm / unit - np.rint(plan.xy_mm / unit)).max() < 1e-9
+
+
+def test_every_format_declares_the_plan_grid():
+    """The plan is made on one grid; every format written today stores positions in that unit (0.1 mm)."""
+    from embroact.patterns.base.tolerances import DEFAULT_TOLERANCES
+
+    assert {f.unit_mm for f in FORMAT_LIMITS.values()} == {DEFAULT_TOLERANCES.machine_grid_mm} == {0.1}
 
 
 def test_exp_trim_moves_nothing():

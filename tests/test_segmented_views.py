@@ -60,11 +60,12 @@ def test_side_view_draws_the_chain_of_arcs_at_each_segments_bend(hook):
     tip = _hand_tip([length for length, _ in pieces], want)
     shape = panel.shape(k)
     assert shape.profile_mm([shape.length_mm])[0] == pytest.approx([tip.real, tip.imag], abs=1e-9)
-    # the shape the hook was designed for: its end lies where the target's does (the README: 0.24 mm)
+    # the shape the hook was designed for: its end lies near the target's (the README: 1.2 mm, the machine grid's
+    # 0.2 mm steps of zigzag width leave the drawn arcs' curvatures between two sewable ones)
     with TARGET.open() as f:
         rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))][1:]
     end = complex(*map(float, rows[-1]))
-    assert abs(tip - end) < 0.3
+    assert abs(tip - end) < 1.5
 
 
 def test_side_view_svg_states_carry_the_whole_strips_bend(tmp_path, capsys, hook):
@@ -189,8 +190,8 @@ def test_stitch_preview_caption_lists_every_segment(tmp_path, capsys):
     assert main(["preview", "stitches", str(HOOK), "-o", str(out)]) == 0
     capsys.readouterr()
     svg = out.read_text()
-    assert "A1 segment 0 zigzag: w 8.58 mm" in svg and "A1 segment 1 zigzag: w 6.22 mm" in svg
-    assert "A1 segment 2 cross: w 7.00 mm, s 1.384 mm, alpha0 52.11 deg" in svg
+    assert "A1 segment 0 zigzag: w 8.80 mm" in svg and "A1 segment 1 zigzag: w 6.00 mm" in svg
+    assert "A1 segment 2 cross: w 7.00 mm, s 1.350 mm, alpha0 43.83 deg" in svg  # measured on the needle points
 
 
 def _r0(w: float, rf: float = 1.5) -> float:
@@ -206,7 +207,7 @@ def test_tight_sleeve_is_checked_on_every_segment():
     a = analyse(d)
     found = [f for f in check_design(a) if f.code == "EA202"]
     assert [f.message.split(":")[0] for f in found] == ["segment 1", "segment 2"]  # w 7 mm: r0 - r_f = 1.08 mm
-    for f, w in zip(found, (3.05, 3.2)):
+    for f, w in zip(found, (3.0, 3.2)):  # 3.05 mm: rails at +-1.525 mm, on the 0.1 mm grid +-1.5 mm
         assert f"by only {_r0(w) - 1.5:.3f} mm" in f.message
     starts = [s.plan.first_leg_mm for s in a.actuators[0].segments[1:]]
     x0 = a.plan.origin_mm[0]  # findings are placed in the machine frame; the path starts at the design's x = 0

@@ -187,8 +187,8 @@ def test_request_rules_run_per_segment():
     msgs = {f.code: [g.message for g in found if g.code == f.code] for f in found}
     # segment 1: closing the cross at 30 deg moves it to 30.96 deg (> the 0.5 deg tolerance)
     assert any(m.startswith("segment 1: leg angle 30.96 deg realised") for m in msgs["EA204"])
-    # segment 2: 33.4 deg is within the neutral band of 33.37 deg
-    assert any(m.startswith("segment 2: angle 33.40 deg") for m in msgs["EA206"])
+    # segment 2: 33.4 deg (33.41 on the machine grid's needle points) is within the neutral band of 33.37 deg
+    assert any(m.startswith("segment 2: angle 33.41 deg") for m in msgs["EA206"])
 
 
 def test_single_actuator_pieces_cover_the_path():

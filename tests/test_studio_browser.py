@@ -93,14 +93,14 @@ def test_the_page_follows_width_and_pressure_edits(studio_page):
     expected = float(analyse(design_from_dict(paper_dict(width_mm=8.5))).curves([180.0])[0].theta_deg[0])
     assert api["actuators"][0]["theta_deg"] == pytest.approx(expected, rel=1e-12)
     assert page.inner_text("#angle-0") == f"{api['actuators'][0]['theta_deg']:.2f}" != start_angle
-    assert page.inner_text("#width-0") == "8.500"
+    assert page.inner_text("#width-0") == "8.400"  # rails at +-4.25 mm sewn at +-4.2 on the 0.1 mm grid
     # the stitch preview is the API's: same layers and needle points, the new width in its caption
     shown = page.inner_html("#stitches")
     assert shown != start["stitches"]
     svg = ET.fromstring(api["stitches_svg"])
     needles = [c for g in svg.iter(f"{SVG}g") if g.get("id") == "needle-points" for c in g]
     assert page.locator("#stitches g#needle-points > *").count() == len(needles)
-    assert "w 8.50 mm" in page.text_content("#stitches g#params")
+    assert "w 8.40 mm" in page.text_content("#stitches g#params")
     # the chart is the API's: same curve points, the marker at 180 kPa
     assert page.inner_html("#chart") != start["chart"]
     dom_points = page.eval_on_selector_all("#chart polyline.curve", "els => els.map(e => e.getAttribute('points'))")
@@ -158,19 +158,21 @@ def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_pa
     page.click(f"#finding-list li[data-finding='{k}']")
     assert "active" in placed.first.get_attribute("class")
     assert page.inner_text(f"#finding-list li[data-finding='{k}']").startswith("EA105")
-    # inverse design: 90 deg at 150 kPa with a zigzag, applied to the actuator as an edit
-    page.fill("#inv-bend", "90")
+    # inverse design: 84.5 deg at 150 kPa with a zigzag (the sewable 6.2 mm bends 84.53), applied as an edit
+    page.fill("#inv-bend", "84.5")
     page.fill("#inv-pressure", "150")
     page.select_option("#inv-pattern", "zigzag")
     page.click("#inv-run")
     page.wait_for_selector("#inv-apply:not([hidden])", timeout=60_000)
-    assert page.inner_text("#inv-result").startswith("met: zigzag bends 90.00 deg at 150 kPa")
+    text = page.inner_text("#inv-result")
+    assert text.startswith("met: zigzag bends 84.53 deg at 150 kPa")
+    assert "one machine-grid step (sewn again, G, P0 and geometry following): width_mm -0.2 mm" in text
     version = page.get_attribute("body", "data-version")
     page.click("#inv-apply")
     wait_for_update(page, version)
     from embroact.predict.inverse import design_bend
 
-    width = design_bend(90.0, 150.0, pattern="zigzag").best.params.width_mm
+    width = design_bend(84.5, 150.0, pattern="zigzag").best.params.width_mm
     # the field shows 6 significant digits; the design keeps every digit (the saved file reads back the width)
     assert page.input_value("#f-actuator-0--width_mm") == repr(float(f"{width:.6g}"))
     assert page.input_value("#f-actuator-0--interval_mm") == "1"

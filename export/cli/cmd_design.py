@@ -17,7 +17,10 @@ target goes to ``--svg`` (default ``<design stem>-shape.svg``). The search is
 and for a target it cannot reach, the nearest design and why. A target no design can follow (a
 corner, a bend tighter than any pattern reaches at that pressure, a start not heading +x) is
 refused before the search; the search stops at ``--time-limit`` with the best design so far,
-and on a terminal says what it is doing. Both files are written
+and on a terminal says what it is doing. Every design tried is one a machine sews: its needle
+points on the machine grid, the bend reported the one ``embroact predict`` computes from them.
+A target no sewable design meets (``--tolerance-deg``, ``--tolerance-mm``) exits with code 5 for
+every pattern choice and writes nothing unless ``--write-nearest``. Both files are written
 atomically; the same target writes the same bytes.
 
 Examples
@@ -25,11 +28,15 @@ Examples
 >>> import os, tempfile
 >>> from embroact.export.cli.main import main
 >>> out = os.path.join(tempfile.mkdtemp(), "d.toml")
->>> main(["design", "--bend-deg", "90", "--at-kpa", "150", "--pattern", "zigzag", "-o", out])  # doctest: +ELLIPSIS
-target 90 deg at 150 kPa, l0 100 mm: met: zigzag bends 90.00 deg at 150 kPa
-best: zigzag width_mm=6.1529 interval_mm=1 -> 90.000 deg; P0 ... kPa, G ... MPa
+>>> main(["design", "--bend-deg", "-40", "--at-kpa", "250", "--pattern", "cross", "-o", out])  # doctest: +ELLIPSIS
+target -40 deg at 250 kPa, l0 100 mm: met: cross bends -40.0... deg at 250 kPa...
 ...
 0
+>>> main(["design", "--bend-deg", "90", "--at-kpa", "150", "--pattern", "zigzag", "-o", out])  # doctest: +ELLIPSIS
+target 90 deg at 150 kPa, l0 100 mm: not met: no sewable design within 0.5 deg: the machine grid steps width_mm by 0.2. ...
+...
+nothing written: the target is not met (--write-nearest writes the nearest design)
+5
 """
 from __future__ import annotations
 
@@ -41,6 +48,7 @@ from typing import TYPE_CHECKING
 
 from ...patterns.kinds import PATTERN_KINDS
 from .args import add_tube_arguments, tube_from_args
+from .main import EXIT_NOT_MET
 from .target import P0_SOURCES, TUBE_LAWS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -81,6 +89,13 @@ def add_arguments(parser, name: str) -> None:
     out.add_argument("--svg", metavar="FILE.svg", help="target shape: predicted shape over the target "
                                                        "(default <DESIGN stem>-shape.svg)")
     out.add_argument("--json", action="store_true", help="machine-readable result on stdout")
+    out.add_argument("--write-nearest", action="store_true",
+                     help="when no sewable design meets the target, write the nearest one anyway (exit code 5 "
+                          "either way)")
+    space.add_argument("--tolerance-deg", type=float, default=0.5,
+                       help="target bend: a sewn design within this of the target meets it [deg] (default 0.5)")
+    space.add_argument("--tolerance-mm", type=float, default=0.5,
+                       help="target shape: a sewn design within this RMSE of the target meets it [mm] (default 0.5)")
 
 
 def read_target_shape(ref: str):
@@ -131,43 +146,48 @@ def _settings(args):
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
 
-def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str]]:
+def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
     from ...predict.inverse import design_bend
     from ..pictures.shapefit import params_text
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
-                    settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name)
+                    settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
+                    tolerance_deg=args.tolerance_deg)
     lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
-    for label, c in [("best", r.best)] + [(f"runner-up {i + 1}", c) for i, c in enumerate(r.runners_up)]:
+    if r.range_deg is not None:
+        lines.append(f"  reachable at {r.pressure_kpa:g} kPa over the calibrated designs: {r.range_deg[0]:+.2f} to "
+                     f"{r.range_deg[1]:+.2f} deg")
+    for label, c in [("best" if r.reached else "nearest", r.best)] + [(f"runner-up {i + 1}", c)
+                                                                     for i, c in enumerate(r.runners_up)]:
         miss = c.theta_deg - r.target_deg
-        lines.append(f"{label}: {c.pattern} {params_text(c.params)} -> {c.theta_deg:.3f} deg"
-                     + (f" (misses the target by {miss:+.1f} deg)" if abs(miss) > 0.05 else "")
+        lines.append(f"{label}: {c.pattern} {params_text(c.params)} -> {c.theta_deg:.3f} deg sewn"
+                     + (f" (misses the target by {miss:+.2f} deg)" if abs(miss) > r.tolerance_deg else "")
                      + f"; P0 {c.p0_kpa:.1f} kPa, G {c.g_mpa:.4g} MPa")
         margin = "" if c.margin_kpa == float("inf") else f" ({c.margin_kpa:.1f} kPa above the target pressure)"
-        sens = f"{c.sensitivity_deg_per_0p1mm:+.2f} deg per 0.1 mm width"
-        if c.sensitivity_deg_per_deg is not None:
-            sens += f", {c.sensitivity_deg_per_deg:+.2f} deg per deg angle"
         band = ("none claimed (the calibration records no covariance for this design)" if c.theta_sd_deg is None
                 else f"+-{c.theta_sd_deg:.2f} deg (1 sigma, from the calibration's covariance)")
-        lines += [f"  limit: {c.limit}{margin}", f"  uncertainty: {band}", f"  sensitivity: {sens}",
+        exact = ("none in a valid state" if c.exact_pressure_kpa is None
+                 else f"{c.exact_pressure_kpa:.1f} kPa bends it by {r.target_deg:g} deg")
+        lines += [f"  limit: {c.limit}{margin}", f"  exact pressure: {exact}", f"  uncertainty: {band}",
+                  "  sensitivity, one machine-grid step (the design sewn again; G, P0 and geometry follow): "
+                  + "; ".join(s.text() for s in c.sensitivity),
                   f"  binding: {c.binding}"]
-        if c.warnings:
-            lines.append(f"  rule findings: {', '.join(c.warnings)}")
-    return r.as_dict(), r.best.design, lines
+        lines += [f"  finding {f}" for f in c.findings]
+    return r.as_dict(), r.best.design, lines, r.reached
 
 
-def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
+def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bool]:
     from ...predict.inverse import design_shape
     from ..pictures.shapefit import design_shape_svg, params_text
 
     from ...predict.inverse import DEFAULT_TIME_LIMIT_S
 
-    progress = (lambda message: print(f"design: {message}", file=sys.stderr, flush=True)) if sys.stderr.isatty() \
-        else None  # on a terminal: what the search is doing
+    progress = (lambda message: print(f"design: {message}", file=sys.stderr, flush=True)) \
+        if sys.stderr.isatty() and not args.json else None  # on a terminal: what the search is doing
     r = design_shape(read_target_shape(args.target_shape), args.at_kpa, max_segments=args.max_segments, tube=tube,
                      settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
                      time_limit_s=DEFAULT_TIME_LIMIT_S if args.time_limit is None else args.time_limit,
-                     progress=progress)
+                     tolerance_mm=args.tolerance_mm, progress=progress)
     lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
              f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
@@ -175,9 +195,8 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str]:
         note = f"  ({s.note})" if s.note else ""
         lines.append(f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} -> "
                      f"{s.theta_deg:+.2f} deg{note}")
-    if r.warnings:
-        lines.append(f"rule findings: {', '.join(r.warnings)}")
-    return r.as_dict(), r.design, lines, design_shape_svg(r)
+    lines += [f"finding {f}" for f in r.findings]
+    return r.as_dict(), r.design, lines, design_shape_svg(r), r.reached
 
 
 def run(args) -> int:
@@ -198,17 +217,21 @@ def run(args) -> int:
     tube = tube_from_args(args)
     settings, sets = _settings(args)
     if args.bend_deg is not None:
-        result, design, lines = _bend(args, tube, settings, sets)
+        result, design, lines, reached = _bend(args, tube, settings, sets)
         files: dict[str | os.PathLike, bytes] = {out: dumps_design(design).encode("utf-8")}
     else:
-        result, design, lines, svg = _shape(args, tube, settings, sets)
+        result, design, lines, svg, reached = _shape(args, tube, settings, sets)
         files = {out: dumps_design(design).encode("utf-8"), more[0]: svg.encode("utf-8")}
         result["svg"] = str(more[0])
-    write_files_atomic(files)
-    result["design_file"] = str(out)
+    write = reached or args.write_nearest
+    if write:
+        write_files_atomic(files)
+    result["design_file"] = str(out) if write else None
     if args.json:
         json.dump(result, sys.stdout, indent=2, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")
     else:
-        print("\n".join(lines + [f"wrote {', '.join(str(p) for p in files)}"]))
-    return 0
+        done = (f"wrote {', '.join(str(p) for p in files)}" if write else
+                "nothing written: the target is not met (--write-nearest writes the nearest design)")
+        print("\n".join(lines + [done]))
+    return 0 if reached else EXIT_NOT_MET

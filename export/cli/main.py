@@ -12,6 +12,8 @@ Exit codes
 3  an output file could not be written
 4  a numerical method failed (a bug or a design far outside the model; message says which), or the
    command ran past its time limit (``embroact --time-limit-s S COMMAND``, default an hour)
+5  ``design``: no sewable design meets the target (the answer says why and names the nearest design,
+   written only with ``--write-nearest``)
 130, 143  interrupted (Ctrl-C) or terminated (SIGTERM), within a second whatever the command is
           computing (:mod:`embroact.export.cli.signals`); no partial output is left
 141  standard output was closed by its reader (``| head``); the program ends quietly
@@ -52,7 +54,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "studio": ("cmd_studio", "designer in the browser: edit a design, see stitches and predicted bend live"),
 }
 
-EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER = 0, 1, 2, 3, 4
+EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER, EXIT_NOT_MET = 0, 1, 2, 3, 4, 5
 #: Ended by Ctrl-C, SIGTERM, or a closed pipe: the shell's 128 + signal number.
 EXIT_INTERRUPTED, EXIT_TERMINATED, EXIT_BROKEN_PIPE = 130, 143, 141
 
@@ -162,7 +164,8 @@ def _top_parser() -> argparse.ArgumentParser:
         prog="embroact",
         description="CAD tool and stitch generator for embroidery actuators.\n\ncommands:\n" + lines,
         epilog="Units: mm, kPa, MPa, deg. 'embroact COMMAND --help' shows a command's options. "
-        "Exit codes: 0 ok, 1 design-rule errors, 2 bad input, 3 cannot write, 4 solver failure.",
+        "Exit codes: 0 ok, 1 design-rule errors, 2 bad input, 3 cannot write, 4 solver failure, "
+        "5 design target not met.",
         formatter_class=_RawDescriptionHelp,
     )
     p.add_argument("--version", action="version", version=f"embroact {__version__}")

@@ -26,7 +26,9 @@ degrees; `--json` output names the unit in every key.
 
 Exit codes: 0 success; 1 design-rule errors found (`check`, or `build` refused);
 2 unusable input; 3 an output file could not be written; 4 a numerical method failed or the
-command ran past its time limit; 130 / 143 interrupted (Ctrl-C) / terminated (SIGTERM).
+command ran past its time limit; 5 `design` found no sewable design meeting the target (it says
+why and names the nearest, written only with `--write-nearest`); 130 / 143 interrupted (Ctrl-C) /
+terminated (SIGTERM).
 
 Options of every command, given before its name: `embroact --time-limit-s S COMMAND ...` ends
 the command after S seconds (default 3600; 0: none) with exit code 4 and one line;

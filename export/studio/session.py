@@ -13,7 +13,7 @@ Examples
 >>> s = Studio(default_design(), tempfile.mkdtemp())
 >>> v = s.edit({"actuator[0].width_mm": 8.0}, pressure_kpa=200.0)
 >>> v["actuators"][0]["derived"]["width_mm"], round(v["actuators"][0]["theta_deg"], 2)
-(8.0, 55.18)
+(8.0, 61.1)
 >>> s.save("wide.toml")["file"]
 'wide.toml'
 """

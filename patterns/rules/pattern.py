@@ -67,16 +67,18 @@ def angle_off(s: Subject) -> list[Finding]:
 
 @RULES.rule("EA205", Severity.WARNING, "stitch interval off request",
             "The realised stitch interval differs from the request by more than the relative spacing "
-            "tolerance (patterns/base/tolerances.py).",
+            "tolerance (patterns/base/tolerances.py) plus half the machine grid the needle points lie on.",
             "Adjust the length or the interval so that a whole number of legs fits.", Inputs.DESIGNS)
 def interval_off(s: Subject) -> list[Finding]:
     tol = s.settings.tolerances.spacing_rel
+    grid = s.settings.tolerances.machine_grid_mm
 
     def message(act, req, real):
         rel = abs(real.interval_mm - req.interval_mm) / req.interval_mm
-        if rel > tol:
+        if abs(real.interval_mm - req.interval_mm) > tol * req.interval_mm + grid / 2.0:
             return (f"stitch interval {real.interval_mm:.3f} mm realised, {req.interval_mm:g} mm "
-                    f"requested ({rel * 100:.1f} % off, tolerance {tol * 100:g} %)")
+                    f"requested ({rel * 100:.1f} % off, tolerance {tol * 100:g} % + {grid / 2.0:g} mm of the "
+                    f"machine grid)")
         return None
     return s.pattern_findings("EA205", message)
 

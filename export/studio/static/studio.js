@@ -321,8 +321,17 @@ async function inverse() {
   }
   const b = res.data.best;
   const params = Object.entries(b.params).map(([k, x]) => `${k} ${fmt(x, 3)}`).join(", ");
-  resultText("inv-result", `${res.data.statement}\nbest: ${b.pattern}, ${params}: ${fmt(b.theta_deg, 2)} deg; ` +
-    `limit ${b.limit}; ${fmt(b.sensitivity_deg_per_0p1mm_width, 2)} deg per 0.1 mm of width`, !res.data.reached);
+  const steps = b.sensitivity.map((s) => {
+    const step = s.step_mm !== undefined ? `${fmt(s.step_mm, 3)} mm` : `${fmt(s.step_deg, 3)} deg`;
+    return `${s.parameter} -${step}: ${fmt(s.minus_step_theta_change_deg, 2)} deg, +${step}: ` +
+      `${fmt(s.plus_step_theta_change_deg, 2)} deg`;
+  }).join("; ");
+  const exact = b.exact_pressure_kpa === null ? "" : `; bends by the target at ${fmt(b.exact_pressure_kpa, 1)} kPa`;
+  const band = b.theta_sd_deg === null ? "no 1-sigma band claimed" : `1-sigma band +-${fmt(b.theta_sd_deg, 2)} deg`;
+  resultText("inv-result", `${res.data.statement}\n${res.data.reached ? "best" : "nearest"}: ${b.pattern}, ` +
+    `${params}: ${fmt(b.theta_deg, 2)} deg sewn${exact}; limit ${b.limit}; ${band}\n` +
+    `one machine-grid step (sewn again, G, P0 and geometry following): ${steps}\n` +
+    `findings: ${b.findings.length ? b.findings.join("; ") : "none"}`, !res.data.reached);
   state.inverse = res.data.values;
   $("inv-apply").hidden = !res.data.reached;  // offered only for a design that bends as wanted
 }
