@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Iterable, Mapping
 
@@ -611,15 +612,18 @@ def _mean(values: list[float]) -> float:
     return math.fsum(values) / len(values)
 
 
-def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str) -> float:
-    """Monotone piecewise-cubic y(x) (:func:`~embroact.predict.pchip.pchip`); outside the range clamp or
-    extend the end segment's secant."""
+def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str, interpolation: str = "pchip") -> float:
+    """Monotone piecewise-cubic y(x) (:func:`~embroact.predict.pchip.pchip`), or piecewise linear; outside the
+    range clamp or extend the end segment's secant."""
     if len(xs) == 1:
         return ys[0]
     if x <= xs[0]:
         return ys[0] if extrapolation == "clamp" else ys[0] + (ys[1] - ys[0]) * (x - xs[0]) / (xs[1] - xs[0])
     if x >= xs[-1]:
         return ys[-1] if extrapolation == "clamp" else ys[-1] + (ys[-1] - ys[-2]) * (x - xs[-1]) / (xs[-1] - xs[-2])
+    if interpolation == "linear":
+        k = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
+        return ys[k] + (ys[k + 1] - ys[k]) * (x - xs[k]) / (xs[k + 1] - xs[k])
     return pchip(xs, ys, x)
 
 
@@ -632,6 +636,7 @@ def lookup(
     sets: Iterable[CalibrationSet] | None = None,
     branch: str = "loading",
     extrapolation: str = "clamp",
+    interpolation: str = "pchip",
 ) -> Calibration:
     """Parameters (G, P0) of the calibration set ``name`` for one design.
 
@@ -651,6 +656,10 @@ def lookup(
         ``"loading"``, ``"unloading"`` or ``"both"``.
     extrapolation : str
         ``"clamp"`` or ``"linear"`` outside the calibrated range (see module docstring).
+    interpolation : str
+        ``"pchip"`` (default: monotone cubic, the model's lookup) or ``"linear"`` between points
+        (a neighbour's value enters only its own interval: what a leave-one-out check that blames
+        the coupon spoiling its neighbours by about half relies on).
 
     Returns
     -------
@@ -668,6 +677,7 @@ def lookup(
     _choice("pattern", pattern, PATTERNS)
     _choice("branch", branch, BRANCHES)
     _choice("extrapolation", extrapolation, EXTRAPOLATIONS)
+    _choice("interpolation", interpolation, ("pchip", "linear"))
     w = check_range("width_mm", width_mm, low=0.0, high=200.0)
     axis = pattern_kind(pattern).calibration_axis
     if axis == "angle_deg":
@@ -695,10 +705,10 @@ def lookup(
         if len(group) == 1:
             fitted, cov = group[0].fitted, group[0].covariance
     else:
-        g_v = _interpolate(xs, g, value, extrapolation)
-        p0_v = _interpolate(xs, p0, value, extrapolation)
-        ge_v = _interpolate(xs, ge, value, extrapolation) if ge else None
-        fitted, cov = _propagated(merged, lambda ys: _interpolate(xs, ys, value, extrapolation), g, p0)
+        g_v = _interpolate(xs, g, value, extrapolation, interpolation)
+        p0_v = _interpolate(xs, p0, value, extrapolation, interpolation)
+        ge_v = _interpolate(xs, ge, value, extrapolation, interpolation) if ge else None
+        fitted, cov = _propagated(merged, lambda ys: _interpolate(xs, ys, value, extrapolation, interpolation), g, p0)
     label = f"calibration {name!r} extrapolated linearly to {pattern} {axis}={value:g}"
     if not 0.0 < g_v <= _G_MAX_MPA or not 0.0 <= p0_v <= _P_MAX_KPA or (ge_v is not None and ge_v <= 0.0):
         raise ModelDomainError(

@@ -200,24 +200,6 @@ class DesignSpace:
         ks = range(k_lo - spread + 1, k_hi + spread)
         return tuple(v for v in (round(k * step, 10) for k in ks) if self.low - 1e-9 <= v <= self.high + 1e-9)
 
-    def breaks(self) -> tuple[float, ...]:
-        """Parameter values inside the range where :meth:`params` jumps (a cross pattern's number of leg
-        pitches changes, and with it the interval and the embroidered length); empty for a zigzag.
-
-        >>> [round(b, 3) for b in DesignSpace("cross", "angle_deg", 15.0, 20.0, 7.0, 1.4).breaks()]
-        [16.699]
-        """
-        if not pattern_kind(self.pattern).has_angle:
-            return ()
-        n_lo = 2.0 * self.width_mm * math.tan(math.radians(self.low)) / self.interval_mm
-        n_hi = 2.0 * self.width_mm * math.tan(math.radians(self.high)) / self.interval_mm
-        out = []
-        for n in range(max(0, math.floor(n_lo - 0.5)), math.ceil(n_hi + 0.5)):
-            b = math.degrees(math.atan((n + 0.5) * self.interval_mm / (2.0 * self.width_mm)))
-            if self.low < b < self.high:
-                out.append(b)
-        return tuple(out)
-
     def describe(self) -> str:
         """``"width_mm 5 to 9 (calibrated)"``."""
         return f"{self.parameter} {self.low:g} to {self.high:g} ({'calibrated' if self.calibrated else 'extrapolated'})"
@@ -643,7 +625,7 @@ _JUMP_SCAN_POINTS = 2401
 
 def _length_jumps(space: DesignSpace, length_mm: float) -> np.ndarray:
     """(k, 2) parameter values just below and above each jump of the sewn geometry over the range: a cross
-    pattern's leg pitches (:meth:`DesignSpace.breaks`) and its embroidered length, whole intervals of a
+    pattern's leg pitches and its embroidered length, whole intervals of a
     continuously changing interval, both jump; bisected to 1e-12 of the range. Empty for a zigzag."""
     if not pattern_kind(space.pattern).has_angle:
         return np.zeros((0, 2))
@@ -677,7 +659,7 @@ def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table) -> t
     The table brackets every candidate: its valid points, each boundary of the valid states
     between two table points (bisected, keeping the valid side), each interior extreme of
     the bend (golden-section search between its neighbours) and both sides of each jump of the
-    sewn geometry (:meth:`DesignSpace.breaks`); all brackets are refined together, one
+    sewn geometry (:func:`_length_jumps`); all brackets are refined together, one
     vectorised model evaluation per step.
     """
     x, theta, status = table
@@ -1209,9 +1191,9 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     # reached and close wins, else the closest reached one, else the closest
     plausible = [f for f in fits if f[2] <= max(_FIT_PLAUSIBLE_MM, 1.25 * min(g[2] for g in fits))]
     # the machine grid steps a zigzag's width: where the fewest segments miss, more segments mix neighbouring widths
-    more = range(len(fits) + 1, min(max_segments, len(fits) + _EXTRA_SEGMENTS) + 1)
+    extra = range(len(fits) + 1, min(max_segments, len(fits) + _EXTRA_SEGMENTS) + 1)
     results, failures = [], []
-    for lengths, kappa, rmse_fit in itertools.chain(plausible, (fit_curvature(xy, n) for n in more)):
+    for lengths, kappa, rmse_fit in itertools.chain(plausible, (fit_curvature(xy, n) for n in extra)):
         if time.monotonic() - start > limit:
             failures.append(f"time limit {limit:g} s reached before {len(lengths)} segments were tried")
             break

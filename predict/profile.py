@@ -154,10 +154,11 @@ def fit_profile(coupons, *, layout: MarkerLayout | None, name: str, tube=None, d
             mask = np.array([b == branch for b in c.branch])
             where = {"width_mm": c.derived.requested_width_mm, "name": name, "sets": [cset], "branch": branch,
                      "angle_deg": c.derived.requested_angle_deg if axis == "angle_deg" else None}
+            # linear between the others: a spoiled coupon then moves only its own intervals (the flag's premise)
             try:  # an end coupon: the others' trend carried on (clamped where it leaves the model's domain)
-                cal = lookup(c.derived.pattern, extrapolation="linear", **where)
+                cal = lookup(c.derived.pattern, extrapolation="linear", interpolation="linear", **where)
             except ModelDomainError:
-                cal = lookup(c.derived.pattern, **where)
+                cal = lookup(c.derived.pattern, interpolation="linear", **where)
             extrap = extrap or cal.extrapolated
             pred = predicted_reading_deg(c.derived, cal.g_mpa, cal.p0_kpa, c.pressure_kpa[mask], layout)
             sq += float(np.sum((pred - c.reading_deg[mask]) ** 2))

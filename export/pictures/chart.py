@@ -436,6 +436,8 @@ def _draw_p0_labels(dwg, g, series: Sequence[Series], sc: Scale) -> None:
         x = float(sc.x_px(s.p0_kpa))
         text = f"P0 {s.p0_kpa:.0f}"
         lab = placer.place_along(text, [(x, float(y)) for y in rows], _P0_FONT_PX, gap=3.0)
+        if lab.collisions:  # no free spot beside its line (P0s a few kPa apart): the dashed line alone marks it
+            continue
         g.add(dwg.text(text, insert=(_fmt(lab.x), _fmt(lab.y)), font_size=_P0_FONT_PX, fill=PALETTE[k % len(PALETTE)],
                        text_anchor=lab.anchor, **{"class": "p0-label", "data-series": str(k)}))
 
