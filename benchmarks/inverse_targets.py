@@ -103,7 +103,7 @@ def sewn_bend_deg(design, pressure_kpa: float, decode=pystitch_needle_points_mm)
     if len(xy) != len(roles):
         raise AssertionError(f"the DST holds {len(xy)} needle points, the plan {len(roles)}")
     spec = design.actuators[0]
-    r = measure(xy, roles, spec.centerline, spec.pattern)
+    r = measure(xy, roles, plan.actuators[0].centerline, spec.pattern)  # the path as placed on the fabric
     p = spec.params
     angle = pattern_kind(spec.pattern).has_angle
     d = derive_from_values(spec.pattern, width_mm=r.width_mm, interval_mm=r.interval_mm,

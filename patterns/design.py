@@ -724,8 +724,6 @@ def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
     except CommandLimitError:  # the command's own limit, not this actuator's
         raise
     except EmbroactError as exc:
-        if getattr(exc, "whole_command", False):  # e.g. the command's time limit: not this actuator's error
-            raise
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
 

@@ -59,9 +59,6 @@ class Terminated(KeyboardInterrupt):
 class TimeLimitError(CommandLimitError):
     """The command ran past its time limit (a one-line error, exit code 4)."""
 
-    #: About the whole command, not the actuator being generated when it struck: never prefixed with one.
-    whole_command = True
-
 
 def time_limit_message(seconds: float) -> str:
     """The one line a command past its time limit ends with."""
