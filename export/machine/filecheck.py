@@ -531,7 +531,7 @@ def check_file(
 
     records = read_records(path) if records is None else records
     settings = settings or file_rule_settings(records)
-    faults = ()
+    faults: tuple[str, ...] = ()
     if records.suffix in ("dst", "tbf"):
         data = read_input(str(path), MACHINE_FILE_BYTES, "embroidery file")
         faults = dst_header_faults(data) if records.suffix == "dst" else extent_faults(data[:_TBF_HEADER], records.xy_mm)
