@@ -217,7 +217,8 @@ def _write_set(args, act, results, layout, old):
     return cset
 
 
-def _pm(value, se, digits=4) -> str:
+def plus_minus(value, se, digits=4) -> str:
+    """``value`` to ``digits`` significant digits, with `` +- se`` when the standard error is known."""
     return f"{value:.{digits}g}" + ("" if se is None else f" +- {se:.2g}")
 
 
@@ -231,11 +232,11 @@ def _table(derived, results, note, cset, path) -> str:
     lines = [f"fit of {design} (as generated); model method {results[0].method}" + (f"; {note}" if note else "")]
     lines.append(f"{'branch':<10} {'n':>4}  {'G [MPa]':<18} {'P0 [kPa]':<24} {'RMSE [deg]':>10}")
     for r in results:
-        p0 = f"{_pm(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
-        lines.append(f"{r.branch:<10} {r.n_points:>4}  {_pm(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
+        p0 = f"{plus_minus(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
+        lines.append(f"{r.branch:<10} {r.n_points:>4}  {plus_minus(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
         if "g_e_mpa" in r.fitted:
             modulus = "mu" if r.tube_law == "thick-wall" else "G_e"
-            lines.append(f"{'':<16}{modulus} = {_pm(r.g_e_mpa, r.g_e_mpa_se)} MPa (tube law {r.tube_law})")
+            lines.append(f"{'':<16}{modulus} = {plus_minus(r.g_e_mpa, r.g_e_mpa_se)} MPa (tube law {r.tube_law})")
         lines += [f"{'':<16}note: {n}" for n in r.notes]
     if cset is not None:
         lines.append(f"wrote calibration set {cset.name!r} ({len(cset.points)} point(s)) to {path}")
