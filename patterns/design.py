@@ -30,7 +30,7 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     max_bend_deg = 180.0
     [[actuator]]                     # one table per actuator, sewn in this order
     name = "A1"                      # required, unique
-    pattern = "zigzag"               # required: "zigzag" or "cross"
+    pattern = "zigzag"               # required: a registered pattern kind (zigzag, cross, ...)
     width_mm = 7.0                   # required: rail spacing w
     interval_mm = 1.0                # required: stitch interval s
     # angle_deg = 45.0               # cross only (required there): alpha0
@@ -96,7 +96,7 @@ from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS,
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit
-from .params import CrossParams, StitchOptions, Tube, ZigzagParams
+from .params import CrossParams, PatternParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, check_segments, segment_stations, segmented
 from .origin import MachineOrigin, check_origin, to_machine_frame
@@ -281,7 +281,7 @@ class ActuatorSpec(KindFields):
     ----------
     name : str
         Unique within the design (any unicode).
-    params : ZigzagParams | CrossParams
+    params : PatternParams
     centerline : Centerline
         Tube path in the plan frame [mm].
     options : StitchOptions
@@ -302,7 +302,7 @@ class ActuatorSpec(KindFields):
     """
 
     name: str
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     centerline: Centerline
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)

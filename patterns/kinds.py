@@ -11,7 +11,7 @@ pattern is one new generator module plus one :func:`register` call.
 Examples
 --------
 >>> from embroact.patterns.kinds import PATTERN_KINDS, pattern_kind
->>> PATTERN_KINDS.names()
+>>> PATTERN_KINDS.names()[:2]
 ('zigzag', 'cross')
 >>> k = pattern_kind("cross")
 >>> k.param_keys, k.calibration_axis, k.options
@@ -21,29 +21,52 @@ Examples
 >>> try:
 ...     pattern_kind("satin")
 ... except ValueError as exc:
-...     print(exc)
-pattern must be one of 'zigzag', 'cross', got 'satin'
+...     print(exc)  # doctest: +ELLIPSIS
+pattern must be one of 'zigzag', 'cross'..., got 'satin'
 """
 from __future__ import annotations
 
 import enum
 import importlib
+import math
 from dataclasses import dataclass, fields
 from typing import Callable
 
 from .base.errors import ParameterError
-from .params import CrossParams, PatternParams, ZigzagParams
+from .params import ADJUST_METHODS, CrossParams, PatternParams, ZigzagParams
 
-__all__ = ["Interval", "KindFields", "KindOf", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind", "register"]
+__all__ = ["Interval", "KindFields", "KindOf", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind",
+           "param_values", "register"]
 
 
 class Interval(enum.Enum):
-    """What a pattern's stitch interval ``interval_mm`` spaces, measured along the path."""
+    """What a pattern's stitch interval ``interval_mm`` spaces, measured along the path.
+
+    A member is also the measurement: called with the legs' start and end points in the path
+    frame (arc length ``sa``, ``sb`` and signed offset ``oa``, ``ob``, arrays [mm]) it returns
+    the realised interval [mm]. A kind whose interval is neither may give any callable of the
+    same signature as its :attr:`PatternKind.interval`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> Interval.NEEDLE_POINTS(np.array([0.0, 1.0]), np.array([3.5, -3.5]), np.array([1.0, 2.0]), np.array([-3.5, 3.5]))
+    1.0
+    """
 
     NEEDLE_POINTS = "needle points"
     """Neighbouring needle points (the zigzag: one leg per interval)."""
     PARALLEL_LEGS = "parallel legs"
     """Neighbouring parallel legs of one family (the cross: two families of legs cross)."""
+
+    def __call__(self, sa, oa, sb, ob) -> float:
+        from .intervals import family_interval_mm, needle_interval_mm
+
+        return (needle_interval_mm if self is Interval.NEEDLE_POINTS else family_interval_mm)(sa, oa, sb, ob)
+
+
+def _no_minimum(params: object) -> float:
+    return 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,18 +78,28 @@ class PatternKind:
     name : str
         The pattern's name in design files and on the command line.
     params : type
-        Its frozen parameter class (``ZigzagParams``, ``CrossParams``).
+        Its frozen parameter class (fields ``width_mm``, ``interval_mm`` and any others, each
+        checked against its range by the class itself).
     module : str
-        The generator module inside ``embroact.patterns``; it defines ``<name>`` (the
-        generator), ``<name>_stations`` and ``<name>_realised_params`` (see the properties).
+        The generator module's absolute name (``"embroact.patterns.zigzag"``); it defines ``<name>`` (the generator),
+        ``<name>_stations`` and ``<name>_realised_params`` (see the properties), loaded on first use.
     calibration_axis : str
         The parameter a calibration set interpolates over for this pattern.
     options : tuple of str
         Extra generator options a design may set (``("adjust",)`` for the cross pattern).
-    interval : Interval
-        What ``interval_mm`` spaces (how :func:`embroact.patterns.measure.measure` reads it back).
+    option_values : tuple of tuple of str
+        The values each option may take, in the order of ``options`` (the first is the default).
+    interval : Interval or callable
+        What ``interval_mm`` spaces, and so how :func:`embroact.patterns.measure.measure` reads
+        it back: ``interval(sa, oa, sb, ob) -> float`` on the legs' end points (see :class:`Interval`).
     default_interval_mm : float
         The paper's stitch interval, used when a quick command gives none [mm].
+    description : str
+        One line for the kind's quick command (``embroact <name> --help``).
+    design_params : callable or None
+        Inverse design's free parameter: ``design_params(x, width_mm, interval_mm) -> params``
+        gives the pattern parameters at value ``x`` of :attr:`calibration_axis` (with the
+        calibrated width and the nominal interval); None: inverse design does not search this kind.
     """
 
     name: str
@@ -74,12 +107,17 @@ class PatternKind:
     module: str
     calibration_axis: str
     options: tuple[str, ...] = ()
-    interval: Interval = Interval.NEEDLE_POINTS
+    option_values: tuple[tuple[str, ...], ...] = ()
+    interval: Callable = Interval.NEEDLE_POINTS
     default_interval_mm: float = 1.0
+    description: str = ""
+    design_params: Callable | None = None
 
     def _function(self, suffix: str) -> Callable:
-        module = importlib.import_module(f".{self.module}", __package__)
-        return getattr(module, self.name + suffix)
+        return getattr(self._module(), self.name + suffix)
+
+    def _module(self):
+        return importlib.import_module(self.module)
 
     @property
     def generate(self) -> Callable:
@@ -97,9 +135,25 @@ class PatternKind:
         return self._function("_realised_params")
 
     @property
+    def min_length_mm(self) -> Callable:
+        """``min_length_mm(params) -> float``: the shortest path the pattern fits on [mm] (0 unless the module says).
+
+        The module's ``<name>_min_length_mm``; inverse design keeps a segment's pattern within it.
+        """
+        return getattr(self._module(), self.name + "_min_length_mm", _no_minimum)
+
+    @property
     def param_keys(self) -> tuple[str, ...]:
         """The parameter names, in declaration order (``width_mm``, ``interval_mm``, ...)."""
         return tuple(f.name for f in fields(self.params))
+
+    def values(self, params: object) -> dict[str, float]:
+        """``params`` (this kind's parameters) as ``{key: value}`` in declaration order.
+
+        >>> pattern_kind("zigzag").values(ZigzagParams(7.0, 1.0))
+        {'width_mm': 7.0, 'interval_mm': 1.0}
+        """
+        return {k: float(getattr(params, k)) for k in self.param_keys}
 
     @property
     def has_angle(self) -> bool:
@@ -159,6 +213,15 @@ def pattern_kind(name: object) -> PatternKind:
     return PATTERN_KINDS[name]
 
 
+def param_values(params: PatternParams) -> dict[str, float]:
+    """The parameters of any kind as ``{key: value}`` (:meth:`PatternKind.values` of its kind).
+
+    >>> param_values(CrossParams(7.0, 1.4, 45.0))
+    {'width_mm': 7.0, 'interval_mm': 1.4, 'angle_deg': 45.0}
+    """
+    return pattern_kind(params.pattern).values(params)
+
+
 class KindOf:
     """Mixin of a value holding pattern parameters ``params`` (request or plan): its kind's name and angle.
 
@@ -203,5 +266,20 @@ class KindFields(KindOf):
         return {key: getattr(self, key) for key in pattern_kind(self.pattern).options}
 
 
-register(PatternKind("zigzag", ZigzagParams, "zigzag", "width_mm"))
-register(PatternKind("cross", CrossParams, "cross", "angle_deg", ("adjust",), Interval.PARALLEL_LEGS, 1.4))
+def _zigzag_design(x: float, width_mm: float, interval_mm: float) -> ZigzagParams:
+    """Zigzag at width ``x`` (the free parameter) and the nominal interval."""
+    return ZigzagParams(float(x), interval_mm)
+
+
+def _cross_design(x: float, width_mm: float, interval_mm: float) -> CrossParams:
+    """Cross at angle ``x`` and the calibrated width, the interval closing the pattern exactly."""
+    reach = 2.0 * width_mm * math.tan(math.radians(x))
+    n = max(1, round(reach / interval_mm))
+    return CrossParams(width_mm, reach / n, float(x))
+
+
+register(PatternKind("zigzag", ZigzagParams, f"{__package__}.zigzag", "width_mm", description="one zigzag actuator",
+                     design_params=_zigzag_design))
+register(PatternKind("cross", CrossParams, f"{__package__}.cross", "angle_deg", ("adjust",), (ADJUST_METHODS,),
+                     Interval.PARALLEL_LEGS, 1.4,
+                     description="one cross-pattern actuator", design_params=_cross_design))

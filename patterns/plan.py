@@ -106,7 +106,7 @@ class ActuatorPlan(KindOf):
     ----------
     name : str
         Actuator name (thread list / colour table entry).
-    params : ZigzagParams | CrossParams
+    params : PatternParams
         The requested pattern parameters.
     tube : Tube
         The tube it is sewn over.

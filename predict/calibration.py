@@ -74,7 +74,6 @@ if TYPE_CHECKING:  # pragma: no cover
     from .curve import ActuatorModel
 
 __all__ = [
-    "PATTERNS",
     "BRANCHES",
     "EXTRAPOLATIONS",
     "CalibrationPoint",
@@ -92,7 +91,6 @@ __all__ = [
     "as_calibration_sets",
 ]
 
-PATTERNS = PATTERN_KINDS.names()
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
 
@@ -124,7 +122,7 @@ class CalibrationPoint:
     Parameters
     ----------
     pattern : str
-        ``"zigzag"`` or ``"cross"``.
+        A registered pattern kind.
     width_mm : float
         Embroidery width w [mm], > 0.
     g_mpa : float
@@ -174,7 +172,7 @@ class CalibrationPoint:
     tube_law_parameters: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
-        _choice("pattern", self.pattern, PATTERNS)
+        _choice("pattern", self.pattern, PATTERN_KINDS.names())
         _choice("branch", self.branch, BRANCHES)
         check_range("width_mm", self.width_mm, low=0.0, high=200.0)
         check_range("g_mpa", self.g_mpa, low=0.0, high=_G_MAX_MPA)
@@ -384,7 +382,7 @@ class CalibrationSet:
         return dataclasses.replace(self, points=kept + new)
 
     def coverage(self) -> dict[str, tuple[float, float]]:
-        """Covered pattern coordinate per pattern: ``{"zigzag": (w_min, w_max), "cross": (a_min, a_max)}``.
+        """Covered range of each pattern's calibration axis: ``{pattern: (low, high)}`` (width or angle).
 
         Examples
         --------
@@ -637,7 +635,7 @@ def lookup(
     Parameters
     ----------
     pattern : str
-        ``"zigzag"`` or ``"cross"``.
+        A registered pattern kind.
     width_mm : float
         Embroidery width [mm].
     angle_deg : float, optional
@@ -664,7 +662,7 @@ def lookup(
         The set has no points for the pattern/branch, or a linear extrapolation leaves
         the valid range of G or P0.
     """
-    _choice("pattern", pattern, PATTERNS)
+    _choice("pattern", pattern, PATTERN_KINDS.names())
     _choice("branch", branch, BRANCHES)
     _choice("extrapolation", extrapolation, EXTRAPOLATIONS)
     w = check_range("width_mm", width_mm, low=0.0, high=200.0)

@@ -140,7 +140,7 @@ class ActuatorModel:
     Parameters
     ----------
     pattern : str
-        "zigzag" or "cross".
+        A registered pattern kind.
     length_mm, r0_mm : float
         Fabric-side length l0 and sleeve radius r0 [mm], > 0.
     beta0_deg : float

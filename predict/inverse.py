@@ -48,19 +48,17 @@ import numpy as np
 from ..patterns.base.errors import EmbroactError, ParameterError, check_range
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
-from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
-from ..patterns.params import CrossParams, Tube, ZigzagParams, whole_intervals
+from ..patterns.kinds import PATTERN_KINDS, Interval, param_values, pattern_kind
+from ..patterns.params import PatternParams, Tube, whole_intervals
 from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
 from .shape import planar_chain_mm
 from .status import Status
 
-__all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
+__all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space", "BendCandidate", "BendResult", "design_bend",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
            "DEFAULT_TIME_LIMIT_S"]
 
-#: Values of ``pattern`` for a target bend.
-PATTERN_CHOICES = PATTERN_KINDS.names() + ("any",)
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
 #: A candidate's bend must match the target within this after polishing [deg].
@@ -113,12 +111,12 @@ class DesignSpace:
     ----------
     pattern : str
     parameter : str
-        ``"width_mm"`` (zigzag) or ``"angle_deg"`` (cross).
+        The kind's calibration axis (``"width_mm"``, ``"angle_deg"``).
     low, high : float
         Range of the parameter [mm or deg].
     width_mm, interval_mm : float
-        Cross: the calibrated width and the nominal interval; zigzag: the nominal interval
-        (``width_mm`` unused).
+        The calibrated (median) width and the nominal interval; the kind's ``design_params``
+        uses what it needs of them.
     calibrated : bool
         False when the range goes beyond the calibration (``allow_extrapolation``).
     """
@@ -131,19 +129,18 @@ class DesignSpace:
     interval_mm: float
     calibrated: bool = True
 
-    def params(self, x: float) -> ZigzagParams | CrossParams:
-        """Pattern parameters at parameter value ``x`` (cross: interval closing the pattern exactly).
+    def params(self, x: float) -> PatternParams:
+        """Pattern parameters at parameter value ``x`` (the kind's :attr:`~embroact.patterns.kinds.PatternKind.design_params`).
 
         >>> s = DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
         >>> p = s.params(40.0)
         >>> round(p.interval_mm, 4), round(2 * 7.0 * math.tan(math.radians(40.0)) / p.interval_mm, 9)
         (1.4684, 8.0)
         """
-        if not pattern_kind(self.pattern).has_angle:  # the free parameter is the width
-            return ZigzagParams(float(x), self.interval_mm)
-        reach = 2.0 * self.width_mm * math.tan(math.radians(x))
-        n = max(1, round(reach / self.interval_mm))
-        return CrossParams(self.width_mm, reach / n, float(x))
+        make = pattern_kind(self.pattern).design_params
+        if make is None:
+            raise ParameterError(f"pattern {self.pattern!r} has no design space")
+        return make(x, self.width_mm, self.interval_mm)
 
     def describe(self) -> str:
         """``"width_mm 5 to 9 (calibrated)"``."""
@@ -159,7 +156,10 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     """
     from .calibration import get_set
 
-    pattern_kind(pattern)  # a registered kind, else one line naming them
+    kind = pattern_kind(pattern)  # a registered kind, else one line naming them
+    if kind.design_params is None:
+        raise ParameterError(f"pattern {pattern!r} has no design space (its kind gives no design_params); "
+                             "choose another pattern")
     cset = get_set(settings.calibration, tuple(sets))
     cover = cset.coverage().get(pattern)
     points = [p for p in cset.points if p.pattern == pattern]
@@ -167,7 +167,7 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
         raise ParameterError(f"calibration {cset.name!r} has no {pattern} points; choose another pattern or set")
     interval = float(np.median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0]))
     width = float(np.median([p.width_mm for p in points]))
-    param = pattern_kind(pattern).calibration_axis
+    param = kind.calibration_axis
     low, high = cover
     if allow_extrapolation:
         wide = model_kind(pattern).extrapolated_range
@@ -177,6 +177,28 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     return DesignSpace(pattern, param, float(low), float(high), width, interval, not allow_extrapolation)
 
 
+def design_spaces(settings: ModelSettings = ModelSettings(), *, sets=(), tube: Tube = Tube(),
+                  allow_extrapolation: bool = False) -> tuple[dict[str, DesignSpace], tuple[str, ...]]:
+    """The design space of every registered kind that has one, and a note for each kind skipped.
+
+    A kind is skipped when it gives no ``design_params`` or the calibration holds no points of it.
+
+    >>> spaces, notes = design_spaces()
+    >>> spaces["zigzag"].describe(), [n for n in notes if "zigzag" in n or "cross" in n]
+    ('width_mm 5 to 9 (calibrated)', [])
+    """
+    spaces, notes = {}, []
+    for kind in PATTERN_KINDS:
+        try:
+            spaces[kind.name] = design_space(kind.name, settings, sets=sets, tube=tube,
+                                             allow_extrapolation=allow_extrapolation)
+        except ParameterError as exc:
+            notes.append(f"{kind.name} skipped: {str(exc).split(';')[0]}")
+    if not spaces:
+        raise ParameterError("no pattern kind has a design space with this calibration: " + "; ".join(notes))
+    return spaces, tuple(notes)
+
+
 def _legs(params, length_mm: float) -> tuple[float, float]:
     """(gap before the legs, legs' length) of a segment of ``length_mm`` on a straight path, nominally.
 
@@ -184,7 +206,11 @@ def _legs(params, length_mm: float) -> tuple[float, float]:
     legs cover it exactly; a cross pattern's may end up to a leg short of it where passes
     turn (:func:`_legs_sewn` generates it).
     """
-    s = params.interval_mm
+    return _span_legs(params.interval_mm, length_mm)
+
+
+def _span_legs(s: float, length_mm: float) -> tuple[float, float]:
+    """:func:`_legs` for interval ``s`` [mm]."""
     span = whole_intervals(length_mm, s) * s
     return 0.5 * (length_mm - span), span
 
@@ -267,7 +293,7 @@ class BendCandidate:
     Attributes
     ----------
     pattern : str
-    params : ZigzagParams | CrossParams
+    params : pattern parameters
         What the design file asks for.
     design : Design
         A one-actuator design, ready to write.
@@ -296,7 +322,7 @@ class BendCandidate:
     """
 
     pattern: str
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     design: Design
     theta_deg: float
     p0_kpa: float
@@ -312,7 +338,7 @@ class BendCandidate:
 
     def as_dict(self) -> dict:
         """JSON-ready, units in the keys."""
-        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+        return {"pattern": self.pattern, "params": param_values(self.params),
                 "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
                 "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
                 "range_margin_fraction": self.range_margin,
@@ -332,12 +358,14 @@ class BendResult:
     runners_up: tuple[BendCandidate, ...]
     reached: bool
     statement: str
+    notes: tuple[str, ...] = ()
+    """Pattern kinds the search skipped, and why (no design space, no calibration points)."""
 
     def as_dict(self) -> dict:
         """JSON-ready."""
         return {"target_deg": self.target_deg, "pressure_kpa": self.pressure_kpa, "length_mm": self.length_mm,
                 "reached": self.reached, "statement": self.statement, "best": self.best.as_dict(),
-                "runners_up": [c.as_dict() for c in self.runners_up]}
+                "runners_up": [c.as_dict() for c in self.runners_up], "notes": list(self.notes)}
 
 
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
@@ -364,7 +392,7 @@ def _geometry_sensitivity(derived, model, p: float, *, width_mm: float = 0.0, an
 
 def _limits(model, p: float) -> tuple[str, float]:
     from .curve import lockup
-    from .validity import first_limit
+    from .branch import first_limit
 
     found = []
     lim = first_limit(model)
@@ -461,7 +489,8 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         Target bend [deg], non-zero, |.| <= 720 (negative: toward the thread side).
     pressure_kpa : float
         Target pressure [kPa], > 0.
-    pattern : {"zigzag", "cross", "any"}
+    pattern : str
+        A registered pattern kind, or ``"any"`` (every kind with a design space).
     length_mm : float
         Actuator length [mm], in [10, 1000].
     tube, settings, sets
@@ -481,14 +510,18 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         raise ParameterError("bend_deg must be non-zero, got 0")
     p = check_target_pressure(pressure_kpa)
     length = check_range("length_mm", length_mm, low=10.0, high=1000.0, low_inclusive=True, high_inclusive=True)
-    if pattern not in PATTERN_CHOICES:
-        raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
+    if pattern != "any" and pattern not in PATTERN_KINDS.names():
+        choices = PATTERN_KINDS.names() + ("any",)
+        raise ParameterError(f"pattern must be one of {', '.join(map(repr, choices))}, got {pattern!r}")
     sets = tuple(sets)
-    kinds = PATTERN_KINDS.names() if pattern == "any" else (pattern,)
+    if pattern == "any":
+        spaces, notes = design_spaces(settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+    else:
+        spaces, notes = {pattern: design_space(pattern, settings, sets=sets, tube=tube,
+                                               allow_extrapolation=allow_extrapolation)}, ()
     model = _Model(p, tube, settings, sets)
     found, reasons, nearest = [], [], []
-    for kind in kinds:
-        space = design_space(kind, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+    for space in spaces.values():
         table = model.table(space, length)
         roots = _roots(model, space, length, target, table)
         for x in roots:
@@ -512,7 +545,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
                              polish=False) for _, space, x in others[:1]]
         return BendResult(target, p, length, found[0], tuple(found[1:]) + tuple(c for c in misses if c), True,
                           f"met: {found[0].pattern} bends {found[0].theta_deg:.2f} deg at {p:g} kPa"
-                          + (f"; {'; '.join(reasons)}" if reasons else ""))
+                          + (f"; {'; '.join(reasons)}" if reasons else ""), notes)
     cands = []
     for _, space, x in nearest:
         c = _candidate(space, x, length, p, target, tube=tube, settings=settings, sets=sets, name=name,
@@ -530,7 +563,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     statement = (f"not reachable: {'; '.join(reasons)}. Nearest: {best.pattern} with {best.theta_deg:.1f} deg "
                  f"({best.theta_deg - target:+.1f} deg off)")
     return BendResult(target, p, length, dataclasses.replace(best, binding="; ".join(reasons)),
-                      tuple(cands[1:3]), False, statement)
+                      tuple(cands[1:3]), False, statement, notes)
 
 
 # ---------------------------------------------------------------------------- target shape
@@ -637,7 +670,7 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
 class ShapeSegment:
     """One segment of a designed shape: its pattern parameters, length and what it does at P*."""
 
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     length_mm: float
     theta_deg: float
     target_kappa_per_mm: float
@@ -650,7 +683,7 @@ class ShapeSegment:
 
     def as_dict(self) -> dict:
         """JSON-ready."""
-        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+        return {"pattern": self.pattern, "params": param_values(self.params),
                 "length_mm": self.length_mm, "theta_deg": self.theta_deg,
                 "target_kappa_per_mm": self.target_kappa_per_mm, "note": self.note or None}
 
@@ -678,6 +711,8 @@ class ShapeResult:
     statement : str
     warnings : tuple of str
         Codes of design-rule warnings.
+    notes : tuple of str
+        Pattern kinds the search skipped, and why.
     """
 
     design: Design
@@ -693,6 +728,7 @@ class ShapeResult:
     reached: bool
     statement: str
     warnings: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """JSON-ready (without the point arrays)."""
@@ -700,7 +736,7 @@ class ShapeResult:
                 "rmse_mm": self.rmse_mm, "max_deviation_mm": self.max_deviation_mm,
                 "tip_error_mm": self.tip_error_mm, "tip_angle_error_deg": self.tip_angle_error_deg,
                 "fit_rmse_mm": self.fit_rmse_mm, "segments": [s.as_dict() for s in self.segments],
-                "warnings": list(self.warnings)}
+                "warnings": list(self.warnings), "notes": list(self.notes)}
 
 
 def _branch(x: np.ndarray, theta: np.ndarray, ok: np.ndarray, at: float) -> tuple[float, float]:
@@ -725,12 +761,12 @@ def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
     """
     options, near = [], None
     # a negative bend needs a kind that can bend negative: one with a thread angle
-    order = tuple(k for k in PATTERN_KINDS.names() if theta_deg >= 0.0 or model_kind(k).has_thread_angle)
+    order = tuple(k for k in spaces if theta_deg >= 0.0 or model_kind(k).has_thread_angle)
     for rank, kind in enumerate(order):
         space = spaces[kind]
         x, theta, status = model.table(space, length_mm, points=61)
-        fits = np.array([not pattern_kind(kind).has_angle or 4.0 * space.params(v).width_mm * math.tan(math.radians(v)) <= length_mm
-                         for v in x])
+        shortest = pattern_kind(kind).min_length_mm
+        fits = np.array([shortest(space.params(v)) <= length_mm for v in x])
         ok = np.isin(status, _VALID) & fits
         for r in _roots(model, space, length_mm, theta_deg, (x, theta, np.where(ok, status, -1))):
             slope = abs(float(np.interp(r, x, np.gradient(theta, x))))
@@ -868,8 +904,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     sets = tuple(sets)
     sj, xy, length = _resample(target_xy_mm)
     model = _Model(p, tube, settings, sets)
-    spaces = {k: design_space(k, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
-              for k in PATTERN_KINDS.names()}
+    spaces, notes = design_spaces(settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
     reach = curvature_range(model, spaces)
     why = shape_unreachable(sj, xy, reach)
     if why is not None:
@@ -894,9 +929,9 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
             failures.append(f"{len(lengths)} segments: {exc}")
             continue
-        results.append(r)
+        results.append(dataclasses.replace(r, notes=notes))
         if r.reached and r.rmse_mm <= _SHAPE_GOOD_MM:
-            return r
+            return results[-1]
     if not results:
         more = "; raise the time limit" if failures and failures[-1].startswith("time limit") else ""
         raise ParameterError(f"target shape at pressure_kpa {p:g}: no design found; " + "; ".join(failures) + more)
@@ -919,7 +954,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     lengths[-1] = round(length - float(lengths[:-1].sum()), 2)
     chosen = []
     for L, k in zip(lengths, kappa):
-        gap, l0 = _legs(ZigzagParams(7.0, spaces["zigzag"].interval_mm), L)
+        gap, l0 = _span_legs(next(iter(spaces.values())).interval_mm, L)
         chosen.append(_choose(model, spaces, float(L), math.degrees(k * l0)))
     seg_spaces = [c[0] for c in chosen]
     x0 = np.array([c[1] for c in chosen])

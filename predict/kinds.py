@@ -5,7 +5,7 @@ The geometry facts of a kind (parameters, generator, calibration axis) live in
 side, keyed by the same names: which pattern constraint the kind follows (docs/model.md,
 section 4) and so how the sleeve's thread angle beta0 follows from the sewn geometry and which
 way the strip first bends. Every part of ``predict`` that would otherwise ask "is this the cross
-pattern?" asks :func:`model_kind` instead; a third pattern adds one row to :data:`MODEL_KINDS`.
+pattern?" asks :func:`model_kind` instead; a third pattern adds one row (:func:`register_model`).
 
 Examples
 --------
@@ -20,8 +20,8 @@ Examples
 >>> try:
 ...     model_kind("satin")
 ... except ValueError as exc:
-...     print(exc)
-pattern must be one of 'zigzag', 'cross', got 'satin'
+...     print(exc)  # doctest: +ELLIPSIS
+pattern must be one of 'zigzag', 'cross'..., got 'satin'
 """
 from __future__ import annotations
 
@@ -29,10 +29,11 @@ import enum
 import math
 from dataclasses import dataclass
 
+from ..patterns.base.errors import ParameterError
 from ..patterns.kinds import pattern_kind
 from .sleeve import thread_angle_deg
 
-__all__ = ["Constraint", "ModelKind", "MODEL_KINDS", "model_kind"]
+__all__ = ["Constraint", "ModelKind", "MODEL_KINDS", "model_kind", "register_model"]
 
 
 class Constraint(enum.Enum):
@@ -79,11 +80,29 @@ class ModelKind:
         return not self.has_thread_angle or math.tan(math.radians(beta0_deg)) < 0.5
 
 
-MODEL_KINDS: dict[str, ModelKind] = {
-    "zigzag": ModelKind("zigzag", Constraint.FIXED_RADIUS, (4.0, 14.0)),
-    "cross": ModelKind("cross", Constraint.PANTOGRAPH, (5.0, 80.0)),
-}
+MODEL_KINDS: dict[str, ModelKind] = {}
 """The model's row for every registered pattern kind."""
+
+
+def register_model(row: ModelKind) -> None:
+    """Add the model's row for a registered pattern kind (one per kind).
+
+    Examples
+    --------
+    >>> try:
+    ...     register_model(ModelKind("satin", Constraint.FIXED_RADIUS, (4.0, 14.0)))
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    pattern must be one of 'zigzag', 'cross'..., got 'satin'
+    """
+    name = pattern_kind(row.name).name
+    if name in MODEL_KINDS:
+        raise ParameterError(f"pattern kind {name!r} already has a model row")
+    MODEL_KINDS[name] = row
+
+
+register_model(ModelKind("zigzag", Constraint.FIXED_RADIUS, (4.0, 14.0)))
+register_model(ModelKind("cross", Constraint.PANTOGRAPH, (5.0, 80.0)))
 
 
 def model_kind(name: object) -> ModelKind:

@@ -148,7 +148,7 @@ def test_cli_build_prints_its_warnings_in_one_line(tmp_path, capsys):
     from embroact.predict.analysis import analyse
     from embroact.predict.rules import check_design
     from embroact.export.files.designfile import load_design
-    from embroact.export.cli.target import summary_line
+    from embroact.patterns.base.findings import summary_line
 
     example = Path(__file__).resolve().parent.parent / "examples" / "three_actuators.toml"
     assert main(["build", str(example), "--out", str(tmp_path), "--no-previews"]) == 0

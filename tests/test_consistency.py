@@ -148,7 +148,7 @@ def test_build_analyses_and_predicts_once(tmp_path, monkeypatch):
     side view, 3D shape and report share it)."""
     import embroact.predict.analysis as analysis_module
     import embroact.predict.curve as curve_module
-    from embroact.export.pictures.previews import previews_stage
+    from embroact.export.report.stage import previews_stage
     from embroact.export.report.build import build
 
     calls = {"derive": 0, "curve": 0}

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from embroact.export.report.build import build
-from embroact.export.pictures.previews import Previews, previews_stage, render_previews, shape_theta_deg, side_pressures
+from embroact.export.pictures.previews import shape_theta_deg, side_pressures
+from embroact.export.report.stage import Previews, previews_stage, render_previews
 from embroact.export.report.report import FIGURES, finding_dict, report_data, report_html, report_json
 from embroact.patterns.design import default_design
 from embroact.patterns.base.errors import ParameterError

@@ -36,7 +36,6 @@ __all__ = ["add_arguments", "run"]
 
 _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa", "mu": "g_e_mpa"}
 #: Pattern names (the registry is light: no numpy for --help).
-PATTERNS = PATTERN_KINDS.names()
 
 
 def add_arguments(parser, name: str) -> None:
@@ -51,7 +50,7 @@ def add_arguments(parser, name: str) -> None:
         "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
     )
     design.add_argument("--actuator", metavar="NAME", help="actuator name in the design file")
-    design.add_argument("--pattern", choices=PATTERNS, help="pattern of the measured sample")
+    design.add_argument("--pattern", choices=PATTERN_KINDS.names(), help="pattern of the measured sample")
     add_quick_arguments(design, pattern=None, name_flag=False)
     fit = parser.add_argument_group("fit")
     fit.add_argument("--fit", default="g,p0",

@@ -148,10 +148,11 @@ def _render(args, out: Path, analysis) -> tuple[str, dict]:
         write_text_atomic(out, plan_svg(plan))
         return f"stitch plan, {plan.stitch_count} stitches", {"stitch_count": plan.stitch_count}
     from ..pictures import previews as pv
+    from ..report.stage import actuator_entry
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else analysis.pressures_kpa
     curves = analysis.curves(pressures)
-    info = {"actuators": [pv.actuator_entry(a, c) for a, c in zip(analysis.actuators, curves)],
+    info = {"actuators": [actuator_entry(a, c) for a, c in zip(analysis.actuators, curves)],
             "pressure_kpa": [float(p) for p in pressures]}
     if args.kind == "bend":
         measured = measured_points(args.measured, [a.name for a in plan.actuators])
