@@ -734,6 +734,10 @@ class ModelChoice:
         The lookup result; ``None`` when neither G nor P0 came from a set.
     g_source, p0_source : str
         ``"calibration <label>"``, ``"given"`` or ``"geometry (tube law <law> at r0)"``.
+    tube_law_p0_kpa : float
+        The tube law's P0 at the realised r0, with the tube law in force
+        (:func:`embroact.predict.tubelaws.transition_pressure_kpa`) [kPa]: the model's P0 when
+        ``p0_source`` is geometry; shown beside the set's P0 otherwise.
     notes : tuple of str
         Mismatches between the design and what the calibration was fitted with (tube).
     """
@@ -742,12 +746,18 @@ class ModelChoice:
     calibration: Calibration | None
     g_source: str
     p0_source: str
+    tube_law_p0_kpa: float
     notes: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
-        """JSON-ready: G, P0, tube law, tube and the source of each."""
+        """JSON-ready: G, P0, tube law, tube and the source of each; P0 once per source.
+
+        ``p0_kpa`` is the model's (its source ``p0_source``), ``tube_law_p0_kpa`` the tube law's
+        at r0 and ``calibration.p0_kpa`` the calibration set's (when one was looked up).
+        """
         m = self.model
         return {"g_mpa": m.g_mpa, "g_source": self.g_source, "p0_kpa": m.p0_kpa, "p0_source": self.p0_source,
+                "tube_law_p0_kpa": self.tube_law_p0_kpa,
                 "tube_law": m.tube_law, "tube": {"outer_radius_mm": m.outer_radius_mm,
                                                  "inner_radius_mm": m.inner_radius_mm, "g_e_mpa": m.g_e_mpa},
                 "calibration": None if self.calibration is None else self.calibration.as_dict(),
@@ -807,12 +817,13 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle,
                      name=settings.calibration, sets=as_calibration_sets(sets), branch=branch, extrapolation=extrapolation)
     tube = derived.tube
+    tube_p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
     elif p0_from_set and cal is not None:
         p0, p0_src = cal.p0_kpa, f"calibration {cal.label}"
     else:
-        p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
+        p0 = tube_p0
         p0_src = f"geometry (tube law {law} at r0 = {derived.r0_mm:.4g} mm)"
     if settings.g_mpa is not None:
         g, g_src = float(settings.g_mpa), "given"
@@ -833,7 +844,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
                           beta0_deg=derived.beta0_deg, outer_radius_mm=tube.outer_radius_mm,
                           inner_radius_mm=tube.inner_radius_mm, g_e_mpa=tube.g_e_mpa, g_mpa=g, p0_kpa=p0,
                           tube_law=law, calibration=label)
-    return ModelChoice(model, cal, g_src, p0_src, notes)
+    return ModelChoice(model, cal, g_src, p0_src, tube_p0, notes)
 
 
 def as_calibration_sets(sets) -> tuple[CalibrationSet, ...]:

@@ -124,10 +124,7 @@ def _model_findings(choice, model_error: str, curve_of, calibration: str, settin
         name = cal.name if cal is not None else calibration
         out.append(RULES.finding("EA406", f"{prefix}calibration {name}: " + "; ".join(notes), **where))
     if cal is not None and cal.extrapolated:
-        from .tubelaws import transition_pressure_kpa
-
-        geometric = float(transition_pressure_kpa(model.r0_mm, model, model.tube_law))  # the model carries the tube
-        p0_note = (f"; its P0 {model.p0_kpa:.1f} kPa is the set's, the tube law gives {geometric:.1f} kPa at this "
+        p0_note = (f"; its P0 {model.p0_kpa:.1f} kPa is the set's, the tube law gives {choice.tube_law_p0_kpa:.1f} kPa at this "
                    f"sleeve (p0_source = \"geometry\" uses that)" if choice.p0_source.startswith("calibration") else "")
         out.append(RULES.finding(
             "EA404", f"{prefix}calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "

@@ -107,7 +107,22 @@ def radius_mm(pressure_kpa, tube, law: str = "paper"):
 
 
 def transition_pressure_kpa(r0_mm, tube, law: str = "paper"):
-    """P0 [kPa]: the tube law's pressure at the sleeve radius r0; 0 if r0 <= r_f."""
+    """P0 [kPa]: the tube law's pressure at the sleeve radius r0; 0 if r0 <= r_f.
+
+    The one tube-law P0 of embroact: the model factory (``p0_source = "geometry"``), the
+    fit's start and fixed values, the rules' notes, the worksheet and the studio all read it
+    through here, with the tube law in force.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> round(float(transition_pressure_kpa(2.5814206750769157, Tube(), "paper")), 3)
+    84.455
+    >>> round(float(transition_pressure_kpa(2.5814206750769157, Tube(), "thick-wall")), 3)
+    49.148
+    >>> float(transition_pressure_kpa(1.2, Tube()))
+    0.0
+    """
     rf = _tube_arrays(tube)[0]
     r0 = np.asarray(r0_mm, dtype=np.float64)
     return np.where(r0 > rf, pressure_kpa(np.maximum(r0, rf), tube, law), 0.0)

@@ -99,7 +99,7 @@ def test_cli_build_default_and_json(tmp_path, capsys):
     assert doc["files"] == ["paper-zigzag.dst", "paper-zigzag.pes", "worksheet.json", "worksheet.txt", "preview.svg",
                             "template.svg", "template-a4.html", "template-letter.html", "bend.svg", "shape.svg", "shape.glb", "shape3d.svg", "report.json", "report.html"]
     assert sorted(os.listdir(tmp_path)) == sorted(doc["files"])
-    assert doc["actuators"][0]["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
+    assert doc["actuators"][0]["model"]["tube_law_p0_kpa"] == pytest.approx(84.5, abs=0.1)
 
 
 def test_cli_build_design_file(tmp_path, capsys):

@@ -118,7 +118,7 @@ def test_report_json_content_against_hand_values(built):
     assert act["derived"]["r0_mm"] == pytest.approx(r0, rel=1e-12)
     # paper law P0 = (G_e/2) (x - 1/x)^2, x = r0 / r_f, G_e = 0.13 MPa
     x = r0 / 1.5
-    assert act["derived"]["p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
+    assert act["model"]["tube_law_p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
     curve = act["curve"]
     assert curve["pressure_kpa"][:3] == [0.0, 10.0, 20.0] and curve["status"][0] == "INFLATION"
     assert curve["theta_deg"][0] == 0.0 and curve["calibration"] == "calibration paper-2025 (zigzag, width_mm=7)"

@@ -294,13 +294,8 @@ class Worksheet:
         return "\n".join(lines) + "\n"
 
 
-#: Derived-geometry keys relabelled on the text sheet: the tube law's P0 at r0 is not the model's P0
-#: (which by default is the calibration set's, listed under "model P0").
-_DERIVED_LABELS = {"p0_kpa": "p0_tube_law_kpa"}
-
-
 def _derived_lines(derived: dict, indent: str = "  ") -> list[str]:
-    return [f"{indent}{_DERIVED_LABELS.get(k, k):<24} {_fmt(v)}" for k, v in derived.items() if k != "name"]
+    return [f"{indent}{k:<24} {_fmt(v)}" for k, v in derived.items() if k != "name"]
 
 
 def _model_lines(model: dict | None, indent: str = "  ") -> list[str]:
@@ -310,6 +305,7 @@ def _model_lines(model: dict | None, indent: str = "  ") -> list[str]:
     t = model["tube"]
     return [f"{indent}model G                  {model['g_mpa']:.6g} MPa ({model['g_source']})",
             f"{indent}model P0                 {model['p0_kpa']:.6g} kPa ({model['p0_source']})",
+            f"{indent}tube-law P0 at r0        {model['tube_law_p0_kpa']:.6g} kPa (tube law {model['tube_law']})",
             f"{indent}model tube law           {model['tube_law']}",
             f"{indent}model tube               r_f {t['outer_radius_mm']:g} mm, d_f {t['inner_radius_mm']:g} mm, "
             f"G_e {t['g_e_mpa']:g} MPa"] + [f"{indent}model note: {n}" for n in model["notes"]]
