@@ -947,8 +947,8 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     """Design for one curvature fit: choose each segment's pattern, polish the parameters, analyse."""
     from scipy.optimize import least_squares
 
-    from ..patterns.rules import RuleSettings, check_plan
     from .analysis import analyse
+    from .rules import check_design
 
     lengths = np.round(lengths, 2)
     lengths[-1] = round(length - float(lengths[:-1].sum()), 2)
@@ -997,7 +997,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     t_tgt = math.degrees(math.atan2(*(xy[-1] - xy[-2])[::-1]))
     t_pred = math.degrees(math.atan2(*(pred[-1] - pred[-2])[::-1]))
     angle_err = (t_pred - t_tgt + 180.0) % 360.0 - 180.0
-    findings = check_plan(a.plan, RuleSettings.for_machine(design.machine))
+    findings = check_design(a)
     errors = sorted({f.code for f in findings if f.severity.name == "ERROR"})
     notes = [c[3] for c in chosen if c[3]]
     out_segs = tuple(ShapeSegment(sg.params, sg.length_mm, t, float(k), note)

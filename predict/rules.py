@@ -35,7 +35,7 @@ import numpy as np
 from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.rules import RuleSettings, sort_findings
-from .sleeve_rules import DESIGN_RULES, check_plan
+from .sleeve_rules import DESIGN_RULES, check_without_model
 from .status import VALIDITY_LIMITS, Status
 
 __all__ = ["ModelRuleSettings", "PER_FORMAT_RULES", "check_model", "check_design"]
@@ -257,7 +257,7 @@ def check_design(
     formats = [format] if format is None or isinstance(format, str) else list(format)
     formats = formats[:1] if rule_settings is not None else formats  # given settings: one check suffices
     settings = [rule_settings or RuleSettings.for_machine(design.machine, format=f) for f in formats]
-    found = list(check_plan(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
+    found = list(check_without_model(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
     for rs in settings[1:]:
-        found += check_plan(analysis.plan, rs, rules=PER_FORMAT_RULES)
+        found += check_without_model(analysis.plan, rs, rules=PER_FORMAT_RULES)
     return sort_findings(dict.fromkeys(f for f in found if f.code not in skip))
