@@ -107,6 +107,7 @@ __all__ = [
     "MachineSettings",
     "OperationSettings",
     "ModelSettings",
+    "names_calibration_file",
     "ActuatorSpec",
     "Design",
     "design_from_dict",
@@ -228,6 +229,17 @@ class OperationSettings:
     def __post_init__(self) -> None:
         check_range("max_pressure_kpa", self.max_pressure_kpa, low=0.0, high=100_000.0)
         check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=720.0, high_inclusive=True)
+
+
+def names_calibration_file(value: str) -> bool:
+    """True when a calibration setting names a file (``.toml`` or a path) rather than a set.
+
+    Examples
+    --------
+    >>> names_calibration_file("paper-2025"), names_calibration_file("lab.toml"), names_calibration_file("cal/lab")
+    (False, True, True)
+    """
+    return value.endswith(".toml") or "/" in value or "\\" in value
 
 
 @dataclass(frozen=True, slots=True)
@@ -367,6 +379,11 @@ class Design:
     operation : OperationSettings
     actuators : tuple of ActuatorSpec
         At least one; names unique.
+    calibration_sets : tuple
+        Calibration sets read from the files the actuators' ``calibration`` settings name
+        (:func:`embroact.export.files.designfile.load_design` reads them, relative to the
+        design file); :func:`embroact.predict.analysis.analyse` searches them. Not part of the
+        design's value (equality, the design file).
 
     Examples
     --------
@@ -384,9 +401,11 @@ class Design:
     machine: MachineSettings
     operation: OperationSettings
     actuators: tuple[ActuatorSpec, ...]
+    calibration_sets: tuple = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         check_name("name", self.name)
+        object.__setattr__(self, "calibration_sets", tuple(self.calibration_sets))
         object.__setattr__(self, "actuators", tuple(self.actuators))
         if not self.actuators:
             raise ParameterError("actuators must hold at least one actuator, got none")

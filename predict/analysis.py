@@ -759,7 +759,8 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     ----------
     design : Design
     calibration_sets : iterable of CalibrationSet, optional
-        Sets searched before the built-in registry (e.g. read from calibration files).
+        Sets searched before the built-in registry (e.g. read from calibration files), with
+        the design's own :attr:`~embroact.patterns.design.Design.calibration_sets`.
     plan : StitchPlan, optional
         ``build_plan(design)`` when already generated.
 
@@ -776,7 +777,8 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     >>> round(x.derived.angle_deg, 2), x.derived.requested_angle_deg, x.model.g_mpa
     (30.96, 30.0, 12.0)
     """
-    sets = as_calibration_sets(calibration_sets)
+    given = as_calibration_sets(calibration_sets)
+    sets = given + tuple(s for s in design.calibration_sets if s not in given)  # the files the design names
     plan = build_plan(design) if plan is None else plan
     index = {a.name: i for i, a in enumerate(plan.actuators)}
     acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets) for spec in design.actuators)

@@ -21,9 +21,11 @@ THREE = {"name": "three", "actuator": [
 
 
 def test_default_design_outputs(tmp_path):
-    res = build(default_design(), tmp_path)
+    res = build(default_design(), tmp_path)  # what `embroact build` writes: the previews and the report too
     assert res.files == ("paper-zigzag.dst", "worksheet.json", "worksheet.txt", "preview.svg", "template.svg",
-                         "template-a4.html", "template-letter.html")
+                         "template-a4.html", "template-letter.html", "bend.svg", "shape.svg", "shape.glb",
+                         "shape3d.svg", "report.json", "report.html")
+    assert build(default_design(), tmp_path, stages=()).files[-1] == "template-letter.html"  # stages=(): no previews
     assert sorted(os.listdir(tmp_path)) == sorted(res.files)
     dst = dst_decoder.decode((tmp_path / "paper-zigzag.dst").read_bytes())
     assert sum(r.kind == "stitch" for r in dst.records) == 106

@@ -128,7 +128,7 @@ def input_files(args) -> list[tuple[str, str]]:
     >>> input_files(argparse.Namespace(data="d.csv", calibration="paper-2025", path="a.svg#t", output="o"))
     [('data file', 'd.csv'), ('path drawing', 'a.svg')]
     """
-    from ..files.calibfile import is_calibration_file
+    from ...patterns.design import names_calibration_file
     from ..files.svgfile import is_svg_ref, split_ref
 
     out = []
@@ -136,7 +136,7 @@ def input_files(args) -> list[tuple[str, str]]:
         value = getattr(args, dest, None)
         if not isinstance(value, str) or not value:
             continue
-        if dest == "calibration" and not is_calibration_file(value):
+        if dest == "calibration" and not names_calibration_file(value):
             continue  # a set name
         if dest == "path" and not is_svg_ref(value):
             continue  # path data

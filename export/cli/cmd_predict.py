@@ -189,7 +189,7 @@ def run(args) -> int:
         bands[a.name] = analysis.bands(pressures, method=args.method, measurement=layout)[names.index(a.name)]
     results = [_result(a, curves[a.name], bands[a.name], pieces[a.name], readings[a.name]) for a in acts]
     if args.json:
-        payload = results[0] if quick else {"design": target.design.name, "actuators": results}
+        payload = {"design": target.design.name, "actuators": results}  # one schema, quick or design file
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:

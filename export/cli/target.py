@@ -200,10 +200,8 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
     elif design_path is not None:
         from ..files.designfile import load_design
 
-        from ..files.calibfile import resolve_calibration_files
-
-        design, sets = resolve_calibration_files(load_design(design_path), Path(design_path).parent)
-        source, quick = str(design_path), False
+        design = load_design(design_path)  # what the API's load_design reads: SVG paths, calibration files
+        sets, source, quick = design.calibration_sets, str(design_path), False
     else:
         from ...patterns.design import default_design
 
