@@ -96,7 +96,7 @@ from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS,
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit
-from .params import CrossParams, PatternParams, StitchOptions, Tube, ZigzagParams
+from .params import PatternParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, check_segments, segment_stations, segmented
 from .origin import MachineOrigin, check_origin, to_machine_frame

@@ -22,7 +22,7 @@ from typing import ClassVar, Protocol
 from .base.errors import ParameterError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "ADJUST_METHODS", "whole_intervals"]
+__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "ADJUST_METHODS", "FABRIC_THICKNESS_MM", "whole_intervals"]
 
 
 def whole_intervals(length_mm: float, interval_mm: float) -> int:
@@ -145,6 +145,10 @@ class ZigzagParams:
         check_range("width_mm", self.width_mm, low=0.0, high=200.0)
         check_range("interval_mm", self.interval_mm, low=0.0, high=100.0)
 
+
+#: Thickness of the fabric the tube lies on [mm]: the thread each needle penetration takes through it
+#: (the worksheet's thread lengths) and the fabric strip the side view and the 3D shape draw.
+FABRIC_THICKNESS_MM = 0.5
 
 #: Values of the cross pattern's generator option ``adjust`` (:func:`embroact.patterns.cross.closing`).
 ADJUST_METHODS = ("auto", "interval", "angle")

@@ -14,7 +14,7 @@ import mpref
 from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict import curve as C
-from embroact.predict.curve import ActuatorModel, Curve, curve, lockup, pressure_at, sweep
+from embroact.predict.curve import ActuatorModel, curve, lockup, pressure_at, sweep
 from embroact.predict.derived import derive_from_values
 from embroact.predict.status import Status
 

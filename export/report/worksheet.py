@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...patterns.base.errors import check_range
+from ...patterns.params import FABRIC_THICKNESS_MM
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 from ..machine.census import COLOR_FORMATS
 from ..pictures.template import start_from_centre
@@ -68,7 +69,6 @@ __all__ = [
     "TRIM_TIME_S",
     "STOP_RESTART_S",
     "LAY_TUBE_S",
-    "FABRIC_THICKNESS_MM",
     "FABRIC_BORDER_MM",
     "machine_setup",
     "over_tube_extra_mm",
@@ -87,8 +87,6 @@ STOP_RESTART_S = 5.0
 """Machine time per stop: slow down, stop and restart [s]."""
 LAY_TUBE_S = 60.0
 """Operator time per stop to lay and tape the tube along its path [s]."""
-FABRIC_THICKNESS_MM = 0.5
-"""Default fabric thickness used for the per-penetration thread allowance [mm]."""
 FABRIC_BORDER_MM = 40.0
 """Fabric beyond the hoop's sewing field on every side, for the hoop to clamp [mm]."""
 
