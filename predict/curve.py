@@ -294,6 +294,15 @@ class Curve:
     #: Bend chart in Jupyter (registered by ``embroact``).
     _repr_svg_ = repr_svg
 
+    @property
+    def segments(self) -> tuple:
+        """The curves of the chain this curve is the whole strip of: itself (a chain of one segment).
+
+        A segmented actuator's whole strip (:class:`~embroact.predict.analysis.StripCurve`) holds
+        one per segment, so the views read each segment's bend the same way for one or five.
+        """
+        return (self,)
+
     def as_dict(self) -> dict:
         """Plain dict (lists, status names) with unit-suffixed keys, for JSON.
 

@@ -80,6 +80,7 @@ def test_side_pressures_and_shape_theta():
     class C:
         pressure_kpa = np.array([0.0, 100.0, 200.0])
         theta_deg = np.array([0.0, 10.0, 30.0])
+        segments = ()  # a curve-like object with no segment curves
 
     assert shape_theta_deg(C, None) == (200.0, 30.0)
     assert shape_theta_deg(C, 150.0) == (150.0, 20.0)

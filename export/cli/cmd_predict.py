@@ -99,12 +99,10 @@ def _measured(out: dict, reading) -> dict:
 
 def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
-    if not act.segments:
-        out.update(_piece(act.model, c))
-        out["band"] = _band_dict(band)
-        return _measured(out, reading)
-    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
-    out.update(c.as_dict())  # the whole strip: pressure_kpa, theta_deg, status, method
+    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.chain, segment_curves)]
+    # the whole strip: a chain of one is its segment (with its sleeve's l, r, beta, limits), else the sum of bends
+    out.update(out["segment_curves"][0] if len(act.chain) == 1 else c.as_dict())
+    out["band"] = _band_dict(band)
     return _measured(out, reading)  # the reading of the whole chain of arcs
 
 

@@ -101,8 +101,9 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
 
 
 def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[float, ...]]:
-    """As :func:`shape_theta_deg`, with each segment's bend there when ``curve`` is a segmented
-    actuator's whole strip (:class:`~embroact.predict.analysis.StripCurve`; ``()`` otherwise).
+    """As :func:`shape_theta_deg`, with each segment's bend there (``curve.segments``: a segmented
+    actuator's whole strip, :class:`~embroact.predict.analysis.StripCurve`, holds one curve per
+    segment; a single-pattern actuator's curve is its one segment's).
 
     A strip's state is drawable only where every segment's is and the strip has not coiled
     (its status); each segment's bend is interpolated over the same drawable pressures, so the
@@ -124,7 +125,7 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
         raise ParameterError("the curve has no state the model describes to draw a shape from")
     order = np.argsort(p[ok], kind="stable")
     p, t = p[ok][order], t[ok][order]
-    parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in getattr(curve, "segments", ())]
+    parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in curve.segments]
     if pressure_kpa is None:
         return float(p[-1]), float(t[-1]), tuple(float(v[-1]) for v in parts)
     if not p[0] <= pressure_kpa <= p[-1]:

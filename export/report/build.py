@@ -263,7 +263,7 @@ def build_plan_outputs(
     force: bool = False,
     split_long: bool = False,
     speed_spm: float = DEFAULT_SPEED_SPM,
-    stages: Sequence[Stage] | None = None,
+    stages: Sequence[Stage] = (),
     cord_stop: str | None = None,
 ) -> BuildResult:
     """Build the outputs of an existing plan and its findings (see the module docstring).

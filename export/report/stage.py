@@ -48,29 +48,25 @@ def _check_inputs(analysis, curves, side_states) -> None:
     if not n or n != len(curves):
         raise ParameterError(f"need one curve per actuator ({n}), got {len(curves)}")
     for a, c in zip(analysis.actuators, curves):
-        if a.segments and len(getattr(c, "segments", ())) != len(a.segments):
-            raise ParameterError(f"actuator {a.name!r} has {len(a.segments)} segments: its curve must be its whole "
+        if len(c.segments) != len(a.chain):
+            raise ParameterError(f"actuator {a.name!r} has {len(a.chain)} segments: its curve must be its whole "
                                  f"strip (DesignAnalysis.curves), got {type(c).__name__}")
     check_side_states(side_states)
 
 
 def actuator_entry(act, curve, band=None) -> dict:
     """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
-    tube law and their sources; a segmented actuator's per segment) and the curve as ``Curve.as_dict``
-    gives it (status names as in ``embroact predict --json``); a segmented actuator's is the whole
-    strip's, followed by each segment's (``segment_curves``). ``band``: the 1-sigma band of the
+    tube law and their sources, and per segment) and the curve as ``Curve.as_dict``
+    gives it (status names as in ``embroact predict --json``): the whole strip's, followed by each
+    segment's (``segment_curves``; one for a single-pattern actuator). ``band``: the 1-sigma band of the
     calibration's covariance per point (``band``: :meth:`~embroact.predict.uncertainty.Band.summary`,
     None without one)."""
-    entry = {**act.as_dict(), "curve": curve.as_dict(), "band": None if band is None else band.summary()}
-    if act.segments:
-        entry["segment_curves"] = [c.as_dict() for c in curve.segments]
-    return entry
+    return {**act.as_dict(), "curve": curve.as_dict(), "band": None if band is None else band.summary(),
+            "segment_curves": [c.as_dict() for c in curve.segments]}
 
 
 def _side_states(act, curve, panel) -> list[dict]:
-    """The report's side-view states: pressure and bend, and a segmented actuator's bend per segment."""
-    if not act.segments:
-        return [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
+    """The report's side-view states: pressure, the whole strip's bend and each segment's."""
     return [{"pressure_kpa": p, "theta_deg": t, "segment_theta_deg": list(shape_state(curve, p)[2])}
             for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
 
@@ -137,10 +133,8 @@ def render_previews(
         mesh_info = {"file": name, "pressure_kpa": pressures, "theta_deg": {s.name: s.theta_deg for s in shapes},
                      "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": shapes[0].tolerance_mm,
                      "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
-        if any(a.segments for a in analysis.actuators):  # each segment's bend in the 3D shape
-            mesh_info["segment_theta_deg"] = {
-                a.name: list(shape_state(c, shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)
-                if a.segments}
+        mesh_info["segment_theta_deg"] = {  # each segment's bend in the 3D shape
+            a.name: list(shape_state(c, shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)}
     if stitch_svg is None:
         from ..pictures.stitches import plan_svg
 

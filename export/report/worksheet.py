@@ -242,7 +242,7 @@ class Worksheet:
                     "derived": a.derived,
                     "model": a.model,
                     "adjustments": list(a.adjustments),
-                    **({"segments": list(a.segments)} if a.segments else {}),
+                    "segments": list(a.segments),
                 }
                 for a in self.actuators
             ],
@@ -273,14 +273,14 @@ class Worksheet:
             *[f"  {s}" for s in self.stops],
         ]
         for a in self.actuators:
-            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}" if a.segments
-                    else a.pattern)
+            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}"
+                    if len(a.segments) > 1 else a.pattern)
             lines += ["", f"ACTUATOR {a.name} ({kind})",
                       f"  tube cut length  {a.tube_cut_mm:.0f} mm"
                       f" = {a.path_length_mm:.1f} mm path + 2 x {a.end_margin_mm:g} mm end margin",
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
-            if a.segments:
+            if len(a.segments) > 1:  # a chain of one: its segment is the actuator, shown as one block
                 for k, seg in enumerate(a.segments):
                     lines += _segment_lines(k, seg)
                 continue
@@ -362,7 +362,7 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
                          for seg, part in zip(act.segments, segment_plans(act)))
     else:
         derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
-        segments = tuple(s.as_dict() for s in analysed.segments)
+        segments = tuple(s.as_dict() for s in analysed.chain)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
     return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,

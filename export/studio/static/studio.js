@@ -156,7 +156,8 @@ function showNumbers(v) {
   const box = $("numbers");
   box.replaceChildren();
   v.actuators.forEach((a, i) => {
-    const segs = a.segments || [];
+    // a chain of segments; a chain of one is the actuator itself, shown as one block
+    const segs = (a.segments || []).length > 1 ? a.segments : [];
     const h = document.createElement("h2");
     h.textContent = segs.length ? `${a.name} (${segs.length} segments: ${segs.map((s) => s.pattern).join(", ")})`
       : `${a.name} (${a.pattern})`;
