@@ -23,6 +23,17 @@ __all__ = ["needle_interval_mm", "family_interval_mm"]
 def needle_interval_mm(sa, oa, sb, ob) -> float:
     """Mean axial advance of the legs [mm]: the spacing of consecutive needle points (zigzag).
 
+    Parameters
+    ----------
+    sa, oa, sb, ob : ndarray
+        Arc length and signed offset of each leg's start and end [mm].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
     >>> needle_interval_mm(np.array([0.0, 1.0]), np.zeros(2), np.array([1.0, 2.0]), np.zeros(2))
     1.0
     """
@@ -35,6 +46,22 @@ def family_interval_mm(sa, oa, sb, ob) -> float:
     A leg's position is where it crosses the centerline (``o = 0``); a family is the sign of
     its lean.
 
+    Parameters
+    ----------
+    sa, oa, sb, ob : ndarray
+        Arc length and signed offset of each leg's start and end [mm].
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    PatternError
+        Fewer than two parallel legs in each family.
+
+    Examples
+    --------
     >>> sa, oa = np.array([0.0, 1.0, 7.0, 8.0]), np.array([3.5, 3.5, -3.5, -3.5])
     >>> family_interval_mm(sa, oa, sa + 7.0, -oa)
     1.0

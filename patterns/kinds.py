@@ -100,6 +100,14 @@ class PatternKind:
         Inverse design's free parameter: ``design_params(x, width_mm, interval_mm) -> params``
         gives the pattern parameters at value ``x`` of :attr:`calibration_axis` (with the
         calibrated width and the nominal interval); None: inverse design does not search this kind.
+
+    Examples
+    --------
+    >>> k = pattern_kind("zigzag")
+    >>> k.name, k.params.__name__, k.calibration_axis, k.interval is Interval.NEEDLE_POINTS
+    ('zigzag', 'ZigzagParams', 'width_mm', True)
+    >>> k.design_params(6.5, 7.0, 1.0)
+    ZigzagParams(width_mm=6.5, interval_mm=1.0)
     """
 
     name: str
@@ -150,6 +158,17 @@ class PatternKind:
     def values(self, params: object) -> dict[str, float]:
         """``params`` (this kind's parameters) as ``{key: value}`` in declaration order.
 
+        Parameters
+        ----------
+        params : PatternParams
+            Parameters of this kind.
+
+        Returns
+        -------
+        dict of str to float
+
+        Examples
+        --------
         >>> pattern_kind("zigzag").values(ZigzagParams(7.0, 1.0))
         {'width_mm': 7.0, 'interval_mm': 1.0}
         """
@@ -161,24 +180,75 @@ class PatternKind:
         return "angle_deg" in self.param_keys
 
     def angle_deg(self, params: object) -> float:
-        """The embroidery angle alpha0 of ``params`` (this kind's parameters) [deg]; 0 for a kind without one."""
+        """The embroidery angle alpha0 of ``params`` (this kind's parameters) [deg]; 0 for a kind without one.
+
+        Parameters
+        ----------
+        params : PatternParams
+            Parameters of this kind.
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> pattern_kind("cross").angle_deg(CrossParams(7.0, 1.4, 45.0))
+        45.0
+        """
         return float(getattr(params, "angle_deg")) if self.has_angle else 0.0
 
 
 class PatternKinds:
-    """Registry of :class:`PatternKind` by name, in registration order."""
+    """Registry of :class:`PatternKind` by name, in registration order.
+
+    Examples
+    --------
+    >>> kinds = PatternKinds()
+    >>> kinds.add(pattern_kind("zigzag"))
+    >>> kinds.names(), kinds["zigzag"] is pattern_kind("zigzag")
+    (('zigzag',), True)
+    """
 
     def __init__(self) -> None:
         self._kinds: dict[str, PatternKind] = {}
 
     def add(self, kind: PatternKind) -> None:
-        """Register ``kind`` (its name must be new)."""
+        """Register ``kind`` (its name must be new).
+
+        Parameters
+        ----------
+        kind : PatternKind
+
+        Raises
+        ------
+        ParameterError
+            A kind of that name is registered already.
+
+        Examples
+        --------
+        >>> try:
+        ...     PATTERN_KINDS.add(pattern_kind("zigzag"))
+        ... except ValueError as exc:
+        ...     print(exc)
+        pattern kind 'zigzag' is already registered
+        """
         if kind.name in self._kinds:
             raise ParameterError(f"pattern kind {kind.name!r} is already registered")
         self._kinds[kind.name] = kind
 
     def names(self) -> tuple[str, ...]:
-        """Registered names, in order."""
+        """Registered names, in order.
+
+        Returns
+        -------
+        tuple of str
+
+        Examples
+        --------
+        >>> PATTERN_KINDS.names()[:2]
+        ('zigzag', 'cross')
+        """
         return tuple(self._kinds)
 
     def __getitem__(self, name: object) -> PatternKind:
@@ -191,7 +261,26 @@ class PatternKinds:
         return iter(self._kinds.values())
 
     def for_params(self, params: object) -> PatternKind:
-        """The kind whose parameter class ``params`` is an instance of."""
+        """The kind whose parameter class ``params`` is an instance of.
+
+        Parameters
+        ----------
+        params : object
+
+        Returns
+        -------
+        PatternKind
+
+        Raises
+        ------
+        ParameterError
+            ``params`` is no registered kind's parameters (the message names the classes).
+
+        Examples
+        --------
+        >>> PATTERN_KINDS.for_params(CrossParams(7.0, 1.4, 45.0)).name
+        'cross'
+        """
         for kind in self._kinds.values():
             if isinstance(params, kind.params):
                 return kind
@@ -204,18 +293,62 @@ PATTERN_KINDS = PatternKinds()
 
 
 def register(kind: PatternKind) -> None:
-    """Add a pattern kind to :data:`PATTERN_KINDS`."""
+    """Add a pattern kind to :data:`PATTERN_KINDS` (the README's "Adding a pattern kind").
+
+    Parameters
+    ----------
+    kind : PatternKind
+        Its name must be new; the model's row follows with
+        :func:`embroact.predict.kinds.register_model`.
+
+    Examples
+    --------
+    >>> try:
+    ...     register(pattern_kind("cross"))
+    ... except ValueError as exc:
+    ...     print(exc)
+    pattern kind 'cross' is already registered
+    """
     PATTERN_KINDS.add(kind)
 
 
 def pattern_kind(name: object) -> PatternKind:
-    """The registered kind called ``name`` (:class:`ParameterError` listing the valid names otherwise)."""
+    """The registered kind called ``name``.
+
+    Parameters
+    ----------
+    name : str
+
+    Returns
+    -------
+    PatternKind
+
+    Raises
+    ------
+    ParameterError
+        No kind of that name (the message lists the registered ones).
+
+    Examples
+    --------
+    >>> pattern_kind("cross").options
+    ('adjust',)
+    """
     return PATTERN_KINDS[name]
 
 
 def param_values(params: PatternParams) -> dict[str, float]:
     """The parameters of any kind as ``{key: value}`` (:meth:`PatternKind.values` of its kind).
 
+    Parameters
+    ----------
+    params : PatternParams
+
+    Returns
+    -------
+    dict of str to float
+
+    Examples
+    --------
     >>> param_values(CrossParams(7.0, 1.4, 45.0))
     {'width_mm': 7.0, 'interval_mm': 1.4, 'angle_deg': 45.0}
     """

@@ -32,7 +32,13 @@ _LIMIT_GRID = 257
 
 
 class EndKind(enum.Enum):
-    """What ends a model's stable bending branch."""
+    """What ends a model's stable bending branch.
+
+    Examples
+    --------
+    >>> EndKind("fold") is EndKind.FOLD
+    True
+    """
 
     NONE = "none"  #: no branch: the straight state is already at the end (neutral angle, no sleeve)
     LOCK_UP = "lock-up"  #: dV/dl = 0: the sleeve locks, P has a pole (cross designs)
@@ -52,6 +58,11 @@ class BranchEnd:
     status : Status
         The state's status there: a validity limit when the end lies beyond one
         (a zigzag's fold is COILED), else LOCKED, UNSTABLE, OUT_OF_DOMAIN or INFLATION.
+
+    Examples
+    --------
+    >>> BranchEnd(EndKind.LOCK_UP, 120.0, None, Status.LOCKED).as_dict()
+    {'kind': 'lock-up', 'theta_deg': 120.0, 'pressure_kpa': None, 'status': 'LOCKED'}
     """
 
     kind: EndKind
@@ -60,13 +71,31 @@ class BranchEnd:
     status: Status
 
     def as_dict(self) -> dict:
-        """JSON-ready: ``kind``, ``theta_deg``, ``pressure_kpa`` (None at a pole), ``status`` name."""
+        """JSON-ready: ``kind``, ``theta_deg``, ``pressure_kpa`` (None at a pole), ``status`` name.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> BranchEnd(EndKind.NONE, 0.0, 0.0, Status.INFLATION).as_dict()["kind"]
+        'none'
+        """
         return {"kind": self.kind.value, "theta_deg": self.theta_deg, "pressure_kpa": self.pressure_kpa,
                 "status": self.status.name}
 
 
 def branch_end(model) -> BranchEnd:
     """The end of a model's stable branch (:func:`embroact.predict.curve.lockup`), classified.
+
+    Parameters
+    ----------
+    model : ActuatorModel
+
+    Returns
+    -------
+    BranchEnd
 
     Examples
     --------
@@ -105,6 +134,11 @@ class FirstLimit:
         The limit reached (COILED, KINKED or OVERSTRETCHED).
     theta_deg, pressure_kpa : float
         Angle and pressure where it is reached.
+
+    Examples
+    --------
+    >>> FirstLimit(Status.COILED, 360.0, 231.4).status.name
+    'COILED'
     """
 
     status: Status
@@ -116,6 +150,14 @@ def first_limit(model) -> FirstLimit | None:
     """Where the stable branch first leaves the validity limits; None if it ends before.
 
     A rule warns when the working pressure reaches ``pressure_kpa``.
+
+    Parameters
+    ----------
+    model : ActuatorModel
+
+    Returns
+    -------
+    FirstLimit or None
 
     Examples
     --------
