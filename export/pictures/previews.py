@@ -148,8 +148,8 @@ def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...
 
 def segment_boundaries_mm(act) -> tuple[float, ...]:
     """Arc lengths where one segment gives way to the next [mm]: the middle of the unbent transition
-    between one segment's legs and the next's (``()`` for a single-pattern actuator)."""
-    segs = act.segments
+    between one segment's legs and the next's (``()`` for a chain of one)."""
+    segs = act.chain
     return tuple((a.plan.first_leg_mm + a.derived.length_mm + b.plan.first_leg_mm) / 2.0
                  for a, b in zip(segs, segs[1:]))
 
@@ -157,7 +157,7 @@ def segment_boundaries_mm(act) -> tuple[float, ...]:
 def sleeve_mm(act) -> tuple[float, float]:
     """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
     segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
-    parts = [s.derived for s in act.segments] or [act.derived]
+    parts = [s.derived for s in act.chain]
     return max(d.width_mm for d in parts), max(d.r0_mm for d in parts)
 
 
@@ -191,7 +191,7 @@ def model_caption(analysis) -> str:
     'paper law, r_f 1.5, d_f 1 mm, G_e 0.13 MPa'
     """
     parts: list[str] = []
-    for choice in (p.choice for act in analysis.actuators for p in (act.segments or (act,))):
+    for choice in (p.choice for act in analysis.actuators for p in act.chain):
         if choice is None:
             continue
         m = choice.model
