@@ -26,7 +26,7 @@ PACKAGE_DIRS = {"api": "embroact", "patterns": "embroact.patterns", "predict": "
 LAYERS = ("embroact.export", "embroact.predict", "embroact.patterns")
 #: Export sub-packages by rank: each imports only lower ranks (and itself). The package's own
 #: modules (``embroact.export``, ``__main__``) are the top.
-EXPORT_RANKS = {"cli": 4, "studio": 3, "report": 2, "pictures": 1, "machine": 1, "files": 0}
+EXPORT_RANKS = {"cli": 4, "studio": 3, "report": 2, "pictures": 1.5, "machine": 1, "files": 0}
 #: Import cycles allowed inside a layer (none today).
 CYCLE_EXEMPT: frozenset[frozenset[str]] = frozenset()
 
@@ -105,13 +105,13 @@ def layer_violations(graph: dict[str, set[str]]) -> list[str]:
     return out
 
 
-def _export_rank(module: str) -> tuple[str, int] | None:
+def _export_rank(module: str) -> tuple[str, float] | None:
     parts = module.split(".")
     if _layer(module) != "embroact.export":
         return None
     if len(parts) > 2 and parts[2] in EXPORT_RANKS:
         return parts[2], EXPORT_RANKS[parts[2]]
-    return parts[2] if len(parts) > 2 else "", max(EXPORT_RANKS.values()) + 1
+    return parts[2] if len(parts) > 2 else "", max(EXPORT_RANKS.values()) + 1.0
 
 
 def export_direction_violations(graph: dict[str, set[str]]) -> list[str]:

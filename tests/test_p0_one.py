@@ -67,7 +67,8 @@ def test_json_outputs_carry_the_thick_wall_p0_once_per_actuator(built, capsys):
         assert "p0_kpa" not in json.dumps(doc.get("actuators", [{}])[0].get("derived", {}))  # geometry has no P0
     assert main(["predict", str(built / "thick.toml"), "--pressure-kpa", "100", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert _tube_law_p0s(doc) == [pytest.approx(THICK_KPA, rel=1e-12)]
+    found = _tube_law_p0s(doc)  # the actuator's model and its one segment's: the same value
+    assert found and all(x == pytest.approx(THICK_KPA, rel=1e-12) for x in found)
     assert doc["actuators"][0]["model"]["tube_law"] == "thick-wall"
 
 
@@ -87,7 +88,8 @@ def test_studio_shows_the_same_p0(built, tmp_path):
     from embroact.export.studio.session import Studio
 
     v = Studio(load_design(built / "thick.toml"), tmp_path).views(200.0)
-    assert _tube_law_p0s(v["actuators"]) == [pytest.approx(THICK_KPA, rel=1e-12)]
+    found = _tube_law_p0s(v["actuators"])
+    assert found and all(x == pytest.approx(THICK_KPA, rel=1e-12) for x in found)
     assert f"{PAPER_KPA:.4g}" not in json.dumps({k: x for k, x in v.items() if not k.endswith("_svg")})
 
 

@@ -76,7 +76,7 @@ from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
 from ...patterns.base.validate import (COORD_MM, CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count,
                                        read_input)
-from ...patterns.design import names_calibration_file
+from ...patterns.design import Design, names_calibration_file
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from ...predict.layoutchoice import LAYOUT_FIELDS
@@ -302,7 +302,7 @@ def calibration_reference(value: str | None, base_dir) -> tuple[str | None, tupl
     return cset.source, (cset,)
 
 
-def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[CalibrationSet, ...]]:
+def resolve_calibration_files(design: Design, base_dir) -> tuple[Design, tuple[CalibrationSet, ...]]:
     """``design`` with every calibration file its actuators name replaced by its absolute path, and the sets.
 
     What ``embroact predict/build/check DESIGN.toml`` do with ``[actuator.model] calibration =
@@ -332,7 +332,8 @@ def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[Calibrati
     for spec in design.actuators:
         name, found = calibration_reference(spec.model.calibration, base_dir)
         sets.update({s.name: s for s in found})
-        specs.append(dataclasses.replace(spec, model=dataclasses.replace(spec.model, calibration=name)))
+        model = dataclasses.replace(spec.model, calibration=name or spec.model.calibration)
+        specs.append(dataclasses.replace(spec, model=model))
     return dataclasses.replace(design, actuators=tuple(specs)), tuple(sets.values())
 
 
