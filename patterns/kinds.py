@@ -237,6 +237,23 @@ class PatternKinds:
             raise ParameterError(f"pattern kind {kind.name!r} is already registered")
         self._kinds[kind.name] = kind
 
+    def remove(self, name: str) -> None:
+        """Take the kind ``name`` out of the registry (a plug-in unloaded, a test cleaning up).
+
+        Parameters
+        ----------
+        name : str
+
+        Examples
+        --------
+        >>> kinds = PatternKinds()
+        >>> kinds.add(pattern_kind("zigzag"))
+        >>> kinds.remove("zigzag")
+        >>> kinds.names()
+        ()
+        """
+        del self._kinds[self[name].name]
+
     def names(self) -> tuple[str, ...]:
         """Registered names, in order.
 

@@ -88,9 +88,16 @@ KIND = PatternKind(NAME, ParallelParams, __name__, "width_mm", interval=parallel
 MODEL_ROW = ModelKind(NAME, Constraint.FIXED_RADIUS, (4.0, 14.0))
 
 
-def register_parallel() -> None:
-    """Register the kind and its model row (once)."""
-    if NAME not in PATTERN_KINDS.names():
-        register(KIND)
-    if NAME not in MODEL_KINDS:
-        register_model(MODEL_ROW)
+def register_parallel() -> bool:
+    """Register the kind and its model row (once); True when this call registered them."""
+    if NAME in PATTERN_KINDS.names():
+        return False
+    register(KIND)
+    register_model(MODEL_ROW)
+    return True
+
+
+def unregister_parallel() -> None:
+    """Take the kind out again (a test that registered it leaves the registries as it found them)."""
+    PATTERN_KINDS.remove(NAME)
+    del MODEL_KINDS[NAME]

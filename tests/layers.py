@@ -26,7 +26,7 @@ PACKAGE_DIRS = {"api": "embroact", "patterns": "embroact.patterns", "predict": "
 LAYERS = ("embroact.export", "embroact.predict", "embroact.patterns")
 #: Export sub-packages by rank: each imports only lower ranks (and itself). The package's own
 #: modules (``embroact.export``, ``__main__``) are the top.
-EXPORT_RANKS = {"cli": 4, "studio": 3, "report": 2, "pictures": 1.5, "machine": 1, "files": 0}
+EXPORT_RANKS = {"cli": 6, "studio": 5, "report": 4, "photo": 3, "pictures": 2, "machine": 1, "files": 0}
 #: Import cycles allowed inside a layer (none today).
 CYCLE_EXEMPT: frozenset[frozenset[str]] = frozenset()
 

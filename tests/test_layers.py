@@ -34,8 +34,8 @@ def test_no_import_cycle_inside_a_layer():
 
 
 def test_export_sub_packages_import_one_way(graph):
-    # cli and studio on top of report, report on top of pictures, pictures of machine (a build's stop marks),
-    # everything on top of files
+    # cli and studio on top of report, report on top of photo (annotated measurements) and pictures,
+    # pictures on top of machine (a build's stop marks), everything on top of files
     assert layers.export_direction_violations(graph) == []
 
 

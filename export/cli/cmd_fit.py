@@ -29,6 +29,7 @@ import re
 import sys
 
 from ...patterns.kinds import PATTERN_KINDS
+from .args import materials_of, plus_minus
 from .markerargs import add_layout_arguments, layout_from_args
 from .target import TUBE_LAWS, add_quick_arguments
 
@@ -168,18 +169,6 @@ def _data(args, derived, choice):
     return m.pressure_kpa, theta, m.branch, note
 
 
-def materials_of(items):
-    from ...patterns.base.errors import ParameterError
-
-    out = {}
-    for item in items:
-        key, sep, value = item.partition("=")
-        if not sep or not key.strip():
-            raise ParameterError(f"--material must be KEY=VALUE, got {item!r}")
-        out[key.strip()] = value.strip()
-    return out
-
-
 def _appended_set(args):
     """The calibration set ``--append`` merges into (None: no such file, or no ``--append``)."""
     from ..files.calibfile import read_calibration
@@ -214,11 +203,6 @@ def _write_set(args, act, results, layout, old):
                               tube_law=args.tube_law, marker_layout=layout)
     write_calibration(args.output, cset)
     return cset
-
-
-def plus_minus(value, se, digits=4) -> str:
-    """``value`` to ``digits`` significant digits, with `` +- se`` when the standard error is known."""
-    return f"{value:.{digits}g}" + ("" if se is None else f" +- {se:.2g}")
 
 
 def _table(derived, results, note, cset, path) -> str:

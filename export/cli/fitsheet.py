@@ -58,7 +58,7 @@ def run_sheet(args) -> int:
     from ...predict.profile import DISAGREE_FACTOR, fit_profile
     from ..files.calibfile import write_calibration
     from ..files.couponfile import read_coupon_layout, read_sheet
-    from .cmd_fit import materials_of, plus_minus
+    from .args import materials_of, plus_minus
     from .markerargs import layout_from_args
 
     if args.data is not None:
