@@ -4,7 +4,6 @@ import json
 
 import numpy as np
 import pystitch as pe
-import pytest
 
 import dst_decoder
 from embroact.export.cli.main import main
