@@ -2,7 +2,7 @@
 
 Each design is a grid of 40 mm zigzags (10 columns 110 mm apart, rows 15 mm apart,
 every rule passes) in a hoop large enough for all of them. Every rule that runs on
-a plan (``embroact.predict.sleeve_rules.check_plan``: geometry, pattern, tubes,
+a plan (``embroact.predict.sleeve_rules.check_without_model``: geometry, pattern, tubes,
 machine file, sleeve) is timed; the best of ``--repeats`` interleaved rounds is kept
 per size (a round checks each design often enough to take about as long as the
 300-actuator check), so the ratios compare like with like on a shared machine.
@@ -41,11 +41,11 @@ def measure(repeats: int) -> dict:
     """Best time per check [s] per size, the ratios to 10 actuators, and the work counted."""
     from embroact.patterns.design import build_plan
     from embroact.patterns.rules import RuleSettings, engine, layout_from_plan
-    from embroact.predict.sleeve_rules import DESIGN_RULES, check_plan
+    from embroact.predict.sleeve_rules import DESIGN_RULES, check_without_model
 
     settings = RuleSettings(hoop_width_mm=9000.0, hoop_height_mm=9000.0)
     plans = {n: build_plan(grid_design(n)) for n in SIZES}
-    findings = {n: len(check_plan(p, settings)) for n, p in plans.items()}  # warm-up, and must be 0
+    findings = {n: len(check_without_model(p, settings)) for n, p in plans.items()}  # warm-up, and must be 0
     best = {n: float("inf") for n in SIZES}
     gc.disable()
     try:
@@ -54,7 +54,7 @@ def measure(repeats: int) -> dict:
                 k = max(1, SIZES[-1] // n)
                 t = time.perf_counter()
                 for _ in range(k):
-                    check_plan(plan, settings)
+                    check_without_model(plan, settings)
                 best[n] = min(best[n], (time.perf_counter() - t) / k)
     finally:
         gc.enable()

@@ -15,7 +15,6 @@ True
 from __future__ import annotations
 
 import argparse
-import itertools
 import json
 import math
 import os

@@ -147,7 +147,7 @@ sys.path.insert(0, {here!r})
 from stitch_bench import meander
 from embroact.patterns.centerline import Centerline
 from embroact.patterns.params import ZigzagParams
-from embroact.patterns.rules import check_plan
+from embroact.patterns.rules import check_geometry
 from embroact.patterns.zigzag import zigzag
 from embroact.export.machine.formats import write
 trace = {trace!r}
@@ -156,7 +156,7 @@ if trace:
 t = time.perf_counter()
 plan = zigzag(Centerline.from_points(meander({length!r})), ZigzagParams(7.0, 1.0))
 t_gen = time.perf_counter()
-findings = check_plan(plan)
+findings = check_geometry(plan)
 t_check = time.perf_counter()
 res = write(plan, {out!r})
 t_write = time.perf_counter()

@@ -90,7 +90,7 @@ def prototype(name, params, geometry: str, tube: Tube) -> dict:
         "r0_mm": d.r0_mm,
         "beta0_deg": d.beta0_deg,
         "neutral_angle_deg": d.neutral_angle_deg,
-        "p0_geometry_kpa": d.p0_kpa,
+        "p0_geometry_kpa": choice.tube_law_p0_kpa,
         "p0_paper_predicted_kpa": PAPER_PREDICTED_P0_KPA.get(params.width_mm) if d.pattern == "zigzag" else None,
         "p0_fitted_kpa": cal.p0_kpa,
         "g_mpa": cal.g_mpa,

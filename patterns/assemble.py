@@ -188,7 +188,7 @@ def assemble(
     station_s, station_side, station_role : arrays (m,)
         Arc length [mm], rail side (+1 left / -1 right) and role of the stitch arriving
         at each station (the first station's role is unused: the tie-in ends there).
-    params : ZigzagParams | CrossParams
+    params : PatternParams
         The requested parameters (rail offset is ``params.width_mm / 2``).
     """
     s0, sn = float(station_s[0]), float(station_s[-1])

@@ -65,14 +65,12 @@ import numpy as np
 from .assemble import assemble, check_pattern_inputs, check_record_count, rail_positions
 from .centerline import as_centerline
 from .base.errors import ParameterError, PatternError
-from .params import CrossParams, StitchOptions, Tube, whole_intervals
+from .params import ADJUST_METHODS, CrossParams, StitchOptions, Tube, whole_intervals
 from .plan import Role, StitchPlan
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["cross", "cross_stations", "cross_realised_params", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
+__all__ = ["cross", "cross_stations", "cross_realised_params", "cross_min_length_mm", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
 
-#: Valid values of ``adjust``.
-ADJUST_METHODS = ("auto", "interval", "angle")
 #: Longest single EDGE stitch between passes, measured along its rail [mm]; longer edges are split.
 MAX_EDGE_STITCH_MM = 3.0
 #: Passes closer to an integer than this (relative) count as exact.
@@ -137,6 +135,15 @@ def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") 
     n, s, _, _ = closing(params, adjust)
     span = whole_intervals(length_mm, s) * s
     return 2.0 * span / s + n * (2.0 + 2.0 * s / MAX_EDGE_STITCH_MM)  # an outer rail is at most 2x as long
+
+
+def cross_min_length_mm(params: CrossParams) -> float:
+    """Shortest legs span of a cross of ``params`` as given (closed): two leg pitches, ``4 w tan(alpha0)`` [mm].
+
+    >>> round(cross_min_length_mm(CrossParams(7.0, 1.4, 45.0)), 9)
+    28.0
+    """
+    return 4.0 * params.width_mm * math.tan(math.radians(params.angle_deg))
 
 
 def cross_realised_params(params: CrossParams, adjust: str = "auto") -> CrossParams:

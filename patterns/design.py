@@ -30,7 +30,7 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     max_bend_deg = 180.0
     [[actuator]]                     # one table per actuator, sewn in this order
     name = "A1"                      # required, unique
-    pattern = "zigzag"               # required: "zigzag" or "cross"
+    pattern = "zigzag"               # required: a registered pattern kind (zigzag, cross, ...)
     width_mm = 7.0                   # required: rail spacing w
     interval_mm = 1.0                # required: stitch interval s
     # angle_deg = 45.0               # cross only (required there): alpha0
@@ -96,7 +96,7 @@ from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS,
 from .centerline import Centerline, as_centerline
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit, on_grid
-from .params import CrossParams, StitchOptions, Tube, ZigzagParams
+from .params import PatternParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, check_segments, segment_stations, segmented
 from .origin import MachineOrigin, check_origin, to_machine_frame
@@ -107,6 +107,7 @@ __all__ = [
     "MachineSettings",
     "OperationSettings",
     "ModelSettings",
+    "names_calibration_file",
     "ActuatorSpec",
     "Design",
     "design_from_dict",
@@ -230,6 +231,17 @@ class OperationSettings:
         check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=720.0, high_inclusive=True)
 
 
+def names_calibration_file(value: str) -> bool:
+    """True when a calibration setting names a file (``.toml`` or a path) rather than a set.
+
+    Examples
+    --------
+    >>> names_calibration_file("paper-2025"), names_calibration_file("lab.toml"), names_calibration_file("cal/lab")
+    (False, True, True)
+    """
+    return value.endswith(".toml") or "/" in value or "\\" in value
+
+
 @dataclass(frozen=True, slots=True)
 class ModelSettings:
     """Prediction settings of one actuator.
@@ -281,7 +293,7 @@ class ActuatorSpec(KindFields):
     ----------
     name : str
         Unique within the design (any unicode).
-    params : ZigzagParams | CrossParams
+    params : PatternParams
     centerline : Centerline
         Tube path in the plan frame [mm].
     options : StitchOptions
@@ -302,7 +314,7 @@ class ActuatorSpec(KindFields):
     """
 
     name: str
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     centerline: Centerline
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)
@@ -367,6 +379,11 @@ class Design:
     operation : OperationSettings
     actuators : tuple of ActuatorSpec
         At least one; names unique.
+    calibration_sets : tuple
+        Calibration sets read from the files the actuators' ``calibration`` settings name
+        (:func:`embroact.export.files.designfile.load_design` reads them, relative to the
+        design file); :func:`embroact.predict.analysis.analyse` searches them. Not part of the
+        design's value (equality, the design file).
 
     Examples
     --------
@@ -384,9 +401,11 @@ class Design:
     machine: MachineSettings
     operation: OperationSettings
     actuators: tuple[ActuatorSpec, ...]
+    calibration_sets: tuple = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         check_name("name", self.name)
+        object.__setattr__(self, "calibration_sets", tuple(self.calibration_sets))
         object.__setattr__(self, "actuators", tuple(self.actuators))
         if not self.actuators:
             raise ParameterError("actuators must hold at least one actuator, got none")

@@ -8,8 +8,8 @@ axis exceeds the format's limit on that grid (:func:`records_needed`). The desig
 rule EA102 and the machine writer both judge a stitch with these functions, so a
 leg the writer encodes in one record never trips the rule.
 
-Limits are pyembroidery 1.5.1's writers' (docs/machine.md), in mm per axis (not
-Euclidean). XXX: the writer encodes a stitch of 124 units (12.4 mm) or more per axis
+Limits are pystitch's writers' (those of pyembroidery 1.5.1, which it forks; docs/machine.md),
+in mm per axis (not Euclidean). XXX: the writer encodes a stitch of 124 units (12.4 mm) or more per axis
 with the long-move code 0x7D, which every reader takes as a jump, so its stitch
 limit is 12.3 mm (frame moves of 12.4 mm are fine).
 
@@ -54,7 +54,7 @@ GRID_ROUNDING_MM = 0.5 * math.sqrt(2.0) * DEFAULT_TOLERANCES.machine_grid_mm
 """The farthest :func:`on_grid` moves a point [mm]: half a grid step on each axis."""
 
 TRIM_JUMP_RUN = 3
-"""Consecutive jump records a machine (and pyembroidery's DST writer) treat as a trim."""
+"""Consecutive jump records a machine (and pystitch's DST writer) treat as a trim."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -29,33 +29,12 @@ from __future__ import annotations
 import numpy as np
 
 from .centerline import as_centerline
-from .base.errors import ParameterError, PatternError
-from .kinds import PATTERN_KINDS, Interval, pattern_kind
+from .base.errors import PatternError
+from .kinds import pattern_kind
 from .limits import GRID_ROUNDING_MM
 from .plan import Realised, Role
-from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["measure", "PATTERNS"]
-
-#: Pattern names :func:`measure` understands.
-PATTERNS = PATTERN_KINDS.names()
-
-
-def _family_spacing(pos: np.ndarray, family: np.ndarray) -> float:
-    """Median spacing of neighbouring distinct leg positions within each family.
-
-    The median, not the mean: a leg left out where two passes turn (see
-    :mod:`embroact.patterns.cross`) must not bias the typical spacing.
-    """
-    gaps = []
-    for f in (-1.0, 1.0):
-        p = np.sort(pos[family == f])
-        d = np.diff(p)
-        gaps.append(d[d > DEFAULT_TOLERANCES.machine_grid_mm / 2.0])
-    g = np.concatenate(gaps)
-    if g.size == 0:
-        raise PatternError("cannot measure the interval: fewer than two parallel legs in each family")
-    return float(np.median(g))
+__all__ = ["measure"]
 
 
 def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
@@ -68,10 +47,11 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     roles : array (n,)
         :class:`Role` per point; legs arrive at ``Role.LEG`` points.
     centerline : Centerline or anything :func:`as_centerline` takes
-    pattern : {"zigzag", "cross"}
+    pattern : str
+        A registered pattern kind (its :attr:`~embroact.patterns.kinds.PatternKind.interval`
+        measures the interval).
     """
-    if pattern not in PATTERNS:
-        raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERNS))}, got {pattern!r}")
+    pattern_kind(pattern)  # a registered kind, else one line naming them
     cl = as_centerline(centerline)
     xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
     ends = np.flatnonzero(np.asarray(roles) == Role.LEG)
@@ -86,12 +66,7 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     angle = float(np.degrees(np.arctan2(np.abs(ds), np.abs(do))).mean())
     direction = np.sign(ds[np.abs(ds) > 2.0 * GRID_ROUNDING_MM])  # a shorter step may be the grid's, not the leg's
     passes = 1 + int(np.count_nonzero(np.diff(direction)))
-    if pattern_kind(pattern).interval is Interval.NEEDLE_POINTS:
-        interval = float(np.abs(ds).mean())
-    else:
-        family = np.sign(ds * do)
-        crossing = sa - oa * ds / np.where(do != 0.0, do, 1.0)
-        interval = _family_spacing(crossing, family)
+    interval = float(pattern_kind(pattern).interval(sa, oa, sb, ob))
     return Realised(
         width_mm=float(2.0 * np.abs(o[pts]).mean()),
         interval_mm=interval,

@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import ClassVar, Protocol
 
 from .base.errors import ParameterError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "whole_intervals"]
+__all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "ADJUST_METHODS", "FABRIC_THICKNESS_MM", "whole_intervals"]
 
 
 def whole_intervals(length_mm: float, interval_mm: float) -> int:
@@ -146,6 +146,14 @@ class ZigzagParams:
         check_range("interval_mm", self.interval_mm, low=0.0, high=100.0)
 
 
+#: Thickness of the fabric the tube lies on [mm]: the thread each needle penetration takes through it
+#: (the worksheet's thread lengths) and the fabric strip the side view and the 3D shape draw.
+FABRIC_THICKNESS_MM = 0.5
+
+#: Values of the cross pattern's generator option ``adjust`` (:func:`embroact.patterns.cross.closing`).
+ADJUST_METHODS = ("auto", "interval", "angle")
+
+
 @dataclass(frozen=True, slots=True)
 class CrossParams:
     """Cross pattern: two families of legs at +-alpha0 from the perpendicular.
@@ -180,4 +188,25 @@ class CrossParams:
         check_range("angle_deg", self.angle_deg, low=0.0, high=90.0)
 
 
-PatternParams = ZigzagParams | CrossParams
+class PatternParams(Protocol):
+    """What every pattern kind's parameter class has (:attr:`embroact.patterns.kinds.PatternKind.params`).
+
+    A frozen dataclass with the class attribute ``pattern`` (the kind's name) and the fields
+    ``width_mm`` and ``interval_mm``, checking its own ranges; a kind may add fields
+    (``angle_deg``).
+
+    Examples
+    --------
+    >>> p: PatternParams = ZigzagParams(7.0, 1.0)
+    >>> p.pattern, p.width_mm, p.interval_mm
+    ('zigzag', 7.0, 1.0)
+    """
+
+    @property
+    def pattern(self) -> str: ...
+
+    @property
+    def width_mm(self) -> float: ...
+
+    @property
+    def interval_mm(self) -> float: ...

@@ -1,7 +1,7 @@
 """The immutable stitch plan: needle points in sewing order, with what each one is.
 
 Frame: millimetres, x to the right, **y up** (the machine frame of DST). The
-pyembroidery frame (0.1 mm, y down) is the export layer's business.
+pystitch frame (0.1 mm, y down) is the export layer's business.
 
 Examples
 --------
@@ -106,7 +106,7 @@ class ActuatorPlan(KindOf):
     ----------
     name : str
         Actuator name (thread list / colour table entry).
-    params : ZigzagParams | CrossParams
+    params : PatternParams
         The requested pattern parameters.
     tube : Tube
         The tube it is sewn over.

@@ -76,7 +76,7 @@ class SegmentSpec(KindFields):
 
     Parameters
     ----------
-    params : ZigzagParams | CrossParams
+    params : PatternParams
     length_mm : float
         Length of the path the segment covers [mm], > 0.
     adjust : str
@@ -101,7 +101,7 @@ class SegmentPlan(KindOf):
 
     Attributes
     ----------
-    params : ZigzagParams | CrossParams
+    params : PatternParams
         The request.
     start_mm, length_mm : float
         Where the segment's share of the path starts and how long it is [mm].

@@ -55,7 +55,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .markers import MarkerLayout
     from .uncertainty import Band
 
-__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "DesignAnalysis", "analyse",
+__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "whole_strip", "DesignAnalysis", "analyse",
            "segment_plans", "with_model_overrides", "PRESSURE_STEP_KPA", "pressure_grid_kpa"]
 
 #: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
@@ -156,6 +156,22 @@ class StripCurve:
         return f"StripCurve({len(self.segments)} segments, {len(names)} pressures; {counts or 'no statuses'})"
 
 
+def whole_strip(segment_curves: Sequence):
+    """The whole strip's curve of a chain of segments: :func:`strip_curve` of them; a chain of one is its segment.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, curve
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> c = curve(m, [0, 100])
+    >>> whole_strip([c]) is c, type(whole_strip([c, c])).__name__
+    (True, 'StripCurve')
+    """
+    curves = tuple(segment_curves)
+    return curves[0] if len(curves) == 1 else strip_curve(curves)
+
+
 def strip_curve(segment_curves: Sequence) -> StripCurve:
     """The whole strip of a segmented actuator from its segments' curves (one pressure grid).
 
@@ -232,9 +248,11 @@ class ActuatorAnalysis:
         A segmented actuator's segments, each with its own model; ``derived`` is then the
         first segment's and ``choice`` is ``None`` (there is no one model: use
         :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`). Empty otherwise.
-    first_leg_mm : float
-        A single-pattern actuator: arc length where its legs start [mm] (the path before
-        them bends by zero; a segment's is :attr:`SegmentPlan.first_leg_mm`).
+    chain : tuple of SegmentAnalysis
+        The actuator as a chain of one or more segments, each with its pattern, where it lies,
+        its derived geometry and model: a single-pattern actuator is a chain of one (its
+        ``derived`` and ``choice``), a segmented one its :attr:`segments`. Outputs give one
+        entry per link, in the same keys for one segment as for five.
 
     Examples
     --------
@@ -250,7 +268,7 @@ class ActuatorAnalysis:
     choice: ModelChoice | None
     model_error: str = ""
     segments: tuple[SegmentAnalysis, ...] = ()
-    first_leg_mm: float = 0.0
+    chain: tuple[SegmentAnalysis, ...] = ()
 
     def bend_pieces(self) -> tuple[tuple[float, int], ...]:
         """The fabric line from the clamp as ``(length_mm, segment index)`` pieces; index -1 bends by zero.
@@ -269,8 +287,7 @@ class ActuatorAnalysis:
         >>> [(round(length, 6), k) for length, k in analyse(default_design()).actuators[0].bend_pieces()]
         [(100.0, 0)]
         """
-        spans = ([(self.first_leg_mm, self.derived.length_mm)] if not self.segments
-                 else [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.segments])
+        spans = [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.chain]
         out, at = [], 0.0
         for k, (start, length) in enumerate(spans):
             if start - at > 1e-9:
@@ -308,12 +325,9 @@ class ActuatorAnalysis:
         >>> d["name"], d["pattern"], d["model_error"]
         ('A1', 'zigzag', None)
         """
-        d: dict[str, object] = {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
-             "model": self.choice.as_dict() if self.choice is not None else None,
-             "model_error": self.model_error or None}
-        if self.segments:
-            d["segments"] = [s.as_dict() for s in self.segments]
-        return d
+        return {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
+                "model": self.choice.as_dict() if self.choice is not None else None,
+                "model_error": self.model_error or None, "segments": [s.as_dict() for s in self.chain]}
 
     def __repr__(self) -> str:
         d = self.derived
@@ -423,8 +437,7 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = (p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(strip_curve(pieces) if a.segments else pieces[0]
-                                      for a, pieces in zip(self.actuators, self.segment_curves(p, method=method)))
+            self._curves[key] = tuple(whole_strip(pieces) for pieces in self.segment_curves(p, method=method))
         return self._curves[key]
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
@@ -469,9 +482,7 @@ class DesignAnalysis:
                     same[model] = curve(model, p, method=method)
                 return same[model]
 
-            self._curves[key] = tuple(
-                tuple(curve_of(s.model) for s in a.segments) if a.segments else (curve_of(a.model),)
-                for a in self.actuators)
+            self._curves[key] = tuple(tuple(curve_of(s.model) for s in a.chain) for a in self.actuators)
         return self._curves[key]
 
     def shapes(self, name: str, pressures_kpa: Sequence[float], *, method: str = "auto") -> tuple:
@@ -547,7 +558,7 @@ class DesignAnalysis:
         from .layoutchoice import layout_for
 
         act = self.actuator(name)
-        choices = [s.choice for s in act.segments] if act.segments else [act.choice]
+        choices = [s.choice for s in act.chain]
         if not any(c is not None and c.calibration is not None for c in choices):
             return layout_for(given=given)
         cset = get_set(act.spec.model.calibration, self.calibration_sets)
@@ -629,7 +640,7 @@ class DesignAnalysis:
         key = ("band", p, method, measurement)
         if key not in self._curves:
             # no band is claimed for a sum of segments
-            self._curves[key] = tuple(None if a.segments else _band(a, p, method, measurement)
+            self._curves[key] = tuple(None if len(a.chain) > 1 else _band(a, p, method, measurement)
                                       for a in self.actuators)
         return self._curves[key]
 
@@ -739,7 +750,7 @@ def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAn
         segs.append(SegmentAnalysis(seg, derived, choice, f"segment {k}: {error}" if error else ""))
     return ActuatorAnalysis(spec, act, segs[0].derived, None,
                             f"segmented actuator with {len(segs)} segments: one model per segment "
-                            f"(ActuatorAnalysis.segments)", tuple(segs))
+                            f"(ActuatorAnalysis.segments)", tuple(segs), tuple(segs))
 
 
 def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
@@ -748,7 +759,9 @@ def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) ->
         return _analyse_segments(spec, act, sets)
     derived = derive(act)
     choice, error = _model_of(derived, spec.model, sets)
-    return ActuatorAnalysis(spec, act, derived, choice, error, first_leg_mm=act.realised.start_mm)
+    whole = SegmentPlan(act.params, 0.0, act.centerline.length_mm, act.realised, act.realised.start_mm, 0.0, 0.0,
+                        act.adjustments)
+    return ActuatorAnalysis(spec, act, derived, choice, error, chain=(SegmentAnalysis(whole, derived, choice, error),))
 
 
 def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),
@@ -759,7 +772,8 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     ----------
     design : Design
     calibration_sets : iterable of CalibrationSet, optional
-        Sets searched before the built-in registry (e.g. read from calibration files).
+        Sets searched before the built-in registry (e.g. read from calibration files), with
+        the design's own :attr:`~embroact.patterns.design.Design.calibration_sets`.
     plan : StitchPlan, optional
         ``build_plan(design)`` when already generated.
 
@@ -776,7 +790,8 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     >>> round(x.derived.angle_deg, 2), x.derived.requested_angle_deg, x.model.g_mpa
     (30.96, 30.0, 12.0)
     """
-    sets = as_calibration_sets(calibration_sets)
+    given = as_calibration_sets(calibration_sets)
+    sets = given + tuple(s for s in design.calibration_sets if s not in given)  # the files the design names
     plan = build_plan(design) if plan is None else plan
     index = {a.name: i for i, a in enumerate(plan.actuators)}
     acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets) for spec in design.actuators)

@@ -78,7 +78,6 @@ if TYPE_CHECKING:  # pragma: no cover
     from .curve import ActuatorModel
 
 __all__ = [
-    "PATTERNS",
     "BRANCHES",
     "EXTRAPOLATIONS",
     "CalibrationPoint",
@@ -96,7 +95,6 @@ __all__ = [
     "as_calibration_sets",
 ]
 
-PATTERNS = PATTERN_KINDS.names()
 BRANCHES = ("loading", "unloading", "both")
 EXTRAPOLATIONS = ("clamp", "linear")
 
@@ -128,7 +126,7 @@ class CalibrationPoint:
     Parameters
     ----------
     pattern : str
-        ``"zigzag"`` or ``"cross"``.
+        A registered pattern kind.
     width_mm : float
         Embroidery width w [mm], > 0.
     g_mpa : float
@@ -178,7 +176,7 @@ class CalibrationPoint:
     tube_law_parameters: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
-        _choice("pattern", self.pattern, PATTERNS)
+        _choice("pattern", self.pattern, PATTERN_KINDS.names())
         _choice("branch", self.branch, BRANCHES)
         check_range("width_mm", self.width_mm, low=0.0, high=200.0)
         check_range("g_mpa", self.g_mpa, low=0.0, high=_G_MAX_MPA)
@@ -388,7 +386,7 @@ class CalibrationSet:
         return dataclasses.replace(self, points=kept + new)
 
     def coverage(self) -> dict[str, tuple[float, float]]:
-        """Covered pattern coordinate per pattern: ``{"zigzag": (w_min, w_max), "cross": (a_min, a_max)}``.
+        """Covered range of each pattern's calibration axis: ``{pattern: (low, high)}`` (width or angle).
 
         Examples
         --------
@@ -643,7 +641,7 @@ def lookup(
     Parameters
     ----------
     pattern : str
-        ``"zigzag"`` or ``"cross"``.
+        A registered pattern kind.
     width_mm : float
         Embroidery width [mm].
     angle_deg : float, optional
@@ -674,7 +672,7 @@ def lookup(
         The set has no points for the pattern/branch, or a linear extrapolation leaves
         the valid range of G or P0.
     """
-    _choice("pattern", pattern, PATTERNS)
+    _choice("pattern", pattern, PATTERN_KINDS.names())
     _choice("branch", branch, BRANCHES)
     _choice("extrapolation", extrapolation, EXTRAPOLATIONS)
     _choice("interpolation", interpolation, ("pchip", "linear"))
@@ -746,6 +744,10 @@ class ModelChoice:
         The lookup result; ``None`` when neither G nor P0 came from a set.
     g_source, p0_source : str
         ``"calibration <label>"``, ``"given"`` or ``"geometry (tube law <law> at r0)"``.
+    tube_law_p0_kpa : float
+        The tube law's P0 at the realised r0, with the tube law in force
+        (:func:`embroact.predict.tubelaws.transition_pressure_kpa`) [kPa]: the model's P0 when
+        ``p0_source`` is geometry; shown beside the set's P0 otherwise.
     notes : tuple of str
         Mismatches between the design and what the calibration was fitted with (tube).
     """
@@ -754,12 +756,18 @@ class ModelChoice:
     calibration: Calibration | None
     g_source: str
     p0_source: str
+    tube_law_p0_kpa: float
     notes: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
-        """JSON-ready: G, P0, tube law, tube and the source of each."""
+        """JSON-ready: G, P0, tube law, tube and the source of each; P0 once per source.
+
+        ``p0_kpa`` is the model's (its source ``p0_source``), ``tube_law_p0_kpa`` the tube law's
+        at r0 and ``calibration.p0_kpa`` the calibration set's (when one was looked up).
+        """
         m = self.model
         return {"g_mpa": m.g_mpa, "g_source": self.g_source, "p0_kpa": m.p0_kpa, "p0_source": self.p0_source,
+                "tube_law_p0_kpa": self.tube_law_p0_kpa,
                 "tube_law": m.tube_law, "tube": {"outer_radius_mm": m.outer_radius_mm,
                                                  "inner_radius_mm": m.inner_radius_mm, "g_e_mpa": m.g_e_mpa},
                 "calibration": None if self.calibration is None else self.calibration.as_dict(),
@@ -819,12 +827,13 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle,
                      name=settings.calibration, sets=as_calibration_sets(sets), branch=branch, extrapolation=extrapolation)
     tube = derived.tube
+    tube_p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
     elif p0_from_set and cal is not None:
         p0, p0_src = cal.p0_kpa, f"calibration {cal.label}"
     else:
-        p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
+        p0 = tube_p0
         p0_src = f"geometry (tube law {law} at r0 = {derived.r0_mm:.4g} mm)"
     if settings.g_mpa is not None:
         g, g_src = float(settings.g_mpa), "given"
@@ -845,7 +854,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
                           beta0_deg=derived.beta0_deg, outer_radius_mm=tube.outer_radius_mm,
                           inner_radius_mm=tube.inner_radius_mm, g_e_mpa=tube.g_e_mpa, g_mpa=g, p0_kpa=p0,
                           tube_law=law, calibration=label)
-    return ModelChoice(model, cal, g_src, p0_src, notes)
+    return ModelChoice(model, cal, g_src, p0_src, tube_p0, notes)
 
 
 def as_calibration_sets(sets) -> tuple[CalibrationSet, ...]:

@@ -140,7 +140,7 @@ class ActuatorModel:
     Parameters
     ----------
     pattern : str
-        "zigzag" or "cross".
+        A registered pattern kind.
     length_mm, r0_mm : float
         Fabric-side length l0 and sleeve radius r0 [mm], > 0.
     beta0_deg : float
@@ -234,13 +234,12 @@ class ActuatorModel:
         >>> from embroact.predict.analysis import analyse
         >>> d = analyse(default_design()).actuators[0].derived
         >>> m = ActuatorModel.from_derived(d, g_mpa=2.7)
-        >>> m.r0_mm == d.r0_mm, m.p0_kpa == d.p0_kpa
-        (True, True)
+        >>> m.r0_mm == d.r0_mm, round(m.p0_kpa, 3)
+        (True, 84.455)
         """
         t = derived.tube
         if p0_kpa is None:
-            p0_kpa = float(derived.p0_kpa) if tube_law == "paper" else float(
-                transition_pressure_kpa(derived.r0_mm, t, tube_law))
+            p0_kpa = float(transition_pressure_kpa(derived.r0_mm, t, tube_law))
         return cls(derived.pattern, length_mm=derived.length_mm, r0_mm=derived.r0_mm,
                    beta0_deg=derived.beta0_deg if model_kind(derived.pattern).has_thread_angle else 0.0,
                    outer_radius_mm=t.outer_radius_mm, inner_radius_mm=t.inner_radius_mm,
@@ -294,6 +293,15 @@ class Curve:
 
     #: Bend chart in Jupyter (registered by ``embroact``).
     _repr_svg_ = repr_svg
+
+    @property
+    def segments(self) -> tuple:
+        """The curves of the chain this curve is the whole strip of: itself (a chain of one segment).
+
+        A segmented actuator's whole strip (:class:`~embroact.predict.analysis.StripCurve`) holds
+        one per segment, so the views read each segment's bend the same way for one or five.
+        """
+        return (self,)
 
     def as_dict(self) -> dict:
         """Plain dict (lists, status names) with unit-suffixed keys, for JSON.

@@ -1,7 +1,10 @@
-"""Sleeve geometry derived from the generated stitches: r0, beta0, gamma and P0.
+"""Sleeve geometry derived from the generated stitches: r0, beta0 and gamma.
 
 The numbers come from what the generator realised (rail spacing and leg angle
-measured on the stitches), not from the request; both are kept for reports.
+measured on the stitches), not from the request; both are kept for reports. The tube law's
+P0 at r0 depends on the tube law in force, a model setting: it is
+:attr:`embroact.predict.calibration.ModelChoice.tube_law_p0_kpa`
+(:func:`embroact.predict.tubelaws.transition_pressure_kpa`).
 
 Examples
 --------
@@ -9,8 +12,8 @@ Examples
 >>> from embroact.predict.derived import derive_from_values
 >>> g = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0,
 ...                        length_mm=100.0, tube=Tube())
->>> round(g.r0_mm, 4), round(g.p0_kpa, 1)
-(2.5814, 84.5)
+>>> round(g.r0_mm, 4), g.beta0_deg
+(2.5814, 0.0)
 >>> c = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=45.0,
 ...                        length_mm=100.0, tube=Tube())
 >>> round(c.beta0_deg, 3), c.bends_positive
@@ -26,7 +29,6 @@ from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
 from .kinds import model_kind
 from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
-from .tubelaws import transition_pressure_kpa
 
 __all__ = ["DerivedGeometry", "derive", "derive_from_values"]
 
@@ -50,8 +52,6 @@ class DerivedGeometry:
         Thread angle to the circumferential direction at r0 [deg] (0 for zigzag).
     gamma : float
         2 r0 / (l0 cos beta0) [1/rad].
-    p0_kpa : float
-        Transition pressure from the tube law (paper's law) [kPa]; 0 if r0 <= r_f.
     neutral_angle_deg : float
         alpha0 with tan(beta0) = 1/2 for this width and tube [deg].
     tube : Tube
@@ -69,7 +69,6 @@ class DerivedGeometry:
     r0_mm: float
     beta0_deg: float
     gamma: float
-    p0_kpa: float
     neutral_angle_deg: float
     tube: Tube
 
@@ -129,7 +128,6 @@ def derive_from_values(
         r0_mm=r0,
         beta0_deg=beta0,
         gamma=float(gamma(r0, beta0, l0)),
-        p0_kpa=float(transition_pressure_kpa(r0, tube, "paper")),
         neutral_angle_deg=float(neutral_angle_deg(w, tube.outer_radius_mm)),
         tube=tube,
     )

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["paper_pressure_kpa", "paper_radius_mm", "transition_pressure_kpa"]
+__all__ = ["paper_pressure_kpa", "paper_radius_mm"]
 
 KPA_PER_MPA = 1000.0
 
@@ -38,12 +38,3 @@ def paper_radius_mm(pressure_kpa, outer_radius_mm, g_e_mpa):
     p = np.asarray(pressure_kpa, dtype=np.float64) / KPA_PER_MPA
     q = np.sqrt(np.maximum(2.0 * p / np.asarray(g_e_mpa, dtype=np.float64), 0.0))
     return np.asarray(outer_radius_mm, dtype=np.float64) * 0.5 * (q + np.sqrt(q * q + 4.0))
-
-
-def transition_pressure_kpa(r0_mm, outer_radius_mm, g_e_mpa):
-    """P0 [kPa]: pressure at which the free tube reaches the sleeve radius r0.
-
-    Zero when r0 <= r_f (the sleeve already squeezes the tube; a design rule flags it).
-    """
-    r0 = np.asarray(r0_mm, dtype=np.float64)
-    return np.where(r0 > outer_radius_mm, paper_pressure_kpa(r0, outer_radius_mm, g_e_mpa), 0.0)

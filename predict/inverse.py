@@ -60,20 +60,18 @@ from ..patterns.base.errors import EmbroactError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
-from ..patterns.kinds import PATTERN_KINDS, Interval, pattern_kind
-from ..patterns.params import CrossParams, Tube, ZigzagParams, whole_intervals
+from ..patterns.kinds import PATTERN_KINDS, Interval, param_values, pattern_kind
+from ..patterns.params import PatternParams, Tube, whole_intervals
 from ..patterns.segments import SegmentSpec
 from .kinds import model_kind
 from .shape import planar_chain_mm
 from .status import Status
 
-__all__ = ["PATTERN_CHOICES", "MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
+__all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
            "Sensitivity", "BendCandidate", "BendResult", "design_bend", "exact_pressure_kpa", "angle_grid_step_deg",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
            "DEFAULT_TIME_LIMIT_S"]
 
-#: Values of ``pattern`` for a target bend.
-PATTERN_CHOICES = PATTERN_KINDS.names() + ("any",)
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
 #: A candidate's bend must match the target within this after polishing [deg].
@@ -136,12 +134,12 @@ class DesignSpace:
     ----------
     pattern : str
     parameter : str
-        ``"width_mm"`` (zigzag) or ``"angle_deg"`` (cross).
+        The kind's calibration axis (``"width_mm"``, ``"angle_deg"``).
     low, high : float
         Range of the parameter [mm or deg].
     width_mm, interval_mm : float
-        Cross: the calibrated width and the nominal interval; zigzag: the nominal interval
-        (``width_mm`` unused).
+        The calibrated (median) width and the nominal interval; the kind's ``design_params``
+        uses what it needs of them.
     calibrated : bool
         False when the range goes beyond the calibration (``allow_extrapolation``).
     """
@@ -154,19 +152,18 @@ class DesignSpace:
     interval_mm: float
     calibrated: bool = True
 
-    def params(self, x: float) -> ZigzagParams | CrossParams:
-        """Pattern parameters at parameter value ``x`` (cross: interval closing the pattern exactly).
+    def params(self, x: float) -> PatternParams:
+        """Pattern parameters at parameter value ``x`` (the kind's :attr:`~embroact.patterns.kinds.PatternKind.design_params`).
 
         >>> s = DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
         >>> p = s.params(40.0)
         >>> round(p.interval_mm, 4), round(2 * 7.0 * math.tan(math.radians(40.0)) / p.interval_mm, 9)
         (1.4684, 8.0)
         """
-        if not pattern_kind(self.pattern).has_angle:  # the free parameter is the width
-            return ZigzagParams(float(x), self.interval_mm)
-        reach = 2.0 * self.width_mm * math.tan(math.radians(x))
-        n = max(1, round(reach / self.interval_mm))
-        return CrossParams(self.width_mm, reach / n, float(x))
+        make = pattern_kind(self.pattern).design_params
+        if make is None:
+            raise ParameterError(f"pattern {self.pattern!r} has no design space")
+        return make(x, self.width_mm, self.interval_mm)
 
     @property
     def grid_step(self) -> float:
@@ -216,7 +213,10 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     """
     from .calibration import get_set
 
-    pattern_kind(pattern)  # a registered kind, else one line naming them
+    kind = pattern_kind(pattern)  # a registered kind, else one line naming them
+    if kind.design_params is None:
+        raise ParameterError(f"pattern {pattern!r} has no design space (its kind gives no design_params); "
+                             "choose another pattern")
     cset = get_set(settings.calibration, tuple(sets))
     cover = cset.coverage().get(pattern)
     points = [p for p in cset.points if p.pattern == pattern]
@@ -224,7 +224,7 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
         raise ParameterError(f"calibration {cset.name!r} has no {pattern} points; choose another pattern or set")
     interval = float(np.median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0]))
     width = float(np.median([p.width_mm for p in points]))
-    param = pattern_kind(pattern).calibration_axis
+    param = kind.calibration_axis
     low, high = cover
     if pattern_kind(pattern).has_angle:  # a leg w / cos(alpha0) must fit one machine stitch, rounded to the grid
         from ..patterns.limits import GRID_ROUNDING_MM
@@ -240,6 +240,28 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     return DesignSpace(pattern, param, float(low), float(high), width, interval, not allow_extrapolation)
 
 
+def design_spaces(settings: ModelSettings = ModelSettings(), *, sets=(), tube: Tube = Tube(),
+                  allow_extrapolation: bool = False) -> tuple[dict[str, DesignSpace], tuple[str, ...]]:
+    """The design space of every registered kind that has one, and a note for each kind skipped.
+
+    A kind is skipped when it gives no ``design_params`` or the calibration holds no points of it.
+
+    >>> spaces, notes = design_spaces()
+    >>> spaces["zigzag"].describe(), [n for n in notes if "zigzag" in n or "cross" in n]
+    ('width_mm 5 to 9 (calibrated)', [])
+    """
+    spaces, notes = {}, []
+    for kind in PATTERN_KINDS:
+        try:
+            spaces[kind.name] = design_space(kind.name, settings, sets=sets, tube=tube,
+                                             allow_extrapolation=allow_extrapolation)
+        except ParameterError as exc:
+            notes.append(f"{kind.name} skipped: {str(exc).split(';')[0]}")
+    if not spaces:
+        raise ParameterError("no pattern kind has a design space with this calibration: " + "; ".join(notes))
+    return spaces, tuple(notes)
+
+
 def _legs(params, length_mm: float) -> tuple[float, float]:
     """(gap before the legs, legs' length) of a segment of ``length_mm`` on a straight path, nominally.
 
@@ -247,7 +269,11 @@ def _legs(params, length_mm: float) -> tuple[float, float]:
     legs cover it exactly; a cross pattern's may end up to a leg short of it where passes
     turn (:func:`_legs_sewn` generates it).
     """
-    s = params.interval_mm
+    return _span_legs(params.interval_mm, length_mm)
+
+
+def _span_legs(s: float, length_mm: float) -> tuple[float, float]:
+    """:func:`_legs` for interval ``s`` [mm]."""
     span = whole_intervals(length_mm, s) * s
     return 0.5 * (length_mm - span), span
 
@@ -373,7 +399,7 @@ class BendCandidate:
     Attributes
     ----------
     pattern : str
-    params : ZigzagParams | CrossParams
+    params : pattern parameters
         What the design file asks for.
     design : Design
         A one-actuator design, ready to write.
@@ -407,7 +433,7 @@ class BendCandidate:
     """
 
     pattern: str
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     design: Design
     theta_deg: float
     p0_kpa: float
@@ -425,7 +451,7 @@ class BendCandidate:
 
     def as_dict(self) -> dict:
         """JSON-ready, units in the keys."""
-        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+        return {"pattern": self.pattern, "params": param_values(self.params),
                 "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
                 "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
                 "range_margin_fraction": self.range_margin,
@@ -468,6 +494,8 @@ class BendResult:
     in_range: bool = True
     range_deg: tuple[float, float] | None = None
     tolerance_deg: float = 0.5
+    notes: tuple[str, ...] = ()
+    """Pattern kinds the search skipped, and why (no design space, no calibration points)."""
 
     def as_dict(self) -> dict:
         """JSON-ready."""
@@ -475,7 +503,7 @@ class BendResult:
                 "reached": self.reached, "statement": self.statement, "best": self.best.as_dict(),
                 "runners_up": [c.as_dict() for c in self.runners_up], "in_range": self.in_range,
                 "range_deg": None if self.range_deg is None else list(self.range_deg),
-                "tolerance_deg": self.tolerance_deg}
+                "tolerance_deg": self.tolerance_deg, "notes": list(self.notes)}
 
 
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
@@ -533,7 +561,7 @@ def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float
 
 def _limits(model, p: float) -> tuple[str, float]:
     from .curve import lockup
-    from .validity import first_limit
+    from .branch import first_limit
 
     found = []
     lim = first_limit(model)
@@ -749,7 +777,8 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         Target bend [deg], non-zero, |.| <= 720 (negative: toward the thread side).
     pressure_kpa : float
         Target pressure [kPa], > 0.
-    pattern : {"zigzag", "cross", "any"}
+    pattern : str
+        A registered pattern kind, or ``"any"`` (every kind with a design space).
     length_mm : float
         Actuator length [mm], in [10, 1000].
     tube, settings, sets
@@ -773,16 +802,20 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     p = check_target_pressure(pressure_kpa)
     length = check_range("length_mm", length_mm, low=10.0, high=1000.0, low_inclusive=True, high_inclusive=True)
     tol = check_range("tolerance_deg", tolerance_deg, low=0.0, high=10.0, high_inclusive=True)
-    if pattern not in PATTERN_CHOICES:
-        raise ParameterError(f"pattern must be one of {', '.join(map(repr, PATTERN_CHOICES))}, got {pattern!r}")
+    if pattern != "any" and pattern not in PATTERN_KINDS.names():
+        choices = PATTERN_KINDS.names() + ("any",)
+        raise ParameterError(f"pattern must be one of {', '.join(map(repr, choices))}, got {pattern!r}")
     sets = tuple(sets)
-    kinds = PATTERN_KINDS.names() if pattern == "any" else (pattern,)
+    if pattern == "any":
+        spaces, notes = design_spaces(settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+    else:
+        spaces, notes = {pattern: design_space(pattern, settings, sets=sets, tube=tube,
+                                               allow_extrapolation=allow_extrapolation)}, ()
     model = _Model(p, tube, settings, sets)
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name)
     cands: list[BendCandidate] = []
     reasons, ranges = [], []
-    for kind in kinds:
-        space = design_space(kind, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
+    for space in spaces.values():
         table = model.table(space, length)
         bend_range = _bend_range(model, space, length, table)
         if bend_range == (0.0, 0.0):  # only inflation: no design of the space bends at this pressure
@@ -814,7 +847,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
         return BendResult(target, p, length, best, tuple(others[:2]), True,
                           f"met: {best.pattern} bends {best.theta_deg:.2f} deg at {p:g} kPa{note}", in_range, whole,
-                          tol)
+                          tol, notes)
     cands.sort(key=lambda c: (round(abs(c.theta_deg - target), 6), c.warning_count > 0, c.pattern))
     best = cands[0]
     exact = (f"; it bends by {target:g} deg at {best.exact_pressure_kpa:.1f} kPa" if best.exact_pressure_kpa
@@ -830,7 +863,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg "
                  f"({best.theta_deg - target:+.2f} deg off){exact}")
     return BendResult(target, p, length, dataclasses.replace(best, binding=why), tuple(cands[1:3]), False, statement,
-                      in_range, whole, tol)
+                      in_range, whole, tol, notes)
 
 
 # ---------------------------------------------------------------------------- target shape
@@ -937,7 +970,7 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
 class ShapeSegment:
     """One segment of a designed shape: its pattern parameters, length and what it does at P*."""
 
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     length_mm: float
     theta_deg: float
     target_kappa_per_mm: float
@@ -950,7 +983,7 @@ class ShapeSegment:
 
     def as_dict(self) -> dict:
         """JSON-ready."""
-        return {"pattern": self.pattern, "params": {k: getattr(self.params, k) for k in self.params.__slots__},
+        return {"pattern": self.pattern, "params": param_values(self.params),
                 "length_mm": self.length_mm, "theta_deg": self.theta_deg,
                 "target_kappa_per_mm": self.target_kappa_per_mm, "note": self.note or None}
 
@@ -980,6 +1013,8 @@ class ShapeResult:
         Codes of the design-rule findings.
     findings : tuple of str
         ``"CODE severity: message"`` of every finding ``embroact check`` gives for the written design.
+    notes : tuple of str
+        Pattern kinds the search skipped, and why.
     """
 
     design: Design
@@ -996,6 +1031,7 @@ class ShapeResult:
     statement: str
     warnings: tuple[str, ...] = ()
     findings: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
         """JSON-ready (without the point arrays)."""
@@ -1003,7 +1039,7 @@ class ShapeResult:
                 "rmse_mm": self.rmse_mm, "max_deviation_mm": self.max_deviation_mm,
                 "tip_error_mm": self.tip_error_mm, "tip_angle_error_deg": self.tip_angle_error_deg,
                 "fit_rmse_mm": self.fit_rmse_mm, "segments": [s.as_dict() for s in self.segments],
-                "warnings": list(self.warnings), "findings": list(self.findings)}
+                "warnings": list(self.warnings), "findings": list(self.findings), "notes": list(self.notes)}
 
 
 def _branch(x: np.ndarray, theta: np.ndarray, ok: np.ndarray, at: float) -> tuple[float, float]:
@@ -1028,12 +1064,12 @@ def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
     """
     options, near = [], None
     # a negative bend needs a kind that can bend negative: one with a thread angle
-    order = tuple(k for k in PATTERN_KINDS.names() if theta_deg >= 0.0 or model_kind(k).has_thread_angle)
+    order = tuple(k for k in spaces if theta_deg >= 0.0 or model_kind(k).has_thread_angle)
     for rank, kind in enumerate(order):
         space = spaces[kind]
         x, theta, status = model.table(space, length_mm, points=61)
-        fits = np.array([not pattern_kind(kind).has_angle or 4.0 * space.params(v).width_mm * math.tan(math.radians(v)) <= length_mm
-                         for v in x])
+        shortest = pattern_kind(kind).min_length_mm
+        fits = np.array([shortest(space.params(v)) <= length_mm for v in x])
         ok = np.isin(status, _VALID) & fits
         for r in _roots(model, space, length_mm, theta_deg, (x, theta, np.where(ok, status, -1))):
             slope = abs(float(np.interp(r, x, np.gradient(theta, x))))
@@ -1175,8 +1211,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     sets = tuple(sets)
     sj, xy, length = _resample(target_xy_mm)
     model = _Model(p, tube, settings, sets)
-    spaces = {k: design_space(k, settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
-              for k in PATTERN_KINDS.names()}
+    spaces, notes = design_spaces(settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
     reach = curvature_range(model, spaces)
     why = shape_unreachable(sj, xy, reach)
     if why is not None:
@@ -1204,9 +1239,9 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
             failures.append(f"{len(lengths)} segments: {exc}")
             continue
-        results.append(r)
+        results.append(dataclasses.replace(r, notes=notes))
         if r.reached and r.rmse_mm <= _SHAPE_GOOD_MM:
-            return r
+            return results[-1]
     if not results:
         more = "; raise the time limit" if failures and failures[-1].startswith("time limit") else ""
         raise ParameterError(f"target shape at pressure_kpa {p:g}: no design found; " + "; ".join(failures) + more)
@@ -1294,7 +1329,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     lengths[-1] = round(length - float(lengths[:-1].sum()), 2)
     chosen = []
     for L, k in zip(lengths, kappa):
-        gap, l0 = _legs(ZigzagParams(7.0, spaces["zigzag"].interval_mm), L)
+        gap, l0 = _span_legs(next(iter(spaces.values())).interval_mm, L)
         chosen.append(_choose(model, spaces, float(L), math.degrees(k * l0)))
     seg_spaces = [c[0] for c in chosen]
     x0 = np.array([c[1] for c in chosen])

@@ -35,7 +35,7 @@ import numpy as np
 from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.rules import RuleSettings, sort_findings
-from .sleeve_rules import DESIGN_RULES, check_plan
+from .sleeve_rules import DESIGN_RULES, check_without_model
 from .status import VALIDITY_LIMITS, Status
 
 __all__ = ["ModelRuleSettings", "PER_FORMAT_RULES", "check_model", "check_design"]
@@ -124,10 +124,7 @@ def _model_findings(choice, model_error: str, curve_of, calibration: str, settin
         name = cal.name if cal is not None else calibration
         out.append(RULES.finding("EA406", f"{prefix}calibration {name}: " + "; ".join(notes), **where))
     if cal is not None and cal.extrapolated:
-        from .tubelaws import transition_pressure_kpa
-
-        geometric = float(transition_pressure_kpa(model.r0_mm, model, model.tube_law))  # the model carries the tube
-        p0_note = (f"; its P0 {model.p0_kpa:.1f} kPa is the set's, the tube law gives {geometric:.1f} kPa at this "
+        p0_note = (f"; its P0 {model.p0_kpa:.1f} kPa is the set's, the tube law gives {choice.tube_law_p0_kpa:.1f} kPa at this "
                    f"sleeve (p0_source = \"geometry\" uses that)" if choice.p0_source.startswith("calibration") else "")
         out.append(RULES.finding(
             "EA404", f"{prefix}calibration {cal.label}: {cal.parameter} {cal.value:g} outside the calibrated "
@@ -260,7 +257,7 @@ def check_design(
     formats = [format] if format is None or isinstance(format, str) else list(format)
     formats = formats[:1] if rule_settings is not None else formats  # given settings: one check suffices
     settings = [rule_settings or RuleSettings.for_machine(design.machine, format=f) for f in formats]
-    found = list(check_plan(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
+    found = list(check_without_model(analysis.plan, settings[0])) + list(check_model(analysis, model_settings))
     for rs in settings[1:]:
-        found += check_plan(analysis.plan, rs, rules=PER_FORMAT_RULES)
+        found += check_without_model(analysis.plan, rs, rules=PER_FORMAT_RULES)
     return sort_findings(dict.fromkeys(f for f in found if f.code not in skip))

@@ -5,18 +5,18 @@ they live with the model's geometry (:mod:`embroact.predict.sleeve`) rather than
 in :mod:`embroact.patterns`, which knows no physics. They are declared in the same
 registry and run by the same engine as the geometric rules:
 
-* :func:`check_plan`: every geometric, pattern, file-structure and sleeve rule on a
-  design's plan (what ``embroact.predict.rules.check_design`` adds the model rules to);
+* :func:`check_without_model`: every geometric, pattern, file-structure and sleeve rule on a
+  design's plan, no model (``embroact.predict.rules.check_design``, the one rule gate of every command, adds the model rules);
 * :func:`check_layout`: the same rules for embroidery files (layouts from their records).
 
 Examples
 --------
 >>> from embroact.patterns.design import build_plan, default_design
 >>> from embroact.patterns.rules import RuleSettings
->>> from embroact.predict.sleeve_rules import DESIGN_RULES, check_plan
+>>> from embroact.predict.sleeve_rules import DESIGN_RULES, check_without_model
 >>> [r.code for r in DESIGN_RULES][:8]
 ['EA101', 'EA102', 'EA103', 'EA104', 'EA105', 'EA106', 'EA201', 'EA202']
->>> check_plan(build_plan(default_design()), RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0))
+>>> check_without_model(build_plan(default_design()), RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0))
 ()
 """
 from __future__ import annotations
@@ -30,7 +30,7 @@ from ..patterns.rules.engine import Subject
 from .kinds import model_kind
 from .sleeve import min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 
-__all__ = ["SLEEVE_RULES", "DESIGN_RULES", "check_plan", "check_layout"]
+__all__ = ["SLEEVE_RULES", "DESIGN_RULES", "check_without_model", "check_layout"]
 
 
 def _sleeve_gaps(s: Subject) -> list[tuple[int, str, float, float, float, object]]:
@@ -115,10 +115,10 @@ DESIGN_RULES = tuple(sorted(GEOMETRY_RULES + SLEEVE_RULES, key=lambda r: r.code)
 """Every rule checked on a plan or layout (all but the model rules), in code order."""
 
 
-def check_plan(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=DESIGN_RULES):
+def check_without_model(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=DESIGN_RULES):
     """Every geometric, pattern, file-structure and sleeve rule (or those of ``rules``) on a design's plan;
     findings worst first."""
-    return geometry.check_plan(plan, settings, rules=rules)
+    return geometry.check_geometry(plan, settings, rules=rules)
 
 
 def check_layout(layout: Layout, settings: RuleSettings | None = None):

@@ -38,7 +38,21 @@ THICK_WALL_BISECTIONS = 200
 
 
 def check_tube_law(law: str) -> None:
-    """Raise :class:`ParameterError` unless ``law`` is one of :data:`TUBE_LAWS`."""
+    """Raise :class:`ParameterError` unless ``law`` is one of :data:`TUBE_LAWS`.
+
+    Parameters
+    ----------
+    law : str
+
+    Examples
+    --------
+    >>> check_tube_law("thick-wall")
+    >>> try:
+    ...     check_tube_law("thin")
+    ... except ValueError as exc:
+    ...     print(exc)
+    tube_law must be one of paper, thick-wall, got 'thin'
+    """
     if law not in TUBE_LAWS:
         raise ParameterError(f"tube_law must be one of {', '.join(TUBE_LAWS)}, got {law!r}")
 
@@ -60,7 +74,23 @@ def _tube_arrays(tube_or_arrays):
 
 
 def thick_wall_limit_kpa(tube) -> np.ndarray:
-    """Highest pressure the thick-walled tube resists, mu ln(r_f/d_f) [kPa] (inf if d_f = 0)."""
+    """Highest pressure the thick-walled tube resists, mu ln(r_f/d_f) [kPa] (inf if d_f = 0).
+
+    Parameters
+    ----------
+    tube : Tube or tuple of arrays
+        ``(outer_radius_mm, inner_radius_mm, g_e_mpa)`` as arrays, or a Tube.
+
+    Returns
+    -------
+    ndarray
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> round(float(thick_wall_limit_kpa(Tube())), 3)   # 0.13 MPa ln(1.5)
+    52.71
+    """
     rf, df, mu = _tube_arrays(tube)
     with np.errstate(divide="ignore"):
         return mu * np.log(rf / df) * KPA_PER_MPA
@@ -69,8 +99,24 @@ def thick_wall_limit_kpa(tube) -> np.ndarray:
 def pressure_kpa(radius_mm, tube, law: str = "paper"):
     """Pressure [kPa] that inflates the free tube to outer radius ``radius_mm`` >= r_f.
 
-    ``tube`` is a :class:`~embroact.patterns.params.Tube` or a tuple of arrays
-    ``(outer_radius_mm, inner_radius_mm, g_e_mpa)``.
+    Parameters
+    ----------
+    radius_mm : float or array
+        Outer radius [mm].
+    tube : Tube or tuple of arrays
+        A :class:`~embroact.patterns.params.Tube` or ``(outer_radius_mm, inner_radius_mm, g_e_mpa)``.
+    law : {"paper", "thick-wall"}
+
+    Returns
+    -------
+    ndarray
+        [kPa].
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> round(float(pressure_kpa(2.5814, Tube(), "paper")), 2)
+    84.45
     """
     check_tube_law(law)
     rf, df, mu = _tube_arrays(tube)
@@ -85,7 +131,28 @@ def pressure_kpa(radius_mm, tube, law: str = "paper"):
 def radius_mm(pressure_kpa, tube, law: str = "paper"):
     """Outer radius [mm] of the free tube at ``pressure_kpa`` >= 0 (inverse of the law).
 
-    Raises :class:`ModelDomainError` for the thick-wall law at or above its limit.
+    Parameters
+    ----------
+    pressure_kpa : float or array
+        [kPa], >= 0.
+    tube : Tube or tuple of arrays
+    law : {"paper", "thick-wall"}
+
+    Returns
+    -------
+    ndarray
+        [mm].
+
+    Raises
+    ------
+    ModelDomainError
+        The thick-wall law at or above its limit.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> round(float(radius_mm(84.455, Tube(), "paper")), 4)
+    2.5814
     """
     check_tube_law(law)
     rf, df, mu = _tube_arrays(tube)
@@ -107,7 +174,34 @@ def radius_mm(pressure_kpa, tube, law: str = "paper"):
 
 
 def transition_pressure_kpa(r0_mm, tube, law: str = "paper"):
-    """P0 [kPa]: the tube law's pressure at the sleeve radius r0; 0 if r0 <= r_f."""
+    """P0 [kPa]: the tube law's pressure at the sleeve radius r0; 0 if r0 <= r_f.
+
+    The one tube-law P0 of embroact: the model factory (``p0_source = "geometry"``), the
+    fit's start and fixed values, the rules' notes, the worksheet and the studio all read it
+    through here, with the tube law in force.
+
+    Parameters
+    ----------
+    r0_mm : float or array
+        Sleeve radius [mm].
+    tube : Tube or tuple of arrays
+    law : {"paper", "thick-wall"}
+
+    Returns
+    -------
+    ndarray
+        [kPa].
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> round(float(transition_pressure_kpa(2.5814206750769157, Tube(), "paper")), 3)
+    84.455
+    >>> round(float(transition_pressure_kpa(2.5814206750769157, Tube(), "thick-wall")), 3)
+    49.148
+    >>> float(transition_pressure_kpa(1.2, Tube()))
+    0.0
+    """
     rf = _tube_arrays(tube)[0]
     r0 = np.asarray(r0_mm, dtype=np.float64)
     return np.where(r0 > rf, pressure_kpa(np.maximum(r0, rf), tube, law), 0.0)

@@ -43,7 +43,6 @@ Examples
 """
 from __future__ import annotations
 
-import enum
 import math
 from dataclasses import dataclass
 
@@ -59,19 +58,14 @@ __all__ = [
     "apply_limits",
     "coil_angle_deg",
     "valid_mask",
-    "EndKind",
-    "BranchEnd",
-    "branch_end",
-    "first_limit",
+    "LIMIT_BISECTIONS",
 ]
 
 #: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md section 12).
 STRETCH_LIMIT = 2.0
 _FULL_TURN = 2.0 * math.pi
-#: Bisection steps locating the first limit along a branch (angle to ~1e-15 of the branch).
-_LIMIT_BISECTIONS = 60
-#: Grid points along a branch for the first limit.
-_LIMIT_GRID = 257
+#: Bisection steps locating a limit angle (to ~1e-15 of the turn; branch.first_limit uses the same).
+LIMIT_BISECTIONS = 60
 
 
 @dataclass(frozen=True, slots=True)
@@ -168,7 +162,7 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
     if not negative or l0 <= math.pi * r:
         return 360.0
     lo, hi = math.pi, _FULL_TURN  # contact false at pi (no kink: l0 > pi r), true at 2 pi
-    for _ in range(_LIMIT_BISECTIONS):
+    for _ in range(LIMIT_BISECTIONS):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if l0 * (1.0 - math.cos(mid)) <= 2.0 * r * mid else (mid, hi)
     return math.degrees(hi)
@@ -190,123 +184,3 @@ def valid_mask(curve) -> np.ndarray:
     [True, True, False]
     """
     return is_model_state(curve.status)
-
-
-class EndKind(enum.Enum):
-    """What ends a model's stable bending branch."""
-
-    NONE = "none"  #: no branch: the straight state is already at the end (neutral angle, no sleeve)
-    LOCK_UP = "lock-up"  #: dV/dl = 0: the sleeve locks, P has a pole (cross designs)
-    FOLD = "fold"  #: a maximum of P(theta): the formula folds (zigzag designs, far inside the coiled region)
-    TRACING_CAP = "tracing cap"  #: this implementation's cap MAX_BEND_DEG on a branch that never ends
-
-
-@dataclass(frozen=True, slots=True)
-class BranchEnd:
-    """End of the stable branch of one model, named for what it is.
-
-    Attributes
-    ----------
-    kind : EndKind
-    theta_deg, pressure_kpa : float
-        Where it ends; ``pressure_kpa`` is None at a lock-up (a pole).
-    status : Status
-        The state's status there: a validity limit when the end lies beyond one
-        (a zigzag's fold is COILED), else LOCKED, UNSTABLE, OUT_OF_DOMAIN or INFLATION.
-    """
-
-    kind: EndKind
-    theta_deg: float
-    pressure_kpa: float | None
-    status: Status
-
-    def as_dict(self) -> dict:
-        """JSON-ready: ``kind``, ``theta_deg``, ``pressure_kpa`` (None at a pole), ``status`` name."""
-        return {"kind": self.kind.value, "theta_deg": self.theta_deg, "pressure_kpa": self.pressure_kpa,
-                "status": self.status.name}
-
-
-def branch_end(model) -> BranchEnd:
-    """The end of a model's stable branch (:func:`embroact.predict.curve.lockup`), classified.
-
-    Examples
-    --------
-    >>> from embroact.predict.curve import ActuatorModel
-    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
-    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
-    >>> e = branch_end(m)
-    >>> e.kind.value, round(e.theta_deg), e.status.name
-    ('fold', 1889, 'COILED')
-    """
-    from .curve import MAX_BEND_DEG, lockup, pressure_at
-
-    theta, p = lockup(model)
-    if theta == 0.0:
-        kind = EndKind.NONE
-    elif math.isinf(p):
-        kind = EndKind.LOCK_UP
-    elif abs(theta) >= MAX_BEND_DEG:
-        kind = EndKind.TRACING_CAP
-    else:
-        kind = EndKind.FOLD
-    state = pressure_at(model, [theta])
-    status = Status(int(state.status[0]))
-    if kind is EndKind.FOLD and status is Status.BENDING:
-        status = Status.UNSTABLE  # the fold itself: the last stable state
-    elif kind is EndKind.TRACING_CAP and status is Status.BENDING:
-        status = Status.OUT_OF_DOMAIN
-    return BranchEnd(kind, float(theta), None if math.isinf(p) else float(p), status)
-
-
-@dataclass(frozen=True, slots=True)
-class FirstLimit:
-    """The first validity limit along a model's stable branch.
-
-    Attributes
-    ----------
-    status : Status
-        The limit reached (COILED, KINKED or OVERSTRETCHED).
-    theta_deg, pressure_kpa : float
-        Angle and pressure where it is reached.
-    """
-
-    status: Status
-    theta_deg: float
-    pressure_kpa: float
-
-
-def first_limit(model) -> FirstLimit | None:
-    """Where the stable branch first leaves the validity limits; None if it ends before.
-
-    A rule warns when the working pressure reaches ``pressure_kpa``.
-
-    Examples
-    --------
-    >>> from embroact.predict.curve import ActuatorModel
-    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
-    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
-    >>> f = first_limit(m)
-    >>> f.status.name, round(f.theta_deg, 6)
-    ('COILED', 360.0)
-    """
-    from .curve import pressure_at
-
-    end = branch_end(model)
-    if end.kind is EndKind.NONE:
-        return None
-    grid = np.linspace(0.0, end.theta_deg, _LIMIT_GRID)
-    st = pressure_at(model, grid).status
-    hit = np.flatnonzero(np.isin(st, [int(s) for s in VALIDITY_LIMITS]))
-    if hit.size == 0:
-        return None
-    lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
-    for _ in range(_LIMIT_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        if Status(int(pressure_at(model, [mid]).status[0])) in VALIDITY_LIMITS:
-            hi = mid
-        else:
-            lo = mid
-    c = pressure_at(model, [hi])
-    return FirstLimit(Status(int(c.status[0])), float(c.theta_deg[0]), float(c.pressure_kpa[0]))

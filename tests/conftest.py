@@ -18,3 +18,8 @@ settings.register_profile("ci", max_examples=CI_EXAMPLES, derandomize=True, prin
 settings.register_profile("dev", max_examples=10 * CI_EXAMPLES, **_COMMON)
 settings.register_profile("thorough", max_examples=100 * CI_EXAMPLES, **_COMMON)
 settings.load_profile(os.environ.get("EMBROACT_HYPOTHESIS_PROFILE", "ci"))
+
+if os.environ.get("EMBROACT_TEST_KINDS") == "1":  # the whole suite with a third pattern kind registered
+    import kind_parallel
+
+    kind_parallel.register_parallel()

@@ -36,6 +36,11 @@ def _run(case: dict) -> dict:
 
 
 def main() -> None:
+    if os.environ.get("EMBROACT_TEST_KINDS") == "1":  # as tests/conftest.py: the suite with a third kind
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import kind_parallel
+
+        kind_parallel.register_parallel()
     ceiling = int(sys.argv[1])
     resource.setrlimit(resource.RLIMIT_AS, (ceiling, ceiling))
     cases = json.loads(sys.stdin.read())

@@ -53,3 +53,35 @@ def test_numpydoc_sections(name, obj):
     missing = sorted(need - have)
     assert not missing, f"{name}: docstring lacks {', '.join(missing)}"
     assert ">>> " in doc.split("Examples", 1)[-1], f"{name}: its Examples section has no runnable example"
+
+
+#: Modules whose every public name (``__all__``) and method is documented to the same standard.
+DOCUMENTED_MODULES = ("embroact.patterns.kinds", "embroact.predict.kinds", "embroact.patterns.intervals",
+                      "embroact.predict.branch", "embroact.predict.tubelaws")
+
+
+def _module_api():
+    import importlib
+
+    for mod in DOCUMENTED_MODULES:
+        m = importlib.import_module(mod)
+        for name in m.__all__:
+            obj = getattr(m, name)
+            if not (inspect.isfunction(obj) or inspect.isclass(obj)):
+                continue  # constants and registries: a #: comment or a docstring line
+            if inspect.isclass(obj) and issubclass(obj, BaseException):
+                continue
+            yield f"{mod}.{name}", obj
+            if inspect.isclass(obj):
+                for attr, value in vars(obj).items():
+                    function = value.__func__ if isinstance(value, (classmethod, staticmethod)) else value
+                    if not attr.startswith("_") and inspect.isfunction(function):
+                        yield f"{mod}.{name}.{attr}", function
+
+
+MODULE_API = list(_module_api())
+
+
+@pytest.mark.parametrize("name,obj", MODULE_API, ids=[n for n, _ in MODULE_API])
+def test_documented_modules_have_numpydoc_sections(name, obj):
+    test_numpydoc_sections(name, obj)

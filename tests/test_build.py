@@ -21,9 +21,11 @@ THREE = {"name": "three", "actuator": [
 
 
 def test_default_design_outputs(tmp_path):
-    res = build(default_design(), tmp_path)
+    res = build(default_design(), tmp_path)  # what `embroact build` writes: the previews and the report too
     assert res.files == ("paper-zigzag.dst", "worksheet.json", "worksheet.txt", "preview.svg", "template.svg",
-                         "template-a4.html", "template-letter.html")
+                         "template-a4.html", "template-letter.html", "bend.svg", "shape.svg", "shape.glb",
+                         "shape3d.svg", "report.json", "report.html")
+    assert build(default_design(), tmp_path, stages=()).files[-1] == "template-letter.html"  # stages=(): no previews
     assert sorted(os.listdir(tmp_path)) == sorted(res.files)
     dst = dst_decoder.decode((tmp_path / "paper-zigzag.dst").read_bytes())
     assert sum(r.kind == "stitch" for r in dst.records) == 106
@@ -99,7 +101,7 @@ def test_cli_build_default_and_json(tmp_path, capsys):
     assert doc["files"] == ["paper-zigzag.dst", "paper-zigzag.pes", "worksheet.json", "worksheet.txt", "preview.svg",
                             "template.svg", "template-a4.html", "template-letter.html", "bend.svg", "shape.svg", "shape.glb", "shape3d.svg", "report.json", "report.html"]
     assert sorted(os.listdir(tmp_path)) == sorted(doc["files"])
-    assert doc["actuators"][0]["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
+    assert doc["actuators"][0]["model"]["tube_law_p0_kpa"] == pytest.approx(84.5, abs=0.1)
 
 
 def test_cli_build_design_file(tmp_path, capsys):
@@ -148,7 +150,7 @@ def test_cli_build_prints_its_warnings_in_one_line(tmp_path, capsys):
     from embroact.predict.analysis import analyse
     from embroact.predict.rules import check_design
     from embroact.export.files.designfile import load_design
-    from embroact.export.cli.target import summary_line
+    from embroact.patterns.base.findings import summary_line
 
     example = Path(__file__).resolve().parent.parent / "examples" / "three_actuators.toml"
     assert main(["build", str(example), "--out", str(tmp_path), "--no-previews"]) == 0

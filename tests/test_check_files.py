@@ -4,7 +4,6 @@ import json
 
 import numpy as np
 import pystitch as pe
-import pytest
 
 import dst_decoder
 from embroact.export.cli.main import main
@@ -189,3 +188,29 @@ def test_tube_path_takes_svg_path_data_and_names_the_frame(tmp_path, capsys):
     doc = json.loads(capsys.readouterr().out)
     assert [f["code"] for f in doc["findings"]] == ["EA307"]
     assert "with y negated the tube path lies on the stitches" in doc["findings"][0]["message"]
+
+
+def test_tbf_header_extents_are_held_against_the_records(tmp_path):
+    """pystitch writes TBF's +Y/-Y from the y-down bounds (swapped): needle points 10..60 mm right of the
+    start and 20..30 mm below it (file frame, y down), the start point included, claim +Y 300 and -Y 0
+    (0.1 mm); the records reach 0 above and 300 below. +X 600 and -X 0 are right."""
+    pat = pe.EmbPattern()
+    for k in range(51):
+        pat.add_stitch_absolute(pe.STITCH, 100 + 10 * k, 250 + 50 * (-1) ** k)
+    pat.add_command(pe.END)
+    path = tmp_path / "a.tbf"
+    pe.write(pat, str(path))
+    found = [f for f in _check(path, "10,25 60,25") if f.code == "EA505"]
+    assert sorted(f.message for f in found) == [
+        "header +Y 300, but the body reaches 0 units above the start point",
+        "header -Y 0, but the body reaches 300 units below the start point"]
+
+
+def test_embroacts_own_tbf_and_dst_headers_agree_with_their_records(tmp_path):
+    from embroact.export.machine.formats import write
+    from embroact.patterns.design import build_plan, default_design
+
+    for fmt in ("dst", "tbf"):
+        path = tmp_path / f"a.{fmt}"
+        write(build_plan(default_design()), str(path))
+        assert [f for f in _check(path, "0,0 100,0") if f.code == "EA505"] == []

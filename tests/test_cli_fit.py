@@ -253,7 +253,7 @@ def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
     grid = ",".join(f"{p:g}" for p in pressures)
     assert main(["predict", "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "30",
                  "--calibration", str(cal), "--pressure-kpa", grid, "--json"]) == 0
-    doc = json.loads(capsys.readouterr().out)
+    (doc,) = json.loads(capsys.readouterr().out)["actuators"]
     assert doc["model"]["g_source"].startswith("calibration lab (cross, angle_deg=30")
     assert max(abs(a - b) for a, b in zip(doc["theta_deg"], truth)) < 1e-6
     # the same file named by a design, relative to the design file

@@ -40,7 +40,7 @@ def test_json_output_has_units_and_derived(tmp_path, capsys):
     assert doc["file"] == str(out) and doc["format"] == "pes" and doc["stitch_count"] == 106
     assert doc["realised"]["width_mm"] == pytest.approx(7.0)
     assert doc["derived"]["r0_mm"] == pytest.approx(2.5814, abs=1e-4)
-    assert doc["derived"]["p0_kpa"] == pytest.approx(84.5, abs=0.1)
+    assert doc["model"]["tube_law_p0_kpa"] == pytest.approx(84.5, abs=0.1)
     assert out.read_bytes()[:4] == b"#PES"
 
 

@@ -19,8 +19,15 @@ def run_json(capsys, *argv):
     return json.loads(out.out)
 
 
+def quick_json(capsys, *argv):
+    """The one actuator of quick parameters, in the design files' schema (design name "quick")."""
+    d = run_json(capsys, *argv)
+    assert d["design"] == "quick" and len(d["actuators"]) == 1
+    return d["actuators"][0]
+
+
 def test_quick_zigzag_json_matches_the_api(capsys):
-    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85",
+    d = quick_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85",
                  "--pressure-kpa", "0:300:10")
     p = np.arange(0.0, 301.0, 10.0)
     assert d["pressure_kpa"] == p.tolist()
@@ -43,7 +50,7 @@ def test_quick_zigzag_json_matches_the_api(capsys):
 
 
 def test_quick_cross_uses_the_calibration_set(capsys):
-    d = run_json(capsys, "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45",
+    d = quick_json(capsys, "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "45",
                  "--pressure-kpa", "100,200,300")
     assert d["model"]["g_mpa"] == 1.3 and d["model"]["p0_kpa"] == 170.0  # paper's fit, docs/model.md section 7
     assert d["calibration"].startswith("calibration paper-2025")
@@ -54,10 +61,10 @@ def test_quick_cross_uses_the_calibration_set(capsys):
 
 
 def test_p0_from_geometry_and_thick_wall_law(capsys):
-    d = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
+    d = quick_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
                  "--pressure-kpa", "0,40,60")
     assert d["model"]["p0_kpa"] == pytest.approx(84.455, abs=1e-3)
-    t = run_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
+    t = quick_json(capsys, "zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-source", "geometry",
                  "--tube-law", "thick-wall", "--pressure-kpa", "0,40,60")
     assert t["model"]["p0_kpa"] == pytest.approx(49.148, abs=1e-3) and t["model"]["tube_law"] == "thick-wall"
     assert t["status"] == ["INFLATION", "INFLATION", "BENDING"]
@@ -151,7 +158,7 @@ def test_parse_pressures_inclusive_stop():
 
 def test_paper_w5_zigzag_reports_its_coiled_and_over_stretched_states(capsys):
     """Built-in calibration (G = 0.8 MPa, P0 = 50 kPa): 2032 deg at 250 kPa is not a valid bend."""
-    d = run_json(capsys, "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50")
+    d = quick_json(capsys, "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50")
     assert d["status"] == ["BENDING", "BENDING", "COILED", "COILED", "COILED"]
     assert d["limits"][3] == ["COILED", "KINKED", "OVERSTRETCHED"] and d["limits"][0] == []
     assert main(["predict", "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50"]) == 0
@@ -185,7 +192,7 @@ def test_segmented_actuator_predicts_each_segment_and_their_sum(tmp_path, capsys
     zig, crs = s["segment_curves"]
     # a zigzag's curvature does not depend on its length (docs/model.md, segmented actuators): the 50 mm
     # segment bends by its length over 100 mm times what the whole 100 mm paper zigzag bends at each pressure
-    whole = run_json(capsys, "zigzag", "--width-mm", "7", "--pressure-kpa", "0:300:50")
+    whole = quick_json(capsys, "zigzag", "--width-mm", "7", "--pressure-kpa", "0:300:50")
     share = s["segments"][0]["derived"]["length_mm"] / whole["derived"]["length_mm"]
     np.testing.assert_allclose(zig["theta_deg"], np.array(whole["theta_deg"]) * share, rtol=1e-9, atol=1e-9)
     assert crs["theta_deg"][-1] < 0 < zig["theta_deg"][-1]  # alpha0 = 45 deg bends the other way

@@ -148,7 +148,7 @@ def test_build_analyses_and_predicts_once(tmp_path, monkeypatch):
     side view, 3D shape and report share it)."""
     import embroact.predict.analysis as analysis_module
     import embroact.predict.curve as curve_module
-    from embroact.export.pictures.previews import previews_stage
+    from embroact.export.report.stage import previews_stage
     from embroact.export.report.build import build
 
     calls = {"derive": 0, "curve": 0}
@@ -176,7 +176,7 @@ def test_build_analyses_and_predicts_once(tmp_path, monkeypatch):
 def test_quick_parameters_give_one_answer(capsys, tmp_path, quick):
     """predict, zigzag/cross and fit model the actuator the generator realised, with one G and P0."""
     pattern = quick[0]
-    predicted = _json(capsys, ["predict", *quick, "--pressure-kpa", "0:300:25", "--json"])
+    (predicted,) = _json(capsys, ["predict", *quick, "--pressure-kpa", "0:300:25", "--json"])["actuators"]
     written = _json(capsys, [*quick, "-o", str(tmp_path / "a.dst"), "--force", "--json"])
     csv = tmp_path / "data.csv"
     csv.write_text("pressure_kpa,angle_deg\n" + "".join(

@@ -14,7 +14,7 @@ import mpref
 from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict import curve as C
-from embroact.predict.curve import ActuatorModel, Curve, curve, lockup, pressure_at, sweep
+from embroact.predict.curve import ActuatorModel, curve, lockup, pressure_at, sweep
 from embroact.predict.derived import derive_from_values
 from embroact.predict.status import Status
 
@@ -62,8 +62,9 @@ def test_zigzag_beta0_must_be_zero():
 def test_from_derived_takes_geometry_and_p0():
     d = derived("cross", 7.0, 45.0)
     m = ActuatorModel.from_derived(d, g_mpa=1.3, calibration="mine")
-    assert (m.pattern, m.r0_mm, m.beta0_deg, m.p0_kpa, m.calibration) == ("cross", d.r0_mm, d.beta0_deg, d.p0_kpa,
-                                                                          "mine")
+    x = d.r0_mm / 1.5  # the paper's tube law at r0 (docs/model.md section 3), G_e = 0.13 MPa
+    assert (m.pattern, m.r0_mm, m.beta0_deg, m.calibration) == ("cross", d.r0_mm, d.beta0_deg, "mine")
+    assert m.p0_kpa == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
     assert ActuatorModel.from_derived(d, g_mpa=1.3, p0_kpa=170.0).p0_kpa == 170.0
     c = curve(m, [100.0, 300.0])
     assert c.calibration == "mine" and c.method == "stable-analytic-trace"

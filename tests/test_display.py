@@ -1,5 +1,4 @@
 """Rich display (Jupyter) and summary reprs of the value classes; the import direction they keep."""
-import ast
 import json
 import math
 import subprocess
@@ -157,21 +156,6 @@ def test_every_value_class_finds_a_renderer():
                       (DesignAnalysis, "text/html"), (ActuatorAnalysis, "text/html"),
                       (embroact.Curve, "image/svg+xml"), (BentShape, "image/svg+xml")):
         assert callable(display.renderer(cls, mime)), cls
-
-
-def test_patterns_and_predict_never_import_export():
-    # the layering rule: export -> predict -> patterns; the display goes through the registry
-    offenders = []
-    for pkg in ("patterns", "predict"):
-        for path in sorted((ROOT / pkg).rglob("*.py")):
-            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-                if isinstance(node, ast.ImportFrom):
-                    name = "." * node.level + (node.module or "")
-                    if name.startswith("..export") or name.startswith("embroact.export"):
-                        offenders.append(f"{path.relative_to(ROOT)}:{node.lineno}")
-                elif isinstance(node, ast.Import) and any(a.name.startswith("embroact.export") for a in node.names):
-                    offenders.append(f"{path.relative_to(ROOT)}:{node.lineno}")
-    assert offenders == []
 
 
 def test_export_is_imported_only_when_a_picture_is_asked_for():

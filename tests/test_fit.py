@@ -16,6 +16,7 @@ from embroact.patterns.base.errors import ModelDomainError, ParameterError
 from embroact.patterns.params import Tube
 from embroact.predict.derived import derive_from_values
 from embroact.predict.fit import FitResult, fit_curve, fit_design, split_branches
+from embroact.predict.tubelaws import transition_pressure_kpa
 
 L0, RF, DF = 100.0, 1.5, 1.0
 
@@ -203,7 +204,7 @@ def test_fit_design_recovers_model_parameters_per_branch(pattern, angle, g, p0):
 
 def test_fit_g_e_with_p0_from_geometry():
     d = _design()
-    p0_true = float(d.p0_kpa) * 0.2 / TUBE.g_e_mpa  # P0 is proportional to G_e
+    p0_true = float(transition_pressure_kpa(d.r0_mm, d.tube, "paper")) * 0.2 / TUBE.g_e_mpa  # P0 is proportional to G_e
     p, a = _loop_data(d, 2.7, p0_true, 0.5, seed=5)
     (r,) = fit_design(d, p, a, fit=("g_mpa", "g_e_mpa"), branch="loading")
     assert r.p0_source == "geometry" and r.fitted == ("g_mpa", "g_e_mpa")
@@ -216,9 +217,10 @@ def test_fit_g_e_with_p0_from_geometry():
 
 def test_fit_g_only_with_p0_from_geometry():
     d = _design()
-    p, a = _loop_data(d, 2.7, float(d.p0_kpa), 0.5, seed=6)
+    p0 = float(transition_pressure_kpa(d.r0_mm, d.tube, "paper"))
+    p, a = _loop_data(d, 2.7, p0, 0.5, seed=6)
     (r,) = fit_design(d, p, a, fit=["g_mpa"], branch="pooled")
-    assert r.p0_source == "geometry" and r.p0_kpa == pytest.approx(float(d.p0_kpa), rel=1e-12)
+    assert r.p0_source == "geometry" and r.p0_kpa == pytest.approx(p0, rel=1e-12)
     assert abs(r.g_mpa - 2.7) < 3 * r.g_mpa_se and r.n_points == p.size
     assert r.to_point().branch == "both"
 

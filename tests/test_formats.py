@@ -48,7 +48,6 @@ def _leading_stop(plan):
 
 def _expected(plan, fmt, cord_stop="sequence"):
     """Counts the file must hold, by the format's documented conventions, from the plan alone."""
-    n_act = len({int(a) for a in plan.actuator if a >= 0})
     stops = plan.count(C.STOP) - int(_leading_stop(plan))
     exp = {"stitches": plan.stitch_count, "trims": plan.count(C.TRIM)}
     if fmt in ("dst", "exp"):

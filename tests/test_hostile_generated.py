@@ -32,7 +32,7 @@ from pathlib import Path
 
 import pytest
 
-from embroact.export.cli.main import COMMANDS
+from embroact.export.cli.main import commands
 from test_hostile import FIT, NUMERIC_FLAGS, ZZ, _hostile_files
 
 #: Memory ceiling of every hostile case [bytes] (address space of the worker process).
@@ -169,7 +169,7 @@ def _value_flags() -> list[tuple[str, str, str]]:
     from embroact.export.cli.main import _command_parser
 
     out = []
-    for name in COMMANDS:
+    for name in commands():
         _, parser = _command_parser(name)
         for action in parser._actions:
             if action.option_strings and action.nargs is None and not isinstance(

@@ -7,7 +7,6 @@ token is checked, and in parameters after it), JSON nested 1,000 deep, 309-digit
 4,301-digit numbers, NaN and Infinity, lone surrogates in every string, save names over
 255 bytes; inverse searches run without the session lock and under ``SEARCH_SECONDS``.
 """
-import json
 import threading
 import time
 

@@ -176,5 +176,5 @@ def test_plain_actuator_reading_cli_api_and_band_agree(capsys, tmp_path):
     assert main(["predict", "zigzag", "--width-mm", "7", "--pressure-kpa", ",".join(map(str, PRESSURES)),
                  "--measurement", "markers", "--markers-per-side", "5", "--marker-spacing-mm", "12",
                  "--marker-offset-mm", "60", "--json"]) == 0
-    doc = json.loads(capsys.readouterr().out)
+    (doc,) = json.loads(capsys.readouterr().out)["actuators"]
     assert doc["reading_deg"] == got.tolist()

@@ -60,7 +60,7 @@ def test_zigzag_on_an_arc_by_hand():
 
 
 def test_errors():
-    with pytest.raises(ParameterError, match="pattern must be one of 'zigzag', 'cross', got 'satin'"):
+    with pytest.raises(ParameterError, match="pattern must be one of 'zigzag', 'cross'(, '[a-z]+')*, got 'satin'"):
         measure(CROSS_XY, CROSS_ROLES, Centerline.straight(10.0), "satin")
     with pytest.raises(PatternError, match="without legs"):
         measure([[0, 1], [1, 1]], [Role.TIE_IN, Role.EDGE], Centerline.straight(10.0), "zigzag")

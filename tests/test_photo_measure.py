@@ -10,10 +10,10 @@ import pytest
 
 cv2 = pytest.importorskip("cv2")
 
-import photo_renderer as pr
-from embroact.export.cli.main import main
-from embroact.export.photo.detect import PhotoRefused, measure_image
-from embroact.predict.photomarkers import COUPON_LAYOUT
+import photo_renderer as pr  # noqa: E402  (after the OpenCV skip)
+from embroact.export.cli.main import main  # noqa: E402  (after the OpenCV skip)
+from embroact.export.photo.detect import PhotoRefused, measure_image  # noqa: E402  (after the OpenCV skip)
+from embroact.predict.photomarkers import COUPON_LAYOUT  # noqa: E402  (after the OpenCV skip)
 
 
 def _photo(seed, **kw):

@@ -19,6 +19,7 @@ import pytest
 
 from embroact.export.files.designfile import load_design
 from embroact.export.pictures import previews as pv
+from embroact.export.report.stage import render_previews
 from embroact.export.pictures.chart import chart_scale
 from embroact.export.pictures.stitches import plan_svg
 from embroact.export.pictures.template import template_svg
@@ -35,7 +36,7 @@ def pictures(design) -> dict[str, str]:
     """Every SVG picture a build writes for ``design`` (stitch preview, template, bend chart, side view, 3D)."""
     analysis = analyse(design)
     out = {"preview.svg": plan_svg(analysis.plan), "template.svg": template_svg(analysis.plan, design.machine)}
-    rendered = pv.render_previews(analysis, mesh_suffix=".glb").files
+    rendered = render_previews(analysis, mesh_suffix=".glb").files
     out.update({name: body for name, body in rendered.items() if name.endswith(".svg")})
     return out
 

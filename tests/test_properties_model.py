@@ -26,7 +26,7 @@ from embroact.predict.inflation import KPA_PER_MPA
 curve = functools.partial(C.curve, limits=False)
 pressure_at = functools.partial(C.pressure_at, limits=False)
 sweep = functools.partial(C.sweep, limits=False)
-from embroact.predict.status import Status
+from embroact.predict.status import Status  # noqa: E402  (after the partials it documents)
 
 STATE_FIELDS = ("pressure_kpa", "theta_deg", "length_mm", "radius_mm", "beta_deg", "inner_radius_mm")
 ROUND_TRIP_RTOL = 1e-9  # issue 8: P(theta(P)) == P, relative

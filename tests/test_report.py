@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from embroact.export.report.build import build
-from embroact.export.pictures.previews import Previews, previews_stage, render_previews, shape_theta_deg, side_pressures
+from embroact.export.pictures.previews import shape_theta_deg, side_pressures
+from embroact.export.report.stage import Previews, previews_stage, render_previews
 from embroact.export.report.report import FIGURES, finding_dict, report_data, report_html, report_json
 from embroact.patterns.design import default_design
 from embroact.patterns.base.errors import ParameterError
@@ -79,6 +80,7 @@ def test_side_pressures_and_shape_theta():
     class C:
         pressure_kpa = np.array([0.0, 100.0, 200.0])
         theta_deg = np.array([0.0, 10.0, 30.0])
+        segments = ()  # a curve-like object with no segment curves
 
     assert shape_theta_deg(C, None) == (200.0, 30.0)
     assert shape_theta_deg(C, 150.0) == (150.0, 20.0)
@@ -117,7 +119,7 @@ def test_report_json_content_against_hand_values(built):
     assert act["derived"]["r0_mm"] == pytest.approx(r0, rel=1e-12)
     # paper law P0 = (G_e/2) (x - 1/x)^2, x = r0 / r_f, G_e = 0.13 MPa
     x = r0 / 1.5
-    assert act["derived"]["p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
+    assert act["model"]["tube_law_p0_kpa"] == pytest.approx(65.0 * (x - 1.0 / x) ** 2, rel=1e-12)
     curve = act["curve"]
     assert curve["pressure_kpa"][:3] == [0.0, 10.0, 20.0] and curve["status"][0] == "INFLATION"
     assert curve["theta_deg"][0] == 0.0 and curve["calibration"] == "calibration paper-2025 (zigzag, width_mm=7)"

@@ -11,7 +11,7 @@ from embroact.patterns.centerline import Centerline
 from embroact.patterns.base.findings import RULES, Finding, Severity, count_by_severity, rules_table_markdown
 from embroact.patterns.params import CrossParams, Tube, ZigzagParams
 from embroact.patterns.plan import ActuatorPlan, Command, Realised, Role, StitchPlan
-from embroact.patterns.rules import Layout, RuleSettings, TubeLayout, check_layout, check_plan, needle_density
+from embroact.patterns.rules import Layout, RuleSettings, TubeLayout, check_geometry, check_layout, needle_density
 from embroact.predict import sleeve_rules
 from embroact.patterns.zigzag import zigzag
 
@@ -182,7 +182,7 @@ def _actuator_plan(params, realised, w_real=7.0):
 def test_ea204_angle_off_request():
     def run(angle):
         plan = _actuator_plan(CrossParams(7.0, 1.4, 60.0), Realised(7.0, 1.4, angle, 20.0))
-        return _hits(check_plan(plan), "EA204")
+        return _hits(check_geometry(plan), "EA204")
 
     hits = run(60.5)  # 0.5 deg off > 0.1 deg tolerance
     assert len(hits) == 1 and hits[0].actuator == "A1" and hits[0].stitch_index == 0
@@ -191,7 +191,7 @@ def test_ea204_angle_off_request():
 
 def test_ea205_spacing_off_request():
     def run(interval):
-        return _hits(check_plan(_actuator_plan(ZigzagParams(7.0, 1.4), Realised(7.0, interval, 11.3, 20.0))), "EA205")
+        return _hits(check_geometry(_actuator_plan(ZigzagParams(7.0, 1.4), Realised(7.0, interval, 11.3, 20.0))), "EA205")
 
     # allowed: 1 % of 1.4 mm plus half the 0.1 mm machine grid = 0.064 mm
     assert len(run(1.47)) == 1 and len(run(1.33)) == 1  # 0.07 mm off
@@ -204,7 +204,7 @@ def test_ea206_near_neutral_angle():
     assert abs(neutral - 33.37) < 0.01
 
     def run(angle):
-        return _hits(sleeve_rules.check_plan(_actuator_plan(CrossParams(7.0, 1.4, angle),
+        return _hits(sleeve_rules.check_without_model(_actuator_plan(CrossParams(7.0, 1.4, angle),
                                                             Realised(7.0, 1.4, angle, 20.0))), "EA206")
 
     assert len(run(35.0)) == 1 and f"{neutral:.2f}" in run(35.0)[0].message
@@ -328,7 +328,7 @@ def test_ea504_record_count():
 # --------------------------------------------------------------------- real generated plans
 def test_generated_zigzag_is_clean():
     plan = zigzag(Centerline.straight(100.0), ZigzagParams(width_mm=7.0, interval_mm=1.0))
-    assert check_plan(plan, RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0)) == ()
+    assert check_geometry(plan, RuleSettings(hoop_width_mm=200.0, hoop_height_mm=200.0)) == ()
 
 
 def test_generated_plan_with_moved_leg_is_found():
@@ -337,7 +337,7 @@ def test_generated_plan_with_moved_leg_is_found():
     xy = plan.xy_mm.copy()
     xy[i, 1] = 0.5 * np.sign(xy[i, 1])
     bad = StitchPlan(xy, plan.commands, plan.roles, plan.actuator, plan.actuators, plan.name)
-    hits = _hits(check_plan(bad), "EA101")
+    hits = _hits(check_geometry(bad), "EA101")
     assert [f.stitch_index for f in hits] == [i] and hits[0].actuator == plan.actuators[0].name
 
 

@@ -19,7 +19,7 @@ from embroact.export.machine.formats import write
 from embroact.patterns.base.findings import RULES, Inputs, Rule, RuleRegistry, Severity
 from embroact.patterns.design import build_plan, design_from_dict
 from embroact.patterns.plan import Command, Role, StitchPlan
-from embroact.patterns.rules import GEOMETRY_RULES, Layout, RuleSettings, TubeLayout, check_layout, check_plan
+from embroact.patterns.rules import GEOMETRY_RULES, Layout, RuleSettings, TubeLayout, check_geometry, check_layout
 from embroact.patterns.rules import engine
 from embroact.predict.rule_catalogue import all_rules, rules_table
 from embroact.predict.sleeve_rules import DESIGN_RULES, SLEEVE_RULES
@@ -138,7 +138,7 @@ def test_generated_designs_are_couched():
     for act in ({"pattern": "zigzag", "width_mm": 7, "interval_mm": 1},
                 {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 70}):
         plan = build_plan(design_from_dict({"actuator": [dict(act, name="A1", length_mm=100)]}))
-        assert not _codes(check_plan(plan), "EA307"), act
+        assert not _codes(check_geometry(plan), "EA307"), act
 
 
 def _dst(tmp_path):
@@ -182,13 +182,13 @@ def _leg_plan(x0, x1):
 def test_ea102_is_judged_on_the_grid_the_writer_rounds_to(tmp_path):
     # -0.049 and 12.149 mm round to 0 and 121 units: a 12.1 mm record, the DST limit exactly
     fits = _leg_plan(-0.049, 12.149)
-    assert not _codes(check_plan(fits), "EA102") and find_long_legs(fits, 12.1) == ()
+    assert not _codes(check_geometry(fits), "EA102") and find_long_legs(fits, 12.1) == ()
     write(fits, tmp_path / "fits.dst")
     stitches = [r for r in decode((tmp_path / "fits.dst").read_bytes()).records if r.kind == "stitch"]
     assert [(r.dx, r.dy) for r in stitches] == [(0, 0), (121, 0)]  # one record, as decoded independently
     # -0.051 rounds to -1 unit: 122 units = 12.2 mm: the rule and the writer both refuse it
     over = _leg_plan(-0.051, 12.149)
-    hits = _codes(check_plan(over), "EA102")
+    hits = _codes(check_geometry(over), "EA102")
     assert [f.stitch_index for f in hits] == [2] and "|dx| 12.20 mm" in hits[0].message
     with pytest.raises(LongLegError):
         write(over, tmp_path / "over.dst")
@@ -213,13 +213,13 @@ def test_tube_queries_do_not_grow_with_the_number_of_tubes(monkeypatch):
     pairs = {}
     settings = RuleSettings(hoop_width_mm=2000.0, hoop_height_mm=2000.0)
     for n in (10, 100):
-        assert check_plan(build_plan(_grid_design(n)), settings) == ()
+        assert check_geometry(build_plan(_grid_design(n)), settings) == ()
         s = subjects[-1]
         # one query of all needle points against all laid tubes (EA101), one of all legs against all axes
         # (EA203, EA307): the same two queries for 10 and for 100 tubes
         assert (s.laid_tubes.queries, s.axes.queries) == (1, 1)
         # rows 7.5 mm apart: bands 3.5 + 3.5 mm leave 0.5 mm < the 1 mm clearance between vertical neighbours
-        found = check_plan(build_plan(_grid_design(n, row_mm=7.5)), settings)
+        found = check_geometry(build_plan(_grid_design(n, row_mm=7.5)), settings)
         assert {f.code for f in found} == ({"EA304"} if n > 10 else set())
         pairs[n] = len(subjects[-1].shared("tube pairs", lambda: None))
     # laid tubes (40 mm + 2 x 30 mm margins) of neighbouring columns are 10 mm apart, beyond the 8 mm reach

@@ -36,7 +36,7 @@ def test_side_view_past_the_cap_draws_the_first_and_says_so():
 
 def test_summary_line_names_five_actuators_per_code_and_counts_the_rest():
     import embroact.predict.rules  # noqa: F401  (declares the model rules)
-    from embroact.export.cli.target import SUMMARY_NAMES, summary_line
+    from embroact.patterns.base.findings import SUMMARY_NAMES, summary_line
     from embroact.patterns.base.findings import RULES
 
     fs = [RULES.finding("EA403", "x", actuator=f"A{k}") for k in range(1000)] + [

@@ -20,6 +20,7 @@ import pytest
 from embroact.export.cli.main import main
 from embroact.export.files.designfile import load_design
 from embroact.export.pictures import previews as pv
+from embroact.export.report.stage import render_previews
 from embroact.patterns.design import design_from_dict
 from embroact.predict.analysis import analyse
 from embroact.predict.rules import check_design
@@ -225,4 +226,4 @@ def test_preview_mesh_json_gives_each_segments_bend(tmp_path, capsys, hook):
 
 def test_a_segmented_actuator_needs_its_whole_strip_curve(hook):
     with pytest.raises(Exception, match=r"actuator 'A1' has 3 segments: its curve must be its whole strip"):
-        pv.render_previews(hook, [hook.segment_curves()[0][0]], mesh_suffix=None)
+        render_previews(hook, [hook.segment_curves()[0][0]], mesh_suffix=None)

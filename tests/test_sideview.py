@@ -5,7 +5,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from embroact.export.pictures.sideview import FABRIC_THICKNESS_MM, SidePanel, bent_line_mm, side_view_svg
+from embroact.export.pictures.sideview import SidePanel, bent_line_mm, side_view_svg
+from embroact.patterns.params import FABRIC_THICKNESS_MM
 from embroact.patterns.base.errors import ParameterError
 
 SVG = "{http://www.w3.org/2000/svg}"

@@ -172,7 +172,7 @@ def test_an_edit_shows_what_analyse_and_embroact_predict_give(client, capsys):
     assert act["derived"]["width_mm"] == pytest.approx(8.4)  # rails at +-4.25 mm sewn at +-4.2 (0.1 mm grid, half to even)
     assert act["model"]["p0_kpa"] == pytest.approx(a.actuators[0].model.p0_kpa)
     assert main(["predict", "zigzag", "--width-mm", "8.5", "--pressure-kpa", "180", "--json"]) == 0
-    cli = json.loads(capsys.readouterr().out)
+    (cli,) = json.loads(capsys.readouterr().out)["actuators"]
     assert cli["pressure_kpa"] == [180.0]
     assert cli["theta_deg"][0] == pytest.approx(act["theta_deg"], rel=1e-12)
     # the stitch preview is the build's plan_svg of the same plan, with the findings circled on top

@@ -14,7 +14,7 @@ import pytest
 
 import embroact
 from embroact.export.pictures import svgdoc
-from embroact.export.pictures.previews import previews_stage
+from embroact.export.report.stage import previews_stage
 from embroact.export.pictures.shapefit import shape_overlay_svg
 
 svgwrite = pytest.importorskip("svgwrite")

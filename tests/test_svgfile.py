@@ -237,8 +237,8 @@ def test_design_file_svg_errors_name_the_key(tmp_path):
 
 
 def test_origin_and_rotation_apply_after_the_drawing():
-    text = (f'[[actuator]]\nname = "A"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\n'
-            f'path = "inkscape_tubes.svg#tube1"\norigin_mm = [-40.0, 60.0]\n')
+    text = ('[[actuator]]\nname = "A"\npattern = "zigzag"\nwidth_mm = 7\ninterval_mm = 1\n'
+            'path = "inkscape_tubes.svg#tube1"\norigin_mm = [-40.0, 60.0]\n')
     start = loads_design(text, base_dir=EXAMPLES).actuators[0].centerline.points_mm[0]
     np.testing.assert_allclose(start, [0.0, 0.0], atol=1e-3)
 

@@ -12,6 +12,7 @@ from embroact.predict.derived import derive_from_values
 from embroact.predict.fit import fit_design
 from embroact.predict.markers import PAPER_LAYOUT, reading_deg
 from embroact.predict.status import Status
+from embroact.predict.tubelaws import transition_pressure_kpa
 from embroact.predict.uncertainty import fit_band, theta_band
 
 DESIGN = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
@@ -46,7 +47,7 @@ def test_g_e_band_acts_through_p0_from_the_tube_law():
     m = ActuatorModel.from_derived(DESIGN, g_mpa=2.7)  # P0 from the paper law at r0 (84.45 kPa)
     h = 1e-6
     ge = m.g_e_mpa
-    p0 = lambda g: float(DESIGN.p0_kpa) * g / ge  # noqa: E731  (P0 proportional to G_e)
+    p0 = lambda g: float(transition_pressure_kpa(DESIGN.r0_mm, DESIGN.tube, "paper")) * g / ge  # noqa: E731  (P0 proportional to G_e)
     d = (_theta(m, p, g_e_mpa=ge + h, p0_kpa=p0(ge + h)) - _theta(m, p, g_e_mpa=ge - h, p0_kpa=p0(ge - h))) / (2 * h)
     b = theta_band(m, p, ("g_e_mpa",), [[1e-4]])
     np.testing.assert_allclose(b.theta_sd_deg, np.abs(d) * 1e-2, rtol=1e-5)

@@ -12,8 +12,8 @@ from embroact.predict import curve as C
 from embroact.predict.curve import ActuatorModel, curve, pressure_at
 from embroact.predict.derived import derive_from_values
 from embroact.predict.status import Status
-from embroact.predict.validity import (STRETCH_LIMIT, EndKind, apply_limits, branch_end, coil_angle_deg,
-                                       first_limit, limit_flags, valid_mask)
+from embroact.predict.branch import EndKind, branch_end, first_limit
+from embroact.predict.validity import STRETCH_LIMIT, apply_limits, coil_angle_deg, limit_flags, valid_mask
 
 L0 = 100.0
 

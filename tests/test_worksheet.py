@@ -7,8 +7,9 @@ from mpmath import mp, mpf
 
 from h3_plans import hand_plan
 from embroact.export.report.worksheet import (
-    FABRIC_THICKNESS_MM, LAY_TUBE_S, STOP_RESTART_S, TAIL_MM, TRIM_TIME_S, over_tube_extra_mm, worksheet)
+    LAY_TUBE_S, STOP_RESTART_S, TAIL_MM, TRIM_TIME_S, over_tube_extra_mm, worksheet)
 from embroact.patterns.base.errors import ParameterError
+from embroact.patterns.params import FABRIC_THICKNESS_MM
 from embroact.patterns.base.findings import RULES
 
 
@@ -18,7 +19,9 @@ def _taut_extra(a, r):
     a, r = mpf(a), mpf(r)
     # circle centre (0, r) touching the fabric at the axis; P = (a, 0).
     # tangent point T = (r sin t, r - r cos t) ... solve (T - P).(T - C) = 0 for the upper tangent
-    f = lambda t: (r * mp.sin(t) - a) * (r * mp.sin(t)) + (r - r * mp.cos(t)) * (-r * mp.cos(t))
+    def f(t):
+        return (r * mp.sin(t) - a) * (r * mp.sin(t)) + (r - r * mp.cos(t)) * (-r * mp.cos(t))
+
     t = mp.findroot(f, mpf(2))  # angle from the bottom contact point, upper side
     tx, ty = r * mp.sin(t), r - r * mp.cos(t)
     tangent = mp.sqrt((tx - a) ** 2 + ty**2)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures",
-           "check_shape_flags", "input_files"]
+           "check_shape_flags", "input_files", "materials_of", "plus_minus"]
 
 #: Most pressures one command evaluates (a range string with a tiny step is a typo).
 MAX_PRESSURES = 100_000
@@ -128,7 +128,7 @@ def input_files(args) -> list[tuple[str, str]]:
     >>> input_files(argparse.Namespace(data="d.csv", calibration="paper-2025", path="a.svg#t", output="o"))
     [('data file', 'd.csv'), ('path drawing', 'a.svg')]
     """
-    from ..files.calibfile import is_calibration_file
+    from ...patterns.design import names_calibration_file
     from ..files.svgfile import is_svg_ref, split_ref
 
     out = []
@@ -136,9 +136,39 @@ def input_files(args) -> list[tuple[str, str]]:
         value = getattr(args, dest, None)
         if not isinstance(value, str) or not value:
             continue
-        if dest == "calibration" and not is_calibration_file(value):
+        if dest == "calibration" and not names_calibration_file(value):
             continue  # a set name
         if dest == "path" and not is_svg_ref(value):
             continue  # path data
         out.append((what, split_ref(value)[0] if dest in ("path", "target_shape") else value))
     return out
+
+
+def materials_of(items):
+    """``--material KEY=VALUE`` items as a dict (what a calibration set records of its materials).
+
+    Examples
+    --------
+    >>> materials_of(["tube=silicone 3 mm", "thread=polyester"])
+    {'tube': 'silicone 3 mm', 'thread': 'polyester'}
+    """
+    from ...patterns.base.errors import ParameterError
+
+    out = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise ParameterError(f"--material must be KEY=VALUE, got {item!r}")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def plus_minus(value, se, digits=4) -> str:
+    """``value`` to ``digits`` significant digits, with `` +- se`` when the standard error is known.
+
+    Examples
+    --------
+    >>> plus_minus(2.68312, 0.0213), plus_minus(85.0, None)
+    ('2.683 +- 0.021', '85')
+    """
+    return f"{value:.{digits}g}" + ("" if se is None else f" +- {se:.2g}")

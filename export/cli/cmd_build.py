@@ -29,7 +29,7 @@ def _stages(args) -> tuple:
     """The preview stage (bend chart, side view, 3D, report) unless ``--no-previews``."""
     if args.no_previews:
         return ()
-    from ..pictures.previews import previews_stage
+    from ..report.stage import previews_stage
     from .args import parse_pressures
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa else None
@@ -76,9 +76,10 @@ def run(args) -> int:
     from .args import check_shape_flags
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
+    from ...patterns.base.findings import summary_line
     from ...patterns.design import check_design_records
     from ...patterns.rules.tubes import hoop_overflow
-    from .target import analyse_target, gate, load_target, summary_line
+    from .target import analyse_target, gate, load_target
 
     formats = parse_formats(args.format) if args.format is not None else None
     check_writable_dir(check_output_name("--out", args.out))

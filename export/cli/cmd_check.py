@@ -2,9 +2,9 @@
 
 A ``.toml`` input is an embroact design: it is generated and every rule runs
 (geometry, pattern, file structure, model). Any other input is an embroidery file
-read with pyembroidery, checked against the tube(s) given with ``--tube-path``
+read with pystitch, checked against the tube(s) given with ``--tube-path``
 (repeatable, one per tube, ``"x1,y1 x2,y2 ..."`` in mm in the file's frame as
-pyembroidery reads it: 0.1 mm units divided by 10, y down; SVG path data as ``--path``
+pystitch reads it: 0.1 mm units divided by 10, y down; SVG path data as ``--path``
 takes it, ``"M 0 0 L 100 0"``, in that same y-down frame; or ``drawing.svg#tube1``, a
 drawn path in page mm, y down, the frame a design built from that drawing is sewn in; see
 :mod:`embroact.export.machine.filecheck`) or ``--tube TUBES.toml``; findings name the

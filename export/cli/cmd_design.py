@@ -2,7 +2,7 @@ r"""``embroact design``: from the bend or the shape wanted at a pressure to a de
 
 Target bend (one actuator)::
 
-    embroact design --bend-deg 90 --at-kpa 150 [--pattern zigzag|cross|any] [--length-mm 100] -o design.toml
+    embroact design --bend-deg 90 --at-kpa 150 [--pattern KIND|any] [--length-mm 100] -o design.toml
 
 Target shape (a segmented actuator)::
 
@@ -56,8 +56,6 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["add_arguments", "run", "read_target_shape"]
 
-_PATTERNS = PATTERN_KINDS.names() + ("any",)
-
 
 def add_arguments(parser, name: str) -> None:
     """Options of ``embroact design``."""
@@ -68,7 +66,7 @@ def add_arguments(parser, name: str) -> None:
                       help="fabric line wanted at --at-kpa: x_mm,y_mm points or an SVG path")
     target.add_argument("--at-kpa", type=float, required=True, help="pressure of the target [kPa]")
     space = parser.add_argument_group("design space")
-    space.add_argument("--pattern", choices=_PATTERNS, default="any", help="target bend: pattern to use (default any)")
+    space.add_argument("--pattern", choices=PATTERN_KINDS.names() + ("any",), default="any", help="target bend: pattern to use (default any)")
     space.add_argument("--length-mm", type=float, default=100.0, help="target bend: actuator length [mm] (default 100)")
     space.add_argument("--max-segments", type=int, default=6, help="target shape: at most this many segments (default 6)")
     space.add_argument("--time-limit", type=float, default=None, metavar="S",
@@ -157,6 +155,7 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
     if r.range_deg is not None:
         lines.append(f"  reachable at {r.pressure_kpa:g} kPa over the calibrated designs: {r.range_deg[0]:+.2f} to "
                      f"{r.range_deg[1]:+.2f} deg")
+    lines += [f"note: {n}" for n in r.notes]
     for label, c in [("best" if r.reached else "nearest", r.best)] + [(f"runner-up {i + 1}", c)
                                                                      for i, c in enumerate(r.runners_up)]:
         miss = c.theta_deg - r.target_deg
@@ -191,6 +190,7 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bo
     lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
              f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
+    lines += [f"note: {n}" for n in r.notes]
     for i, s in enumerate(r.segments):
         note = f"  ({s.note})" if s.note else ""
         lines.append(f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} -> "

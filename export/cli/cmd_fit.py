@@ -29,6 +29,7 @@ import re
 import sys
 
 from ...patterns.kinds import PATTERN_KINDS
+from .args import materials_of, plus_minus
 from .markerargs import add_layout_arguments, layout_from_args
 from .target import TUBE_LAWS, add_quick_arguments
 
@@ -36,7 +37,6 @@ __all__ = ["add_arguments", "run"]
 
 _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa", "mu": "g_e_mpa"}
 #: Pattern names (the registry is light: no numpy for --help).
-PATTERNS = PATTERN_KINDS.names()
 
 
 def add_arguments(parser, name: str) -> None:
@@ -51,7 +51,7 @@ def add_arguments(parser, name: str) -> None:
         "--design", metavar="DESIGN.toml", help="design file: its first (or --actuator) actuator, tube from the file"
     )
     design.add_argument("--actuator", metavar="NAME", help="actuator name in the design file")
-    design.add_argument("--pattern", choices=PATTERNS, help="pattern of the measured sample")
+    design.add_argument("--pattern", choices=PATTERN_KINDS.names(), help="pattern of the measured sample")
     add_quick_arguments(design, pattern=None, name_flag=False)
     fit = parser.add_argument_group("fit")
     fit.add_argument("--fit", default="g,p0",
@@ -169,18 +169,6 @@ def _data(args, derived, choice):
     return m.pressure_kpa, theta, m.branch, note
 
 
-def materials_of(items):
-    from ...patterns.base.errors import ParameterError
-
-    out = {}
-    for item in items:
-        key, sep, value = item.partition("=")
-        if not sep or not key.strip():
-            raise ParameterError(f"--material must be KEY=VALUE, got {item!r}")
-        out[key.strip()] = value.strip()
-    return out
-
-
 def _appended_set(args):
     """The calibration set ``--append`` merges into (None: no such file, or no ``--append``)."""
     from ..files.calibfile import read_calibration
@@ -217,10 +205,6 @@ def _write_set(args, act, results, layout, old):
     return cset
 
 
-def _pm(value, se, digits=4) -> str:
-    return f"{value:.{digits}g}" + ("" if se is None else f" +- {se:.2g}")
-
-
 def _table(derived, results, note, cset, path) -> str:
     from ...patterns.kinds import pattern_kind
 
@@ -231,11 +215,11 @@ def _table(derived, results, note, cset, path) -> str:
     lines = [f"fit of {design} (as generated); model method {results[0].method}" + (f"; {note}" if note else "")]
     lines.append(f"{'branch':<10} {'n':>4}  {'G [MPa]':<18} {'P0 [kPa]':<24} {'RMSE [deg]':>10}")
     for r in results:
-        p0 = f"{_pm(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
-        lines.append(f"{r.branch:<10} {r.n_points:>4}  {_pm(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
+        p0 = f"{plus_minus(r.p0_kpa, r.p0_kpa_se)} {r.p0_source}"
+        lines.append(f"{r.branch:<10} {r.n_points:>4}  {plus_minus(r.g_mpa, r.g_mpa_se):<18} {p0:<24} {r.rmse_deg:>10.3g}")
         if "g_e_mpa" in r.fitted:
             modulus = "mu" if r.tube_law == "thick-wall" else "G_e"
-            lines.append(f"{'':<16}{modulus} = {_pm(r.g_e_mpa, r.g_e_mpa_se)} MPa (tube law {r.tube_law})")
+            lines.append(f"{'':<16}{modulus} = {plus_minus(r.g_e_mpa, r.g_e_mpa_se)} MPa (tube law {r.tube_law})")
         lines += [f"{'':<16}note: {n}" for n in r.notes]
     if cset is not None:
         lines.append(f"wrote calibration set {cset.name!r} ({len(cset.points)} point(s)) to {path}")

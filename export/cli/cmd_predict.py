@@ -1,6 +1,6 @@
 """``embroact predict``: pressure-to-bend curves for quick parameters or a design file.
 
-``embroact predict zigzag|cross --width-mm W ...`` generates the actuator (so that r0
+``embroact predict KIND --width-mm W ...`` (KIND a pattern kind) generates the actuator (so that r0
 and beta0 come from the realised stitches) and predicts theta(P);
 ``embroact predict DESIGN.toml`` does the same for every actuator of a design file.
 Both go through :func:`embroact.export.cli.target.load_target` and the one analysis
@@ -30,6 +30,7 @@ import json
 import math
 import sys
 
+from ...patterns.kinds import PATTERN_KINDS
 from .args import parse_pressures
 from .markerargs import add_layout_arguments, given_layout, wants_markers
 from .target import add_model_arguments, add_quick_arguments, analyse_target, load_target
@@ -38,9 +39,10 @@ __all__ = ["add_arguments", "run", "parse_pressures"]
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     """Options of ``embroact predict``."""
-    parser.add_argument("target", metavar="zigzag|cross|DESIGN.toml",
-                        help="a pattern with quick parameters, or a design file")
-    g = parser.add_argument_group("quick parameters (zigzag / cross)")
+    parser.add_argument("target", metavar="KIND|DESIGN.toml",
+                        help="a pattern kind with quick parameters ("
+                        + ", ".join(PATTERN_KINDS.names()) + "), or a design file")
+    g = parser.add_argument_group("quick parameters (a pattern kind)")
     add_quick_arguments(g, pattern=None, tube_fields=("outer_radius_mm", "inner_radius_mm", "g_e_mpa"))
     m = parser.add_argument_group("model")
     m.add_argument("--actuator", metavar="NAME", help="design file: only this actuator")
@@ -77,7 +79,7 @@ def _band_dict(band):
 
 
 def _piece(model, c) -> dict:
-    from ...predict.validity import branch_end
+    from ...predict.branch import branch_end
 
     out: dict[str, object] = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
     out.update(c.as_dict())
@@ -97,12 +99,10 @@ def _measured(out: dict, reading) -> dict:
 
 def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
-    if not act.segments:
-        out.update(_piece(act.model, c))
-        out["band"] = _band_dict(band)
-        return _measured(out, reading)
-    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
-    out.update(c.as_dict())  # the whole strip: pressure_kpa, theta_deg, status, method
+    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.chain, segment_curves)]
+    # the whole strip: a chain of one is its segment (with its sleeve's l, r, beta, limits), else the sum of bends
+    out.update(out["segment_curves"][0] if len(act.chain) == 1 else c.as_dict())
+    out["band"] = _band_dict(band)
     return _measured(out, reading)  # the reading of the whole chain of arcs
 
 
@@ -162,7 +162,6 @@ def _table(act, c, band, segment_curves, reading=None) -> str:
 def run(args) -> int:
     """Predict and print; return the exit code."""
     from ...patterns.base.errors import ParameterError
-    from ...patterns.kinds import PATTERN_KINDS
 
     quick = args.target in PATTERN_KINDS.names()
     given = given_layout(args)  # checked even when the angles are whole-strip ones
@@ -188,7 +187,7 @@ def run(args) -> int:
         bands[a.name] = analysis.bands(pressures, method=args.method, measurement=layout)[names.index(a.name)]
     results = [_result(a, curves[a.name], bands[a.name], pieces[a.name], readings[a.name]) for a in acts]
     if args.json:
-        payload = results[0] if quick else {"design": target.design.name, "actuators": results}
+        payload = {"design": target.design.name, "actuators": results}  # one schema, quick or design file
         json.dump(payload, sys.stdout, indent=1, allow_nan=False)
         print()
     else:

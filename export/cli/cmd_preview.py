@@ -148,10 +148,11 @@ def _render(args, out: Path, analysis) -> tuple[str, dict]:
         write_text_atomic(out, plan_svg(plan))
         return f"stitch plan, {plan.stitch_count} stitches", {"stitch_count": plan.stitch_count}
     from ..pictures import previews as pv
+    from ..report.stage import actuator_entry
 
     pressures = parse_pressures(args.pressure_kpa) if args.pressure_kpa is not None else analysis.pressures_kpa
     curves = analysis.curves(pressures)
-    info = {"actuators": [pv.actuator_entry(a, c) for a, c in zip(analysis.actuators, curves)],
+    info = {"actuators": [actuator_entry(a, c) for a, c in zip(analysis.actuators, curves)],
             "pressure_kpa": [float(p) for p in pressures]}
     if args.kind == "bend":
         measured = measured_points(args.measured, [a.name for a in plan.actuators])
@@ -189,10 +190,10 @@ def _write_mesh(out: Path, analysis, curves, args) -> tuple[str, dict]:
     tri = sum(s.triangle_count for s in shapes)
     dev = max(s.max_deviation_mm for s in shapes)
     angles = ", ".join(f"{s.name} {s.theta_deg:.1f} deg at {pressures[s.name]:g} kPa" for s in shapes)
-    parts = {a.name: list(shape_state(c, args.shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)
-             if a.segments}  # a segmented actuator: each segment's bend in the shape
+    parts = {a.name: list(shape_state(c, args.shape_pressure_kpa)[2])  # each segment's bend in the shape
+             for a, c in zip(analysis.actuators, curves)}
     info = {"triangle_count": tri, "max_deviation_mm": dev, "tolerance_mm": shapes[0].tolerance_mm,
             "shapes": [{"name": s.name, "theta_deg": s.theta_deg, "pressure_kpa": pressures[s.name],
-                        **({"segment_theta_deg": parts[s.name]} if s.name in parts else {})} for s in shapes]}
+                        "segment_theta_deg": parts[s.name]} for s in shapes]}
     return (f"3D shape ({angles}); {tri} triangles, max deviation {dev:.4f} mm "
             f"(tolerance {shapes[0].tolerance_mm:g} mm)"), info

@@ -51,10 +51,6 @@ def _coupons(rows, base: str):
     return out, first
 
 
-def _pm(value, se) -> str:
-    return f"{value:.4g}" + ("" if se is None else f" +- {se:.2g}")
-
-
 def run_sheet(args) -> int:
     """Fit the whole sheet, write the profile, print the table; return the exit code."""
     from ...patterns.base.errors import ParameterError
@@ -62,7 +58,7 @@ def run_sheet(args) -> int:
     from ...predict.profile import DISAGREE_FACTOR, fit_profile
     from ..files.calibfile import write_calibration
     from ..files.couponfile import read_coupon_layout, read_sheet
-    from .cmd_fit import materials_of
+    from .args import materials_of, plus_minus
     from .markerargs import layout_from_args
 
     if args.data is not None:
@@ -100,8 +96,8 @@ def run_sheet(args) -> int:
     for f, e in zip(prof.fits, prof.loo):
         loo = "-" if e.rmse_deg is None else f"{e.rmse_deg:.2f}" + ("*" if e.extrapolated else "")
         for k, r in enumerate(f.results):
-            print(f"{f.name if k == 0 else '':<22} {r.branch:<10} {r.n_points:>3}  {_pm(r.g_mpa, r.g_mpa_se):<18} "
-                  f"{_pm(r.p0_kpa, r.p0_kpa_se):<18} {r.rmse_deg:>6.2f} {loo if k == 0 else '':>7}")
+            print(f"{f.name if k == 0 else '':<22} {r.branch:<10} {r.n_points:>3}  {plus_minus(r.g_mpa, r.g_mpa_se):<18} "
+                  f"{plus_minus(r.p0_kpa, r.p0_kpa_se):<18} {r.rmse_deg:>6.2f} {loo if k == 0 else '':>7}")
     print("RMSE and LOO (leave-one-out: predicted from the other coupons of its pattern) in deg of the marker reading; "
           "* extrapolated (an end of the range)")
     for e in flagged:

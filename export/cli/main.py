@@ -37,12 +37,10 @@ import warnings
 
 from .. import __version__
 
-__all__ = ["main", "COMMANDS"]
+__all__ = ["main", "COMMANDS", "commands"]
 
-#: name -> (module, one-line help). Order is the order shown by ``--help``.
+#: name -> (module, one-line help) of the commands after the quick commands (see :func:`commands`).
 COMMANDS: dict[str, tuple[str, str]] = {
-    "zigzag": ("cmd_generate", "generate one zigzag actuator and write its machine file"),
-    "cross": ("cmd_generate", "generate one cross-pattern actuator and write its machine file"),
     "build": ("cmd_build", "build a design file: machine files, worksheet, previews, report"),
     "check": ("cmd_check", "run the design-rule checks on a design or any embroidery file"),
     "predict": ("cmd_predict", "predict pressure-to-bend curves for a design or quick parameters"),
@@ -53,6 +51,24 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "measure": ("cmd_measure", "bend from photos: markers found with OpenCV, one row per photo (extra: measure)"),
     "studio": ("cmd_studio", "designer in the browser: edit a design, see stitches and predicted bend live"),
 }
+
+
+
+def commands() -> dict[str, tuple[str, str]]:
+    """name -> (module, one-line help) of every command, in the order ``--help`` shows them.
+
+    First one quick command per registered pattern kind (``embroact zigzag``, ...), then
+    :data:`COMMANDS`.
+
+    >>> list(commands())[:2], commands()["cross"][1]
+    (['zigzag', 'cross'], 'generate one cross-pattern actuator and write its machine file')
+    """
+    from ...patterns.kinds import PATTERN_KINDS
+
+    quick = {k.name: ("cmd_generate", f"generate {k.description or f'one {k.name} actuator'} and write its "
+                                      "machine file") for k in PATTERN_KINDS}
+    return {**quick, **COMMANDS}
+
 
 EXIT_OK, EXIT_RULES, EXIT_INPUT, EXIT_OUTPUT, EXIT_SOLVER, EXIT_NOT_MET = 0, 1, 2, 3, 4, 5
 #: Ended by Ctrl-C, SIGTERM, or a closed pipe: the shell's 128 + signal number.
@@ -158,8 +174,9 @@ def _time_limit(text: str) -> float:
 
 
 def _top_parser() -> argparse.ArgumentParser:
-    width = max(len(n) for n in COMMANDS)
-    lines = "\n".join(f"  {n:<{width}}  {h}" for n, (_, h) in COMMANDS.items())
+    every = commands()
+    width = max(len(n) for n in every)
+    lines = "\n".join(f"  {n:<{width}}  {h}" for n, (_, h) in every.items())
     p = _Parser(
         prog="embroact",
         description="CAD tool and stitch generator for embroidery actuators.\n\ncommands:\n" + lines,
@@ -172,14 +189,15 @@ def _top_parser() -> argparse.ArgumentParser:
     p.add_argument("--debug", action="store_true", help="show tracebacks for errors")
     p.add_argument("--time-limit-s", type=_time_limit, default=DEFAULT_TIME_LIMIT_S, metavar="S",
                    help=f"end the command after S seconds with exit code 4 (default {DEFAULT_TIME_LIMIT_S:g}; 0: none)")
-    p.add_argument("command", choices=list(COMMANDS), metavar="COMMAND", help="one of the commands above")
+    p.add_argument("command", choices=list(every), metavar="COMMAND", help="one of the commands above")
     p.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
     return p
 
 
 def _command_parser(name: str):
-    module = importlib.import_module(f".{COMMANDS[name][0]}", __package__)
-    parser = _Parser(prog=f"embroact {name}", description=COMMANDS[name][1])
+    module_name, description = commands()[name]
+    module = importlib.import_module(f".{module_name}", __package__)
+    parser = _Parser(prog=f"embroact {name}", description=description)
     parser.add_argument("--debug", action="store_true", help="show tracebacks for errors")
     module.add_arguments(parser, name)
     return module, parser

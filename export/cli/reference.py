@@ -84,12 +84,12 @@ def commands_markdown() -> str:
     >>> "| `--tube-path 'x1,y1 x2,y2 ...'\\\\|SVG_D\\\\|FILE.svg#ID` |" in commands_markdown()  # | escaped in a table
     True
     """
-    from .main import COMMANDS, _command_parser
+    from .main import _command_parser, commands
 
     out = [_HEADER, "| command | does |", "|---|---|"]
-    out += [f"| [`embroact {n}`](#embroact-{n}) | {_cell(h)} |" for n, (_, h) in COMMANDS.items()]
+    out += [f"| [`embroact {n}`](#embroact-{n}) | {_cell(h)} |" for n, (_, h) in commands().items()]
     out.append("")
-    for name in COMMANDS:
+    for name in commands():
         out += _parser_markdown(name, _command_parser(name)[1])
     return "\n".join(out).rstrip() + "\n"
 

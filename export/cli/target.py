@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["Target", "add_model_arguments", "add_quick_arguments", "add_placement_argument", "add_origin_argument",
            "parse_origin", "MODEL_FLAGS", "model_flags_given", "load_target",
-           "analyse_target", "gate", "summary_line", "P0_SOURCES", "TUBE_LAWS", "DEMO_CALIBRATION", "DEMO_NOTE",
+           "analyse_target", "gate", "P0_SOURCES", "TUBE_LAWS", "DEMO_CALIBRATION", "DEMO_NOTE",
            "note_demo_calibration", "print_notes", "reset_notes"]
 
 #: Values of ``--p0-source`` and ``--tube-law`` (the enums' values; a test holds them equal, so
@@ -87,19 +87,26 @@ def add_model_arguments(group) -> None:
 def add_quick_arguments(group, *, pattern: str | None, required: bool = False, tube_fields=None,
                         name_flag: bool = True) -> None:
     """Quick-parameter flags: ``--width-mm``, ``--interval-mm``, ``--angle-deg``, ``--adjust``, ``--length-mm``,
-    ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (zigzag/cross commands); None adds
+    ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (its quick command); None adds
     the angle and adjust flags for a pattern chosen elsewhere."""
-    from ...patterns.kinds import pattern_kind
+    from ...patterns.kinds import PATTERN_KINDS, pattern_kind
 
+    kinds = list(PATTERN_KINDS) if pattern is None else [pattern_kind(pattern)]
+    defaults = ", ".join(f"{k.default_interval_mm:g} {k.name}" for k in kinds)
     group.add_argument("--width-mm", type=float, required=required, help="rail spacing w [mm]")
     group.add_argument("--interval-mm", type=float,
                        help="stitch interval s: axial distance between neighbouring needle points / parallel legs [mm] "
-                            "(default: the paper's, 1.0 zigzag, 1.4 cross)")
-    if pattern is None or pattern_kind(pattern).has_angle:
+                            f"(default: the paper's, {defaults})")
+    angled = "/".join(k.name for k in kinds if k.has_angle)
+    if angled:
         group.add_argument("--angle-deg", type=float, required=required and pattern is not None,
-                           help="cross embroidery angle alpha0 from the perpendicular, (0, 90) [deg]")
-        group.add_argument("--adjust", choices=("auto", "interval", "angle"), default="auto",
-                           help="cross: what to change when s and alpha0 cannot both be met (default auto)")
+                           help=f"{angled} embroidery angle alpha0 from the perpendicular, (0, 90) [deg]")
+    adjusted = [k for k in kinds if "adjust" in k.options]
+    if adjusted:
+        values = adjusted[0].option_values[adjusted[0].options.index("adjust")]
+        group.add_argument("--adjust", choices=values, default=values[0],
+                           help=f"{'/'.join(k.name for k in adjusted)}: what to change when s and alpha0 cannot "
+                                f"both be met (default {values[0]})")
     group.add_argument("--length-mm", type=float, default=DEFAULT_LENGTH_MM,
                        help="straight path length l0 [mm] (default 100; ignored with --path)")
     group.add_argument("--path", metavar="SVG_D|FILE.svg#ID",
@@ -193,10 +200,8 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
     elif design_path is not None:
         from ..files.designfile import load_design
 
-        from ..files.calibfile import resolve_calibration_files
-
-        design, sets = resolve_calibration_files(load_design(design_path), Path(design_path).parent)
-        source, quick = str(design_path), False
+        design = load_design(design_path)  # what the API's load_design reads: SVG paths, calibration files
+        sets, source, quick = design.calibration_sets, str(design_path), False
     else:
         from ...patterns.design import default_design
 
@@ -266,44 +271,6 @@ def reset_notes() -> None:
     _NOTE.update(used=False, printed=False)
 
 
-#: Actuators the summary line names per rule code (the rest are counted: the line stays one line).
-SUMMARY_NAMES = 5
-
-
-def summary_line(findings) -> str:
-    """One line: counts of all findings by severity, and the codes with their actuators.
-
-    Examples
-    --------
-    >>> import embroact.predict.rules  # declares the model rules
-    >>> from embroact.patterns.base.findings import RULES
-    >>> fs = [RULES.finding("EA403", "x", actuator="A1"), RULES.finding("EA403", "y", actuator="A2"),
-    ...       RULES.finding("EA405", "z", actuator="A1")]
-    >>> summary_line(fs)
-    '0 errors, 3 warnings, 0 info: EA403 (A1, A2), EA405 (A1)'
-    >>> summary_line([RULES.finding("EA403", "x", actuator=f"A{k}") for k in range(1000)])
-    '0 errors, 1000 warnings, 0 info: EA403 (A0, A1, A2, A3, A4 and 995 more)'
-    """
-    from ...patterns.base.findings import count_by_severity
-
-    counts = count_by_severity(findings)
-    by_code: dict[str, dict[str, None]] = {}
-    for f in findings:
-        names = by_code.setdefault(f.code, {})
-        if f.actuator is not None:
-            names[f.actuator] = None
-
-    def named(names) -> str:
-        shown = ", ".join(list(names)[:SUMMARY_NAMES])
-        return shown if len(names) <= SUMMARY_NAMES else f"{shown} and {len(names) - SUMMARY_NAMES} more"
-
-    codes = ", ".join(f"{c} ({named(n)})" if n else c for c, n in sorted(by_code.items()))
-    n_err, n_warn = counts["error"], counts["warning"]
-    head = (f"{n_err} error{'s' if n_err != 1 else ''}, {n_warn} warning{'s' if n_warn != 1 else ''}, "
-            f"{counts['info']} info")  # spelled as check's header
-    return f"{head}: {codes}" if codes else head
-
-
 #: Errors the gate prints per rule code; the rest are counted on one line.
 GATE_ERRORS_PER_CODE = 3
 
@@ -346,6 +313,8 @@ def gate(findings, *, force: bool, stream=None) -> bool:
     if not findings:
         return True
     errors = [f for f in findings if f.is_error]
+    from ...patterns.base.findings import summary_line
+
     print(f"design rules: {summary_line(findings)}", file=stream)
     for line in error_lines(errors):
         print(line, file=stream)

@@ -76,6 +76,7 @@ from ...patterns.base.arrays import frozen_array
 from ...patterns.base.errors import DesignFileError, EmbroactError
 from ...patterns.base.validate import (COORD_MM, CSV_COLUMNS, CSV_FIELD_CHARS, CSV_FILE_BYTES, CSV_ROWS, check_count,
                                        read_input)
+from ...patterns.design import Design, names_calibration_file
 from ...patterns.kinds import pattern_kind
 from ...predict.calibration import CalibrationPoint, CalibrationSet, CalibrationTube
 from ...predict.layoutchoice import LAYOUT_FIELDS
@@ -93,7 +94,6 @@ __all__ = [
     "read_calibration",
     "write_calibration",
     "calibration_toml",
-    "is_calibration_file",
     "calibration_reference",
     "resolve_calibration_files",
 ]
@@ -292,28 +292,17 @@ def calibration_toml(cset: CalibrationSet) -> str:
     return f"# embroact calibration set\n{_coverage_comment(cset)}\n{dumps(doc)}"
 
 
-def is_calibration_file(value: str) -> bool:
-    """True when a calibration setting names a file (``.toml`` or a path) rather than a set.
-
-    Examples
-    --------
-    >>> is_calibration_file("paper-2025"), is_calibration_file("lab.toml"), is_calibration_file("cal/lab")
-    (False, True, True)
-    """
-    return value.endswith(".toml") or "/" in value or "\\" in value
-
-
 def calibration_reference(value: str | None, base_dir) -> tuple[str | None, tuple[CalibrationSet, ...]]:
     """(reference, (set,)) for a calibration setting that names a file (read relative to ``base_dir``):
     the reference is the file's absolute path, by which the set is found (``CalibrationSet.source``) and
     which a design saved anywhere still resolves; (value, ()) for a set name or None."""
-    if value is None or not is_calibration_file(value):
+    if value is None or not names_calibration_file(value):
         return value, ()
     cset = read_calibration(Path(base_dir) / value)
     return cset.source, (cset,)
 
 
-def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[CalibrationSet, ...]]:
+def resolve_calibration_files(design: Design, base_dir) -> tuple[Design, tuple[CalibrationSet, ...]]:
     """``design`` with every calibration file its actuators name replaced by its absolute path, and the sets.
 
     What ``embroact predict/build/check DESIGN.toml`` do with ``[actuator.model] calibration =
@@ -343,7 +332,8 @@ def resolve_calibration_files(design, base_dir) -> tuple[object, tuple[Calibrati
     for spec in design.actuators:
         name, found = calibration_reference(spec.model.calibration, base_dir)
         sets.update({s.name: s for s in found})
-        specs.append(dataclasses.replace(spec, model=dataclasses.replace(spec.model, calibration=name)))
+        model = dataclasses.replace(spec.model, calibration=name or spec.model.calibration)
+        specs.append(dataclasses.replace(spec, model=model))
     return dataclasses.replace(design, actuators=tuple(specs)), tuple(sets.values())
 
 

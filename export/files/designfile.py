@@ -28,7 +28,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from ...patterns.design import Design, design_from_dict, design_to_dict
+from ...patterns.design import Design, design_from_dict, design_to_dict, names_calibration_file
 from ...patterns.base.errors import DesignFileError, PathError
 from ...patterns.base.validate import TEXT_FILE_BYTES, read_input
 from .atomic import write_text_atomic
@@ -86,13 +86,15 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     source : str
         Name that starts every error message (the file name).
     base_dir : str or os.PathLike, optional
-        Folder that ``path = "FILE.svg#name"`` references are resolved against (the design
-        file's folder); default: the working directory.
+        Folder that ``path = "FILE.svg#name"`` and ``calibration = "FILE.toml"`` references
+        are resolved against (the design file's folder); default: the working directory.
 
     Returns
     -------
     Design
-        The validated design; SVG file paths are read into point lists (plan frame).
+        The validated design; SVG file paths are read into point lists (plan frame), and
+        calibration files into :attr:`Design.calibration_sets` (each actuator's setting then
+        names its file's absolute path), exactly as the command line reads them.
 
     Examples
     --------
@@ -102,9 +104,23 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     """
     data = loads_toml(text, source=source)
     try:
-        return design_from_dict(_svg_paths(data, base_dir))
+        design = design_from_dict(_svg_paths(data, base_dir))
     except DesignFileError as exc:
         raise DesignFileError(f"{source}: {exc}") from None
+    return _with_calibration_files(design, Path(base_dir) if base_dir is not None else Path.cwd())
+
+
+def _with_calibration_files(design: Design, base_dir: Path) -> Design:
+    """``design`` with the calibration files its actuators name read (relative to ``base_dir``)."""
+    named = [spec.model.calibration for spec in design.actuators]
+    if not any(isinstance(n, str) and names_calibration_file(n) for n in named):
+        return design  # set names only: no calibration reader (and no numpy) needed
+    import dataclasses
+
+    from .calibfile import resolve_calibration_files
+
+    resolved, sets = resolve_calibration_files(design, base_dir)
+    return dataclasses.replace(resolved, calibration_sets=sets)
 
 
 def load_design(path: str | os.PathLike) -> Design:

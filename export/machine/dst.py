@@ -1,7 +1,8 @@
 """DST specifics: a correct 512-byte header and the 0x1A terminator.
 
 pystitch writes the DST records correctly, but its header does not describe them
-(docs/machine.md section 4; pyembroidery 1.5.1 also left stops out of ``CO``):
+(docs/machine.md section 4; pyembroidery 1.5.1, which pystitch forks, also left stops out of
+``CO``):
 ``+Y``/``-Y`` are swapped,
 ``+X``/``-X`` take absolute values of signed bounds, ``ST`` counts a trim as one
 record although it is written as three, and no 0x1A follows the end record.

@@ -80,10 +80,13 @@ __all__ = [
     "default_format",
     "file_rule_settings",
     "dst_header_faults",
+    "extent_faults",
     "FILE_FIXES",
 ]
 
 _DST_RECORD_BYTES = 3
+#: Bytes of TBF's text header holding the extents (the needle table and thread list follow).
+_TBF_HEADER = 0x376
 #: Leading bytes of formats that have a magic number.
 _MAGIC = {"pes": b"#PES", "pec": b"#PEC0001", "vp3": b"%vsm%"}
 #: Formats whose stitch data ends with an end-of-design code the reader stops at: a reader that runs
@@ -422,14 +425,25 @@ def dst_header_faults(data: bytes) -> tuple[str, ...]:
     from .dst import COLOR_BYTE, move_array
 
     text = data[:HEADER_SIZE].decode("latin-1")
-    fields = {m.group(1): m.group(2).strip() for m in re.finditer(r"(ST|CO|[+-][XY]):([^\r]*)\r", text)}
+    fields = {m.group(1): m.group(2).strip() for m in re.finditer(r"(ST|CO):([^\r]*)\r", text)}
     moves, b3 = move_array(data[HEADER_SIZE:])
-    at = np.vstack([np.zeros((1, 2), np.int64), np.cumsum(moves, axis=0)])
-    (xmin, ymin), (xmax, ymax) = at.min(axis=0).tolist(), at.max(axis=0).tolist()
-    body = {"ST": (len(b3), "records (the end record included)"),
-            "CO": (int(np.count_nonzero(b3 == COLOR_BYTE)), "colour-change (stop) records"),
-            "+X": (xmax, "units right of the start point"), "-X": (-xmin, "units left of the start point"),
-            "+Y": (ymax, "units above the start point"), "-Y": (-ymin, "units below the start point")}
+    counts = _field_faults(fields, {"ST": (len(b3), "records (the end record included)"),
+                                    "CO": (int(np.count_nonzero(b3 == COLOR_BYTE)), "colour-change (stop) records")})
+    return counts + extent_faults(data[:HEADER_SIZE], np.cumsum(moves, axis=0) * (0.1, -0.1))
+
+
+def extent_faults(head: bytes, xy_mm: np.ndarray) -> tuple[str, ...]:
+    """The ``+X -X +Y -Y`` fields of a text header (DST, TBF) that disagree with positions ``xy_mm``
+    (every record, mm, y down as read; the fields are 0.1 mm, y up, from the start point)."""
+    text = head.decode("latin-1")
+    fields = {m.group(1): m.group(2).strip() for m in re.finditer(r"([+-][XY]):([^\r]*)\r", text)}
+    at = np.vstack([np.zeros((1, 2)), np.rint(np.asarray(xy_mm, dtype=np.float64) * (10.0, -10.0))])
+    (xmin, ymin), (xmax, ymax) = at.min(axis=0).astype(int).tolist(), at.max(axis=0).astype(int).tolist()
+    body = {"+X": (xmax, "right of"), "-X": (-xmin, "left of"), "+Y": (ymax, "above"), "-Y": (-ymin, "below")}
+    return _field_faults(fields, {k: (v, f"units {where} the start point") for k, (v, where) in body.items()})
+
+
+def _field_faults(fields: dict, body: dict) -> tuple[str, ...]:
     faults = []
     for key, (value, what) in body.items():
         given = fields.get(key)
@@ -486,7 +500,8 @@ def check_file(
 ) -> tuple[Finding, ...]:
     """Read an embroidery file and run the design rules for files against ``tubes``.
 
-    Besides the rules on its records: a DST file's header is held against them (EA505); a
+    Besides the rules on its records: a DST file's header is held against them, a TBF file's extents
+    too (EA505); a
     long stitch a writer split into jump(s) + stitch is checked as the one leg the machine
     sews (EA103 names it); each finding gives its place as a needle-point number with the
     record number alongside (both counted from 0), the same for every format, and a fix for
@@ -516,8 +531,10 @@ def check_file(
 
     records = read_records(path) if records is None else records
     settings = settings or file_rule_settings(records)
-    faults = dst_header_faults(read_input(str(path), MACHINE_FILE_BYTES, "embroidery file")) \
-        if records.suffix == "dst" else ()
+    faults: tuple[str, ...] = ()
+    if records.suffix in ("dst", "tbf"):
+        data = read_input(str(path), MACHINE_FILE_BYTES, "embroidery file")
+        faults = dst_header_faults(data) if records.suffix == "dst" else extent_faults(data[:_TBF_HEADER], records.xy_mm)
     drop = _split_legs(records, settings.max_stitch_mm, settings.trim_jump_count)
     keep = np.flatnonzero(~drop)
     layout = layout_from_records(records.xy_mm[keep], records.commands[keep], tuple(tubes), index=keep,

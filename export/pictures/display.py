@@ -150,18 +150,18 @@ def actuator_html(act: ActuatorAnalysis) -> str:
     1
     """
     from ...patterns.design import OperationSettings
-    from ...predict.analysis import pressure_grid_kpa, strip_curve
+    from ...predict.analysis import pressure_grid_kpa, whole_strip
     from ...predict.curve import curve
     from .chart import bend_chart_svg
     from .previews import actuator_series
 
     parts = [_table([act])]
-    missing = [p.model_error for p in act.segments or (act,) if p.choice is None]
+    missing = [p.model_error for p in act.chain if p.choice is None]
     if missing:
         parts.append(f"<p>no bend chart: {escape('; '.join(missing))}</p>")
-    else:  # a segmented actuator: its whole strip and each segment
+    else:  # the whole strip and each segment
         grid = pressure_grid_kpa(OperationSettings().max_pressure_kpa)
-        c = strip_curve([curve(s.model, grid) for s in act.segments]) if act.segments else curve(act.model, grid)
+        c = whole_strip([curve(s.model, grid) for s in act.chain])
         parts.append(_figure(bend_chart_svg(actuator_series(act, c), title=f"{act.name}: predicted bend angle")))
     return f'<div class="embroact">{"".join(parts)}</div>'
 

@@ -64,7 +64,7 @@ from ...patterns.base.errors import ExportError, ParameterError, check_range
 from ...predict.shape import BentShape
 from ..files.atomic import write_bytes_atomic
 from .glb import GlbMesh, glb_bytes
-from .sideview import FABRIC_THICKNESS_MM
+from ...patterns.params import FABRIC_THICKNESS_MM
 from .triangles import point_triangle_distance
 
 __all__ = [

@@ -1,7 +1,7 @@
-"""What a build attaches to its machine files: bend chart, side view, 3D shape, report.
+"""The pictures a build attaches to its machine files: bend chart, side view, 3D shape.
 
-:func:`previews_stage` gives the build stage (see :mod:`embroact.export.report.build`) that
-predicts every actuator's curve and renders, in memory:
+:func:`embroact.export.report.stage.previews_stage` gives the build stage that predicts every
+actuator's curve and renders, in memory, with the functions of this module:
 
 ================ =========================================================
 ``bend.svg``     pressure-bend chart of every actuator (:mod:`.chart`)
@@ -12,7 +12,7 @@ predicts every actuator's curve and renders, in memory:
 ``report.html``  the same, self-contained, with the stitch preview
 ================ =========================================================
 
-:func:`render_previews` renders an analysed design (:func:`embroact.predict.analysis.analyse`)
+:func:`~embroact.export.report.stage.render_previews` renders an analysed design (:func:`embroact.predict.analysis.analyse`)
 with its curves: every picture and the report use the analysis's derived geometry, model and
 memoised curves, so they agree with ``embroact predict`` and the model rules to the last digit.
 
@@ -24,19 +24,16 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
 
-from ...patterns.base.errors import ExportError, ParameterError
+from ...patterns.base.errors import ParameterError
 from .chart import Series, bend_chart_svg, chart_scale
-from ..report.report import report_data, report_html, report_json
 from .sideview import SidePanel, side_view_svg
 
 __all__ = [
     "OUTPUT_NAMES",
-    "Previews",
     "side_pressures",
     "shape_theta_deg",
     "shape_state",
@@ -55,10 +52,7 @@ __all__ = [
     "shape_meshes",
     "shape3d_title",
     "check_side_states",
-    "actuator_entry",
     "curve_bands",
-    "render_previews",
-    "previews_stage",
 ]
 
 #: Output kind -> file name (the mesh's suffix follows ``mesh_suffix``).
@@ -75,23 +69,6 @@ DEFAULT_SIDE_STATES = 5
 CHART_WIDTH_PX = 720.0
 CHART_MIN_PLOT_PX = 300.0
 MAX_SIDE_STATES = 12
-
-
-@dataclass(frozen=True, slots=True)
-class Previews:
-    """Rendered previews, not yet written.
-
-    Attributes
-    ----------
-    files : dict
-        File name -> contents (str for text, bytes for the mesh), in writing order.
-    mesh : dict or None
-        3D facts: file, pressure_kpa and theta_deg per actuator, triangle_count,
-        tolerance_mm, max_deviation_mm.
-    """
-
-    files: dict
-    mesh: dict | None
 
 
 def side_pressures(pressure_kpa, theta_deg, *, count: int = DEFAULT_SIDE_STATES) -> tuple[float, ...]:
@@ -124,8 +101,9 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
 
 
 def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[float, ...]]:
-    """As :func:`shape_theta_deg`, with each segment's bend there when ``curve`` is a segmented
-    actuator's whole strip (:class:`~embroact.predict.analysis.StripCurve`; ``()`` otherwise).
+    """As :func:`shape_theta_deg`, with each segment's bend there (``curve.segments``: a segmented
+    actuator's whole strip, :class:`~embroact.predict.analysis.StripCurve`, holds one curve per
+    segment; a single-pattern actuator's curve is its one segment's).
 
     A strip's state is drawable only where every segment's is and the strip has not coiled
     (its status); each segment's bend is interpolated over the same drawable pressures, so the
@@ -147,7 +125,7 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
         raise ParameterError("the curve has no state the model describes to draw a shape from")
     order = np.argsort(p[ok], kind="stable")
     p, t = p[ok][order], t[ok][order]
-    parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in getattr(curve, "segments", ())]
+    parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in curve.segments]
     if pressure_kpa is None:
         return float(p[-1]), float(t[-1]), tuple(float(v[-1]) for v in parts)
     if not p[0] <= pressure_kpa <= p[-1]:
@@ -170,8 +148,8 @@ def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...
 
 def segment_boundaries_mm(act) -> tuple[float, ...]:
     """Arc lengths where one segment gives way to the next [mm]: the middle of the unbent transition
-    between one segment's legs and the next's (``()`` for a single-pattern actuator)."""
-    segs = act.segments
+    between one segment's legs and the next's (``()`` for a chain of one)."""
+    segs = act.chain
     return tuple((a.plan.first_leg_mm + a.derived.length_mm + b.plan.first_leg_mm) / 2.0
                  for a, b in zip(segs, segs[1:]))
 
@@ -179,7 +157,7 @@ def segment_boundaries_mm(act) -> tuple[float, ...]:
 def sleeve_mm(act) -> tuple[float, float]:
     """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
     segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
-    parts = [s.derived for s in act.segments] or [act.derived]
+    parts = [s.derived for s in act.chain]
     return max(d.width_mm for d in parts), max(d.r0_mm for d in parts)
 
 
@@ -213,7 +191,7 @@ def model_caption(analysis) -> str:
     'paper law, r_f 1.5, d_f 1 mm, G_e 0.13 MPa'
     """
     parts: list[str] = []
-    for choice in (p.choice for act in analysis.actuators for p in (act.segments or (act,))):
+    for choice in (p.choice for act in analysis.actuators for p in act.chain):
         if choice is None:
             continue
         m = choice.model
@@ -362,30 +340,6 @@ def check_side_states(value, *, name: str = "side_states") -> int:
     return value
 
 
-def _check_inputs(analysis, curves, side_states) -> None:
-    n = len(analysis.actuators)
-    if not n or n != len(curves):
-        raise ParameterError(f"need one curve per actuator ({n}), got {len(curves)}")
-    for a, c in zip(analysis.actuators, curves):
-        if a.segments and len(getattr(c, "segments", ())) != len(a.segments):
-            raise ParameterError(f"actuator {a.name!r} has {len(a.segments)} segments: its curve must be its whole "
-                                 f"strip (DesignAnalysis.curves), got {type(c).__name__}")
-    check_side_states(side_states)
-
-
-def actuator_entry(act, curve, band=None) -> dict:
-    """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
-    tube law and their sources; a segmented actuator's per segment) and the curve as ``Curve.as_dict``
-    gives it (status names as in ``embroact predict --json``); a segmented actuator's is the whole
-    strip's, followed by each segment's (``segment_curves``). ``band``: the 1-sigma band of the
-    calibration's covariance per point (``band``: :meth:`~embroact.predict.uncertainty.Band.summary`,
-    None without one)."""
-    entry = {**act.as_dict(), "curve": curve.as_dict(), "band": None if band is None else band.summary()}
-    if act.segments:
-        entry["segment_curves"] = [c.as_dict() for c in curve.segments]
-    return entry
-
-
 #: Most actuators the side view draws, side by side (a wider drawing shows nothing more on a screen, and its
 #: size and time grew with the design: 1000 panels were 13 MB and a fifth of the build); the report keeps
 #: every actuator's side-view states.
@@ -399,118 +353,3 @@ def _side_view(panels) -> str:
     return side_view_svg(panels[:SIDE_VIEW_MAX_PANELS],
                          title=f"Bent shape (side view, clamped top): the first {SIDE_VIEW_MAX_PANELS} of "
                                f"{len(panels)} actuators")
-
-
-def _side_states(act, curve, panel) -> list[dict]:
-    """The report's side-view states: pressure and bend, and a segmented actuator's bend per segment."""
-    if not act.segments:
-        return [{"pressure_kpa": p, "theta_deg": t} for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
-    return [{"pressure_kpa": p, "theta_deg": t, "segment_theta_deg": list(shape_state(curve, p)[2])}
-            for p, t in zip(panel.pressure_kpa, panel.theta_deg)]
-
-
-def render_previews(
-    analysis,
-    curves: Sequence | None = None,
-    *,
-    findings=(),
-    worksheet=None,
-    measured: Mapping[str, tuple] | None = None,
-    stitch_svg: str | None = None,
-    side_states: int = DEFAULT_SIDE_STATES,
-    shape_pressure_kpa: float | None = None,
-    mesh_suffix: str | None = ".glb",
-    tolerance_mm: float | None = None,
-) -> Previews:
-    """Render the previews and the report of one build, in memory.
-
-    Parameters
-    ----------
-    analysis : DesignAnalysis
-        The analysed design (:func:`embroact.predict.analysis.analyse`): plan, derived
-        geometry and model of every actuator.
-    curves : sequence of Curve, optional
-        Predicted curve per actuator (a segmented one: its whole strip,
-        :class:`~embroact.predict.analysis.StripCurve`); default ``analysis.curves()`` (the standard grid).
-    findings : iterable
-        Design-rule findings (``Finding`` or dicts).
-    worksheet : Worksheet or dict, optional
-    measured : mapping, optional
-        Actuator name -> (pressure_kpa, theta_deg) arrays of measured points to overlay.
-    stitch_svg : str, optional
-        Stitch preview SVG; default ``plan_svg(analysis.plan)``.
-    side_states : int
-        Number of pressures drawn in the side view, in [1, 12].
-    shape_pressure_kpa : float, optional
-        Pressure of the 3D shape [kPa]; default the highest predicted pressure.
-    mesh_suffix : str or None
-        ``".glb"`` (default; written without trimesh), ``".stl"``, ``".obj"``, ``".ply"`` (these import
-        trimesh); None: no 3D.
-    tolerance_mm : float, optional
-        Chordal tolerance of the mesh [mm]; default ``mesh.DEFAULT_CHORD_TOLERANCE_MM``.
-    """
-    curves = analysis.curves() if curves is None else tuple(curves)
-    _check_inputs(analysis, curves, side_states)
-    plan = analysis.plan
-    panels = side_panels(analysis, curves, count=side_states)
-    bands = curve_bands(analysis, curves)
-    figures = {"bend": bend_chart(analysis, curves, measured, bands), "side": _side_view(panels)}
-    files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
-    mesh_info = None
-    if mesh_suffix is not None:
-        from .mesh import MESH_FORMATS, mesh_bytes
-        from .meshview import mesh_svg
-
-        if str(mesh_suffix).lower() not in MESH_FORMATS:
-            raise ExportError(f"mesh suffix must be one of {', '.join(MESH_FORMATS)}, got {mesh_suffix!r}")
-        shapes, pressures = shape_meshes(analysis, curves, pressure_kpa=shape_pressure_kpa, tolerance_mm=tolerance_mm)
-        name = OUTPUT_NAMES["mesh"] + str(mesh_suffix).lower()
-        files[name] = mesh_bytes(shapes, mesh_suffix)
-        figures["shape3d"] = mesh_svg(shapes, title=shape3d_title(pressures))
-        files[OUTPUT_NAMES["shape3d"]] = figures["shape3d"]
-        mesh_info = {"file": name, "pressure_kpa": pressures, "theta_deg": {s.name: s.theta_deg for s in shapes},
-                     "triangle_count": sum(s.triangle_count for s in shapes), "tolerance_mm": shapes[0].tolerance_mm,
-                     "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
-        if any(a.segments for a in analysis.actuators):  # each segment's bend in the 3D shape
-            mesh_info["segment_theta_deg"] = {
-                a.name: list(shape_state(c, shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)
-                if a.segments}
-    if stitch_svg is None:
-        from .stitches import plan_svg
-
-        stitch_svg = plan_svg(plan)
-    figures["stitches"] = stitch_svg
-    entries = [{**actuator_entry(a, c, b), "side_view": _side_states(a, c, s)}
-               for a, c, s, b in zip(analysis.actuators, curves, panels, bands)]
-    ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
-    data = report_data(title=plan.name, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
-    files[OUTPUT_NAMES["json"]] = report_json(data)
-    files[OUTPUT_NAMES["html"]] = report_html(data, figures=figures)
-    return Previews(files, mesh_info)
-
-
-def previews_stage(
-    *,
-    pressures_kpa=None,
-    measured: Mapping[str, tuple] | None = None,
-    side_states: int = DEFAULT_SIDE_STATES,
-    shape_pressure_kpa: float | None = None,
-    mesh_suffix: str | None = ".glb",
-    tolerance_mm: float | None = None,
-):
-    """The build stage: ``stage(context) -> {file name: contents}`` (see :mod:`embroact.export.report.build`).
-
-    It renders the build's own analysis (``context.analysis``) with its memoised curves at
-    ``pressures_kpa`` (default the design's standard grid, the one the model rules use), takes the
-    stitch preview from ``context.outputs["preview.svg"]`` when present, the worksheet
-    and findings from the context, and returns :attr:`Previews.files`.
-    """
-    def stage(context) -> dict:
-        curves = context.analysis.curves(pressures_kpa)
-        svg = context.outputs.get("preview.svg")
-        return render_previews(
-            context.analysis, curves, findings=context.findings, worksheet=context.worksheet, measured=measured,
-            stitch_svg=svg.decode("utf-8") if isinstance(svg, bytes) else svg, side_states=side_states,
-            shape_pressure_kpa=shape_pressure_kpa, mesh_suffix=mesh_suffix, tolerance_mm=tolerance_mm).files
-
-    return stage

@@ -42,14 +42,12 @@ import numpy as np
 
 from ...patterns.base.errors import ParameterError, check_range
 from ...patterns.base.tolerances import DEFAULT_TOLERANCES
+from ...patterns.params import FABRIC_THICKNESS_MM
 from ...predict.shape import BentShape
 from .chart import PALETTE
 from .labels import Box, Placer, text_box
 
-__all__ = ["FABRIC_THICKNESS_MM", "SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg"]
-
-#: Drawn thickness of the fabric strip [mm] (woven cotton; for the picture only).
-FABRIC_THICKNESS_MM = 0.4
+__all__ = ["SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg"]
 
 _PX_PER_MM = 3.0
 _PANEL_GAP_MM = 24.0

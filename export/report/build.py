@@ -320,7 +320,7 @@ def build(
     calibration_sets: Sequence = (),
     analysis=None,
     check: Callable | None = None,
-    stages: Sequence[Stage] = (),
+    stages: Sequence[Stage] | None = None,
     cord_stop: str | None = None,
 ) -> BuildResult:
     """Build ``design`` into ``out_dir``: ``<name>.<fmt>`` per format, worksheet, preview, stage outputs.
@@ -347,8 +347,10 @@ def build(
     check : callable, optional
         ``check(analysis) -> findings``; default :func:`embroact.predict.rules.check_design`
         for every format (:data:`SPLIT_LONG_IGNORES` left out with ``split_long``).
-    stages
-        Plug-in points (module docstring).
+    stages : sequence, optional
+        Plug-in points (module docstring); default what ``embroact build`` runs: the previews and
+        the report (:func:`embroact.export.report.stage.previews_stage`). ``()``: machine files,
+        worksheet and stitch preview only.
     cord_stop : str, optional
         ``"sequence"`` or ``"double"``; default the design's ``machine.cord_stop``.
 
@@ -380,6 +382,10 @@ def build(
     formats = parse_formats(formats if formats is not None else (getattr(machine, "format", "dst"),))
     speed_spm = speed_spm if speed_spm is not None else getattr(machine, "speed_spm", DEFAULT_SPEED_SPM)
     analysis = analyse(design, calibration_sets=calibration_sets) if analysis is None else analysis
+    if stages is None:
+        from .stage import previews_stage
+
+        stages = (previews_stage(),)
     if check is None:
         from ...predict.rules import check_design
 

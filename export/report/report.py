@@ -268,9 +268,10 @@ def _model_table(actuators: Sequence[Mapping]) -> str:
         tube = (f"r_f {_num(t.get('outer_radius_mm'))} mm, d_f {_num(t.get('inner_radius_mm'))} mm, "
                 f"G_e {_num(t.get('g_e_mpa'))} MPa")
         rows.append(f"<tr><th>{_e(a.get('name'))}</th>{_cell(m.get('g_mpa'))}<td>{_e(m.get('g_source'))}</td>"
-                    f"{_cell(m.get('p0_kpa'))}<td>{_e(m.get('p0_source'))}</td><td>{_e(m.get('tube_law'))}</td>"
+                    f"{_cell(m.get('p0_kpa'))}<td>{_e(m.get('p0_source'))}</td>{_cell(m.get('tube_law_p0_kpa'))}"
+                    f"<td>{_e(m.get('tube_law'))}</td>"
                     f"<td>{_e(tube)}</td><td>{_e('; '.join(m.get('notes') or []))}</td></tr>")
-    head = "".join(f"<th>{h}</th>" for h in ("actuator", "G [MPa]", "G from", "P0 [kPa]", "P0 from", "tube law",
+    head = "".join(f"<th>{h}</th>" for h in ("actuator", "G [MPa]", "G from", "P0 [kPa]", "P0 from", "tube-law P0 [kPa]", "tube law",
                                                "tube", "notes"))
     return _noted(note) + f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 

@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...patterns.base.errors import check_range
+from ...patterns.params import FABRIC_THICKNESS_MM
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 from ..machine.census import COLOR_FORMATS
 from ..pictures.template import start_from_centre
@@ -68,7 +69,6 @@ __all__ = [
     "TRIM_TIME_S",
     "STOP_RESTART_S",
     "LAY_TUBE_S",
-    "FABRIC_THICKNESS_MM",
     "FABRIC_BORDER_MM",
     "machine_setup",
     "over_tube_extra_mm",
@@ -87,8 +87,6 @@ STOP_RESTART_S = 5.0
 """Machine time per stop: slow down, stop and restart [s]."""
 LAY_TUBE_S = 60.0
 """Operator time per stop to lay and tape the tube along its path [s]."""
-FABRIC_THICKNESS_MM = 0.5
-"""Default fabric thickness used for the per-penetration thread allowance [mm]."""
 FABRIC_BORDER_MM = 40.0
 """Fabric beyond the hoop's sewing field on every side, for the hoop to clamp [mm]."""
 
@@ -244,7 +242,7 @@ class Worksheet:
                     "derived": a.derived,
                     "model": a.model,
                     "adjustments": list(a.adjustments),
-                    **({"segments": list(a.segments)} if a.segments else {}),
+                    "segments": list(a.segments),
                 }
                 for a in self.actuators
             ],
@@ -275,14 +273,14 @@ class Worksheet:
             *[f"  {s}" for s in self.stops],
         ]
         for a in self.actuators:
-            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}" if a.segments
-                    else a.pattern)
+            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}"
+                    if len(a.segments) > 1 else a.pattern)
             lines += ["", f"ACTUATOR {a.name} ({kind})",
                       f"  tube cut length  {a.tube_cut_mm:.0f} mm"
                       f" = {a.path_length_mm:.1f} mm path + 2 x {a.end_margin_mm:g} mm end margin",
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
-            if a.segments:
+            if len(a.segments) > 1:  # a chain of one: its segment is the actuator, shown as one block
                 for k, seg in enumerate(a.segments):
                     lines += _segment_lines(k, seg)
                 continue
@@ -294,13 +292,8 @@ class Worksheet:
         return "\n".join(lines) + "\n"
 
 
-#: Derived-geometry keys relabelled on the text sheet: the tube law's P0 at r0 is not the model's P0
-#: (which by default is the calibration set's, listed under "model P0").
-_DERIVED_LABELS = {"p0_kpa": "p0_tube_law_kpa"}
-
-
 def _derived_lines(derived: dict, indent: str = "  ") -> list[str]:
-    return [f"{indent}{_DERIVED_LABELS.get(k, k):<24} {_fmt(v)}" for k, v in derived.items() if k != "name"]
+    return [f"{indent}{k:<24} {_fmt(v)}" for k, v in derived.items() if k != "name"]
 
 
 def _model_lines(model: dict | None, indent: str = "  ") -> list[str]:
@@ -310,6 +303,7 @@ def _model_lines(model: dict | None, indent: str = "  ") -> list[str]:
     t = model["tube"]
     return [f"{indent}model G                  {model['g_mpa']:.6g} MPa ({model['g_source']})",
             f"{indent}model P0                 {model['p0_kpa']:.6g} kPa ({model['p0_source']})",
+            f"{indent}tube-law P0 at r0        {model['tube_law_p0_kpa']:.6g} kPa (tube law {model['tube_law']})",
             f"{indent}model tube law           {model['tube_law']}",
             f"{indent}model tube               r_f {t['outer_radius_mm']:g} mm, d_f {t['inner_radius_mm']:g} mm, "
             f"G_e {t['g_e_mpa']:g} MPa"] + [f"{indent}model note: {n}" for n in model["notes"]]
@@ -368,7 +362,7 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
                          for seg, part in zip(act.segments, segment_plans(act)))
     else:
         derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
-        segments = tuple(s.as_dict() for s in analysed.segments)
+        segments = tuple(s.as_dict() for s in analysed.chain)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
     return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,

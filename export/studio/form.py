@@ -36,7 +36,6 @@ from typing import Mapping
 
 from ...patterns.base.choices import choice_values
 from ...patterns.base.errors import DesignFileError, ParameterError
-from ...patterns.cross import ADJUST_METHODS
 from ...patterns.design import Design, P0Source, TubeLaw, design_from_dict, design_to_dict
 from ...patterns.kinds import PATTERN_KINDS, pattern_kind
 
@@ -127,8 +126,8 @@ def _pattern_fields(table: dict, path: str, group: str) -> list[Field]:
     kind = pattern_kind(table["pattern"])
     out = [Field(f"{path}.pattern", group, table["pattern"], "choice", PATTERN_KINDS.names())]
     out += [Field(f"{path}.{k}", group, table.get(k)) for k in kind.param_keys]
-    if "adjust" in kind.options:
-        out.append(Field(f"{path}.adjust", group, table.get("adjust", "auto"), "choice", ADJUST_METHODS))
+    out += [Field(f"{path}.{k}", group, table.get(k, values[0]), "choice", values)
+            for k, values in zip(kind.options, kind.option_values)]
     return out
 
 

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from ...patterns.base.errors import EmbroactError, ParameterError, check_range
 from ...patterns.design import ActuatorSpec, design_from_dict
+from ...patterns.kinds import param_values
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
@@ -119,7 +120,7 @@ class Studio:
 
     def views(self, pressure_kpa=None) -> dict:
         """Everything the page shows except the 3D picture (:meth:`shape3d`), as JSON-ready data."""
-        from ..cli.target import summary_line
+        from ...patterns.base.findings import summary_line
         from .views import bend_at, chart_svg, side_svg, worksheet_figures
 
         with self._lock:
@@ -203,7 +204,7 @@ class Studio:
         DesignRuleError
             The rules found errors and ``force`` is false (nothing written).
         """
-        from ..pictures.previews import previews_stage
+        from ..report.stage import previews_stage
         from ..report.build import build
 
         if not isinstance(force, bool):
@@ -241,7 +242,7 @@ class Studio:
                                  settings=spec.model, sets=self.calibration_sets, name=spec.name)
         best = result.best
         values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
-        values.update({f"actuator[{index}].{k}": float(getattr(best.params, k)) for k in best.params.__slots__})
+        values.update({f"actuator[{index}].{k}": v for k, v in param_values(best.params).items()})
         return {**result.as_dict(), "values": values}
 
     def inverse_shape(self, path_d, pressure_kpa, *, max_segments=6, actuator=0) -> dict:

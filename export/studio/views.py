@@ -62,7 +62,7 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
         return [{"name": a.name, "theta_deg": None, "status": None, "segment_theta_deg": [],
                  "model_error": a.model_error or str(exc)} for a in analysis.actuators]
     return [{"name": a.name, "theta_deg": float(c.theta_deg[0]), "status": Status(int(c.status[0])).name,
-             "segment_theta_deg": [float(sc.theta_deg[0]) for sc in c.segments] if a.segments else [],
+             "segment_theta_deg": [float(sc.theta_deg[0]) for sc in c.segments],
              "model_error": None} for a, c in zip(analysis.actuators, whole)]
 
 

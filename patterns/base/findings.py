@@ -41,6 +41,8 @@ from typing import Callable, Iterator
 from .errors import ParameterError
 
 __all__ = [
+    "SUMMARY_NAMES",
+    "summary_line",
     "Severity",
     "Inputs",
     "Rule",
@@ -345,3 +347,38 @@ def count_by_severity(findings) -> dict[str, int]:
     for f in findings:
         counts[f.severity.value] += f.count
     return counts
+
+
+#: Actuators the summary line names per rule code (the rest are counted: the line stays one line).
+SUMMARY_NAMES = 5
+
+
+def summary_line(findings) -> str:
+    """One line: counts of all findings by severity, and the codes with their actuators.
+
+    Examples
+    --------
+    >>> import embroact.patterns.rules  # declares the geometric rules
+    >>> fs = [RULES.finding("EA105", "x", actuator="A1"), RULES.finding("EA105", "y", actuator="A2"),
+    ...       RULES.finding("EA304", "z", actuator="A1")]
+    >>> summary_line(fs)
+    '0 errors, 3 warnings, 0 info: EA105 (A1, A2), EA304 (A1)'
+    >>> summary_line([RULES.finding("EA105", "x", actuator=f"A{k}") for k in range(1000)])
+    '0 errors, 1000 warnings, 0 info: EA105 (A0, A1, A2, A3, A4 and 995 more)'
+    """
+    counts = count_by_severity(findings)
+    by_code: dict[str, dict[str, None]] = {}
+    for f in findings:
+        names = by_code.setdefault(f.code, {})
+        if f.actuator is not None:
+            names[f.actuator] = None
+
+    def named(names) -> str:
+        shown = ", ".join(list(names)[:SUMMARY_NAMES])
+        return shown if len(names) <= SUMMARY_NAMES else f"{shown} and {len(names) - SUMMARY_NAMES} more"
+
+    codes = ", ".join(f"{c} ({named(n)})" if n else c for c, n in sorted(by_code.items()))
+    n_err, n_warn = counts["error"], counts["warning"]
+    head = (f"{n_err} error{'s' if n_err != 1 else ''}, {n_warn} warning{'s' if n_warn != 1 else ''}, "
+            f"{counts['info']} info")  # spelled as check's header
+    return f"{head}: {codes}" if codes else head

@@ -29,7 +29,7 @@ class Tolerances:
     spacing_rel : float
         Allowed relative difference between requested and realised interval [-].
     machine_grid_mm : float
-        Resolution of machine files (0.1 mm for every pyembroidery format) [mm].
+        Resolution of machine files (0.1 mm for every pystitch format) [mm].
     curve_flatness_mm : float
         Maximum chordal error when flattening smooth curves to polylines [mm].
     model_rtol : float

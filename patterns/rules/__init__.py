@@ -11,7 +11,7 @@ Each rule is declared once, next to its check, in the rule registry
   :mod:`.engine` (one subject per check, capping, sorting).
 
 :func:`check_layout` runs the rules on a layout (an embroidery file's records and
-tubes), :func:`check_plan` on a design's plan. Both take ``rules``: the physics
+tubes), :func:`check_geometry` on a design's plan. Both take ``rules``: the physics
 rules of the sleeve (EA201, EA202, EA206) live in ``embroact.predict.sleeve_rules``,
 which passes :data:`GEOMETRY_RULES` plus its own.
 
@@ -47,7 +47,7 @@ __all__ = [
     "FILE_REACH_MM",
     "GEOMETRY_RULES",
     "check_layout",
-    "check_plan",
+    "check_geometry",
     "needle_density",
     "sort_findings",
 ]
@@ -65,6 +65,6 @@ def check_layout(layout: Layout, settings: RuleSettings | None = None, *, rules=
     return run_rules(rules, Subject(layout, settings or RuleSettings()))
 
 
-def check_plan(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=GEOMETRY_RULES):
+def check_geometry(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=GEOMETRY_RULES):
     """Every rule of ``rules`` for designs on a stitch plan; findings worst first."""
     return run_rules(rules, Subject(layout_from_plan(plan), settings or RuleSettings(), plan))

@@ -125,8 +125,8 @@ def record_count(s: Subject) -> list[Finding]:
 
 @RULES.rule("EA505", Severity.WARNING, "header disagrees with the records",
             "A field of an embroidery file's header (DST: ST the 3-byte records, end record included; CO the "
-            "colour-change records; +X -X +Y -Y the largest excursion from the start point each way, 0.1 mm, "
-            "y up) does not match the records that follow it. Machines that read the header may refuse the "
+            "colour-change records; DST and TBF: +X -X +Y -Y the largest excursion from the start point each "
+            "way, 0.1 mm, y up) does not match the records that follow it. Machines that read the header may refuse the "
             "file or judge its size wrongly (pystitch and pyembroidery count a trim as one record in ST and "
             "write the extents from signed, y-down bounds). One finding per field.",
             "Rewrite the header from the records (save the file again from the digitising software).",

@@ -145,7 +145,7 @@ function geometryRows(d, m, id) {
     ["l0 [mm]", fmt(d.length_mm, 2)],
     ["sleeve r0 [mm]", fmt(d.r0_mm, 4)],
     ["beta0 [deg]", fmt(d.beta0_deg, 3)],
-    ["geometric P0 [kPa]", fmt(d.p0_kpa, 2)],
+    ["tube-law P0 [kPa]", m ? fmt(m.tube_law_p0_kpa, 2) : "no model"],
     ["neutral angle [deg]", fmt(d.neutral_angle_deg, 2)],
   ];
   if (m) rows.push(["G, P0 from", m.g_source === m.p0_source ? m.g_source : `${m.g_source}; ${m.p0_source}`]);
@@ -156,7 +156,8 @@ function showNumbers(v) {
   const box = $("numbers");
   box.replaceChildren();
   v.actuators.forEach((a, i) => {
-    const segs = a.segments || [];
+    // a chain of segments; a chain of one is the actuator itself, shown as one block
+    const segs = (a.segments || []).length > 1 ? a.segments : [];
     const h = document.createElement("h2");
     h.textContent = segs.length ? `${a.name} (${segs.length} segments: ${segs.map((s) => s.pattern).join(", ")})`
       : `${a.name} (${a.pattern})`;

@@ -1,0 +1,189 @@
+"""Curve-level queries on a model's stable branch: where it ends, and where it first leaves the validity limits.
+
+They trace the model (:mod:`embroact.predict.curve`), which applies the limits of
+:mod:`embroact.predict.validity` to every state; kept apart from those limits so that the
+curve's imports run one way (curve -> validity, branch -> curve).
+
+Examples
+--------
+>>> from embroact.predict.curve import ActuatorModel
+>>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
+>>> branch_end(m).kind.value, first_limit(m).status.name
+('fold', 'COILED')
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import curve as _curve
+from .status import VALIDITY_LIMITS, Status
+from .validity import LIMIT_BISECTIONS
+
+__all__ = ["EndKind", "BranchEnd", "branch_end", "FirstLimit", "first_limit"]
+
+
+#: Grid points along a branch for the first limit.
+_LIMIT_GRID = 257
+
+
+class EndKind(enum.Enum):
+    """What ends a model's stable bending branch.
+
+    Examples
+    --------
+    >>> EndKind("fold") is EndKind.FOLD
+    True
+    """
+
+    NONE = "none"  #: no branch: the straight state is already at the end (neutral angle, no sleeve)
+    LOCK_UP = "lock-up"  #: dV/dl = 0: the sleeve locks, P has a pole (cross designs)
+    FOLD = "fold"  #: a maximum of P(theta): the formula folds (zigzag designs, far inside the coiled region)
+    TRACING_CAP = "tracing cap"  #: this implementation's cap MAX_BEND_DEG on a branch that never ends
+
+
+@dataclass(frozen=True, slots=True)
+class BranchEnd:
+    """End of the stable branch of one model, named for what it is.
+
+    Attributes
+    ----------
+    kind : EndKind
+    theta_deg, pressure_kpa : float
+        Where it ends; ``pressure_kpa`` is None at a lock-up (a pole).
+    status : Status
+        The state's status there: a validity limit when the end lies beyond one
+        (a zigzag's fold is COILED), else LOCKED, UNSTABLE, OUT_OF_DOMAIN or INFLATION.
+
+    Examples
+    --------
+    >>> BranchEnd(EndKind.LOCK_UP, 120.0, None, Status.LOCKED).as_dict()
+    {'kind': 'lock-up', 'theta_deg': 120.0, 'pressure_kpa': None, 'status': 'LOCKED'}
+    """
+
+    kind: EndKind
+    theta_deg: float
+    pressure_kpa: float | None
+    status: Status
+
+    def as_dict(self) -> dict:
+        """JSON-ready: ``kind``, ``theta_deg``, ``pressure_kpa`` (None at a pole), ``status`` name.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> BranchEnd(EndKind.NONE, 0.0, 0.0, Status.INFLATION).as_dict()["kind"]
+        'none'
+        """
+        return {"kind": self.kind.value, "theta_deg": self.theta_deg, "pressure_kpa": self.pressure_kpa,
+                "status": self.status.name}
+
+
+def branch_end(model) -> BranchEnd:
+    """The end of a model's stable branch (:func:`embroact.predict.curve.lockup`), classified.
+
+    Parameters
+    ----------
+    model : ActuatorModel
+
+    Returns
+    -------
+    BranchEnd
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> e = branch_end(m)
+    >>> e.kind.value, round(e.theta_deg), e.status.name
+    ('fold', 1889, 'COILED')
+    """
+    theta, p = _curve.lockup(model)
+    if theta == 0.0:
+        kind = EndKind.NONE
+    elif math.isinf(p):
+        kind = EndKind.LOCK_UP
+    elif abs(theta) >= _curve.MAX_BEND_DEG:
+        kind = EndKind.TRACING_CAP
+    else:
+        kind = EndKind.FOLD
+    state = _curve.pressure_at(model, [theta])
+    status = Status(int(state.status[0]))
+    if kind is EndKind.FOLD and status is Status.BENDING:
+        status = Status.UNSTABLE  # the fold itself: the last stable state
+    elif kind is EndKind.TRACING_CAP and status is Status.BENDING:
+        status = Status.OUT_OF_DOMAIN
+    return BranchEnd(kind, float(theta), None if math.isinf(p) else float(p), status)
+
+
+@dataclass(frozen=True, slots=True)
+class FirstLimit:
+    """The first validity limit along a model's stable branch.
+
+    Attributes
+    ----------
+    status : Status
+        The limit reached (COILED, KINKED or OVERSTRETCHED).
+    theta_deg, pressure_kpa : float
+        Angle and pressure where it is reached.
+
+    Examples
+    --------
+    >>> FirstLimit(Status.COILED, 360.0, 231.4).status.name
+    'COILED'
+    """
+
+    status: Status
+    theta_deg: float
+    pressure_kpa: float
+
+
+def first_limit(model) -> FirstLimit | None:
+    """Where the stable branch first leaves the validity limits; None if it ends before.
+
+    A rule warns when the working pressure reaches ``pressure_kpa``.
+
+    Parameters
+    ----------
+    model : ActuatorModel
+
+    Returns
+    -------
+    FirstLimit or None
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
+    >>> f = first_limit(m)
+    >>> f.status.name, round(f.theta_deg, 6)
+    ('COILED', 360.0)
+    """
+    end = branch_end(model)
+    if end.kind is EndKind.NONE:
+        return None
+    grid = np.linspace(0.0, end.theta_deg, _LIMIT_GRID)
+    st = _curve.pressure_at(model, grid).status
+    hit = np.flatnonzero(np.isin(st, [int(s) for s in VALIDITY_LIMITS]))
+    if hit.size == 0:
+        return None
+    lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
+    for _ in range(LIMIT_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if Status(int(_curve.pressure_at(model, [mid]).status[0])) in VALIDITY_LIMITS:
+            hi = mid
+        else:
+            lo = mid
+    c = _curve.pressure_at(model, [hi])
+    return FirstLimit(Status(int(c.status[0])), float(c.theta_deg[0]), float(c.pressure_kpa[0]))

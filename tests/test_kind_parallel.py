@@ -1,0 +1,127 @@
+"""A third pattern kind from one module (tests/kind_parallel.py): it builds, checks, predicts, shows in the studio.
+
+The steps are exactly the README's "Adding a pattern kind": one module defines the parameter
+class and the generator, registers the kind and one model row. Expected values are derived
+by hand from the pattern's construction (legs straight across every ``interval_mm``) and
+the model's fixed-radius constraint, not read from embroact's output.
+"""
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+import kind_parallel
+from embroact.export.cli.main import main
+from embroact.patterns.base.errors import ParameterError
+from embroact.patterns.kinds import PATTERN_KINDS, pattern_kind
+from embroact.predict.inverse import design_bend
+from embroact.predict.kinds import MODEL_KINDS, Constraint
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+DESIGN = """name = "par"
+[[actuator]]
+name = "P1"
+pattern = "parallel"
+width_mm = 7.0
+interval_mm = 2.0
+length_mm = 100.0
+[actuator.model]
+g_mpa = 2.7
+p0_kpa = 85.0
+"""
+
+
+@pytest.fixture(scope="module", autouse=True)
+def parallel_registered():
+    mine = kind_parallel.register_parallel()
+    yield
+    if mine:  # with EMBROACT_TEST_KINDS=1 the whole session keeps it
+        kind_parallel.unregister_parallel()
+
+
+@pytest.fixture
+def design_file(tmp_path):
+    p = tmp_path / "par.toml"
+    p.write_text(DESIGN, encoding="utf-8")
+    return p
+
+
+def test_registered_once_from_one_module():
+    assert pattern_kind("parallel") is kind_parallel.KIND
+    assert MODEL_KINDS["parallel"].constraint is Constraint.FIXED_RADIUS
+    with pytest.raises(ParameterError, match="already registered"):
+        PATTERN_KINDS.add(kind_parallel.KIND)
+
+
+def test_build_writes_the_legs_the_construction_gives(design_file, tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    assert main(["build", str(design_file), "--out", str(out)]) == 0
+    report = json.loads((out / "report.json").read_text(encoding="utf-8"))
+    (act,) = report["actuators"]
+    # 100 mm at 2 mm: 50 intervals, 51 legs straight across, each 7 mm wide
+    assert act["pattern"] == "parallel"
+    derived = act["derived"]
+    assert derived["width_mm"] == pytest.approx(7.0, abs=1e-9)
+    assert derived["interval_mm"] == pytest.approx(2.0, abs=1e-9)
+    assert derived["length_mm"] == pytest.approx(100.0, abs=1e-9)
+    assert derived["beta0_deg"] == 0.0  # fixed radius: threads around the tube
+    # the DST read back by pystitch (not embroact's writer): 51 legs of 2 needle points, 3 + 3 ties
+    import pystitch
+
+    pattern = pystitch.read(str(out / "par.dst"))
+    stitches = [s for s in pattern.stitches if (s[2] & pystitch.COMMAND_MASK) == pystitch.STITCH]
+    assert len(stitches) == 2 * 51 + 2 * 3 - 1  # the last tie-in stitch is the first leg's start
+
+
+def test_check_and_predict(design_file, capsys):
+    assert main(["check", str(design_file), "--json"]) in (0, 1)
+    checked = json.loads(capsys.readouterr().out)
+    assert not [f for f in checked["findings"] if f["severity"] == "error"]
+    assert main(["predict", str(design_file), "--pressure-kpa", "200", "--json"]) == 0
+    pred = json.loads(capsys.readouterr().out)
+    (act,) = pred["actuators"]
+    # fixed radius: r = r0 and l = l0 + 2 r0 theta (docs/model.md); the bend is positive above P0
+    theta = math.radians(act["theta_deg"][0])
+    r0 = act["derived"]["r0_mm"]
+    assert act["status"] == ["BENDING"] and theta > 0.0
+    assert act["radius_mm"][0] == pytest.approx(r0, rel=1e-12)
+    assert act["length_mm"][0] == pytest.approx(act["derived"]["length_mm"] + 2.0 * r0 * theta, rel=1e-9)
+
+
+def test_quick_command_for_the_new_kind(tmp_path, capsys):
+    out = tmp_path / "p.dst"
+    assert main(["parallel", "--width-mm", "7", "--interval-mm", "2", "--g-mpa", "2.7", "--p0-kpa", "85",
+                 "-o", str(out)]) == 0
+    assert "wrote" in capsys.readouterr().out and out.stat().st_size > 0
+
+
+def test_design_skips_the_kind_no_calibration_covers_with_a_note(tmp_path, capsys):
+    out = tmp_path / "d.toml"
+    assert main(["design", "--bend-deg", "90", "--at-kpa", "150", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "best: zigzag width_mm=6.1529 interval_mm=1 -> 90.000 deg" in text  # as without the kind (README)
+    assert "note: parallel skipped: calibration 'paper-2025' has no parallel points" in text
+    shape = tmp_path / "hook.toml"
+    assert main(["design", "--target-shape", str(EXAMPLES / "data" / "target_hook.csv"), "--at-kpa", "250",
+                 "-o", str(shape), "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["reached"] and {s["pattern"] for s in result["segments"]} <= {"zigzag", "cross"}
+    assert [n for n in result["notes"] if n.startswith("parallel skipped")]
+    with pytest.raises(ParameterError, match="no parallel points"):
+        design_bend(90.0, 150.0, pattern="parallel")
+
+
+def test_shows_in_the_studio(design_file, tmp_path):
+    from embroact.export.files.designfile import load_design
+    from embroact.export.studio.session import Studio
+
+    s = Studio(load_design(design_file), tmp_path)
+    v = s.views(200.0)
+    pattern_field = next(f for f in v["fields"] if f["key"] == "actuator[0].pattern")
+    assert "parallel" in pattern_field["choices"] and pattern_field["value"] == "parallel"
+    assert "<svg" in v["stitches_svg"] and v["actuators"][0]["theta_deg"] > 0.0
+    v = s.edit({"actuator[0].interval_mm": 2.5}, pressure_kpa=200.0)
+    assert v["actuators"][0]["derived"]["interval_mm"] == pytest.approx(2.5, abs=1e-9)
