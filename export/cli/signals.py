@@ -139,8 +139,6 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     def on_alarm(signum, frame):
         raise TimeLimitError(time_limit_message(time_limit_s))
 
-    old_term = signal.signal(signal.SIGTERM, _on_sigterm)
-    old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
     try:
         old_fd = signal.set_wakeup_fd(write_fd, warn_on_full_buffer=False)
     except ValueError:  # not possible here (an embedding that forbids it): signals as Python handles them
@@ -156,6 +154,9 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
             thread = None
         finally:
             threading.stack_size(stack)
+    # the handlers last in and first out: a signal outside the block meets the handler the caller had
+    old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
     if time_limit_s > 0:
         signal.setitimer(signal.ITIMER_REAL, time_limit_s)
     try:
@@ -163,6 +164,8 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     finally:
         if time_limit_s > 0:
             signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, old_alarm)
+        signal.signal(signal.SIGTERM, old_term)
         done.set()
         if old_fd is not None:
             signal.set_wakeup_fd(old_fd)
@@ -170,7 +173,4 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
         if thread is not None:
             thread.join(1.0)
         os.close(read_fd)
-        signal.signal(signal.SIGTERM, old_term)
-        if old_alarm is not None:
-            signal.signal(signal.SIGALRM, old_alarm)
         sys.stderr.flush()
