@@ -301,7 +301,7 @@ def _exit_now(code: int) -> None:
 def _run(module, args, debug: bool) -> int:
     """``module.run(args)`` with every failure turned into its exit code and one stderr line."""
     from ...patterns.base.errors import EmbroactError, ExportError, SolverError
-    from .signals import Terminated
+    from .signals import Terminated, TimeLimitError
 
     err: EmbroactError | str
     try:
@@ -322,8 +322,10 @@ def _run(module, args, debug: bool) -> int:
         return EXIT_BROKEN_PIPE
     except ExportError as exc:
         code, err = EXIT_OUTPUT, exc
-    except SolverError as exc:  # the time limit too (signals.TimeLimitError)
+    except SolverError as exc:
         code, err = EXIT_SOLVER, exc
+    except TimeLimitError as exc:  # no Exception: raised wherever the command was
+        code, err = EXIT_SOLVER, str(exc)
     except EmbroactError as exc:
         code, err = EXIT_INPUT, exc
     except OSError as exc:

@@ -36,8 +36,6 @@ import sys
 import threading
 from typing import Iterator
 
-from ...patterns.base.errors import CommandLimitError
-
 __all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
@@ -56,8 +54,15 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
 
 
-class TimeLimitError(CommandLimitError):
-    """The command ran past its time limit (a one-line error, exit code 4)."""
+class TimeLimitError(BaseException):
+    """The command ran past its time limit (a one-line error, exit code 4).
+
+    Raised by the SIGALRM handler wherever the main thread is: like KeyboardInterrupt it is
+    no ``Exception``, so none of the handlers that re-word a library error with a file or
+    key name (``except EmbroactError``, ``except Exception``) takes it for one (``check
+    arcs.toml`` said ``actuator[1].path: the command took longer ...``, exit 2); cleanups
+    still run.
+    """
 
 
 def time_limit_message(seconds: float) -> str:
