@@ -249,10 +249,10 @@ def _arcs(n: int = 5000) -> str:
 
 def _noisy_target(path: Path) -> None:
     """A reachable target whose curvature wanders (0.015 /mm, waves of +-0.01 and noise): twelve segments of it
-    take ~15 s to search (a random walk did a minute before the search refused unreachable targets first)."""
+    take ~35 s to search, 400 mm long (a random walk did a minute before the search refused unreachable targets first)."""
     import numpy as np
 
-    s = np.linspace(0, 150, 301)
+    s = np.linspace(0, 400, 801)
     rng = np.random.default_rng(5)
     kappa = 0.015 + sum(0.01 / 3 * np.sin(2 * np.pi * s / wave + rng.uniform(0, 6)) for wave in (37, 23, 61))
     kappa = kappa + rng.normal(0, 0.002, s.size)
