@@ -249,7 +249,8 @@ def _arcs(n: int = 5000) -> str:
 
 def _noisy_target(path: Path) -> None:
     """A reachable target whose curvature wanders (0.015 /mm, waves of +-0.01 and noise): twelve segments of it
-    take ~35 s to search, 400 mm long (a random walk did a minute before the search refused unreachable targets first)."""
+    take ~35 s to search, 400 mm long (a random walk did a minute before the search refused unreachable targets
+    first)."""
     import numpy as np
 
     s = np.linspace(0, 400, 801)
