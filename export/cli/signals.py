@@ -36,7 +36,8 @@ import sys
 import threading
 from typing import Iterator
 
-__all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
+__all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S",
+           "time_limit_message"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
