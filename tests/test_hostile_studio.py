@@ -164,3 +164,29 @@ def test_an_inverse_search_holds_no_lock_and_has_a_time_limit(tmp_path, monkeypa
             break
         time.sleep(0.1)
     assert r.status_code in (200, 503), r.text
+
+
+def test_the_studio_serves_past_the_time_limit_and_stops_on_sigterm(tmp_path):
+    """A server runs until stopped: ``--time-limit-s`` does not end it, SIGTERM does (143, one line)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    import httpx2
+
+    proc = subprocess.Popen([sys.executable, "-m", "embroact.export", "--time-limit-s", "1", "studio", "--out",
+                             str(tmp_path), "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
+    try:
+        url = proc.stdout.readline().strip().split(": ", 1)[1]
+        time.sleep(2.0)
+        assert proc.poll() is None
+        assert httpx2.get(url.replace("/?token=", "/api/views?token=")).status_code == 200
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        code = proc.wait(20)
+    err = proc.stderr.read()
+    assert code == 143 and ("\n" + err).endswith("\nembroact: terminated\n"), (code, err)
+    assert "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []

@@ -246,7 +246,9 @@ def _quiet_stdout() -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; return the exit code (see the module docstring).
 
-    Also: SIGTERM cleans up like Ctrl-C (exit 143, no staged ``.part`` file left); a reader
+    Also: SIGTERM cleans up like Ctrl-C (exit 143, no staged ``.part`` file left), and either
+    ends the process within a second (:mod:`embroact.export.cli.signals`; run as the program,
+    ``argv`` None, the process then ends without the interpreter's shutdown); a reader
     that goes away (``embroact predict ... | head -1``) ends the program quietly with 141,
     the shell's code for a broken pipe; floating-point RuntimeWarnings are not shown (every
     result is checked for finiteness where it leaves the model, and a non-finite one
@@ -254,6 +256,7 @@ def main(argv: list[str] | None = None) -> int:
     shows them); stdout escapes control characters (a file name holding ESC sequences) and
     what it cannot encode instead of failing.
     """
+    program = argv is None  # the process's own command line: it may end the process (a call from Python may not)
     argv = list(sys.argv[1:] if argv is None else argv)
     if isinstance(sys.stdout, io.TextIOWrapper):
         sys.stdout.reconfigure(errors="backslashreplace")
@@ -269,22 +272,39 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     args.command = top.command
     debug = top.debug or args.debug
-    from .signals import watchdog  # here, not at the top: `embroact --help` needs neither it nor threads
+    from .signals import Terminated, watchdog  # here, not at the top: `embroact --help` needs neither it nor threads
 
     real_stdout = sys.stdout
     if real_stdout is not None:  # None when started with stdout closed (>&-)
         sys.stdout = _EscapingStdout(real_stdout)
     try:
         with watchdog(time_limit_s=top.time_limit_s):
-            return _run(module, args, debug)
+            code = _run(module, args, debug)
+    except KeyboardInterrupt as exc:  # a signal as the block was left (Terminated is a KeyboardInterrupt)
+        code = EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
+        print(f"embroact: {'terminated' if code == EXIT_TERMINATED else 'interrupted'}", file=sys.stderr)
     finally:
         sys.stdout = real_stdout
+    if program and code in (EXIT_INTERRUPTED, EXIT_TERMINATED):
+        _exit_now(code)  # freeing a large computation's memory at shutdown can take longer than the signal may
+    return code
+
+
+def _exit_now(code: int) -> None:
+    """End the process at once with ``code`` (streams flushed, no interpreter shutdown)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None:
+                stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def _run(module, args, debug: bool) -> int:
     """``module.run(args)`` with every failure turned into its exit code and one stderr line."""
     from ...patterns.base.errors import EmbroactError, ExportError, SolverError
-    from .signals import Terminated
+    from .signals import Terminated, TimeLimitError
 
     err: EmbroactError | str
     try:
@@ -305,8 +325,10 @@ def _run(module, args, debug: bool) -> int:
         return EXIT_BROKEN_PIPE
     except ExportError as exc:
         code, err = EXIT_OUTPUT, exc
-    except SolverError as exc:  # the time limit too
+    except SolverError as exc:
         code, err = EXIT_SOLVER, exc
+    except TimeLimitError as exc:  # no Exception: raised wherever the command was
+        code, err = EXIT_SOLVER, str(exc)
     except EmbroactError as exc:
         code, err = EXIT_INPUT, exc
     except OSError as exc:

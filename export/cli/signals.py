@@ -36,9 +36,8 @@ import sys
 import threading
 from typing import Iterator
 
-from ...patterns.base.errors import CommandLimitError
-
-__all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S", "time_limit_message"]
+__all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S",
+           "time_limit_message"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
@@ -56,8 +55,15 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that staged files are removed on the way out."""
 
 
-class TimeLimitError(CommandLimitError):
-    """The command ran past its time limit (a one-line error, exit code 4)."""
+class TimeLimitError(BaseException):
+    """The command ran past its time limit (a one-line error, exit code 4).
+
+    Raised by the SIGALRM handler wherever the main thread is: like KeyboardInterrupt it is
+    no ``Exception``, so none of the handlers that re-word a library error with a file or
+    key name (``except EmbroactError``, ``except Exception``) takes it for one (``check
+    arcs.toml`` said ``actuator[1].path: the command took longer ...``, exit 2); cleanups
+    still run.
+    """
 
 
 def time_limit_message(seconds: float) -> str:
@@ -139,8 +145,6 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     def on_alarm(signum, frame):
         raise TimeLimitError(time_limit_message(time_limit_s))
 
-    old_term = signal.signal(signal.SIGTERM, _on_sigterm)
-    old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
     try:
         old_fd = signal.set_wakeup_fd(write_fd, warn_on_full_buffer=False)
     except ValueError:  # not possible here (an embedding that forbids it): signals as Python handles them
@@ -156,6 +160,9 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
             thread = None
         finally:
             threading.stack_size(stack)
+    # the handlers last in and first out: a signal outside the block meets the handler the caller had
+    old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
     if time_limit_s > 0:
         signal.setitimer(signal.ITIMER_REAL, time_limit_s)
     try:
@@ -163,6 +170,8 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     finally:
         if time_limit_s > 0:
             signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, old_alarm)
+        signal.signal(signal.SIGTERM, old_term)
         done.set()
         if old_fd is not None:
             signal.set_wakeup_fd(old_fd)
@@ -170,7 +179,4 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
         if thread is not None:
             thread.join(1.0)
         os.close(read_fd)
-        signal.signal(signal.SIGTERM, old_term)
-        if old_alarm is not None:
-            signal.signal(signal.SIGALRM, old_alarm)
         sys.stderr.flush()

@@ -25,8 +25,9 @@ Errors are JSON ``{"error": "one line"}``: 400 bad input (also a query that is n
 body nested deeper than ``MAX_JSON_DEPTH``, numbers longer than ``MAX_NUMBER_CHARS``, NaN, lone
 surrogates), 403 refused (token, host, a write outside the output directory), 409 design-rule
 errors (nothing written) or an inverse search already running, 500 an output that could not be
-written, 503 an inverse search that took longer than ``SEARCH_SECONDS`` (30 s). Inverse searches
-run without the session lock: the views, edits and saves of the page go on meanwhile. An invalid field is an answer (200, ``applied`` false), not an error.
+written, 503 an inverse search that took longer than ``SEARCH_SECONDS`` (30 s; a target-shape
+search stops itself at ``SHAPE_SEARCH_S``, 20 s, with the best design found). Inverse searches
+run without the session lock, one at a time: the views, edits and saves of the page go on meanwhile. An invalid field is an answer (200, ``applied`` false), not an error.
 
 Examples
 --------

@@ -32,12 +32,15 @@ from ...patterns.kinds import param_values
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
-__all__ = ["Studio", "BusyError", "CACHED_ANALYSES", "SEARCH_SECONDS"]
+__all__ = ["Studio", "BusyError", "CACHED_ANALYSES", "SEARCH_SECONDS", "SHAPE_SEARCH_S"]
 
 #: Analysed designs kept (undo-like back-and-forth edits and the slider reuse them).
 CACHED_ANALYSES = 8
 #: Longest the server waits for an inverse search [s]; the answer then says it took too long.
 SEARCH_SECONDS = 30.0
+#: Time limit of a target-shape search in the studio [s]: it answers with the best design found by then,
+#: before the server stops waiting.
+SHAPE_SEARCH_S = 20.0
 
 
 class BusyError(EmbroactError):
@@ -268,7 +271,7 @@ class Studio:
         p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
         with self._searching():  # the design is not locked meanwhile: views and edits go on
             result = design_shape(target, p, max_segments=max_segments, tube=tube, settings=spec.model,
-                                  sets=self.calibration_sets, name=spec.name)
+                                  sets=self.calibration_sets, name=spec.name, time_limit_s=SHAPE_SEARCH_S)
         table = design_form(result.design)["actuator"][0]
         table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
         with self._lock:  # only a reachable answer is offered: an unreachable one is shown, never applied
