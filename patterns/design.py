@@ -90,7 +90,7 @@ import enum
 from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
 from .base.choices import check_choice
 from .base.display import repr_svg
-from .base.errors import CommandLimitError, DesignFileError, EmbroactError, ParameterError, PatternError, check_range
+from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
@@ -740,8 +740,6 @@ def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
             return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
         kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
         return pattern_kind(spec.pattern).generate(spec.centerline, spec.params, **kwargs)
-    except CommandLimitError:  # the command's own limit, not this actuator's
-        raise
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
@@ -809,8 +807,6 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
                              spec.options)
         stations = kind.stations(spec.centerline.length_mm, spec.params, **spec.kind_options)
         return check_record_count(stations, spec.options)
-    except CommandLimitError:  # the command's own limit, not this actuator's
-        raise
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 

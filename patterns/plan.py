@@ -133,9 +133,40 @@ class ActuatorPlan(KindOf):
     options: StitchOptions = field(default_factory=StitchOptions)
     segments: tuple = ()
 
-    def rails(self):
-        """The two rails at +-w/2 (realised width) as shapely LineStrings (left, right)."""
-        return self.centerline.offset_curves(self.realised.width_mm / 2.0)
+    def rails(self) -> tuple:
+        """The rails at +-w/2 of the realised width, as shapely LineStrings.
+
+        ``(left, right)`` along the whole path for a single-pattern actuator; for a segmented
+        one each segment's own pair along its legs, at its own realised width, in path order
+        (``left_0, right_0, left_1, right_1, ...``).
+
+        Returns
+        -------
+        tuple of shapely.LineString
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import ActuatorSpec, generate_actuator
+        >>> from embroact.patterns.params import ZigzagParams
+        >>> from embroact.patterns.segments import SegmentSpec
+        >>> from embroact.patterns.centerline import Centerline
+        >>> segs = (SegmentSpec(ZigzagParams(8.0, 1.0), 40.0), SegmentSpec(ZigzagParams(6.0, 1.0), 40.0))
+        >>> plan = generate_actuator(ActuatorSpec("A1", segs[0].params, Centerline.straight(80.0), segments=segs))
+        >>> rails = plan.actuators[0].rails()
+        >>> len(rails), [round(r.coords[0][1], 1) for r in rails]
+        (4, [4.0, -4.0, 3.0, -3.0])
+        """
+        if not self.segments:
+            return self.centerline.offset_curves(self.realised.width_mm / 2.0)
+        import shapely
+
+        out = []
+        for seg in self.segments:
+            start, end = seg.first_leg_mm, seg.first_leg_mm + seg.realised.length_mm
+            s = np.linspace(start, end, max(2, int(np.ceil((end - start) / 0.5)) + 1))
+            half = seg.realised.width_mm / 2.0
+            out += [shapely.LineString(self.centerline.offset_point_at(s, d)) for d in (half, -half)]
+        return tuple(out)
 
     def corridor(self):
         """Shapely polygon where no needle may land: centerline buffered by r_f + clearance."""

@@ -36,7 +36,7 @@ def seen(monkeypatch):
     ["design", "--target-shape", str(EXAMPLES / "data" / "target_hook.csv"), "--at-kpa", "250", "-o", "{tmp}/s.toml"],
 ])
 def test_every_command_runs_the_one_gate(argv, seen, tmp_path, capsys):
-    assert main([a.format(tmp=tmp_path) for a in argv]) in (0, 1)
+    assert main([a.format(tmp=tmp_path) for a in argv]) in (0, 1, 5)  # 5: a target not met, judged all the same
     assert seen, f"{argv[0]} judged its design without check_design"
 
 

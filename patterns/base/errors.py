@@ -38,7 +38,6 @@ __all__ = [
     "DesignFileError",
     "ModelDomainError",
     "SolverError",
-    "CommandLimitError",
     "ExportError",
     "check_range",
 ]
@@ -70,11 +69,6 @@ class ModelDomainError(EmbroactError, ValueError):
 
 class SolverError(EmbroactError, RuntimeError):
     """A numerical method did not converge; the message gives iterations and residual."""
-
-
-class CommandLimitError(SolverError):
-    """The whole command ran past a limit of its own (its time): about no part of the work, so it reaches
-    the user unprefixed (a generator's error names its actuator; this one does not)."""
 
 
 class ExportError(EmbroactError, OSError):
