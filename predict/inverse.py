@@ -1382,8 +1382,10 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     if errors:
         why.append(f"design-rule errors {', '.join(errors)}")
     if rmse > tolerance_mm:
-        why.append(f"the sewable designs (zigzag widths in {spaces['zigzag'].grid_step:g} mm steps on the machine "
-                   f"grid) leave an RMSE above {tolerance_mm:g} mm")
+        steps = [f"{sp.pattern} {name}s in {sp.grid_step:g} {unit} steps on the machine grid"
+                 for sp in spaces.values() if sp.grid_step for name, _, unit in [sp.parameter.rpartition("_")]]
+        why.append(f"the sewable designs ({', '.join(steps) or 'on the machine grid'}) leave an RMSE above "
+                   f"{tolerance_mm:g} mm")
     statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm" if reached else
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
     return ShapeResult(design, out_segs, p, xy, pred, rmse, float(dev.max()), float(dev[-1]), float(angle_err),
