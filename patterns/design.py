@@ -26,8 +26,10 @@ Design-file schema (TOML; every table but ``[[actuator]]`` optional, defaults sh
     origin = "center"                # machine file's start point: "center" (of the design's extent),
                                      # "first-stitch" or [x, y] (mm, plan frame); patterns/origin.py
     [operation]
-    max_pressure_kpa = 300.0
+    max_pressure_kpa = 300.0         # the rules judge every actuator up to this pressure
     max_bend_deg = 180.0
+    # target_pressure_kpa = 150.0    # operating point (written by `embroact design`), <= max_pressure_kpa
+    # target_bend_deg = 84.5         # the bend wanted there (a target-bend design)
     [[actuator]]                     # one table per actuator, sewn in this order
     name = "A1"                      # required, unique
     pattern = "zigzag"               # required: a registered pattern kind (zigzag, cross, ...)
@@ -208,27 +210,46 @@ class MachineSettings:
 
 @dataclass(frozen=True, slots=True)
 class OperationSettings:
-    """How the actuator will be driven.
+    """How the actuator will be driven: the limits, and where a designed actuator is meant to work.
 
     Parameters
     ----------
     max_pressure_kpa : float
-        Highest supply pressure [kPa], > 0.
+        Highest supply pressure [kPa], > 0; the design rules judge the actuator up to it.
     max_bend_deg : float
         Largest bend the application needs [deg], in (0, 720].
+    target_pressure_kpa : float or None
+        The operating point: the pressure the design was made for [kPa], in (0, max_pressure_kpa]
+        (``embroact design`` writes its target pressure here; the bend chart marks it and the
+        worksheet names it). None: no operating point.
+    target_bend_deg : float or None
+        The bend wanted at ``target_pressure_kpa`` [deg], in [-720, 720] (a target-bend design); only with it.
 
     Examples
     --------
     >>> OperationSettings(max_pressure_kpa=250.0)
-    OperationSettings(max_pressure_kpa=250.0, max_bend_deg=180.0)
+    OperationSettings(max_pressure_kpa=250.0, max_bend_deg=180.0, target_pressure_kpa=None, target_bend_deg=None)
+    >>> OperationSettings(target_pressure_kpa=150.0, target_bend_deg=84.5).max_pressure_kpa
+    300.0
     """
 
     max_pressure_kpa: float = 300.0
     max_bend_deg: float = 180.0
+    target_pressure_kpa: float | None = None
+    target_bend_deg: float | None = None
 
     def __post_init__(self) -> None:
         check_range("max_pressure_kpa", self.max_pressure_kpa, low=0.0, high=100_000.0)
         check_range("max_bend_deg", self.max_bend_deg, low=0.0, high=720.0, high_inclusive=True)
+        if self.target_pressure_kpa is not None:
+            check_range("target_pressure_kpa", self.target_pressure_kpa, low=0.0, high=self.max_pressure_kpa,
+                        high_inclusive=True)
+        if self.target_bend_deg is not None:
+            if self.target_pressure_kpa is None:
+                raise ParameterError(f"target_bend_deg {self.target_bend_deg!r} needs target_pressure_kpa (the "
+                                     "pressure of the operating point)")
+            check_range("target_bend_deg", self.target_bend_deg, low=-720.0, high=720.0, low_inclusive=True,
+                        high_inclusive=True)
 
 
 def names_calibration_file(value: str) -> bool:
@@ -727,7 +748,7 @@ def design_to_dict(design: Design) -> dict:
         "name": design.name,
         "tube": _plain(design.tube),
         "machine": _plain(design.machine),
-        "operation": _plain(design.operation),
+        "operation": {k: v for k, v in _plain(design.operation).items() if v is not None},
         "actuator": acts,
     }
 

@@ -70,7 +70,7 @@ from .status import Status
 __all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
            "Sensitivity", "BendCandidate", "BendResult", "design_bend", "exact_pressure_kpa", "angle_grid_step_deg",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
-           "DEFAULT_TIME_LIMIT_S"]
+           "DEFAULT_TIME_LIMIT_S", "operating_limits"]
 
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
@@ -506,22 +506,37 @@ class BendResult:
                 "tolerance_deg": self.tolerance_deg, "notes": list(self.notes)}
 
 
+def operating_limits(limits: OperationSettings, pressure_kpa: float, bend_deg: float | None = None) -> OperationSettings:
+    """The written design's ``[operation]``: the user's (or default) ``limits`` with the target as operating point.
+
+    The limits stay what they were (the rules judge the design up to ``max_pressure_kpa``, as
+    ``check`` and ``build`` do on the written file); only a target beyond them widens them to it
+    (the target pressure, the target's |bend|), since the design is meant to work there.
+
+    >>> operating_limits(OperationSettings(), 150.0, 84.5)
+    OperationSettings(max_pressure_kpa=300.0, max_bend_deg=180.0, target_pressure_kpa=150.0, target_bend_deg=84.5)
+    >>> o = operating_limits(OperationSettings(), 400.0, -250.0)
+    >>> o.max_pressure_kpa, o.max_bend_deg
+    (400.0, 250.0)
+    """
+    top_bend = limits.max_bend_deg if bend_deg is None else min(720.0, max(limits.max_bend_deg, abs(bend_deg)))
+    return dataclasses.replace(limits, max_pressure_kpa=max(limits.max_pressure_kpa, pressure_kpa),
+                               max_bend_deg=top_bend, target_pressure_kpa=pressure_kpa, target_bend_deg=bend_deg)
+
+
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
-                  pressure_kpa: float) -> Design:
-    operation = OperationSettings()
-    operation = dataclasses.replace(operation, max_pressure_kpa=max(operation.max_pressure_kpa, pressure_kpa),
-                                    max_bend_deg=max(operation.max_bend_deg, 720.0))
+                  operation: OperationSettings) -> Design:
     return Design(name, tube, MachineSettings(), operation,
                   (ActuatorSpec(name, params, Centerline.straight(length_mm), model=settings),))
 
 
 def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, settings: ModelSettings, sets,
-              name: str):
+              name: str, operation: OperationSettings):
     """(design, analysis, theta_deg or None, status or None) of the generated one-actuator design."""
     from .analysis import analyse
     from .curve import curve
 
-    d = _one_actuator(params, length_mm, tube, settings, name, pressure_kpa)
+    d = _one_actuator(params, length_mm, tube, settings, name, operation)
     a = analyse(d, calibration_sets=sets)
     act = a.actuators[0]
     if act.choice is None:
@@ -598,12 +613,13 @@ def exact_pressure_kpa(model, target_deg: float) -> float | None:
 
 
 def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
-               tube: Tube, settings: ModelSettings, sets, name: str, polish: bool) -> BendCandidate | None:
+               tube: Tube, settings: ModelSettings, sets, name: str, operation: OperationSettings,
+               polish: bool) -> BendCandidate | None:
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
     needle points are on the machine grid); None if it is not in a valid state or fails the rules."""
     from .rules import check_design
 
-    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name)
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation)
     d, a, theta, status = _analysed(space.params(x), length_mm, pressure_kpa, **kw)
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
         x0, t0 = x, theta
@@ -763,7 +779,8 @@ def _rank(c: BendCandidate, target_deg: float, p: float):
 
 def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", length_mm: float = 100.0,
                 tube: Tube = Tube(), settings: ModelSettings = ModelSettings(), sets: Iterable = (),
-                allow_extrapolation: bool = False, name: str = "A1", tolerance_deg: float = 0.5) -> BendResult:
+                allow_extrapolation: bool = False, name: str = "A1", tolerance_deg: float = 0.5,
+                operation: OperationSettings = OperationSettings()) -> BendResult:
     """The single sewable actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
 
     The continuous parameter's roots are found on the model; the designs tried are those a
@@ -789,6 +806,9 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         The actuator's name in the written design.
     tolerance_deg : float
         A sewable design within this of the target meets it [deg], in (0, 10].
+    operation : OperationSettings
+        The operation limits the written design keeps (:func:`operating_limits`: the target is added
+        as its operating point); every candidate is judged by the rules up to them.
 
     Returns
     -------
@@ -812,7 +832,8 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         spaces, notes = {pattern: design_space(pattern, settings, sets=sets, tube=tube,
                                                allow_extrapolation=allow_extrapolation)}, ()
     model = _Model(p, tube, settings, sets)
-    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name)
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name,
+                              operation=operating_limits(operation, p, target))
     cands: list[BendCandidate] = []
     reasons, ranges = [], []
     for space in spaces.values():
@@ -1166,7 +1187,7 @@ def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, 
 def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tube: Tube = Tube(),
                  settings: ModelSettings = ModelSettings(), sets: Iterable = (), allow_extrapolation: bool = False,
                  name: str = "A1", time_limit_s: float = DEFAULT_TIME_LIMIT_S, tolerance_mm: float = 0.5,
-                 progress=None) -> ShapeResult:
+                 progress=None, operation: OperationSettings = OperationSettings()) -> ShapeResult:
     """The segmented actuator whose fabric line bends into ``target_xy_mm`` at ``pressure_kpa``.
 
     Parameters
@@ -1188,6 +1209,9 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         The sewn design meets the shape when its RMSE against the target is at most this [mm], in (0, 100].
     progress : callable, optional
         ``progress(message)`` at each step of the search (the command prints them on a terminal).
+    operation : OperationSettings
+        The operation limits the written design keeps, with the target pressure as its operating point
+        (:func:`operating_limits`).
 
     Returns
     -------
@@ -1235,7 +1259,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
         say(f"trying {len(lengths)} segment(s) (curvature fit RMSE {rmse_fit:.3f} mm; {time.monotonic() - start:.1f} s)")
         try:
             r = _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name, p,
-                               tolerance_mm, progress)
+                               tolerance_mm, progress, operation=operating_limits(operation, p))
         except EmbroactError as exc:  # e.g. a segment too short for any pattern at this pressure
             failures.append(f"{len(lengths)} segments: {exc}")
             continue
@@ -1252,17 +1276,19 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     return best
 
 
-def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: ModelSettings, p: float) -> Design:
+def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: ModelSettings,
+                  operation: OperationSettings) -> Design:
     """The (segmented) one-actuator design of parameters ``x`` and segment ``lengths``."""
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
     if len(segs) == 1:
         spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)
     else:
         spec = ActuatorSpec.segmented(name, segs, Centerline.straight(float(lengths.sum())), model=settings)
-    return Design(name, tube, MachineSettings(), OperationSettings(max_pressure_kpa=p, max_bend_deg=720.0), (spec,))
+    return Design(name, tube, MachineSettings(), operation, (spec,))
 
 
-def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, progress=None):
+def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, progress=None, *,
+             operation: OperationSettings):
     """The sewable design nearest ``x`` that fits the target best on the analysed (sewn) design.
 
     Each stepped parameter (a zigzag width) is moved to a value a straight actuator sews exactly;
@@ -1280,7 +1306,7 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
         tried[0] += 1
         if progress is not None and tried[0] % _PROGRESS_EVERY == 1:
             progress(f"{len(ls)} segment(s) on the machine grid: {tried[0]} sewn designs tried")
-        design = _shape_design(seg_spaces, v, ls, name, tube, settings, p)
+        design = _shape_design(seg_spaces, v, ls, name, tube, settings, operation)
         a = analyse(design, calibration_sets=sets)
         shape, theta = a.shapes(name, [p])[0]
         return float(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))), (design, a, shape, theta)
@@ -1319,7 +1345,7 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
 
 
 def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,
-                   p, tolerance_mm=0.5, progress=None) -> ShapeResult:
+                   p, tolerance_mm=0.5, progress=None, *, operation: OperationSettings) -> ShapeResult:
     """Design for one curvature fit: choose each segment's pattern, polish the parameters, analyse."""
     from scipy.optimize import least_squares
 
@@ -1355,7 +1381,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
             break
     x = np.round(best[1] if best is not None else x, 4)
     x, lengths, (design, a, shape, theta) = _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p,
-                                                     progress)
+                                                     progress, operation=operation)
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
     act = a.actuators[0]
     seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]

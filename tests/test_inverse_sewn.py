@@ -91,11 +91,12 @@ VERDICT_TARGETS = [(float(RNG.uniform(-150, 360)), float(RNG.uniform(80, 300)), 
                    for _ in range(40)]
 
 
-@pytest.mark.parametrize("bend, pressure, pattern", VERDICT_TARGETS[:12] + [(67.5, 80.0, "zigzag"),
+@pytest.mark.parametrize("bend, pressure, pattern", VERDICT_TARGETS + [(67.5, 80.0, "zigzag"),
                                                                           (355.0, 200.0, "zigzag"),
                                                                           (-127.0, 300.0, "cross")])
 def test_verdicts_agree_with_a_dense_scan(bend, pressure, pattern):
-    """In the dense scan's range: an in-range verdict; outside it: refused, the quoted extreme the scan's."""
+    """All 40 seeded targets and the issue's three: in the dense scan's range an in-range verdict; outside it
+    refused, the quoted extreme the scan's (about 0.7 s each)."""
     if bend == 0.0:
         return
     lo, hi = dense_range(pattern, pressure)

@@ -94,6 +94,13 @@ def add_arguments(parser, name: str) -> None:
                        help="target bend: a sewn design within this of the target meets it [deg] (default 0.5)")
     space.add_argument("--tolerance-mm", type=float, default=0.5,
                        help="target shape: a sewn design within this RMSE of the target meets it [mm] (default 0.5)")
+    limits = parser.add_argument_group("operation limits the written design keeps (the target is added as its "
+                                       "operating point, [operation] target_pressure_kpa)")
+    limits.add_argument("--max-pressure-kpa", type=float, default=None,
+                        help="highest supply pressure; the rules judge the design up to it (default 300, at least "
+                             "--at-kpa)")
+    limits.add_argument("--max-bend-deg", type=float, default=None,
+                        help="largest bend the application needs (default 180, at least the target bend)")
 
 
 def read_target_shape(ref: str):
@@ -144,13 +151,34 @@ def _settings(args):
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
 
+def _limits(args):
+    """The user's operation limits (``--max-pressure-kpa``, ``--max-bend-deg``; the defaults where not given)."""
+    from ...patterns.base.errors import ParameterError
+    from ...patterns.design import OperationSettings
+
+    given = {k: v for k, v in (("max_pressure_kpa", args.max_pressure_kpa), ("max_bend_deg", args.max_bend_deg))
+             if v is not None}
+    try:
+        return OperationSettings(**given)
+    except ParameterError as exc:  # named as the user typed it
+        raise ParameterError("--" + str(exc).replace("_", "-", 2)) from None
+
+
+def _operation_line(design) -> str:
+    """What the written design's ``[operation]`` holds: the limits the rules judge it by, and the target."""
+    op = design.operation
+    bend = "" if op.target_bend_deg is None else f"{op.target_bend_deg:g} deg at "
+    return (f"operation: limits max_pressure_kpa {op.max_pressure_kpa:g}, max_bend_deg {op.max_bend_deg:g} (the rules "
+            f"judge the design up to them); operating point {bend}{op.target_pressure_kpa:g} kPa")
+
+
 def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
     from ...predict.inverse import design_bend
     from ..pictures.shapefit import params_text
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
-                    tolerance_deg=args.tolerance_deg)
+                    tolerance_deg=args.tolerance_deg, operation=_limits(args))
     lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
     if r.range_deg is not None:
         lines.append(f"  reachable at {r.pressure_kpa:g} kPa over the calibrated designs: {r.range_deg[0]:+.2f} to "
@@ -172,6 +200,7 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
                   + "; ".join(s.text() for s in c.sensitivity),
                   f"  binding: {c.binding}"]
         lines += [f"  finding {f}" for f in c.findings]
+    lines.append(_operation_line(r.best.design))
     return r.as_dict(), r.best.design, lines, r.reached
 
 
@@ -186,7 +215,7 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bo
     r = design_shape(read_target_shape(args.target_shape), args.at_kpa, max_segments=args.max_segments, tube=tube,
                      settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
                      time_limit_s=DEFAULT_TIME_LIMIT_S if args.time_limit is None else args.time_limit,
-                     tolerance_mm=args.tolerance_mm, progress=progress)
+                     tolerance_mm=args.tolerance_mm, progress=progress, operation=_limits(args))
     lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
              f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
@@ -196,6 +225,7 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bo
         lines.append(f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} -> "
                      f"{s.theta_deg:+.2f} deg{note}")
     lines += [f"finding {f}" for f in r.findings]
+    lines.append(_operation_line(r.design))
     return r.as_dict(), r.design, lines, design_shape_svg(r), r.reached
 
 
@@ -208,6 +238,7 @@ def run(args) -> int:
     from .args import input_files
 
     check_target_pressure(args.at_kpa, "--at-kpa")  # named as the user typed it, before any search
+    _limits(args)
     outputs = [("--output", args.output)]
     if args.bend_deg is None:  # the overlay's default name derives from a checked --output
         out = check_command_files(outputs, input_files(args))[0]

@@ -132,6 +132,9 @@ class Series:
         Measured points to overlay [kPa], [deg].
     theta_low_deg, theta_high_deg : array-like, optional
         An uncertainty band, one value per pressure [deg] (given together).
+    operating_point : (float, float), optional
+        The design's operating point (pressure [kPa], bend [deg]): the target a design was made
+        for, drawn as a diamond.
     """
 
     label: str
@@ -143,6 +146,7 @@ class Series:
     measured_theta_deg: np.ndarray | None = None
     theta_low_deg: np.ndarray | None = None
     theta_high_deg: np.ndarray | None = None
+    operating_point: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         p = _frozen(self.pressure_kpa)
@@ -179,19 +183,28 @@ class Series:
                                      f"got {len(lo)} and {len(hi)}")
             object.__setattr__(self, "theta_low_deg", lo)
             object.__setattr__(self, "theta_high_deg", hi)
+        if self.operating_point is not None:
+            point = tuple(float(v) for v in self.operating_point)
+            if len(point) != 2 or not all(math.isfinite(v) for v in point):
+                raise ParameterError(f"operating_point must be two finite numbers (pressure_kpa, theta_deg), got "
+                                     f"{self.operating_point!r:.60}")
+            object.__setattr__(self, "operating_point", point)
 
     @classmethod
-    def from_curve(cls, curve, *, label: str, p0_kpa: float | None = None, measured=None, band=None) -> "Series":
+    def from_curve(cls, curve, *, label: str, p0_kpa: float | None = None, measured=None, band=None,
+                   operating_point: tuple[float, float] | None = None) -> "Series":
         """Series from a ``predict`` curve (``pressure_kpa``, ``theta_deg``, ``status``).
 
         ``measured`` is an optional pair (pressure_kpa, theta_deg) of arrays; ``band`` an
         optional object with ``theta_low_deg`` and ``theta_high_deg`` at the curve's pressures
-        (:class:`embroact.predict.uncertainty.Band`).
+        (:class:`embroact.predict.uncertainty.Band`); ``operating_point`` the design's target
+        (pressure_kpa, theta_deg).
         """
         mp, mt = (None, None) if measured is None else measured
         lo, hi = (None, None) if band is None else (band.theta_low_deg, band.theta_high_deg)
         return cls(label, curve.pressure_kpa, curve.theta_deg, status=tuple(curve.status), p0_kpa=p0_kpa,
-                   measured_pressure_kpa=mp, measured_theta_deg=mt, theta_low_deg=lo, theta_high_deg=hi)
+                   measured_pressure_kpa=mp, measured_theta_deg=mt, theta_low_deg=lo, theta_high_deg=hi,
+                   operating_point=operating_point)
 
     def drawn(self) -> np.ndarray:
         """True where the angle is a state to draw as the curve (all points without statuses)."""
@@ -404,10 +417,21 @@ def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
         x = _fmt(sc.x_px(s.p0_kpa))
         g.add(dwg.line((x, _fmt(sc.top_px)), (x, _fmt(sc.top_px + sc.height_px)), stroke=colour,
                        stroke_width=1.2, stroke_dasharray="5,3", **{"class": "p0", "data-series": str(k)}))
+    if s.operating_point is not None and sc.x_min_kpa <= s.operating_point[0] <= sc.x_max_kpa:
+        g.add(_diamond(dwg, float(sc.x_px(s.operating_point[0])), float(sc.y_px(s.operating_point[1])), colour,
+                       **{"class": "operating-point", "data-series": str(k),
+                          "data-pressure-kpa": f"{s.operating_point[0]:g}", "data-theta-deg": f"{s.operating_point[1]:g}"}))
     if s.measured_pressure_kpa is not None:
         for x, y in zip(sc.x_px(s.measured_pressure_kpa), sc.y_px(s.measured_theta_deg)):
             g.add(dwg.circle((_fmt(x), _fmt(y)), 3.2, fill="#fff", stroke=colour, stroke_width=1.5,
                              **{"class": "measured", "data-series": str(k)}))
+
+
+def _diamond(dwg, x: float, y: float, colour: str, **extra):
+    """The operating point's mark: a filled diamond 10 px across centred on (x, y)."""
+    r = 5.0
+    return dwg.polygon([(_fmt(x), _fmt(y - r)), (_fmt(x + r), _fmt(y)), (_fmt(x), _fmt(y + r)), (_fmt(x - r), _fmt(y))],
+                       fill=colour, stroke="#fff", stroke_width=1.0, **extra)
 
 
 def _curve_points_px(s: Series, sc: Scale) -> list[np.ndarray]:
@@ -426,6 +450,9 @@ def _draw_p0_labels(dwg, g, series: Sequence[Series], sc: Scale) -> None:
     for s in series:
         for pts in _curve_points_px(s, sc):
             placer.block_polyline(pts)
+        if s.operating_point is not None:  # the diamond's outline
+            x, y = float(sc.x_px(s.operating_point[0])), float(sc.y_px(s.operating_point[1]))
+            placer.block_polyline([(x, y - 5.0), (x + 5.0, y), (x, y + 5.0), (x - 5.0, y), (x, y - 5.0)])
     marked = [s for s in series if s.p0_kpa is not None and sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa]
     for s in marked:  # the dashed P0 lines: a label sits beside its own line, never across another
         placer.block_polyline([(sc.x_px(s.p0_kpa), sc.top_px), (sc.x_px(s.p0_kpa), sc.top_px + sc.height_px)])
@@ -467,12 +494,21 @@ def _legend_items(series: Sequence[Series], used: list[str]) -> list[tuple[str, 
     marks = (("measured", any(s.measured_pressure_kpa is not None for s in series), "measured"),
              ("p0", any(s.p0_kpa is not None for s in series), "P0 (transition)"),
              ("band", any(s.theta_low_deg is not None for s in series), "1-sigma band"),
+             ("operating", any(s.operating_point is not None for s in series), _operating_text(series)),
              ("beyond", any(s.beyond_validity().any() for s in series), "formula past validity"))
     items += [("mark", kind, text) for kind, present, text in marks if present]
     if len(series) > 1 and used:
         items.append(("note", None, "each curve's state, in its strip under the plot:"))
     items += [("state", name, STATUS_STYLE[name][1]) for name in used]
     return items
+
+
+def _operating_text(series: Sequence[Series]) -> str:
+    """The operating point's legend entry: its pressure and bend when one series has it."""
+    points = [s.operating_point for s in series if s.operating_point is not None]
+    if len(points) == 1:
+        return f"operating point (design target): {points[0][1]:.1f} deg at {points[0][0]:g} kPa"
+    return "operating point (design target)"
 
 
 def _legend_rows(items, width_px: float) -> list[list[tuple[str, object, str, float]]]:
@@ -516,6 +552,8 @@ def _draw_key(dwg, g, kind: str, key, x: float, y: float) -> None:
                        stroke_dasharray="5,3"))
     elif key == "band":
         g.add(dwg.rect((_fmt(x), _fmt(y - 6)), (_KEY_PX, 12), fill="#333", fill_opacity=_BAND_OPACITY))
+    elif key == "operating":
+        g.add(_diamond(dwg, x + _KEY_PX / 2, y, "#333"))
     else:  # beyond validity
         g.add(dwg.line((_fmt(x), _fmt(y)), (_fmt(x + _KEY_PX), _fmt(y)), stroke="#333", stroke_width=1,
                        stroke_dasharray="2,3"))

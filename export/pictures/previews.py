@@ -44,6 +44,7 @@ __all__ = [
     "model_caption",
     "actuator_series",
     "bend_series",
+    "operating_points",
     "breakpoints_kpa",
     "chart_curves",
     "bend_chart",
@@ -201,20 +202,50 @@ def model_caption(analysis) -> str:
     return "; ".join(parts)
 
 
-def actuator_series(act, curve, measured: tuple | None = None, band=None) -> list[Series]:
+def actuator_series(act, curve, measured: tuple | None = None, band=None,
+                    operating_point: tuple[float, float] | None = None) -> list[Series]:
     """Chart series of one analysed actuator and its curve; ``measured`` is (pressure_kpa, theta_deg) or None,
     ``band`` the 1-sigma band of its fitted calibration at the curve's pressures
-    (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or None.
+    (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or None, ``operating_point`` the design's
+    target (pressure_kpa, theta_deg) marked on the actuator's curve (:func:`operating_points`) or None.
 
     A segmented actuator gets its whole strip (the sum, which measurements of the tip angle
     are compared with) and then one series per segment, each with its own pattern, G and P0."""
     if not act.segments:
         return [Series.from_curve(curve, label=_label(act.name, act.derived, act.choice), p0_kpa=act.model.p0_kpa,
-                                  measured=measured, band=band)]
+                                  measured=measured, band=band, operating_point=operating_point)]
     return [Series.from_curve(curve, label=f"{act.name} whole strip: sum of its {len(act.segments)} segments",
-                              measured=measured)] + [
+                              measured=measured, operating_point=operating_point)] + [
         Series.from_curve(c, label=_label(f"{act.name} segment {k} ({seg.derived.pattern})", seg.derived, seg.choice),
                           p0_kpa=seg.model.p0_kpa) for k, (seg, c) in enumerate(zip(act.segments, curve.segments))]
+
+
+def operating_points(analysis) -> tuple:
+    """Each actuator's operating point (pressure_kpa, theta_deg) from the design's ``[operation]``, or None each.
+
+    The pressure is ``target_pressure_kpa``; the bend is ``target_bend_deg`` where the design
+    names one (a target-bend design: the mark shows the target against the curve), else the
+    actuator's predicted bend there (a target-shape design). None for every actuator when the design has no
+    target pressure, and for one without a bend there.
+
+    >>> import dataclasses
+    >>> from embroact.patterns.design import OperationSettings, default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> d = default_design()
+    >>> operating_points(analyse(d))
+    (None,)
+    >>> d = dataclasses.replace(d, operation=OperationSettings(target_pressure_kpa=150.0, target_bend_deg=90.0))
+    >>> operating_points(analyse(d))
+    ((150.0, 90.0),)
+    """
+    op = analysis.design.operation
+    if op.target_pressure_kpa is None:
+        return (None,) * len(analysis.actuators)
+    p = float(op.target_pressure_kpa)
+    if op.target_bend_deg is not None:
+        return ((p, float(op.target_bend_deg)),) * len(analysis.actuators)
+    curves = analysis.curves([p])
+    return tuple((p, float(c.theta_deg[0])) if np.isfinite(c.theta_deg[0]) else None for c in curves)
 
 
 def curve_bands(analysis, curves) -> tuple:
@@ -231,8 +262,8 @@ def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, b
     (pressure_kpa, theta_deg); ``bands`` has one band (or None) per actuator (default :func:`curve_bands`)."""
     measured = dict(measured or {})
     bands = curve_bands(analysis, curves) if bands is None else bands
-    return [s for a, c, b in zip(analysis.actuators, curves, bands)
-            for s in actuator_series(a, c, measured.get(a.name), b)]
+    return [s for a, c, b, op in zip(analysis.actuators, curves, bands, operating_points(analysis))
+            for s in actuator_series(a, c, measured.get(a.name), b, op)]
 
 
 def breakpoints_kpa(analysis) -> tuple[float, ...]:

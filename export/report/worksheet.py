@@ -75,6 +75,7 @@ __all__ = [
     "ActuatorSheet",
     "Worksheet",
     "worksheet",
+    "operating_point",
 ]
 
 DEFAULT_SPEED_SPM = 600.0
@@ -186,6 +187,9 @@ class Worksheet:
         What the machine file's format cannot carry.
     fabric_mm : tuple of float
         Fabric to cut and hoop, width and height [mm].
+    operating_point : dict or None
+        The design's operating point (``[operation] target_pressure_kpa``, ``target_bend_deg``) beside
+        the pressure the rules judge up to (``max_pressure_kpa``); None when the design names none.
     """
 
     name: str
@@ -207,6 +211,7 @@ class Worksheet:
     setup: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
     fabric_mm: tuple[float, float] = (0.0, 0.0)
+    operating_point: dict | None = None
 
     def as_dict(self) -> dict:
         """JSON-ready dict with unit-suffixed keys (lengths mm, thread also m, times s)."""
@@ -222,6 +227,7 @@ class Worksheet:
             "setup": list(self.setup),
             "notes": list(self.notes),
             "fabric_mm": [round(v, 1) for v in self.fabric_mm],
+            "operating_point": self.operating_point,
             "stops": list(self.stops),
             "top_thread_m": round(self.top_thread_mm / 1000.0, 3),
             "bobbin_thread_m": round(self.bobbin_thread_mm / 1000.0, 3),
@@ -264,6 +270,7 @@ class Worksheet:
             f"top thread       {self.top_thread_mm / 1000:.2f} m",
             f"bobbin thread    {self.bobbin_thread_mm / 1000:.2f} m",
             f"fabric to hoop   {self.fabric_mm[0]:.0f} x {self.fabric_mm[1]:.0f} mm",
+            *_operating_lines(self.operating_point),
             *[f"note             {n}" for n in self.notes],
             "",
             "MACHINE SET-UP",
@@ -290,6 +297,30 @@ class Worksheet:
         lines += ["", "DESIGN-RULE FINDINGS"]
         lines += [f"  {f.get('severity', '')} {f.get('code', '')}: {f.get('message', '')}" for f in self.findings] or ["  none"]
         return "\n".join(lines) + "\n"
+
+
+def operating_point(operation) -> dict | None:
+    """The worksheet's operating point of a design's ``OperationSettings`` (None without a target pressure).
+
+    >>> from embroact.patterns.design import OperationSettings
+    >>> operating_point(OperationSettings(target_pressure_kpa=150.0, target_bend_deg=84.5))
+    {'target_pressure_kpa': 150.0, 'target_bend_deg': 84.5, 'max_pressure_kpa': 300.0}
+    >>> operating_point(OperationSettings()) is None
+    True
+    """
+    if operation is None or operation.target_pressure_kpa is None:
+        return None
+    return {"target_pressure_kpa": operation.target_pressure_kpa, "target_bend_deg": operation.target_bend_deg,
+            "max_pressure_kpa": operation.max_pressure_kpa}
+
+
+def _operating_lines(point: dict | None) -> list[str]:
+    """``operating point  84.5 deg at 150 kPa (...)`` or nothing."""
+    if point is None:
+        return []
+    bend = "" if point["target_bend_deg"] is None else f"{point['target_bend_deg']:g} deg at "
+    return [f"operating point  {bend}{point['target_pressure_kpa']:g} kPa (the design's target; the rules judge "
+            f"up to {point['max_pressure_kpa']:g} kPa)"]
 
 
 def _derived_lines(derived: dict, indent: str = "  ") -> list[str]:
@@ -577,6 +608,7 @@ def worksheet(
         setup=machine_setup(machine, placement=bool(_placed(plan))) + (_start_line(plan, machine),),
         notes=() if machine is None else tuple(machine.notes),
         fabric_mm=_fabric_mm(plan, getattr(design, "machine", None)),
+        operating_point=operating_point(getattr(design, "operation", None)),
     )
 
 

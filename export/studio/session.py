@@ -115,10 +115,12 @@ class Studio:
         return entry
 
     def pressure(self, value) -> float:
-        """``value`` checked against the design's pressure range [0, max_pressure_kpa] (None: 2/3 of it)."""
+        """``value`` checked against the design's pressure range [0, max_pressure_kpa] (None: the design's
+        operating point ``target_pressure_kpa``, else 2/3 of the range)."""
         top = self.design.operation.max_pressure_kpa
         if value is None:
-            return float(round(top * 2.0 / 3.0))
+            target = self.design.operation.target_pressure_kpa
+            return float(target) if target is not None else float(round(top * 2.0 / 3.0))
         return _number("pressure_kpa", value, low=0.0, high=top)
 
     def views(self, pressure_kpa=None) -> dict:

@@ -167,7 +167,7 @@ def worksheet_figures(ws) -> dict:
     """The worksheet's production figures (counts, thread, time, fabric, tube to cut per actuator)."""
     d = ws.as_dict()
     keep = ("stitch_count", "jump_count", "trim_count", "stop_count", "top_thread_m", "bobbin_thread_m",
-            "sewing_time_s", "handling_time_s", "size_mm", "fabric_mm")
+            "sewing_time_s", "handling_time_s", "size_mm", "fabric_mm", "operating_point")
     out = {k: d[k] for k in keep if k in d}
     out["actuators"] = [{"name": a.name, "tube_cut_mm": a.tube_cut_mm, "stitches": a.stitches,
                          "legs_over_tube": a.legs_over_tube} for a in ws.actuators]
