@@ -377,3 +377,39 @@ def test_bad_tube_paths_and_owners():
         _tube([(1.0, 1.0)])
     with pytest.raises(ValueError, match="owner must be in"):
         Layout.from_points([(0, 0)], [S], [1], tubes=(_tube(),))
+
+
+def _leg_crossings_mm(plan):
+    """Where the plan's legs cross y = 0 (a straight path along +x), by linear interpolation, sorted; as arc
+    length from the path's start."""
+    xy, roles = plan.xy_mm - plan.actuators[0].centerline.points_mm[0], plan.roles
+    out = []
+    for i in np.flatnonzero(roles == Role.LEG):
+        (x0, y0), (x1, y1) = xy[i - 1], xy[i]
+        if i > 0 and y0 * y1 < 0.0:
+            out.append(x0 + (x1 - x0) * y0 / (y0 - y1))
+    return np.sort(np.array(out))
+
+
+def test_ea203_leaves_out_the_transitions_the_generator_makes_between_segments():
+    """Between two segments the generator leaves an unbent transition wider than 2 r_f (the model counts it as
+    unbent tube): no EA203 there; a segment whose own interval is too wide still gets it, inside that segment."""
+    from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings, build_plan
+    from embroact.patterns.segments import SegmentSpec
+
+    def design(interval_mm):
+        segs = (SegmentSpec(ZigzagParams(7.0, interval_mm), 40.0), SegmentSpec(CrossParams(7.0, 1.4, 45.0), 60.0))
+        spec = ActuatorSpec.segmented("S", segs, Centerline.straight(100.0))
+        return Design("s", Tube(), MachineSettings(), OperationSettings(), (spec,))
+
+    plan = build_plan(design(1.0))
+    x = _leg_crossings_mm(plan)
+    gaps = np.diff(x)
+    wider = np.flatnonzero(gaps > 3.0)  # one gap wider than 2 r_f: the one across the transition at 40-40.6 mm
+    assert len(wider) == 1 and x[wider[0]] < 40.0 and x[wider[0] + 1] > 40.6 and gaps[wider[0]] > 4.0
+    assert not _hits(check_geometry(plan), "EA203")
+    plan = build_plan(design(3.5))
+    hits = _hits(check_geometry(plan), "EA203")
+    assert hits and all("3.50 mm apart" in f.message for f in hits)
+    start = plan.actuators[0].centerline.points_mm[0][0]
+    assert all(plan.xy_mm[f.stitch_index][0] - start < 40.0 for f in hits)  # inside segment 0, not at the transition
