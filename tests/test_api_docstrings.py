@@ -55,33 +55,207 @@ def test_numpydoc_sections(name, obj):
     assert ">>> " in doc.split("Examples", 1)[-1], f"{name}: its Examples section has no runnable example"
 
 
-#: Modules whose every public name (``__all__``) and method is documented to the same standard.
-DOCUMENTED_MODULES = ("embroact.patterns.kinds", "embroact.predict.kinds", "embroact.patterns.intervals",
-                      "embroact.predict.branch", "embroact.predict.tubelaws")
+# ---------------------------------------------------------------------------------------------
+# Every module of the four packages, held to the same standard.
+#
+# The rule, for a module whose no dotted part starts with ``_`` (``__main__`` apart):
+#
+# * public = a function or class *defined in* the module (``obj.__module__`` is the module) whose
+#   name has no leading underscore, and every method of such a class defined in its body (plain,
+#   class- and static methods) whose name has no leading underscore; dunder methods are the
+#   class's own business and are documented by the class docstring;
+# * a function or method needs Parameters when it takes any (``self``/``cls`` apart), Returns (or
+#   Yields) when it returns something (a return annotation other than None or, unannotated, a
+#   ``return <value>`` in its own body), and an Examples section with a ``>>>`` line;
+# * a class needs an Examples section with a ``>>>`` line, and Parameters or Attributes when its
+#   constructor takes any (an Enum documents its members instead, one docstring line each);
+# * an exception class and a property need a docstring (when it is raised; what the value is,
+#   with its unit): both are read as one line in the class's context, not called like a function.
+#
+# The examples run in tests/test_doctests.py. Modules still to be brought up to this standard are
+# listed in UNDOCUMENTED_MODULES; the list only shrinks, and a module leaves it when it passes.
+
+import ast  # noqa: E402
+import enum  # noqa: E402
+import importlib  # noqa: E402
+import pkgutil  # noqa: E402
+import textwrap  # noqa: E402
+
+PACKAGES = ("embroact", "embroact.patterns", "embroact.predict", "embroact.export")
+
+#: Modules whose public names are not yet all documented to the standard above (shrinking).
+UNDOCUMENTED_MODULES = frozenset({
+    "embroact.export.cli.args", "embroact.export.cli.cmd_build", "embroact.export.cli.cmd_calibrate",
+    "embroact.export.cli.cmd_check", "embroact.export.cli.cmd_design", "embroact.export.cli.cmd_fit",
+    "embroact.export.cli.cmd_generate", "embroact.export.cli.cmd_measure", "embroact.export.cli.cmd_predict",
+    "embroact.export.cli.cmd_preview", "embroact.export.cli.cmd_studio", "embroact.export.cli.fitsheet",
+    "embroact.export.cli.main", "embroact.export.cli.markerargs", "embroact.export.cli.signals",
+    "embroact.export.cli.target", "embroact.export.files.atomic", "embroact.export.files.calibfile",
+    "embroact.export.files.couponfile", "embroact.export.files.svgclones", "embroact.export.files.svgfile",
+    "embroact.export.files.tomltext", "embroact.export.machine.census", "embroact.export.machine.dst",
+    "embroact.export.machine.encode", "embroact.export.machine.filecheck", "embroact.export.machine.formats",
+    "embroact.export.machine.vp3note", "embroact.export.photo.annotate", "embroact.export.photo.arucobits",
+    "embroact.export.photo.detect", "embroact.export.photo.sheet", "embroact.export.pictures.chart",
+    "embroact.export.pictures.glb", "embroact.export.pictures.labels", "embroact.export.pictures.mesh",
+    "embroact.export.pictures.meshview", "embroact.export.pictures.pages", "embroact.export.pictures.previews",
+    "embroact.export.pictures.shapefit", "embroact.export.pictures.sideview", "embroact.export.pictures.stitches",
+    "embroact.export.pictures.svgdoc", "embroact.export.pictures.template", "embroact.export.pictures.titles",
+    "embroact.export.pictures.triangles", "embroact.export.report.build", "embroact.export.report.report",
+    "embroact.export.report.stage", "embroact.export.report.worksheet", "embroact.export.studio.app",
+    "embroact.export.studio.form", "embroact.export.studio.outputs", "embroact.export.studio.roundtrip",
+    "embroact.export.studio.serve", "embroact.export.studio.session", "embroact.export.studio.views",
+    "embroact.patterns.assemble", "embroact.patterns.base.arrays", "embroact.patterns.base.choices",
+    "embroact.patterns.base.errors", "embroact.patterns.base.findings", "embroact.patterns.base.tolerances",
+    "embroact.patterns.base.validate", "embroact.patterns.centerline", "embroact.patterns.cross",
+    "embroact.patterns.design", "embroact.patterns.limits", "embroact.patterns.measure", "embroact.patterns.origin",
+    "embroact.patterns.params", "embroact.patterns.placement", "embroact.patterns.plan", "embroact.patterns.rules",
+    "embroact.patterns.rules.engine", "embroact.patterns.rules.layout", "embroact.patterns.rules.machine",
+    "embroact.patterns.rules.settings", "embroact.patterns.rules.tubes", "embroact.patterns.segments",
+    "embroact.patterns.spatial", "embroact.patterns.stops", "embroact.patterns.zigzag", "embroact.predict.analysis",
+    "embroact.predict.calibration", "embroact.predict.coupon", "embroact.predict.curve", "embroact.predict.derived",
+    "embroact.predict.fit", "embroact.predict.inflation", "embroact.predict.inverse", "embroact.predict.layoutchoice",
+    "embroact.predict.lean", "embroact.predict.markers", "embroact.predict.model", "embroact.predict.onecurve",
+    "embroact.predict.pchip", "embroact.predict.photomarkers", "embroact.predict.profile",
+    "embroact.predict.rule_catalogue", "embroact.predict.rules", "embroact.predict.shape", "embroact.predict.sleeve",
+    "embroact.predict.sleeve_rules", "embroact.predict.solvers", "embroact.predict.status",
+    "embroact.predict.uncertainty", "embroact.predict.validity",
+})
 
 
-def _module_api():
-    import importlib
-
-    for mod in DOCUMENTED_MODULES:
-        m = importlib.import_module(mod)
-        for name in m.__all__:
-            obj = getattr(m, name)
-            if not (inspect.isfunction(obj) or inspect.isclass(obj)):
-                continue  # constants and registries: a #: comment or a docstring line
-            if inspect.isclass(obj) and issubclass(obj, BaseException):
-                continue
-            yield f"{mod}.{name}", obj
-            if inspect.isclass(obj):
-                for attr, value in vars(obj).items():
-                    function = value.__func__ if isinstance(value, (classmethod, staticmethod)) else value
-                    if not attr.startswith("_") and inspect.isfunction(function):
-                        yield f"{mod}.{name}.{attr}", function
+def _modules() -> list[str]:
+    names = set(PACKAGES)
+    for pkg_name in PACKAGES:
+        pkg = importlib.import_module(pkg_name)
+        for info in pkgutil.walk_packages(pkg.__path__, prefix=f"{pkg_name}."):
+            if not any(part.startswith("_") for part in info.name.split(".")):
+                names.add(info.name)
+    return sorted(names)
 
 
-MODULE_API = list(_module_api())
+def _public_items(module_name: str):
+    module = importlib.import_module(module_name)
+    for name, obj in vars(module).items():
+        if name.startswith("_") or not (inspect.isfunction(obj) or inspect.isclass(obj)):
+            continue
+        if obj.__module__ != module_name:
+            continue  # imported: checked where it is defined
+        yield f"{module_name}.{name}", obj
+        if inspect.isclass(obj):
+            for attr, value in vars(obj).items():
+                if attr.startswith("_"):
+                    continue
+                function = value.__func__ if isinstance(value, (classmethod, staticmethod)) else value
+                if isinstance(value, property) or inspect.isfunction(function):
+                    yield f"{module_name}.{name}.{attr}", value if isinstance(value, property) else function
 
 
-@pytest.mark.parametrize("name,obj", MODULE_API, ids=[n for n, _ in MODULE_API])
-def test_documented_modules_have_numpydoc_sections(name, obj):
-    test_numpydoc_sections(name, obj)
+def _returns_a_value(function) -> bool:
+    returns = inspect.signature(function).return_annotation
+    if returns is not inspect.Signature.empty:
+        return returns not in (None, "None")
+    try:
+        tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
+    except (OSError, TypeError, SyntaxError):
+        return True
+    body = tree.body[0]
+    stack = list(ast.iter_child_nodes(body))
+    while stack:
+        node = stack.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
+            continue  # a nested function's return is its own
+        if isinstance(node, (ast.Yield, ast.YieldFrom)):
+            return True
+        if isinstance(node, ast.Return) and node.value is not None:
+            if not (isinstance(node.value, ast.Constant) and node.value.value is None):
+                return True
+        stack.extend(ast.iter_child_nodes(node))
+    return False
+
+
+def lacks(obj) -> list[str]:
+    """What ``obj``'s docstring lacks under the rule above (empty: it meets the standard)."""
+    if isinstance(obj, property) or (inspect.isclass(obj) and issubclass(obj, BaseException)):
+        return [] if (obj.__doc__ or "").strip() else ["a docstring"]
+    doc = inspect.getdoc(obj) or ""
+    have = _sections(doc)
+    missing = [] if "Examples" in have else ["Examples"]
+    if inspect.isclass(obj):
+        if not issubclass(obj, enum.Enum):
+            try:
+                takes = bool(inspect.signature(obj).parameters)
+            except (TypeError, ValueError):
+                takes = False
+            if takes and not {"Parameters", "Attributes"} & have:
+                missing.append("Parameters or Attributes")
+    else:
+        if [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")] and "Parameters" not in have:
+            missing.append("Parameters")
+        if _returns_a_value(obj) and not {"Returns", "Yields"} & have:
+            missing.append("Returns")
+    if "Examples" in have and ">>> " not in doc.split("Examples", 1)[-1]:
+        missing.append("a >>> line in Examples")
+    return missing
+
+
+MODULES = _modules()
+HELD = [m for m in MODULES if m not in UNDOCUMENTED_MODULES]
+HELD_ITEMS = [(name, obj) for m in HELD for name, obj in _public_items(m)]
+
+
+def test_the_module_walk_sees_every_package_and_the_exclusions_are_real_modules():
+    assert {"embroact.patterns.zigzag", "embroact.predict.model", "embroact.export.cli.main"} <= set(MODULES)
+    assert UNDOCUMENTED_MODULES <= set(MODULES), sorted(UNDOCUMENTED_MODULES - set(MODULES))
+
+
+def test_the_rule_can_fail():
+    def undocumented(x):
+        """One line."""
+        return x
+
+    def documented(x):
+        """One line.
+
+        Parameters
+        ----------
+        x : int
+            A number.
+
+        Returns
+        -------
+        int
+            The same number.
+
+        Examples
+        --------
+        >>> documented(1)
+        1
+        """
+        return x
+
+    def silent(x):
+        """One line.
+
+        Parameters
+        ----------
+        x : int
+            A number.
+
+        Examples
+        --------
+        >>> silent(1)
+        """
+
+    assert lacks(undocumented) == ["Examples", "Parameters", "Returns"]
+    assert lacks(documented) == [] and lacks(silent) == []
+
+
+@pytest.mark.parametrize("name,obj", HELD_ITEMS, ids=[n for n, _ in HELD_ITEMS])
+def test_every_public_name_has_numpydoc_sections(name, obj):
+    missing = lacks(obj)
+    assert not missing, f"{name}: docstring lacks {', '.join(missing)}"
+
+
+@pytest.mark.parametrize("module_name", sorted(UNDOCUMENTED_MODULES))
+def test_an_undocumented_module_leaves_the_list_once_it_is_documented(module_name):
+    assert any(lacks(obj) for _, obj in _public_items(module_name)), \
+        f"{module_name} meets the standard: remove it from UNDOCUMENTED_MODULES"
