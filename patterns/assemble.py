@@ -231,12 +231,11 @@ def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.n
 
 
 def _check_corridor(cl: Centerline, xy: np.ndarray, tube: Tube) -> None:
-    line = cl.as_linestring()
     # the points are on the machine grid: a rail at the corridor's edge may round into it by up to GRID_ROUNDING_MM
-    bad = corridor_hits(line, xy, tube.corridor_radius_mm - GRID_ROUNDING_MM - DEFAULT_TOLERANCES.length_mm)
+    bad = corridor_hits(cl.segment_index(), xy, tube.corridor_radius_mm - GRID_ROUNDING_MM - DEFAULT_TOLERANCES.length_mm)
     if bad.size:
         x, y = xy[bad[0]]
-        d = float(shapely.distance(line, shapely.Point(x, y)))
+        d = float(shapely.distance(cl.as_linestring(), shapely.Point(x, y)))
         raise PathError(
             f"needle point ({x:.2f}, {y:.2f}) mm is {d:.3g} mm from the path, inside the tube corridor "
             f"r_f + clearance = {tube.corridor_radius_mm:g} mm: the path comes too close to itself"

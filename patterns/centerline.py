@@ -454,15 +454,25 @@ class Centerline:
         off = np.einsum("ij,ij->i", p - self.point_at(s), self.normal_at(s))
         return s, off
 
-    def _closest_s(self, p: np.ndarray) -> np.ndarray:
-        """Arc length of the closest polyline point to each of ``p`` (the path's :class:`SegmentIndex`, made
-        on first use and kept)."""
-        a, b = self.points_mm[:-1], self.points_mm[1:]
+    def segment_index(self) -> SegmentIndex:
+        """The path's :class:`~embroact.patterns.spatial.SegmentIndex` (nearest segments, points within a
+        distance), made on first use and kept.
+
+        Examples
+        --------
+        >>> Centerline.straight(10.0).segment_index().within(np.array([(4.0, 1.0), (4.0, 3.0)]), 2.0).tolist()
+        [0]
+        """
         index = self._index
         if index is None:
             index = SegmentIndex(self.points_mm)
             object.__setattr__(self, "_index", index)
-        seg = index.nearest(p)
+        return index
+
+    def _closest_s(self, p: np.ndarray) -> np.ndarray:
+        """Arc length of the closest polyline point to each of ``p`` (by :meth:`segment_index`)."""
+        a, b = self.points_mm[:-1], self.points_mm[1:]
+        seg = self.segment_index().nearest(p)
         d = b[seg] - a[seg]
         u = np.einsum("ij,ij->i", p - a[seg], d) / np.einsum("ij,ij->i", d, d)
         return self._s[seg] + np.clip(u, 0.0, 1.0) * np.diff(self._s)[seg]

@@ -25,6 +25,8 @@ Examples
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 
@@ -34,8 +36,11 @@ __all__ = ["TubeIndex", "SegmentIndex", "Crossings", "needle_density", "self_cro
 
 #: Candidate pairs examined at once by :func:`needle_density` and :class:`SegmentIndex` (bounds their memory).
 _PAIR_CHUNK = 2_000_000
-#: Factor between the cell sizes of :class:`SegmentIndex`'s successive buckets.
+#: Factor between the cell sizes of :class:`SegmentIndex`'s successive passes.
 _CELL_GROWTH = 4.0
+#: :meth:`SegmentIndex.nearest` on more points than this first finds the nearest segments of that many of
+#: them (evenly spaced) and starts at a cell size of the margin times the quantile of their distances.
+_SAMPLE_POINTS, _SAMPLE_QUANTILE, _SAMPLE_MARGIN = 256, 0.9, 1.05
 
 
 class Crossings:
@@ -156,13 +161,15 @@ class TubeIndex:
 class SegmentIndex:
     """The nearest segment of one polyline for many points, in time linear in points and segments.
 
-    Buckets of one cell size ``c`` (at first the longest segment, at least twice the median
-    one) hold every segment whose bounding box meets them; a point's candidates are the
-    segments of its cell and the eight around it, which hold its nearest segment whenever
-    that lies within ``c``. Points left over are asked again on buckets 4x coarser, and the
-    few far from the whole path by one STRtree (shapely's nearest query alone grows faster
-    than linearly on long paths: 13 us per point on 1,000 segments, 170 us on 100,000).
-    Each cell size's buckets are made once per index.
+    Buckets of one cell size ``c`` hold every segment whose bounding box meets them; a point's
+    candidates are the segments of its cell and the eight around it, which hold every segment
+    within ``c`` of it. :meth:`nearest` starts at a cell size just above the distance of most of
+    an even sample of the points (at least the longest segment, and twice the median one: the
+    fewest candidates that still find them), asks the points left over again on buckets 4x
+    coarser, and the few far from the whole path by one STRtree (shapely's nearest query alone
+    grows faster than linearly on long paths: 13 us per point on 1,000 segments, 170 us on
+    100,000). :meth:`within` needs one pass at the cell size of its radius. Cell sizes are
+    rounded up to quarter octaves, and each size's buckets are made once per index.
 
     Parameters
     ----------
@@ -174,6 +181,8 @@ class SegmentIndex:
     >>> idx = SegmentIndex([(0, 0), (10, 0), (10, 10)])
     >>> idx.nearest(np.array([(5.0, 1.0), (11.0, 8.0), (500.0, 3.0)])).tolist()
     [0, 1, 1]
+    >>> idx.within(np.array([(5.0, 1.0), (11.0, 8.0), (500.0, 3.0)]), 1.5).tolist()
+    [0, 1]
     """
 
     __slots__ = ("_a", "_d", "_len2", "_c0", "_span", "_grids", "_tree")
@@ -207,11 +216,21 @@ class SegmentIndex:
             self._grids[c] = (base, width, keys[order], owners[order])
         return self._grids[c]
 
+    def _cell(self, size_mm: float) -> float:
+        """The bucket size for ``size_mm``: at least the first one, rounded up to a quarter octave above it."""
+        if size_mm <= self._c0:
+            return self._c0
+        return self._c0 * 2.0 ** (math.ceil(4.0 * math.log2(size_mm / self._c0) - 1e-9) / 4.0)
+
     def nearest(self, p: np.ndarray) -> np.ndarray:
         """Index of the nearest segment to each point of ``p`` ((m, 2) [mm]; a tie: either segment)."""
         out = np.full(len(p), -1, dtype=np.int64)
         todo = np.arange(len(p))
         c = self._c0
+        if len(p) > _SAMPLE_POINTS:  # start where most points are found (the sample's own search is small)
+            sample = p[np.linspace(0, len(p) - 1, _SAMPLE_POINTS).astype(np.int64)]
+            d = self.distance(sample, self.nearest(sample))
+            c = self._cell(_SAMPLE_MARGIN * float(np.quantile(d, _SAMPLE_QUANTILE)))
         while todo.size and c <= 4.0 * self._span + self._c0:
             seg, d2 = self._pass(p[todo], c)
             found = (seg >= 0) & (d2 <= c * c)
@@ -226,16 +245,29 @@ class SegmentIndex:
             out[todo] = k
         return out
 
+    def distance(self, p: np.ndarray, seg: np.ndarray) -> np.ndarray:
+        """Distance [mm] of each point of ``p`` from its segment ``seg`` (as :meth:`nearest` returns them)."""
+        r = p - self._a[seg]
+        dd = self._d[seg]
+        t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
+        return np.hypot(*(r - t[:, None] * dd).T)
+
+    def within(self, p: np.ndarray, radius_mm: float) -> np.ndarray:
+        """Indices of the points of ``p`` ((m, 2) [mm]) closer than ``radius_mm`` to the polyline, ascending
+        (one pass over the buckets of that size)."""
+        seg, d2 = self._pass(p, self._cell(radius_mm))
+        hit = np.flatnonzero(seg >= 0)
+        return hit[self.distance(p[hit], seg[hit]) < radius_mm]
+
     def _pass(self, p, c):
         """(nearest segment among the 3 x 3 cells around each point or -1, its squared distance), in chunks."""
         base, width, keys, owners = self._grid(c)
         cell = np.floor(p / c).astype(np.int64) - base
-        nb = ((cell[:, 0:1] + np.array([-1, -1, -1, 0, 0, 0, 1, 1, 1])) * width
-              + cell[:, 1:2] + np.array([-1, 0, 1, -1, 0, 1, -1, 0, 1]))
-        lo = np.searchsorted(keys, nb, side="left").ravel()
-        hi = np.searchsorted(keys, nb, side="right").ravel()
+        column = (cell[:, 0:1] + np.array([-1, 0, 1])) * width + cell[:, 1:2]  # 3 cells above each other: a key range
+        lo = np.searchsorted(keys, column - 1, side="left").ravel()
+        hi = np.searchsorted(keys, column + 1, side="right").ravel()
         size = hi - lo
-        per_point = size.reshape(-1, 9).sum(axis=1)
+        per_point = size.reshape(-1, 3).sum(axis=1)
         best = np.full(len(p), -1, dtype=np.int64)
         best_d2 = np.full(len(p), np.inf)
         ends = np.cumsum(per_point)
@@ -243,10 +275,10 @@ class SegmentIndex:
         while start < len(p):
             stop = max(start + 1, int(np.searchsorted(ends, ends[start] - per_point[start] + _PAIR_CHUNK,
                                                        side="right")))
-            sz = size[9 * start:9 * stop]
-            owner = np.repeat(np.repeat(np.arange(start, stop), 9), sz)
+            sz = size[3 * start:3 * stop]
+            owner = np.repeat(np.repeat(np.arange(start, stop), 3), sz)
             offs = np.cumsum(sz) - sz
-            idx = np.repeat(lo[9 * start:9 * stop] - offs, sz) + np.arange(int(sz.sum()))
+            idx = np.repeat(lo[3 * start:3 * stop] - offs, sz) + np.arange(int(sz.sum()))
             seg = owners[idx]
             r = p[owner] - self._a[seg]
             dd = self._d[seg]
@@ -356,12 +388,14 @@ def self_crossings(xy_mm) -> tuple[np.ndarray, np.ndarray | None]:
 
 
 def corridor_hits(path, xy_mm, radius_mm: float) -> np.ndarray:
-    """Indices of the points closer than ``radius_mm`` to ``path`` (a line or (n, 2) points), ascending.
+    """Indices of the points closer than ``radius_mm`` to ``path`` (a :class:`SegmentIndex`, a line or (n, 2)
+    points), ascending.
 
     Examples
     --------
     >>> corridor_hits([(0, 0), (10, 0)], [(5, 1.0), (5, 1.9), (12, 0)], 1.8).tolist()
     [0]
     """
-    point, _, _ = TubeIndex([path]).within(xy_mm, [radius_mm])
-    return point
+    if not isinstance(path, SegmentIndex):
+        path = SegmentIndex(shapely.get_coordinates(path) if isinstance(path, shapely.Geometry) else path)
+    return path.within(np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2), radius_mm)

@@ -327,8 +327,17 @@ def test_segment_index_finds_the_nearest_segment_as_brute_force_does(n, seed):
         return np.hypot(*(r - t[:, None] * d[seg]).T)
 
     every = np.array([dist(np.full(len(p), k), p) for k in range(n - 1)])
-    got = dist(SegmentIndex(xy).nearest(p), p)
+    index = SegmentIndex(xy)
+    got = dist(index.nearest(p), p)
     assert np.allclose(got, every.min(axis=0), rtol=0.0, atol=1e-9)
+    many = np.repeat(p, 10, axis=0) + rng.normal(0.0, 0.01, (10 * len(p), 2))  # past the sample's size
+    many_every = np.array([dist(np.full(len(many), k), many) for k in range(n - 1)]).min(axis=0)
+    assert np.allclose(dist(index.nearest(many), many), many_every, rtol=0.0, atol=1e-9)
+    for radius in (0.05, 1.0, 3.0, 50.0):  # points within a radius: the same points as brute force, ascending
+        far_enough = np.abs(many_every - radius) > 1e-9
+        want = np.flatnonzero(many_every < radius)
+        got_within = index.within(many, radius)
+        assert np.array_equal(got_within[far_enough[got_within]], want[far_enough[want]]), radius
 
 
 def test_project_on_a_long_path_is_linear_and_builds_its_index_once():
