@@ -514,7 +514,30 @@ class Centerline:
 
 
 def as_centerline(obj) -> Centerline:
-    """A :class:`Centerline` from a Centerline, shapely LineString, (n, 2) points or SVG ``d`` string."""
+    """A :class:`Centerline` from a Centerline, shapely LineString, (n, 2) points or SVG ``d`` string.
+
+    Parameters
+    ----------
+    obj : Centerline, shapely.LineString, array_like (n, 2) or str
+        The path [mm]; a string is SVG path data.
+
+    Returns
+    -------
+    Centerline
+        ``obj`` itself if it is one.
+
+    Raises
+    ------
+    PathError
+        A shapely geometry that is no LineString, or points that make no path.
+
+    Examples
+    --------
+    >>> as_centerline("M 0,0 L 30,40").length_mm
+    50.0
+    >>> as_centerline([[0, 0], [3, 4]]).length_mm
+    5.0
+    """
     if isinstance(obj, Centerline):
         return obj
     if isinstance(obj, str):

@@ -80,6 +80,13 @@ _EXACT_REL = 1e-9
 def closing(params: CrossParams, adjust: str = "auto") -> tuple[int, float, float, str]:
     """Number of passes and the (possibly adjusted) interval and angle that close the pattern.
 
+    Parameters
+    ----------
+    params : CrossParams
+        The requested pattern.
+    adjust : {"auto", "interval", "angle"}, optional
+        What may change to close it: the interval, the angle, or whichever changes less ("auto").
+
     Returns
     -------
     passes, interval_mm, angle_deg, note
@@ -129,6 +136,22 @@ def _trim_turn(prev: tuple, nxt: tuple) -> tuple[tuple, tuple]:
 def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") -> float:
     """Upper bound of the needle stations (legs and edge stitches) of a cross pattern (no allocation).
 
+    Parameters
+    ----------
+    length_mm : float
+        Path length [mm].
+    params : CrossParams
+        The requested pattern.
+    adjust : {"auto", "interval", "angle"}, optional
+        How the pattern is closed (:func:`closing`).
+
+    Returns
+    -------
+    float
+        The bound (not rounded).
+
+    Examples
+    --------
     >>> round(cross_stations(100.0, CrossParams(7.0, 1.4, 45.0)))
     171
     """
@@ -140,6 +163,18 @@ def cross_stations(length_mm: float, params: CrossParams, adjust: str = "auto") 
 def cross_min_length_mm(params: CrossParams) -> float:
     """Shortest legs span of a cross of ``params`` as given (closed): two leg pitches, ``4 w tan(alpha0)`` [mm].
 
+    Parameters
+    ----------
+    params : CrossParams
+        The pattern, as the generator sews it.
+
+    Returns
+    -------
+    float
+        The span [mm].
+
+    Examples
+    --------
     >>> round(cross_min_length_mm(CrossParams(7.0, 1.4, 45.0)), 9)
     28.0
     """
@@ -149,6 +184,20 @@ def cross_min_length_mm(params: CrossParams) -> float:
 def cross_realised_params(params: CrossParams, adjust: str = "auto") -> CrossParams:
     """The parameters the generator uses: interval or angle adjusted so the pattern closes (:func:`closing`).
 
+    Parameters
+    ----------
+    params : CrossParams
+        The requested pattern.
+    adjust : {"auto", "interval", "angle"}, optional
+        What may change (:func:`closing`).
+
+    Returns
+    -------
+    CrossParams
+        The closed pattern's parameters.
+
+    Examples
+    --------
     >>> round(cross_realised_params(CrossParams(7.0, 1.4, 30.0), adjust="angle").angle_deg, 4)
     30.9638
     """

@@ -74,10 +74,17 @@ class FormatLimit:
     trim_as_jumps : bool
         True when the writer encodes a trim as a run of :data:`TRIM_JUMP_RUN` jumps (DST).
     description : str
+        The format's name for listings (``"Tajima DST (default)"``).
     unit_mm : float
         The format's position unit [mm]: every record is a whole number of them. The stitch
         plan's needle points are made on this grid (:func:`on_grid`), so a format with another
         unit must declare it here.
+
+    Examples
+    --------
+    >>> f = FORMAT_LIMITS["vp3"]
+    >>> f.max_record_mm, f.max_jump_mm, f.unit_mm
+    (25.5, 320.0, 0.1)
     """
 
     name: str
@@ -106,7 +113,27 @@ FORMAT_LIMITS: dict[str, FormatLimit] = {
 
 
 def format_limit(name: str) -> FormatLimit:
-    """Limits for a format name or suffix (``"dst"``, ``".DST"``); unknown names list the valid ones."""
+    """Limits for a format name or suffix (``"dst"``, ``".DST"``); unknown names list the valid ones.
+
+    Parameters
+    ----------
+    name : str
+        Format name or file suffix, any case.
+
+    Returns
+    -------
+    FormatLimit
+
+    Examples
+    --------
+    >>> format_limit(".DST").max_record_mm
+    12.1
+    >>> try:
+    ...     format_limit("svg")
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    format must be one of dst, tbf, exp, ..., got 'svg'
+    """
     key = name.lower().lstrip(".")
     if key not in FORMAT_LIMITS:
         raise ParameterError(f"format must be one of {', '.join(FORMAT_LIMITS)}, got {name!r}")
@@ -115,6 +142,16 @@ def format_limit(name: str) -> FormatLimit:
 
 def grid_units(xy_mm) -> np.ndarray:
     """Positions [mm] rounded to the machine grid, as int64 units (same frame and axes).
+
+    Parameters
+    ----------
+    xy_mm : array_like (n, 2)
+        Positions [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n, 2)
+        Whole machine units (no negative zeros).
 
     Examples
     --------
@@ -134,6 +171,16 @@ def on_grid(xy_mm) -> np.ndarray:
     everything measured on the plan (realised width, angle, length, the derived geometry,
     every prediction) is measured on what the machine sews.
 
+    Parameters
+    ----------
+    xy_mm : array_like (n, 2)
+        Positions [mm].
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 2)
+        The grid points [mm].
+
     Examples
     --------
     >>> on_grid([(3.0764, -3.0764), (0.04, 12.15)]).tolist()
@@ -143,13 +190,40 @@ def on_grid(xy_mm) -> np.ndarray:
 
 
 def record_moves_units(xy_mm) -> np.ndarray:
-    """Each record's move on the grid [units] from the previous record; the first moves from the origin."""
+    """Each record's move on the grid [units] from the previous record; the first moves from the origin.
+
+    Parameters
+    ----------
+    xy_mm : array_like (n, 2)
+        Record positions [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n, 2)
+        The moves [machine units].
+
+    Examples
+    --------
+    >>> record_moves_units([(1.0, 0.0), (1.5, -0.2)]).tolist()
+    [[10, 0], [5, -2]]
+    """
     u = grid_units(xy_mm)
     return np.diff(u, axis=0, prepend=np.zeros((1, 2), dtype=np.int64))
 
 
 def records_needed(moves_units, limit_mm: float) -> np.ndarray:
     """Records a move needs when no record may exceed ``limit_mm`` per axis (at least 1 per move).
+
+    Parameters
+    ----------
+    moves_units : array_like (n, 2)
+        Moves [machine units] (:func:`record_moves_units`).
+    limit_mm : float
+        Largest move per axis in one record [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n,)
 
     Examples
     --------
@@ -165,6 +239,16 @@ def framed_first(commands) -> np.ndarray:
     """Mask of the record the writer reaches by a frame move although it is a needle record: the
     first STITCH when only JUMP records come before it (a placement line starts a design that
     way); its move from the start point is travel, not a stitch.
+
+    Parameters
+    ----------
+    commands : array_like (n,)
+        :class:`Command` per record.
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (n,)
+        True at most once.
 
     Examples
     --------

@@ -47,9 +47,28 @@ def measure(xy_mm, roles, centerline, pattern: str) -> Realised:
     roles : array (n,)
         :class:`Role` per point; legs arrive at ``Role.LEG`` points.
     centerline : Centerline or anything :func:`as_centerline` takes
+        The path the legs were sewn along.
     pattern : str
         A registered pattern kind (its :attr:`~embroact.patterns.kinds.PatternKind.interval`
         measures the interval).
+
+    Returns
+    -------
+    Realised
+        Width, interval, angle and length [mm, deg], passes and where the legs start [mm].
+
+    Raises
+    ------
+    PatternError
+        No record is a leg.
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Role
+    >>> xy = [[0.0, 3.5], [1.0, -3.5], [2.0, 3.5]]
+    >>> r = measure(xy, [Role.TIE_IN, Role.LEG, Role.LEG], [[0.0, 0.0], [2.0, 0.0]], "zigzag")
+    >>> r.width_mm, r.interval_mm, r.length_mm, r.passes
+    (7.0, 1.0, 2.0, 1)
     """
     pattern_kind(pattern)  # a registered kind, else one line naming them
     cl = as_centerline(centerline)

@@ -45,7 +45,13 @@ __all__ = ["MachineOrigin", "check_origin", "origin_point_mm", "to_machine_frame
 
 
 class MachineOrigin(str, enum.Enum):
-    """Where the machine file starts (``[machine] origin``), besides an explicit point."""
+    """Where the machine file starts (``[machine] origin``), besides an explicit point.
+
+    Examples
+    --------
+    >>> MachineOrigin("first-stitch").name
+    'FIRST_STITCH'
+    """
 
     CENTER = "center"  #: centre of the design's extent
     FIRST_STITCH = "first-stitch"  #: the first needle point
@@ -57,15 +63,22 @@ def check_origin(value) -> str | tuple[float, float]:
     Parameters
     ----------
     value : str or pair of numbers
+        A :class:`MachineOrigin` value (any case) or a point [mm].
 
     Returns
     -------
     str or tuple of float
+        The origin's value, or the point as floats.
 
     Raises
     ------
     ParameterError
         One line naming ``origin``, the value and what is allowed.
+
+    Examples
+    --------
+    >>> check_origin(" Center"), check_origin([10, -5])
+    ('center', (10.0, -5.0))
     """
     if isinstance(value, str):
         try:
@@ -94,6 +107,15 @@ def origin_point_mm(plan: StitchPlan, origin: str | tuple[float, float]) -> np.n
     Returns
     -------
     ndarray, shape (2,)
+        The start point [mm] in the plan's frame.
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> plan = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0))
+    >>> origin_point_mm(plan, "center").tolist(), origin_point_mm(plan, (1.04, 2.0)).tolist()
+    ([10.0, 0.0], [1.0, 2.0])
     """
     from .plan import Command
 
@@ -114,13 +136,23 @@ def to_machine_frame(plan: StitchPlan, origin: str | tuple[float, float]) -> Sti
     Parameters
     ----------
     plan : StitchPlan
+        A plan in the design's frame.
     origin : str or tuple of float
+        As :func:`check_origin` returns it.
 
     Returns
     -------
     StitchPlan
         The same records and actuators, every position and tube path moved; ``origin_mm``
         says where its (0, 0) lies in the design's frame.
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> plan = to_machine_frame(zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0)), "center")
+    >>> plan.origin_mm, float(plan.xy_mm[:, 0].min() + plan.xy_mm[:, 0].max())
+    ((10.0, 0.0), 0.0)
     """
     shift = origin_point_mm(plan, origin)
     if not np.any(shift):

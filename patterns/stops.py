@@ -31,7 +31,13 @@ __all__ = ["CordStop", "cord_stop"]
 
 
 class CordStop(str, enum.Enum):
-    """How a stop-code format (DST, EXP) writes a cord-in stop."""
+    """How a stop-code format (DST, EXP) writes a cord-in stop.
+
+    Examples
+    --------
+    >>> CordStop("sequence").records_per_stop, CordStop.DOUBLE.value
+    (1, 'double')
+    """
 
     SEQUENCE = "sequence"
     """One stop/colour-change record per cord-in; a multi-needle machine must be in manual
@@ -47,5 +53,25 @@ class CordStop(str, enum.Enum):
 
 
 def cord_stop(value: object) -> CordStop:
-    """The :class:`CordStop` named by ``value``; a one-line error lists the valid names."""
+    """The :class:`CordStop` named by ``value``; a one-line error lists the valid names.
+
+    Parameters
+    ----------
+    value : CordStop or str
+        A member or its value (``"sequence"``, ``"double"``).
+
+    Returns
+    -------
+    CordStop
+
+    Examples
+    --------
+    >>> cord_stop("sequence")
+    <CordStop.SEQUENCE: 'sequence'>
+    >>> try:
+    ...     cord_stop("triple")
+    ... except ValueError as exc:
+    ...     print(exc)
+    cord_stop must be one of 'sequence', 'double', got 'triple'
+    """
     return check_choice("cord_stop", value, CordStop)

@@ -48,6 +48,20 @@ MIN_LEGS = 2
 def zigzag_stations(length_mm: float, params: ZigzagParams) -> int:
     """Needle stations a zigzag of ``params`` has on a path of ``length_mm`` (no allocation).
 
+    Parameters
+    ----------
+    length_mm : float
+        Path length [mm].
+    params : ZigzagParams
+        The pattern.
+
+    Returns
+    -------
+    int
+        One station per whole interval, plus the first.
+
+    Examples
+    --------
     >>> zigzag_stations(100.0, ZigzagParams(width_mm=7.0, interval_mm=1.0))
     101
     """
@@ -57,6 +71,18 @@ def zigzag_stations(length_mm: float, params: ZigzagParams) -> int:
 def zigzag_realised_params(params: ZigzagParams) -> ZigzagParams:
     """The parameters the generator uses: a zigzag realises its request as given.
 
+    Parameters
+    ----------
+    params : ZigzagParams
+        The requested pattern.
+
+    Returns
+    -------
+    ZigzagParams
+        ``params`` itself.
+
+    Examples
+    --------
     >>> zigzag_realised_params(ZigzagParams(7.0, 1.0))
     ZigzagParams(width_mm=7.0, interval_mm=1.0)
     """

@@ -35,6 +35,16 @@ E = TypeVar("E", bound=enum.Enum)
 def choice_values(choices: type[enum.Enum]) -> tuple[str, ...]:
     """The accepted strings of an enum, in declaration order.
 
+    Parameters
+    ----------
+    choices : Enum subclass
+        An enum whose member values are the accepted strings.
+
+    Returns
+    -------
+    tuple of str
+        Every member's value, as a string.
+
     Examples
     --------
     >>> import enum
@@ -54,15 +64,23 @@ def check_choice(name: str, value: object, choices: type[E]) -> E:
     value : object
         A member of ``choices`` or one of their values.
     choices : Enum subclass
+        The enum to pick from.
 
     Returns
     -------
     Enum member
+        ``value`` itself, or the member whose value equals it.
 
     Raises
     ------
     ParameterError
         ``value`` is neither; the message lists the valid values.
+
+    Examples
+    --------
+    >>> import enum
+    >>> check_choice("side", "left", enum.Enum("Side", {"LEFT": "left", "RIGHT": "right"})).name
+    'LEFT'
     """
     if isinstance(value, choices):
         return value

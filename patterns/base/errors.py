@@ -90,6 +90,9 @@ def check_range(
 ) -> float:
     """Return ``value`` as a finite float, or raise :class:`ParameterError`.
 
+    Subnormal numbers (``5e-324``: below ``sys.float_info.min`` in size, not zero) are refused
+    whatever the bounds: they carry a few bits of precision and their reciprocals overflow.
+
     Parameters
     ----------
     name : str
@@ -98,9 +101,23 @@ def check_range(
         The value to check; bools and non-numbers are rejected.
     low, high : float, optional
         Bounds; open unless ``low_inclusive``/``high_inclusive``.
+    low_inclusive, high_inclusive : bool, optional
+        Whether ``value == low`` (``value == high``) is accepted.
 
-    Subnormal numbers (``5e-324``: below ``sys.float_info.min`` in size, not zero) are refused
-    whatever the bounds: they carry a few bits of precision and their reciprocals overflow.
+    Returns
+    -------
+    float
+        ``value`` as a float.
+
+    Examples
+    --------
+    >>> check_range("width_mm", 7, low=0.0)
+    7.0
+    >>> try:
+    ...     check_range("angle_deg", 90, low=0.0, high=90.0)
+    ... except ValueError as exc:
+    ...     print(exc)
+    angle_deg must be in (0, 90), got 90
     """
     lo_b, hi_b = ("[" if low_inclusive else "("), ("]" if high_inclusive else ")")
     rng = f"{lo_b}{_fmt(low) if low is not None else '-inf'}, {_fmt(high) if high is not None else 'inf'}{hi_b}"

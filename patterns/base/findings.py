@@ -55,7 +55,13 @@ __all__ = [
 
 
 class Severity(str, Enum):
-    """How bad a finding is: errors stop ``build`` (unless ``--force``), warnings and info do not."""
+    """How bad a finding is: errors stop ``build`` (unless ``--force``), warnings and info do not.
+
+    Examples
+    --------
+    >>> sorted([Severity.INFO, Severity.ERROR], key=lambda s: s.rank)
+    [<Severity.ERROR: 'error'>, <Severity.INFO: 'info'>]
+    """
 
     ERROR = "error"
     WARNING = "warning"
@@ -74,6 +80,11 @@ class Inputs(Flag):
     read back (records and the tubes given with them); ``MODEL``: designs, through
     the deformation model (``embroact.predict``). A rule for ``DESIGNS`` only reads
     what a plan has and a file has not (requested parameters, the pattern kind).
+
+    Examples
+    --------
+    >>> (Inputs.DESIGNS | Inputs.FILES).label, Inputs.MODEL.label
+    ('designs, files', 'designs (model)')
     """
 
     DESIGNS = 1
@@ -97,6 +108,7 @@ class Rule:
     code : str
         Stable identifier, ``EA`` and three digits.
     severity : Severity
+        How bad its findings are.
     title : str
         A few words, lower case.
     description : str
@@ -112,6 +124,12 @@ class Rule:
     per_format : bool
         The check reads the target machine format (its record limits): a design written in
         several formats is checked once, and these rules again for each further format.
+
+    Examples
+    --------
+    >>> rule = Rule("EA999", Severity.INFO, "demo", "What is checked.", "How to fix it.", Inputs.FILES)
+    >>> rule.inputs_label, rule.check is None
+    ('files', True)
     """
 
     code: str
@@ -138,6 +156,7 @@ class Finding:
     code : str
         Rule code (see :data:`RULES`).
     severity : Severity
+        Its rule's severity.
     message : str
         What is wrong, with the measured and allowed numbers.
     actuator : str or None
@@ -160,6 +179,12 @@ class Finding:
         has the same number in every format, whatever records the format adds.
     at_needle : bool
         The record is the needle point ``needle_point``.
+
+    Examples
+    --------
+    >>> f = Finding("EA999", Severity.WARNING, "leg too long", actuator="A1", stitch_index=3)
+    >>> f.place(), f.count
+    ('A1, stitch 3', 1)
     """
 
     code: str
@@ -180,7 +205,20 @@ class Finding:
         return self.severity is Severity.ERROR
 
     def place(self) -> str:
-        """Short human-readable place: ``"A1, stitch 57 at (12.3, 4.5) mm"``."""
+        """Short human-readable place: ``"A1, stitch 57 at (12.30, 4.50) mm"``.
+
+        Returns
+        -------
+        str
+            Actuator, record (or needle point) and coordinates, as far as known; ``"design"`` if none is.
+
+        Examples
+        --------
+        >>> Finding("EA999", Severity.INFO, "m", actuator="A1", stitch_index=57, xy_mm=(12.3, 4.5)).place()
+        'A1, stitch 57 at (12.30, 4.50) mm'
+        >>> Finding("EA999", Severity.INFO, "m", stitch_index=9, needle_point=4, at_needle=False).place()
+        'record 9, after needle point 4'
+        """
         parts = []
         if self.actuator is not None:
             parts.append(self.actuator)
@@ -197,7 +235,20 @@ class Finding:
         return where or "design"
 
     def as_dict(self) -> dict:
-        """Plain dict for JSON (``xy_mm`` as a list or None)."""
+        """Plain dict for JSON (``xy_mm`` as a list or None).
+
+        Returns
+        -------
+        dict
+            Code, severity, title, message, actuator, stitch_index, xy_mm, fix and count, and
+            ``needle_point``/``at_needle`` for findings on embroidery files.
+
+        Examples
+        --------
+        >>> d = Finding("EA999", Severity.ERROR, "m", xy_mm=(1.0, 2.0)).as_dict()
+        >>> d["severity"], d["xy_mm"], "needle_point" in d
+        ('error', [1.0, 2.0], False)
+        """
         return {
             "code": self.code,
             "severity": self.severity.value,
@@ -224,6 +275,14 @@ class RuleRegistry:
         Modules declaring rules, imported (once) when a code is looked up that is not
         declared yet, before the lookup fails: a lookup never depends on what else the
         process happened to import.
+
+    Examples
+    --------
+    >>> reg = RuleRegistry()
+    >>> reg.declare(Rule("EA998", Severity.INFO, "demo", "What.", "Fix.", Inputs.DESIGNS)).code
+    'EA998'
+    >>> len(reg), "EA998" in reg, [r.code for r in reg]
+    (1, True, ['EA998'])
     """
 
     __slots__ = ("_rules", "_load_on_miss")
@@ -242,7 +301,33 @@ class RuleRegistry:
         return bool(pending)
 
     def declare(self, rule: Rule) -> Rule:
-        """Add ``rule``; a second, different declaration of its code is refused."""
+        """Add ``rule``; a second, different declaration of its code is refused.
+
+        Parameters
+        ----------
+        rule : Rule
+            The rule to add.
+
+        Returns
+        -------
+        Rule
+            ``rule`` itself.
+
+        Raises
+        ------
+        ParameterError
+            Another rule holds its code already.
+
+        Examples
+        --------
+        >>> reg = RuleRegistry()
+        >>> _ = reg.declare(Rule("EA998", Severity.INFO, "demo", "What.", "Fix.", Inputs.DESIGNS))
+        >>> try:
+        ...     reg.declare(Rule("EA998", Severity.INFO, "other", "What.", "Fix.", Inputs.DESIGNS))
+        ... except ValueError as exc:
+        ...     print(exc)
+        rule EA998 is declared twice ('demo' and 'other')
+        """
         old = self._rules.get(rule.code)
         same = old is not None and old.check is not None and rule.check is not None and (
             old.check.__module__, old.check.__qualname__) == (rule.check.__module__, rule.check.__qualname__)
@@ -253,8 +338,27 @@ class RuleRegistry:
 
     def rule(self, code: str, severity: Severity, title: str, description: str, fix: str,
              inputs: Inputs, *, per_format: bool = False) -> Callable[[Callable], Rule]:
-        """Decorator: declare rule ``code`` checked by the decorated function; returns the :class:`Rule`
-        (``per_format``: see :class:`Rule`)."""
+        """Decorator: declare rule ``code`` checked by the decorated function.
+
+        Parameters
+        ----------
+        code, severity, title, description, fix, inputs, per_format
+            The :class:`Rule`'s fields.
+
+        Returns
+        -------
+        callable
+            The decorator; it returns the declared :class:`Rule` in place of the function.
+
+        Examples
+        --------
+        >>> reg = RuleRegistry()
+        >>> @reg.rule("EA997", Severity.ERROR, "demo", "What.", "Fix.", Inputs.FILES)
+        ... def demo(subject):
+        ...     return []
+        >>> demo.code, demo.check(None)
+        ('EA997', [])
+        """
 
         def register(check: Callable) -> Rule:
             return self.declare(Rule(code, severity, title, description, fix, inputs, check, per_format))
@@ -290,7 +394,31 @@ class RuleRegistry:
         fix: str | None = None,
         count: int = 1,
     ) -> Finding:
-        """A :class:`Finding` of rule ``code`` with the rule's severity, title and default fix."""
+        """A :class:`Finding` of rule ``code`` with the rule's severity, title and default fix.
+
+        Parameters
+        ----------
+        code : str
+            A declared rule's code.
+        message : str
+            What is wrong, with the numbers.
+        actuator, stitch_index, xy_mm, count
+            Where, and how many findings it stands for (see :class:`Finding`).
+        fix : str or None, optional
+            A fix for this finding; None: the rule's default.
+
+        Returns
+        -------
+        Finding
+
+        Examples
+        --------
+        >>> reg = RuleRegistry()
+        >>> _ = reg.declare(Rule("EA998", Severity.WARNING, "demo", "What.", "Fix it.", Inputs.DESIGNS))
+        >>> f = reg.finding("EA998", "found", xy_mm=(1.23456, 2.0))
+        >>> f.severity.value, f.fix, f.xy_mm
+        ('warning', 'Fix it.', (1.2346, 2.0))
+        """
         rule = self[code]
         return Finding(
             code=code,
@@ -305,7 +433,20 @@ class RuleRegistry:
         )
 
     def markdown_table(self) -> str:
-        """The README table: code, severity, title, what is checked, where it runs."""
+        """The README table: code, severity, title, what is checked, where it runs.
+
+        Returns
+        -------
+        str
+            Markdown, one row per rule in code order, ending in a newline.
+
+        Examples
+        --------
+        >>> reg = RuleRegistry()
+        >>> _ = reg.declare(Rule("EA998", Severity.INFO, "demo", "What | why.", "Fix.", Inputs.DESIGNS))
+        >>> print(reg.markdown_table().splitlines()[2])
+        | EA998 | info | demo | What \\| why. | designs |
+        """
         lines = ["| code | severity | rule | what is checked | checks |", "|---|---|---|---|---|"]
         cells = [(r.code, r.severity.value, r.title, r.description, r.inputs_label) for r in self]
         lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in cells]
@@ -325,6 +466,16 @@ rules, this layer's) first; the sleeve and model rules are declared by the
 def rules_table_markdown(rules=RULES) -> str:
     """The Markdown table of ``rules`` (default: every rule declared so far).
 
+    Parameters
+    ----------
+    rules : RuleRegistry, optional
+        The rules to list.
+
+    Returns
+    -------
+    str
+        See :meth:`RuleRegistry.markdown_table`.
+
     Examples
     --------
     >>> import embroact.patterns.rules  # declares the geometric rules
@@ -337,6 +488,16 @@ def rules_table_markdown(rules=RULES) -> str:
 def count_by_severity(findings) -> dict[str, int]:
     """``{"error": n, "warning": n, "info": n}`` for a sequence of findings, each counted by its ``count``
     (a capped rule's closing finding stands for the findings it does not list).
+
+    Parameters
+    ----------
+    findings : iterable of Finding
+        The findings to count.
+
+    Returns
+    -------
+    dict of str to int
+        Every severity, in order, with its count (0 included).
 
     Examples
     --------
@@ -355,6 +516,17 @@ SUMMARY_NAMES = 5
 
 def summary_line(findings) -> str:
     """One line: counts of all findings by severity, and the codes with their actuators.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+        The findings to summarise.
+
+    Returns
+    -------
+    str
+        ``"N errors, N warnings, N info"``, then the codes in order, each with at most
+        :data:`SUMMARY_NAMES` actuator names.
 
     Examples
     --------

@@ -36,6 +36,11 @@ class Tolerances:
         Default relative tolerance of the deformation model's solvers [-].
     angle_solution_deg : float
         Default absolute tolerance on predicted bend angles [deg].
+
+    Examples
+    --------
+    >>> DEFAULT_TOLERANCES.machine_grid_mm, Tolerances(angle_deg=0.5).angle_deg
+    (0.1, 0.5)
     """
 
     length_mm: float = 1e-9

@@ -109,6 +109,18 @@ SHOWN_CHARS = 80
 def shown(value: object) -> str:
     """``repr`` of ``value`` cut to :data:`SHOWN_CHARS` characters: safe for one terminal line.
 
+    Parameters
+    ----------
+    value : object
+        Anything a user gave.
+
+    Returns
+    -------
+    str
+        Its ``repr``, ending in ``...`` when cut.
+
+    Examples
+    --------
     >>> shown("x" * 100)
     "'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...'"
     >>> shown("caf\\udce9")
@@ -124,6 +136,30 @@ def check_count(name: str, value: object, *, low: int, high: int) -> int:
     """Return ``value`` as an int in ``[low, high]``, or raise :class:`ParameterError`.
 
     Counts size allocations (markers, states, rows), so the upper bound is always finite.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the message.
+    value : object
+        The value to check; bools and non-integers are refused.
+    low, high : int
+        Inclusive bounds.
+
+    Returns
+    -------
+    int
+        ``value``.
+
+    Examples
+    --------
+    >>> check_count("markers", 7, low=2, high=64)
+    7
+    >>> try:
+    ...     check_count("markers", 7.0, low=2, high=64)
+    ... except ValueError as exc:
+    ...     print(exc)
+    markers must be an integer in [2, 64], got 7.0
     """
     if isinstance(value, bool) or not isinstance(value, int):
         raise ParameterError(f"{name} must be an integer in [{low}, {high}], got {shown(value)}")
@@ -143,6 +179,30 @@ def check_name(name: str, value: object, *, max_chars: int = NAME_CHARS) -> str:
 
     Names end up in SVG (XML 1.0 allows no control characters), worksheets and the
     terminal, so control characters (``\\x00``, ``\\x01``, escape sequences) are refused.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the message.
+    value : object
+        The name to check.
+    max_chars : int, optional
+        Longest name allowed [characters].
+
+    Returns
+    -------
+    str
+        ``value``.
+
+    Examples
+    --------
+    >>> check_name("name", "A1")
+    'A1'
+    >>> try:
+    ...     check_name("name", "A" * 9, max_chars=8)
+    ... except ValueError as exc:
+    ...     print(exc)
+    name must be at most 8 characters, got 9
     """
     if not isinstance(value, str) or not value.strip():
         raise ParameterError(f"{name} must be a non-empty string, got {shown(value)}")
@@ -160,6 +220,20 @@ def check_output_name(flag: str, value: object) -> str:
     that starts with ``-``); names that are not UTF-8 (``$'\\xff'`` from a shell) or carry
     control characters cannot be printed or written into a worksheet faithfully.
 
+    Parameters
+    ----------
+    flag : str
+        The option that names the output, for the message (``"--out"``).
+    value : object
+        The file name given.
+
+    Returns
+    -------
+    str
+        ``value``.
+
+    Examples
+    --------
     >>> check_output_name("--out", "out")
     'out'
     >>> try:
@@ -181,6 +255,20 @@ def check_output_name(flag: str, value: object) -> str:
 def check_coordinates(name: str, worst_mm: float) -> None:
     """Refuse a largest absolute coordinate ``worst_mm`` beyond :data:`COORD_MM` (or NaN), before arithmetic.
 
+    Parameters
+    ----------
+    name : str
+        What the coordinates belong to, for the message (``"path"``).
+    worst_mm : float
+        The largest absolute coordinate [mm].
+
+    Raises
+    ------
+    PathError
+        ``worst_mm`` is NaN or beyond :data:`COORD_MM`.
+
+    Examples
+    --------
     >>> try:
     ...     check_coordinates("path", 2e7)
     ... except ValueError as exc:
@@ -203,6 +291,20 @@ def read_limited(path: str | os.PathLike, limit: int, what: str) -> bytes:
     would otherwise wait forever) and a FIFO, a device (``/dev/zero``, a terminal) or a
     socket is refused before a byte is read. At most ``limit + 1`` bytes are read, so a file
     that grows while read is bounded too.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    limit : int
+        Largest size accepted [bytes].
+    what : str
+        What the file is, for the messages (``"design file"``).
+
+    Returns
+    -------
+    bytes
+        The file's content.
 
     Raises
     ------
@@ -248,6 +350,20 @@ def read_input(path: str | os.PathLike, limit: int, what: str, *, encoding: str 
     :func:`read_limited` with the messages every reader gives: ``<path>: cannot read <what>:
     <reason>``, ``<path>: <what> must be at most <limit> bytes, got <size>`` and ``<path>:
     <what> is not <encoding> text (byte <n>)``, raised as ``error``.
+
+    Parameters
+    ----------
+    path, limit, what
+        As for :func:`read_limited`.
+    encoding : str or None, optional
+        Decode the bytes with it; None: return the bytes.
+    error : type, optional
+        The :class:`EmbroactError` subclass every failure is raised as.
+
+    Returns
+    -------
+    bytes or str
+        The bytes, or the text when ``encoding`` is given.
 
     Examples
     --------
