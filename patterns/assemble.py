@@ -69,7 +69,33 @@ _EXTRA_RECORDS = 2
 
 
 def check_pattern_inputs(cl: Centerline, params: PatternParams, tube: Tube, options: StitchOptions) -> None:
-    """Checks shared by the generators: types, width vs tube corridor, interval, path bends."""
+    """Checks shared by the generators: types, width vs tube corridor, interval, path bends.
+
+    Parameters
+    ----------
+    cl : Centerline
+        The path.
+    params : PatternParams
+        The requested pattern.
+    tube : Tube
+        The tube the pattern holds.
+    options : StitchOptions
+        Lock stitches and the like.
+
+    Raises
+    ------
+    ParameterError
+        One line naming the parameter, the rule and the value.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> try:
+    ...     check_pattern_inputs(Centerline.straight(50.0), ZigzagParams(3.0, 1.0), Tube(), StitchOptions())
+    ... except ValueError as exc:
+    ...     print(exc)
+    width_mm must be > 2*(r_f + clearance) = 3.6, got 3
+    """
     if not isinstance(tube, Tube):
         raise ParameterError(f"tube must be a Tube, got {type(tube).__name__}")
     if not isinstance(options, StitchOptions):
@@ -96,6 +122,24 @@ def rail_positions(cl: Centerline, s_from: float, s_to: float, offset_mm: float,
     ``offset_mm`` (> 0 left) between them into the fewest equal pieces of at most ``max_step_mm``
     measured along that rail, whose arc length is ``(1 - kappa * offset) ds``.
 
+    Parameters
+    ----------
+    cl : Centerline
+        The path.
+    s_from, s_to : float
+        Arc lengths along the path [mm].
+    offset_mm : float
+        The rail's offset from the path [mm], > 0 left.
+    max_step_mm : float
+        Longest piece along the rail [mm].
+
+    Returns
+    -------
+    numpy.ndarray
+        Arc lengths [mm], ending at ``s_to``.
+
+    Examples
+    --------
     >>> from embroact.patterns.centerline import Centerline
     >>> rail_positions(Centerline.straight(10.0), 1.0, 7.0, 2.0, 2.5).tolist()
     [3.0, 5.0, 7.0]
@@ -119,6 +163,22 @@ def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np
     holds there (its other needle points are as close); :class:`PatternError` if the rail
     holds none.
 
+    Parameters
+    ----------
+    cl : Centerline
+        The path.
+    s_mm, offset_mm, direction : array_like (n,)
+        Arc length [mm], rail offset [mm] and direction (+1 or -1) of each lock stitch.
+    tie_mm : float
+        Lock stitch length, straight [mm].
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,)
+        Arc-length steps [mm], >= 0.
+
+    Examples
+    --------
     >>> from embroact.patterns.centerline import Centerline
     >>> tie_step_mm(Centerline.straight(10.0), [1.0, 9.0], [2.0, -2.0], [1, -1], 0.5).round(12).tolist()
     [0.5, 0.5]
@@ -154,7 +214,29 @@ def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np
 
 
 def check_record_count(n_stations: float, options: StitchOptions) -> int:
-    """Records a plan with ``n_stations`` stations needs; :class:`PatternError` above the cap."""
+    """Records a plan with ``n_stations`` stations needs; :class:`PatternError` above the cap.
+
+    Parameters
+    ----------
+    n_stations : float
+        Needle stations (an upper bound will do).
+    options : StitchOptions
+        Its ``tie_count`` adds lock stitches at both ends.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> check_record_count(101, StitchOptions()) > 101
+    True
+    >>> try:
+    ...     check_record_count(1e9, StitchOptions())
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    pattern would need about 1e+09 records, more than the limit ...; use a larger interval_mm or a shorter path
+    """
     n = float(n_stations) + 2 * options.tie_count + _EXTRA_RECORDS
     if n > MAX_RECORDS:
         raise PatternError(
@@ -185,11 +267,32 @@ def assemble(
     Parameters
     ----------
     cl : Centerline
+        The path.
     station_s, station_side, station_role : arrays (m,)
         Arc length [mm], rail side (+1 left / -1 right) and role of the stitch arriving
         at each station (the first station's role is unused: the tie-in ends there).
     params : PatternParams
         The requested parameters (rail offset is ``params.width_mm / 2``).
+    tube, options : Tube, StitchOptions, optional
+        The tube and the lock stitches.
+    name : str, optional
+        The actuator's name.
+    adjustments : tuple of str, optional
+        Notes of what the generator changed to close the pattern.
+
+    Returns
+    -------
+    StitchPlan
+        One actuator, its realised parameters measured on the records.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> s = np.arange(0.0, 11.0)
+    >>> plan = assemble(Centerline.straight(10.0), s, np.where(s % 2 == 0, 1.0, -1.0), np.full(11, Role.LEG),
+    ...                 params=ZigzagParams(7.0, 1.0), name="A")
+    >>> plan.actuators[0].realised.width_mm, int(plan.commands[0]) == Command.STOP
+    (7.0, True)
     """
     s0, sn = float(station_s[0]), float(station_s[-1])
     xy, commands, roles, actuator = frame_records(cl, station_s, station_side * (params.width_mm / 2.0), station_role,
@@ -204,8 +307,33 @@ def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.n
                   inward: np.ndarray, *, tube: Tube, options: StitchOptions):
     """Records 1-6 of the module docstring around stations given by arc length and rail offset [mm].
 
-    ``inward`` (+-1 each) is the direction along the path of the tie-in and the tie-off lock
-    stitches. Checks the corridor invariant; returns ``(xy, commands, roles, actuator)``.
+    Checks the corridor invariant.
+
+    Parameters
+    ----------
+    cl : Centerline
+        The path.
+    station_s, station_offset_mm, station_role : numpy.ndarray (m,)
+        Arc length [mm], rail offset [mm] and role of the stitch arriving at each station.
+    inward : numpy.ndarray (2,)
+        Direction along the path (+1 or -1) of the tie-in and the tie-off lock stitches.
+    tube, options : Tube, StitchOptions
+        The tube and the lock stitches.
+
+    Returns
+    -------
+    xy, commands, roles, actuator : numpy.ndarray
+        The records: positions on the machine grid [mm], :class:`Command`, :class:`Role` and
+        actuator index (-1 for the END record).
+
+    Examples
+    --------
+    >>> s = np.array([0.0, 1.0, 2.0])
+    >>> xy, cmds, roles, act = frame_records(Centerline.straight(5.0), s, np.array([3.5, -3.5, 3.5]),
+    ...                                      np.full(3, Role.LEG), np.array([1.0, -1.0]), tube=Tube(),
+    ...                                      options=StitchOptions(tie_count=2))
+    >>> [Command(c).name for c in cmds[[0, -2, -1]]], len(xy), int(act[-1])
+    (['STOP', 'TRIM', 'END'], 9, -1)
     """
     k = options.tie_count
     s0, sn = float(station_s[0]), float(station_s[-1])

@@ -29,6 +29,19 @@ def whole_intervals(length_mm: float, interval_mm: float) -> int:
     """Whole intervals along ``length_mm`` (within the length tolerance): the generators fill that
     many times ``interval_mm`` of a path, centred on it.
 
+    Parameters
+    ----------
+    length_mm : float
+        Path length [mm].
+    interval_mm : float
+        Stitch interval [mm], > 0.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
     >>> whole_intervals(100.0, 1.4), whole_intervals(2.8 - 1e-12, 1.4)
     (71, 2)
     """
@@ -195,6 +208,15 @@ class PatternParams(Protocol):
     ``width_mm`` and ``interval_mm``, checking its own ranges; a kind may add fields
     (``angle_deg``).
 
+    Attributes
+    ----------
+    pattern : str
+        The kind's name (a class attribute).
+    width_mm : float
+        Rail spacing [mm].
+    interval_mm : float
+        Stitch interval along the path [mm].
+
     Examples
     --------
     >>> p: PatternParams = ZigzagParams(7.0, 1.0)
@@ -203,10 +225,16 @@ class PatternParams(Protocol):
     """
 
     @property
-    def pattern(self) -> str: ...
+    def pattern(self) -> str:
+        """The kind's name, ``"zigzag"``."""
+        ...
 
     @property
-    def width_mm(self) -> float: ...
+    def width_mm(self) -> float:
+        """Rail spacing [mm]."""
+        ...
 
     @property
-    def interval_mm(self) -> float: ...
+    def interval_mm(self) -> float:
+        """Stitch interval along the path [mm]."""
+        ...

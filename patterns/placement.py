@@ -58,6 +58,23 @@ def placement_records(length_mm: float, stitch_mm: float, tie_count: int, half_w
     start point, ``tie_count`` lock stitches, ``ceil(length / stitch)`` running stitches and
     the stitches out to a first needle point up to ``length + half_width`` away).
 
+    Parameters
+    ----------
+    length_mm : float
+        Path length [mm].
+    stitch_mm : float
+        Longest running stitch [mm], > 0.
+    tie_count : int
+        Lock stitches at the start of the line.
+    half_width_mm : float
+        Half the pattern's width [mm].
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
     >>> placement_records(100.0, 2.5, 3, 3.5)
     86
     """
@@ -71,6 +88,7 @@ def placement_line(centerline, stitch_mm: float, end_mm, *, tie_stitch_mm: float
     Parameters
     ----------
     centerline : Centerline
+        The tube's path.
     stitch_mm : float
         Longest running stitch [mm], > 0.
     end_mm : (x, y)
@@ -79,6 +97,18 @@ def placement_line(centerline, stitch_mm: float, end_mm, *, tie_stitch_mm: float
         Lock stitch length (straight, along the axis) [mm].
     tie_count : int
         Lock stitches at the start of the line.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 2)
+        On the machine grid, from the path's end back to its start and out to ``end_mm``.
+
+    Examples
+    --------
+    >>> from embroact.patterns.centerline import Centerline
+    >>> xy = placement_line(Centerline.straight(10.0), 2.5, (0.0, 3.5), tie_stitch_mm=0.5, tie_count=2)
+    >>> xy[0].tolist(), xy[-1].tolist(), len(xy)
+    ([10.0, 0.0], [0.0, 3.5], 9)
     """
     check_range("placement_stitch_mm", stitch_mm, low=0.0, high=1000.0, high_inclusive=True)
     length = centerline.length_mm
@@ -94,11 +124,31 @@ def placement_line(centerline, stitch_mm: float, end_mm, *, tie_stitch_mm: float
 def with_placement(plan: StitchPlan, stitch_mm: float) -> StitchPlan:
     """A one-actuator ``plan`` with its placement line inserted before its cord-in STOP.
 
+    Parameters
+    ----------
+    plan : StitchPlan
+        One actuator's plan, with its one STOP.
+    stitch_mm : float
+        Longest running stitch of the line [mm], > 0.
+
+    Returns
+    -------
+    StitchPlan
+        The same records, with the line's records (role PLACEMENT) before the STOP.
+
     Raises
     ------
     ParameterError
         ``plan`` is not one actuator's plan with a STOP (a joined design: add the lines
         before joining).
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> plan = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0))
+    >>> int((with_placement(plan, 2.5).roles == Role.PLACEMENT).sum()) > 0
+    True
     """
     stops = np.flatnonzero(plan.commands == Command.STOP)
     if len(plan.actuators) != 1 or len(stops) != 1:

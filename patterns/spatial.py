@@ -61,6 +61,12 @@ class Crossings:
         Length of the leg's projection on the axis direction there [mm].
 
     Rows are sorted by tube, then arc length, then leg.
+
+    Examples
+    --------
+    >>> c = TubeIndex([[(0, 0), (10, 0)]]).crossings([(2, -3), (5, -3)], [(2, 3), (8, 3)])
+    >>> len(c), c.s_mm.tolist(), c.cot.tolist(), c.along_mm.tolist()
+    (2, [2.0, 6.5], [0.0, 0.5], [0.0, 3.0])
     """
 
     __slots__ = ("leg", "tube", "s_mm", "cot", "along_mm")
@@ -79,6 +85,12 @@ class TubeIndex:
     ----------
     paths : sequence of shapely.LineString or (n, 2) arrays
         Tube axes [mm].
+
+    Examples
+    --------
+    >>> idx = TubeIndex([[(0, 0), (10, 0)], [(0, 20), (10, 20)]])
+    >>> [a.tolist() for a in idx.nearest([(5, 1), (5, 18), (5, 50)], 5.0)]
+    [[0, 1], [0, 1], [1.0, 2.0]]
     """
 
     __slots__ = ("_a", "_d", "_len", "_s", "_tube", "_tree", "queries")
@@ -106,8 +118,25 @@ class TubeIndex:
     def within(self, xy_mm, radius_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Point-tube pairs closer than the tube's radius: point index, tube index, distance [mm].
 
-        ``radius_mm`` is one radius per tube. Each pair appears once (its nearest
-        segment), sorted by point, then tube.
+        Parameters
+        ----------
+        xy_mm : array_like (n, 2)
+            Points [mm].
+        radius_mm : array_like (m,)
+            One radius per tube [mm].
+
+        Returns
+        -------
+        point, tube : numpy.ndarray of int64
+            The pairs; each appears once (its nearest segment), sorted by point, then tube.
+        distance : numpy.ndarray
+            Point to axis [mm].
+
+        Examples
+        --------
+        >>> idx = TubeIndex([[(0, 0), (10, 0)], [(0, 2), (10, 2)]])
+        >>> [a.tolist() for a in idx.within([(5, 1), (5, 5)], [1.5, 1.5])]
+        [[0, 0], [0, 1], [1.0, 1.0]]
         """
         p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
         radius = np.asarray(radius_mm, dtype=np.float64).reshape(-1)
@@ -128,7 +157,27 @@ class TubeIndex:
         return i[first], tube[first], dist[first]
 
     def nearest(self, xy_mm, max_distance_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """For each point within ``max_distance_mm`` of some tube: point index, nearest tube, distance [mm]."""
+        """For each point within ``max_distance_mm`` of some tube: point index, nearest tube, distance [mm].
+
+        Parameters
+        ----------
+        xy_mm : array_like (n, 2)
+            Points [mm].
+        max_distance_mm : float
+            Points further from every tube are left out [mm].
+
+        Returns
+        -------
+        point, tube : numpy.ndarray of int64
+            Each point near a tube, and its nearest tube.
+        distance : numpy.ndarray
+            Point to that tube's axis [mm].
+
+        Examples
+        --------
+        >>> [a.tolist() for a in TubeIndex([[(0, 0), (10, 0)]]).nearest([(5, 3), (5, 30)], 10.0)]
+        [[0], [0], [3.0]]
+        """
         p = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
         if len(p) == 0 or len(self._len) == 0:
             return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
@@ -138,7 +187,23 @@ class TubeIndex:
         return i, self._tube[k], dist
 
     def crossings(self, a_mm, b_mm) -> Crossings:
-        """Where straight legs a -> b cross the tube axes (a leg lying along an axis does not cross it)."""
+        """Where straight legs a -> b cross the tube axes (a leg lying along an axis does not cross it).
+
+        Parameters
+        ----------
+        a_mm, b_mm : array_like (n, 2)
+            Start and end of each leg [mm].
+
+        Returns
+        -------
+        Crossings
+
+        Examples
+        --------
+        >>> c = TubeIndex([[(0, 0), (10, 0)]]).crossings([(2, -3), (0, 0)], [(2, 3), (9, 0)])
+        >>> c.leg.tolist(), c.s_mm.tolist()
+        ([0], [2.0])
+        """
         a = np.asarray(a_mm, dtype=np.float64).reshape(-1, 2)
         b = np.asarray(b_mm, dtype=np.float64).reshape(-1, 2)
         if len(a) == 0 or len(self._len) == 0:
@@ -223,7 +288,23 @@ class SegmentIndex:
         return self._c0 * 2.0 ** (math.ceil(4.0 * math.log2(size_mm / self._c0) - 1e-9) / 4.0)
 
     def nearest(self, p: np.ndarray) -> np.ndarray:
-        """Index of the nearest segment to each point of ``p`` ((m, 2) [mm]; a tie: either segment)."""
+        """Index of the nearest segment to each point of ``p``.
+
+        Parameters
+        ----------
+        p : numpy.ndarray, shape (m, 2)
+            Points [mm].
+
+        Returns
+        -------
+        numpy.ndarray of int64, shape (m,)
+            Segment i runs from vertex i to i + 1; a tie gives either segment.
+
+        Examples
+        --------
+        >>> SegmentIndex([(0, 0), (10, 0), (10, 10)]).nearest(np.array([(9.0, 5.0)])).tolist()
+        [1]
+        """
         out = np.full(len(p), -1, dtype=np.int64)
         todo = np.arange(len(p))
         c = self._c0
@@ -309,6 +390,17 @@ def needle_density(xy_mm, radius_mm: float = 0.5) -> np.ndarray:
     at most about 80 positions within 0.5 mm) cost the same however many are piled on
     one spot (a mutated file with 10^5 stitches in one place).
 
+    Parameters
+    ----------
+    xy_mm : array_like (n, 2)
+        Needle points [mm].
+    radius_mm : float, optional
+        Radius of the count [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n,)
+
     Examples
     --------
     >>> needle_density([(0, 0), (0.3, 0.4), (5, 5)], 0.5).tolist()  # 0.5 mm apart exactly: counted
@@ -357,6 +449,11 @@ def self_crossings(xy_mm) -> tuple[np.ndarray, np.ndarray | None]:
     Neighbouring segments count only when they overlap (the path doubles back on
     itself); a closed polyline (last point on the first) does not count its closing joint.
 
+    Parameters
+    ----------
+    xy_mm : array_like (n, 2)
+        Polyline vertices [mm].
+
     Returns
     -------
     pairs : ndarray (m, 2) of int64
@@ -390,6 +487,19 @@ def self_crossings(xy_mm) -> tuple[np.ndarray, np.ndarray | None]:
 def corridor_hits(path, xy_mm, radius_mm: float) -> np.ndarray:
     """Indices of the points closer than ``radius_mm`` to ``path`` (a :class:`SegmentIndex`, a line or (n, 2)
     points), ascending.
+
+    Parameters
+    ----------
+    path : shapely.LineString or array_like (n, 2)
+        The axis [mm].
+    xy_mm : array_like (m, 2)
+        Points [mm].
+    radius_mm : float
+        Corridor radius [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64
 
     Examples
     --------

@@ -61,10 +61,55 @@ def check_layout(layout: Layout, settings: RuleSettings | None = None, *, rules=
 
     Each rule lists at most ``settings.max_findings_per_rule`` findings plus one
     summary finding for the rest.
+
+    Parameters
+    ----------
+    layout : Layout
+        Records and tubes (an embroidery file's, or a plan's).
+    settings : RuleSettings or None, optional
+        Thresholds; None: the defaults.
+    rules : iterable of Rule, optional
+        The rules to run (those for files only; the ones for designs need a plan).
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first.
+
+    Examples
+    --------
+    >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5,
+    ...                             clearance_mm=0.3, end_margin_mm=0.0, half_width_mm=3.5)
+    >>> recs = [(2, 3.5), (3, -3.5), (4, 3.5), (5, 1.0), (6, -3.5)]  # the fourth pierces the tube
+    >>> lay = Layout.from_points(recs, [0] * 5, [0] * 5, tubes=(tube,))
+    >>> [(f.code, f.severity.value) for f in check_layout(lay)]
+    [('EA101', 'error')]
     """
     return run_rules(rules, Subject(layout, settings or RuleSettings()))
 
 
 def check_geometry(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=GEOMETRY_RULES):
-    """Every rule of ``rules`` for designs on a stitch plan; findings worst first."""
+    """Every rule of ``rules`` for designs on a stitch plan; findings worst first.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        A design's plan.
+    settings : RuleSettings or None, optional
+        Thresholds; None: the defaults.
+    rules : iterable of Rule, optional
+        The rules to run.
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first.
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> check_geometry(zigzag([[0.0, 0.0], [60.0, 0.0]], ZigzagParams(7.0, 1.0)))
+    ()
+    """
     return run_rules(rules, Subject(layout_from_plan(plan), settings or RuleSettings(), plan))

@@ -54,6 +54,13 @@ class Hits:
         ``message(j) -> str`` for hit ``j``.
     owner : ndarray of int or None
         Tube index per hit for the finding's actuator (default: the record's owner).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hits = Hits(np.array([3, 8]), lambda j: f"hit {j}")
+    >>> len(hits), hits.message(1)
+    (2, 'hit 1')
     """
 
     index: np.ndarray
@@ -70,9 +77,18 @@ class Subject:
     Parameters
     ----------
     layout : Layout
+        Records and tubes.
     settings : RuleSettings
+        Thresholds.
     plan : StitchPlan or None
         The design's plan; None for embroidery files (rules for designs only are skipped).
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import Layout, RuleSettings
+    >>> s = Subject(Layout.from_points([(0, 0), (3, 4)], [0, 0], [-1, -1], tubes=()), RuleSettings())
+    >>> s.displacements_mm.tolist(), s.plan is None
+    ([[0.0, 0.0], [3.0, 4.0]], True)
     """
 
     def __init__(self, layout: Layout, settings: RuleSettings, plan: StitchPlan | None = None) -> None:
@@ -87,7 +103,27 @@ class Subject:
         return self.plan
 
     def shared(self, key: str, compute: Callable):
-        """``compute()`` once per subject under ``key``: a value several rules read."""
+        """``compute()`` once per subject under ``key``: a value several rules read.
+
+        Parameters
+        ----------
+        key : str
+            The value's name, unique among the rules.
+        compute : callable
+            ``compute() -> value``, called on the first request only.
+
+        Returns
+        -------
+        object
+            The value.
+
+        Examples
+        --------
+        >>> from embroact.patterns.rules import Layout, RuleSettings
+        >>> s = Subject(Layout.from_points([(0, 0)], [0], [-1], tubes=()), RuleSettings())
+        >>> s.shared("n", lambda: [1]) is s.shared("n", lambda: [2])
+        True
+        """
         if key not in self._shared:
             self._shared[key] = compute()
         return self._shared[key]
@@ -178,7 +214,28 @@ class Subject:
         return first
 
     def actuator_place(self, k: int) -> dict:
-        """``actuator``, ``stitch_index`` and ``xy_mm`` of plan actuator ``k`` (at its first leg)."""
+        """``actuator``, ``stitch_index`` and ``xy_mm`` of plan actuator ``k`` (at its first leg).
+
+        Parameters
+        ----------
+        k : int
+            Actuator index in the plan.
+
+        Returns
+        -------
+        dict
+            Keyword arguments for :meth:`RuleRegistry.finding`.
+
+        Examples
+        --------
+        >>> from embroact.patterns.rules import RuleSettings, layout_from_plan
+        >>> from embroact.patterns.zigzag import zigzag
+        >>> from embroact.patterns.params import ZigzagParams
+        >>> plan = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1")
+        >>> place = Subject(layout_from_plan(plan), RuleSettings(), plan).actuator_place(0)
+        >>> place["actuator"], place["stitch_index"] > 0
+        ('A1', True)
+        """
         i = int(self.first_leg[k])
         plan = self.design_plan
         return dict(actuator=plan.actuators[k].name, stitch_index=i if i >= 0 else None,
@@ -191,6 +248,27 @@ class Subject:
         realised ones of each of its patterns (:func:`~embroact.patterns.segments.pattern_parts`)
         and returns the text, or None when there is nothing to report; the part's label
         prefixes the text and the finding sits at the actuator's first leg.
+
+        Parameters
+        ----------
+        code : str
+            The rule's code.
+        message : callable
+            ``message(act, req, real) -> str or None``.
+
+        Returns
+        -------
+        list of Finding
+
+        Examples
+        --------
+        >>> from embroact.patterns.rules import RuleSettings, layout_from_plan
+        >>> from embroact.patterns.zigzag import zigzag
+        >>> from embroact.patterns.params import ZigzagParams
+        >>> plan = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0))
+        >>> s = Subject(layout_from_plan(plan), RuleSettings(), plan)
+        >>> [f.message for f in s.pattern_findings("EA203", lambda act, req, real: f"width {real.width_mm:g} mm")]
+        ['width 7 mm']
         """
         out = []
         for k, act in enumerate(self.design_plan.actuators):
@@ -202,13 +280,59 @@ class Subject:
 
     # ----------------------------------------------------------------- findings
     def point(self, i: int, code: str, message: str, *, owner: int | None = None) -> Finding:
-        """A finding at layout record ``i`` (actuator: the record's owner, or ``owner``)."""
+        """A finding at layout record ``i`` (actuator: the record's owner, or ``owner``).
+
+        Parameters
+        ----------
+        i : int
+            Layout record.
+        code, message : str
+            The rule's code and the finding's text.
+        owner : int or None, optional
+            Tube index the finding belongs to; None: the record's owner.
+
+        Returns
+        -------
+        Finding
+
+        Examples
+        --------
+        >>> from embroact.patterns.rules import Layout, RuleSettings, TubeLayout
+        >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+        ...                             end_margin_mm=0.0, half_width_mm=3.5)
+        >>> s = Subject(Layout.from_points([(2, 3.5), (3, 1.0)], [0, 0], [0, 0], tubes=(tube,)), RuleSettings())
+        >>> s.point(1, "EA101", "in the tube").place()
+        'A, stitch 1 at (3.00, 1.00) mm'
+        """
         lay = self.layout
         return RULES.finding(code, message, actuator=lay.name_of(int(lay.owner[i] if owner is None else owner)),
                              stitch_index=int(lay.index[i]), xy_mm=lay.xy_mm[i])
 
     def tube_finding(self, k: int, code: str, message: str, xy=None) -> Finding:
-        """A finding on tube ``k``, placed at its first needle point unless ``xy`` is given."""
+        """A finding on tube ``k``, placed at its first needle point unless ``xy`` is given.
+
+        Parameters
+        ----------
+        k : int
+            Tube index.
+        code, message : str
+            The rule's code and the finding's text.
+        xy : (x, y) or None, optional
+            Where [mm]; None: at the tube's first needle point.
+
+        Returns
+        -------
+        Finding
+
+        Examples
+        --------
+        >>> from embroact.patterns.rules import Layout, RuleSettings, TubeLayout
+        >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+        ...                             end_margin_mm=0.0, half_width_mm=3.5)
+        >>> s = Subject(Layout.from_points([(2, 3.5), (3, -3.5)], [0, 0], [0, 0], tubes=(tube,)), RuleSettings())
+        >>> s.tube_finding(0, "EA304", "tube A is short").place()
+        'A, stitch 0 at (2.00, 3.50) mm'
+        """
         i = int(self.first_needle[k])
         if xy is None and i >= 0:
             xy = self.layout.xy_mm[i]
@@ -239,7 +363,24 @@ def _capped(subject: Subject, code: str, found, limit: int) -> list[Finding]:
 
 
 def sort_findings(findings) -> tuple[Finding, ...]:
-    """Worst first, then by code and stitch index (deterministic order)."""
+    """Worst first, then by code and stitch index (deterministic order).
+
+    Parameters
+    ----------
+    findings : iterable of Finding
+        In any order.
+
+    Returns
+    -------
+    tuple of Finding
+
+    Examples
+    --------
+    >>> import embroact.patterns.rules  # declares the rules
+    >>> fs = [RULES.finding("EA105", "w", stitch_index=2), RULES.finding("EA101", "e", stitch_index=9)]
+    >>> [f.code for f in sort_findings(fs)]
+    ['EA101', 'EA105']
+    """
     return tuple(
         sorted(
             findings,
@@ -249,14 +390,54 @@ def sort_findings(findings) -> tuple[Finding, ...]:
 
 
 def applies(rule: Rule, subject: Subject) -> bool:
-    """True when ``rule`` runs on ``subject``: file rules always, design-only rules with a plan."""
+    """True when ``rule`` runs on ``subject``: file rules always, design-only rules with a plan.
+
+    Parameters
+    ----------
+    rule : Rule
+        A declared rule.
+    subject : Subject
+        What is checked.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import Layout, RuleSettings
+    >>> s = Subject(Layout.from_points([(0, 0)], [0], [-1], tubes=()), RuleSettings())
+    >>> applies(RULES["EA101"], s), applies(RULES["EA204"], s)
+    (True, False)
+    """
     if rule.check is None:
         return False
     return Inputs.FILES in rule.inputs or (subject.plan is not None and Inputs.DESIGNS in rule.inputs)
 
 
 def run_rules(rules, subject: Subject) -> tuple[Finding, ...]:
-    """Every rule of ``rules`` that applies to ``subject``, capped per rule; findings worst first."""
+    """Every rule of ``rules`` that applies to ``subject``, capped per rule; findings worst first.
+
+    Parameters
+    ----------
+    rules : iterable of Rule
+        The rules to run.
+    subject : Subject
+        What is checked.
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first; a rule with more than ``settings.max_findings_per_rule`` findings closes
+        with one that counts the rest.
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import Layout, RuleSettings
+    >>> s = Subject(Layout.from_points([(0, 0), (30, 0)], [0, 0], [-1, -1], tubes=()), RuleSettings())
+    >>> [f.code for f in run_rules([RULES["EA102"]], s)]
+    ['EA102']
+    """
     found: list[Finding] = []
     for rule in rules:
         if applies(rule, subject):

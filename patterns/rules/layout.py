@@ -43,6 +43,7 @@ class TubeLayout:
     Attributes
     ----------
     name : str
+        The actuator's (or tube's) name.
     path : shapely.LineString
         Tube axis [mm] in the layout's frame (any line, even one that crosses itself).
     outer_radius_mm, clearance_mm, end_margin_mm : float
@@ -52,6 +53,13 @@ class TubeLayout:
     centerline : Centerline or None
         The path as a :class:`~embroact.patterns.centerline.Centerline` (projection,
         curvature); None when the path is not a valid centerline (it crosses itself).
+
+    Examples
+    --------
+    >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+    ...                             end_margin_mm=2.0, half_width_mm=3.5)
+    >>> tube.path.length, tube.centerline.length_mm, tube.extended_path().length
+    (8.0, 8.0, 12.0)
     """
 
     name: str
@@ -65,7 +73,28 @@ class TubeLayout:
     @classmethod
     def from_path(cls, name: str, path, *, outer_radius_mm: float, clearance_mm: float,
                   end_margin_mm: float, half_width_mm: float | None = None) -> "TubeLayout":
-        """From a LineString or (n, 2) points; ``centerline`` is None if the path is not a valid one."""
+        """From a LineString or (n, 2) points; ``centerline`` is None if the path is not a valid one.
+
+        Parameters
+        ----------
+        name : str
+            The tube's name.
+        path : shapely.LineString or array_like (n, 2)
+            Its axis [mm], at least 2 finite points and a length > 0.
+        outer_radius_mm, clearance_mm, end_margin_mm, half_width_mm : float
+            As the attributes.
+
+        Returns
+        -------
+        TubeLayout
+
+        Examples
+        --------
+        >>> crossing = TubeLayout.from_path("B", [(0, 0), (5, 5), (5, 0), (0, 5)], outer_radius_mm=1.5,
+        ...                                 clearance_mm=0.3, end_margin_mm=0.0)
+        >>> crossing.centerline is None, crossing.half_width_mm is None
+        (True, True)
+        """
         xy = np.asarray(path.coords if isinstance(path, shapely.LineString) else path, dtype=np.float64)
         if xy.ndim != 2 or xy.shape[1] < 2 or len(xy) < 2 or not np.all(np.isfinite(xy)):
             raise ParameterError(f"tube path of {name} must be finite (x, y) points, at least 2, got shape {xy.shape}")
@@ -84,7 +113,20 @@ class TubeLayout:
         return self.outer_radius_mm + self.clearance_mm
 
     def extended_path(self):
-        """The path lengthened by ``end_margin_mm`` along the end tangents (the whole laid tube)."""
+        """The path lengthened by ``end_margin_mm`` along the end tangents (the whole laid tube).
+
+        Returns
+        -------
+        shapely.LineString
+            ``path`` itself when there is no margin.
+
+        Examples
+        --------
+        >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+        ...                             end_margin_mm=2.0, half_width_mm=3.5)
+        >>> list(tube.extended_path().coords)[0]
+        (-2.0, 0.0)
+        """
         if self.end_margin_mm <= 0.0:
             return self.path
         xy = np.asarray(self.path.coords, dtype=np.float64)[:, :2]
@@ -107,6 +149,7 @@ class Layout:
     owner : ndarray of int16
         Index into ``tubes`` of the tube a record belongs to, -1 for none.
     tubes : tuple of TubeLayout
+        The tubes, indexed by ``owner``.
     index : ndarray of int64
         Stitch index to report per record (plan index, or file record index).
     before_tube : ndarray of bool
@@ -115,6 +158,12 @@ class Layout:
     header_faults : tuple of str
         Fields of an embroidery file's header that disagree with its records (rule EA505), as
         found when the file was read; empty for designs.
+
+    Examples
+    --------
+    >>> lay = Layout.from_points([(0, 0), (1, 2)], [0, 1], [-1, -1], tubes=())
+    >>> lay.index.tolist(), lay.xy_mm.flags.writeable, lay.name_of(-1)
+    ([0, 1], False, None)
     """
 
     xy_mm: np.ndarray
@@ -128,8 +177,30 @@ class Layout:
     @classmethod
     def from_points(cls, xy_mm, commands, owner, *, tubes, index=None, before_tube=None,
                     header_faults=()) -> "Layout":
-        """Build from array-likes (copied, made read-only); ``index`` defaults to 0..n-1,
-        ``before_tube`` to all False."""
+        """Build from array-likes (copied, made read-only).
+
+        Parameters
+        ----------
+        xy_mm, commands, owner : array_like
+            As the attributes, one entry per record; ``owner`` in ``[-1, len(tubes))``.
+        tubes : sequence of TubeLayout
+            The tubes.
+        index, before_tube : array_like, optional
+            As the attributes; default 0..n-1 and all False.
+        header_faults : sequence of str, optional
+            As the attribute.
+
+        Returns
+        -------
+        Layout
+
+        Examples
+        --------
+        >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+        ...                             end_margin_mm=2.0, half_width_mm=3.5)
+        >>> Layout.from_points([(2, 3.5)], [0], [0], tubes=(tube,), index=[40]).index.tolist()
+        [40]
+        """
         xy = frozen_array(xy_mm).reshape(-1, 2)
         n = len(xy)
         arrays = [
@@ -151,13 +222,48 @@ class Layout:
         return len(self.xy_mm)
 
     def name_of(self, owner: int) -> str | None:
-        """Tube name for an owner index, None for -1."""
+        """Tube name for an owner index, None for -1.
+
+        Parameters
+        ----------
+        owner : int
+            Index into ``tubes``, or -1.
+
+        Returns
+        -------
+        str or None
+
+        Examples
+        --------
+        >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+        ...                             end_margin_mm=2.0, half_width_mm=3.5)
+        >>> Layout.from_points([(2, 3.5)], [0], [0], tubes=(tube,)).name_of(0)
+        'A'
+        """
         return self.tubes[owner].name if owner >= 0 else None
 
 
 def layout_from_plan(plan: StitchPlan) -> Layout:
     """The layout of a stitch plan: tubes from its actuators, half width from the realised width;
-    placement-line records (:attr:`~embroact.patterns.plan.Role.PLACEMENT`) come before their tube."""
+    placement-line records (:attr:`~embroact.patterns.plan.Role.PLACEMENT`) come before their tube.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        A design's plan.
+
+    Returns
+    -------
+    Layout
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> lay = layout_from_plan(zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1"))
+    >>> lay.tubes[0].name, lay.tubes[0].half_width_mm, bool(lay.before_tube.any())
+    ('A1', 3.5, False)
+    """
     tubes = tuple(
         TubeLayout(
             name=a.name,
@@ -196,12 +302,25 @@ def layout_from_records(xy_mm, commands, tubes, *, reach_mm: float = FILE_REACH_
     commands : array (n,)
         :class:`Command` per record.
     tubes : sequence of TubeLayout
+        The tubes the file was sewn over.
     reach_mm : float
         Needle points further than this from every tube belong to none [mm].
     index : array (n,), optional
         Index to report per record (default 0..n-1).
     header_faults : sequence of str
         Header fields that disagree with the records (:attr:`Layout.header_faults`).
+
+    Returns
+    -------
+    Layout
+
+    Examples
+    --------
+    >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3,
+    ...                             end_margin_mm=0.0)
+    >>> lay = layout_from_records([(2, 3.4), (3, -3.6), (40, 0)], [0, 0, 0], [tube])
+    >>> lay.owner.tolist(), lay.tubes[0].half_width_mm
+    ([0, 0, -1], 3.5)
     """
     check_range("reach_mm", reach_mm, low=0.0, high=1e4)
     xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)

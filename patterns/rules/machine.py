@@ -29,7 +29,25 @@ _DF = Inputs.DESIGNS | Inputs.FILES
 
 
 def machine_records(s: Subject) -> np.ndarray:
-    """Machine records each layout record becomes (jumps split at the format's jump limit)."""
+    """Machine records each layout record becomes (jumps split at the format's jump limit).
+
+    Parameters
+    ----------
+    s : Subject
+        The check; its settings name the format.
+
+    Returns
+    -------
+    numpy.ndarray of int64, shape (n,)
+        1 per record, more for a long jump, ``trim_jump_count`` for a trim the format writes as jumps.
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import Layout, RuleSettings
+    >>> lay = Layout.from_points([(0, 0), (30, 0), (30, 0)], [0, 1, 2], [-1, -1, -1], tubes=())
+    >>> machine_records(Subject(lay, RuleSettings(format="dst"))).tolist()
+    [1, 3, 3]
+    """
 
     def count() -> np.ndarray:
         lim = format_limit(s.settings.format)

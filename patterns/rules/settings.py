@@ -52,6 +52,13 @@ class RuleSettings:
     max_findings_per_rule : int
         Findings listed per rule; the rest are summarised in one more finding.
     tolerances : Tolerances
+        Shared thresholds (:data:`~embroact.patterns.base.tolerances.DEFAULT_TOLERANCES`).
+
+    Examples
+    --------
+    >>> s = RuleSettings(format="pes", hoop_width_mm=100.0, hoop_height_mm=100.0)
+    >>> s.format, s.max_stitch_mm, s.couching_gap_mm(1.5)
+    ('pes', 12.1, 9.0)
     """
 
     format: str = "dst"
@@ -94,8 +101,28 @@ class RuleSettings:
     def for_machine(cls, machine, *, format: str | None = None, **overrides) -> "RuleSettings":
         """Settings from a design's machine settings (``format``, hoop and stitch limits).
 
-        ``machine`` is any object with the attributes of ``MachineSettings``
-        (``format``, ``hoop_width_mm``, ``hoop_height_mm``, ``min_stitch_mm``, ``max_stitch_mm``).
+        Parameters
+        ----------
+        machine : MachineSettings or alike
+            Any object with the attributes of ``MachineSettings`` (``format``,
+            ``hoop_width_mm``, ``hoop_height_mm``, ``min_stitch_mm``, ``max_stitch_mm``).
+        format : str or None, optional
+            Check for this format instead of ``machine.format``.
+        **overrides
+            Any other field.
+
+        Returns
+        -------
+        RuleSettings
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace
+        >>> m = SimpleNamespace(format="dst", min_stitch_mm=0.3, max_stitch_mm=12.1, hoop_width_mm=130.0,
+        ...                     hoop_height_mm=180.0)
+        >>> s = RuleSettings.for_machine(m, format="exp", max_findings_per_rule=3)
+        >>> s.format, s.hoop_height_mm, s.max_findings_per_rule
+        ('exp', 180.0, 3)
         """
         base = dict(
             format=format or machine.format,
@@ -108,5 +135,21 @@ class RuleSettings:
         return cls(**base)
 
     def couching_gap_mm(self, outer_radius_mm: float) -> float:
-        """Longest unheld stretch allowed for a tube of radius ``outer_radius_mm`` [mm] (EA307)."""
+        """Longest unheld stretch allowed for a tube of radius ``outer_radius_mm`` [mm] (EA307).
+
+        Parameters
+        ----------
+        outer_radius_mm : float
+            The tube's outer radius r_f [mm].
+
+        Returns
+        -------
+        float
+            ``couching_gap_factor`` outer diameters [mm].
+
+        Examples
+        --------
+        >>> RuleSettings(couching_gap_factor=2.0).couching_gap_mm(1.5)
+        6.0
+        """
         return self.couching_gap_factor * 2.0 * outer_radius_mm

@@ -153,6 +153,20 @@ def hoop_centre_mm(xy_mm: np.ndarray, commands: np.ndarray) -> np.ndarray:
     start point (the origin, where the needle is when the machine starts).  Jumps do not move it: a
     stray travel must not push good stitches out of the hoop.
 
+    Parameters
+    ----------
+    xy_mm : numpy.ndarray, shape (n, 2)
+        Record positions [mm], in the machine's frame.
+    commands : numpy.ndarray, shape (n,)
+        :class:`Command` per record.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2,)
+        The centre [mm].
+
+    Examples
+    --------
     >>> S, J = Command.STITCH, Command.JUMP
     >>> hoop_centre_mm(np.array([[10.0, -5.0], [100.0, 5.0], [400.0, 0.0]]), np.array([S, S, J])).tolist()
     [50.0, 0.0]
@@ -163,7 +177,26 @@ def hoop_centre_mm(xy_mm: np.ndarray, commands: np.ndarray) -> np.ndarray:
 
 
 def hoop_window(s: Subject):
-    """(low, high) corners of the hoop's sewing field centred as :func:`hoop_centre_mm` [mm], or None without a hoop."""
+    """(low, high) corners of the hoop's sewing field centred as :func:`hoop_centre_mm` [mm], or None without a hoop.
+
+    Parameters
+    ----------
+    s : Subject
+        The check; its settings give the hoop.
+
+    Returns
+    -------
+    tuple of numpy.ndarray or None
+        The corners [mm]; None when the settings name no hoop or there are no records.
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import Layout, RuleSettings
+    >>> lay = Layout.from_points([(10, 0), (30, 0)], [0, 0], [-1, -1], tubes=())
+    >>> lo, hi = hoop_window(Subject(lay, RuleSettings(hoop_width_mm=100.0, hoop_height_mm=50.0)))
+    >>> lo.tolist(), hi.tolist()
+    ([-35.0, -25.0], [65.0, 25.0])
+    """
     cfg, xy = s.settings, s.layout.xy_mm
     if cfg.hoop_width_mm is None or cfg.hoop_height_mm is None or len(xy) == 0:
         return None
@@ -238,6 +271,15 @@ def hoop_overflow(design) -> Finding | None:
     """EA306 decided before anything is generated: a finding when the actuator paths alone span more than
     the hoop by more than each actuator's width and :data:`HOOP_PRECHECK_SLACK_MM` at both ends (the
     records cannot fit then); None when the design may fit (the rule itself then decides on the records).
+
+    Parameters
+    ----------
+    design : Design
+        A design; its machine settings give the hoop.
+
+    Returns
+    -------
+    Finding or None
 
     Examples
     --------
