@@ -458,6 +458,11 @@ class Centerline:
         """The path's :class:`~embroact.patterns.spatial.SegmentIndex` (nearest segments, points within a
         distance), made on first use and kept.
 
+        Returns
+        -------
+        SegmentIndex
+            The same object on every call.
+
         Examples
         --------
         >>> Centerline.straight(10.0).segment_index().within(np.array([(4.0, 1.0), (4.0, 3.0)]), 2.0).tolist()

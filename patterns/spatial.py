@@ -327,15 +327,50 @@ class SegmentIndex:
         return out
 
     def distance(self, p: np.ndarray, seg: np.ndarray) -> np.ndarray:
-        """Distance [mm] of each point of ``p`` from its segment ``seg`` (as :meth:`nearest` returns them)."""
+        """Distance [mm] of each point of ``p`` from its segment ``seg`` (as :meth:`nearest` returns them).
+
+        Parameters
+        ----------
+        p : numpy.ndarray, shape (m, 2)
+            Points [mm].
+        seg : numpy.ndarray of int, shape (m,)
+            A segment per point.
+
+        Returns
+        -------
+        numpy.ndarray, shape (m,)
+            Distances [mm].
+
+        Examples
+        --------
+        >>> SegmentIndex([(0, 0), (10, 0), (10, 10)]).distance(np.array([(5.0, 3.0)]), np.array([1])).tolist()
+        [5.0]
+        """
         r = p - self._a[seg]
         dd = self._d[seg]
         t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
         return np.hypot(*(r - t[:, None] * dd).T)
 
     def within(self, p: np.ndarray, radius_mm: float) -> np.ndarray:
-        """Indices of the points of ``p`` ((m, 2) [mm]) closer than ``radius_mm`` to the polyline, ascending
-        (one pass over the buckets of that size)."""
+        """Indices of the points of ``p`` closer than ``radius_mm`` to the polyline, ascending
+        (one pass over the buckets of that size).
+
+        Parameters
+        ----------
+        p : numpy.ndarray, shape (m, 2)
+            Points [mm].
+        radius_mm : float
+            Corridor radius [mm].
+
+        Returns
+        -------
+        numpy.ndarray of int64
+
+        Examples
+        --------
+        >>> SegmentIndex([(0, 0), (10, 0), (10, 10)]).within(np.array([(5.0, 1.0), (5.0, 3.0), (9.5, 8.0)]), 2.0).tolist()
+        [0, 2]
+        """
         seg, d2 = self._pass(p, self._cell(radius_mm))
         hit = np.flatnonzero(seg >= 0)
         return hit[self.distance(p[hit], seg[hit]) < radius_mm]
