@@ -591,6 +591,7 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
     Parameters
     ----------
     models : sequence of ActuatorModel
+        The designs, at least one.
     pressures_kpa : array_like
         Pressures [kPa], >= 0, shared by all models.
     method : str
@@ -600,6 +601,11 @@ def sweep(models, pressures_kpa, *, method: str = "auto", rtol: float = DEFAULT_
     limits : bool
         Report the validity limits (COILED, KINKED, OVERSTRETCHED; :mod:`embroact.predict.validity`);
         False gives the formula's own statuses, for studies of the formula beyond them.
+
+    Returns
+    -------
+    Curve
+        Every array of shape (models, pressures).
 
     Examples
     --------
@@ -714,6 +720,30 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits
     part of P(theta) are ``UNSTABLE`` with their (real) pressure. Angles beyond a
     validity limit take its status and keep the pressure of the status they replace
     (``limits`` as for :func:`sweep`).
+
+    Parameters
+    ----------
+    model : ActuatorModel
+        The design.
+    theta_deg : array_like
+        Bend angles [deg].
+    method : str, optional
+        One of :data:`METHODS`.
+    limits : bool, optional
+        As for :func:`sweep`.
+
+    Returns
+    -------
+    Curve
+        One point per angle; ``pressure_kpa`` holds the answer.
+
+    Examples
+    --------
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> c = pressure_at(m, [0.0, 90.0])
+    >>> c.pressure_kpa.round(3).tolist(), status_names(c.status)
+    ([85.0, 187.65], ['INFLATION', 'BENDING'])
     """
     energy, deriv, inverse = _resolve(method, DEFAULT_TOLERANCES.model_rtol)
     th = np.radians(_values("theta_deg", theta_deg, low=-ANGLE_LIMIT_DEG, high=ANGLE_LIMIT_DEG))[None, :]
@@ -746,6 +776,24 @@ def lockup(model: ActuatorModel) -> tuple[float, float]:
     Otherwise the fold (snap-through), the domain end or the tracing cap
     ``MAX_BEND_DEG``, with the finite pressure there. Kept per model (identical actuators, repeated
     checks: the search runs once).
+
+    Parameters
+    ----------
+    model : ActuatorModel
+        The design.
+
+    Returns
+    -------
+    theta_deg, pressure_kpa : float
+        Where the stable branch ends [deg] and the pressure there [kPa].
+
+    Examples
+    --------
+    >>> m = ActuatorModel("cross", length_mm=100, r0_mm=2.6, beta0_deg=20.0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170)
+    >>> theta, p = lockup(m)
+    >>> round(theta, 2), p
+    (455.58, inf)
     """
     return _cached_lockup(model, MAX_BEND_DEG, TRACE_POINTS)
 

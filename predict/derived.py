@@ -40,6 +40,7 @@ class DerivedGeometry:
     Attributes
     ----------
     name, pattern : str
+        The actuator's name and pattern kind.
     length_mm : float
         l0, embroidered (fabric-side) length [mm].
     width_mm, interval_mm, angle_deg : float
@@ -55,6 +56,14 @@ class DerivedGeometry:
     neutral_angle_deg : float
         alpha0 with tan(beta0) = 1/2 for this width and tube [deg].
     tube : Tube
+        The tube.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> round(d.r0_mm, 4), d.beta0_deg, round(d.gamma, 5), d.has_sleeve
+    (2.5814, 0.0, 0.05163, True)
     """
 
     name: str
@@ -83,7 +92,20 @@ class DerivedGeometry:
         return model_kind(self.pattern).bends_positive(self.beta0_deg)
 
     def as_dict(self) -> dict:
-        """Plain dict with unit-suffixed keys (for JSON and reports)."""
+        """Plain dict with unit-suffixed keys (for JSON and reports).
+
+        Returns
+        -------
+        dict
+            Every field but the tube, and ``min_sleeve_width_mm``, ``has_sleeve``, ``bends_positive``.
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import Tube
+        >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+        >>> d.as_dict()["min_sleeve_width_mm"] == float(min_sleeve_width_mm(1.5)), "tube" in d.as_dict()
+        (True, False)
+        """
         keys = [k for k in self.__slots__ if k != "tube"]
         d = {k: getattr(self, k) for k in keys}
         d["min_sleeve_width_mm"] = float(min_sleeve_width_mm(self.tube.outer_radius_mm))
@@ -105,7 +127,31 @@ def derive_from_values(
 ) -> DerivedGeometry:
     """Derived geometry from realised values (used directly by quick commands).
 
-    ``requested`` is (width_mm, interval_mm, angle_deg); defaults to the realised values.
+    Parameters
+    ----------
+    pattern : str
+        A registered pattern kind.
+    width_mm, interval_mm, length_mm : float
+        Realised rail spacing, stitch interval and length [mm], > 0.
+    angle_deg : float
+        Realised embroidery angle [deg], in (0, 90) for a kind with an angle.
+    tube : Tube
+        The tube.
+    name : str, optional
+        The actuator's name.
+    requested : tuple of float or None, optional
+        What was asked for: (width_mm, interval_mm, angle_deg); None: the realised values.
+
+    Returns
+    -------
+    DerivedGeometry
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> d = derive_from_values("cross", width_mm=7.0, interval_mm=1.4, angle_deg=45.0, length_mm=100.0, tube=Tube())
+    >>> round(d.r0_mm, 4), round(d.beta0_deg, 4), d.requested_angle_deg
+    (2.5814, 37.2078, 45.0)
     """
     kind = model_kind(pattern)
     w = check_range("width_mm", width_mm, low=0.0)
@@ -134,7 +180,25 @@ def derive_from_values(
 
 
 def derive(actuator: ActuatorPlan) -> DerivedGeometry:
-    """Derived geometry of one generated actuator, from its realised parameters."""
+    """Derived geometry of one generated actuator, from its realised parameters.
+
+    Parameters
+    ----------
+    actuator : ActuatorPlan
+        A generated actuator.
+
+    Returns
+    -------
+    DerivedGeometry
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> d = derive(zigzag([[0.0, 0.0], [100.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1").actuators[0])
+    >>> d.name, d.width_mm, d.length_mm
+    ('A1', 7.0, 100.0)
+    """
     r = actuator.realised
     p = actuator.params
     return derive_from_values(

@@ -45,6 +45,7 @@ class LayoutChoice:
     Attributes
     ----------
     layout : MarkerLayout
+        The layout.
     source : str
         Where it came from, e.g. ``"recorded by calibration set 'lab'"``, ``"the paper's"``,
         ``"given"`` or ``"given spacing_mm; the rest ..."``.
@@ -62,7 +63,17 @@ class LayoutChoice:
     given: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
-        """JSON-ready: ``layout`` (unit-suffixed keys), ``label``, ``source`` and ``given``."""
+        """JSON-ready: ``layout`` (unit-suffixed keys), ``label``, ``source`` and ``given``.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> sorted(layout_for().as_dict())
+        ['given', 'label', 'layout', 'source']
+        """
         return {"layout": self.layout.as_dict(), "label": self.layout.label, "source": self.source,
                 "given": list(self.given)}
 

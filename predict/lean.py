@@ -89,6 +89,14 @@ class LeanTable:
         Settling tolerances (module docstring).
     p_list : list
         ``p`` as Python floats, for :func:`solve_lean_scalar`.
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, lock_theta
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+    >>> tab.columns.shape[0], tab.top  # up to a lock-up: every target is served
+    (13, inf)
     """
 
     geo: _m.Geometry
@@ -109,9 +117,30 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
                atol: float) -> LeanTable | None:
     """The table of one design's branch from 0 to ``theta_end`` [rad] (module docstring).
 
-    ``geo``: one design, as arrays of one row or as Python floats (:meth:`~embroact.predict.model.
-    Geometry.scalar`). ``pole_at_end``: ``theta_end`` is a lock-up (P -> inf there). None when no
-    interval rises, or when the last interval before the pole is not finite (nothing the table could serve).
+    Parameters
+    ----------
+    geo : Geometry
+        One design, as arrays of one row or as Python floats (:meth:`~embroact.predict.model.Geometry.scalar`).
+    theta_end : float
+        The branch's end [rad], signed as it bends.
+    pole_at_end : bool
+        ``theta_end`` is a lock-up (P -> inf there).
+    rtol, atol : float
+        Settling tolerances.
+
+    Returns
+    -------
+    LeanTable or None
+        None when no interval rises, or when the last interval before the pole is not finite
+        (nothing the table could serve).
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, lock_theta
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+    >>> len(tab.p_list) == tab.columns.shape[1] + 1
+    True
     """
     n = LEVEL_POINTS
     g = geo if isinstance(geo.l0, float) else geo.scalar()
@@ -194,6 +223,28 @@ def solve_lean(tab: LeanTable, t):
     """(theta [rad], settled) for targets ``t = P - P0`` [MPa], 1-D, ``0 < t <= tab.top``.
 
     Entries not settled (module docstring) hold no answer: solve them by the trace inverse.
+
+    Parameters
+    ----------
+    tab : LeanTable
+        The branch's table.
+    t : numpy.ndarray (n,)
+        Targets P - P0 [MPa].
+
+    Returns
+    -------
+    theta : numpy.ndarray (n,)
+        Bend angle [rad].
+    settled : numpy.ndarray of bool (n,)
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, lock_theta
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+    >>> theta, settled = solve_lean(tab, np.array([0.01, 0.1]))
+    >>> theta.round(6).tolist(), settled.tolist()
+    ([-0.234103, -1.500631], [True, True])
     """
     i = np.searchsorted(tab.p, t, side="right") - 1  # >= 0: t > 0 = p[0]
     np.minimum(i, tab.columns.shape[1] - 1, out=i)  # t = top itself: the last interval
@@ -206,6 +257,26 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
     """theta [rad] for one target ``0 < t <= tab.top`` [MPa] in Python floats, or None if not settled.
 
     The same answer, bit for bit, as :func:`solve_lean` gives for ``t`` among any others.
+
+    Parameters
+    ----------
+    tab : LeanTable
+        The branch's table.
+    t : float
+        Target P - P0 [MPa].
+
+    Returns
+    -------
+    float or None
+        Bend angle [rad].
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, lock_theta
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+    >>> solve_lean_scalar(tab, 0.1) == float(solve_lean(tab, np.array([0.01, 0.1]))[0][1])
+    True
     """
     i = min(bisect_right(tab.p_list, t) - 1, tab.columns.shape[1] - 1)  # >= 0: t > 0 = p[0]
     try:

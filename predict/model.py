@@ -103,6 +103,13 @@ class Geometry:
         energy's factor pi G l0/2 [N].
     s0sq, c0sq : ndarray
         sin^2(beta0), cos^2(beta0) (the fused rate's constants).
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=[0.0, np.radians(45.0)], l0_mm=100.0, r0_mm=2.6, c_mm2=1.25,
+    ...                            g_mpa=1.3, p0_mpa=0.17)
+    >>> geo.l0.shape, np.round(geo.s0.ravel(), 4).tolist(), round(float(geo.gamma[0, 0]), 3)
+    ((2, 1), [0.0, 0.7071], 0.052)
     """
 
     l0: np.ndarray
@@ -121,7 +128,30 @@ class Geometry:
 
     @classmethod
     def from_values(cls, *, beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa) -> "Geometry":
-        """Broadcast scalars or 1-D arrays (one entry per design) to ``(n, 1)`` columns."""
+        """Broadcast scalars or 1-D arrays (one entry per design) to ``(n, 1)`` columns.
+
+        Parameters
+        ----------
+        beta0_rad : float or array_like
+            Initial thread angle beta0 [rad] (0: zigzag).
+        l0_mm, r0_mm : float or array_like
+            Fabric-side length and sleeve radius [mm].
+        c_mm2 : float or array_like
+            Wall constant r_f^2 - d_f^2 [mm^2].
+        g_mpa, p0_mpa : float or array_like
+            Shear modulus G and transition pressure P0 [MPa].
+
+        Returns
+        -------
+        Geometry
+            One row per design.
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+        >>> geo.r0.tolist(), geo.p0.tolist()
+        ([[2.6]], [[0.085]])
+        """
         cols = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=np.float64))
                                      for v in (beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa)))
         beta0, l0, r0, c, g, p0 = (np.ascontiguousarray(v.reshape(-1, 1)) for v in cols)
@@ -132,6 +162,16 @@ class Geometry:
                   p0_mpa: float) -> "Geometry":
         """One design as Python floats, bit for bit the :meth:`scalar` of :meth:`from_values` (no arrays:
         a first curve of a new model pays no numpy calls for its constants).
+
+        Parameters
+        ----------
+        beta0_rad, l0_mm, r0_mm, c_mm2, g_mpa, p0_mpa : float
+            As for :meth:`from_values`.
+
+        Returns
+        -------
+        Geometry
+            Its fields are floats.
 
         Examples
         --------
@@ -150,12 +190,41 @@ class Geometry:
                    r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0, s0sq=s0 * s0, c0sq=c0 * c0)
 
     def take(self, rows) -> "Geometry":
-        """The designs at ``rows`` (index array or boolean mask)."""
+        """The designs at ``rows`` (index array or boolean mask).
+
+        Parameters
+        ----------
+        rows : array_like of int or bool
+            Which designs.
+
+        Returns
+        -------
+        Geometry
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=[0.0, 0.6], l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3,
+        ...                            p0_mpa=0.17)
+        >>> geo.take([1]).s0.shape, geo.take(np.array([True, False])).s0.tolist()
+        ((1, 1), [[0.0]])
+        """
         return Geometry(*(getattr(self, k)[rows] for k in self.__slots__))
 
     def scalar(self) -> "Geometry":
         """The (first) design with Python floats for fields: broadcasts against 1-D theta, and with
-        ``xp=SCALAR`` (:mod:`embroact.predict.floats`) the fast formulas run on floats."""
+        ``xp=SCALAR`` (:mod:`embroact.predict.floats`) the fast formulas run on floats.
+
+        Returns
+        -------
+        Geometry
+            Its fields are floats.
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+        >>> geo.scalar().l0, geo.scalar().c0
+        (100.0, 1.0)
+        """
         return Geometry(*(float(getattr(self, k)[0, 0]) for k in self.__slots__))  # type: ignore[arg-type]
 
 
@@ -167,6 +236,25 @@ def constraint(theta, geo: Geometry):
     ``sin(beta) = u s0``, ``r = r0 cos(beta)/c0``; complex ``theta`` is allowed
     (complex-step derivatives). ``cos(beta)`` comes from a rationalised form, so it
     stays accurate (and real) as ``sin(beta) -> 1`` at any angle.
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Bend angle [rad], broadcast against the geometry's rows.
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    l, r, sinb, cosb : numpy.ndarray
+        Thread-side length [mm], sleeve radius [mm], sin(beta) and cos(beta).
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=np.radians(45.0), l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3,
+    ...                            p0_mpa=0.17)
+    >>> np.round(constraint(np.radians(90.0), geo), 4).ravel().tolist()
+    [107.5052, 2.389, 0.7602, 0.6497]
     """
     if not np.any(geo.s0):  # zigzag rows only: u = 1 + gamma theta, r = r0, beta = 0
         gt = geo.gamma * theta
@@ -182,6 +270,28 @@ def pantograph(theta, geo: Geometry, xp=np):
 
     ``cos^2(beta) = 1 - u^2 s0^2 = (X - Y)/den^2 = c0^4/(X + Y)`` with ``X = c0^2 + g^2 s0^2 (1 + s0^2)``,
     ``Y = 2 s0^2 g S``: the form without cancellation for each sign of g (never below 0).
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Bend angle [rad].
+    geo : Geometry
+        The designs.
+    xp : module, optional
+        numpy, or :data:`~embroact.predict.floats.SCALAR` for a :meth:`Geometry.scalar` geometry.
+
+    Returns
+    -------
+    tuple
+        ``(u, cos^2(beta), g S, g^2 s0^2, 1 + g^2 s0^2)``.
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=np.radians(45.0), l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3,
+    ...                            p0_mpa=0.17)
+    >>> u, cos2, _, _, _ = pantograph(np.radians(90.0), geo)
+    >>> round(float(u[0, 0]), 4), round(float(cos2[0, 0]), 4)
+    (1.0751, 0.4221)
     """
     gt = geo.gamma * theta
     gs2 = gt * gt * geo.s0sq
@@ -199,6 +309,28 @@ def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
 
     From ``theta = (l - l0)/(2 r)`` and ``dr/dl = -(r0 s0/(l0 c0)) tan(beta)``:
     ``dtheta/dl = (1 - 2 theta dr/dl)/(2 r)``.
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Bend angle [rad].
+    l, r, sinb, cosb : array_like
+        The state there (:func:`constraint`).
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    l_t, r_t : numpy.ndarray
+        dl/dtheta and dr/dtheta [mm/rad].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=np.radians(45.0), l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3,
+    ...                            p0_mpa=0.17)
+    >>> theta = np.radians(90.0)
+    >>> np.round(constraint_rates(theta, *constraint(theta, geo), geo), 4).ravel().tolist()
+    [4.3612, -0.1327]
     """
     r_l = geo.r_slope * sinb / cosb  # -dr/dl
     l_t = r / (0.5 + theta * r_l)
@@ -206,7 +338,26 @@ def constraint_rates(theta, l, r, sinb, cosb, geo: Geometry):
 
 
 def inner_radius_sq(l, r, geo: Geometry):
-    """d^2 = r^2 - c/A [mm^2] (incompressible wall, no change of wall volume)."""
+    """d^2 = r^2 - c/A [mm^2] (incompressible wall, no change of wall volume).
+
+    Parameters
+    ----------
+    l, r : float or array_like
+        Thread-side length and sleeve radius [mm].
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    numpy.ndarray
+        The inner radius squared [mm^2].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> inner_radius_sq(100.0, 2.6, geo).round(12).tolist()  # straight: r0^2 - c
+    [[5.51]]
+    """
     return r * r - geo.c * 2.0 * geo.l0 / (l + geo.l0)
 
 
@@ -217,6 +368,25 @@ def lock_theta(geo: Geometry, xp=np):
     proportional to ``cos(beta) (1 - 3 x^2 - 2 s0 x)``, ``x = sin(beta)``, so
     ``x_L = (sqrt(s0^2 + 3) - s0)/3``; ``x_L = s0`` exactly at ``tan(beta0) = 1/2``.
     With a :meth:`Geometry.scalar` geometry and ``xp=SCALAR`` one float (the same bits).
+
+    Parameters
+    ----------
+    geo : Geometry
+        The designs.
+    xp : module, optional
+        numpy, or :data:`~embroact.predict.floats.SCALAR`.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        The lock-up angle [rad] per design.
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=[0.0, np.radians(45.0)], l0_mm=100.0, r0_mm=2.6, c_mm2=1.25,
+    ...                            g_mpa=1.3, p0_mpa=0.17)
+    >>> np.round(np.degrees(lock_theta(geo)), 2).ravel().tolist()  # tan(beta0) > 1/2 bends negative
+    [inf, -381.59]
     """
     s0, c0 = geo.s0, geo.c0
     if xp is not np and not s0 > 0.0:
@@ -286,14 +456,56 @@ def _check_form(form: str) -> str:
 
 
 def energy(l, r, geo: Geometry, form: str = "stable"):
-    """Strain energy E_s [N mm] at (l, r); ``form`` is "stable", "printed" or "reference" (others refused)."""
+    """Strain energy E_s [N mm] at (l, r).
+
+    Parameters
+    ----------
+    l, r : float or array_like
+        Thread-side length and sleeve radius [mm].
+    geo : Geometry
+        The designs.
+    form : {"stable", "printed", "reference"}, optional
+        Which form of E_s (module docstring); others are refused.
+
+    Returns
+    -------
+    numpy.ndarray
+        E_s [N mm].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> energy(110.0, 2.6, geo).round(4).tolist(), energy(110.0, 2.6, geo, "reference").round(4).tolist()
+    ([[6.8112]], [[6.8112]])
+    """
     if _check_form(form) == "reference":
         return geo.e_scale * _energy_reference(l, r, geo)
     return geo.e_scale * _energy_closed(l, r, geo, form)
 
 
 def energy_gradient(l, r, geo: Geometry, form: str = "stable"):
-    """Analytic partial derivatives (dE/dl, dE/dr) of a closed form [N, N]."""
+    """Analytic partial derivatives (dE/dl, dE/dr) of a closed form [N, N].
+
+    Parameters
+    ----------
+    l, r : float or array_like
+        Thread-side length and sleeve radius [mm].
+    geo : Geometry
+        The designs.
+    form : {"stable", "printed"}, optional
+        The closed form to differentiate.
+
+    Returns
+    -------
+    e_l, e_r : numpy.ndarray
+        dE/dl and dE/dr [N].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> [v.round(4).tolist() for v in energy_gradient(110.0, 2.6, geo)]
+    [[[1.2819]], [[35.1615]]]
+    """
     gradients = {"stable": _gradient_stable, "printed": _gradient_printed}
     if form not in gradients:
         raise ParameterError(f"form must be one of {', '.join(gradients)} for analytic derivatives, got {form!r}")
@@ -354,12 +566,51 @@ def _gradient_printed(l, r, geo: Geometry):
 
 
 def volume(l, r, geo: Geometry):
-    """Inner volume V_i = pi d^2 (l + l0)/2 = pi (r^2 (l + l0)/2 - c l0) [mm^3]."""
+    """Inner volume V_i = pi d^2 (l + l0)/2 = pi (r^2 (l + l0)/2 - c l0) [mm^3].
+
+    Parameters
+    ----------
+    l, r : float or array_like
+        Thread-side length and sleeve radius [mm].
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    numpy.ndarray
+        V_i [mm^3].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> volume(100.0, 2.6, geo).round(3).tolist()  # pi (r0^2 - c) l0
+    [[1731.018]]
+    """
     return np.pi * inner_radius_sq(l, r, geo) * (l + geo.l0) / 2.0
 
 
 def volume_gradient(l, r, geo: Geometry):
-    """(dV/dl, dV/dr) = (pi r^2/2, pi r (l + l0)) [mm^2, mm^2]."""
+    """(dV/dl, dV/dr) = (pi r^2/2, pi r (l + l0)) [mm^2, mm^2].
+
+    Parameters
+    ----------
+    l, r : float or array_like
+        Thread-side length and sleeve radius [mm].
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    v_l, v_r : numpy.ndarray or float
+        dV/dl and dV/dr [mm^2].
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> v_l, v_r = volume_gradient(100.0, 2.6, geo)
+    >>> round(v_l, 4), v_r.round(4).tolist()
+    (10.6186, [[1633.6282]])
+    """
     return (0.5 * np.pi) * (r * r), np.pi * r * (l + geo.l0)
 
 
@@ -438,6 +689,20 @@ def rate_fast(theta, geo: Geometry, xp=np):
     real theta: numpy arrays (``xp=np``) or, with a :meth:`Geometry.scalar` geometry and ``xp=SCALAR``,
     one Python float (the same operations, so the same bits).
 
+    Parameters
+    ----------
+    theta : float or numpy.ndarray
+        Bend angle [rad], real.
+    geo : Geometry
+        The designs.
+    xp : module, optional
+        numpy, or :data:`~embroact.predict.floats.SCALAR`.
+
+    Returns
+    -------
+    de, dv
+        dE/dtheta [N mm/rad] and dV/dtheta [mm^3/rad].
+
     Examples
     --------
     >>> from embroact.predict.floats import SCALAR
@@ -452,12 +717,55 @@ def rate_fast(theta, geo: Geometry, xp=np):
 
 def fast_rate_of(geo: Geometry):
     """The function :func:`rate_fast` calls for ``geo``: ``f(theta, geo, xp)`` (chosen once by a caller
-    that evaluates one geometry many times)."""
+    that evaluates one geometry many times).
+
+    Parameters
+    ----------
+    geo : Geometry
+        The designs.
+
+    Returns
+    -------
+    callable
+        The zigzag's formula when no row has an angle, else the cross pattern's.
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> fast_rate_of(geo)(0.5, geo, np) == rate_fast(0.5, geo)
+    True
+    """
     return _cross_rate_stable if np.any(geo.s0) else _zigzag_rate_stable
 
 
 def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):
-    """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives."""
+    """(dE/dtheta, dV/dtheta) along the constraint [N mm, mm^3], total derivatives.
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Bend angle [rad]; complex for a complex-step derivative of it.
+    geo : Geometry
+        The designs.
+    form : {"stable", "printed", "reference"}, optional
+        The energy form.
+    derivative : {"analytic", "complex", "central"}, optional
+        How dE/dtheta is taken (module docstring).
+
+    Returns
+    -------
+    de, dv : numpy.ndarray
+        dE/dtheta [N mm/rad] and dV/dtheta [mm^3/rad]; dE/dtheta is 0 at theta = 0.
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> de, dv = energy_rate(np.array([0.5]), geo)
+    >>> de.round(4).tolist(), dv.round(4).tolist()
+    ([[1.9827]], [[55.2166]])
+    >>> np.allclose(energy_rate(np.array([0.5]), geo, derivative="complex")[0], de, rtol=1e-12)
+    True
+    """
     if form == "stable" and derivative == "analytic" and not np.iscomplexobj(theta):
         return rate_fast(theta, geo)
     l, r, sinb, cosb = constraint(theta, geo)
@@ -480,6 +788,26 @@ def pressure_mpa(theta, geo: Geometry, *, form: str = "stable", derivative: str 
     The ratio of total derivatives along the constraint equals (dE_s/dl)/(dV_i/dl).
     Poles (dV/dtheta = 0) and points outside the domain give inf or nan here; the
     public layer turns them into statuses.
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Bend angle [rad].
+    geo : Geometry
+        The designs.
+    form, derivative : str, optional
+        As for :func:`energy_rate`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Pressure [MPa], one row per design.
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
+    >>> (pressure_mpa(np.radians([0.0, 90.0]), geo) * 1000).round(3).tolist()
+    [[85.0, 186.851]]
     """
     theta = np.asarray(theta, dtype=np.float64)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):

@@ -47,6 +47,20 @@ _INFLATION, _BENDING, _UNSTABLE, _FAILED = (int(s) for s in (Status.INFLATION, S
 def state(theta, g: _m.Geometry, xp=np):
     """(l, r, beta [deg], d^2) on the constraint at bend angles ``theta`` [rad] of the scalar geometry ``g``.
 
+    Parameters
+    ----------
+    theta : float or numpy.ndarray
+        Bend angles [rad].
+    g : Geometry
+        One design, its fields floats (:meth:`~embroact.predict.model.Geometry.scalar`).
+    xp : module, optional
+        numpy, or :data:`~embroact.predict.floats.SCALAR` for one float ``theta``.
+
+    Returns
+    -------
+    l, r, beta, d2
+        Thread-side length [mm], sleeve radius [mm], thread angle [deg], inner radius squared [mm^2].
+
     Examples
     --------
     >>> from embroact.predict.model import Geometry
@@ -65,7 +79,38 @@ def free_tube_radius(p, law, tube, r0, p_sleeve, sleeve_r0_mm):
     """Outer radius [mm] of the tube below P0 at pressures ``p`` [MPa]: its law (``tube`` as
     :func:`~embroact.predict.tubelaws.radius_mm` takes it) until it meets the sleeve (r0, reached at
     ``p_sleeve`` [kPa]); a P0 above the law's pressure at r0 leaves it at r0 in between; never more
-    than the sleeve's ``sleeve_r0_mm`` (a sleeve narrower than the tube squeezes it)."""
+    than the sleeve's ``sleeve_r0_mm`` (a sleeve narrower than the tube squeezes it).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Pressures [MPa].
+    law : str
+        The tube law.
+    tube : tuple of arrays
+        The tube as :func:`~embroact.predict.tubelaws.radius_mm` takes it.
+    r0 : array_like
+        Where the tube meets the sleeve [mm].
+    p_sleeve : array_like
+        The law's pressure at ``r0`` [kPa].
+    sleeve_r0_mm : float
+        The sleeve's radius [mm].
+
+    Returns
+    -------
+    numpy.ndarray
+        Outer radius [mm].
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, _branch
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> br = _branch(m, 1e-10)  # the branch curve(m, ...) keeps
+    >>> (_, law, tube, r0, p_sleeve), = br.laws()
+    >>> free_tube_radius(np.array([0.0, 0.05, 0.09]), law, tube, r0, p_sleeve, m.r0_mm).round(4).tolist()
+    [[1.5, 2.2957, 2.5814]]
+    """
     pk = np.minimum(p * KPA_PER_MPA, p_sleeve)
     return np.minimum(np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law)), sleeve_r0_mm)
 
@@ -73,7 +118,31 @@ def free_tube_radius(p, law, tube, r0, p_sleeve, sleeve_r0_mm):
 def trace_outcome(theta, where, full, kind):
     """(theta, status) of the trace inverse's answers (:func:`~embroact.predict.solvers.trace_inverse`):
     ``where`` 1, past the branch end: the end and its status ``kind``; 2, past a fold: UNSTABLE at the
-    fold; a non-finite angle: FAILED with theta 0; the rest BENDING."""
+    fold; a non-finite angle: FAILED with theta 0; the rest BENDING.
+
+    Parameters
+    ----------
+    theta : numpy.ndarray
+        The trace inverse's angles [rad].
+    where : numpy.ndarray of int8
+        Its outcome per angle (0 solved, 1 beyond the end, 2 beyond a fold).
+    full : float or numpy.ndarray
+        The branch end [rad].
+    kind : int
+        The status at the branch end.
+
+    Returns
+    -------
+    theta : numpy.ndarray
+        [rad].
+    status : numpy.ndarray of int8
+
+    Examples
+    --------
+    >>> theta, status = trace_outcome(np.array([0.1, 0.2, np.nan, 0.3]), np.array([0, 1, 0, 2]), 0.5, 2)
+    >>> theta.tolist(), [Status(s).name for s in status]
+    ([0.1, 0.5, 0.0, 0.3], ['BENDING', 'LOCKED', 'FAILED', 'UNSTABLE'])
+    """
     theta = np.where(where == 1, full, theta)
     status = np.where(where == 2, _UNSTABLE, np.where(where == 1, kind, _BENDING))
     bad = ~np.isfinite(theta)
@@ -113,7 +182,32 @@ def _solve(br, t):
 
 
 def one_curve(br, p, *, limits: bool = True):
-    """Arrays (P [kPa], theta [deg], status, l, r, beta, d) of one model at pressures ``p`` [MPa] (1-D)."""
+    """Arrays (P [kPa], theta [deg], status, l, r, beta, d) of one model at pressures ``p`` [MPa] (1-D).
+
+    Parameters
+    ----------
+    br : branch
+        The model's cached branch (kept by :mod:`embroact.predict.curve`).
+    p : numpy.ndarray (n,)
+        Pressures [MPa], >= 0.
+    limits : bool, optional
+        Apply the validity limits.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        P [kPa], theta [deg], status, l [mm], r [mm], beta [deg], d [mm].
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, _branch
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> br = _branch(m, 1e-10)  # the branch curve(m, ...) keeps
+    >>> p_kpa, theta_deg, status, *_ = one_curve(br, np.array([0.05, 0.2]))
+    >>> p_kpa.tolist(), theta_deg.round(3).tolist(), status.tolist()
+    ([50.0, 200.0], [0.0, 102.93], [0, 1])
+    """
     g = br.scalar
     t = p - g.p0
     bend = t > 0.0
@@ -136,7 +230,33 @@ def one_curve(br, p, *, limits: bool = True):
 
 def one_curve_floats(br, p, *, limits: bool = True):
     """As :func:`one_curve` for pressures ``p`` [MPa] given as a list of floats: lists of floats
-    (status as ints), or None when a pressure is not a bending point the lean solve settles."""
+    (status as ints), or None when a pressure is not a bending point the lean solve settles.
+
+    Parameters
+    ----------
+    br : branch
+        The model's cached branch.
+    p : list of float
+        Pressures [MPa].
+    limits : bool, optional
+        Apply the validity limits.
+
+    Returns
+    -------
+    list of list or None
+        The columns of :func:`one_curve`.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, _branch
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> br = _branch(m, 1e-10)  # the branch curve(m, ...) keeps
+    >>> one_curve_floats(br, [0.2])[1] == one_curve(br, np.array([0.2]))[1].tolist()
+    True
+    >>> one_curve_floats(br, [0.05]) is None  # below P0: not a bending point
+    True
+    """
     lean, g = br.lean, br.scalar
     if lean is None:
         return None

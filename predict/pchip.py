@@ -46,8 +46,21 @@ def _end_slope(h0: float, h1: float, d0: float, d1: float) -> float:
 
 
 def pchip_slopes(xs: Sequence[float], ys: Sequence[float]) -> list[float]:
-    """Slope of the interpolant at each point (strictly increasing ``xs``, at least two points).
+    """Slope of the interpolant at each point.
 
+    Parameters
+    ----------
+    xs : sequence of float
+        Strictly increasing coordinates, at least two.
+    ys : sequence of float
+        Values at ``xs``.
+
+    Returns
+    -------
+    list of float
+
+    Examples
+    --------
     >>> pchip_slopes([0.0, 1.0, 2.0], [0.0, 1.0, 0.0])   # a turn: flat at the middle point
     [2.0, 0.0, -2.0]
     """
@@ -84,6 +97,11 @@ def pchip(xs: Sequence[float], ys: Sequence[float], x: float, slopes: Sequence[f
     -------
     float
         Exactly ``ys[k]`` at ``x == xs[k]``.
+
+    Examples
+    --------
+    >>> pchip([0.0, 1.0, 2.0], [0.0, 1.0, 0.0], 0.5), pchip([0.0, 1.0, 2.0], [0.0, 1.0, 4.0], 1.0)
+    (0.75, 1.0)
     """
     if len(xs) == 1:
         return float(ys[0])

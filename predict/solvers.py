@@ -83,7 +83,26 @@ ZOOM = 4
 def derivative(f, x, *, scale, method: str):
     """Derivative of the vectorised function ``f`` at ``x`` by ``method`` ("central" or "complex").
 
-    ``scale`` is the length over which ``f`` changes appreciably (sets the step).
+    Parameters
+    ----------
+    f : callable
+        ``f(x) -> array``, vectorised; complex arguments for ``"complex"``.
+    x : numpy.ndarray
+        Where.
+    scale : float
+        The length over which ``f`` changes appreciably (sets the step).
+    method : {"central", "complex"}
+        Central difference or complex step.
+
+    Returns
+    -------
+    numpy.ndarray
+        df/dx at ``x``.
+
+    Examples
+    --------
+    >>> derivative(np.sin, np.array([0.0, 1.0]), scale=1.0, method="complex").round(12).tolist()
+    [1.0, 0.540302305868]
     """
     if method == "central":
         h = CENTRAL_STEP * scale
@@ -106,7 +125,24 @@ def gauss_legendre(n: int):
 def bisect(inside, lo, hi, iterations: int = BISECT_ITERATIONS):
     """Vectorised bisection of a boolean predicate: ``inside(lo)`` true, ``inside(hi)`` false.
 
-    Returns the last point found inside (a lower bracket of the boundary).
+    Parameters
+    ----------
+    inside : callable
+        ``inside(x) -> bool array``, vectorised.
+    lo, hi : array_like
+        Brackets: ``inside(lo)`` true, ``inside(hi)`` false.
+    iterations : int, optional
+        Halvings.
+
+    Returns
+    -------
+    numpy.ndarray
+        The last point found inside (a lower bracket of the boundary).
+
+    Examples
+    --------
+    >>> bisect(lambda x: x * x < 2.0, 0.0, 2.0).round(12).tolist()
+    1.414213562373
     """
     lo, hi = np.array(lo, dtype=np.float64), np.array(hi, dtype=np.float64)
     for _ in range(iterations):
@@ -122,8 +158,36 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
     ``residual(x, idx)`` evaluates the function of entries ``idx`` at ``x`` (both
     1-D); only unconverged entries are evaluated. An entry stops when its step or
     its bracket falls below ``rtol * |x| + atol``, or its residual is 0 (callers
-    floor a residual at its round-off level to 0). Raises :class:`SolverError` if
-    any entry has not converged after ``max_iterations``.
+    floor a residual at its round-off level to 0).
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(x, idx) -> array`` of the entries ``idx`` at ``x`` (both 1-D).
+    a, b, fa, fb : array_like (n,)
+        Brackets and the residual at them.
+    rtol, atol : float
+        Step or bracket tolerance.
+    max_iterations : int, optional
+        Iterations before giving up.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+        The roots.
+
+    Raises
+    ------
+    SolverError
+        An entry has not converged after ``max_iterations``.
+
+    Examples
+    --------
+    >>> targets = np.array([2.0, 3.0])
+    >>> x = illinois(lambda x, i: x * x - targets[i], [0.0, 0.0], [2.0, 2.0], [-2.0, -3.0], [2.0, 1.0],
+    ...              rtol=1e-14, atol=0.0)
+    >>> x.round(12).tolist()
+    [1.414213562373, 1.732050807569]
     """
     a, b, fa, fb = (np.array(v, dtype=np.float64) for v in (a, b, fa, fb))
     x = a.copy()
@@ -206,6 +270,17 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     Rows whose targets all lie in the first quarter of the tabulated branch are
     tabulated again on the part up to the highest target (a zoom), so that the cubic
     start of the polish is accurate without a finer grid everywhere.
+
+    Examples
+    --------
+    P - P0 = sin(theta) with dV/dtheta = 1: a fold at pi/2, where P - P0 = 1.
+
+    >>> rate = lambda theta, rows=None: (np.sin(theta), np.ones_like(theta))
+    >>> slope = lambda theta, rows=None: np.cos(theta)
+    >>> theta, where, stop, p_stop = trace_inverse(rate, np.array([[3.0]]), np.array([[0.5, 1.5]]), slope=slope,
+    ...                                            grid_points=24, rtol=1e-13, atol=0.0)
+    >>> theta.round(6).tolist(), where.tolist(), stop.round(6).tolist(), p_stop.round(9).tolist()
+    ([[0.523599, 1.570796]], [[0, 2]], [[1.570796]], [[1.0]])
     """
     memo = {} if memo is None else memo
     if "table" not in memo:
@@ -416,6 +491,26 @@ def root_each(residual, lo, hi, *, rtol, atol):
     1-D arrays. Entries whose bracket has no sign change return ``hi``; entries
     where the residual is not finite (a failing method) or where ``brentq`` does not
     converge (a noisy residual) return nan, which the caller reports as FAILED.
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(x, k) -> float``, target ``k``'s residual at the scalar ``x``.
+    lo, hi : array_like (n,)
+        Brackets.
+    rtol, atol : float
+        ``brentq``'s tolerances.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+        The roots (``hi`` without a sign change, nan on failure).
+
+    Examples
+    --------
+    >>> targets = [2.0, 3.0, -1.0]
+    >>> root_each(lambda x, k: x * x - targets[k], np.zeros(3), np.full(3, 2.0), rtol=1e-14, atol=1e-14).round(12).tolist()
+    [1.414213562373, 1.732050807569, 2.0]
     """
     from scipy.optimize import brentq
 

@@ -57,7 +57,13 @@ __all__ = ["Status", "status_names", "VALIDITY_LIMITS", "MODEL_STATES", "is_mode
 
 
 class Status(enum.IntEnum):
-    """State of the actuator at one point of a curve (stored as int8 in arrays)."""
+    """State of the actuator at one point of a curve (stored as int8 in arrays).
+
+    Examples
+    --------
+    >>> Status(7).name, int(Status.OVERSTRETCHED)
+    ('KINKED', 8)
+    """
 
     INFLATION = 0
     BENDING = 1
@@ -80,6 +86,15 @@ MODEL_STATES = frozenset((Status.INFLATION, Status.BENDING, Status.LOCKED, Statu
 def is_model_state(codes) -> np.ndarray:
     """True where a status is one of :data:`MODEL_STATES` (draw the shape; chart it as valid).
 
+    Parameters
+    ----------
+    codes : array_like of int
+        Status codes.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+
     Examples
     --------
     >>> is_model_state([0, 1, 3, 6]).tolist()
@@ -89,5 +104,20 @@ def is_model_state(codes) -> np.ndarray:
 
 
 def status_names(codes) -> list[str]:
-    """Names of an array of status codes, for reports and JSON."""
+    """Names of an array of status codes, for reports and JSON.
+
+    Parameters
+    ----------
+    codes : array_like of int
+        Status codes, any shape (read flat).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> status_names([[0, 1], [2, 5]])
+    ['INFLATION', 'BENDING', 'LOCKED', 'FAILED']
+    """
     return [Status(int(c)).name for c in np.asarray(codes).ravel()]

@@ -70,14 +70,36 @@ LIMIT_BISECTIONS = 60
 
 @dataclass(frozen=True, slots=True)
 class LimitFlags:
-    """Which validity limits each state exceeds (boolean arrays of the states' shape)."""
+    """Which validity limits each state exceeds (boolean arrays of the states' shape).
+
+    Attributes
+    ----------
+    coiled, kinked, overstretched : numpy.ndarray of bool
+        One flag per state for each limit (:mod:`embroact.predict.status`).
+
+    Examples
+    --------
+    >>> f = limit_flags([0.5, 7.0], 118.0, 2.58, 100.0)
+    >>> f.coiled.tolist(), f.kinked.tolist()
+    ([False, True], [False, False])
+    """
 
     coiled: np.ndarray
     kinked: np.ndarray
     overstretched: np.ndarray
 
     def names(self) -> list[list[str]]:
-        """Per point (flattened), the names of the limits it exceeds, in precedence order."""
+        """Per point (flattened), the names of the limits it exceeds, in precedence order.
+
+        Returns
+        -------
+        list of list of str
+
+        Examples
+        --------
+        >>> limit_flags([0.5, 7.0], 118.0, 2.58, 100.0).names()
+        [[], ['COILED']]
+        """
         rows = zip(*(np.ravel(getattr(self, k)) for k in ("coiled", "kinked", "overstretched")))
         return [[s.name for s, hit in zip(VALIDITY_LIMITS, row) if hit]
                 for row in rows]
@@ -96,6 +118,16 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
         Tube outer radius r at the state.
     l0_mm : array_like
         Fabric-side length.
+
+    Returns
+    -------
+    LimitFlags
+        Arrays of the broadcast shape.
+
+    Examples
+    --------
+    >>> limit_flags(0.1, 260.0, 2.58, 100.0).overstretched.tolist()
+    True
     """
     th = np.asarray(theta_rad, dtype=np.float64)
     l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (length_mm, radius_mm, l0_mm))
@@ -134,6 +166,19 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     every other point takes the first limit it exceeds. Arrays give an int8 array; one state
     in Python numbers with ``xp=SCALAR`` (:mod:`embroact.predict.floats`) gives an int.
 
+    Parameters
+    ----------
+    status : array_like of int or int
+        The model's statuses.
+    theta_rad, length_mm, radius_mm, l0_mm : array_like or float
+        The states (as :func:`limit_flags`).
+    xp : module, optional
+        numpy, or :data:`~embroact.predict.floats.SCALAR` for one state.
+
+    Returns
+    -------
+    numpy.ndarray of int8 or int
+
     Examples
     --------
     >>> import math
@@ -156,6 +201,25 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
     Positive bends: 360. Negative bends: the root of ``theta + arccos(1 - 2 r theta/l0)
     = 2 pi`` (module docstring), found by bisection in ``(pi, 2 pi]``; when the bend is
     kinked before it can coil (``l0 <= pi r``) the full-turn angle is returned.
+
+    Parameters
+    ----------
+    l0_mm : float
+        Fabric-side length [mm], > 0.
+    radius_mm : float
+        Tube outer radius [mm], > 0.
+    negative : bool
+        The bend is negative (towards the tube).
+
+    Returns
+    -------
+    float
+        [deg].
+
+    Examples
+    --------
+    >>> coil_angle_deg(100.0, 2.58, negative=False), round(coil_angle_deg(100.0, 2.58, negative=True), 2)
+    (360.0, 315.7)
     """
     l0 = check_range("l0_mm", l0_mm, low=0.0)
     r = check_range("radius_mm", radius_mm, low=0.0)
@@ -174,6 +238,15 @@ def valid_mask(curve) -> np.ndarray:
     Equilibria (INFLATION, BENDING) and the branch end a point stops at (LOCKED,
     UNSTABLE); False for the validity limits and for fill values (OUT_OF_DOMAIN, FAILED).
     Views and charts call this instead of testing statuses themselves.
+
+    Parameters
+    ----------
+    curve : Curve
+        A predicted curve.
+
+    Returns
+    -------
+    numpy.ndarray of bool
 
     Examples
     --------

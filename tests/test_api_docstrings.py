@@ -105,13 +105,10 @@ UNDOCUMENTED_MODULES = frozenset({
     "embroact.export.studio.form", "embroact.export.studio.outputs", "embroact.export.studio.roundtrip",
     "embroact.export.studio.serve", "embroact.export.studio.session", "embroact.export.studio.views",
     "embroact.patterns.design", "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis",
-    "embroact.predict.calibration", "embroact.predict.coupon", "embroact.predict.curve", "embroact.predict.derived",
-    "embroact.predict.fit", "embroact.predict.inflation", "embroact.predict.inverse", "embroact.predict.layoutchoice",
-    "embroact.predict.lean", "embroact.predict.markers", "embroact.predict.model", "embroact.predict.onecurve",
-    "embroact.predict.pchip", "embroact.predict.photomarkers", "embroact.predict.profile",
-    "embroact.predict.rule_catalogue", "embroact.predict.rules", "embroact.predict.shape", "embroact.predict.sleeve",
-    "embroact.predict.sleeve_rules", "embroact.predict.solvers", "embroact.predict.status",
-    "embroact.predict.uncertainty", "embroact.predict.validity",
+    "embroact.predict.calibration", "embroact.predict.coupon", "embroact.predict.fit", "embroact.predict.inverse",
+    "embroact.predict.markers", "embroact.predict.photomarkers", "embroact.predict.profile",
+    "embroact.predict.rule_catalogue", "embroact.predict.rules", "embroact.predict.shape",
+    "embroact.predict.sleeve_rules", "embroact.predict.uncertainty",
 })
 
 
