@@ -24,6 +24,14 @@ def strip_points(theta_deg, offsets_mm, l0=100.0):
     return np.array(out)
 
 
+def chord_turning_deg(theta_deg, offsets_mm, l0=100.0):
+    """Turning between the first and last chord of markers at arc lengths ``offsets_mm`` on a uniform bend
+    of ``l0`` by ``theta_deg`` [deg], by hand: what a marker layout with those offsets reads."""
+    d = np.diff(strip_points(theta_deg, offsets_mm, l0), axis=0)
+    turn = np.arctan2(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0], np.einsum("ij,ij->i", d[:-1], d[1:]))
+    return math.degrees(turn.sum())
+
+
 def paper_frame(theta_deg, offset=0.0, rot=np.eye(3), lateral=8.0, l0=100.0):
     """The paper's layout (2 rows of 7 markers, 10 mm apart, the first ``offset`` mm from the clamp), rotated."""
     s = offset + 10.0 * np.arange(7)

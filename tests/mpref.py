@@ -176,3 +176,25 @@ class Ref:
         """theta [rad] with P(theta) = pressure, Newton/secant from ``guess``."""
         with _digits():
             return mp.findroot(lambda t: self.pressure(t) - mp.mpf(pressure_mpa), mp.mpf(guess))
+
+    def bend_deg(self, pressures_kpa, step=0.05):
+        """theta [deg] at each pressure [kPa], from the equations alone: zero up to P0, else the root of
+        P(theta) = p on the bending side (the sign of theta along which P rises from P0), started from a
+        scan of P(theta) in ``step`` rad steps (no model code gives a start value)."""
+        ps = [mp.mpf(p) / 1000 for p in pressures_kpa]
+        side = 1 if self.pressure(mp.mpf("0.01")) > self.pressure(mp.mpf("-0.01")) else -1
+        grid, top = [mp.mpf(0)], max(ps)
+        while self.pressure(grid[-1]) < top:
+            grid.append(grid[-1] + side * mp.mpf(step))
+        values = [self.pressure(t) for t in grid]
+        out = []
+        for p in ps:
+            if p <= self.p0:
+                out.append(0.0)
+                continue
+            k = next(i for i, v in enumerate(values) if v >= p)
+            lo, hi = grid[k - 1], grid[k]
+            guess = lo + (hi - lo) * (p - values[k - 1]) / (values[k] - values[k - 1])
+            out.append(float(mp.degrees(self.theta(p, guess))))
+        return out
+

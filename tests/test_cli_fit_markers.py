@@ -16,7 +16,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from markerdata import paper_frame
+from markerdata import chord_turning_deg, paper_frame
 from embroact.export.cli.main import main
 
 ZIGZAG = ["zigzag", "--width-mm", "7"]
@@ -202,15 +202,6 @@ def test_bad_layout_flags_are_one_line(capsys, tmp_path, flags, message):
 
 
 # ----------------------------------------------------------------------------- predict's marker reading
-def _hand_reading(theta_deg, offsets_mm, l0):
-    """Turning between the first and last chord of markers on the bent strip, by hand (tests/markerdata.py)."""
-    from markerdata import strip_points
-
-    d = np.diff(strip_points(theta_deg, offsets_mm, l0), axis=0)
-    turn = np.arctan2(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0], np.einsum("ij,ij->i", d[:-1], d[1:]))
-    return math.degrees(turn.sum())
-
-
 def test_predict_gives_the_marker_reading_next_to_theta(capsys):
     """--measurement markers: reading_deg is the turning of the layout's chords on the predicted bend,
     also with markers past the bent length (offset 60 mm: the last two on the straight continuation)."""
@@ -219,7 +210,7 @@ def test_predict_gives_the_marker_reading_next_to_theta(capsys):
         doc = _json(capsys, "predict", *ZIGZAG, "--g-mpa", "2.7", "--p0-kpa", "85", "--pressure-kpa", grid,
                     "--measurement", "markers", "--marker-offset-mm", offset, "--markers-per-side", per_side, "--json")
         s = float(offset) + 10.0 * np.arange(int(per_side))
-        want = [_hand_reading(t, s, doc["derived"]["length_mm"]) for t in doc["theta_deg"]]
+        want = [chord_turning_deg(t, s, doc["derived"]["length_mm"]) for t in doc["theta_deg"]]
         assert np.allclose(doc["reading_deg"], want, rtol=1e-9, atol=1e-9)
         assert doc["measurement"]["offset_mm"] == float(offset) and doc["band"] is None
     # the paper's layout on 100 mm: exactly half of theta; the text table shows the same column

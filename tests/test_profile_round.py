@@ -1,22 +1,28 @@
 """A simulated calibration round: measurements generated from a known profile (G and P0 varying along
 width and angle, 2 deg reading noise as in the band tests) -> ``embroact fit --sheet`` of the whole sheet
 -> the profile recovers the true G and P0 within its standard errors, reports leave-one-out errors,
-flags a coupon that disagrees, and works as a calibration for predict."""
+flags a coupon that disagrees, and works as a calibration for predict and design.
+
+The measurements come from neither the fit nor the model code: the bend is the 50-digit reference of
+docs/model.md (tests/mpref.py, ``Ref.bend_deg``) and the layout's reading the turning between the first
+and last marker chord on that bend, by hand (tests/markerdata.py).
+"""
 import csv
+import functools
 import json
 import math
 
+import mpref
 import numpy as np
 import pytest
 
+from markerdata import chord_turning_deg
 from embroact.export.cli.main import main
 from embroact.export.files.designfile import load_design
 from embroact.predict.analysis import analyse
-from embroact.predict.markers import MarkerLayout
-from embroact.predict.profile import predicted_reading_deg
 
 SIGMA_DEG = 2.0
-LAYOUT = MarkerLayout(markers_per_side=11, spacing_mm=10.0, offset_mm=0.0, rows=1)  # the coupon's, by hand
+MARKERS_MM = 10.0 * np.arange(11)  # the coupon's layout, by hand: 11 markers 10 mm apart from the clamp
 
 
 def true_g_p0(pattern, width_mm, angle_deg):
@@ -24,6 +30,22 @@ def true_g_p0(pattern, width_mm, angle_deg):
     if pattern == "zigzag":
         return 3.0 + 0.4 * (width_mm - 7.0), 40.0 + 25.0 * (width_mm - 5.0)
     return 2.0 + 0.03 * abs(angle_deg - 33.4), 90.0 + 1.0 * angle_deg
+
+
+@functools.lru_cache(maxsize=None)
+def true_bend_deg(pattern, width_mm, angle_deg, length_mm, pressures_kpa, g_factor=1.0):
+    """The reference theta [deg] at each pressure of the design with the known profile's G (times ``g_factor``)."""
+    g, p0 = true_g_p0(pattern, width_mm, angle_deg)
+    kw = dict(width_mm=width_mm, g_mpa=g * g_factor, p0_kpa=p0, l0=length_mm)
+    ref = mpref.Ref.zigzag(**kw) if pattern == "zigzag" else mpref.Ref.cross(angle_deg=angle_deg, **kw)
+    return np.array(ref.bend_deg(pressures_kpa))
+
+
+def true_reading_deg(d, pressures_kpa, g_factor=1.0):
+    """What the coupon's marker layout reads on the reference bend of the sewn design ``d``."""
+    theta = true_bend_deg(d.pattern, d.requested_width_mm, d.requested_angle_deg if d.pattern == "cross" else 0.0,
+                          d.length_mm, tuple(pressures_kpa), g_factor)
+    return np.array([chord_turning_deg(t, MARKERS_MM, d.length_mm) for t in theta])
 
 
 @pytest.fixture(scope="module")
@@ -46,12 +68,11 @@ def _simulate(coupon, seed, spoil=None):
     truth = {}
     for key, d in derived.items():
         g, p0 = true_g_p0(d.pattern, d.requested_width_mm, d.requested_angle_deg)
-        if key[1] == spoil:
-            g *= 1.8
-        truth[key[1]] = (g, p0)
+        factor = 1.8 if key[1] == spoil else 1.0
+        truth[key[1]] = (g * factor, p0)
         mine = [r for r in rows if (r["design"], r["actuator"]) == key]
-        p = np.array([float(r["pressure_kpa"]) for r in mine])
-        bend = predicted_reading_deg(d, g, p0, p, LAYOUT) + rng.normal(0.0, SIGMA_DEG, p.size)
+        p = [float(r["pressure_kpa"]) for r in mine]
+        bend = true_reading_deg(d, p, factor) + rng.normal(0.0, SIGMA_DEG, len(p))
         for r, b in zip(mine, bend):
             r["bend_deg"] = f"{b:.4f}"
     path = coupon / f"filled-{seed}-{spoil}.csv"
@@ -101,46 +122,44 @@ def test_a_disagreeing_coupon_is_flagged(coupon, capsys):
     assert len(flagged) == 1 and "03 zigzag w7.0" in flagged[0]
 
 
+#: Seeds of the band-coverage round, and the probability that a normal deviate lies within 1 sigma.
+ROUNDS = 100
+ONE_SIGMA = math.erf(1.0 / math.sqrt(2.0))
+
+
 @pytest.mark.slow
-@pytest.mark.xfail(reason="known gap: the band under-covers (24-28 of 50 inside, ~34 expected); the fitted G and P0 "
-                          "lie 1.5-2 se from the truth too often: the fit's standard errors look about 1.5x too small",
-                   strict=False)
 def test_design_with_a_profile_meets_targets_inside_its_band_about_68_percent(tmp_path_factory, capsys):
-    """50 seeded calibration rounds of a zigzag coupon (loading branch, 2 deg noise): each fitted profile
-    designs for a seeded target; the bend the true profile gives the designed width lies within the
-    reported 1-sigma band about 68 % of the time (binomial sd 6.6 % over 50)."""
-    from embroact.patterns.params import Tube
-    from embroact.predict.curve import ActuatorModel, curve
-    from embroact.predict.profile import CouponData, fit_profile
-    from embroact.export.files.calibfile import write_calibration
+    """ROUNDS seeded calibration rounds of the zigzag coupon (both branches measured, 2 deg noise) ->
+    ``fit --sheet`` -> ``design`` for a target the true profile reaches (a width drawn inside the
+    coupon's range, away from its ends, at a pressure drawn in 150-220 kPa); the reference bend of the
+    designed width with the true profile lies within the reported 1-sigma band in ONE_SIGMA of the
+    rounds. Each round is an independent Bernoulli trial, so the count is Binomial(ROUNDS, 0.6827):
+    the test accepts its central 99 % (56-80 of 100), which an under-covering band (the 48-56 %
+    seen while the lookup snapped a design within 1 % of a coupon's width to that coupon) fails."""
+    from scipy.stats import binom
 
     out = tmp_path_factory.mktemp("zig")
     assert main(["calibrate", "coupon", "--patterns", "zigzag", "--out", str(out)]) == 0
     capsys.readouterr()
-    with open(out / "measurements.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    acts = {a.name: a.derived for a in analyse(load_design(out / "coupon-hoop1.toml")).actuators}
-    inside, n = 0, 50
-    for seed in range(n):
-        rng = np.random.default_rng(100 + seed)
-        data = []
-        for name, d in acts.items():
-            g, p0 = true_g_p0("zigzag", d.requested_width_mm, 0.0)
-            mine = [r for r in rows if r["actuator"] == name and r["branch"] == "loading"]  # what design uses
-            p = np.array([float(r["pressure_kpa"]) for r in mine])
-            bend = predicted_reading_deg(d, g, p0, p, LAYOUT) + rng.normal(0.0, SIGMA_DEG, p.size)
-            data.append(CouponData(name, d, p, bend, tuple(r["branch"] for r in mine)))
-        cal = tmp_path_factory.mktemp("p") / "prof.toml"
-        write_calibration(cal, fit_profile(data, layout=LAYOUT, name="prof", tube=Tube()).calibration)
-        target, at = float(rng.uniform(60.0, 150.0)), float(rng.uniform(150.0, 220.0))
-        design = cal.parent / "d.toml"
-        assert main(["design", "--bend-deg", f"{target:.3f}", "--at-kpa", f"{at:.3f}", "--pattern", "zigzag",
-                     "--calibration", str(cal), "-o", str(design), "--json"]) == 0
+    inside, zs = 0, []
+    for seed in range(ROUNDS):
+        sheet, _ = _simulate(out, seed=100 + seed)
+        cal = out / "prof.toml"
+        assert main(["fit", "--sheet", str(sheet), "-o", str(cal)]) == 0
+        rng = np.random.default_rng(1000 + seed)
+        width, at = round(float(rng.uniform(5.4, 8.6)), 3), round(float(rng.uniform(150.0, 220.0)), 3)
+        (target,) = true_bend_deg("zigzag", width, 0.0, 100.0, (at,))
+        design = out / f"d{seed}.toml"
+        capsys.readouterr()
+        assert main(["design", "--bend-deg", f"{target:.3f}", "--at-kpa", f"{at}", "--pattern", "zigzag",
+                     "--tolerance-deg", "3", "--calibration", str(cal), "-o", str(design), "--json"]) == 0
         best = json.loads(capsys.readouterr().out)["best"]
         assert best["theta_sd_deg"] is not None and best["theta_sd_deg"] > 0
         (a,) = analyse(load_design(design)).actuators
-        g, p0 = true_g_p0("zigzag", a.derived.requested_width_mm, 0.0)
-        true = float(curve(ActuatorModel.from_derived(a.derived, g_mpa=g, p0_kpa=p0), [at]).theta_deg[0])
-        inside += abs(true - best["theta_deg"]) <= best["theta_sd_deg"]
-    print(f"true bend inside the reported 1-sigma band: {inside} of {n}")
-    assert 0.5 <= inside / n <= 0.85, inside
+        (true,) = true_bend_deg("zigzag", a.derived.requested_width_mm, 0.0, a.derived.length_mm, (at,))
+        zs.append((true - best["theta_deg"]) / best["theta_sd_deg"])
+        inside += abs(zs[-1]) <= 1.0
+    low, high = binom.ppf([0.005, 0.995], ROUNDS, ONE_SIGMA)
+    print(f"true bend inside the reported 1-sigma band: {inside} of {ROUNDS} (accepted {low:.0f}-{high:.0f}); "
+          f"sd of (true - predicted) / band: {np.std(zs):.2f}")
+    assert low <= inside <= high, (inside, np.round(zs, 2))
