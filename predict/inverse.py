@@ -11,12 +11,16 @@ Two questions (docs/model.md, segmented actuators):
   is polished by regula falsi, and the bends the space reaches in a valid state are refined
   to their exact extremes (the verdict: a target outside them is refused with the true
   extreme). The designs tried are the ones a machine sews: a straight actuator's rails lie
-  at +-w/2 on the machine grid, so a zigzag width steps by 0.2 mm (the grid widths around
-  each crossing are tried); a cross angle is the mean over many legs and is polished on the
+  at +-w/2 on the machine grid, so a zigzag width steps by 0.2 mm on a path along a grid line
+  (the grid widths around each crossing are tried); a cross angle is the mean over many legs and is polished on the
   generated needle points. Each candidate is generated and analysed like any design (the
   numbers ``embroact predict`` prints for the written file); it must be in a valid model
   state at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass
-  the design rules without errors; clean candidates rank above ones with warnings. A target
+  the design rules without errors; clean candidates rank above ones with warnings. A
+  straight path moved half a grid unit sideways (:func:`rail_offset_mm`) puts the rails of
+  a width of an odd number of grid units on the grid too, so a zigzag's width steps by
+  0.1 mm; where that still misses, a length within ``length_tolerance_mm`` of the one asked
+  for (default 0: the length stays) meets the bend in 0.1 mm steps of length. A target
   no sewable design meets within the tolerance gets the nearest one and the pressure at
   which that design bends by the target exactly.
 * **target shape** (:func:`design_shape`): which segmented actuator bends into a given
@@ -41,9 +45,12 @@ Examples
 >>> r = design_bend(84.5, 150.0, pattern="zigzag")
 >>> r.reached, r.best.pattern, r.best.params.width_mm, round(r.best.theta_deg, 2)
 (True, 'zigzag', 6.2, 84.53)
->>> r = design_bend(90.0, 150.0, pattern="zigzag")   # between the sewable widths 6.2 and 6.0 mm
+>>> r = design_bend(88.0, 150.0, pattern="zigzag")   # between the sewable widths 6.2 and 6.1 mm
 >>> r.reached, r.in_range, r.best.params.width_mm, round(r.best.theta_deg, 2), round(r.best.exact_pressure_kpa, 1)
-(False, True, 6.2, 84.53, 154.7)
+(False, True, 6.1, 90.22, 148.2)
+>>> r = design_bend(88.0, 150.0, pattern="zigzag", length_tolerance_mm=3.0)   # 97.5 mm long meets it
+>>> r.reached, r.best.params.width_mm, r.best.length_mm, round(r.best.theta_deg, 2)
+(True, 6.1, 97.5, 87.96)
 """
 from __future__ import annotations
 
@@ -167,12 +174,14 @@ class DesignSpace:
 
     @property
     def grid_step(self) -> float:
-        """Step [mm] between the values of the free parameter a straight actuator sews exactly; 0 for a
-        parameter the sewn legs realise continuously.
+        """Step [mm] between the values of the free parameter a straight actuator on a path along a grid line
+        sews exactly; 0 for a parameter the sewn legs realise continuously.
 
         A straight path's rails lie at +-w/2, so a width lands on the machine grid in steps of two grid
-        units (0.2 mm); a cross angle is the mean over many legs whose ends round differently, so the
-        sewn angle follows the asked one closely (the analysed design measures it).
+        units (0.2 mm) on a path along a grid line, and in steps of one unit when the path may move half a
+        unit sideways (:func:`rail_offset_mm`; ``sewable(..., step=grid / 1)``); a cross angle is the mean
+        over many legs whose ends round differently, so the sewn angle follows the asked one closely (the
+        analysed design measures it).
 
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).grid_step, DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4).grid_step
         (0.2, 0.0)
@@ -181,16 +190,21 @@ class DesignSpace:
             return 0.0
         return 2.0 * DEFAULT_TOLERANCES.machine_grid_mm
 
-    def sewable(self, x: float, spread: int = 1) -> tuple[float, ...]:
+    def sewable(self, x: float, spread: int = 1, *, step: float | None = None) -> tuple[float, ...]:
         """The sewable values of the parameter around ``x``: the grid values below and above it and
         ``spread - 1`` more on each side, inside the range (``(x,)`` for a continuous parameter).
+
+        ``step`` is the grid step of the parameter (default :attr:`grid_step`; one machine-grid unit for a
+        straight path moved by :func:`rail_offset_mm`).
 
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(6.1529)
         (6.0, 6.2)
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(9.0, spread=2)
         (8.8, 9.0)
+        >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(6.1529, step=0.1)
+        (6.1, 6.2)
         """
-        step = self.grid_step
+        step = self.grid_step if step is None or self.grid_step == 0.0 else step
         if step == 0.0:
             return (float(x),)
         k_lo, k_hi = math.floor(x / step + 1e-9), math.ceil(x / step - 1e-9)
@@ -362,8 +376,9 @@ class Sensitivity:
     parameter : str
         ``"width_mm"`` or ``"angle_deg"``.
     step : float
-        One grid step of the parameter [mm or deg]: a width moves its rails by one grid unit
-        each (0.2 mm), an angle moves a leg end by one grid unit along the path.
+        One grid step of the parameter [mm or deg]: a width moves one rail by one grid unit (0.1 mm,
+        the path moving by half a unit, :func:`rail_offset_mm`; both rails, 0.2 mm, on a path that
+        stays), an angle moves a leg end by one grid unit along the path.
     minus_deg, plus_deg : float
         Change of the bend at the target pressure for one step lower / higher [deg].
 
@@ -430,6 +445,9 @@ class BendCandidate:
         Pressure at which this design bends by the target exactly in a valid state; None if none.
     findings : tuple of str
         ``"CODE severity: message"`` of every finding ``embroact check`` gives for the written design.
+    length_mm : float
+        The actuator's length in the design [mm]: the one asked for, or one within the length tolerance
+        fitted to whole stitch intervals (:func:`design_bend`'s ``length_tolerance_mm``).
     """
 
     pattern: str
@@ -448,10 +466,11 @@ class BendCandidate:
     warning_count: int = 0
     exact_pressure_kpa: float | None = None
     findings: tuple[str, ...] = ()
+    length_mm: float = math.nan
 
     def as_dict(self) -> dict:
         """JSON-ready, units in the keys."""
-        return {"pattern": self.pattern, "params": param_values(self.params),
+        return {"pattern": self.pattern, "params": param_values(self.params), "length_mm": self.length_mm,
                 "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
                 "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
                 "range_margin_fraction": self.range_margin,
@@ -524,19 +543,37 @@ def operating_limits(limits: OperationSettings, pressure_kpa: float, bend_deg: f
                                max_bend_deg=top_bend, target_pressure_kpa=pressure_kpa, target_bend_deg=bend_deg)
 
 
+def rail_offset_mm(width_mm: float) -> float:
+    """The sideways shift of a straight path along a grid line that puts both rails (+-w/2) of a width on the
+    machine grid: 0 for a width of an even number of grid units, half a unit for an odd one.
+
+    A 6.1 mm zigzag on the path y = 0 would round its rails at +-3.05 mm to +-3.1 (a 6.2 mm zigzag is
+    sewn); on the path y = 0.05 mm they lie at 3.1 and -3.0 mm, exactly 6.1 mm apart. The tube lies on
+    the path, so it stays centred between the rails.
+
+    >>> rail_offset_mm(6.1), rail_offset_mm(6.2), rail_offset_mm(7.0)
+    (0.05, 0.0, 0.0)
+    """
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    return 0.5 * grid if round(width_mm / grid) % 2 else 0.0
+
+
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
-                  operation: OperationSettings) -> Design:
+                  operation: OperationSettings, offset_path: bool = True) -> Design:
+    """The written design: one straight actuator along +x from the origin, moved sideways by
+    :func:`rail_offset_mm` when ``offset_path`` (so both rails of its width lie on the machine grid)."""
+    shift = rail_offset_mm(params.width_mm) if offset_path else 0.0
     return Design(name, tube, MachineSettings(), operation,
-                  (ActuatorSpec(name, params, Centerline.straight(length_mm), model=settings),))
+                  (ActuatorSpec(name, params, Centerline.straight(length_mm, origin_mm=(0.0, shift)), model=settings),))
 
 
 def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, settings: ModelSettings, sets,
-              name: str, operation: OperationSettings):
+              name: str, operation: OperationSettings, offset_path: bool = True):
     """(design, analysis, theta_deg or None, status or None) of the generated one-actuator design."""
     from .analysis import analyse
     from .curve import curve
 
-    d = _one_actuator(params, length_mm, tube, settings, name, operation)
+    d = _one_actuator(params, length_mm, tube, settings, name, operation, offset_path)
     a = analyse(d, calibration_sets=sets)
     act = a.actuators[0]
     if act.choice is None:
@@ -556,8 +593,9 @@ def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
 
 
 def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float, **kw) -> tuple[Sensitivity, ...]:
-    """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again."""
-    steps = [("width_mm", 2.0 * DEFAULT_TOLERANCES.machine_grid_mm)]
+    """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again: one grid
+    unit of width where the path moves to keep the rails on the grid (``offset_path``), else two."""
+    steps = [("width_mm", (1.0 if kw.get("offset_path", True) else 2.0) * DEFAULT_TOLERANCES.machine_grid_mm)]
     if pattern_kind(params.pattern).has_angle:
         steps.append(("angle_deg", angle_grid_step_deg(params.width_mm, params.angle_deg)))
     out = []
@@ -614,25 +652,31 @@ def exact_pressure_kpa(model, target_deg: float) -> float | None:
 
 def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
                tube: Tube, settings: ModelSettings, sets, name: str, operation: OperationSettings,
-               polish: bool) -> BendCandidate | None:
+               polish: bool, offset_path: bool = True, interval_mm: float | None = None) -> BendCandidate | None:
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
-    needle points are on the machine grid); None if it is not in a valid state or fails the rules."""
+    needle points are on the machine grid); None if it is not in a valid state or fails the rules.
+    ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_length`)."""
     from .rules import check_design
 
-    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation)
-    d, a, theta, status = _analysed(space.params(x), length_mm, pressure_kpa, **kw)
+    def params_at(v):
+        q = space.params(v)
+        return q if interval_mm is None else dataclasses.replace(q, interval_mm=interval_mm)
+
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation,
+                              offset_path=offset_path)
+    d, a, theta, status = _analysed(params_at(x), length_mm, pressure_kpa, **kw)
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
         x0, t0 = x, theta
         x1 = min(max(x + 1e-4 * (space.high - space.low), space.low), space.high)
         for _ in range(8):
             if abs(t0 - target_deg) <= _BEND_TOL_DEG:
                 break
-            _, _, t1, _ = _analysed(space.params(x1), length_mm, pressure_kpa, **kw)
+            _, _, t1, _ = _analysed(params_at(x1), length_mm, pressure_kpa, **kw)
             if t1 is None or t1 == t0:
                 break
             x0, x1, t0 = x1, min(max(x1 - (t1 - target_deg) * (x1 - x0) / (t1 - t0), space.low), space.high), t1
         x = round(x0, 6)
-        d, a, theta, status = _analysed(space.params(x), length_mm, pressure_kpa, **kw)
+        d, a, theta, status = _analysed(params_at(x), length_mm, pressure_kpa, **kw)
     if theta is None or status not in _VALID:
         return None
     findings = check_design(a)
@@ -649,13 +693,13 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     binding = range_note if edge * pressure_kpa <= (margin if math.isfinite(margin) else math.inf) * 0.5 \
         else limit_note
     band = a.bands([pressure_kpa])[0]
-    params = space.params(x)
+    params = params_at(x)
     return BendCandidate(space.pattern, params, d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
                          _sensitivity(params, theta, length_mm, pressure_kpa, **kw), binding,
                          tuple(sorted({f.code for f in findings})),
                          None if band is None else float(band.theta_sd_deg[0]),
                          sum(f.severity.name == "WARNING" for f in findings), exact_pressure_kpa(model, target_deg),
-                         tuple(f"{f.code} {f.severity.name.lower()}: {f.message}" for f in findings))
+                         tuple(f"{f.code} {f.severity.name.lower()}: {f.message}" for f in findings), float(length_mm))
 
 
 #: Bisection (golden-section) steps locating a boundary of the valid states (an extreme of the bend) in the
@@ -697,7 +741,8 @@ def _length_jumps(space: DesignSpace, length_mm: float) -> np.ndarray:
     return np.asarray(out, dtype=np.float64).reshape(-1, 2)
 
 
-def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table) -> tuple[float, float] | None:
+def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table,
+                jumps: np.ndarray | None = None) -> tuple[float, float] | None:
     """(lowest, highest) bend at P* in a valid state over the space's continuous parameter; None if none.
 
     The table brackets every candidate: its valid points, each boundary of the valid states
@@ -717,7 +762,7 @@ def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table) -> t
         return np.asarray(th, dtype=np.float64), np.isin(st, _VALID)
 
     found = [float(v) for v in theta[ok]]
-    jumps = _length_jumps(space, length_mm)
+    jumps = _length_jumps(space, length_mm) if jumps is None else jumps
     if jumps.size:  # where the sewn geometry jumps, either side of it (between jumps the bend is smooth)
         th, valid = at(np.concatenate([jumps[:, 0], jumps[:, 1]]))
         found += th[valid].tolist()
@@ -750,6 +795,17 @@ def _bend_range(model: _Model, space: DesignSpace, length_mm: float, table) -> t
     return min(found), max(found)
 
 
+def _with_points(model: _Model, space: DesignSpace, length_mm: float, table, extra) -> tuple:
+    """``table`` (x, theta, status) with the parameter values ``extra`` added (both sides of each jump of the sewn
+    geometry, :func:`_length_jumps`), in order."""
+    x, theta, status = table
+    extra = np.asarray(extra, dtype=np.float64)
+    params = [space.params(float(v)) for v in extra]
+    th, st = model.theta(params, [_legs(q, length_mm)[1] for q in params])
+    order = np.argsort(np.concatenate([x, extra]), kind="stable")
+    return (np.concatenate([x, extra])[order], np.concatenate([theta, th])[order], np.concatenate([status, st])[order])
+
+
 def _why_not(space: DesignSpace, target_deg: float, pressure_kpa: float, bend_range, p0_low_kpa: float) -> str:
     """One line, in physical terms, why no design of ``space`` bends by the target at the pressure."""
     if bend_range is None:
@@ -771,16 +827,48 @@ def _lowest_p0_kpa(space: DesignSpace, length_mm: float, model: _Model) -> float
     return float(min(model.model(space.params(v), length_mm).p0_kpa for v in xs))
 
 
-def _rank(c: BendCandidate, target_deg: float, p: float):
-    """Clean candidates first, then the closer bend, then the wider margin to limit and range end."""
-    return (c.warning_count > 0, round(abs(c.theta_deg - target_deg), 6), -min(c.margin_kpa / p, 10.0) - c.range_margin,
-            c.pattern)
+def _rank(c: BendCandidate, target_deg: float, p: float, length_mm: float):
+    """Clean candidates first, then the asked length, then the closer bend, then the wider margin to limit and
+    range end."""
+    return (c.warning_count > 0, round(abs(c.length_mm - length_mm), 6), round(abs(c.theta_deg - target_deg), 6),
+            -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
+
+
+def _fitted_lengths(space: DesignSpace, x: float, c: BendCandidate, length_mm: float, tolerance_mm: float,
+                    target_deg: float, make) -> list[BendCandidate]:
+    """Candidates of parameter ``x`` at other lengths within ``tolerance_mm`` of ``length_mm``, nearer the target.
+
+    The bend of a uniform actuator is its curvature times its bent length, and the curvature does not
+    depend on the length: the length that bends by the target is ``L theta* / theta(L)``, moved to the
+    machine grid and to ``length_mm +- tolerance_mm``. Its stitch interval is the space's one adjusted to
+    a whole number of intervals over it (the legs then span the length exactly, first and last needle
+    point on the grid); one more step corrects what the rounding left. ``make(x, length, interval)``
+    generates and analyses a candidate (None when it is invalid).
+    """
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    low, high = max(10.0, length_mm - tolerance_mm), min(1000.0, length_mm + tolerance_mm)
+    out, at = [], c
+    for _ in range(2):
+        if at.theta_deg == 0.0 or math.copysign(1.0, at.theta_deg) != math.copysign(1.0, target_deg):
+            break
+        want = min(max(at.length_mm * target_deg / at.theta_deg, low), high)
+        fitted = round(round(want / grid) * grid, 10)
+        fitted = fitted if low - 1e-9 <= fitted <= high + 1e-9 else round(round(at.length_mm / grid) * grid, 10)
+        if any(abs(fitted - o.length_mm) < 1e-9 for o in [c, *out]):
+            break
+        n = max(1, round(fitted / space.interval_mm))
+        at = make(x, fitted, fitted / n)
+        if at is None:
+            break
+        out.append(at)
+    return out
 
 
 def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", length_mm: float = 100.0,
                 tube: Tube = Tube(), settings: ModelSettings = ModelSettings(), sets: Iterable = (),
                 allow_extrapolation: bool = False, name: str = "A1", tolerance_deg: float = 0.5,
-                operation: OperationSettings = OperationSettings()) -> BendResult:
+                operation: OperationSettings = OperationSettings(), offset_path: bool = True,
+                length_tolerance_mm: float = 0.0) -> BendResult:
     """The single sewable actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
 
     The continuous parameter's roots are found on the model; the designs tried are those a
@@ -809,6 +897,14 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     operation : OperationSettings
         The operation limits the written design keeps (:func:`operating_limits`: the target is added
         as its operating point); every candidate is judged by the rules up to them.
+    offset_path : bool
+        Move the straight path half a machine-grid unit sideways for a width of an odd number of grid
+        units (:func:`rail_offset_mm`): both rails land on the grid, so widths step by one grid unit
+        (0.1 mm) instead of two. False: the path stays on y = 0 (an actuator placed elsewhere keeps its place).
+    length_tolerance_mm : float
+        The length may differ from ``length_mm`` by up to this, on the machine grid, where the grid's width
+        steps miss the target (:func:`_fitted_lengths`: the stitch interval is adjusted to whole intervals
+        over the new length), in [0, length_mm); 0 keeps the length asked for.
 
     Returns
     -------
@@ -832,19 +928,30 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         spaces, notes = {pattern: design_space(pattern, settings, sets=sets, tube=tube,
                                                allow_extrapolation=allow_extrapolation)}, ()
     model = _Model(p, tube, settings, sets)
+    length_tolerance_mm = check_range("length_tolerance_mm", length_tolerance_mm, low=0.0, high=length,
+                                      low_inclusive=True)
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name,
-                              operation=operating_limits(operation, p, target))
+                              operation=operating_limits(operation, p, target), offset_path=offset_path)
     cands: list[BendCandidate] = []
     reasons, ranges = [], []
+    step = DEFAULT_TOLERANCES.machine_grid_mm if offset_path else None  # one grid unit of width: the path moves
+
+    def add(c):
+        if c is not None and all((c.params, c.length_mm) != (o.params, o.length_mm) for o in cands):
+            cands.append(c)
+
     for space in spaces.values():
         table = model.table(space, length)
-        bend_range = _bend_range(model, space, length, table)
+        jumps = _length_jumps(space, length)
+        bend_range = _bend_range(model, space, length, table, jumps)
         if bend_range == (0.0, 0.0):  # only inflation: no design of the space bends at this pressure
             bend_range = None
         if bend_range is not None:
             ranges.append(bend_range)
         inside = bend_range is not None and bend_range[0] <= target <= bend_range[1]
         xs = list(_roots(model, space, length, target, table)) if inside else []
+        if inside and not xs and jumps.size:  # the bend crosses the target only between two jumps of the table
+            xs = list(_roots(model, space, length, target, _with_points(model, space, length, table, jumps.ravel())))
         if not xs:  # the nearest the space comes: its valid table point closest to the target, refined
             x, theta, status = table
             ok = np.flatnonzero(np.isin(status, _VALID))
@@ -852,23 +959,30 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
             if not inside:
                 reasons.append(_why_not(space, target, p, bend_range, _lowest_p0_kpa(space, length, model)))
         for root in xs:
-            for v in space.sewable(root, spread=2):
+            for v in space.sewable(root, spread=2, step=step):
                 c = _candidate(space, v, length, p, target, polish=space.grid_step == 0.0 and inside, **kw)
-                if c is not None and all(c.params != o.params for o in cands):
-                    cands.append(c)
+                add(c)
+                if c is not None and inside and space.grid_step > 0.0 and length_tolerance_mm > 0.0 \
+                        and abs(c.theta_deg - target) > _BEND_TOL_DEG:
+                    for other in _fitted_lengths(space, v, c, length, length_tolerance_mm, target,
+                                                 lambda x, L, s, space=space: _candidate(
+                                                     space, x, L, p, target, polish=False, interval_mm=s, **kw)):
+                        add(other)
     whole = (min(r[0] for r in ranges), max(r[1] for r in ranges)) if ranges else None
     in_range = whole is not None and any(r[0] <= target <= r[1] for r in ranges)
     if not cands:
         raise ParameterError(f"bend_deg {target:g} at pressure_kpa {p:g}: no valid sewable design in any pattern; "
                              + "; ".join(reasons or ["every design fails the design rules or leaves the valid states"]))
-    met = sorted((c for c in cands if in_range and abs(c.theta_deg - target) <= tol), key=lambda c: _rank(c, target, p))
+    met = sorted((c for c in cands if in_range and abs(c.theta_deg - target) <= tol),
+                 key=lambda c: _rank(c, target, p, length))
     if met:
         best = met[0]
-        others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p)) if c is not best]
+        others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p, length)) if c is not best]
         note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
+        sized = "" if best.length_mm == length else f" with a length of {best.length_mm:g} mm (asked {length:g})"
         return BendResult(target, p, length, best, tuple(others[:2]), True,
-                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg at {p:g} kPa{note}", in_range, whole,
-                          tol, notes)
+                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg at {p:g} kPa{sized}{note}", in_range,
+                          whole, tol, notes)
     cands.sort(key=lambda c: (round(abs(c.theta_deg - target), 6), c.warning_count > 0, c.pattern))
     best = cands[0]
     exact = (f"; it bends by {target:g} deg at {best.exact_pressure_kpa:.1f} kPa" if best.exact_pressure_kpa
@@ -876,12 +990,19 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     if in_range:
         why = (f"no sewable design within {tol:g} deg: the machine grid steps "
                f"{best.sensitivity[0].parameter} by {best.sensitivity[0].step:g}")
+        if best.theta_deg * target > 0.0 and spaces[best.pattern].grid_step > 0.0:  # the bend scales with the length
+            grid = DEFAULT_TOLERANCES.machine_grid_mm
+            fits = round(round(best.length_mm * target / best.theta_deg / grid) * grid, 10)
+            if abs(fits - length) > length_tolerance_mm and 10.0 <= fits <= 1000.0:
+                why += (f" (a length of {fits:g} mm would meet it: allow {abs(fits - length):.3g} mm with the "
+                        f"length tolerance)")
     else:
         extreme = "at most" if whole is not None and target > whole[1] else "at least"
         bound = None if whole is None else (whole[1] if target > whole[1] else whole[0])
         why = "; ".join(reasons) if bound is None else (f"the calibrated designs bend {extreme} {bound:+.2f} deg at "
                                                         f"{p:g} kPa in a valid state ({'; '.join(reasons)})")
-    statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg "
+    sized = "" if best.length_mm == length else f" with a length of {best.length_mm:g} mm (asked {length:g})"
+    statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg{sized} "
                  f"({best.theta_deg - target:+.2f} deg off){exact}")
     return BendResult(target, p, length, dataclasses.replace(best, binding=why), tuple(cands[1:3]), False, statement,
                       in_range, whole, tol, notes)

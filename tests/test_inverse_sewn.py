@@ -67,17 +67,20 @@ TARGETS = inverse_targets.target_bends(30)
 RNG = np.random.default_rng(23)
 
 
-@pytest.mark.parametrize("bend, pressure, pattern", TARGETS[:10])
-def test_reported_bend_is_the_decoded_files(bend, pressure, pattern):
-    """Seeded targets: the reported bend is the one of the decoded DST; met within the tolerance, or the answer
-    names the nearest design and a pressure at which that design reaches the target exactly."""
+@pytest.mark.parametrize("length_tolerance_mm", [0.0, 5.0])
+@pytest.mark.parametrize("bend, pressure, pattern", TARGETS)
+def test_reported_bend_is_the_decoded_files(bend, pressure, pattern, length_tolerance_mm):
+    """All 30 seeded targets, with the length kept and with 5 mm of length allowed: the reported bend is the one
+    of the decoded DST; met within the tolerance, or the answer names the nearest design and a pressure at which
+    that design reaches the target exactly."""
     try:
-        r = design_bend(bend, pressure, pattern=pattern)
+        r = design_bend(bend, pressure, pattern=pattern, length_tolerance_mm=length_tolerance_mm)
     except Exception as exc:  # no valid sewable design of this pattern at all: a one-line refusal
         assert "no valid sewable design" in str(exc)
         return
     theta, m = sewn_bend_deg(r.best.design, pressure)
     assert theta == pytest.approx(r.best.theta_deg, abs=1e-6)
+    assert abs(r.best.design.actuators[0].centerline.length_mm - 100.0) <= length_tolerance_mm + 1e-9
     if r.reached:
         assert abs(theta - bend) <= 0.5
     else:
@@ -117,6 +120,28 @@ def test_verdicts_agree_with_a_dense_scan(bend, pressure, pattern):
         assert f"{(hi if bend > hi else lo):+.2f} deg" in r.statement
 
 
+def test_every_zigzag_width_in_grid_units_is_sewn_and_a_length_meets_what_the_widths_miss():
+    """A 6.1 mm zigzag is sewn 6.1 mm wide (the path moved half a grid unit: the decoded file's needle points lie on
+    two rails 6.1 mm apart, on the grid); 88 deg at 150 kPa lies between the 6.1 and 6.2 mm designs (90.22, 84.53 deg) and is met by 6.1 mm over
+    97.5 mm (90.22 x 97.5 / 100 = 87.96 deg) when the length may move."""
+    from embroact.export.machine.formats import encode
+    from embroact.patterns.design import build_plan
+
+    r = design_bend(90.0, 150.0, pattern="zigzag")
+    assert r.reached and r.best.params.width_mm == 6.1
+    plan = build_plan(r.best.design)
+    data, res = encode(plan, "dst")
+    rails = np.unique(np.round(_decoded(data, res.origin_mm)[:, 1], 6))
+    assert len(rails) == 2 and rails[1] - rails[0] == pytest.approx(6.1, abs=1e-9)
+    assert sewn_bend_deg(r.best.design, 150.0)[0] == pytest.approx(90.22, abs=0.01)
+    r = design_bend(88.0, 150.0, pattern="zigzag")
+    assert not r.reached and "a length of 97.5 mm would meet it" in r.statement
+    r = design_bend(88.0, 150.0, pattern="zigzag", length_tolerance_mm=3.0)
+    assert r.reached and r.best.params.width_mm == 6.1 and r.best.length_mm == 97.5
+    assert r.best.theta_deg == pytest.approx(90.22 * 97.5 / 100.0, abs=0.01)
+    assert sewn_bend_deg(r.best.design, 150.0)[0] == pytest.approx(r.best.theta_deg, abs=1e-6)
+
+
 def test_the_issues_examples():
     """67.5 deg at 80 kPa is beyond the zigzag's 67.21 deg; -127 deg at 300 kPa is met by a cross."""
     r = design_bend(67.5, 80.0, pattern="zigzag")
@@ -128,21 +153,39 @@ def test_the_issues_examples():
     assert r.reached or "not met: no sewable design" in r.statement
 
 
+def _rails_on_grid_path(spec, width_mm):
+    """The straight path of ``spec`` moved so that rails +-w/2 lie on the 0.1 mm grid: y = 0 for an even number of
+    0.1 mm units of width, y = 0.05 mm for an odd one (3.05 + 0.05 = 3.1, -3.05 + 0.05 = -3.0)."""
+    from embroact.patterns.centerline import Centerline
+
+    y = 0.05 if round(width_mm * 10) % 2 else 0.0
+    return Centerline.straight(spec.centerline.length_mm, origin_mm=(0.0, y))
+
+
 def test_sensitivity_is_predict_one_grid_step_off(tmp_path, capsys):
-    """The printed change for +-1 grid step agrees in sign and within 10 % with predict on the stepped file."""
-    for bend, pressure, pattern in [(120.0, 200.0, "zigzag"), (-40.0, 250.0, "cross")]:
+    """The printed change for +-1 grid step agrees in sign and within 10 % with predict on the stepped file
+    (a zigzag width steps by one 0.1 mm unit, its straight path placed so both rails lie on the grid)."""
+    from embroact.export.files.designfile import dumps_design
+
+    for bend, pressure, pattern in [(120.0, 200.0, "zigzag"), (130.0, 150.0, "zigzag"), (-40.0, 250.0, "cross")]:
         r = design_bend(bend, pressure, pattern=pattern)
         spec = r.best.design.actuators[0]
+        steps = {s.parameter: s.step for s in r.best.sensitivity}
+        assert steps["width_mm"] == pytest.approx(0.1)
         for s in r.best.sensitivity:
             for sign, want in ((-1, s.minus_deg), (1, s.plus_deg)):
-                moved = dataclasses.replace(spec, params=dataclasses.replace(
-                    spec.params, **{s.parameter: getattr(spec.params, s.parameter) + sign * s.step}))
+                value = round(getattr(spec.params, s.parameter) + sign * s.step, 10)
+                moved = dataclasses.replace(spec, params=dataclasses.replace(spec.params, **{s.parameter: value}))
+                if s.parameter == "width_mm":
+                    moved = dataclasses.replace(moved, centerline=_rails_on_grid_path(spec, value))
                 out = tmp_path / "moved.toml"
-                from embroact.export.files.designfile import dumps_design
                 out.write_text(dumps_design(dataclasses.replace(r.best.design, actuators=(moved,))))
                 capsys.readouterr()
                 assert main(["predict", str(out), "--pressure-kpa", str(pressure), "--json"]) == 0
-                got = json.loads(capsys.readouterr().out)["actuators"][0]["theta_deg"][0] - r.best.theta_deg
+                act = json.loads(capsys.readouterr().out)["actuators"][0]
+                if s.parameter == "width_mm":  # the stepped width is the one sewn
+                    assert act["derived"]["width_mm"] == pytest.approx(value, abs=1e-9)
+                got = act["theta_deg"][0] - r.best.theta_deg
                 assert np.sign(got) == np.sign(want) and got == pytest.approx(want, rel=0.1)
 
 

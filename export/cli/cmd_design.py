@@ -2,7 +2,7 @@ r"""``embroact design``: from the bend or the shape wanted at a pressure to a de
 
 Target bend (one actuator)::
 
-    embroact design --bend-deg 90 --at-kpa 150 [--pattern KIND|any] [--length-mm 100] -o design.toml
+    embroact design --bend-deg 90 --at-kpa 150 [--pattern KIND|any] [--length-mm 100] [--length-tolerance-mm 0] -o design.toml
 
 Target shape (a segmented actuator)::
 
@@ -32,11 +32,16 @@ Examples
 target -40 deg at 250 kPa, l0 100 mm: met: cross bends -40.0... deg at 250 kPa...
 ...
 0
->>> main(["design", "--bend-deg", "90", "--at-kpa", "150", "--pattern", "zigzag", "-o", out])  # doctest: +ELLIPSIS
-target 90 deg at 150 kPa, l0 100 mm: not met: no sewable design within 0.5 deg: the machine grid steps width_mm by 0.2. ...
+>>> main(["design", "--bend-deg", "88", "--at-kpa", "150", "--pattern", "zigzag", "-o", out])  # doctest: +ELLIPSIS
+target 88 deg at 150 kPa, l0 100 mm: not met: no sewable design within 0.5 deg: the machine grid steps width_mm by 0.1 (a length of 97.5 mm would meet it...
 ...
 nothing written: the target is not met (--write-nearest writes the nearest design)
 5
+>>> main(["design", "--bend-deg", "88", "--at-kpa", "150", "--pattern", "zigzag", "--length-tolerance-mm", "3",
+...       "-o", out])  # doctest: +ELLIPSIS
+target 88 deg at 150 kPa, l0 100 mm: met: zigzag bends 87.96 deg at 150 kPa with a length of 97.5 mm (asked 100)...
+...
+0
 """
 from __future__ import annotations
 
@@ -92,6 +97,10 @@ def add_arguments(parser, name: str) -> None:
                           "either way)")
     space.add_argument("--tolerance-deg", type=float, default=0.5,
                        help="target bend: a sewn design within this of the target meets it [deg] (default 0.5)")
+    space.add_argument("--length-tolerance-mm", type=float, default=0.0,
+                       help="target bend: the length may differ from --length-mm by up to this (0.1 mm steps, the "
+                            "stitch interval fitted to whole intervals) where the grid's width steps miss the target "
+                            "(default 0: the length stays)")
     space.add_argument("--tolerance-mm", type=float, default=0.5,
                        help="target shape: a sewn design within this RMSE of the target meets it [mm] (default 0.5)")
     limits = parser.add_argument_group("operation limits the written design keeps (the target is added as its "
@@ -178,7 +187,8 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
-                    tolerance_deg=args.tolerance_deg, operation=_limits(args))
+                    tolerance_deg=args.tolerance_deg, operation=_limits(args),
+                    length_tolerance_mm=args.length_tolerance_mm)
     lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
     if r.range_deg is not None:
         lines.append(f"  reachable at {r.pressure_kpa:g} kPa over the calibrated designs: {r.range_deg[0]:+.2f} to "
@@ -187,7 +197,8 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
     for label, c in [("best" if r.reached else "nearest", r.best)] + [(f"runner-up {i + 1}", c)
                                                                      for i, c in enumerate(r.runners_up)]:
         miss = c.theta_deg - r.target_deg
-        lines.append(f"{label}: {c.pattern} {params_text(c.params)} -> {c.theta_deg:.3f} deg sewn"
+        sized = "" if c.length_mm == r.length_mm else f" length_mm={c.length_mm:g} (asked {r.length_mm:g})"
+        lines.append(f"{label}: {c.pattern} {params_text(c.params)}{sized} -> {c.theta_deg:.3f} deg sewn"
                      + (f" (misses the target by {miss:+.2f} deg)" if abs(miss) > r.tolerance_deg else "")
                      + f"; P0 {c.p0_kpa:.1f} kPa, G {c.g_mpa:.4g} MPa")
         margin = "" if c.margin_kpa == float("inf") else f" ({c.margin_kpa:.1f} kPa above the target pressure)"

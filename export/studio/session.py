@@ -244,7 +244,8 @@ class Studio:
         p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
         with self._searching():  # the design is not locked meanwhile: views and edits go on
             result = design_bend(target, p, pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
-                                 settings=spec.model, sets=self.calibration_sets, name=spec.name)
+                                 settings=spec.model, sets=self.calibration_sets, name=spec.name,
+                                 offset_path=False)  # the answer's parameters go on the actuator where it lies
         best = result.best
         values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
         values.update({f"actuator[{index}].{k}": v for k, v in param_values(best.params).items()})
