@@ -84,7 +84,13 @@ _PLANE_RATIO = 4.0
 
 
 class MarkerSide(str, enum.Enum):
-    """Face of the strip the markers are stuck to."""
+    """Face of the strip the markers are stuck to.
+
+    Examples
+    --------
+    >>> MarkerSide("thread").name, MarkerLayout().side.value
+    ('THREAD', 'fabric')
+    """
 
     FABRIC = "fabric"  #: on the fabric beside the embroidery (the paper)
     THREAD = "thread"  #: on the thread side, over the tube
@@ -146,7 +152,17 @@ class MarkerLayout:
                 f"first {self.offset_mm:g} mm from the clamped end, {self.side.value} side")
 
     def as_dict(self) -> dict:
-        """Plain dict with unit-suffixed keys (``side`` as its string)."""
+        """Plain dict with unit-suffixed keys (``side`` as its string).
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> MarkerLayout().as_dict()
+        {'markers_per_side': 7, 'spacing_mm': 10.0, 'offset_mm': 0.0, 'rows': 2, 'side': 'fabric'}
+        """
         return {"markers_per_side": self.markers_per_side, "spacing_mm": float(self.spacing_mm),
                 "offset_mm": float(self.offset_mm), "rows": self.rows, "side": self.side.value}
 
@@ -209,9 +225,24 @@ def marker_positions_mm(theta_deg, length_mm, layout: MarkerLayout) -> np.ndarra
     """Marker positions in the bending plane on a uniform bend of the fabric line [mm].
 
     The one-arc chain of :func:`chain_marker_positions_mm`: the bent length ``length_mm``
-    (l0) carries curvature ``theta/l0``; beyond it the strip continues straight. Returns
-    shape ``theta.shape + (markers_per_side, 2)``.
+    (l0) carries curvature ``theta/l0``; beyond it the strip continues straight.
 
+    Parameters
+    ----------
+    theta_deg : float or array_like
+        Bend of the length ``length_mm`` [deg].
+    length_mm : float
+        The bent length l0 [mm], > 0.
+    layout : MarkerLayout
+        Where the markers sit.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``theta.shape + (markers_per_side, 2)`` [mm].
+
+    Examples
+    --------
     >>> marker_positions_mm(0.0, 100.0, MarkerLayout(markers_per_side=3, rows=1)).tolist()
     [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0]]
     """
@@ -234,8 +265,21 @@ def chain_reading_deg(lengths_mm, theta_deg, layout: MarkerLayout = PAPER_LAYOUT
     The sum of the signed chord-to-chord turning angles of :func:`chain_marker_positions_mm`,
     exact also where a chord straddles a boundary between arcs. While the first and the
     last chord each lie within one arc it is the bend between their middles (the integral
-    of the curvature there). A float for one chain, an array over the leading axes of
-    ``theta_deg`` otherwise.
+    of the curvature there).
+
+    Parameters
+    ----------
+    lengths_mm : array_like (k,)
+        Arc lengths [mm].
+    theta_deg : array_like (..., k)
+        Bend of each arc [deg].
+    layout : MarkerLayout, optional
+        Where the markers sit (the paper's).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float for one chain, an array over the leading axes of ``theta_deg`` otherwise [deg].
 
     Examples
     --------
@@ -251,8 +295,24 @@ def reading_deg(theta_deg, length_mm, layout: MarkerLayout = PAPER_LAYOUT):
     """What the layout's marker sum reads on a uniform bend theta of length l0 [deg].
 
     The one-arc case of :func:`chain_reading_deg`: ``(n - 2) h theta / l0`` while every
-    marker lies on the bent length. A float for a scalar theta, an array otherwise.
+    marker lies on the bent length.
 
+    Parameters
+    ----------
+    theta_deg : float or array_like
+        The bend [deg].
+    length_mm : float
+        The bent length l0 [mm].
+    layout : MarkerLayout, optional
+        Where the markers sit (the paper's).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float for a scalar theta, an array otherwise [deg].
+
+    Examples
+    --------
     >>> round(reading_deg(100.0, 100.0), 9)   # the paper's layout: half of theta on 100 mm
     50.0
     """
@@ -280,6 +340,13 @@ class MarkerAngles:
         0 for noise-free data).
     theta_se_deg : ndarray, shape (...)
         Standard error of ``theta_deg`` from ``noise_mm`` [deg].
+
+    Examples
+    --------
+    >>> L = np.array([[0, 0, 0], [10, 0, 0], [20, 0, 0], [20, 10, 0], [20, 20, 0]], float)
+    >>> a = marker_angles(L, markers_per_side=5, sides=1, normal=(0, -1, 0))
+    >>> round(float(a.theta_deg), 9), a.signed, a.noise_mm
+    (-90.0, True, 0.0)
     """
 
     theta_deg: np.ndarray
@@ -419,7 +486,28 @@ def marker_angles(
 
 def bend_angle_deg(markers_mm, *, markers_per_side: int = PAPER_MARKERS_PER_SIDE, sides: int = PAPER_SIDES,
                    normal=None, tangent=None):
-    """Bending angle [deg] only (see :func:`marker_angles`); a float for one frame, an array for many."""
+    """Bending angle [deg] only (see :func:`marker_angles`); a float for one frame, an array for many.
+
+    Parameters
+    ----------
+    markers_mm : array_like (..., sides * markers_per_side, 3)
+        Marker positions [mm], as :func:`marker_angles` takes them.
+    markers_per_side, sides : int, optional
+        The layout (the paper's: 7 and 2).
+    normal, tangent : array_like (3,), optional
+        As for :func:`marker_angles`.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        [deg].
+
+    Examples
+    --------
+    >>> L = np.array([[0, 0, 0], [10, 0, 0], [20, 0, 0], [20, 10, 0], [20, 20, 0]], float)
+    >>> round(bend_angle_deg(L, markers_per_side=5, sides=1, normal=(0, -1, 0)), 9)
+    -90.0
+    """
     theta = marker_angles(markers_mm, markers_per_side=markers_per_side, sides=sides, normal=normal,
                           tangent=tangent).theta_deg
     return float(theta) if theta.ndim == 0 else theta

@@ -101,7 +101,23 @@ class ReferenceBoard:
         object.__setattr__(self, "centres_mm", centres)
 
     def corners_mm(self, index: int) -> np.ndarray:
-        """Corners of marker ``index`` [mm], (4, 2): top-left, top-right, bottom-right, bottom-left (ArUco's order)."""
+        """Corners of marker ``index`` [mm], (4, 2): top-left, top-right, bottom-right, bottom-left (ArUco's order).
+
+        Parameters
+        ----------
+        index : int
+            The marker's index on the board.
+
+        Returns
+        -------
+        numpy.ndarray (4, 2)
+            [mm], y up.
+
+        Examples
+        --------
+        >>> DEFAULT_BOARD.centres_mm[0], DEFAULT_BOARD.corners_mm(0)[0].tolist()
+        ((-80.0, 55.0), [-86.0, 61.0])
+        """
         x, y = self.centres_mm[index]
         h = self.size_mm / 2.0
         return np.array([[x - h, y + h], [x + h, y + h], [x + h, y - h], [x - h, y - h]])
@@ -164,19 +180,60 @@ class PhotoLayout:
         return (self.DICTIONARY_SIZE - self.first_id) // self.markers.markers_per_side
 
     def ids(self, block: int) -> tuple[int, ...]:
-        """Marker ids of actuator ``block`` (0-based), clamped end to tip."""
+        """Marker ids of actuator ``block`` (0-based), clamped end to tip.
+
+        Parameters
+        ----------
+        block : int
+            In ``[0, blocks)``.
+
+        Returns
+        -------
+        tuple of int
+
+        Examples
+        --------
+        >>> PhotoLayout().ids(1)[:3]
+        (19, 20, 21)
+        """
         if not 0 <= block < self.blocks:
             raise ParameterError(f"actuator block must be in [0, {self.blocks - 1}], got {block}")
         n = self.markers.markers_per_side
         return tuple(range(self.first_id + block * n, self.first_id + (block + 1) * n))
 
     def block_of(self, marker_id: int) -> tuple[int, int] | None:
-        """(block, index along the strip) of a fin marker id; None for a board id or one outside every block."""
+        """(block, index along the strip) of a fin marker id; None for a board id or one outside every block.
+
+        Parameters
+        ----------
+        marker_id : int
+            An ArUco id.
+
+        Returns
+        -------
+        tuple of int or None
+
+        Examples
+        --------
+        >>> lay = PhotoLayout()
+        >>> lay.block_of(lay.first_id + 3), lay.block_of(0)
+        ((0, 3), None)
+        """
         k, j = divmod(int(marker_id) - self.first_id, self.markers.markers_per_side)
         return (k, j) if marker_id >= self.first_id and k < self.blocks else None
 
     def positions_mm(self) -> np.ndarray:
-        """Arc lengths of the markers from the clamped end of the bent length [mm]."""
+        """Arc lengths of the markers from the clamped end of the bent length [mm].
+
+        Returns
+        -------
+        numpy.ndarray (markers_per_side,)
+
+        Examples
+        --------
+        >>> PhotoLayout().positions_mm()[:3].tolist()
+        [0.0, 10.0, 20.0]
+        """
         m = self.markers
         return m.offset_mm + m.spacing_mm * np.arange(m.markers_per_side)
 
@@ -203,6 +260,17 @@ class StripReading:
         The fitted fabric line from the first to the last marker, every 1 mm or closer.
     rms_mm : float
         Root-mean-square distance between the measured and the fitted marker points [mm].
+
+    Examples
+    --------
+    >>> lay = PhotoLayout()
+    >>> s = np.arange(11) * 10.0
+    >>> phi = np.radians(90.0) / 100.0 * s  # a quarter circle of 100 mm, the fins on the thread side
+    >>> line = np.stack([np.sin(phi), 1 - np.cos(phi)], axis=1) * (100.0 / np.radians(90.0))
+    >>> tangent, front = np.stack([np.cos(phi), np.sin(phi)], axis=1), np.stack([np.sin(phi), -np.cos(phi)], axis=1)
+    >>> r = read_strip(line + lay.fin_offset_mm * front, tangent, front, lay, side="thread")
+    >>> round(r.reading_deg, 6), r.points_mm.shape
+    (81.0, (11, 2))
     """
 
     reading_deg: float
@@ -213,7 +281,34 @@ class StripReading:
     rms_mm: float
 
     def centreline_at(self, s_mm) -> np.ndarray:
-        """Fitted fabric-line points at arc lengths ``s_mm`` from the first marker [mm], (k, 2)."""
+        """Fitted fabric-line points at arc lengths ``s_mm`` from the first marker [mm], (k, 2).
+
+        Parameters
+        ----------
+        s_mm : array_like (k,)
+            Arc lengths [mm].
+
+        Returns
+        -------
+        numpy.ndarray (k, 2)
+            In board millimetres.
+
+        Raises
+        ------
+        ParameterError
+            The reading was not made by :func:`read_strip`.
+
+        Examples
+        --------
+        >>> lay = PhotoLayout()
+        >>> s = np.arange(11) * 10.0
+        >>> phi = np.radians(90.0) / 100.0 * s  # a quarter circle of 100 mm, the fins on the thread side
+        >>> line = np.stack([np.sin(phi), 1 - np.cos(phi)], axis=1) * (100.0 / np.radians(90.0))
+        >>> tangent, front = np.stack([np.cos(phi), np.sin(phi)], axis=1), np.stack([np.sin(phi), -np.cos(phi)], axis=1)
+        >>> r = read_strip(line + lay.fin_offset_mm * front, tangent, front, lay, side="thread")
+        >>> r.centreline_at([100.0]).round(3).tolist()
+        [[63.662, 63.662]]
+        """
         s = np.asarray(s_mm, dtype=np.float64).reshape(-1)
         if self._start is None or self._lengths is None or self._kappa is None:
             raise ParameterError("centreline_at needs a reading made by read_strip")
@@ -263,12 +358,24 @@ def read_strip(centres_mm, x_axes, up_axes, layout: PhotoLayout = COUPON_LAYOUT,
         oriented here along the markers' order) and up axis (away from the fabric), in the
         same frame; any length.
     layout : PhotoLayout
+        The strip's fin layout.
     side : MarkerSide or str
         Face the fins stand on: ``"fabric"`` (up toward the back) or ``"thread"`` (up toward the front).
 
     Returns
     -------
     StripReading
+
+    Examples
+    --------
+    >>> lay = PhotoLayout()
+    >>> s = np.arange(11) * 10.0
+    >>> phi = np.radians(90.0) / 100.0 * s  # a quarter circle of 100 mm, the fins on the thread side
+    >>> line = np.stack([np.sin(phi), 1 - np.cos(phi)], axis=1) * (100.0 / np.radians(90.0))
+    >>> tangent, front = np.stack([np.cos(phi), np.sin(phi)], axis=1), np.stack([np.sin(phi), -np.cos(phi)], axis=1)
+    >>> r = read_strip(line + lay.fin_offset_mm * front, tangent, front, lay, side="thread")
+    >>> round(r.rms_mm, 9), round(r.chord_sum_deg, 6)
+    (0.0, 81.0)
     """
     n = layout.markers.markers_per_side
     c = np.asarray(centres_mm, dtype=np.float64)

@@ -19,7 +19,18 @@ __all__ = ["all_rules", "rules_table"]
 
 
 def all_rules() -> tuple:
-    """Every declared rule (geometry, sleeve, model), in code order."""
+    """Every declared rule (geometry, sleeve, model), in code order.
+
+    Returns
+    -------
+    tuple of Rule
+
+    Examples
+    --------
+    >>> codes = [r.code for r in all_rules()]
+    >>> codes[0], codes == sorted(codes)
+    ('EA101', True)
+    """
     from ..patterns import rules as _geometry  # noqa: F401  (imports declare the rules)
     from ..patterns.base.findings import RULES
     from . import rules as _model, sleeve_rules as _sleeve  # noqa: F401
@@ -28,7 +39,18 @@ def all_rules() -> tuple:
 
 
 def rules_table() -> str:
-    """The Markdown table of every rule (README's "Design rules" section, ``embroact check --rules``)."""
+    """The Markdown table of every rule (README's "Design rules" section, ``embroact check --rules``).
+
+    Returns
+    -------
+    str
+        Markdown, a header row and one row per rule.
+
+    Examples
+    --------
+    >>> rules_table().splitlines()[0]
+    '| code | severity | rule | what is checked | checks |'
+    """
     from ..patterns.base.findings import rules_table_markdown
 
     all_rules()

@@ -60,6 +60,20 @@ _MERGE_MM = 1e-9
 def rotation_step(kb: np.ndarray, kp: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Body-frame displacement (n, 3) and rotation (n, 3, 3) after arc length ``h`` with omega = (0, kb, kp).
 
+    Parameters
+    ----------
+    kb, kp : numpy.ndarray (n,)
+        Bending and path curvature [1/mm].
+    h : numpy.ndarray (n,)
+        Arc length [mm].
+
+    Returns
+    -------
+    dx : numpy.ndarray (n, 3)
+        Displacement in the body frame [mm].
+    rotation : numpy.ndarray (n, 3, 3)
+        The frame's rotation.
+
     Examples
     --------
     >>> import numpy as np
@@ -86,6 +100,22 @@ def rotation_step(kb: np.ndarray, kp: np.ndarray, h: np.ndarray) -> tuple[np.nda
 def sample_count(turn_rad: float, radius_mm: float, tolerance_mm: float) -> int:
     """Chords for an arc turning by ``turn_rad`` at ``radius_mm`` with sagitta <= ``tolerance_mm``.
 
+    Parameters
+    ----------
+    turn_rad : float
+        The arc's turn [rad].
+    radius_mm : float
+        Its radius [mm]; not finite or not positive: a straight line.
+    tolerance_mm : float
+        Largest sagitta [mm].
+
+    Returns
+    -------
+    int
+        At least 1.
+
+    Examples
+    --------
     >>> import math
     >>> sample_count(math.pi, 10.0, 0.05)   # chord angle 2 acos(1 - 0.005) = 0.2 rad
     16
@@ -106,6 +136,22 @@ def planar_chain_mm(lengths_mm, theta_deg, s_mm) -> np.ndarray:
     chains of the same lengths (e.g. one per pressure), and lead the result's. No input
     checks: for inner loops (fits) that call it thousands of times.
 
+    Parameters
+    ----------
+    lengths_mm : array_like (k,)
+        Segment lengths [mm].
+    theta_deg : array_like (..., k)
+        Bend of each segment [deg].
+    s_mm : array_like (n,)
+        Arc lengths [mm].
+
+    Returns
+    -------
+    numpy.ndarray (..., n, 2)
+        Profile points [mm].
+
+    Examples
+    --------
     >>> planar_chain_mm([50.0, 50.0], [90.0, -90.0], [100.0]).round(4).tolist()
     [[63.662, 63.662]]
     >>> planar_chain_mm([100.0], [[0.0], [90.0]], [100.0]).round(4).tolist()   # two chains
@@ -144,6 +190,12 @@ class BentShape:
         Piece lengths [mm] (the bending segments' and the path's breakpoints merged).
     kappa_b_per_mm, kappa_p_per_mm : ndarray
         Bending and path curvature of each piece [1/mm].
+
+    Examples
+    --------
+    >>> shape = BentShape.chain([50.0, 50.0], [45.0, 45.0])
+    >>> shape.length_mm, shape.profile_mm([100.0]).round(4).tolist()
+    (100.0, [[63.662, 63.662]])
     """
 
     lengths_mm: np.ndarray
@@ -171,10 +223,24 @@ class BentShape:
         start_mm, heading_deg : optional
             Clamp position (x, y) [mm] and direction [deg, counter-clockwise from +x].
 
+        Returns
+        -------
+        BentShape
+
         Raises
         ------
         ParameterError
             A length not positive, a non-finite angle, counts or totals that disagree.
+
+        Examples
+        --------
+        >>> BentShape.chain([100.0], [90.0], start_mm=(10.0, 0.0), heading_deg=90.0).frames([0.0])[0].tolist()
+        [[10.0, 0.0, 0.0]]
+        >>> try:
+        ...     BentShape.chain([100.0], [90.0, 10.0])
+        ... except ValueError as exc:
+        ...     print(exc)
+        theta_deg must have one value per segment length (1), got 2
         """
         lengths = np.asarray(segment_lengths_mm, dtype=np.float64).reshape(-1)
         theta = np.asarray(theta_deg, dtype=np.float64).reshape(-1)
@@ -230,7 +296,27 @@ class BentShape:
     _repr_svg_ = repr_svg
 
     def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
-        """Positions (n, 3) [mm] and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm`` (clipped)."""
+        """Positions (n, 3) [mm] and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm`` (clipped).
+
+        Parameters
+        ----------
+        s_mm : array_like (n,)
+            Arc lengths from the clamp [mm].
+
+        Returns
+        -------
+        positions : numpy.ndarray (n, 3)
+            [mm].
+        frames : numpy.ndarray (n, 3, 3)
+            Columns T, N, B.
+
+        Examples
+        --------
+        >>> shape = BentShape.chain([100.0], [90.0])
+        >>> x, f = shape.frames([100.0])
+        >>> x.round(4).tolist(), (f[0][:, 0].round(4) + 0.0).tolist()  # a quarter turn: the tip points along -z
+        ([[63.662, 0.0, -63.662]], [0.0, 0.0, -1.0])
+        """
         s = np.clip(np.asarray(s_mm, dtype=np.float64).reshape(-1), 0.0, self.length_mm)
         i = np.clip(np.searchsorted(self._s0, s, side="right") - 1, 0, len(self._s0) - 1)
         dx, dr = rotation_step(self.kappa_b_per_mm[i], self.kappa_p_per_mm[i], s - self._s0[i])
@@ -238,13 +324,43 @@ class BentShape:
         return self._x0[i] + np.einsum("nij,nj->ni", r0, dx), r0 @ dr
 
     def points(self, s_mm, offsets_uv_mm) -> np.ndarray:
-        """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``."""
+        """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``.
+
+        Parameters
+        ----------
+        s_mm : array_like (n,)
+            Arc lengths [mm].
+        offsets_uv_mm : array_like (m, 2)
+            Offsets (u along N, v along B) [mm].
+
+        Returns
+        -------
+        numpy.ndarray (n, m, 3)
+            [mm].
+
+        Examples
+        --------
+        >>> shape = BentShape.chain([100.0], [90.0])
+        >>> shape.points([100.0], [(0.0, 1.0)]).round(4).tolist()
+        [[[64.662, 0.0, -63.662]]]
+        """
         x, r = self.frames(s_mm)
         uv = np.asarray(offsets_uv_mm, dtype=np.float64).reshape(-1, 2)
         return x[:, None, :] + uv[None, :, 0, None] * r[:, None, :, 1] + uv[None, :, 1, None] * r[:, None, :, 2]
 
     def pieces(self):
-        """``(s_start, length, kappa_b, kappa_p)`` of each piece."""
+        """``(s_start, length, kappa_b, kappa_p)`` of each piece.
+
+        Returns
+        -------
+        iterator of tuple of float
+            [mm, mm, 1/mm, 1/mm].
+
+        Examples
+        --------
+        >>> [round(v, 6) for v in next(iter(BentShape.chain([100.0], [90.0]).pieces()))]
+        [0.0, 100.0, 0.015708, 0.0]
+        """
         return zip(self._s0.tolist(), self.lengths_mm.tolist(), self.kappa_b_per_mm.tolist(),
                    self.kappa_p_per_mm.tolist())
 
@@ -253,6 +369,22 @@ class BentShape:
 
         ``y > 0`` toward positive bends (the fabric's back). Only meaningful for a straight
         path starting at the origin heading +x (the default of :meth:`chain`).
+
+        Parameters
+        ----------
+        s_mm : array_like (n,)
+            Arc lengths [mm].
+
+        Returns
+        -------
+        numpy.ndarray (n, 2)
+            [mm].
+
+        Examples
+        --------
+        >>> shape = BentShape.chain([100.0], [90.0])
+        >>> shape.profile_mm([100.0]).round(4).tolist()
+        [[63.662, 63.662]]
         """
         p, _ = self.frames(s_mm)
         return np.column_stack([p[:, 0], -p[:, 2]])
@@ -262,6 +394,25 @@ class BentShape:
 
         Straight-path shapes only (the centre of curvature lies on the -B side, so the offset
         line of a piece is an arc of radius ``|1/kappa_b + offset|``); every piece boundary is included.
+
+        Parameters
+        ----------
+        tolerance_mm : float
+            Largest chordal error [mm], > 0.
+        offset_mm : float, optional
+            The line's offset along B [mm].
+
+        Returns
+        -------
+        numpy.ndarray
+            Arc lengths [mm], from 0.
+
+        Examples
+        --------
+        >>> shape = BentShape.chain([100.0], [90.0])
+        >>> s = shape.samples_mm(0.05)
+        >>> len(s), s[:3].tolist()
+        (21, [0.0, 5.0, 10.0])
         """
         tol = check_range("tolerance_mm", tolerance_mm, low=0.0)
         out = [np.zeros(1)]

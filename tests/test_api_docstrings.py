@@ -106,9 +106,8 @@ UNDOCUMENTED_MODULES = frozenset({
     "embroact.export.studio.serve", "embroact.export.studio.session", "embroact.export.studio.views",
     "embroact.patterns.design", "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis",
     "embroact.predict.calibration", "embroact.predict.coupon", "embroact.predict.fit", "embroact.predict.inverse",
-    "embroact.predict.markers", "embroact.predict.photomarkers", "embroact.predict.profile",
-    "embroact.predict.rule_catalogue", "embroact.predict.rules", "embroact.predict.shape",
-    "embroact.predict.sleeve_rules", "embroact.predict.uncertainty",
+    "embroact.predict.profile", "embroact.predict.rules", "embroact.predict.sleeve_rules",
+    "embroact.predict.uncertainty",
 })
 
 
