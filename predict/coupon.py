@@ -66,6 +66,7 @@ class CouponActuator:
     label : str
         Name in the design and on every sheet, e.g. ``"03 zigzag w7.0"``.
     pattern : str
+        Its pattern kind.
     width_mm, interval_mm, angle_deg, length_mm : float
         The design values (angle 0 for zigzag).
     hoop : int
@@ -76,6 +77,13 @@ class CouponActuator:
         Its marker-id block (ids ``layout.ids(block)``).
     fin_side : MarkerSide
         Face its marker fins go on (outside the expected bend).
+
+    Examples
+    --------
+    >>> c = plan_coupon(tube=Tube())
+    >>> a = c.actuators[2]
+    >>> a.order, a.label, a.coordinate, a.hoop
+    (3, '03 zigzag w7.0', 7.0, 0)
     """
 
     order: int
@@ -96,7 +104,18 @@ class CouponActuator:
         return self.width_mm if self.pattern == "zigzag" else self.angle_deg
 
     def design_table(self) -> dict:
-        """The ``[[actuator]]`` table of a design file."""
+        """The ``[[actuator]]`` table of a design file.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> c = plan_coupon(tube=Tube())
+        >>> c.actuators[0].design_table()
+        {'name': '01 zigzag w5.0', 'pattern': 'zigzag', 'width_mm': 5.0, 'interval_mm': 1.0, 'length_mm': 100.0, 'origin_mm': [-50.0, 87.5]}
+        """
         d: dict[str, object] = {"name": self.label, "pattern": self.pattern, "width_mm": self.width_mm,
                                 "interval_mm": self.interval_mm, "length_mm": self.length_mm,
                                 "origin_mm": list(self.origin_mm)}
@@ -107,7 +126,27 @@ class CouponActuator:
 
 @dataclass(frozen=True, slots=True)
 class Coupon:
-    """The coupon's actuators, their hoops and the marker layout they are measured with."""
+    """The coupon's actuators, their hoops and the marker layout they are measured with.
+
+    Attributes
+    ----------
+    actuators : tuple of CouponActuator
+        In sewing order.
+    hoops : int
+        Hoops needed.
+    hoop_mm : (float, float)
+        Sewing field, width and height [mm].
+    layout : PhotoLayout
+        The marker layout.
+    neutral_angle_deg : float or None
+        The cross actuators' neutral angle [deg], when there are any.
+
+    Examples
+    --------
+    >>> c = plan_coupon(tube=Tube())
+    >>> c.hoops, c.hoop_mm, len(c.actuators)
+    (2, (200.0, 200.0), 11)
+    """
 
     actuators: tuple[CouponActuator, ...]
     hoops: int
@@ -116,7 +155,23 @@ class Coupon:
     neutral_angle_deg: float | None = None
 
     def on_hoop(self, hoop: int) -> tuple[CouponActuator, ...]:
-        """The actuators sewn in hoop ``hoop``, in order."""
+        """The actuators sewn in hoop ``hoop``, in order.
+
+        Parameters
+        ----------
+        hoop : int
+            Hoop index, from 0.
+
+        Returns
+        -------
+        tuple of CouponActuator
+
+        Examples
+        --------
+        >>> c = plan_coupon(tube=Tube())
+        >>> [a.order for a in c.on_hoop(1)]
+        [9, 10, 11]
+        """
         return tuple(a for a in self.actuators if a.hoop == hoop)
 
 
@@ -137,6 +192,20 @@ def _grid(value: float, step: float, up: bool) -> float:
 def default_width_range_mm(tube: Tube, min_sleeve_gap_mm: float = 0.1) -> tuple[float, float]:
     """The default zigzag widths' range for ``tube`` [mm] (module docstring).
 
+    Parameters
+    ----------
+    tube : Tube
+        The coupon's tube.
+    min_sleeve_gap_mm : float, optional
+        Smallest sleeve gap r0 - r_f to keep clear of [mm].
+
+    Returns
+    -------
+    tuple of float
+        Narrowest and widest width [mm].
+
+    Examples
+    --------
     >>> default_width_range_mm(Tube())
     (5.0, 9.0)
     """
@@ -221,6 +290,12 @@ def plan_coupon(
     Returns
     -------
     Coupon
+
+    Examples
+    --------
+    >>> c = plan_coupon(("zigzag",), tube=Tube(), zigzag_count=3)
+    >>> [a.label for a in c.actuators], c.hoops
+    (['01 zigzag w5.0', '02 zigzag w7.0', '03 zigzag w9.0'], 1)
     """
     tube = Tube() if tube is None else tube
     pats = tuple(patterns)

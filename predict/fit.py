@@ -129,6 +129,7 @@ class FitResult:
     rmse_deg : float
         Root-mean-square residual [deg].
     n_points : int
+        Data points fitted.
     pressure_kpa, angle_deg, residuals_deg : ndarray (read-only)
         The data fitted and ``model - data`` at the solution [kPa, deg, deg].
     method : str
@@ -155,6 +156,15 @@ class FitResult:
         Data points where the fitted model's state is past a validity limit.
     notes : tuple of str
         Warnings: an open loop, states beyond validity.
+
+    Examples
+    --------
+    >>> def predict_deg(p, g, p0, ge):  # a stand-in model: theta = (P - P0) / (2 G)
+    ...     return np.maximum(np.asarray(p) - p0, 0.0) / (2.0 * g)
+    >>> p = np.arange(0.0, 301.0, 10.0)
+    >>> r = fit_curve(p, predict_deg(p, 2.0, 85.0, None), predict_deg, branch="loading")
+    >>> r.branch, r.fitted, round(r.g_mpa, 6), round(r.p0_kpa, 4), r.n_points
+    ('loading', ('g_mpa', 'p0_kpa'), 2.0, 85.0, 31)
     """
 
     branch: str
@@ -183,7 +193,23 @@ class FitResult:
     notes: tuple = ()
 
     def as_dict(self) -> dict:
-        """JSON-ready dict with unit-suffixed keys; arrays as lists."""
+        """JSON-ready dict with unit-suffixed keys; arrays as lists.
+
+        Returns
+        -------
+        dict
+            Every field; ``measurement`` is ``"whole-strip"`` or the layout's dict.
+
+        Examples
+        --------
+        >>> def predict_deg(p, g, p0, ge):  # a stand-in model: theta = (P - P0) / (2 G)
+        ...     return np.maximum(np.asarray(p) - p0, 0.0) / (2.0 * g)
+        >>> p = np.arange(0.0, 301.0, 10.0)
+        >>> r = fit_curve(p, predict_deg(p, 2.0, 85.0, None), predict_deg, branch="loading")
+        >>> d = r.as_dict()
+        >>> d["fitted"], d["measurement"], len(d["pressure_kpa"])
+        (['g_mpa', 'p0_kpa'], 'whole-strip', 31)
+        """
         d = {k: getattr(self, k) for k in self.__slots__}
         for k in ("pressure_kpa", "angle_deg", "residuals_deg"):
             d[k] = d[k].tolist()
@@ -200,6 +226,26 @@ class FitResult:
 
         The point keeps the fitted names, their covariance (for uncertainty bands) and the
         tube law's parameters.
+
+        Returns
+        -------
+        CalibrationPoint
+
+        Raises
+        ------
+        ParameterError
+            The design is unknown (a :func:`fit_curve` result) or P0 is None.
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import Tube
+        >>> from embroact.predict.derived import derive_from_values
+        >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+        >>> p = np.arange(0.0, 301.0, 25.0)
+        >>> (r,) = fit_design(d, p, model_predictor(d)(p, 2.7, 85.0, None))
+        >>> pt = r.to_point()
+        >>> pt.pattern, round(pt.g_mpa, 6), round(pt.p0_kpa, 4), pt.branch
+        ('zigzag', 2.7, 85.0, 'loading')
         """
         des = dict(self.design)
         if "pattern" not in des:
@@ -301,6 +347,16 @@ def closure_gap_deg(pressure_kpa, angle_deg) -> float | None:
 
     "Ends where it started": the last pressure is at most the first plus a hold
     (``HOLD_FRACTION`` of the range). A residual bend shows as a non-zero gap.
+
+    Parameters
+    ----------
+    pressure_kpa, angle_deg : array_like (n,)
+        The loop, in measurement order [kPa, deg].
+
+    Returns
+    -------
+    float or None
+        The gap [deg].
 
     Examples
     --------
@@ -418,6 +474,15 @@ def fit_curve(
         Bad data or parameter names; too few points.
     SolverError
         The optimiser failed.
+
+    Examples
+    --------
+    >>> def predict_deg(p, g, p0, ge):  # a stand-in model: theta = (P - P0) / (2 G)
+    ...     return np.maximum(np.asarray(p) - p0, 0.0) / (2.0 * g)
+    >>> p = np.arange(0.0, 301.0, 10.0)
+    >>> r = fit_curve(p, predict_deg(p, 2.0, 85.0, None), predict_deg, branch="loading")
+    >>> round(r.g_mpa, 6), round(r.p0_kpa, 4), r.rmse_deg < 1e-6
+    (2.0, 85.0, True)
     """
     from scipy.optimize import least_squares
 
@@ -503,6 +568,31 @@ def model_predictor(derived: DerivedGeometry, *, method: str = "auto", measureme
     (:func:`~embroact.predict.markers.reading_deg`), else theta.  The function's
     attributes ``last_method`` and ``last_status`` are the method and the statuses of
     its latest call.
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design.
+    method : str, optional
+        Model method.
+    measurement : MarkerLayout or None, optional
+        The layout whose reading the data are; None: theta.
+    tube_law : str, optional
+        The tube law of P0 from geometry.
+
+    Returns
+    -------
+    callable
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> p = np.arange(0.0, 301.0, 25.0)
+    >>> f = model_predictor(d)
+    >>> f(np.array([100.0, 200.0]), 2.7, 85.0, None).round(3).tolist(), f.last_method
+    ([11.539, 102.93], 'stable-analytic-trace')
     """
     from .curve import ActuatorModel, sweep
 

@@ -63,7 +63,28 @@ DISAGREE_FLOOR_DEG = 2.0
 
 @dataclass(frozen=True, slots=True)
 class CouponData:
-    """One coupon actuator's measurements: its name, derived geometry, pressures, readings, branches."""
+    """One coupon actuator's measurements: its name, derived geometry, pressures, readings, branches.
+
+    Attributes
+    ----------
+    name : str
+        The coupon actuator's label.
+    derived : DerivedGeometry
+        Its geometry as sewn.
+    pressure_kpa, reading_deg : numpy.ndarray (n,)
+        The measurements [kPa, deg].
+    branch : tuple of str
+        ``"loading"`` or ``"unloading"`` per measurement.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> c = CouponData("w7", d, np.array([0.0, 200.0]), np.array([0.0, 92.6]), ("loading", "loading"))
+    >>> c.derived.width_mm, c.branch[1]
+    (7.0, 'loading')
+    """
 
     name: str
     derived: DerivedGeometry
@@ -74,7 +95,25 @@ class CouponData:
 
 @dataclass(frozen=True, slots=True)
 class CouponFit:
-    """The fits (one per branch) of one coupon actuator."""
+    """The fits (one per branch) of one coupon actuator.
+
+    Attributes
+    ----------
+    name : str
+        The coupon actuator's label.
+    derived : DerivedGeometry
+        Its geometry.
+    results : tuple of FitResult
+        One per branch measured.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> CouponFit("w7", d, ()).results
+    ()
+    """
 
     name: str
     derived: DerivedGeometry
@@ -83,7 +122,27 @@ class CouponFit:
 
 @dataclass(frozen=True, slots=True)
 class LeaveOneOut:
-    """One coupon predicted from the others: RMSE per branch [deg] and whether it disagrees."""
+    """One coupon predicted from the others: RMSE per branch [deg] and whether it disagrees.
+
+    Attributes
+    ----------
+    name, pattern : str
+        The coupon actuator and its pattern kind.
+    coordinate : float
+        Its calibration coordinate.
+    rmse_deg : float or None
+        RMSE of its readings predicted from the others [deg]; None: fewer than 2 other
+        coupons of its pattern.
+    extrapolated : bool
+        It lies outside the others' range.
+    flagged : bool
+        Its error stands out from the others' (module docstring).
+
+    Examples
+    --------
+    >>> LeaveOneOut("w7", "zigzag", 7.0, 0.4, False).flagged
+    False
+    """
 
     name: str
     pattern: str
@@ -95,7 +154,24 @@ class LeaveOneOut:
 
 @dataclass(frozen=True, slots=True)
 class Profile:
-    """The fitted material profile: the calibration set, the per-coupon fits and the leave-one-out errors."""
+    """The fitted material profile: the calibration set, the per-coupon fits and the leave-one-out errors.
+
+    Attributes
+    ----------
+    calibration : CalibrationSet
+        The set made from every coupon's fit.
+    fits : tuple of CouponFit
+        Per coupon.
+    loo : tuple of LeaveOneOut
+        Per coupon.
+
+    Examples
+    --------
+    See :func:`fit_profile`.
+
+    >>> [f.name for f in Profile.__dataclass_fields__.values()]
+    ['calibration', 'fits', 'loo']
+    """
 
     calibration: CalibrationSet
     fits: tuple[CouponFit, ...]
@@ -104,7 +180,32 @@ class Profile:
 
 def predicted_reading_deg(derived: DerivedGeometry, g_mpa: float, p0_kpa: float, pressure_kpa,
                           layout: MarkerLayout | None) -> np.ndarray:
-    """The model's bend at ``pressure_kpa`` as ``layout`` reads it (theta when None) [deg]."""
+    """The model's bend at ``pressure_kpa`` as ``layout`` reads it (theta when None) [deg].
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design.
+    g_mpa, p0_kpa : float
+        The model's G [MPa] and P0 [kPa].
+    pressure_kpa : array_like
+        Pressures [kPa].
+    layout : MarkerLayout or None
+        The marker layout; None: theta.
+
+    Returns
+    -------
+    numpy.ndarray
+        [deg].
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> predicted_reading_deg(d, 2.7, 85.0, [100.0, 200.0], None).round(3).tolist()
+    [11.539, 102.93]
+    """
     from .curve import ActuatorModel, curve
 
     c = curve(ActuatorModel.from_derived(derived, g_mpa=g_mpa, p0_kpa=p0_kpa), np.asarray(pressure_kpa, float))
@@ -127,7 +228,40 @@ def _coordinate(d: DerivedGeometry) -> tuple[str, float]:
 
 def fit_profile(coupons, *, layout: MarkerLayout | None, name: str, tube=None, description: str = "",
                 materials=(), tube_law: str = "paper") -> Profile:
-    """Fit every coupon, make the set, and predict each coupon from the others (module docstring)."""
+    """Fit every coupon, make the set, and predict each coupon from the others (module docstring).
+
+    Parameters
+    ----------
+    coupons : iterable of CouponData
+        The measured coupon actuators, at least one.
+    layout : MarkerLayout or None
+        The layout the readings were taken with; None: theta.
+    name : str
+        The calibration set's name.
+    tube : Tube, optional
+        The tube the coupon was sewn over.
+    description : str, optional
+        The set's description.
+    materials : sequence, optional
+        Material notes recorded with the set.
+    tube_law : str, optional
+        The tube law of P0 from geometry.
+
+    Returns
+    -------
+    Profile
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> p = np.arange(0.0, 301.0, 25.0)
+    >>> one = CouponData("w7", d, p, predicted_reading_deg(d, 2.7, 85.0, p, None), ("loading",) * len(p))
+    >>> prof = fit_profile([one], layout=None, name="demo", tube=Tube())
+    >>> round(prof.fits[0].results[0].g_mpa, 6), prof.loo[0].rmse_deg  # no others to predict it from
+    (2.7, None)
+    """
     coupons = tuple(coupons)
     if not coupons:
         raise ParameterError("a profile needs at least one measured coupon actuator, got none")

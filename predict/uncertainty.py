@@ -67,8 +67,18 @@ class Band:
     parameters : tuple of str
         Parameters of the covariance, in its order.
     covariance : tuple of tuples
+        Their covariance [MPa, kPa units].
     noise_sd_deg : float
         Measurement scatter of the measured quantity (the reading with a layout, else theta).
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> b = theta_band(m, [50, 200], ("g_mpa", "p0_kpa"), ((0.01, 0.0), (0.0, 4.0)), noise_sd_deg=2.0)
+    >>> b.theta_deg.round(3).tolist(), b.theta_low_deg.round(3).tolist(), b.reading_deg is None
+    ([0.0, 102.93], [0.0, 97.897], True)
     """
 
     pressure_kpa: np.ndarray
@@ -84,7 +94,22 @@ class Band:
     noise_sd_deg: float
 
     def as_dict(self) -> dict:
-        """JSON-ready dict (lists; status names); ``reading_*`` None without a layout."""
+        """JSON-ready dict (lists; status names); ``reading_*`` None without a layout.
+
+        Returns
+        -------
+        dict
+            Every field, and ``prediction_sd_deg``.
+
+        Examples
+        --------
+        >>> from embroact.predict.curve import ActuatorModel
+        >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+        ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+        >>> b = theta_band(m, [50, 200], ("g_mpa", "p0_kpa"), ((0.01, 0.0), (0.0, 4.0)), noise_sd_deg=2.0)
+        >>> b.as_dict()["status"], b.as_dict()["prediction_sd_deg"][0]
+        (['INFLATION', 'BENDING'], 2.0)
+        """
         from .status import status_names
 
         out = {k: (getattr(self, k).tolist() if isinstance(getattr(self, k), np.ndarray) else getattr(self, k))
@@ -98,7 +123,21 @@ class Band:
     def summary(self) -> dict:
         """The band per point as ``predict --json`` and ``report.json`` quote it: ``theta_sd_deg``,
         ``theta_low_deg``, ``theta_high_deg`` (lists), ``parameters`` and ``covariance``; with a
-        layout also ``reading_sd_deg``."""
+        layout also ``reading_sd_deg``.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.predict.curve import ActuatorModel
+        >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+        ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+        >>> b = theta_band(m, [50, 200], ("g_mpa", "p0_kpa"), ((0.01, 0.0), (0.0, 4.0)), noise_sd_deg=2.0)
+        >>> sorted(b.summary())
+        ['covariance', 'parameters', 'theta_high_deg', 'theta_low_deg', 'theta_sd_deg']
+        """
         out = {"theta_sd_deg": self.theta_sd_deg.tolist(), "theta_low_deg": self.theta_low_deg.tolist(),
                "theta_high_deg": self.theta_high_deg.tolist(), "parameters": list(self.parameters),
                "covariance": [list(row) for row in self.covariance]}
@@ -107,7 +146,22 @@ class Band:
         return out
 
     def prediction_sd_deg(self) -> np.ndarray:
-        """Scatter of a new measurement about the model: sqrt(sd^2 + noise^2) of the measured quantity."""
+        """Scatter of a new measurement about the model: sqrt(sd^2 + noise^2) of the measured quantity.
+
+        Returns
+        -------
+        numpy.ndarray
+            [deg], per pressure.
+
+        Examples
+        --------
+        >>> from embroact.predict.curve import ActuatorModel
+        >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+        ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+        >>> b = theta_band(m, [50, 200], ("g_mpa", "p0_kpa"), ((0.01, 0.0), (0.0, 4.0)), noise_sd_deg=2.0)
+        >>> b.prediction_sd_deg().round(3).tolist()
+        [2.0, 5.416]
+        """
         sd = self.theta_sd_deg if self.reading_sd_deg is None else self.reading_sd_deg
         return np.sqrt(sd**2 + self.noise_sd_deg**2)
 
@@ -130,6 +184,17 @@ def _check_covariance(parameters, covariance) -> tuple[tuple[str, ...], np.ndarr
 def is_positive_semidefinite(covariance) -> bool:
     """True when the finite symmetric matrix ``covariance`` has no eigenvalue below -1e-12 of its largest entry.
 
+    Parameters
+    ----------
+    covariance : array_like (k, k)
+        A finite symmetric matrix.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
     >>> is_positive_semidefinite([[1.0, 0.5], [0.5, 1.0]]), is_positive_semidefinite([[1.0, 2.0], [2.0, 1.0]])
     (True, False)
     """
@@ -168,6 +233,15 @@ def theta_band(model, pressures_kpa, parameters, covariance, *, measurement: Mar
     Returns
     -------
     Band
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
+    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+    >>> b = theta_band(m, [50, 200], ("g_mpa", "p0_kpa"), ((0.01, 0.0), (0.0, 4.0)), noise_sd_deg=2.0)
+    >>> b.theta_sd_deg.round(3).tolist(), b.noise_sd_deg
+    ([0.0, 5.033], 2.0)
     """
     from .curve import curve, pressure_at
 
@@ -212,6 +286,34 @@ def fit_band(derived, result, pressures_kpa, *, prediction: bool = False, method
     Uses the result's parameters, covariance, tube law and measurement (the reading's
     band comes with it). ``prediction=True`` adds the fit's residual scatter
     ``rmse * sqrt(n / (n - k))`` (a band for new measurements).
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design the data were measured on.
+    result : FitResult
+        Its fit, with a covariance.
+    pressures_kpa : array_like
+        Pressures [kPa].
+    prediction : bool, optional
+        Add the residual scatter.
+    method : str, optional
+        Model method.
+
+    Returns
+    -------
+    Band
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> from embroact.predict.fit import fit_design, model_predictor
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> p = np.arange(0.0, 301.0, 25.0)
+    >>> (r,) = fit_design(d, p, model_predictor(d)(p, 2.7, 85.0, None) + np.sin(p))  # scattered data
+    >>> fit_band(d, r, [100.0, 200.0]).theta_sd_deg.round(3).tolist()
+    [0.085, 0.055]
     """
     import dataclasses
 
