@@ -156,6 +156,12 @@ class CalibrationPoint:
         The parameters of the set's tube law the fit used (``outer_radius_mm`` and ``g_e_mpa``
         for the paper's law; ``outer_radius_mm``, ``inner_radius_mm`` and ``mu_mpa`` for the
         thick wall; [mm, MPa]); empty when unknown. A mapping is accepted.
+
+    Examples
+    --------
+    >>> pt = CalibrationPoint("zigzag", 7.0, 2.7, 85.0, branch="loading")
+    >>> pt.coordinate, pt.as_dict()
+    (7.0, {'pattern': 'zigzag', 'width_mm': 7.0, 'g_mpa': 2.7, 'p0_kpa': 85.0, 'angle_deg': 0.0, 'branch': 'loading'})
     """
 
     pattern: str
@@ -221,7 +227,25 @@ class CalibrationPoint:
         return getattr(self, pattern_kind(self.pattern).calibration_axis)
 
     def same_design(self, other: "CalibrationPoint") -> bool:
-        """True when ``other`` is for the same pattern, width, angle and branch."""
+        """True when ``other`` is for the same pattern, width, angle and branch.
+
+        Parameters
+        ----------
+        other : CalibrationPoint
+            Another point.
+
+        Returns
+        -------
+        bool
+            Whatever their fitted values.
+
+        Examples
+        --------
+        >>> a = CalibrationPoint("zigzag", 7.0, 2.7, 85.0, branch="loading")
+        >>> b = CalibrationPoint("zigzag", 7.0, 2.5, 80.0, branch="loading")
+        >>> a.same_design(b), a.same_design(CalibrationPoint("zigzag", 7.0, 2.7, 85.0, branch="unloading"))
+        (True, False)
+        """
         return (self.pattern, self.width_mm, self.angle_deg, self.branch) == (
             other.pattern,
             other.width_mm,
@@ -230,7 +254,17 @@ class CalibrationPoint:
         )
 
     def as_dict(self) -> dict:
-        """Plain dict of the set fields (``None`` and empty fields left out)."""
+        """Plain dict of the set fields (``None`` and empty fields left out).
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> sorted(PAPER_2025.points[0].as_dict())
+        ['angle_deg', 'branch', 'g_mpa', 'interval_mm', 'p0_kpa', 'pattern', 'width_mm']
+        """
         out = {k: getattr(self, k) for k in self.__slots__ if getattr(self, k) not in (None, ())}
         if "fitted" in out:
             out["fitted"] = list(out["fitted"])
@@ -266,6 +300,11 @@ class CalibrationTube:
         Unpressurised outer and inner radius r_f, d_f [mm].
     g_e_mpa : float
         Its inflation-phase modulus G_e [MPa].
+
+    Examples
+    --------
+    >>> CalibrationTube(1.5, 1.0, 0.13).g_e_mpa
+    0.13
     """
 
     outer_radius_mm: float
@@ -279,11 +318,44 @@ class CalibrationTube:
 
     @classmethod
     def of(cls, tube) -> "CalibrationTube":
-        """The calibration record of a :class:`~embroact.patterns.params.Tube`."""
+        """The calibration record of a :class:`~embroact.patterns.params.Tube`.
+
+        Parameters
+        ----------
+        tube : Tube
+            A design's tube.
+
+        Returns
+        -------
+        CalibrationTube
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import Tube
+        >>> CalibrationTube.of(Tube())
+        CalibrationTube(outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=0.13)
+        """
         return cls(tube.outer_radius_mm, tube.inner_radius_mm, tube.g_e_mpa)
 
     def differences(self, tube) -> tuple[str, ...]:
-        """``key a != b`` for each of r_f, d_f, G_e where ``tube`` differs (relative 1e-9)."""
+        """``key a != b`` for each of r_f, d_f, G_e where ``tube`` differs (relative 1e-9).
+
+        Parameters
+        ----------
+        tube : Tube or CalibrationTube
+            The tube a design uses.
+
+        Returns
+        -------
+        tuple of str
+            Empty when they agree.
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import Tube
+        >>> CalibrationTube(1.5, 1.0, 0.13).differences(Tube(outer_radius_mm=1.6))
+        ('outer_radius_mm 1.6 (calibrated with 1.5)',)
+        """
         out = []
         for key in ("outer_radius_mm", "inner_radius_mm", "g_e_mpa"):
             a, b = getattr(self, key), getattr(tube, key)
@@ -343,6 +415,12 @@ class CalibrationSet:
     source : str
         The file the set was read from (absolute path), empty for a set made in memory; a
         design's ``calibration`` setting may name the set by it (not part of equality).
+
+    Examples
+    --------
+    >>> s = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.5, 80.0, branch="loading"),))
+    >>> s.name, s.coverage(), s.measurement
+    ('lab', {'zigzag': (7.0, 7.0)}, 'whole-strip')
     """
 
     name: str
@@ -380,13 +458,33 @@ class CalibrationSet:
                 object.__setattr__(self, "measurement", self.marker_layout.label)
 
     def with_points(self, points: Iterable[CalibrationPoint]) -> "CalibrationSet":
-        """A copy whose points are merged with ``points`` (a new point replaces an old one of the same design)."""
+        """A copy whose points are merged with ``points`` (a new point replaces an old one of the same design).
+
+        Parameters
+        ----------
+        points : iterable of CalibrationPoint
+            The new points.
+
+        Returns
+        -------
+        CalibrationSet
+
+        Examples
+        --------
+        >>> s = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.5, 80.0, branch="loading"),))
+        >>> [p.g_mpa for p in s.with_points([CalibrationPoint("zigzag", 7.0, 2.6, 82.0, branch="loading")]).points]
+        [2.6]
+        """
         new = tuple(points)
         kept = tuple(p for p in self.points if not any(p.same_design(q) for q in new))
         return dataclasses.replace(self, points=kept + new)
 
     def coverage(self) -> dict[str, tuple[float, float]]:
         """Covered range of each pattern's calibration axis: ``{pattern: (low, high)}`` (width or angle).
+
+        Returns
+        -------
+        dict of str to tuple of float
 
         Examples
         --------
@@ -409,6 +507,7 @@ class Calibration:
     name : str
         Name of the calibration set.
     pattern, branch : str
+        The design's pattern kind and the branch looked up.
     g_mpa, p0_kpa : float
         Effective shear modulus [MPa] and transition pressure [kPa].
     g_e_mpa : float or None
@@ -432,6 +531,12 @@ class Calibration:
         exactly, or, between points that each carry a G and P0 covariance (a profile), the
         covariance of the interpolated values propagated from theirs (:func:`_propagated`);
         empty when averaged or unknown: no band is claimed then.
+
+    Examples
+    --------
+    >>> c = lookup("zigzag", width_mm=7.0)
+    >>> c.g_mpa, c.p0_kpa, c.parameter, c.interpolated, c.extrapolated
+    (2.7, 85.0, 'width_mm', False, False)
     """
 
     name: str
@@ -465,7 +570,17 @@ class Calibration:
         return f"{self.name} ({self.pattern}, {self.parameter}={self.value:g}{how})"
 
     def as_dict(self) -> dict:
-        """Plain dict with unit-suffixed keys, plus ``label``."""
+        """Plain dict with unit-suffixed keys, plus ``label``.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> lookup("zigzag", width_mm=7.0).as_dict()["label"]
+        'paper-2025 (zigzag, width_mm=7)'
+        """
         d = {k: getattr(self, k) for k in self.__slots__}
         d["notes"] = list(self.notes)
         d["fitted"] = list(self.fitted)
@@ -503,10 +618,24 @@ _REGISTRY: dict[str, CalibrationSet] = {PAPER_2025.name: PAPER_2025}
 def register(cset: CalibrationSet, *, replace: bool = False) -> None:
     """Make ``cset`` available to :func:`lookup` by its name.
 
+    Parameters
+    ----------
+    cset : CalibrationSet
+        The set.
+    replace : bool, optional
+        Replace a user set of the same name.
+
     Raises
     ------
     ParameterError
         If a set of that name exists and ``replace`` is false, or if it is the built-in set.
+
+    Examples
+    --------
+    >>> register(CalibrationSet("doc-lab", (CalibrationPoint("zigzag", 7.0, 2.5, 80.0, branch="loading"),)))
+    >>> lookup("zigzag", width_mm=7.0, name="doc-lab").g_mpa
+    2.5
+    >>> unregister("doc-lab")
     """
     if not isinstance(cset, CalibrationSet):
         raise ParameterError(f"register expects a CalibrationSet, got {type(cset).__name__}")
@@ -516,19 +645,73 @@ def register(cset: CalibrationSet, *, replace: bool = False) -> None:
 
 
 def unregister(name: str) -> None:
-    """Remove a user set registered with :func:`register` (the built-in set stays)."""
+    """Remove a user set registered with :func:`register` (the built-in set stays).
+
+    Parameters
+    ----------
+    name : str
+        The set's name.
+
+    Raises
+    ------
+    ParameterError
+        No user set has that name.
+
+    Examples
+    --------
+    >>> try:
+    ...     unregister("paper-2025")
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    no user calibration set 'paper-2025'; registered: paper-2025...
+    """
     if name == PAPER_2025.name or name not in _REGISTRY:
         raise ParameterError(f"no user calibration set {name!r}; registered: {', '.join(set_names())}")
     del _REGISTRY[name]
 
 
 def set_names() -> tuple[str, ...]:
-    """Names of the registered calibration sets, built-in first."""
+    """Names of the registered calibration sets, built-in first.
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> set_names()[0]
+    'paper-2025'
+    """
     return tuple(_REGISTRY)
 
 
 def get_set(name: str, sets: Iterable[CalibrationSet] | None = None) -> CalibrationSet:
-    """The set called ``name`` (its name, or the file it was read from): from ``sets`` first, then the registry."""
+    """The set called ``name`` (its name, or the file it was read from): from ``sets`` first, then the registry.
+
+    Parameters
+    ----------
+    name : str
+        A set's name or source file.
+    sets : iterable of CalibrationSet, optional
+        Sets searched first.
+
+    Returns
+    -------
+    CalibrationSet
+
+    Raises
+    ------
+    ParameterError
+        No set is called ``name``; the message lists those that are.
+
+    Examples
+    --------
+    >>> get_set("paper-2025") is PAPER_2025
+    True
+    >>> lab = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.5, 80.0, branch="loading"),))
+    >>> get_set("lab", [lab]) is lab
+    True
+    """
     extra = {s.name: s for s in (sets or ())}
     extra.update({s.source: s for s in (sets or ()) if s.source})
     found = extra.get(name) or _REGISTRY.get(name)
@@ -671,6 +854,14 @@ def lookup(
     ModelDomainError
         The set has no points for the pattern/branch, or a linear extrapolation leaves
         the valid range of G or P0.
+
+    Examples
+    --------
+    >>> c = lookup("cross", width_mm=7.0, angle_deg=45.0)
+    >>> c.g_mpa, c.p0_kpa, c.label
+    (1.3, 170.0, 'paper-2025 (cross, angle_deg=45)')
+    >>> lookup("zigzag", width_mm=11.0).extrapolated  # beyond the calibrated widths: clamped
+    True
     """
     _choice("pattern", pattern, PATTERN_KINDS.names())
     _choice("branch", branch, BRANCHES)
@@ -740,6 +931,7 @@ class ModelChoice:
     Attributes
     ----------
     model : ActuatorModel
+        The model.
     calibration : Calibration or None
         The lookup result; ``None`` when neither G nor P0 came from a set.
     g_source, p0_source : str
@@ -750,6 +942,15 @@ class ModelChoice:
         ``p0_source`` is geometry; shown beside the set's P0 otherwise.
     notes : tuple of str
         Mismatches between the design and what the calibration was fitted with (tube).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> choice = model_for(d)
+    >>> choice.model.g_mpa, choice.p0_source, round(choice.tube_law_p0_kpa, 3)
+    (2.7, 'calibration paper-2025 (zigzag, width_mm=7)', 84.455)
     """
 
     model: ActuatorModel
@@ -764,6 +965,20 @@ class ModelChoice:
 
         ``p0_kpa`` is the model's (its source ``p0_source``), ``tube_law_p0_kpa`` the tube law's
         at r0 and ``calibration.p0_kpa`` the calibration set's (when one was looked up).
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import Tube
+        >>> from embroact.predict.derived import derive_from_values
+        >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+        >>> choice = model_for(d)
+        >>> d = choice.as_dict()
+        >>> d["p0_kpa"], round(d["tube_law_p0_kpa"], 3), d["calibration"]["p0_kpa"]
+        (85.0, 84.455, 85.0)
         """
         m = self.model
         return {"g_mpa": m.g_mpa, "g_source": self.g_source, "p0_kpa": m.p0_kpa, "p0_source": self.p0_source,
@@ -860,6 +1075,17 @@ def model_for(derived, settings: ModelSettings | None = None, *,
 def as_calibration_sets(sets) -> tuple[CalibrationSet, ...]:
     """Calibration sets given as None, an iterable of sets or a mapping name -> set, as a tuple.
 
+    Parameters
+    ----------
+    sets : None, iterable of CalibrationSet or mapping of str to CalibrationSet
+        The sets.
+
+    Returns
+    -------
+    tuple of CalibrationSet
+
+    Examples
+    --------
     >>> as_calibration_sets({"paper-2025": PAPER_2025}) == (PAPER_2025,), as_calibration_sets(None)
     (True, ())
     """
