@@ -126,6 +126,17 @@ MAX_TARGET_PRESSURE_KPA = 10_000.0
 def check_target_pressure(value, name: str = "pressure_kpa") -> float:
     """``value`` if it is a pressure in (0, MAX_TARGET_PRESSURE_KPA) kPa, else one-line ParameterError naming ``name``.
 
+    Parameters
+    ----------
+    value : object
+        The pressure [kPa].
+    name : str, optional
+        The parameter's name for the message.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> check_target_pressure(150.0)
@@ -140,6 +151,7 @@ class DesignSpace:
     Attributes
     ----------
     pattern : str
+        The pattern kind.
     parameter : str
         The kind's calibration axis (``"width_mm"``, ``"angle_deg"``).
     low, high : float
@@ -149,6 +161,12 @@ class DesignSpace:
         uses what it needs of them.
     calibrated : bool
         False when the range goes beyond the calibration (``allow_extrapolation``).
+
+    Examples
+    --------
+    >>> s = DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0)
+    >>> s.params(6.5), s.grid_step, s.describe()
+    (ZigzagParams(width_mm=6.5, interval_mm=1.0), 0.2, 'width_mm 5 to 9 (calibrated)')
     """
 
     pattern: str
@@ -162,6 +180,22 @@ class DesignSpace:
     def params(self, x: float) -> PatternParams:
         """Pattern parameters at parameter value ``x`` (the kind's :attr:`~embroact.patterns.kinds.PatternKind.design_params`).
 
+        Parameters
+        ----------
+        x : float
+            The free parameter's value [mm or deg].
+
+        Returns
+        -------
+        PatternParams
+
+        Raises
+        ------
+        ParameterError
+            The kind has no design space.
+
+        Examples
+        --------
         >>> s = DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
         >>> p = s.params(40.0)
         >>> round(p.interval_mm, 4), round(2 * 7.0 * math.tan(math.radians(40.0)) / p.interval_mm, 9)
@@ -197,6 +231,23 @@ class DesignSpace:
         ``step`` is the grid step of the parameter (default :attr:`grid_step`; one machine-grid unit for a
         straight path moved by :func:`rail_offset_mm`).
 
+        Parameters
+        ----------
+        x : float
+            The parameter's value [mm or deg].
+        spread : int, optional
+            Grid values on each side.
+        step : float or None, optional
+            The grid step; None: :attr:`grid_step`.
+
+        Returns
+        -------
+        tuple of float
+            Ascending, inside the range.
+
+        Examples
+        --------
+
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(6.1529)
         (6.0, 6.2)
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(9.0, spread=2)
@@ -212,7 +263,18 @@ class DesignSpace:
         return tuple(v for v in (round(k * step, 10) for k in ks) if self.low - 1e-9 <= v <= self.high + 1e-9)
 
     def describe(self) -> str:
-        """``"width_mm 5 to 9 (calibrated)"``."""
+        """``"width_mm 5 to 9 (calibrated)"``.
+
+        Returns
+        -------
+        str
+            Parameter, range and whether it is the calibrated one.
+
+        Examples
+        --------
+        >>> DesignSpace("zigzag", "width_mm", 4.0, 9.0, 7.0, 1.0, False).describe()
+        'width_mm 4 to 9 (extrapolated)'
+        """
         return f"{self.parameter} {self.low:g} to {self.high:g} ({'calibrated' if self.calibrated else 'extrapolated'})"
 
 
@@ -222,6 +284,30 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     pattern the angles whose legs (``w / cos(alpha0)``, rounded to the machine grid) fit one stitch of the
     default machine.
 
+    Parameters
+    ----------
+    pattern : str
+        A registered pattern kind.
+    settings : ModelSettings, optional
+        The calibration and tube law.
+    sets : iterable of CalibrationSet, optional
+        Extra calibration sets.
+    tube : Tube, optional
+        The tube.
+    allow_extrapolation : bool, optional
+        Go beyond the calibrated range, to the range the model holds.
+
+    Returns
+    -------
+    DesignSpace
+
+    Raises
+    ------
+    ParameterError
+        The kind has no design space, or the calibration has no points of it.
+
+    Examples
+    --------
     >>> design_space("zigzag").describe(), design_space("cross").describe()
     ('width_mm 5 to 9 (calibrated)', 'angle_deg 15 to 54.172 (calibrated)')
     """
@@ -260,6 +346,20 @@ def design_spaces(settings: ModelSettings = ModelSettings(), *, sets=(), tube: T
 
     A kind is skipped when it gives no ``design_params`` or the calibration holds no points of it.
 
+    Parameters
+    ----------
+    settings, sets, tube, allow_extrapolation
+        As for :func:`design_space`.
+
+    Returns
+    -------
+    spaces : dict of str to DesignSpace
+        By kind name.
+    notes : tuple of str
+        One line per kind skipped.
+
+    Examples
+    --------
     >>> spaces, notes = design_spaces()
     >>> spaces["zigzag"].describe(), [n for n in notes if "zigzag" in n or "cross" in n]
     ('width_mm 5 to 9 (calibrated)', [])
@@ -395,11 +495,32 @@ class Sensitivity:
     plus_deg: float
 
     def text(self) -> str:
-        """One line: both steps and what they do."""
+        """One line: both steps and what they do.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Sensitivity("angle_deg", 0.4, -3.0, 2.9).text()
+        'angle_deg -0.4: -3.00 deg, +0.4: +2.90 deg'
+        """
         return f"{self.parameter} -{self.step:.3g}: {self.minus_deg:+.2f} deg, +{self.step:.3g}: {self.plus_deg:+.2f} deg"
 
     def as_dict(self) -> dict:
-        """JSON-ready, units in the keys."""
+        """JSON-ready, units in the keys.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> d = Sensitivity("width_mm", 0.2, 12.5, -11.3).as_dict()
+        >>> d["step_mm"], d["plus_step_theta_change_deg"]
+        (0.2, -11.3)
+        """
         unit = "mm" if self.parameter.endswith("_mm") else "deg"
         return {"parameter": self.parameter, f"step_{unit}": self.step, "minus_step_theta_change_deg": self.minus_deg,
                 "plus_step_theta_change_deg": self.plus_deg,
@@ -414,6 +535,7 @@ class BendCandidate:
     Attributes
     ----------
     pattern : str
+        Its pattern kind.
     params : pattern parameters
         What the design file asks for.
     design : Design
@@ -448,6 +570,13 @@ class BendCandidate:
     length_mm : float
         The actuator's length in the design [mm]: the one asked for, or one within the length tolerance
         fitted to whole stitch intervals (:func:`design_bend`'s ``length_tolerance_mm``).
+
+    Examples
+    --------
+    >>> r = design_bend(84.5, 150.0, pattern="zigzag")
+    >>> c = r.best
+    >>> c.pattern, c.params.width_mm, round(c.theta_deg, 2), c.design.actuators[0].name
+    ('zigzag', 6.2, 84.53, 'A1')
     """
 
     pattern: str
@@ -469,7 +598,20 @@ class BendCandidate:
     length_mm: float = math.nan
 
     def as_dict(self) -> dict:
-        """JSON-ready, units in the keys."""
+        """JSON-ready, units in the keys.
+
+        Returns
+        -------
+        dict
+            Every field but the design; the parameters by name.
+
+        Examples
+        --------
+        >>> r = design_bend(84.5, 150.0, pattern="zigzag")
+        >>> d = r.best.as_dict()
+        >>> d["pattern"], round(d["theta_deg"], 2), d["margin_kpa"] is None or d["margin_kpa"] > 0
+        ('zigzag', 84.53, True)
+        """
         return {"pattern": self.pattern, "params": param_values(self.params), "length_mm": self.length_mm,
                 "theta_deg": self.theta_deg, "p0_kpa": self.p0_kpa, "g_mpa": self.g_mpa, "limit": self.limit,
                 "margin_kpa": None if math.isinf(self.margin_kpa) else self.margin_kpa,
@@ -486,9 +628,11 @@ class BendResult:
     Attributes
     ----------
     target_deg, pressure_kpa, length_mm : float
+        The target bend [deg], at that pressure [kPa], of that length [mm].
     best : BendCandidate
         The sewable design meeting the target best (the nearest one when none meets it).
     runners_up : tuple of BendCandidate
+        The next best designs.
     reached : bool
         A sewable design bends within ``tolerance_deg`` of the target in a valid state without
         rule errors.
@@ -501,6 +645,15 @@ class BendResult:
         (lowest, highest) such bend over the searched patterns; None when no design has a
         valid state at the pressure.
     tolerance_deg : float
+        The tolerance the target was met within [deg].
+    notes : tuple of str
+        Pattern kinds the search skipped, and why.
+
+    Examples
+    --------
+    >>> r = design_bend(84.5, 150.0, pattern="zigzag")
+    >>> r.reached, r.in_range, r.statement.split(":")[0]
+    (True, True, 'met')
     """
 
     target_deg: float
@@ -517,7 +670,20 @@ class BendResult:
     """Pattern kinds the search skipped, and why (no design space, no calibration points)."""
 
     def as_dict(self) -> dict:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+            Every field, the candidates as :meth:`BendCandidate.as_dict`.
+
+        Examples
+        --------
+        >>> r = design_bend(84.5, 150.0, pattern="zigzag")
+        >>> d = r.as_dict()
+        >>> d["reached"], d["best"]["pattern"], d["target_deg"]
+        (True, 'zigzag', 84.5)
+        """
         return {"target_deg": self.target_deg, "pressure_kpa": self.pressure_kpa, "length_mm": self.length_mm,
                 "reached": self.reached, "statement": self.statement, "best": self.best.as_dict(),
                 "runners_up": [c.as_dict() for c in self.runners_up], "in_range": self.in_range,
@@ -532,6 +698,21 @@ def operating_limits(limits: OperationSettings, pressure_kpa: float, bend_deg: f
     ``check`` and ``build`` do on the written file); only a target beyond them widens them to it
     (the target pressure, the target's |bend|), since the design is meant to work there.
 
+    Parameters
+    ----------
+    limits : OperationSettings
+        The user's (or default) limits.
+    pressure_kpa : float
+        The target pressure [kPa].
+    bend_deg : float or None, optional
+        The target bend [deg]; None for a shape.
+
+    Returns
+    -------
+    OperationSettings
+
+    Examples
+    --------
     >>> operating_limits(OperationSettings(), 150.0, 84.5)
     OperationSettings(max_pressure_kpa=300.0, max_bend_deg=180.0, target_pressure_kpa=150.0, target_bend_deg=84.5)
     >>> o = operating_limits(OperationSettings(), 400.0, -250.0)
@@ -551,6 +732,18 @@ def rail_offset_mm(width_mm: float) -> float:
     sewn); on the path y = 0.05 mm they lie at 3.1 and -3.0 mm, exactly 6.1 mm apart. The tube lies on
     the path, so it stays centred between the rails.
 
+    Parameters
+    ----------
+    width_mm : float
+        The zigzag's width [mm], on the machine grid.
+
+    Returns
+    -------
+    float
+        The shift [mm].
+
+    Examples
+    --------
     >>> rail_offset_mm(6.1), rail_offset_mm(6.2), rail_offset_mm(7.0)
     (0.05, 0.0, 0.0)
     """
@@ -585,6 +778,20 @@ def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, sett
 def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
     """The turn of a leg of a cross pattern whose end moves one machine-grid unit along the path [deg].
 
+    Parameters
+    ----------
+    width_mm : float
+        Rail spacing [mm].
+    angle_deg : float
+        Embroidery angle [deg].
+
+    Returns
+    -------
+    float
+        [deg].
+
+    Examples
+    --------
     >>> round(angle_grid_step_deg(7.0, 45.0), 4)
     0.4063
     """
@@ -635,12 +842,26 @@ def _limits(model, p: float) -> tuple[str, float]:
 def exact_pressure_kpa(model, target_deg: float) -> float | None:
     """The pressure at which ``model`` bends by ``target_deg`` in a valid state (BENDING), or None.
 
+    Parameters
+    ----------
+    model : ActuatorModel
+        The design's model.
+    target_deg : float
+        The bend [deg].
+
+    Returns
+    -------
+    float or None
+        [kPa]; None when no pressure bends it so in a valid state (e.g. the other direction).
+
+    Examples
+    --------
     >>> from embroact.predict.curve import ActuatorModel, curve
     >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814, beta0_deg=0, outer_radius_mm=1.5,
     ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
     >>> p = exact_pressure_kpa(m, 90.0)
-    >>> round(float(curve(m, [p]).theta_deg[0]), 6)
-    90.0
+    >>> round(float(curve(m, [p]).theta_deg[0]), 6), exact_pressure_kpa(m, -10.0)
+    (90.0, None)
     """
     from .curve import pressure_at
 
@@ -911,6 +1132,12 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     BendResult
         ``reached`` False: ``best`` is the nearest sewable design (with the pressure at which it
         reaches the target exactly, where it does) and ``statement`` says why.
+
+    Examples
+    --------
+    >>> r = design_bend(-60.0, 250.0, pattern="cross")
+    >>> r.reached, r.best.pattern, round(r.best.theta_deg) == -60
+    (True, 'cross', True)
     """
     target = check_range("bend_deg", bend_deg, low=-720.0, high=720.0, high_inclusive=True, low_inclusive=True)
     if target == 0.0:
@@ -1063,6 +1290,20 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
     evenly spaced arc lengths; the start is the optimal split of the curve's sampled
     curvature into ``segments`` constant pieces.
 
+    Parameters
+    ----------
+    target_xy_mm : array_like (m, 2)
+        The curve [mm].
+    segments : int
+        Pieces, in [1, 20].
+
+    Returns
+    -------
+    lengths_mm, kappa_per_mm : numpy.ndarray
+        Length [mm] and curvature [1/mm] of each piece.
+    rmse_mm : float
+        Position error of the fit [mm].
+
     Examples
     --------
     >>> import numpy as np
@@ -1110,7 +1351,28 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
 
 @dataclass(frozen=True, slots=True)
 class ShapeSegment:
-    """One segment of a designed shape: its pattern parameters, length and what it does at P*."""
+    """One segment of a designed shape: its pattern parameters, length and what it does at P*.
+
+    Attributes
+    ----------
+    params : PatternParams
+        Its pattern.
+    length_mm : float
+        Its length [mm].
+    theta_deg : float
+        Its predicted bend at the target pressure [deg].
+    target_kappa_per_mm : float
+        The curvature the fit asked of it [1/mm].
+    note : str
+        What was adjusted, or empty.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> seg = ShapeSegment(ZigzagParams(6.2, 1.0), 50.0, 42.0, 0.0147)
+    >>> seg.pattern, seg.as_dict()["params"]
+    ('zigzag', {'width_mm': 6.2, 'interval_mm': 1.0})
+    """
 
     params: PatternParams
     length_mm: float
@@ -1120,11 +1382,22 @@ class ShapeSegment:
 
     @property
     def pattern(self) -> str:
-        """``"zigzag"`` or ``"cross"``."""
+        """Its pattern kind (the parameters' ``pattern``)."""
         return self.params.pattern
 
     def as_dict(self) -> dict:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.params import ZigzagParams
+        >>> ShapeSegment(ZigzagParams(6.2, 1.0), 50.0, 42.0, 0.0147).as_dict()["note"] is None
+        True
+        """
         return {"pattern": self.pattern, "params": param_values(self.params),
                 "length_mm": self.length_mm, "theta_deg": self.theta_deg,
                 "target_kappa_per_mm": self.target_kappa_per_mm, "note": self.note or None}
@@ -1139,7 +1412,9 @@ class ShapeResult:
     design : Design
         One segmented actuator (or a single pattern when one segment fits), ready to write.
     segments : tuple of ShapeSegment
+        Clamp to tip.
     pressure_kpa : float
+        The target pressure [kPa].
     target_xy_mm, predicted_xy_mm : ndarray (m, 2)
         Target and predicted fabric line at the same arc lengths [mm] (profile frame).
     rmse_mm, max_deviation_mm : float
@@ -1151,12 +1426,21 @@ class ShapeResult:
     reached : bool
         Every segment meets its curvature in a valid state and the design passes the rules.
     statement : str
+        The verdict in one line.
     warnings : tuple of str
         Codes of the design-rule findings.
     findings : tuple of str
         ``"CODE severity: message"`` of every finding ``embroact check`` gives for the written design.
     notes : tuple of str
         Pattern kinds the search skipped, and why.
+
+    Examples
+    --------
+    >>> from embroact.predict.shape import BentShape
+    >>> target = BentShape.chain([100.0], [60.0]).profile_mm(np.linspace(0.0, 100.0, 201))
+    >>> r = design_shape(target, 150.0, max_segments=1)
+    >>> r.reached, len(r.segments), r.rmse_mm < 0.5
+    (True, 1, True)
     """
 
     design: Design
@@ -1176,7 +1460,22 @@ class ShapeResult:
     notes: tuple[str, ...] = ()
 
     def as_dict(self) -> dict:
-        """JSON-ready (without the point arrays)."""
+        """JSON-ready (without the point arrays).
+
+        Returns
+        -------
+        dict
+            Every field but the design and the point arrays; segments as :meth:`ShapeSegment.as_dict`.
+
+        Examples
+        --------
+        >>> from embroact.predict.shape import BentShape
+        >>> target = BentShape.chain([100.0], [60.0]).profile_mm(np.linspace(0.0, 100.0, 201))
+        >>> r = design_shape(target, 150.0, max_segments=1)
+        >>> d = r.as_dict()
+        >>> d["reached"], d["segments"][0]["pattern"], "target_xy_mm" in d
+        (True, 'zigzag', False)
+        """
         return {"pressure_kpa": self.pressure_kpa, "reached": self.reached, "statement": self.statement,
                 "rmse_mm": self.rmse_mm, "max_deviation_mm": self.max_deviation_mm,
                 "tip_error_mm": self.tip_error_mm, "tip_angle_error_deg": self.tip_angle_error_deg,
@@ -1246,7 +1545,27 @@ def curvature_range(model: _Model, spaces: dict) -> tuple[float, float]:
     """(most negative, most positive) curvature [1/mm] a segment reaches at the model's pressure in a valid state,
     over every design space: one scan per pattern at ``_REACH_LENGTH_MM``. The model's P(theta) depends on the
     length only through theta / l0, so a scan at one length gives the curvature at every length (the realised
-    geometry moves a little with length: ``_REACH_SLACK``)."""
+    geometry moves a little with length: ``_REACH_SLACK``).
+
+    Parameters
+    ----------
+    model : _Model
+        The search's model at the target pressure.
+    spaces : dict of str to DesignSpace
+        The design spaces searched.
+
+    Returns
+    -------
+    tuple of float
+        [1/mm].
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import ModelSettings
+    >>> lo, hi = curvature_range(_Model(250.0, Tube(), ModelSettings(), ()), {"zigzag": design_space("zigzag")})
+    >>> lo, round(hi, 4)  # a zigzag bends one way only
+    (0.0, 0.0625)
+    """
     lo = hi = 0.0
     for space in spaces.values():
         x, theta, status = model.table(space, _REACH_LENGTH_MM)
@@ -1267,6 +1586,20 @@ def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, 
     curvature allows plus ``_REACH_HEADING_DEG``), a corner (a turn within ``_REACH_CORNER_MM`` beyond what
     the curvature allows by ``_REACH_CORNER_DEG``) and the whole target's bend (its net turning beyond the
     range times its length by ``_REACH_HEADING_DEG``). Decided from the target and the range alone.
+
+    Parameters
+    ----------
+    sj : numpy.ndarray (m,)
+        Evenly spaced arc lengths [mm].
+    xy : numpy.ndarray (m, 2)
+        The target at them [mm].
+    kappa_range : tuple of float
+        Reachable curvature (:func:`curvature_range`) [1/mm].
+
+    Returns
+    -------
+    str or None
+        The reason, in words.
 
     Examples
     --------
@@ -1343,6 +1676,14 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     ParameterError
         Bad input; a target no design can follow (:func:`shape_unreachable`, decided before any search);
         no design within the time limit.
+
+    Examples
+    --------
+    >>> from embroact.predict.shape import BentShape
+    >>> target = BentShape.chain([100.0], [60.0]).profile_mm(np.linspace(0.0, 100.0, 201))
+    >>> r = design_shape(target, 150.0, max_segments=1)
+    >>> r.reached, r.segments[0].pattern, r.statement.split(":")[0]
+    (True, 'zigzag', 'met with 1 segment(s)')
     """
     import time
 

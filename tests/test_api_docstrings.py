@@ -105,7 +105,7 @@ UNDOCUMENTED_MODULES = frozenset({
     "embroact.export.studio.form", "embroact.export.studio.outputs", "embroact.export.studio.roundtrip",
     "embroact.export.studio.serve", "embroact.export.studio.session", "embroact.export.studio.views",
     "embroact.patterns.design", "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis",
-    "embroact.predict.inverse", "embroact.predict.rules", "embroact.predict.sleeve_rules",
+    "embroact.predict.rules", "embroact.predict.sleeve_rules",
 })
 
 
