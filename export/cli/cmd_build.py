@@ -39,7 +39,24 @@ def _stages(args) -> tuple:
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact build``."""
+    """Options of ``embroact build``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"build"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact build")
+    >>> add_arguments(parser, "build")
+    >>> args = parser.parse_args(["--out", "out", "--format", "dst,pes"])
+    >>> args.out, args.format, args.mesh_format
+    ('out', 'dst,pes', 'glb')
+    """
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
     add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("--out", required=True, help="existing output directory")
@@ -71,7 +88,31 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args) -> int:
-    """Load (or default) the design, analyse it once, gate on its rules, build, report."""
+    """Load (or default) the design, analyse it once, gate on its rules, build, report.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> parser = argparse.ArgumentParser(prog="embroact build")
+    >>> add_arguments(parser, "build")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     args = parser.parse_args(["--out", tmp, "--no-previews"])
+    ...     args.command = "build"
+    ...     run(args)  # doctest: +ELLIPSIS
+    wrote 7 files to ...: paper-zigzag.dst, worksheet.json, worksheet.txt, preview.svg, template.svg, ...
+    ...
+    0
+    """
     from ...patterns.base.validate import check_output_name
     from .args import check_shape_flags
     from ..files.atomic import check_writable_dir

@@ -31,7 +31,24 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact calibrate``."""
+    """Options of ``embroact calibrate``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"calibrate"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact calibrate")
+    >>> add_arguments(parser, "calibrate")
+    >>> args = parser.parse_args(["coupon", "--out", "coupon"])
+    >>> args.what, args.out
+    ('coupon', 'coupon')
+    """
     from .args import add_tube_arguments
 
     parser.add_argument("what", choices=("coupon",), help="what to make: coupon (test actuators to sew and measure)")
@@ -101,7 +118,32 @@ def _designs(coupon, tube, args):
 
 
 def run(args) -> int:
-    """Plan the coupon, check every hoop, write everything; return the exit code."""
+    """Plan the coupon, check every hoop, write everything; return the exit code.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact calibrate")
+    >>> add_arguments(parser, "calibrate")
+    >>> args = parser.parse_args(["coupon", "--out", "no-such-dir"])
+    >>> args.command = "calibrate"
+    >>> from embroact.patterns.base.errors import ExportError
+    >>> try:
+    ...     run(args)
+    ... except ExportError as exc:
+    ...     print(exc)
+    output directory 'no-such-dir' does not exist
+    """
     from ...patterns.base.validate import check_output_name
     from ...predict.coupon import plan_coupon
     from ...predict.rules import check_design

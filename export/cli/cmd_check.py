@@ -30,7 +30,24 @@ __all__ = ["add_arguments", "run", "format_table"]
 
 
 def add_arguments(parser, name: str) -> None:
-    """Options of ``embroact check``."""
+    """Options of ``embroact check``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"check"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact check")
+    >>> add_arguments(parser, "check")
+    >>> args = parser.parse_args(["a.dst", "--tube-path", "-50,0 50,0"])
+    >>> args.input, args.tube_path
+    ('a.dst', ['-50,0 50,0'])
+    """
     from ...patterns.limits import FORMAT_LIMITS
     from .args import add_tube_arguments
     from .target import add_model_arguments
@@ -116,7 +133,33 @@ def _check_file(args):
 
 
 def format_table(findings, header: str) -> str:
-    """Findings as text: a summary line, then per severity the code, place, message and fix."""
+    """Findings as text: a summary line, then per severity the code, place, message and fix.
+
+    Parameters
+    ----------
+    findings : sequence of Finding
+        What the rules found.
+    header : str
+        What was checked (the summary line starts with it).
+
+    Returns
+    -------
+    str
+        Lines, without a final newline.
+
+    Examples
+    --------
+    >>> from embroact.patterns.base.findings import RULES
+    >>> import embroact.patterns.rules  # declares the rules
+    >>> print(format_table([RULES.finding("EA101", "needle 0.4 mm from the axis", actuator="A1", stitch_index=7)],
+    ...                    "a.dst"))  # doctest: +ELLIPSIS +NORMALIZE_WHITESPACE
+    a.dst: 1 error, 0 warnings, 0 info
+    <BLANKLINE>
+    ERRORS
+      EA101  needle in tube corridor  [A1, stitch 7]
+             needle 0.4 mm from the axis
+             fix: ...
+    """
     from ...patterns.base.findings import Severity, count_by_severity
 
     counts = count_by_severity(findings)
@@ -135,7 +178,33 @@ def format_table(findings, header: str) -> str:
 
 
 def run(args) -> int:
-    """Check the input; print the table or JSON; 1 if any error."""
+    """Check the input; print the table or JSON; 1 if any error.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> from embroact.export.cli.main import main
+    >>> parser = argparse.ArgumentParser(prog="embroact check")
+    >>> add_arguments(parser, "check")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = main(["zigzag", "--width-mm", "7", "-o", f"{tmp}/a.dst"])  # doctest: +ELLIPSIS
+    ...     args = parser.parse_args([f"{tmp}/a.dst", "--tube-path", "-50,0 50,0"])
+    ...     args.command = "check"
+    ...     run(args)  # doctest: +ELLIPSIS
+    wrote .../a.dst (dst): 106 stitches, ...
+    .../a.dst: embroidery file, format dst, 1 tube(s): no findings
+    0
+    """
     from ...patterns.base.errors import ParameterError
     from ...patterns.base.findings import count_by_severity
     from ...predict.rule_catalogue import rules_table

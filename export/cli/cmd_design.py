@@ -63,7 +63,24 @@ __all__ = ["add_arguments", "run", "read_target_shape"]
 
 
 def add_arguments(parser, name: str) -> None:
-    """Options of ``embroact design``."""
+    """Options of ``embroact design``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"design"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact design")
+    >>> add_arguments(parser, "design")
+    >>> args = parser.parse_args(["--bend-deg", "90", "--at-kpa", "150", "-o", "d.toml"])
+    >>> args.bend_deg, args.at_kpa, args.pattern
+    (90.0, 150.0, 'any')
+    """
     target = parser.add_argument_group("target (a bend, or a shape)")
     what = target.add_mutually_exclusive_group(required=True)
     what.add_argument("--bend-deg", type=float, help="bend wanted at --at-kpa [deg] (negative: toward the thread side)")
@@ -115,10 +132,30 @@ def add_arguments(parser, name: str) -> None:
 def read_target_shape(ref: str):
     """Points (n, 2) [mm] of a target shape file: CSV ``x_mm,y_mm`` or an SVG path reference.
 
+    Parameters
+    ----------
+    ref : str
+        ``SHAPE.csv``, or ``SHAPE.svg`` / ``SHAPE.svg#ID`` (a path in the drawing).
+
+    Returns
+    -------
+    numpy.ndarray (n, 2)
+        [mm].
+
     Raises
     ------
     DesignFileError
         Unreadable file, missing header, a row that is not two numbers (named by line).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     csv = Path(tmp, "hook.csv")
+    ...     _ = csv.write_text("x_mm,y_mm\\n0,0\\n50,0\\n80,20\\n")
+    ...     read_target_shape(str(csv)).tolist()
+    [[0.0, 0.0], [50.0, 0.0], [80.0, 20.0]]
     """
     import numpy as np
 
@@ -241,7 +278,32 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bo
 
 
 def run(args) -> int:
-    """Search, print, write the design (and the overlay SVG for a shape)."""
+    """Search, print, write the design (and the overlay SVG for a shape).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> parser = argparse.ArgumentParser(prog="embroact design")
+    >>> add_arguments(parser, "design")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     args = parser.parse_args(["--bend-deg", "84.5", "--at-kpa", "150", "--pattern", "zigzag", "-o", f"{tmp}/d.toml"])
+    ...     args.command = "design"
+    ...     run(args)  # doctest: +ELLIPSIS
+    target 84.5 deg at 150 kPa, l0 100 mm: met: zigzag bends 84.53 deg at 150 kPa ...
+    ...
+    wrote .../d.toml
+    0
+    """
     from ..files.atomic import check_command_files, write_files_atomic
     from ..files.designfile import dumps_design
 

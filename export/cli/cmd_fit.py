@@ -40,7 +40,24 @@ _ALIASES = {"g": "g_mpa", "p0": "p0_kpa", "g_e": "g_e_mpa", "ge": "g_e_mpa", "mu
 
 
 def add_arguments(parser, name: str) -> None:
-    """Options of ``embroact fit``."""
+    """Options of ``embroact fit``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"fit"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact fit")
+    >>> add_arguments(parser, "fit")
+    >>> args = parser.parse_args(["loop.csv", "--pattern", "zigzag", "--width-mm", "7", "-o", "cal.toml"])
+    >>> args.data, args.pattern, args.width_mm
+    ('loop.csv', 'zigzag', 7.0)
+    """
     parser.add_argument("data", metavar="DATA.csv", nargs="?",
                         help="pressure_kpa,angle_deg[,branch] rows (or markers with --markers)")
     parser.add_argument("--sheet", metavar="SHEET.csv",
@@ -227,7 +244,36 @@ def _table(derived, results, note, cset, path) -> str:
 
 
 def run(args) -> int:
-    """Read the data, fit, print, write the calibration set; return the exit code."""
+    """Read the data, fit, print, write the calibration set; return the exit code.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> from pathlib import Path
+    >>> parser = argparse.ArgumentParser(prog="embroact fit")
+    >>> add_arguments(parser, "fit")
+    >>> rows = "pressure_kpa,angle_deg\\n" + "".join(f"{p},{a}\\n" for p, a in ((0, 0), (100, 11.5), (150, 44.1), (200, 102.9)))
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "loop.csv").write_text(rows)
+    ...     args = parser.parse_args([f"{tmp}/loop.csv", "--pattern", "zigzag", "--width-mm", "7", "-o", f"{tmp}/c.toml"])
+    ...     args.command = "fit"
+    ...     run(args)  # doctest: +ELLIPSIS
+    fit of zigzag w=7 mm s=1 mm l0=100 mm (as generated); model method ...
+    branch        n  G [MPa] ...
+    ...
+    wrote calibration set 'c' (1 point(s)) to .../c.toml
+    0
+    """
     if args.sheet is not None:
         from .fitsheet import run_sheet
 

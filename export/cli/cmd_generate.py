@@ -27,7 +27,24 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact zigzag`` / ``embroact cross``."""
+    """Options of a quick command (``embroact <kind>``), one per registered pattern kind.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (a pattern kind, ``"zigzag"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact zigzag")
+    >>> add_arguments(parser, "zigzag")
+    >>> args = parser.parse_args(["--width-mm", "6.5", "-o", "a.dst"])
+    >>> args.width_mm, args.output
+    (6.5, 'a.dst')
+    """
     add_quick_arguments(parser.add_argument_group("pattern and tube"), pattern=name, required=True)
     add_model_arguments(parser.add_argument_group("model (for the design rules and the summary)"))
     o = parser.add_argument_group("output")
@@ -73,7 +90,30 @@ def _summary(path: str, res, act) -> str:
 
 def run(args) -> int:
     """Generate and analyse once, gate on the design rules, encode and write; every output is
-    prepared before the first is written."""
+    checked before anything is generated.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> parser = argparse.ArgumentParser(prog="embroact zigzag")
+    >>> add_arguments(parser, "zigzag")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     args = parser.parse_args(["--width-mm", "7", "-o", f"{tmp}/a.dst"])
+    ...     args.command = "zigzag"
+    ...     run(args)  # doctest: +ELLIPSIS
+    wrote .../a.dst (dst): 106 stitches, 1 stop, 1 trim; w 7 mm, s 1 mm, l0 100 mm; r0 2.581 mm; G 2.7 MPa, P0 85 kPa (...)
+    0
+    """
     from ...predict.rules import check_design
     from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_command_files, write_files_atomic

@@ -37,7 +37,24 @@ _PRESSURE_MATCH_KPA = 0.5
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact measure``."""
+    """Options of ``embroact measure``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"measure"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact measure")
+    >>> add_arguments(parser, "measure")
+    >>> args = parser.parse_args(["p1.jpg", "p2.jpg", "-o", "m.csv"])
+    >>> args.photos, args.output
+    (['p1.jpg', 'p2.jpg'], 'm.csv')
+    """
     parser.add_argument("photos", nargs="+", metavar="PHOTO", help="photos (JPEG, PNG, ...) of the strip and the board")
     parser.add_argument("-o", "--output", required=True, metavar="OUT.csv", help="measurements (CSV)")
     parser.add_argument("--sheet", metavar="SHEET.csv", help="the coupon's measurement sheet to fill in")
@@ -102,7 +119,32 @@ def _setup(args):
 
 
 def run(args) -> int:
-    """Measure every photo; write the measurements, the pictures and the centrelines; return the exit code."""
+    """Measure every photo; write the measurements, the pictures and the centrelines; return the exit code.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact measure")
+    >>> add_arguments(parser, "measure")
+    >>> args = parser.parse_args(["p.jpg", "-o", "no-such-dir/m.csv"])
+    >>> args.command = "measure"
+    >>> from embroact.patterns.base.errors import ExportError
+    >>> try:
+    ...     run(args)
+    ... except ExportError as exc:
+    ...     print(exc)
+    output directory 'no-such-dir' does not exist
+    """
     from ...patterns.base.errors import ParameterError
     from ...patterns.base.validate import check_output_name
     from ..files.atomic import check_output_dir, write_files_atomic

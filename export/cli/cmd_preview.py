@@ -44,7 +44,24 @@ KINDS = {
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact preview``."""
+    """Options of ``embroact preview``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"preview"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact preview")
+    >>> add_arguments(parser, "preview")
+    >>> args = parser.parse_args(["bend", "design.toml", "-o", "bend.svg"])
+    >>> args.kind, args.design, args.output
+    ('bend', 'design.toml', 'bend.svg')
+    """
     parser.add_argument("kind", choices=list(KINDS), metavar="KIND",
                         help="; ".join(f"{k}: {v}" for k, v in KINDS.items()))
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design; "
@@ -69,6 +86,28 @@ def measured_points(specs, names) -> dict:
     """``["A1=loop.csv", "other.csv"]`` -> {actuator name: (pressure_kpa, angle_deg)}.
 
     A spec without a known ``NAME=`` prefix belongs to the first actuator.
+
+    Parameters
+    ----------
+    specs : sequence of str
+        ``NAME=FILE.csv`` or ``FILE.csv``, each a bend CSV.
+    names : sequence of str
+        The design's actuator names.
+
+    Returns
+    -------
+    dict of str to tuple of numpy.ndarray
+        Pressures [kPa] and angles [deg] by actuator.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "b.csv").write_text("pressure_kpa,angle_deg\\n0,0\\n200,95\\n")
+    ...     points = measured_points([f"B={tmp}/b.csv", f"{tmp}/b.csv"], ["A", "B"])
+    >>> sorted(points), points["B"][1].tolist()
+    (['A', 'B'], [0.0, 95.0])
     """
     from ..files.calibfile import read_bend_csv
 
@@ -89,7 +128,30 @@ def _svg_only(kind: str, out: Path) -> None:
 
 
 def run(args) -> int:
-    """Load (or default) the design, analyse it once, render the view, write it atomically, report."""
+    """Load (or default) the design, analyse it once, render the view, write it atomically, report.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse, tempfile
+    >>> parser = argparse.ArgumentParser(prog="embroact preview")
+    >>> add_arguments(parser, "preview")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     args = parser.parse_args(["stitches", "-o", f"{tmp}/p.svg"])
+    ...     args.command = "preview"
+    ...     run(args)  # doctest: +ELLIPSIS
+    wrote .../p.svg: stitch plan, 106 stitches
+    0
+    """
     from .args import check_shape_flags, input_files
     from ..files.atomic import check_command_files
     from .target import analyse_target, load_target

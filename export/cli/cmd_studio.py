@@ -31,7 +31,24 @@ EXTRA_HINT = "embroact studio needs the web server of the studio extra: pip inst
 
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact studio``."""
+    """Options of ``embroact studio``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"studio"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact studio")
+    >>> add_arguments(parser, "studio")
+    >>> args = parser.parse_args(["--out", "out"])
+    >>> args.out, args.port, args.no_browser
+    ('out', 0, False)
+    """
     parser.add_argument("design", nargs="?", help="design file (TOML); default: the built-in paper zigzag design")
     add_model_arguments(parser.add_argument_group("model (overrides the design's [actuator.model])"))
     parser.add_argument("--out", required=True, help="existing output directory: the only place the studio writes")
@@ -40,7 +57,31 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
 
 
 def run(args) -> int:
-    """Check the options and the extra, load the design, serve until Ctrl-C (then main's exit code 130)."""
+    """Check the options and the extra, load the design, serve until Ctrl-C (then main's exit code 130).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to the command's name.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact studio")
+    >>> add_arguments(parser, "studio")
+    >>> args = parser.parse_args(["--out", ".", "--port", "70000"])
+    >>> args.command = "studio"
+    >>> try:
+    ...     run(args)
+    ... except ValueError as exc:
+    ...     print(exc)
+    port must be an integer in [0, 65535], got 70000
+    """
     import importlib.util
 
     from ...patterns.base.errors import ParameterError

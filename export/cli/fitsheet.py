@@ -52,7 +52,30 @@ def _coupons(rows, base: str):
 
 
 def run_sheet(args) -> int:
-    """Fit the whole sheet, write the profile, print the table; return the exit code."""
+    """Fit the whole sheet, write the profile, print the table; return the exit code.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``embroact fit``'s options (:func:`embroact.export.cli.cmd_fit.add_arguments`) with ``--sheet``.
+
+    Returns
+    -------
+    int
+        The exit code.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> from embroact.export.cli.cmd_fit import add_arguments
+    >>> parser = argparse.ArgumentParser(prog="embroact fit")
+    >>> add_arguments(parser, "fit")
+    >>> try:
+    ...     run_sheet(parser.parse_args(["loop.csv", "--sheet", "sheet.csv"]))
+    ... except ValueError as exc:
+    ...     print(exc)
+    give DATA.csv or --sheet, not both
+    """
     from ...patterns.base.errors import ParameterError
     from ...predict.photomarkers import COUPON_LAYOUT
     from ...predict.profile import DISAGREE_FACTOR, fit_profile
