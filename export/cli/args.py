@@ -37,7 +37,23 @@ _MATERIAL_FIELDS = ("outer_radius_mm", "inner_radius_mm", "g_e_mpa")
 
 
 def add_tube_arguments(group, *, fields=_MATERIAL_FIELDS) -> None:
-    """Add the tube flags for ``fields`` (Tube field names) with the Tube defaults."""
+    """Add the tube flags for ``fields`` (Tube field names) with the Tube defaults.
+
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flags go.
+    fields : tuple of str, optional
+        The :class:`~embroact.patterns.params.Tube` fields to give flags (the materials by default).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_tube_arguments(parser, fields=("outer_radius_mm",))
+    >>> vars(parser.parse_args(["--tube-radius-mm", "2"]))
+    {'outer_radius_mm': 2.0}
+    """
     for flag, field, text, default in TUBE_FLAGS:
         if field in fields:
             group.add_argument(flag, type=float, default=default, dest=field,
@@ -45,7 +61,23 @@ def add_tube_arguments(group, *, fields=_MATERIAL_FIELDS) -> None:
 
 
 def tube_from_args(args):
-    """The :class:`~embroact.patterns.params.Tube` the parsed tube flags describe (validated there)."""
+    """The :class:`~embroact.patterns.params.Tube` the parsed tube flags describe (validated there).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options; the tube fields it lacks keep the Tube defaults.
+
+    Returns
+    -------
+    Tube
+
+    Examples
+    --------
+    >>> import argparse
+    >>> tube_from_args(argparse.Namespace(outer_radius_mm=2.0)).outer_radius_mm
+    2.0
+    """
     from ...patterns.params import Tube
 
     return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
@@ -54,6 +86,20 @@ def tube_from_args(args):
 def parse_pressures(text: str, flag: str = "--pressure-kpa"):
     """Pressures [kPa] from ``start:stop:step`` or ``p1,p2,...``; one-line errors name ``flag``.
 
+    Parameters
+    ----------
+    text : str
+        The flag's value.
+    flag : str, optional
+        The flag, for the messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        [kPa], each in [0, MAX_PRESSURE_KPA].
+
+    Examples
+    --------
     >>> parse_pressures("0:30:10").tolist(), parse_pressures("0:25:10").tolist(), parse_pressures("5, 7.5").tolist()
     ([0.0, 10.0, 20.0, 30.0], [0.0, 10.0, 20.0], [5.0, 7.5])
     """
@@ -98,6 +144,18 @@ def parse_pressures(text: str, flag: str = "--pressure-kpa"):
 def check_shape_flags(args) -> None:
     """``--shape-pressure-kpa`` and ``--tolerance-mm``, where a command has them, checked before any work.
 
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options.
+
+    Raises
+    ------
+    ParameterError
+        A value out of range.
+
+    Examples
+    --------
     >>> import argparse
     >>> check_shape_flags(argparse.Namespace(shape_pressure_kpa=1e308))
     Traceback (most recent call last):
@@ -124,6 +182,17 @@ def input_files(args) -> list[tuple[str, str]]:
     A value counts when it names a file (``--calibration lab.toml``, not a set name;
     ``--path drawing.svg#t1`` without the ``#t1``, not path data).
 
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options.
+
+    Returns
+    -------
+    list of tuple of str
+
+    Examples
+    --------
     >>> import argparse
     >>> input_files(argparse.Namespace(data="d.csv", calibration="paper-2025", path="a.svg#t", output="o"))
     [('data file', 'd.csv'), ('path drawing', 'a.svg')]
@@ -147,6 +216,15 @@ def input_files(args) -> list[tuple[str, str]]:
 def materials_of(items):
     """``--material KEY=VALUE`` items as a dict (what a calibration set records of its materials).
 
+    Parameters
+    ----------
+    items : iterable of str
+        ``KEY=VALUE`` each.
+
+    Returns
+    -------
+    dict of str to str
+
     Examples
     --------
     >>> materials_of(["tube=silicone 3 mm", "thread=polyester"])
@@ -165,6 +243,19 @@ def materials_of(items):
 
 def plus_minus(value, se, digits=4) -> str:
     """``value`` to ``digits`` significant digits, with `` +- se`` when the standard error is known.
+
+    Parameters
+    ----------
+    value : float
+        The value.
+    se : float or None
+        Its standard error.
+    digits : int, optional
+        Significant digits of ``value``.
+
+    Returns
+    -------
+    str
 
     Examples
     --------

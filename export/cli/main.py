@@ -60,6 +60,12 @@ def commands() -> dict[str, tuple[str, str]]:
     First one quick command per registered pattern kind (``embroact zigzag``, ...), then
     :data:`COMMANDS`.
 
+    Returns
+    -------
+    dict of str to tuple of str
+
+    Examples
+    --------
     >>> list(commands())[:2], commands()["cross"][1]
     (['zigzag', 'cross'], 'generate one cross-pattern actuator and write its machine file')
     """
@@ -255,6 +261,27 @@ def main(argv: list[str] | None = None) -> int:
     becomes a status or a one-line error, so the warning tells a user nothing; ``--debug``
     shows them); stdout escapes control characters (a file name holding ESC sequences) and
     what it cannot encode instead of failing.
+
+    Parameters
+    ----------
+    argv : list of str or None, optional
+        The arguments after the program's name; None: ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        The exit code.
+
+    Examples
+    --------
+    >>> main(["--version"])  # doctest: +ELLIPSIS
+    embroact ...
+    0
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     main(["cross", "--width-mm", "7", "--angle-deg", "45", "-o", f"{tmp}/c.dst"])  # doctest: +ELLIPSIS
+    wrote .../c.dst (dst): 148 stitches, 1 stop, 1 trim; w 7 mm, s 1.4 mm, alpha0 45 deg, ...
+    0
     """
     program = argv is None  # the process's own command line: it may end the process (a call from Python may not)
     argv = list(sys.argv[1:] if argv is None else argv)

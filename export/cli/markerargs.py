@@ -39,8 +39,24 @@ def add_layout_arguments(group, *, measurement_help: str = "",
                          recorded: str = "the layout the calibration set records") -> None:
     """``--measurement`` and the layout flags (no numpy: ``--help`` stays fast).
 
-    ``recorded`` names, in the help, where a flag not given takes its value from before
-    falling back to the paper's layout.
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flags go.
+    measurement_help : str, optional
+        Help of ``--measurement`` (a default text when empty).
+    recorded : str, optional
+        Where, in the help, a flag not given takes its value from before falling back to the
+        paper's layout.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_layout_arguments(parser)
+    >>> args = parser.parse_args(["--measurement", "markers", "--markers-per-side", "5"])
+    >>> args.measurement, args.markers_per_side, args.sides
+    ('markers', 5, None)
     """
     group.add_argument("--measurement", choices=MEASUREMENTS, default="whole-strip",
                        help=measurement_help or "how the angles are measured: whole-strip (the angle between the "
@@ -60,7 +76,26 @@ def add_layout_arguments(group, *, measurement_help: str = "",
 
 
 def given_layout(args) -> dict:
-    """The layout fields the flags give, checked (``MarkerLayout`` field names; flags not given are absent)."""
+    """The layout fields the flags give, checked (``MarkerLayout`` field names; flags not given are absent).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options (:func:`add_layout_arguments`).
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_layout_arguments(parser)
+    >>> args = parser.parse_args(["--measurement", "markers", "--markers-per-side", "5"])
+    >>> given_layout(args)
+    {'markers_per_side': 5}
+    """
     from ...patterns.base.errors import check_range
     from ...patterns.base.validate import check_count
 
@@ -81,7 +116,28 @@ def given_layout(args) -> dict:
 
 
 def wants_markers(args, *, markers: bool = False) -> bool:
-    """True when the angles are marker sums: ``--measurement markers``, or marker coordinates (``markers``)."""
+    """True when the angles are marker sums: ``--measurement markers``, or marker coordinates (``markers``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options.
+    markers : bool, optional
+        Marker coordinates were given.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_layout_arguments(parser)
+    >>> args = parser.parse_args(["--measurement", "markers", "--markers-per-side", "5"])
+    >>> wants_markers(args), wants_markers(parser.parse_args([])), wants_markers(parser.parse_args([]), markers=True)
+    (True, False, True)
+    """
     return markers or args.measurement == "markers"
 
 
@@ -91,6 +147,33 @@ def layout_from_args(args, *, markers: bool = False, recorded=None, calibration:
     Flags not given take ``recorded``'s fields (the layout calibration set ``calibration``
     records), else the paper's. ``markers=True`` (marker coordinates given) implies
     ``--measurement markers``. The flags are checked either way.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options.
+    markers : bool, optional
+        Marker coordinates were given.
+    recorded : MarkerLayout or None, optional
+        The layout the calibration set records.
+    calibration : str, optional
+        That set's name, for the source text.
+
+    Returns
+    -------
+    LayoutChoice or None
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_layout_arguments(parser)
+    >>> args = parser.parse_args(["--measurement", "markers", "--markers-per-side", "5"])
+    >>> choice = layout_from_args(args)
+    >>> choice.layout.markers_per_side, choice.source
+    (5, "given markers_per_side; the rest the paper's")
+    >>> layout_from_args(parser.parse_args([])) is None
+    True
     """
     from ...predict.layoutchoice import layout_for
 

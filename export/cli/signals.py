@@ -67,7 +67,22 @@ class TimeLimitError(BaseException):
 
 
 def time_limit_message(seconds: float) -> str:
-    """The one line a command past its time limit ends with."""
+    """The one line a command past its time limit ends with.
+
+    Parameters
+    ----------
+    seconds : float
+        The time limit [s].
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> time_limit_message(60.0)
+    'the command took longer than its time limit of 60 s (--time-limit-s)'
+    """
     return f"the command took longer than its time limit of {seconds:g} s (--time-limit-s)"
 
 
@@ -85,6 +100,18 @@ def serving() -> Iterator[None]:
 
     ``embroact studio`` runs until stopped; uvicorn ends it gracefully on Ctrl-C or SIGTERM
     (closing connections, removing the launcher page), which the watchdog must not cut short.
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> with serving():
+    ...     _SERVING.is_set()
+    True
+    >>> _SERVING.is_set()
+    False
     """
     if threading.current_thread() is threading.main_thread():
         signal.setitimer(signal.ITIMER_REAL, 0)
@@ -130,10 +157,25 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
 
     Outside the main thread (where no signal handler can be set) the block runs as it is.
 
+    Parameters
+    ----------
+    time_limit_s : float, optional
+        Longest time the block may take [s]; 0: no limit.
+
+    Yields
+    ------
+    None
+
     Raises
     ------
     TimeLimitError
-        The block ran past ``time_limit_s`` (0: no limit).
+        The block ran past ``time_limit_s``.
+
+    Examples
+    --------
+    >>> with watchdog(time_limit_s=60.0):
+    ...     sum(range(10))
+    45
     """
     if threading.current_thread() is not threading.main_thread():
         yield

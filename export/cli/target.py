@@ -50,11 +50,24 @@ class Target:
     Attributes
     ----------
     design : Design
+        The design, with the model flags applied.
     calibration_sets : tuple of CalibrationSet
+        The sets its settings name that come from files.
     source : str
         The design file, or ``"quick parameters"``.
     quick : bool
         True when the design came from quick parameters (one actuator).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_quick_arguments(parser, pattern="zigzag")
+    >>> add_model_arguments(parser)
+    >>> args = parser.parse_args(["--width-mm", "6.5", "--g-mpa", "2.5"])
+    >>> target = load_target(args, pattern="zigzag")
+    >>> target.source, target.quick, target.design.actuators[0].params.width_mm
+    ('quick parameters', True, 6.5)
     """
 
     design: Design
@@ -68,12 +81,48 @@ MODEL_FLAGS = ("g_mpa", "p0_kpa", "p0_source", "calibration", "tube_law")
 
 
 def model_flags_given(args) -> list[str]:
-    """The model flags given on the command line, as typed (``--g-mpa``)."""
+    """The model flags given on the command line, as typed (``--g-mpa``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options.
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_quick_arguments(parser, pattern="zigzag")
+    >>> add_model_arguments(parser)
+    >>> args = parser.parse_args(["--width-mm", "6.5", "--g-mpa", "2.5"])
+    >>> model_flags_given(args)
+    ['--g-mpa']
+    """
     return [f"--{k.replace('_', '-')}" for k in MODEL_FLAGS if getattr(args, k, None) is not None]
 
 
 def add_model_arguments(group) -> None:
-    """``--g-mpa``, ``--p0-kpa``, ``--p0-source``, ``--calibration``, ``--tube-law`` (None: the design's)."""
+    """``--g-mpa``, ``--p0-kpa``, ``--p0-source``, ``--calibration``, ``--tube-law`` (None: the design's).
+
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flags go.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_quick_arguments(parser, pattern="zigzag")
+    >>> add_model_arguments(parser)
+    >>> args = parser.parse_args(["--width-mm", "6.5", "--g-mpa", "2.5"])
+    >>> args.g_mpa, args.p0_kpa, args.calibration
+    (2.5, None, None)
+    """
     group.add_argument("--g-mpa", type=float, help="effective modulus G [MPa] (default: design file, else calibration set)")
     group.add_argument("--p0-kpa", type=float, help="transition pressure P0 [kPa] (default: see --p0-source)")
     group.add_argument("--p0-source", choices=P0_SOURCES,
@@ -87,8 +136,32 @@ def add_model_arguments(group) -> None:
 def add_quick_arguments(group, *, pattern: str | None, required: bool = False, tube_fields=None,
                         name_flag: bool = True) -> None:
     """Quick-parameter flags: ``--width-mm``, ``--interval-mm``, ``--angle-deg``, ``--adjust``, ``--length-mm``,
-    ``--path``, ``--name`` and the tube flags. ``pattern`` fixes the pattern (its quick command); None adds
-    the angle and adjust flags for a pattern chosen elsewhere."""
+    ``--path``, ``--name`` and the tube flags.
+
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flags go.
+    pattern : str or None
+        The pattern of the quick command (its kind's flags only); None adds the flags of every kind,
+        for a pattern chosen elsewhere.
+    required : bool, optional
+        ``--width-mm`` is required.
+    tube_fields : sequence of str, optional
+        The tube fields to give flags (default: all).
+    name_flag : bool, optional
+        Add ``--name``.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_quick_arguments(parser, pattern="zigzag")
+    >>> add_model_arguments(parser)
+    >>> args = parser.parse_args(["--width-mm", "6.5", "--g-mpa", "2.5"])
+    >>> args.width_mm, args.interval_mm, args.length_mm, hasattr(args, "angle_deg")
+    (6.5, None, 100.0, False)
+    """
     from ...patterns.kinds import PATTERN_KINDS, pattern_kind
 
     kinds = list(PATTERN_KINDS) if pattern is None else [pattern_kind(pattern)]
@@ -119,21 +192,69 @@ def add_quick_arguments(group, *, pattern: str | None, required: bool = False, t
 
 def add_placement_argument(group) -> None:
     """``--placement-line``: sew a running stitch along each tube axis before its cord-in stop
-    (the design setting ``machine.placement_line``, turned on)."""
+    (the design setting ``machine.placement_line``, turned on).
+
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flag goes.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_placement_argument(parser)
+    >>> parser.parse_args(["--placement-line"]).placement_line, parser.parse_args([]).placement_line
+    (True, False)
+    """
     group.add_argument("--placement-line", action="store_true",
                        help="sew a placement line (running stitch along each tube axis) before its cord-in stop, "
                             "so the operator sees where to lay the tube (design: machine.placement_line)")
 
 
 def add_origin_argument(group) -> None:
-    """``--origin``: the machine file's start point (the design setting ``machine.origin``)."""
+    """``--origin``: the machine file's start point (the design setting ``machine.origin``).
+
+    Parameters
+    ----------
+    group : argparse.ArgumentParser or argument group
+        Where the flag goes.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_origin_argument(parser)
+    >>> parse_origin(parser.parse_args(["--origin", "10,-5"]).origin)
+    (10.0, -5.0)
+    """
     group.add_argument("--origin", metavar="center|first-stitch|X,Y",
                        help="where the machine file starts: the centre of the design's extent (default), its first "
                             "needle point, or a point X,Y of the design [mm, plan frame, y up] (design: machine.origin)")
 
 
 def parse_origin(text: str):
-    """``--origin``'s text -> ``machine.origin`` (``"center"``, ``"first-stitch"`` or ``(x, y)``)."""
+    """``--origin``'s text -> ``machine.origin`` (``"center"``, ``"first-stitch"`` or ``(x, y)``).
+
+    Parameters
+    ----------
+    text : str
+        The flag's value.
+
+    Returns
+    -------
+    str or tuple of float
+
+    Raises
+    ------
+    ParameterError
+        Neither a name nor two numbers.
+
+    Examples
+    --------
+    >>> parse_origin("center"), parse_origin("10,-5")
+    ('center', (10.0, -5.0))
+    """
     from ...patterns.base.errors import ParameterError
     from ...patterns.origin import check_origin
 
@@ -190,7 +311,25 @@ def _quick_design(args, pattern: str):
 def load_target(args, *, pattern: str | None = None, design_path: str | None = None) -> Target:
     """The design a command works on, with the model flags applied.
 
-    ``pattern`` (quick parameters) or ``design_path`` (a TOML file) or neither (the built-in default design).
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options (the model flags, the quick-parameter flags for ``pattern``).
+    pattern : str or None, optional
+        Make the design from quick parameters of this kind.
+    design_path : str or None, optional
+        Read the design from this TOML file; neither: the built-in default design.
+
+    Returns
+    -------
+    Target
+
+    Examples
+    --------
+    >>> import argparse
+    >>> target = load_target(argparse.Namespace())
+    >>> target.source, target.design.name
+    ('built-in default design', 'paper-zigzag')
     """
     from ...predict.analysis import with_model_overrides
 
@@ -219,7 +358,27 @@ def load_target(args, *, pattern: str | None = None, design_path: str | None = N
 
 
 def analyse_target(target: Target):
-    """The :class:`~embroact.predict.analysis.DesignAnalysis` of a target (and the demonstration note, once)."""
+    """The :class:`~embroact.predict.analysis.DesignAnalysis` of a target (and the demonstration note, once).
+
+    Parameters
+    ----------
+    target : Target
+        What :func:`load_target` gives.
+
+    Returns
+    -------
+    DesignAnalysis
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser()
+    >>> add_quick_arguments(parser, pattern="zigzag")
+    >>> add_model_arguments(parser)
+    >>> args = parser.parse_args(["--width-mm", "6.5", "--g-mpa", "2.5"])
+    >>> analyse_target(load_target(args, pattern="zigzag")).actuators[0].model.g_mpa
+    2.5
+    """
     from ...predict.analysis import analyse
 
     analysis = analyse(target.design, calibration_sets=target.calibration_sets)
@@ -252,6 +411,20 @@ def note_demo_calibration(names, *, now: bool = False) -> None:
     The note is one line on stderr, printed once per command run by :func:`print_notes` when
     the command is done (after its own output; not with ``--json``, whose stderr holds errors
     only), or at once with ``now`` (a server that runs until it is stopped).
+
+    Parameters
+    ----------
+    names : collection of str
+        The calibration sets the command used.
+    now : bool, optional
+        Print the note at once.
+
+    Examples
+    --------
+    >>> reset_notes()
+    >>> note_demo_calibration({"lab"})
+    >>> _NOTE["used"]
+    False
     """
     if DEMO_CALIBRATION in names:
         _NOTE["used"] = True
@@ -260,14 +433,30 @@ def note_demo_calibration(names, *, now: bool = False) -> None:
 
 
 def print_notes() -> None:
-    """Print the demonstration note if the command used that set and it is not printed yet."""
+    """Print the demonstration note if the command used that set and it is not printed yet.
+
+    Examples
+    --------
+    >>> reset_notes()
+    >>> print_notes()  # the set was not used: nothing on stderr
+    >>> _NOTE["printed"]
+    False
+    """
     if _NOTE["used"] and not _NOTE["printed"]:
         _NOTE["printed"] = True
         print(f"embroact: {DEMO_NOTE}", file=sys.stderr)
 
 
 def reset_notes() -> None:
-    """Forget the note (each command run starts afresh)."""
+    """Forget the note (each command run starts afresh).
+
+    Examples
+    --------
+    >>> _NOTE["used"] = True
+    >>> reset_notes()
+    >>> _NOTE
+    {'used': False, 'printed': False}
+    """
     _NOTE.update(used=False, printed=False)
 
 
@@ -277,6 +466,17 @@ GATE_ERRORS_PER_CODE = 3
 
 def error_lines(errors, per_code: int = GATE_ERRORS_PER_CODE) -> list[str]:
     """The gate's error lines: at most ``per_code`` of each rule code, then how many more there are.
+
+    Parameters
+    ----------
+    errors : iterable of Finding
+        The error findings.
+    per_code : int, optional
+        Lines per rule code.
+
+    Returns
+    -------
+    list of str
 
     Examples
     --------
@@ -306,7 +506,31 @@ def gate(findings, *, force: bool, stream=None) -> bool:
 
     Prints the summary line (and the first :data:`GATE_ERRORS_PER_CODE` errors of each
     rule code, see :func:`error_lines`) to ``stream`` (stderr) when there are findings.
-    Returns True when the command may write: no errors, or ``force``.
+
+    Parameters
+    ----------
+    findings : iterable of Finding
+        The design's findings.
+    force : bool
+        Write despite errors.
+    stream : file, optional
+        Where the lines go (default: stderr).
+
+    Returns
+    -------
+    bool
+        True when the command may write: no errors, or ``force``.
+
+    Examples
+    --------
+    >>> import io, sys
+    >>> from embroact.patterns.base.findings import RULES
+    >>> import embroact.patterns.rules  # declares the rules
+    >>> gate([RULES.finding("EA101", "needle in the tube", actuator="A1")], force=False, stream=sys.stdout)
+    design rules: 1 error, 0 warnings, 0 info: EA101 (A1)
+    error: EA101 needle in the tube (A1)
+    embroact: error: design-rule errors; nothing written (use --force to write anyway)
+    False
     """
     stream = sys.stderr if stream is None else stream
     findings = tuple(findings)
