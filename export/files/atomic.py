@@ -64,11 +64,32 @@ __all__ = [
 def check_output_dir(path: str | os.PathLike) -> Path:
     """Return ``path`` as a Path whose parent directory exists and is writable, and that is no directory.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An output file.
+
+    Returns
+    -------
+    pathlib.Path
+
     Raises
     ------
     ExportError
         One line naming the directory when it is missing or not writable, or the target when
         it is a directory (``--preview .``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     check_output_dir(f"{tmp}/a.dst").name
+    ...     try:
+    ...         check_output_dir(tmp)
+    ...     except ExportError as exc:
+    ...         print(str(exc).replace(tmp, "TMP"))
+    'a.dst'
+    cannot write 'TMP': it is a directory
     """
     p = Path(path)
     check_writable_dir(p.parent)
@@ -80,10 +101,27 @@ def check_output_dir(path: str | os.PathLike) -> Path:
 def check_writable_dir(path: str | os.PathLike) -> Path:
     """Return ``path`` as a Path if it is an existing directory files can be created in.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An output directory.
+
+    Returns
+    -------
+    pathlib.Path
+
     Raises
     ------
     ExportError
         One line naming the directory when it is missing, not a directory or not writable.
+
+    Examples
+    --------
+    >>> try:
+    ...     check_writable_dir("no-such-dir")
+    ... except ExportError as exc:
+    ...     print(exc)
+    output directory 'no-such-dir' does not exist
     """
     if os.fspath(path) == "":
         raise ExportError("output directory must be a non-empty path, got ''")
@@ -99,12 +137,28 @@ def check_writable_dir(path: str | os.PathLike) -> Path:
 def prepare_outputs(paths: Iterable[str | os.PathLike]) -> list[Path]:
     """Check every output of one run before any is written; return them as Paths.
 
+    Parameters
+    ----------
+    paths : iterable of str or os.PathLike
+        The outputs.
+
+    Returns
+    -------
+    list of pathlib.Path
+
     Raises
     ------
     ExportError
         A directory is missing or not writable, or a target is a directory.
     ParameterError
         Two outputs name one file (after resolving ``.``, ``..`` and symbolic links).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     [p.name for p in prepare_outputs([f"{tmp}/a.dst", f"{tmp}/b.svg"])]
+    ['a.dst', 'b.svg']
     """
     paths = list(paths)
     targets = [check_output_dir(p) for p in paths]
@@ -143,6 +197,11 @@ def check_command_files(outputs: Sequence[tuple[str, str | os.PathLike]],
         Each output with the option that named it (or the file it derives from).
     inputs : sequence of (flag, path or None)
         The files the command reads; None entries are skipped.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The outputs, in order.
 
     Raises
     ------
@@ -244,6 +303,13 @@ def abandon_staged() -> None:
     The command line's watchdog (:mod:`embroact.export.cli.signals`) calls this from its own
     thread when the main thread did not answer a signal in time. The commit lock is taken
     and kept, so no rename starts afterwards.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> code = "from embroact.export.files.atomic import abandon_staged, _STAGED; abandon_staged(); print(len(_STAGED))"
+    >>> subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.split()  # its own process
+    ['0']
     """
     _COMMITTING.acquire(timeout=5.0)
     for name in list(_STAGED):
@@ -366,12 +432,26 @@ def _commit(staged: list[tuple[str, Path]]) -> None:
 def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
     """Write several files so that a failed run changes none of them (see the module docstring).
 
+    Parameters
+    ----------
+    outputs : mapping of path to bytes
+        Each file and its content.
+
     Raises
     ------
     ExportError
         One line naming the file that could not be written or the directory that is missing.
     ParameterError
         Two outputs name one file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_files_atomic({f"{tmp}/a.txt": b"a", f"{tmp}/b.txt": b"b"})
+    ...     sorted(p.name for p in Path(tmp).iterdir())
+    ['a.txt', 'b.txt']
     """
     targets = prepare_outputs(outputs)
     new_mode = _new_file_mode()
@@ -389,10 +469,44 @@ def write_files_atomic(outputs: Mapping[str | os.PathLike, bytes]) -> None:
 
 
 def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
-    """Write ``data`` to ``path`` via a temporary file in the same directory and ``os.replace``."""
+    """Write ``data`` to ``path`` via a temporary file in the same directory and ``os.replace``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    data : bytes
+        Its content.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_bytes_atomic(f"{tmp}/a.bin", b"\\x00\\x01")
+    ...     Path(tmp, "a.bin").read_bytes()
+    b'\\x00\\x01'
+    """
     write_files_atomic({path: data})
 
 
 def write_text_atomic(path: str | os.PathLike, text: str) -> None:
-    """UTF-8 text version of :func:`write_bytes_atomic` (newlines kept as given)."""
+    """UTF-8 text version of :func:`write_bytes_atomic` (newlines kept as given).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    text : str
+        Its content.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_text_atomic(f"{tmp}/a.txt", "r0 = 2.6 mm")
+    ...     Path(tmp, "a.txt").read_text()
+    'r0 = 2.6 mm'
+    """
     write_bytes_atomic(path, text.encode("utf-8"))

@@ -64,6 +64,13 @@ def check_clones(data: bytes, file: str) -> int:
     ------
     PathError
         One line naming the file: not XML, a clone of itself, or clones beyond the limits.
+
+    Examples
+    --------
+    >>> svg = (b'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink">'
+    ...        b'<path id="p" d="M0,0 L10,0"/><use xlink:href="#p"/><use xlink:href="#p"/></svg>')
+    >>> check_clones(svg, "a.svg")
+    2
     """
     try:
         root = ET.fromstring(data)

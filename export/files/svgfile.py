@@ -102,6 +102,12 @@ class SvgPath:
         The label (or id) of the innermost Inkscape layer holding it.
     points_mm : ndarray, shape (n, 2)
         Flattened points [mm], drawing frame (page top-left, y down), read-only.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> SvgPath("a.svg", "tube1", "Tube 1", "Layer 1", np.array([[0.0, 0.0], [10.0, 0.0]]))
+    SvgPath(file='a.svg', element_id='tube1', layer='Layer 1', n_points=2)
     """
 
     file: str

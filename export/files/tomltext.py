@@ -39,6 +39,17 @@ __all__ = ["dumps", "load_toml", "loads_toml"]
 def load_toml(path: str | os.PathLike, what: str) -> dict:
     """The TOML file ``path`` (at most ``TEXT_FILE_BYTES``, UTF-8) as a dict.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    what : str
+        What it is, for the messages (``"tube file"``).
+
+    Returns
+    -------
+    dict
+
     Raises
     ------
     DesignFileError
@@ -57,6 +68,17 @@ def load_toml(path: str | os.PathLike, what: str) -> dict:
 
 def loads_toml(text: str, *, source: str) -> dict:
     """TOML ``text`` as a dict; a syntax error is ``<source>: TOML syntax error: ...`` (line and column).
+
+    Parameters
+    ----------
+    text : str
+        The TOML.
+    source : str
+        Where it came from, for the messages.
+
+    Returns
+    -------
+    dict
 
     Examples
     --------
