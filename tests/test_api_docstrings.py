@@ -85,9 +85,7 @@ PACKAGES = ("embroact", "embroact.patterns", "embroact.predict", "embroact.expor
 
 #: Modules whose public names are not yet all documented to the standard above (shrinking).
 UNDOCUMENTED_MODULES = frozenset({
-    "embroact.export.cli.cmd_predict", "embroact.export.files.atomic", "embroact.export.files.calibfile",
-    "embroact.export.files.couponfile", "embroact.export.files.svgclones", "embroact.export.files.svgfile",
-    "embroact.export.files.tomltext", "embroact.export.machine.census", "embroact.export.machine.dst",
+    "embroact.export.cli.cmd_predict", "embroact.export.machine.census", "embroact.export.machine.dst",
     "embroact.export.machine.encode", "embroact.export.machine.filecheck", "embroact.export.machine.formats",
     "embroact.export.machine.vp3note", "embroact.export.photo.annotate", "embroact.export.photo.arucobits",
     "embroact.export.photo.detect", "embroact.export.photo.sheet", "embroact.export.pictures.chart",

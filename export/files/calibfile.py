@@ -111,8 +111,19 @@ class BendData:
     Attributes
     ----------
     pressure_kpa, angle_deg : ndarray, shape (n,)
+        Pressures [kPa] and signed bend angles [deg], read-only.
     branch : tuple of str or None
         ``"loading"`` / ``"unloading"`` per row when the file has a ``branch`` column.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "b.csv").write_text("pressure_kpa,angle_deg,branch\\n0,0,loading\\n200,95,loading\\n")
+    ...     data = read_bend_csv(Path(tmp, "b.csv"))
+    >>> data.pressure_kpa.tolist(), data.angle_deg.tolist(), data.branch
+    ([0.0, 200.0], [0.0, 95.0], ('loading', 'loading'))
     """
 
     pressure_kpa: np.ndarray
@@ -127,8 +138,21 @@ class MarkerData:
     Attributes
     ----------
     pressure_kpa : ndarray, shape (frames,)
+        Pressure of each frame [kPa].
     markers_mm : ndarray, shape (frames, n_markers, 2 or 3)
+        Marker positions [mm].
     branch : tuple of str or None
+        ``"loading"`` / ``"unloading"`` per frame when the file says.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "m.csv").write_text("pressure_kpa,m1_x,m1_y,m2_x,m2_y\\n0,0,0,10,0\\n")
+    ...     data = read_marker_csv(Path(tmp, "m.csv"), n_markers=2)
+    >>> data.markers_mm.shape, data.branch
+    ((1, 2, 2), None)
     """
 
     pressure_kpa: np.ndarray
@@ -143,6 +167,32 @@ def read_csv_table(path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
     The limits of :mod:`embroact.patterns.base.validate` hold before anything is parsed:
     file size (``CSV_FILE_BYTES``, read no further), data rows (``CSV_ROWS``), columns
     (``CSV_COLUMNS``) and characters per field (``CSV_FIELD_CHARS``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file.
+
+    Returns
+    -------
+    columns : dict of str to int
+        Header name -> column index.
+    rows : list of (int, list of str)
+        Line number and cells of each data row.
+
+    Raises
+    ------
+    DesignFileError
+        Unreadable, empty, or beyond a limit (naming the line).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "t.csv").write_text("# a comment\\nx_mm,y_mm\\n0,1\\n\\n2,3\\n")
+    ...     read_csv_table(Path(tmp, "t.csv"))
+    ({'x_mm': 0, 'y_mm': 1}, [(3, ['0', '1']), (5, ['2', '3'])])
     """
     text = read_input(path, CSV_FILE_BYTES, "CSV file", encoding="utf-8-sig")
     lines: list[tuple[int, str]] = []
@@ -228,8 +278,30 @@ def _columns(path, columns, rows, names) -> np.ndarray:
 def check_csv_coordinates(path, rows, values: np.ndarray, names) -> None:
     """Refuse a coordinate [mm] beyond ``COORD_MM``, naming the line and column: the bound of every path point.
 
-    ``rows`` are :func:`read_csv_table`'s (line, cells) pairs, ``values`` one row of numbers per
-    row, in the order of ``names``.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file, for the message.
+    rows : list of (int, list of str)
+        :func:`read_csv_table`'s rows.
+    values : numpy.ndarray (n, k)
+        One row of numbers per row [mm].
+    names : sequence of str
+        The columns of ``values``.
+
+    Raises
+    ------
+    DesignFileError
+        A coordinate beyond the bound.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> try:
+    ...     check_csv_coordinates("t.csv", [(2, ["0", "3e9"])], np.array([[0.0, 3e9]]), ["x_mm", "y_mm"])
+    ... except ValueError as exc:
+    ...     print(exc)
+    t.csv line 2: y_mm must be in [-1e+07, 1e+07] mm, got 3e+09
     """
     far = np.argwhere(np.abs(values) > COORD_MM)
     if far.size:
@@ -241,10 +313,31 @@ def check_csv_coordinates(path, rows, values: np.ndarray, names) -> None:
 def read_bend_csv(path) -> BendData:
     """Read ``pressure_kpa,angle_deg[,branch]`` rows (module docstring).
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file.
+
+    Returns
+    -------
+    BendData
+
     Raises
     ------
     DesignFileError
         Unreadable or empty file, missing column, empty or non-numeric cell, bad branch.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "b.csv").write_text("pressure_kpa,angle_deg\\n0,0\\n100,x\\n")
+    ...     try:
+    ...         read_bend_csv(Path(tmp, "b.csv"))
+    ...     except ValueError as exc:
+    ...         print(str(exc).replace(tmp, "TMP"))  # doctest: +ELLIPSIS
+    TMP/b.csv line 3: angle_deg ...
     """
     columns, rows = read_csv_table(path)
     values = _columns(path, columns, rows, ("pressure_kpa", "angle_deg"))
@@ -254,10 +347,30 @@ def read_bend_csv(path) -> BendData:
 def read_marker_csv(path, *, n_markers: int = 14) -> MarkerData:
     """Read ``pressure_kpa[,branch]`` and marker columns ``m1_x, m1_y[, m1_z]`` ... ``m{n}_*``.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file.
+    n_markers : int, optional
+        Markers per frame (the paper's: 2 rows of 7).
+
+    Returns
+    -------
+    MarkerData
+
     Raises
     ------
     DesignFileError
         As :func:`read_bend_csv`, naming the first missing marker column.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "m.csv").write_text("pressure_kpa,m1_x,m1_y,m1_z\\n50,1,2,3\\n")
+    ...     read_marker_csv(Path(tmp, "m.csv"), n_markers=1).markers_mm.tolist()
+    [[[1.0, 2.0, 3.0]]]
     """
     check_count("n_markers", n_markers, low=1, high=CSV_COLUMNS // len(_AXES))
     columns, rows = read_csv_table(path)
@@ -278,7 +391,25 @@ def _coverage_comment(cset: CalibrationSet) -> str:
 
 
 def calibration_toml(cset: CalibrationSet) -> str:
-    """The TOML text of a calibration set (stable key order, shortest round-trip floats)."""
+    """The TOML text of a calibration set (stable key order, shortest round-trip floats).
+
+    Parameters
+    ----------
+    cset : CalibrationSet
+        The set.
+
+    Returns
+    -------
+    str
+        A comment naming the coverage, then the set.
+
+    Examples
+    --------
+    >>> from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+    >>> lab = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.0, 90.0),))
+    >>> print(calibration_toml(lab).splitlines()[1])
+    # covers: zigzag width_mm 7
+    """
     doc: dict = {"name": cset.name, "description": cset.description, "tube_law": cset.tube_law,
                  "measurement": cset.measurement}
     if cset.tube is not None:
@@ -295,7 +426,33 @@ def calibration_toml(cset: CalibrationSet) -> str:
 def calibration_reference(value: str | None, base_dir) -> tuple[str | None, tuple[CalibrationSet, ...]]:
     """(reference, (set,)) for a calibration setting that names a file (read relative to ``base_dir``):
     the reference is the file's absolute path, by which the set is found (``CalibrationSet.source``) and
-    which a design saved anywhere still resolves; (value, ()) for a set name or None."""
+    which a design saved anywhere still resolves; (value, ()) for a set name or None.
+
+    Parameters
+    ----------
+    value : str or None
+        The setting: a set name or a ``.toml`` file.
+    base_dir : str or os.PathLike
+        Where a relative file name is read from.
+
+    Returns
+    -------
+    tuple
+        The reference and the sets read.
+
+    Examples
+    --------
+    >>> calibration_reference("paper-2025", ".")
+    ('paper-2025', ())
+    >>> from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+    >>> lab = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.0, 90.0),))
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_calibration(f"{tmp}/lab.toml", lab)
+    ...     ref, (found,) = calibration_reference("lab.toml", tmp)
+    >>> found.name, ref.endswith("lab.toml")
+    ('lab', True)
+    """
     if value is None or not names_calibration_file(value):
         return value, ()
     cset = read_calibration(Path(base_dir) / value)
@@ -308,6 +465,20 @@ def resolve_calibration_files(design: Design, base_dir) -> tuple[Design, tuple[C
     What ``embroact predict/build/check DESIGN.toml`` do with ``[actuator.model] calibration =
     "lab.toml"`` (``base_dir``: the design file's folder); pass the sets on to
     :func:`embroact.predict.analysis.analyse`.
+
+    Parameters
+    ----------
+    design : Design
+        A design.
+    base_dir : str or os.PathLike
+        The design file's folder.
+
+    Returns
+    -------
+    design : Design
+        With absolute calibration references.
+    sets : tuple of CalibrationSet
+        The sets read.
 
     Examples
     --------
@@ -338,7 +509,25 @@ def resolve_calibration_files(design: Design, base_dir) -> tuple[Design, tuple[C
 
 
 def write_calibration(path, cset: CalibrationSet) -> None:
-    """Write ``cset`` as TOML to ``path`` atomically (an existing file is replaced whole)."""
+    """Write ``cset`` as TOML to ``path`` atomically (an existing file is replaced whole).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    cset : CalibrationSet
+        The set.
+
+    Examples
+    --------
+    >>> from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+    >>> lab = CalibrationSet("lab", (CalibrationPoint("zigzag", 7.0, 2.0, 90.0),))
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_calibration(f"{tmp}/lab.toml", lab)
+    ...     read_calibration(f"{tmp}/lab.toml").points == lab.points
+    True
+    """
     write_text_atomic(path, calibration_toml(cset))
 
 
@@ -351,10 +540,31 @@ def _unknown(path, where: str, keys, allowed) -> None:
 def read_calibration(path) -> CalibrationSet:
     """Read a calibration set written by :func:`write_calibration` (or by hand).
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file.
+
+    Returns
+    -------
+    CalibrationSet
+        Its ``source`` is the file's absolute path.
+
     Raises
     ------
     DesignFileError
         Unreadable file, TOML syntax, unknown keys, wrong types or out-of-range values.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "lab.toml").write_text('name = "lab"\\n[[points]]\\npattern = "zigzag"\\nwidth_mm = 7.0\\n'
+    ...                                      'g_mpa = 2.0\\np0_kpa = 90.0\\n')
+    ...     cset = read_calibration(Path(tmp, "lab.toml"))
+    >>> cset.name, cset.points[0].g_mpa
+    ('lab', 2.0)
     """
     doc = load_toml(path, "calibration file")
     _unknown(path, "the calibration set", doc, _SET_KEYS)

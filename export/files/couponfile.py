@@ -56,7 +56,27 @@ def _num(value: float) -> str:
 
 
 def sheet_rows(actuators, pressures_kpa) -> list[dict]:
-    """Empty sheet rows: per actuator (mappings with the first six columns), loading up then unloading down."""
+    """Empty sheet rows: per actuator (mappings with the first six columns), loading up then unloading down.
+
+    Parameters
+    ----------
+    actuators : iterable of mapping
+        Per actuator: ``design``, ``actuator``, ``pattern``, ``coordinate``, ``block``, ``fin_side``.
+    pressures_kpa : sequence of float
+        The loading steps, ascending [kPa].
+
+    Returns
+    -------
+    list of dict
+
+    Examples
+    --------
+    >>> acts = [{"design": "coupon", "actuator": "01 zigzag w7.0", "pattern": "zigzag", "coordinate": 7.0, "block": 0,
+    ...          "fin_side": "fabric"}]
+    >>> rows = sheet_rows(acts, [0.0, 100.0])
+    >>> [(r["branch"], r["pressure_kpa"]) for r in rows]
+    [('loading', 0.0), ('loading', 100.0), ('unloading', 0.0)]
+    """
     up = [float(p) for p in pressures_kpa]
     steps = [("loading", p) for p in up] + [("unloading", p) for p in reversed(up[:-1])]
     return [{**a, "step": k, "branch": b, "pressure_kpa": p, "bend_deg": None, "photo": ""}
@@ -64,7 +84,25 @@ def sheet_rows(actuators, pressures_kpa) -> list[dict]:
 
 
 def sheet_text(rows) -> str:
-    """CSV text of sheet rows (numbers in shortest exact-enough form, empty for a missing bend)."""
+    """CSV text of sheet rows (numbers in shortest exact-enough form, empty for a missing bend).
+
+    Parameters
+    ----------
+    rows : iterable of mapping
+        :func:`sheet_rows`' rows, filled or not.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> acts = [{"design": "coupon", "actuator": "01 zigzag w7.0", "pattern": "zigzag", "coordinate": 7.0, "block": 0,
+    ...          "fin_side": "fabric"}]
+    >>> rows = sheet_rows(acts, [0.0, 100.0])
+    >>> print(sheet_text(rows).splitlines()[2])
+    coupon,01 zigzag w7.0,zigzag,7,0,fabric,1,loading,100,,
+    """
     out = io.StringIO()
     w = csv.writer(out, lineterminator="\n")
     w.writerow(SHEET_COLUMNS)
@@ -75,7 +113,40 @@ def sheet_text(rows) -> str:
 
 @dataclass(frozen=True, slots=True)
 class SheetRow:
-    """One measured row of a sheet: which actuator, at which pressure and branch, what it read."""
+    """One measured row of a sheet: which actuator, at which pressure and branch, what it read.
+
+    Attributes
+    ----------
+    design, actuator, pattern : str
+        The coupon, the actuator's label and its pattern kind.
+    block : int
+        Its marker-id block.
+    fin_side : str
+        Face its fins are on.
+    branch : str
+        ``"loading"`` or ``"unloading"``.
+    pressure_kpa : float
+        [kPa].
+    bend_deg : float or None
+        The reading [deg]; None: not measured yet.
+    photo : str
+        The photo it was read from.
+    line : int
+        The sheet's line.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> acts = [{"design": "coupon", "actuator": "01 zigzag w7.0", "pattern": "zigzag", "coordinate": 7.0, "block": 0,
+    ...          "fin_side": "fabric"}]
+    >>> rows = sheet_rows(acts, [0.0, 100.0])
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "s.csv").write_text(sheet_text(rows).replace("loading,100,,", "loading,100,42.5,"))
+    ...     row = read_sheet(Path(tmp, "s.csv"))[1]
+    >>> row.actuator, row.pressure_kpa, row.bend_deg, row.line
+    ('01 zigzag w7.0', 100.0, 42.5, 3)
+    """
 
     design: str
     actuator: str
@@ -104,10 +175,31 @@ def _float(text: str, where: str, column: str, empty_ok: bool = False) -> float 
 def read_sheet(path: str | os.PathLike) -> tuple[SheetRow, ...]:
     """The rows of a measurement sheet (every row, measured or not); one-line errors name the line.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The sheet (CSV).
+
+    Returns
+    -------
+    tuple of SheetRow
+
     Raises
     ------
     ParameterError
         A missing column, a bad number or branch, more than 100,000 rows.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> acts = [{"design": "coupon", "actuator": "01 zigzag w7.0", "pattern": "zigzag", "coordinate": 7.0, "block": 0,
+    ...          "fin_side": "fabric"}]
+    >>> rows = sheet_rows(acts, [0.0, 100.0])
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "s.csv").write_text(sheet_text(rows))
+    ...     [r.bend_deg for r in read_sheet(Path(tmp, "s.csv"))]
+    [None, None, None]
     """
     with open(path, newline="", encoding="utf-8") as fh:
         reader = csv.DictReader(fh)
@@ -133,7 +225,23 @@ def read_sheet(path: str | os.PathLike) -> tuple[SheetRow, ...]:
 
 
 def layout_as_dict(layout: PhotoLayout) -> dict:
-    """JSON-ready dict of a photo layout (unit-suffixed keys)."""
+    """JSON-ready dict of a photo layout (unit-suffixed keys).
+
+    Parameters
+    ----------
+    layout : PhotoLayout
+        The layout.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from embroact.predict.photomarkers import COUPON_LAYOUT
+    >>> sorted(layout_as_dict(COUPON_LAYOUT))
+    ['board', 'fin_offset_mm', 'first_id', 'marker_size_mm', 'markers']
+    """
     b = layout.board
     return {"markers": layout.markers.as_dict(), "marker_size_mm": layout.marker_size_mm,
             "fin_offset_mm": layout.fin_offset_mm, "first_id": layout.first_id,
@@ -141,7 +249,30 @@ def layout_as_dict(layout: PhotoLayout) -> dict:
 
 
 def layout_from_dict(d, where: str = "layout") -> PhotoLayout:
-    """The :class:`PhotoLayout` of :func:`layout_as_dict`'s dict; one-line errors name ``where``."""
+    """The :class:`PhotoLayout` of :func:`layout_as_dict`'s dict; one-line errors name ``where``.
+
+    Parameters
+    ----------
+    d : mapping
+        :func:`layout_as_dict`'s dict.
+    where : str, optional
+        Where it came from, for the messages.
+
+    Returns
+    -------
+    PhotoLayout
+
+    Raises
+    ------
+    ParameterError
+        A missing or bad field.
+
+    Examples
+    --------
+    >>> from embroact.predict.photomarkers import COUPON_LAYOUT
+    >>> layout_from_dict(layout_as_dict(COUPON_LAYOUT)) == COUPON_LAYOUT
+    True
+    """
     try:
         b = d["board"]
         return PhotoLayout(MarkerLayout(**d["markers"]), float(d["marker_size_mm"]), float(d["fin_offset_mm"]),
@@ -154,7 +285,35 @@ def layout_from_dict(d, where: str = "layout") -> PhotoLayout:
 
 
 def read_coupon_layout(path: str | os.PathLike) -> tuple[PhotoLayout, dict]:
-    """The layout of a ``coupon.json`` and its actuators by block (``{block: actuator dict}``)."""
+    """The layout of a ``coupon.json`` and its actuators by block (``{block: actuator dict}``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``coupon.json`` ``embroact calibrate coupon`` wrote.
+
+    Returns
+    -------
+    layout : PhotoLayout
+    actuators : dict of int to dict
+
+    Raises
+    ------
+    ParameterError
+        Not JSON, or no layout in it.
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from pathlib import Path
+    >>> from embroact.predict.photomarkers import COUPON_LAYOUT
+    >>> doc = {"layout": layout_as_dict(COUPON_LAYOUT), "actuators": [{"block": 0, "label": "01 zigzag w5.0"}]}
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "coupon.json").write_text(json.dumps(doc))
+    ...     layout, acts = read_coupon_layout(Path(tmp, "coupon.json"))
+    >>> layout == COUPON_LAYOUT, acts[0]["label"]
+    (True, '01 zigzag w5.0')
+    """
     try:
         with open(path, encoding="utf-8") as fh:
             doc = json.load(fh)
