@@ -78,13 +78,26 @@ class Census:
     Attributes
     ----------
     format : str
+        The format's suffix.
     stitches, jumps, trims, stops, color_changes : int
+        Record counts.
     needle_points_mm : ndarray (n, 2)
         Needle points in order [mm], file frame (y up, origin at the start point); read-only.
     pauses_mm : tuple of (float, float)
         Where the machine waits for the operator, in order [mm], file frame.
     thread_names : tuple of str
         Thread names the file carries (empty for formats without names).
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> data, _ = encode(plan, "dst")
+    >>> c = census(data, "dst")
+    >>> c.stitches, c.jumps, c.needle_points_mm.tolist()
+    (2, 0, [[0.0, 0.0], [1.0, 1.0]])
     """
 
     format: str
@@ -142,7 +155,22 @@ def _array(pts) -> np.ndarray:
 
 
 def raw_reader(fmt: str):
-    """pystitch's reader module for format ``fmt`` (read it with :data:`RAW_READ`)."""
+    """pystitch's reader module for format ``fmt`` (read it with :data:`RAW_READ`).
+
+    Parameters
+    ----------
+    fmt : str
+        A format's suffix.
+
+    Returns
+    -------
+    module
+
+    Examples
+    --------
+    >>> raw_reader("pes").__name__
+    'pystitch.PesReader'
+    """
     import pystitch
 
     return next(f["reader"] for f in pystitch.supported_formats() if f["extension"] == fmt)
@@ -164,7 +192,30 @@ def _block_start(records, n: int, pe) -> tuple[float, float]:
 
 
 def census(data: bytes, fmt: str) -> Census:
-    """Count the records of ``data``, a file of format ``fmt`` (see the module docstring)."""
+    """Count the records of ``data``, a file of format ``fmt`` (see the module docstring).
+
+    Parameters
+    ----------
+    data : bytes
+        The file's bytes.
+    fmt : str
+        Its format's suffix.
+
+    Returns
+    -------
+    Census
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> data, _ = encode(plan, "dst")
+    >>> pes, _ = encode(plan, "pes")
+    >>> census(data, "dst").stitches, census(pes, "pes").stitches
+    (2, 2)
+    """
     if fmt == "dst":
         return _dst(data)
     pe, pattern = _read(data, fmt)

@@ -55,6 +55,19 @@ def move_array(body: bytes) -> tuple[np.ndarray, np.ndarray]:
     """Every record's move ``(n, 2)`` [0.1 mm, y up] and third byte ``(n,)``, up to and including the end
     record (all records of a body without one), decoded at once.
 
+    Parameters
+    ----------
+    body : bytes
+        The records after the header.
+
+    Returns
+    -------
+    moves : numpy.ndarray of int64 (n, 2)
+        [0.1 mm, y up]; 0 for end and colour records.
+    byte3 : numpy.ndarray of uint8 (n,)
+
+    Examples
+    --------
     >>> moves, b3 = move_array(bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xF3, 0x01, 0x00, 0x03]))
     >>> moves.tolist(), b3.tolist()
     ([[1, 0], [0, 0]], [3, 243])
@@ -72,13 +85,52 @@ def move_array(body: bytes) -> tuple[np.ndarray, np.ndarray]:
 
 
 def decode_moves(body: bytes) -> list[tuple[int, int, int]]:
-    """``(dx, dy, byte3)`` per record up to and including the end record (0.1 mm, y up)."""
+    """``(dx, dy, byte3)`` per record up to and including the end record (0.1 mm, y up).
+
+    Parameters
+    ----------
+    body : bytes
+        The records after the header.
+
+    Returns
+    -------
+    list of tuple of int
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> data, _ = encode(plan, "dst")
+    >>> decode_moves(data[HEADER_SIZE:])
+    [(0, 0, 3), (10, 10, 3), (0, 0, 243)]
+    """
     moves, b3 = move_array(body)
     return [(int(dx), int(dy), int(b)) for (dx, dy), b in zip(moves.tolist(), b3.tolist())]
 
 
 def build_header(moves: list[tuple[int, int, int]], *, label: str) -> bytes:
-    """The 512-byte header describing ``moves`` (see the module docstring)."""
+    """The 512-byte header describing ``moves`` (see the module docstring).
+
+    Parameters
+    ----------
+    moves : list of tuple of int
+        ``(dx, dy, byte3)`` per record (:func:`decode_moves`).
+    label : str
+        The design's name (printable ASCII, cut to 16 characters).
+
+    Returns
+    -------
+    bytes
+        ``HEADER_SIZE`` bytes.
+
+    Examples
+    --------
+    >>> head = build_header([(10, 10, 3), (0, 0, END_BYTE)], label="demo")
+    >>> len(head), header_fields(head)["ST"], header_fields(head)["+X"]
+    (512, '2', '10')
+    """
     x = y = 0
     xmin = xmax = ymin = ymax = 0
     for dx, dy, _ in moves:
@@ -99,10 +151,31 @@ def build_header(moves: list[tuple[int, int, int]], *, label: str) -> bytes:
 def fix_dst(data: bytes, *, label: str) -> bytes:
     """Replace the header of a DST file with one built from its records; end with 0x1A.
 
+    Parameters
+    ----------
+    data : bytes
+        A DST file.
+    label : str
+        The name the header carries.
+
+    Returns
+    -------
+    bytes
+
     Raises
     ------
     ExportError
         The body has no end record.
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> data, _ = encode(plan, "dst")
+    >>> header_fields(fix_dst(data, label="renamed"))["LA"]
+    'renamed'
     """
     moves = decode_moves(data[HEADER_SIZE:])
     if not moves or moves[-1][2] != END_BYTE:
@@ -112,6 +185,27 @@ def fix_dst(data: bytes, *, label: str) -> bytes:
 
 
 def header_fields(data: bytes) -> dict[str, str]:
-    """Header ``KEY:value`` fields of a DST file, blanks removed from the values."""
+    """Header ``KEY:value`` fields of a DST file, blanks removed from the values.
+
+    Parameters
+    ----------
+    data : bytes
+        A DST file (or its header).
+
+    Returns
+    -------
+    dict of str to str
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> data, _ = encode(plan, "dst")
+    >>> fields = header_fields(data)
+    >>> fields["LA"], fields["ST"], fields["AX"]
+    ('embroact', '3', '+10')
+    """
     head = data[:HEADER_SIZE].split(_SUB, 1)[0].decode("ascii", "replace")
     return {part[:2]: part[3:].replace(" ", "") for part in head.split("\r") if part[2:3] == ":"}

@@ -186,6 +186,12 @@ class MachineFormat:
     no_jumps : bool
         The format has no jump record (VP3): a travel after sewing begins a colour block
         (whose start is a header position), never a stitch longer than the format allows.
+
+    Examples
+    --------
+    >>> f = FORMATS["pes"]
+    >>> f.writer, f.stop_style, f.trim_is_jump, f.limit.max_record_mm
+    ('PesWriter', 'color', True, 204.7)
     """
 
     name: str
@@ -233,10 +239,31 @@ FORMATS: dict[str, MachineFormat] = {
 def machine_format(path: str | os.PathLike, *, fmt: str | None = None) -> MachineFormat:
     """The format for ``path``'s suffix, or ``fmt`` when given.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A file name; its suffix names the format.
+    fmt : str or None, optional
+        The format's name, overriding the suffix.
+
+    Returns
+    -------
+    MachineFormat
+
     Raises
     ------
     ParameterError
         Unknown suffix or format name; the message lists the supported ones.
+
+    Examples
+    --------
+    >>> machine_format("a.PES").name, machine_format("a.bin", fmt="dst").name
+    ('pes', 'dst')
+    >>> try:
+    ...     machine_format("a.svg")
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    file suffix must be one of .dst, ..., got '.svg'
     """
     if fmt is not None:
         key = str(fmt).lower().lstrip(".")
@@ -377,6 +404,24 @@ def _cord_stop_written(f: MachineFormat, cord_stop: CordStop | str) -> str | Non
 def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bool = False,
            cord_stop: CordStop | str = CordStop.SEQUENCE) -> tuple[bytes, WriteResult]:
     """Encode ``plan`` as bytes of format ``fmt`` (no file touched); the counts are read back from them.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        The records.
+    fmt : str or MachineFormat, optional
+        The format.
+    split_long : bool, optional
+        Split legs longer than the format allows into stitches outside the tube corridor.
+    cord_stop : CordStop or str, optional
+        How a stop-code format writes a cord-in stop.
+
+    Returns
+    -------
+    data : bytes
+        The file's bytes.
+    result : WriteResult
+        The counts, read back from ``data``.
 
     Examples
     --------

@@ -53,6 +53,17 @@ def add_origin_note(data: bytes, origin_mm: tuple[float, float]) -> bytes:
     -------
     bytes
         The file with the note; the file block's byte count grows by the note's bytes.
+
+    Examples
+    --------
+    >>> import io, pystitch
+    >>> p = pystitch.EmbPattern()
+    >>> p.add_stitch_absolute(pystitch.STITCH, 0, 0); p.add_stitch_absolute(pystitch.STITCH, 10, 10)
+    >>> p.add_command(pystitch.END)
+    >>> buf = io.BytesIO(); pystitch.write_vp3(p, buf)
+    >>> raw = buf.getvalue()  # as pystitch writes it: an empty note
+    >>> read_origin_mm(raw), read_origin_mm(add_origin_note(raw, (10.0, -5.0)))
+    (None, (10.0, -5.0))
     """
     p = _notes_at(data)
     if p is None or data[p:p + 2] != b"\x00\x00":
@@ -74,6 +85,11 @@ def read_origin_mm(data: bytes) -> tuple[float, float] | None:
     Returns
     -------
     tuple of float or None
+
+    Examples
+    --------
+    >>> read_origin_mm(b"not a VP3 file") is None
+    True
     """
     p = _notes_at(data)
     if p is None:
