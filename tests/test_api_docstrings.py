@@ -85,9 +85,7 @@ PACKAGES = ("embroact", "embroact.patterns", "embroact.predict", "embroact.expor
 
 #: Modules whose public names are not yet all documented to the standard above (shrinking).
 UNDOCUMENTED_MODULES = frozenset({
-    "embroact.export.cli.cmd_predict", "embroact.export.machine.census", "embroact.export.machine.dst",
-    "embroact.export.machine.encode", "embroact.export.machine.filecheck", "embroact.export.machine.formats",
-    "embroact.export.machine.vp3note", "embroact.export.photo.annotate", "embroact.export.photo.arucobits",
+    "embroact.export.cli.cmd_predict", "embroact.export.photo.annotate", "embroact.export.photo.arucobits",
     "embroact.export.photo.detect", "embroact.export.photo.sheet", "embroact.export.pictures.chart",
     "embroact.export.pictures.glb", "embroact.export.pictures.labels", "embroact.export.pictures.mesh",
     "embroact.export.pictures.meshview", "embroact.export.pictures.pages", "embroact.export.pictures.previews",

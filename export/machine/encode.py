@@ -133,6 +133,14 @@ class LongLeg:
         Leg length and its per-axis components on the 0.1 mm grid [mm].
     limit_mm : float
         The format's per-axis limit [mm].
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (13, 0, Command.STITCH, Role.LEG)])
+    >>> leg, = find_long_legs(plan, 12.1)
+    >>> leg.actuator, leg.record_index, leg.dx_mm, leg.limit_mm
+    ('A1', 1, 13.0, 12.1)
     """
 
     actuator: str
@@ -144,7 +152,25 @@ class LongLeg:
     limit_mm: float
 
     def describe(self, fmt: str) -> str:
-        """One line naming the leg, its size and the limit."""
+        """One line naming the leg, its size and the limit.
+
+        Parameters
+        ----------
+        fmt : str
+            The format's name, for the line.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from embroact.patterns.plan import Command, Role, StitchPlan
+        >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (13, 0, Command.STITCH, Role.LEG)])
+        >>> leg, = find_long_legs(plan, 12.1)
+        >>> print(leg.describe("dst"))
+        leg at stitch index 1 of actuator 'A1' (plan record 1) is 13.0 mm long (|dx| 13.0 mm, |dy| 0.0 mm); dst allows 12.1 mm per axis in one record
+        """
         return (
             f"leg at stitch index {self.stitch_index} of actuator {self.actuator!r} (plan record {self.record_index}) is "
             f"{self.length_mm:.1f} mm long (|dx| {abs(self.dx_mm):.1f} mm, |dy| {abs(self.dy_mm):.1f} mm); "
@@ -173,6 +199,7 @@ class MachinePattern:
     pattern : pystitch.EmbPattern
         Low-level records (0.1 mm, y down); write with ``encode=False``.
     format : str
+        The format's name.
     split_legs : int
         Legs split into several stitches (only with ``split_long=True``).
     origin_mm : tuple of float
@@ -181,6 +208,16 @@ class MachinePattern:
     lead_block : bool
         Colour formats: the first actuator's placement line is a colour block of its own
         (the machine pauses for tube 1 too).
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import machine_format
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> mp = to_pattern(plan, machine_format("a.dst"))
+    >>> mp.format, mp.split_legs, mp.lead_block, len(mp.pattern.stitches)
+    ('dst', 0, False, 3)
     """
 
     pattern: Any
@@ -192,6 +229,15 @@ class MachinePattern:
 
 def to_machine_units(xy_mm: np.ndarray) -> np.ndarray:
     """Plan positions [mm, y up] -> integer machine-file units (0.1 mm, y down).
+
+    Parameters
+    ----------
+    xy_mm : numpy.ndarray (n, 2)
+        Plan positions [mm].
+
+    Returns
+    -------
+    numpy.ndarray of int64 (n, 2)
 
     Examples
     --------
@@ -213,6 +259,17 @@ def find_long_legs(plan: StitchPlan, limit_mm: float) -> tuple[LongLeg, ...]:
     """Needle records whose move from the previous record exceeds ``limit_mm`` per axis.
 
     The check runs on the 0.1 mm grid, as the machine sees it.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        The records.
+    limit_mm : float
+        The format's per-axis limit [mm].
+
+    Returns
+    -------
+    tuple of LongLeg
 
     Examples
     --------
@@ -319,6 +376,17 @@ def ascii_label(text: str, *, max_chars: int = MAX_LABEL_CHARS) -> str:
     out (``°`` -> ``deg``, ``ø`` -> ``o``, ``ß`` -> ``ss``, ...), anything else outside
     printable ASCII becomes ``_``.
 
+    Parameters
+    ----------
+    text : str
+        A design or actuator name.
+    max_chars : int, optional
+        Longest label [characters].
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> ascii_label("cross 45°"), ascii_label("Ümlaut ø"), ascii_label("tube\\tA")
@@ -424,6 +492,7 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
     Parameters
     ----------
     plan : StitchPlan
+        The records.
     fmt : MachineFormat
         From :func:`embroact.export.machine.formats.machine_format`.
     split_long : bool
@@ -431,6 +500,10 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         corridor instead of refusing them.
     cord_stop : CordStop or str
         How a stop-code format (DST, EXP) writes a cord-in stop.
+
+    Returns
+    -------
+    MachinePattern
 
     Raises
     ------
@@ -440,6 +513,15 @@ def to_pattern(plan: StitchPlan, fmt: "MachineFormat", *, split_long: bool = Fal
         A leg cannot be split, or a travel would read as an unintended trim.
     ExportError
         More records than the format holds.
+
+    Examples
+    --------
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import machine_format
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (13, 0, Command.STITCH, Role.LEG),
+    ...                                 (13, 0, Command.END, Role.CONTROL, -1)])
+    >>> to_pattern(plan, machine_format("a.dst"), split_long=True).split_legs
+    1
     """
     cord = check_cord_stop(cord_stop)
     legs = find_long_legs(plan, fmt.limit.max_record_mm)

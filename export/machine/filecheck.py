@@ -105,12 +105,27 @@ class FileRecords:
     Attributes
     ----------
     path : str
+        The file.
     suffix : str
         Lower-case format suffix without the dot.
     xy_mm : ndarray (n, 2)
         Positions [mm], pystitch's frame (y down); read-only.
     commands : ndarray of int8
         :class:`Command` per record.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "a.dst").write_bytes(encode(plan, "dst")[0])
+    ...     records = read_records(Path(tmp, "a.dst"))
+    >>> records.suffix, len(records), records.xy_mm.tolist()
+    ('dst', 3, [[0.0, 0.0], [1.0, -1.0], [1.0, -1.0]])
     """
 
     path: str
@@ -123,7 +138,17 @@ class FileRecords:
 
 
 def readable_suffixes() -> tuple[str, ...]:
-    """Embroidery suffixes pystitch can read, sorted."""
+    """Embroidery suffixes pystitch can read, sorted.
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> {"dst", "pes", "exp"} <= set(readable_suffixes())
+    True
+    """
     import pystitch
 
     return tuple(sorted(f["extension"] for f in pystitch.supported_formats()
@@ -203,10 +228,38 @@ def _command_map() -> dict[int, Command]:
 def read_records(path: str | os.PathLike) -> FileRecords:
     """Read an embroidery file into arrays, one row per record in the file's own order.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file; its suffix names the format.
+
+    Returns
+    -------
+    FileRecords
+
     Raises
     ------
     DesignFileError
         One line when the file is missing, of an unknown kind, truncated or garbage.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from embroact.patterns.plan import Command, Role, StitchPlan
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = StitchPlan.from_records([(0, 0, Command.STITCH, Role.LEG), (1, 1, Command.STITCH, Role.LEG),
+    ...                                 (1, 1, Command.END, Role.CONTROL, -1)])
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "a.dst").write_bytes(encode(plan, "dst")[0])
+    ...     records = read_records(Path(tmp, "a.dst"))
+    >>> [Command(c).name for c in records.commands]
+    ['STITCH', 'STITCH', 'END']
+    >>> try:
+    ...     read_records("a.svg")
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    a.svg: cannot read '.svg' embroidery files; readable: ...
     """
     import pystitch
 
@@ -250,6 +303,15 @@ _FILE_ROLES = {Command.STITCH: Role.LEG, Command.JUMP: Role.TRAVEL}
 def records_plan(records: FileRecords) -> StitchPlan:
     """A file's records as a stitch plan (plan frame: mm, y up; no actuators), for pictures.
 
+    Parameters
+    ----------
+    records : FileRecords
+        What :func:`read_records` gives.
+
+    Returns
+    -------
+    StitchPlan
+
     Examples
     --------
     >>> import os, tempfile
@@ -272,6 +334,22 @@ def parse_tube_path(text: str, *, name: str = "tube_path") -> np.ndarray:
     """Points from ``"x1,y1 x2,y2 ..."`` or SVG path data (``"M 0 0 L 100 0"``, as ``--path`` takes;
     SVG's frame, y down, is the file's frame) [mm]; one-line :class:`ParameterError` on bad text.
 
+    Parameters
+    ----------
+    text : str
+        The points or the path data.
+    name : str, optional
+        The option's name, for the messages.
+
+    Returns
+    -------
+    numpy.ndarray (n, 2)
+        [mm], n >= 2.
+
+    Examples
+    --------
+    >>> parse_tube_path("-50,0 50,0").tolist()
+    [[-50.0, 0.0], [50.0, 0.0]]
     >>> parse_tube_path("M 0 0 h 100 v -20").tolist()
     [[0.0, 0.0], [100.0, 0.0], [100.0, -20.0]]
     """
@@ -316,6 +394,25 @@ def tube_layout(
 
     The points may come from anywhere (a ``--tube-path`` string, a tube file, an SVG
     drawing): every source meets the same coordinate bound here, before any arithmetic.
+
+    Parameters
+    ----------
+    points_mm : array_like (n, 2)
+        The tube's axis [mm].
+    name : str, optional
+        The tube's name.
+    outer_radius_mm, clearance_mm, end_margin_mm : float, optional
+        As :class:`~embroact.patterns.rules.TubeLayout` (the default tube's).
+
+    Returns
+    -------
+    TubeLayout
+
+    Examples
+    --------
+    >>> t = tube_layout([(0, 0), (100, 0)], name="A")
+    >>> t.name, t.outer_radius_mm, t.path.length
+    ('A', 1.5, 100.0)
     """
     return TubeLayout.from_path(
         name,
@@ -345,7 +442,35 @@ def _toml_points(raw, where: str) -> np.ndarray:
 
 
 def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dict]:
-    """Tubes and machine settings (a dict of :class:`RuleSettings` fields) from a tube TOML file."""
+    """Tubes and machine settings (a dict of :class:`RuleSettings` fields) from a tube TOML file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file: ``[[tube]]`` tables with ``path_mm`` (and optionally ``name``, ``outer_radius_mm``,
+        ``clearance_mm``, ``end_margin_mm``) and a ``[machine]`` table.
+
+    Returns
+    -------
+    tubes : tuple of TubeLayout
+    machine : dict
+
+    Raises
+    ------
+    DesignFileError
+        One line naming the file and the table.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "t.toml").write_text('[[tube]]\\nname = "A"\\npath_mm = [[0, 0], [100, 0]]\\n'
+    ...                                    '[machine]\\nhoop_width_mm = 130.0\\n')
+    ...     tubes, machine = load_tube_file(Path(tmp, "t.toml"))
+    >>> [t.name for t in tubes], machine
+    (['A'], {'hoop_width_mm': 130.0})
+    """
     p = str(path)
     doc = load_toml(p, "tube file")
     _unknown(doc, {"tube", "machine"}, "the file", p)
@@ -371,14 +496,49 @@ def load_tube_file(path: str | os.PathLike) -> tuple[tuple[TubeLayout, ...], dic
 
 
 def default_format(records: FileRecords) -> str:
-    """The file's own format when it has per-record limits in ``patterns/limits.py``, else ``"dst"``."""
+    """The file's own format when it has per-record limits in ``patterns/limits.py``, else ``"dst"``.
+
+    Parameters
+    ----------
+    records : FileRecords
+        The file's records.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> default_format(FileRecords("a.pes", "pes", np.zeros((0, 2)), np.zeros(0))), \\
+    ...     default_format(FileRecords("a.10o", "10o", np.zeros((0, 2)), np.zeros(0)))
+    ('pes', 'dst')
+    """
     return records.suffix if records.suffix in FORMAT_LIMITS else "dst"
 
 
 def file_rule_settings(records: FileRecords, *, format: str | None = None, **machine) -> RuleSettings:
     """Rule settings for a file: the default machine's limits and hoop, its own format, ``machine`` overrides.
 
-    ``machine`` holds :class:`RuleSettings` fields (a tube file's ``[machine]`` table).
+    Parameters
+    ----------
+    records : FileRecords
+        The file's records.
+    format : str or None, optional
+        Check against this format's limits instead of the file's own.
+    **machine
+        :class:`RuleSettings` fields (a tube file's ``[machine]`` table).
+
+    Returns
+    -------
+    RuleSettings
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> s = file_rule_settings(FileRecords("a.exp", "exp", np.zeros((0, 2)), np.zeros(0)), hoop_width_mm=100.0)
+    >>> s.format, s.hoop_width_mm
+    ('exp', 100.0)
     """
     from ...patterns.design import MachineSettings
 
@@ -413,6 +573,16 @@ def dst_header_faults(data: bytes) -> tuple[str, ...]:
     records (0xC3, DST's stop), ``+X -X +Y -Y`` the largest excursion from the start point in
     each direction (0.1 mm, y up), over every record.
 
+    Parameters
+    ----------
+    data : bytes
+        A DST file.
+
+    Returns
+    -------
+    tuple of str
+        One line per field that disagrees; empty when the header is right.
+
     Examples
     --------
     >>> body = bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xC3, 0x00, 0x00, 0xF3])
@@ -434,7 +604,27 @@ def dst_header_faults(data: bytes) -> tuple[str, ...]:
 
 def extent_faults(head: bytes, xy_mm: np.ndarray) -> tuple[str, ...]:
     """The ``+X -X +Y -Y`` fields of a text header (DST, TBF) that disagree with positions ``xy_mm``
-    (every record, mm, y down as read; the fields are 0.1 mm, y up, from the start point)."""
+    (every record, mm, y down as read; the fields are 0.1 mm, y up, from the start point).
+
+    Parameters
+    ----------
+    head : bytes
+        The header.
+    xy_mm : numpy.ndarray (n, 2)
+        Every record's position as read [mm, y down].
+
+    Returns
+    -------
+    tuple of str
+        One line per field that disagrees.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> head = b"+X:   10\\r-X:    0\\r+Y:    0\\r-Y:    0\\r"
+    >>> extent_faults(head, np.array([[1.0, 0.0]])), len(extent_faults(head, np.array([[2.0, 0.0]])))
+    ((), 1)
+    """
     text = head.decode("latin-1")
     fields = {m.group(1): m.group(2).strip() for m in re.finditer(r"([+-][XY]):([^\r]*)\r", text)}
     at = np.vstack([np.zeros((1, 2)), np.rint(np.asarray(xy_mm, dtype=np.float64) * (10.0, -10.0))])
@@ -524,6 +714,21 @@ def check_file(
     tuple of Finding
         Worst first; ``stitch_index`` is the record index in the file, ``needle_point`` the
         needle point there (or the last one before it).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> from embroact.export.machine.formats import encode
+    >>> plan = zigzag([[0.0, 0.0], [40.0, 0.0]], ZigzagParams(7.0, 1.0))
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = Path(tmp, "z.dst").write_bytes(encode(plan, "dst")[0])
+    ...     found = check_file(Path(tmp, "z.dst"), [tube_layout([(0, 0), (40, 0)])])
+    ...     wrong = check_file(Path(tmp, "z.dst"), [tube_layout([(0, 3.5), (40, 3.5)])])  # along a rail
+    >>> found, sorted({f.code for f in wrong})[:1]
+    ((), ['EA101'])
     """
     from dataclasses import replace
 
