@@ -23,7 +23,31 @@ def _text(cv2, img, text: str, org, scale: float) -> None:
 
 
 def annotated_jpeg(image, reading: PhotoReading, header: str, labels: dict[int, str]) -> bytes:
-    """JPEG bytes of ``image`` (grey or colour) with ``reading`` drawn on it; ``labels``: block -> name."""
+    """JPEG bytes of ``image`` (grey or colour) with ``reading`` drawn on it; ``labels``: block -> name.
+
+    Parameters
+    ----------
+    image : numpy.ndarray
+        The photo (grey or BGR), as read.
+    reading : PhotoReading
+        What :func:`~embroact.export.photo.detect.measure_image` found in it.
+    header : str
+        The first line written on the picture.
+    labels : dict of int to str
+        Actuator names by marker block.
+
+    Returns
+    -------
+    bytes
+        A JPEG, at most ``MAX_WIDTH_PX`` wide (empty if OpenCV cannot encode it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> reading = PhotoReading(np.eye(3), 0.0, (), (), np.zeros((0, 4, 2)))
+    >>> annotated_jpeg(np.full((100, 200), 255, np.uint8), reading, "photo 1", {})[:3]
+    b'\\xff\\xd8\\xff'
+    """
     cv2 = require_cv2()
     scale = min(1.0, MAX_WIDTH_PX / image.shape[1])
     img = image if scale == 1.0 else cv2.resize(image, (round(image.shape[1] * scale), round(image.shape[0] * scale)),

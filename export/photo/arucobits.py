@@ -46,7 +46,27 @@ ARUCO_4X4_250 = (
 
 
 def marker_cells(marker_id: int) -> tuple[tuple[int, ...], ...]:
-    """The 4 x 4 inner cells of marker ``marker_id`` (1 white), row by row from the top."""
+    """The 4 x 4 inner cells of marker ``marker_id`` (1 white), row by row from the top.
+
+    Parameters
+    ----------
+    marker_id : int
+        An id of OpenCV's ``DICT_4X4_250``, in [0, 250).
+
+    Returns
+    -------
+    tuple of tuple of int
+
+    Raises
+    ------
+    ParameterError
+        An id outside the dictionary.
+
+    Examples
+    --------
+    >>> marker_cells(0)
+    ((1, 0, 1, 1), (0, 1, 0, 1), (0, 0, 1, 1), (0, 0, 1, 0))
+    """
     if isinstance(marker_id, bool) or not isinstance(marker_id, int) or not 0 <= marker_id < len(ARUCO_4X4_250):
         raise ParameterError(f"marker id must be an integer in [0, {len(ARUCO_4X4_250) - 1}], got {marker_id!r}")
     v = ARUCO_4X4_250[marker_id]

@@ -57,7 +57,23 @@ class PhotoRefused(ParameterError):
 
 
 def require_cv2():
-    """OpenCV's module, or a one-line error naming the extra to install."""
+    """OpenCV's module, or a one-line error naming the extra to install.
+
+    Returns
+    -------
+    module
+        ``cv2``, with the aruco detector.
+
+    Raises
+    ------
+    ParameterError
+        OpenCV is missing or older than 4.7.
+
+    Examples
+    --------
+    >>> hasattr(require_cv2().aruco, "ArucoDetector")
+    True
+    """
     try:
         import cv2
     except ImportError:
@@ -70,7 +86,29 @@ def require_cv2():
 
 @dataclass(frozen=True, slots=True)
 class BlockReading:
-    """One actuator in a photo: its marker block, fin side, reading, and its markers' image corners."""
+    """One actuator in a photo: its marker block, fin side, reading, and its markers' image corners.
+
+    Attributes
+    ----------
+    block : int
+        The actuator's marker-id block.
+    side : str
+        The face its fins are on (``"fabric"`` or ``"thread"``).
+    strip : StripReading
+        The bend the markers read.
+    corners_px : numpy.ndarray (n, 4, 2)
+        Each marker's corners in the image [px].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from embroact.predict.photomarkers import COUPON_LAYOUT, read_strip
+    >>> s = np.arange(11) * 10.0
+    >>> up = np.tile([0.0, 1.0], (11, 1))
+    >>> strip = read_strip(np.column_stack([s, np.full(11, COUPON_LAYOUT.fin_offset_mm)]), np.tile([1.0, 0.0], (11, 1)), up)
+    >>> BlockReading(0, "fabric", strip, np.zeros((11, 4, 2))).strip.reading_deg
+    0.0
+    """
 
     block: int
     side: str
@@ -80,7 +118,28 @@ class BlockReading:
 
 @dataclass(frozen=True, slots=True)
 class PhotoReading:
-    """What one photo says: the board's homography and tilt, and each actuator's reading."""
+    """What one photo says: the board's homography and tilt, and each actuator's reading.
+
+    Attributes
+    ----------
+    homography : numpy.ndarray (3, 3)
+        Pixels -> board millimetres.
+    tilt_deg : float
+        The board's tilt against the camera [deg].
+    board_found : tuple of int
+        The board's marker ids found.
+    blocks : tuple of BlockReading
+        Each actuator found.
+    board_corners_px : numpy.ndarray (k, 4, 2)
+        The board markers' corners in the image [px].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> r = PhotoReading(np.diag([0.1, 0.1, 1.0]), 0.0, (0, 1, 2, 3), (), np.zeros((0, 4, 2)))
+    >>> r.to_pixels([[1.0, 2.0]]).tolist()
+    [[10.0, 20.0]]
+    """
 
     homography: np.ndarray  # pixels -> board mm
     tilt_deg: float
@@ -89,12 +148,54 @@ class PhotoReading:
     board_corners_px: np.ndarray  # (k, 4, 2)
 
     def to_pixels(self, points_mm) -> np.ndarray:
-        """Board-plane points [mm] back to pixels."""
+        """Board-plane points [mm] back to pixels.
+
+        Parameters
+        ----------
+        points_mm : array_like (n, 2)
+            Points on the board's plane [mm].
+
+        Returns
+        -------
+        numpy.ndarray (n, 2)
+            [px].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> PhotoReading(np.eye(3), 0.0, (), (), np.zeros((0, 4, 2))).to_pixels([[1.0, 2.0]]).tolist()
+        [[1.0, 2.0]]
+        """
         return _apply(np.linalg.inv(self.homography), np.asarray(points_mm, dtype=np.float64))
 
 
 def load_gray(path: str):
-    """The photo as an 8-bit grey image (OpenCV), or a one-line error."""
+    """The photo as an 8-bit grey image (OpenCV), or a one-line error.
+
+    Parameters
+    ----------
+    path : str
+        An image file (JPEG, PNG, TIFF, ...).
+
+    Returns
+    -------
+    numpy.ndarray of uint8 (height, width)
+
+    Raises
+    ------
+    ParameterError
+        Not an image OpenCV can read.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import numpy as np
+    >>> cv2 = require_cv2()
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = cv2.imwrite(os.path.join(tmp, "a.png"), np.zeros((4, 5, 3), np.uint8))
+    ...     load_gray(os.path.join(tmp, "a.png")).shape
+    (4, 5)
+    """
     cv2 = require_cv2()
     data = np.fromfile(path, dtype=np.uint8)  # also for names OpenCV's imread cannot open
     img = cv2.imdecode(data, cv2.IMREAD_GRAYSCALE) if data.size else None
@@ -160,14 +261,31 @@ def measure_image(gray, layout: PhotoLayout, sides: dict[int, str] | None = None
     gray : ndarray
         8-bit grey image.
     layout : PhotoLayout
+        The board's and the fins' layout.
     sides : dict of block -> ``"fabric"`` or ``"thread"``, optional
         Fin side of each actuator block (default fabric).
     expect : iterable of int, optional
         Blocks that must be in the picture (a missing one is refused).
 
+    Returns
+    -------
+    PhotoReading
+
     Raises
     ------
     PhotoRefused
+        The photo cannot be measured (too few board markers, a marker twice, a block missing);
+        the message says why.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from embroact.predict.photomarkers import COUPON_LAYOUT
+    >>> try:
+    ...     measure_image(np.full((200, 300), 255, np.uint8), COUPON_LAYOUT)
+    ... except PhotoRefused as exc:
+    ...     print(exc)
+    reference board: 0 of its 8 markers found, at least 4 needed (not found: ids 0, 1, 2, 3, 4, 5, 6, 7)
     """
     cv2 = require_cv2()
     found = _detect(cv2, gray)

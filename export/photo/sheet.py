@@ -60,7 +60,24 @@ def _scale_bar(dwg, x: float, y: float) -> None:
 
 
 def fins_svg(coupon) -> str:
-    """The fin sheet of ``coupon`` (module docstring): A4 wide, as tall as its rows need."""
+    """The fin sheet of ``coupon`` (module docstring): A4 wide, as tall as its rows need.
+
+    Parameters
+    ----------
+    coupon : Coupon
+        The coupon (:func:`~embroact.predict.coupon.plan_coupon`).
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> from embroact.predict.coupon import plan_coupon
+    >>> fins_svg(plan_coupon(("zigzag",), zigzag_count=2)).count('class="marker"')  # 11 fins each
+    22
+    """
     lay: PhotoLayout = coupon.layout
     size, off = lay.marker_size_mm, lay.fin_offset_mm
     quiet = size / 6.0
@@ -101,6 +118,18 @@ def fins_svg(coupon) -> str:
 def board_svg(board: ReferenceBoard) -> str:
     """The reference board (module docstring): its markers, the strip's window and a scale bar.
 
+    Parameters
+    ----------
+    board : ReferenceBoard
+        The board.
+
+    Returns
+    -------
+    str
+        SVG, 1:1 in mm.
+
+    Examples
+    --------
     >>> from embroact.predict.photomarkers import DEFAULT_BOARD
     >>> board_svg(DEFAULT_BOARD).count('class="marker"')
     8
