@@ -87,6 +87,17 @@ def forced_split(findings, force: bool) -> bool:
     the writer then splits them as ``split_long`` does (stitches outside the tube corridor) instead
     of refusing, so that ``--force`` writes what the rules refused.
 
+    Parameters
+    ----------
+    findings : iterable of Finding
+        The design's findings.
+    force : bool
+        The build writes despite errors.
+
+    Returns
+    -------
+    bool
+
     Examples
     --------
     >>> from embroact.patterns.base.findings import RULES
@@ -116,14 +127,35 @@ class BuildContext:
     Attributes
     ----------
     design : object or None
+        The design built (None for a bare plan).
     plan : StitchPlan
+        Its stitch plan.
     analysis : DesignAnalysis or None
         The build's one analysis (None for :func:`build_plan_outputs` of a bare plan).
     findings : tuple
+        The design-rule findings.
     worksheet : Worksheet
+        The production worksheet.
     out_dir : Path
+        Where the files go.
     outputs : Mapping[str, bytes]
         Files prepared so far (name -> bytes), read-only view.
+
+    Examples
+    --------
+    A stage is a function of the context; this one lists what is prepared before it:
+
+    >>> import tempfile
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> seen = []
+    >>> def stage(context):
+    ...     seen.append((type(context).__name__, sorted(context.outputs)[:2]))
+    ...     return {}
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     _ = build_plan_outputs(analyse(default_design()).plan, tmp, stages=[stage])
+    >>> seen
+    [('BuildContext', ['paper-zigzag.dst', 'preview.svg'])]
     """
 
     design: object
@@ -201,6 +233,16 @@ class BuildResult:
 def parse_formats(text: str | Sequence[str]) -> tuple[str, ...]:
     """``"dst,pes"`` or ``["dst", "pes"]`` -> ``("dst", "pes")``; unknown names list the valid ones.
 
+    Parameters
+    ----------
+    text : str or sequence of str
+        Format names, any case, with or without the dot.
+
+    Returns
+    -------
+    tuple of str
+        Each once, in order.
+
     Examples
     --------
     >>> parse_formats("DST, pes")
@@ -224,6 +266,16 @@ def safe_stem(name: str) -> str:
     :data:`STEM_CHARS` characters (file systems allow 255 bytes per name, with room left
     for the suffix and the hidden staging name).
 
+    Parameters
+    ----------
+    name : str
+        A design name.
+
+    Returns
+    -------
+    str
+        ``"design"`` when nothing is left.
+
     Examples
     --------
     >>> safe_stem("paper zigzag / w=7")
@@ -245,6 +297,24 @@ def write_outputs(out_dir: str | os.PathLike, outputs: Mapping[str, "str | bytes
     Every file is prepared (written and synced to a temporary file) before the first is
     replaced, so a failure while writing changes none of them
     (:func:`embroact.export.files.atomic.write_files_atomic`); the error names the file.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        An existing, writable directory.
+    outputs : mapping of str to str or bytes
+        File name -> content (text is written as UTF-8).
+
+    Returns
+    -------
+    tuple of str
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_outputs(tmp, {"a.txt": "r0 2.581 mm", "b.bin": b"\\x00"})
+    ('a.txt', 'b.bin')
     """
     d = check_writable_dir(out_dir)
     write_files_atomic({d / name: data.encode("utf-8") if isinstance(data, str) else data
@@ -272,6 +342,46 @@ def build_plan_outputs(
     their curves.  ``cord_stop`` (default: the design's ``machine.cord_stop``, else
     ``"sequence"``) says how DST/EXP write a cord-in stop; the worksheet's counts, pauses and
     machine set-up are those of the first machine file, read back from its bytes.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        The records.
+    out_dir : str or os.PathLike
+        An existing, writable directory.
+    design, analysis : optional
+        The design and its analysis, when the plan came from one.
+    findings : sequence of Finding, optional
+        The plan's design-rule findings.
+    formats : sequence of str, optional
+        Machine formats to write.
+    force, split_long : bool, optional
+        Write despite errors; split legs over a format's record limit.
+    speed_spm : float, optional
+        Machine speed for the worksheet [stitches/min].
+    stages : sequence of callable, optional
+        Further outputs, ``stage(BuildContext) -> {name: contents}``.
+    cord_stop : str or None, optional
+        How DST/EXP write a cord-in stop.
+
+    Returns
+    -------
+    BuildResult
+
+    Raises
+    ------
+    DesignRuleError
+        The findings hold errors and ``force`` is false.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     result = build_plan_outputs(analyse(default_design()).plan, tmp, formats=("dst", "pes"))
+    >>> result.files[:3]
+    ('paper-zigzag.dst', 'paper-zigzag.pes', 'worksheet.json')
     """
     from ..pictures.stitches import plan_svg
     from ..pictures.pages import PAPERS, template_pages_html

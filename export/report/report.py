@@ -70,7 +70,23 @@ def _clean(value):
 
 
 def finding_dict(finding) -> dict:
-    """A design-rule finding (``Finding`` object or dict) as a dict with the standard keys."""
+    """A design-rule finding (``Finding`` object or dict) as a dict with the standard keys.
+
+    Parameters
+    ----------
+    finding : Finding or mapping
+        The finding.
+
+    Returns
+    -------
+    dict
+        Missing keys are None.
+
+    Examples
+    --------
+    >>> finding_dict({"code": "EA101", "message": "needle in the tube"})["severity"] is None
+    True
+    """
     if hasattr(finding, "as_dict"):
         d = dict(finding.as_dict())
     elif isinstance(finding, Mapping):
@@ -108,6 +124,18 @@ def report_data(
         ``Worksheet.as_dict()``.
     mesh : mapping, optional
         3D output facts: file name, pressure, triangle count, tolerance, realised deviation.
+    generator : str, optional
+        What made the report.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> data = report_data(title="demo", actuators=[{"name": "A1"}])
+    >>> data["title"], data["findings"], data["generator"].startswith("embroact")
+    ('demo', [], True)
     """
     return _clean({
         "title": str(title),
@@ -120,7 +148,26 @@ def report_data(
 
 
 def report_json(data: Mapping) -> str:
-    """``report.json`` text: indented, keys in insertion order, no NaN (strict JSON)."""
+    """``report.json`` text: indented, keys in insertion order, no NaN (strict JSON).
+
+    Parameters
+    ----------
+    data : mapping
+        From :func:`report_data`.
+
+    Returns
+    -------
+    str
+        Ending in a newline.
+
+    Examples
+    --------
+    >>> print(report_json({"title": "demo", "r0_mm": 2.581}), end="")
+    {
+      "title": "demo",
+      "r0_mm": 2.581
+    }
+    """
     return json.dumps(_clean(data), indent=2, allow_nan=False) + "\n"
 
 
@@ -377,6 +424,22 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
         From :func:`report_data`.
     figures : mapping, optional
         SVG texts keyed by the names in :data:`FIGURES`; missing ones are left out.
+
+    Returns
+    -------
+    str
+        One HTML page, no external resources.
+
+    Raises
+    ------
+    ParameterError
+        A figure name not in :data:`FIGURES`.
+
+    Examples
+    --------
+    >>> html = report_html(report_data(title="demo", actuators=[{"name": "A1"}]))
+    >>> html.startswith("<!DOCTYPE html>"), "<h1>demo</h1>" in html
+    (True, True)
     """
     figures = dict(figures or {})
     unknown = sorted(set(figures) - set(FIGURES))

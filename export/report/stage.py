@@ -37,6 +37,15 @@ class Previews:
     mesh : dict or None
         3D facts: file, pressure_kpa and theta_deg per actuator, triangle_count,
         tolerance_mm, max_deviation_mm.
+
+    Examples
+    --------
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> analysis = analyse(default_design())
+    >>> previews = render_previews(analysis, mesh_suffix=None)
+    >>> list(previews.files), previews.mesh
+    (['bend.svg', 'shape.svg', 'report.json', 'report.html'], None)
     """
 
     files: dict
@@ -58,9 +67,31 @@ def actuator_entry(act, curve, band=None) -> dict:
     """One actuator of the report: :meth:`ActuatorAnalysis.as_dict` (derived geometry, G, P0, tube,
     tube law and their sources, and per segment) and the curve as ``Curve.as_dict``
     gives it (status names as in ``embroact predict --json``): the whole strip's, followed by each
-    segment's (``segment_curves``; one for a single-pattern actuator). ``band``: the 1-sigma band of the
-    calibration's covariance per point (``band``: :meth:`~embroact.predict.uncertainty.Band.summary`,
-    None without one)."""
+    segment's (``segment_curves``; one for a single-pattern actuator).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        The actuator.
+    curve : StripCurve
+        Its predicted curve.
+    band : Band or None, optional
+        The 1-sigma band of the calibration's covariance per point (its
+        :meth:`~embroact.predict.uncertainty.Band.summary`); None without one.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> analysis = analyse(default_design())
+    >>> entry = actuator_entry(analysis.actuators[0], analysis.curves()[0])
+    >>> entry["name"], entry["band"], len(entry["segment_curves"])
+    ('A1', None, 1)
+    """
     return {**act.as_dict(), "curve": curve.as_dict(), "band": None if band is None else band.summary(),
             "segment_curves": [c.as_dict() for c in curve.segments]}
 
@@ -97,6 +128,7 @@ def render_previews(
     findings : iterable
         Design-rule findings (``Finding`` or dicts).
     worksheet : Worksheet or dict, optional
+        The worksheet the report shows.
     measured : mapping, optional
         Actuator name -> (pressure_kpa, theta_deg) arrays of measured points to overlay.
     stitch_svg : str, optional
@@ -110,6 +142,19 @@ def render_previews(
         trimesh); None: no 3D.
     tolerance_mm : float, optional
         Chordal tolerance of the mesh [mm]; default ``mesh.DEFAULT_CHORD_TOLERANCE_MM``.
+
+    Returns
+    -------
+    Previews
+
+    Examples
+    --------
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> analysis = analyse(default_design())
+    >>> previews = render_previews(analysis, mesh_suffix=None)
+    >>> previews.files["bend.svg"].startswith("<svg"), "report.html" in previews.files
+    (True, True)
     """
     curves = analysis.curves() if curves is None else tuple(curves)
     _check_inputs(analysis, curves, side_states)
@@ -164,6 +209,29 @@ def previews_stage(
     ``pressures_kpa`` (default the design's standard grid, the one the model rules use), takes the
     stitch preview from ``context.outputs["preview.svg"]`` when present, the worksheet
     and findings from the context, and returns :attr:`Previews.files`.
+
+    Parameters
+    ----------
+    pressures_kpa : array_like, optional
+        The bend chart's pressures [kPa].
+    measured, side_states, shape_pressure_kpa, mesh_suffix, tolerance_mm
+        As for :func:`render_previews`.
+
+    Returns
+    -------
+    callable
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.export.report.build import build_plan_outputs
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.patterns.design import default_design
+    >>> analysis = analyse(default_design())
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     result = build_plan_outputs(analysis.plan, tmp, analysis=analysis, stages=[previews_stage(mesh_suffix=None)])
+    >>> result.files[-4:]
+    ('bend.svg', 'shape.svg', 'report.json', 'report.html')
     """
     def stage(context) -> dict:
         curves = context.analysis.curves(pressures_kpa)
