@@ -90,11 +90,9 @@ UNDOCUMENTED_MODULES = frozenset({
     "embroact.export.pictures.pages", "embroact.export.pictures.previews", "embroact.export.pictures.shapefit",
     "embroact.export.pictures.sideview", "embroact.export.pictures.stitches", "embroact.export.pictures.svgdoc",
     "embroact.export.pictures.template", "embroact.export.pictures.titles", "embroact.export.pictures.triangles",
-    "embroact.export.report.worksheet", "embroact.export.studio.app", "embroact.export.studio.form",
-    "embroact.export.studio.outputs", "embroact.export.studio.roundtrip", "embroact.export.studio.serve",
-    "embroact.export.studio.session", "embroact.export.studio.views", "embroact.patterns.design",
-    "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis", "embroact.predict.rules",
-    "embroact.predict.sleeve_rules",
+    "embroact.export.report.worksheet", "embroact.export.studio.session", "embroact.export.studio.views",
+    "embroact.patterns.design", "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis",
+    "embroact.predict.rules", "embroact.predict.sleeve_rules",
 })
 
 

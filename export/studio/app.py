@@ -230,7 +230,34 @@ def _query(request: Request) -> dict:
 
 
 def create_app(studio, *, token: str, port: int) -> Starlette:
-    """The Starlette app serving ``studio`` to requests that carry ``token`` on ``127.0.0.1:port``."""
+    """The Starlette app serving ``studio`` to requests that carry ``token`` on ``127.0.0.1:port``.
+
+    Parameters
+    ----------
+    studio : Studio
+        The session the app edits.
+    token : str
+        The secret every request must carry.
+    port : int
+        The port it is served on (requests naming another host or port are refused).
+
+    Returns
+    -------
+    starlette.applications.Starlette
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.export.studio.session import Studio
+    >>> out = tempfile.TemporaryDirectory()
+    >>> studio = Studio(default_design(), out.name, (), None)
+    >>> from starlette.testclient import TestClient
+    >>> client = TestClient(create_app(studio, token="abc", port=8000), base_url="http://127.0.0.1:8000")
+    >>> client.get("/?token=abc").status_code, client.get("/?token=wrong").status_code
+    (200, 403)
+    >>> out.cleanup()
+    """
     from starlette.concurrency import run_in_threadpool
 
     page = _asset("index.html")

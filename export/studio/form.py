@@ -67,6 +67,13 @@ class Field:
         The allowed values of a choice.
     optional : bool
         May be left empty (model values taken from the calibration set).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> form = design_form(default_design())
+    >>> fields(form)[0]
+    Field(key='name', group='design', value='paper-zigzag', kind='text', choices=(), optional=False)
     """
 
     key: str
@@ -77,7 +84,17 @@ class Field:
     optional: bool = False
 
     def as_dict(self) -> dict:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> Field("actuator[0].width_mm", "actuator A1", 7.0).as_dict()
+        {'key': 'actuator[0].width_mm', 'group': 'actuator A1', 'value': 7.0, 'kind': 'number', 'choices': [], 'optional': False}
+        """
         return {"key": self.key, "group": self.group, "value": self.value, "kind": self.kind,
                 "choices": list(self.choices), "optional": self.optional}
 
@@ -107,7 +124,24 @@ def _straight(table: dict) -> dict:
 
 
 def design_form(design: Design) -> dict:
-    """The design-file dict of ``design``, straight paths as ``length_mm`` (editable)."""
+    """The design-file dict of ``design``, straight paths as ``length_mm`` (editable).
+
+    Parameters
+    ----------
+    design : Design
+        The design.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> form = design_form(default_design())
+    >>> sorted(form), form["actuator"][0]["length_mm"]
+    (['actuator', 'machine', 'name', 'operation', 'tube'], 100.0)
+    """
     d = design_to_dict(design)
     d["actuator"] = [_straight(a) for a in d["actuator"]]
     return d
@@ -134,8 +168,23 @@ def _pattern_fields(table: dict, path: str, group: str) -> list[Field]:
 def fields(form: Mapping, calibrations: tuple[str, ...] = ()) -> tuple[Field, ...]:
     """Every editable field of a design form, in page order.
 
-    ``calibrations`` are the set names a model may choose besides the built-in ones and
-    the one it names.
+    Parameters
+    ----------
+    form : mapping
+        :func:`design_form`'s dict.
+    calibrations : tuple of str, optional
+        The set names a model may choose besides the built-in ones and the one it names.
+
+    Returns
+    -------
+    tuple of Field
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> form = design_form(default_design())
+    >>> [f.key for f in fields(form)][:4]
+    ['name', 'operation.max_pressure_kpa', 'operation.max_bend_deg', 'tube.outer_radius_mm']
     """
     from ..machine.formats import FORMATS
     from ...predict.calibration import set_names
@@ -228,12 +277,35 @@ def _field_of(message: str, keys: set[str], fallback: str) -> str:
 def apply_edits(form: Mapping, edits: Mapping, calibrations: tuple[str, ...] = ()) -> tuple[dict, Design]:
     """``form`` with ``edits`` (key path -> value) applied, and the design it validates to.
 
+    Parameters
+    ----------
+    form : mapping
+        :func:`design_form`'s dict.
+    edits : mapping of str to object
+        Field key -> new value (None: unset).
+    calibrations : tuple of str, optional
+        As for :func:`fields`.
+
+    Returns
+    -------
+    form : dict
+        The edited form (``form`` itself is not changed).
+    design : Design
+
     Raises
     ------
     ParameterError
         An edit names a key that is not a field of the form, or too many.
     FieldError
         The edited design is invalid: the design file's message and the field's key.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> form = design_form(default_design())
+    >>> new, design = apply_edits(form, {"actuator[0].width_mm": 6.5})
+    >>> design.actuators[0].params.width_mm, form["actuator"][0]["width_mm"]
+    (6.5, 7.0)
     """
     if not isinstance(edits, Mapping) or not edits:
         raise ParameterError("values must be a non-empty object of field keys and values")

@@ -38,7 +38,36 @@ class OutsideOutputError(ParameterError):
 
 
 def output_path(out_dir: str | os.PathLike, name: object, suffix: str) -> Path:
-    """``out_dir / name`` when ``name`` is a plain file name ending in ``suffix``; else :class:`OutsideOutputError`."""
+    """``out_dir / name`` when ``name`` is a plain file name ending in ``suffix``; else :class:`OutsideOutputError`.
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        The studio's output directory.
+    name : object
+        The file name the page asked for.
+    suffix : str
+        The suffix it must have (lower case, with the dot).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    OutsideOutputError
+        A folder, a leading dot, another suffix, or a name leading out of ``out_dir``.
+
+    Examples
+    --------
+    >>> output_path("/tmp", "design.toml", ".toml").name
+    'design.toml'
+    >>> try:
+    ...     output_path("/tmp", "../design.toml", ".toml")
+    ... except OutsideOutputError as exc:
+    ...     print(exc)
+    name must be a plain file name inside the output directory (no folders, no leading dot), got '../design.toml'
+    """
     if not isinstance(name, str) or not name or len(name) > MAX_NAME_CHARS or not _PLAIN.match(name) \
             or name.startswith(".") or name.strip() != name:
         raise OutsideOutputError("name must be a plain file name inside the output directory "

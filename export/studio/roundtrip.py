@@ -49,6 +49,15 @@ def _leaves(value, prefix: _Key = ()) -> dict:
 def changes(before: dict, after: dict) -> list[tuple[_Key, object]]:
     """The key paths whose value differs between two forms, with the new value (None: removed).
 
+    Parameters
+    ----------
+    before, after : dict
+        Two design forms.
+
+    Returns
+    -------
+    list of (tuple, object)
+
     Examples
     --------
     >>> changes({"a": 1, "t": {"b": 2, "c": 3}}, {"a": 1, "t": {"b": 5}})
@@ -108,6 +117,15 @@ def edited_toml(text: str, before: dict, after: dict, *, src_dir: str | os.PathL
     -------
     str
         The same text but for the changed values (and removed keys); comments kept.
+
+    Examples
+    --------
+    >>> text = 'name = "demo"  # kept\\n[tube]\\nouter_radius_mm = 1.5\\n'
+    >>> print(edited_toml(text, {"name": "demo", "tube": {"outer_radius_mm": 1.5}},
+    ...                   {"name": "demo", "tube": {"outer_radius_mm": 1.6}}), end="")
+    name = "demo"  # kept
+    [tube]
+    outer_radius_mm = 1.6
     """
     import tomlkit
 
@@ -127,6 +145,13 @@ def edited_toml(text: str, before: dict, after: dict, *, src_dir: str | os.PathL
 def moved_references(doc, src_dir: str | os.PathLike, dst_dir: str | os.PathLike) -> None:
     """Point the relative file references of a design file's ``doc`` (actuator ``path = "FILE.svg#id"``,
     ``model.calibration`` files) from ``dst_dir`` at the files they named from ``src_dir`` (in place).
+
+    Parameters
+    ----------
+    doc : mapping
+        A design file's parsed TOML (a dict or a tomlkit document), changed in place.
+    src_dir, dst_dir : str or os.PathLike
+        The folder the file was read from and the one it is written to.
 
     Examples
     --------

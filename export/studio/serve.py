@@ -33,13 +33,43 @@ HOST = "127.0.0.1"
 
 
 def studio_url(port: int, token: str) -> str:
-    """The address the studio prints (and opens)."""
+    """The address the studio prints (and opens).
+
+    Parameters
+    ----------
+    port : int
+        The port it listens on.
+    token : str
+        The secret every request carries.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> studio_url(8765, "abc")
+    'http://127.0.0.1:8765/?token=abc'
+    """
     return f"http://{HOST}:{port}/?token={token}"
 
 
 def check_port(port: object) -> int:
     """``port`` if it is an integer in [0, 65535] (0: any free port); checked before anything starts.
 
+    Parameters
+    ----------
+    port : object
+        The port given.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> check_port(8765)
+    8765
     >>> check_port(-1)
     Traceback (most recent call last):
     ...
@@ -51,7 +81,30 @@ def check_port(port: object) -> int:
 
 
 def listen(port: int) -> socket.socket:
-    """A socket bound to ``127.0.0.1:port`` (0: a free port); a one-line error if it cannot be."""
+    """A socket bound to ``127.0.0.1:port`` (0: a free port); a one-line error if it cannot be.
+
+    Parameters
+    ----------
+    port : int
+        In [0, 65535].
+
+    Returns
+    -------
+    socket.socket
+        Listening.
+
+    Raises
+    ------
+    ParameterError
+        A bad port, or one that cannot be bound.
+
+    Examples
+    --------
+    >>> sock = listen(0)
+    >>> sock.getsockname()[0], sock.getsockname()[1] > 0
+    ('127.0.0.1', True)
+    >>> sock.close()
+    """
     check_port(port)
     # proto IPPROTO_TCP: asyncio then sets TCP_NODELAY on each connection (with proto 0 it does not,
     # and a response written in two parts waits ~40 ms for the browser's delayed ACK)
@@ -70,6 +123,25 @@ def launcher_page(url: str, folder: str | os.PathLike) -> Path:
 
     The browser is started with this file's name, not the address: a command line is visible
     to every user of the machine (``ps``), the token must not be.
+
+    Parameters
+    ----------
+    url : str
+        The studio's address (with its token).
+    folder : str or os.PathLike
+        Where the page is made (a private temporary folder).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     page = launcher_page("http://127.0.0.1:8765/?token=abc", tmp)
+    ...     page.suffix, oct(os.stat(page).st_mode & 0o777), "refresh" in page.read_text()
+    ('.html', '0o600', True)
     """
     fd, name = tempfile.mkstemp(prefix="embroact-studio-", suffix=".html", dir=folder)  # mode 0600
     with os.fdopen(fd, "w", encoding="utf-8") as fh:
@@ -102,7 +174,43 @@ def _server(studio, port: int):
 
 
 def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
-    """Serve ``studio`` until interrupted; print its address first. Returns 0."""
+    """Serve ``studio`` until interrupted; print its address first. Returns 0.
+
+    Parameters
+    ----------
+    studio : Studio
+        The session to serve.
+    port : int, optional
+        The port (0: a free one).
+    browser : bool, optional
+        Open the page in the browser.
+    stream : file, optional
+        Where the address is printed (default: stdout).
+
+    Returns
+    -------
+    int
+        0, once stopped (Ctrl-C or SIGTERM).
+
+    Raises
+    ------
+    ParameterError
+        A bad port, or one that cannot be bound: before anything is served.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.export.studio.session import Studio
+    >>> out = tempfile.TemporaryDirectory()
+    >>> studio = Studio(default_design(), out.name, (), None)
+    >>> try:
+    ...     serve(studio, port=-1)
+    ... except ValueError as exc:
+    ...     print(exc)
+    port must be an integer in [0, 65535], got -1
+    >>> out.cleanup()
+    """
     server, sock, url = _server(studio, port)
     stream = sys.stdout if stream is None else stream
     print(f"embroact studio: {url}\nwrites into {studio.out_dir}; Ctrl-C stops it", file=stream, flush=True)
@@ -119,7 +227,40 @@ def serve(studio, *, port: int = 0, browser: bool = True, stream=None) -> int:
 
 @contextlib.contextmanager
 def background(studio, *, port: int = 0, timeout_s: float = 20.0):
-    """Serve ``studio`` from a thread while the block runs (tests, benchmarks, screenshots); yields the address."""
+    """Serve ``studio`` from a thread while the block runs (tests, benchmarks, screenshots); yields the address.
+
+    Parameters
+    ----------
+    studio : Studio
+        The session to serve.
+    port : int, optional
+        The port (0: a free one).
+    timeout_s : float, optional
+        Longest wait for the server to start, and to stop [s].
+
+    Yields
+    ------
+    str
+        The studio's address, with its token.
+
+    Raises
+    ------
+    RuntimeError
+        The server did not start within ``timeout_s``.
+
+    Examples
+    --------
+    >>> import urllib.request
+    >>> import tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.export.studio.session import Studio
+    >>> out = tempfile.TemporaryDirectory()
+    >>> studio = Studio(default_design(), out.name, (), None)
+    >>> with background(studio) as url:
+    ...     urllib.request.urlopen(url).read()[:15]
+    b'<!DOCTYPE html>'
+    >>> out.cleanup()
+    """
     server, sock, url = _server(studio, port)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     thread.start()
