@@ -12,14 +12,21 @@ up at its coordinate from the other coupons of its pattern, as the profile inter
 an end of the range the neighbours' trend carried on, marked ``extrapolated``), and the RMSE
 of that prediction against its measured readings is its leave-one-out error [deg].
 
-Disagreement: a coupon is flagged when its leave-one-out error exceeds
-:data:`DISAGREE_FACTOR` times its pattern's measurement noise (the median RMSE of the
-coupons' own fits; at least :data:`DISAGREE_FLOOR_DEG`) and the leave-one-out errors of its
-neighbours along the coordinate (one bad coupon spoils its neighbours' predictions too, by
-about half as much, since they are interpolated through it). It disagrees with the rest (a
-bad sample, a wrong label, a misread photo), or the coordinate is sampled too coarsely
-there; either way, sew another one there. An end coupon (predicted by extrapolation through
-its neighbours) is not flagged when an interior coupon of its pattern is.
+Disagreement: a pattern's coupons disagree when a leave-one-out error exceeds
+:data:`DISAGREE_FACTOR` times the pattern's measurement noise (the median RMSE of the
+coupons' own fits; at least :data:`DISAGREE_FLOOR_DEG`). Which coupon is to blame is not
+the one with the largest error: one bad coupon spoils its neighbours' predictions too, and
+an end coupon, predicted by extrapolating through a bad neighbour, reads about twice the
+bad coupon's own error. So each coupon is deleted in turn and the others are predicted
+again without it as well (leave two out); the coupon whose deletion leaves the smallest
+worst error is flagged when its own error is over the limit and its deletion at least
+halves the worst error (:data:`DISAGREE_EXPLAINED`): it explains the disagreement. The
+search repeats on the rest while four or more coupons remain. A disagreement no single
+coupon explains (three coupons of a pattern cannot tell which one is off: a trend through
+two of them always predicts the third equally badly) is reported for the pattern
+(:attr:`Profile.unexplained`). A flagged coupon disagrees with the rest (a bad sample, a
+wrong label, a misread photo), or the coordinate is sampled too coarsely there; either way,
+sew another one there.
 
 Examples
 --------
@@ -38,11 +45,19 @@ Examples
 [4.0, 2.7, 2.0]
 >>> prof.calibration.name, len(prof.calibration.points), prof.loo[1].flagged
 ('demo', 3, False)
+
+Three coupons of a pattern show a disagreement (G is not linear in the width here) but cannot
+tell which coupon is off:
+
+>>> [pattern for pattern, worst_deg in prof.unexplained], prof.loo[0].rmse_deg > 10 * prof.loo[0].expected_deg
+(['zigzag'], True)
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -52,13 +67,15 @@ from .derived import DerivedGeometry
 from .fit import FitResult, fit_design
 from .markers import MarkerLayout, reading_deg
 
-__all__ = ["DISAGREE_FACTOR", "DISAGREE_FLOOR_DEG", "CouponData", "CouponFit", "LeaveOneOut", "Profile",
+__all__ = ["DISAGREE_EXPLAINED", "DISAGREE_FACTOR", "DISAGREE_FLOOR_DEG", "CouponData", "CouponFit", "LeaveOneOut", "Profile",
            "fit_profile", "predicted_reading_deg"]
 
 #: A coupon disagrees when its leave-one-out error exceeds this many times its pattern's median ...
 DISAGREE_FACTOR = 3.0
 #: ... and this many degrees.
 DISAGREE_FLOOR_DEG = 2.0
+#: A coupon explains a disagreement when deleting it leaves at most this fraction of the worst error.
+DISAGREE_EXPLAINED = 0.5
 
 
 @dataclass(frozen=True, slots=True)
@@ -136,7 +153,9 @@ class LeaveOneOut:
     extrapolated : bool
         It lies outside the others' range.
     flagged : bool
-        Its error stands out from the others' (module docstring).
+        It explains its pattern's disagreement (module docstring).
+    expected_deg : float or None
+        The RMSE the measurement noise and the others' fit uncertainty explain [deg].
 
     Examples
     --------
@@ -150,6 +169,7 @@ class LeaveOneOut:
     rmse_deg: float | None  # None: fewer than 2 other coupons of its pattern
     extrapolated: bool
     flagged: bool = False
+    expected_deg: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -164,18 +184,22 @@ class Profile:
         Per coupon.
     loo : tuple of LeaveOneOut
         Per coupon.
+    unexplained : tuple of (str, float)
+        Patterns whose coupons disagree without a coupon that explains it, with their worst
+        leave-one-out error [deg] (module docstring).
 
     Examples
     --------
     See :func:`fit_profile`.
 
     >>> [f.name for f in Profile.__dataclass_fields__.values()]
-    ['calibration', 'fits', 'loo']
+    ['calibration', 'fits', 'loo', 'unexplained']
     """
 
     calibration: CalibrationSet
     fits: tuple[CouponFit, ...]
     loo: tuple[LeaveOneOut, ...]
+    unexplained: tuple[tuple[str, float], ...] = ()
 
 
 def predicted_reading_deg(derived: DerivedGeometry, g_mpa: float, p0_kpa: float, pressure_kpa,
@@ -274,46 +298,82 @@ def fit_profile(coupons, *, layout: MarkerLayout | None, name: str, tube=None, d
             raise type(exc)(f"coupon {c.name!r}: {exc}") from None
         fits.append(CouponFit(c.name, c.derived, res))
     kw = {"description": description, "materials": materials, "tube": tube, "tube_law": tube_law, "layout": layout}
-    full = _set(name, fits, **kw)
+
+    patterns = [c.derived.pattern for c in coupons]
+    noise = {pat: float(np.median([r.rmse_deg for f, q in zip(fits, patterns) if q == pat for r in f.results]))
+             for pat in set(patterns)}
+
+    def error(k: int, others) -> tuple[float, bool, float] | None:
+        return _prediction_error(coupons[k], [fits[j] for j in others], noise[patterns[k]], name, kw)
+
     loo = []
-    for k, (c, f) in enumerate(zip(coupons, fits)):
-        others = [g for j, g in enumerate(fits) if j != k and g.derived.pattern == c.derived.pattern]
-        axis, coord = _coordinate(c.derived)
-        if len(others) < 2:
-            loo.append(LeaveOneOut(c.name, c.derived.pattern, coord, None, False))
+    for k, c in enumerate(coupons):
+        got = error(k, [j for j in range(len(coupons)) if j != k and patterns[j] == patterns[k]])
+        rmse, extrap, expected = got or (None, False, None)
+        loo.append(LeaveOneOut(c.name, patterns[k], _coordinate(c.derived)[1], rmse, extrap, False, expected))
+    flagged, unexplained = _flag(loo, error)
+    return Profile(_set(name, fits, **kw), tuple(fits),
+                   tuple(dataclasses.replace(e, flagged=k in flagged) for k, e in enumerate(loo)), unexplained)
+
+
+def _prediction_error(c: CouponData, others: list[CouponFit], noise_deg: float, name: str,
+                      kw: dict) -> tuple[float, bool, float] | None:
+    """(RMSE [deg], extrapolated, expected RMSE [deg]) of ``c``'s readings predicted from the set of
+    ``others``, None below two; the expected RMSE adds the predicted values' band, propagated from
+    the others' covariances, to the measurement noise ``noise_deg``."""
+    from .curve import ActuatorModel
+    from .uncertainty import theta_band
+
+    if len(others) < 2:
+        return None
+    axis, _ = _coordinate(c.derived)
+    cset = _set(name, others, **kw)
+    sq, band_sq, n, extrap = 0.0, 0.0, 0, False
+    for branch in sorted(set(c.branch)):
+        mask = np.array([b == branch for b in c.branch])
+        where: dict[str, Any] = {"width_mm": c.derived.requested_width_mm, "name": name, "sets": [cset], "branch": branch,
+                 "angle_deg": c.derived.requested_angle_deg if axis == "angle_deg" else None}
+        # linear between the others: a spoiled coupon then moves only its own intervals
+        try:  # an end coupon: the others' trend carried on (clamped where it leaves the model's domain)
+            cal = lookup(c.derived.pattern, extrapolation="linear", interpolation="linear", **where)
+        except ModelDomainError:
+            cal = lookup(c.derived.pattern, interpolation="linear", **where)
+        extrap = extrap or cal.extrapolated
+        p = c.pressure_kpa[mask]
+        pred = predicted_reading_deg(c.derived, cal.g_mpa, cal.p0_kpa, p, kw["layout"])
+        sq += float(np.sum((pred - c.reading_deg[mask]) ** 2))
+        n += int(mask.sum())
+        if cal.covariance:
+            b = theta_band(ActuatorModel.from_derived(c.derived, g_mpa=cal.g_mpa, p0_kpa=cal.p0_kpa), p, cal.fitted,
+                           cal.covariance, measurement=kw["layout"])
+            band_sq += float(np.sum((b.theta_sd_deg if b.reading_sd_deg is None else b.reading_sd_deg) ** 2))
+    return math.sqrt(sq / n), extrap, math.sqrt(noise_deg**2 + band_sq / n)
+
+
+def _flag(loo: list[LeaveOneOut], error) -> tuple[set[int], tuple[tuple[str, float], ...]]:
+    """The coupons (indices) that explain their pattern's disagreement, and the patterns that disagree
+    without one, with their worst error [deg] (module docstring); ``error(k, others)`` predicts coupon k."""
+    flagged: set[int] = set()
+    unexplained = []
+    for pattern in dict.fromkeys(e.pattern for e in loo):
+        seen = {k: (e.rmse_deg, e.expected_deg) for k, e in enumerate(loo)
+                if e.pattern == pattern and e.rmse_deg is not None and e.expected_deg is not None}
+        excess = {k: _excess(*v) for k, v in seen.items()}
+        if not excess or max(excess.values()) <= DISAGREE_FACTOR:
             continue
-        cset = _set(name, others, **kw)
-        sq, n, extrap = 0.0, 0, False
-        for branch in sorted(set(c.branch)):
-            mask = np.array([b == branch for b in c.branch])
-            where = {"width_mm": c.derived.requested_width_mm, "name": name, "sets": [cset], "branch": branch,
-                     "angle_deg": c.derived.requested_angle_deg if axis == "angle_deg" else None}
-            # linear between the others: a spoiled coupon then moves only its own intervals (the flag's premise)
-            try:  # an end coupon: the others' trend carried on (clamped where it leaves the model's domain)
-                cal = lookup(c.derived.pattern, extrapolation="linear", interpolation="linear", **where)
-            except ModelDomainError:
-                cal = lookup(c.derived.pattern, interpolation="linear", **where)
-            extrap = extrap or cal.extrapolated
-            pred = predicted_reading_deg(c.derived, cal.g_mpa, cal.p0_kpa, c.pressure_kpa[mask], layout)
-            sq += float(np.sum((pred - c.reading_deg[mask]) ** 2))
-            n += int(mask.sum())
-        loo.append(LeaveOneOut(c.name, c.derived.pattern, coord, math.sqrt(sq / n), extrap))
-    return Profile(full, tuple(fits), tuple(_flag(loo, fits)))
+        worst = max(excess.values())
+        without: dict[int, float] = {}
+        for k in seen if len(seen) >= 4 else ():
+            again = [error(j, [i for i in seen if i not in (j, k)]) for j in seen if j != k]
+            without[k] = max(_excess(r[0], r[2]) for r in again if r is not None)
+        best = min(without, key=lambda i: without[i], default=None)
+        if best is None or excess[best] <= DISAGREE_FACTOR or without[best] > DISAGREE_EXPLAINED * worst:
+            unexplained.append((pattern, max(v[0] for v in seen.values())))
+        else:
+            flagged.add(best)
+    return flagged, tuple(unexplained)
 
 
-def _flag(loo: list[LeaveOneOut], fits: list[CouponFit]) -> list[LeaveOneOut]:
-    """``loo`` with the disagreeing coupons flagged (module docstring)."""
-    out = []
-    for k, e in enumerate(loo):
-        same = sorted((o.coordinate, j) for j, o in enumerate(loo) if o.pattern == e.pattern)
-        noise = float(np.median([r.rmse_deg for _, j in same for r in fits[j].results]))
-        pos = [j for _, j in same].index(k)
-        neighbours = [same[i][1] for i in (pos - 1, pos + 1) if 0 <= i < len(same)]
-        err = e.rmse_deg
-        bad = (err is not None and err > max(DISAGREE_FACTOR * noise, DISAGREE_FLOOR_DEG)
-               and all(err > (loo[j].rmse_deg or 0.0) for j in neighbours))
-        out.append(LeaveOneOut(e.name, e.pattern, e.coordinate, e.rmse_deg, e.extrapolated, bad))
-    # an end coupon is extrapolated through its neighbours: when an interior one disagrees, it is the cause
-    inner = {e.pattern for e in out if e.flagged and not e.extrapolated}
-    return [LeaveOneOut(e.name, e.pattern, e.coordinate, e.rmse_deg, e.extrapolated, False)
-            if e.flagged and e.extrapolated and e.pattern in inner else e for e in out]
+def _excess(rmse_deg: float, expected_deg: float) -> float:
+    """How many times its expected size a prediction error is, 0 below :data:`DISAGREE_FLOOR_DEG`."""
+    return rmse_deg / expected_deg if rmse_deg > DISAGREE_FLOOR_DEG else 0.0

@@ -114,12 +114,32 @@ def test_round_recovers_the_known_profile(coupon, tmp_path, capsys):
     assert math.isfinite(g6)
 
 
-def test_a_disagreeing_coupon_is_flagged(coupon, capsys):
-    sheet, _ = _simulate(coupon, seed=8, spoil="03 zigzag w7.0")
+@pytest.mark.parametrize("spoil", ["03 zigzag w7.0", "01 zigzag w5.0", "02 zigzag w6.0", "08 cross a26.6 w7.0",
+                                   "09 cross a38.7 w7.0", "10 cross a45.0 w7.0", "11 cross a52.4 w7.0"])
+def test_a_disagreeing_coupon_is_flagged(coupon, capsys, spoil):
+    """One coupon's G 1.8 times the profile's: it is the one flagged, not its neighbour, whether it is
+    interior, next to an end (whose extrapolation through it reads twice its error), at an end, or next
+    to the cross pattern's neutral angle (33.4 deg, where the known profile has a kink)."""
+    sheet, _ = _simulate(coupon, seed=8, spoil=spoil)
     assert main(["fit", "--sheet", str(sheet)]) == 0
     out = capsys.readouterr().out
     flagged = [line for line in out.splitlines() if line.startswith("disagrees:")]
-    assert len(flagged) == 1 and "03 zigzag w7.0" in flagged[0]
+    assert len(flagged) == 1 and spoil in flagged[0], out
+    assert "unresolved:" not in out
+
+
+def test_three_coupons_cannot_tell_which_one_disagrees(tmp_path, capsys):
+    """A trend through two of three coupons predicts the third as badly whichever is off: the pattern is
+    reported as disagreeing, no coupon is blamed."""
+    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--zigzag-count", "3", "--out", str(tmp_path)]) == 0
+    capsys.readouterr()
+    sheet, truth = _simulate(tmp_path, seed=3, spoil="02 zigzag w7.0")
+    assert main(["fit", "--sheet", str(sheet), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert not any(c["flagged"] for c in doc["coupons"]) and [u["pattern"] for u in doc["unexplained"]] == ["zigzag"]
+    assert main(["fit", "--sheet", str(sheet)]) == 0
+    (line,) = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("unresolved:")]
+    assert "zigzag" in line and "at least 4" in line
 
 
 #: Seeds of the band-coverage round, and the probability that a normal deviate lies within 1 sigma.

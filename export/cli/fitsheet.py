@@ -109,8 +109,9 @@ def run_sheet(args) -> int:
         doc = {"calibration": {"name": name, "path": args.output, "points": len(prof.calibration.points),
                                "marker_layout": layout.as_dict()},
                "coupons": [{"name": f.name, "fits": [r.as_dict() for r in f.results],
-                            "leave_one_out_rmse_deg": e.rmse_deg, "extrapolated": e.extrapolated,
-                            "flagged": e.flagged} for f, e in zip(prof.fits, prof.loo)]}
+                            "leave_one_out_rmse_deg": e.rmse_deg, "leave_one_out_expected_deg": e.expected_deg,
+                            "extrapolated": e.extrapolated, "flagged": e.flagged} for f, e in zip(prof.fits, prof.loo)],
+               "unexplained": [{"pattern": p, "worst_leave_one_out_rmse_deg": v} for p, v in prof.unexplained]}
         json.dump(doc, sys.stdout, indent=1, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")
         return 0
@@ -125,8 +126,13 @@ def run_sheet(args) -> int:
           "* extrapolated (an end of the range)")
     for e in flagged:
         print(f"disagrees: {e.name}: leave-one-out error {e.rmse_deg:.2f} deg, over {DISAGREE_FACTOR:g} times the "
-              "measurement noise and over its neighbours' (a bad sample, a wrong label or a misread photo, or the "
+              f"{e.expected_deg:.2f} deg that the measurement noise and the other coupons' uncertainty explain, and "
+              "without it the others predict each other (a bad sample, a wrong label or a misread photo, or the "
               "coordinate sampled too coarsely there: sew another one there)")
+    for pattern, worst in prof.unexplained:
+        print(f"unresolved: the {pattern} coupons disagree (leave-one-out errors up to {worst:.2f} deg, over "
+              f"{DISAGREE_FACTOR:g} times what noise and their uncertainty explain) and no single coupon explains it: "
+              f"sew more {pattern} coupons (at least 4 tell which one is off)")
     if args.output:
         print(f"wrote calibration set {name!r} ({len(prof.calibration.points)} point(s)) to {args.output}")
     return 0
