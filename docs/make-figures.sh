@@ -10,7 +10,7 @@ cp "$tmp"/preview.svg "$tmp"/bend.svg "$tmp"/shape.svg "$tmp"/shape3d.svg docs/i
 embroact preview stitches examples/paper_cross.toml -o docs/img/cross_preview.svg > /dev/null
 embroact preview stitches examples/three_actuators.toml -o docs/img/three_preview.svg > /dev/null
 embroact design --target-shape examples/data/target_hook.csv --at-kpa 250 --write-nearest -o examples/designed_hook.toml \
-    --svg docs/img/design_shape.svg > /dev/null || [ $? -eq 5 ]  # not met within 0.5 mm: the nearest
+    --svg docs/img/design_shape.svg > /dev/null
 embroact preview stitches examples/designed_hook.toml -o docs/img/design_stitches.svg > /dev/null
 embroact preview bend examples/designed_hook.toml -o docs/img/design_bend.svg > /dev/null
 embroact preview shape examples/designed_hook.toml -o docs/img/design_side.svg > /dev/null

@@ -1749,6 +1749,42 @@ def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: Model
     return Design(name, tube, MachineSettings(), operation, (spec,))
 
 
+def _rmse_mm(shape, sj, xy) -> float:
+    """RMSE [mm] of a predicted shape against the resampled target."""
+    return float(np.sqrt(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))))
+
+
+def _split_stepped(model: _Model, seg_spaces, x, lengths):
+    """Each segment whose stepped parameter (a zigzag width) lies between two grid values, as two segments of
+    those values whose bends add up to its own: ``(spaces, x, lengths, index)``, ``index`` the segment each
+    new one comes from.
+
+    A segment bends by its curvature times its bent length, so the grid widths ``a`` and ``b`` around ``x``
+    share its length ``L`` as ``L_a kappa_a + L_b kappa_b = L kappa_x``; a segment whose share would be
+    shorter than ``_MIN_SEGMENT_MM`` (or than the pattern's shortest) keeps one segment.
+    """
+    out_sp, out_x, out_len, index = [], [], [], []
+    for i, (sp, v, L) in enumerate(zip(seg_spaces, x, lengths)):
+        around = sp.sewable(float(v))
+        parts = [(float(v), float(L))]
+        if sp.grid_step > 0.0 and len(around) == 2:
+            params = [sp.params(u) for u in (around[0], around[1], float(v))]
+            legs = [_legs(q, float(L))[1] for q in params]
+            theta, _ = model.theta(params, legs)
+            ka, kb, kv = (t / l0 for t, l0 in zip(theta, legs))
+            if abs(ka - kb) > 1e-12:
+                la = round(float(L) * (kv - kb) / (ka - kb), 2)
+                shortest = max(_MIN_SEGMENT_MM, *(pattern_kind(sp.pattern).min_length_mm(q) for q in params[:2]))
+                if shortest <= la <= float(L) - shortest:
+                    parts = [(around[0], la), (around[1], round(float(L) - la, 2))]
+        for u, length_k in parts:
+            out_sp.append(sp)
+            out_x.append(u)
+            out_len.append(length_k)
+            index.append(i)
+    return out_sp, np.array(out_x), np.array(out_len), tuple(index)
+
+
 def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, progress=None, *,
              operation: OperationSettings):
     """The sewable design nearest ``x`` that fits the target best on the analysed (sewn) design.
@@ -1842,8 +1878,16 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
             best = (0.0, x)
             break
     x = np.round(best[1] if best is not None else x, 4)
-    x, lengths, (design, a, shape, theta) = _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p,
-                                                     progress, operation=operation)
+    grid = dict(name=name, tube=tube, settings=settings, sets=sets, p=p, progress=progress, operation=operation)
+    found = _on_grid(seg_spaces, x, lengths, sj, xy, **grid)
+    if _rmse_mm(found[2][2], sj, xy) > tolerance_mm:  # not met: mix the two grid widths around each width wanted
+        split = _split_stepped(model, seg_spaces, x, lengths)
+        if len(split[0]) > len(seg_spaces):
+            mixed = _on_grid(split[0], split[1], split[2], sj, xy, **grid)
+            if _rmse_mm(mixed[2][2], sj, xy) < _rmse_mm(found[2][2], sj, xy):
+                seg_spaces, found = split[0], mixed
+                kappa, chosen = np.asarray(kappa)[list(split[3])], [chosen[i] for i in split[3]]
+    x, lengths, (design, a, shape, theta) = found
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
     act = a.actuators[0]
     seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]
@@ -1861,7 +1905,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
                      for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[3] for c in chosen]))
     rmse = float(np.sqrt(np.mean(dev**2)))
     # a segment whose curvature alone is out of reach may still leave the whole line close: the sewn line decides
-    reached = not bad and not errors and rmse <= tolerance_mm and (not notes or rmse <= _SHAPE_GOOD_MM)
+    reached = not bad and not errors and rmse <= tolerance_mm
     why = []
     if notes:
         why.append("; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3]))
@@ -1874,7 +1918,9 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
                  for sp in spaces.values() if sp.grid_step for name, _, unit in [sp.parameter.rpartition("_")]]
         why.append(f"the sewable designs ({', '.join(steps) or 'on the machine grid'}) leave an RMSE above "
                    f"{tolerance_mm:g} mm")
-    statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm" if reached else
+    near = "; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3])
+    statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm"
+                 + (f" ({near}; the whole sewn line is within {tolerance_mm:g} mm)" if near else "") if reached else
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
     return ShapeResult(design, out_segs, p, xy, pred, rmse, float(dev.max()), float(dev[-1]), float(angle_err),
                        float(rmse_fit), reached, statement, tuple(sorted({f.code for f in findings})),

@@ -69,15 +69,19 @@ RNG = np.random.default_rng(23)
 
 @pytest.mark.parametrize("length_tolerance_mm", [0.0, 5.0])
 @pytest.mark.parametrize("bend, pressure, pattern", TARGETS)
-def test_reported_bend_is_the_decoded_files(bend, pressure, pattern, length_tolerance_mm):
+def test_reported_bend_is_the_decoded_files(bend, pressure, pattern, length_tolerance_mm, tmp_path, capsys):
     """All 30 seeded targets, with the length kept and with 5 mm of length allowed: the reported bend is the one
     of the decoded DST; met within the tolerance, or the answer names the nearest design and a pressure at which
-    that design reaches the target exactly."""
+    that design reaches the target exactly; `check` on the written design gives the findings the answer lists."""
     try:
         r = design_bend(bend, pressure, pattern=pattern, length_tolerance_mm=length_tolerance_mm)
     except Exception as exc:  # no valid sewable design of this pattern at all: a one-line refusal
         assert "no valid sewable design" in str(exc)
         return
+    from embroact.export.files.designfile import save_design
+
+    save_design(r.best.design, tmp_path / "d.toml")
+    assert list(r.best.findings) == _check_findings(capsys, tmp_path / "d.toml")
     theta, m = sewn_bend_deg(r.best.design, pressure)
     assert theta == pytest.approx(r.best.theta_deg, abs=1e-6)
     assert abs(r.best.design.actuators[0].centerline.length_mm - 100.0) <= length_tolerance_mm + 1e-9
