@@ -39,6 +39,17 @@ def layer(name: str) -> dict[str, str]:
     """Attributes of a group that Inkscape shows as a layer named ``name`` (its id too):
     ``dwg.g(**layer("tubes"))`` in a drawing made with ``**INKSCAPE``; other readers see a plain ``<g>``.
 
+    Parameters
+    ----------
+    name : str
+        The layer's name (an XML id, :func:`svg_id`).
+
+    Returns
+    -------
+    dict of str to str
+
+    Examples
+    --------
     >>> layer("tubes")
     {'id': 'tubes', 'inkscape:groupmode': 'layer', 'inkscape:label': 'tubes'}
     """
@@ -48,6 +59,18 @@ def layer(name: str) -> dict[str, str]:
 def svg_id(text: str) -> str:
     """``text`` as an XML id (letters, digits, ``-``, ``_``, ``.``; others become ``_``).
 
+    Parameters
+    ----------
+    text : str
+        Any name.
+
+    Returns
+    -------
+    str
+        Starting with a letter or ``_``.
+
+    Examples
+    --------
     >>> svg_id("S-curve 2"), svg_id("1st")
     ('S-curve_2', '_1st')
     """
@@ -73,19 +96,71 @@ def _points(points) -> str:
 
 
 class Element(ET.Element):
-    """An ElementTree element that can add children and write itself."""
+    """An ElementTree element that can add children and write itself.
+
+    Examples
+    --------
+    >>> dwg = Drawing(size=("10mm", "10mm"))
+    >>> g = dwg.g(id="marks")
+    >>> _ = g.add(dwg.circle((0, 0), 1))
+    >>> g.tostring()
+    '<g id="marks"><circle cx="0" cy="0" r="1" /></g>'
+    """
 
     def add(self, element: Element) -> Element:
-        """Append ``element`` as the last child and return it."""
+        """Append ``element`` as the last child and return it.
+
+        Parameters
+        ----------
+        element : Element
+            The child.
+
+        Returns
+        -------
+        Element
+            ``element``.
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("10mm", "10mm"))
+        >>> g = dwg.g()
+        >>> g.add(dwg.circle((0, 0), 1)) is g[0]
+        True
+        """
         self.append(element)
         return element
 
     def set_desc(self, title: str) -> None:
-        """Insert a ``<title>`` (a tooltip in browsers) as the first child."""
+        """Insert a ``<title>`` (a tooltip in browsers) as the first child.
+
+        Parameters
+        ----------
+        title : str
+            The tooltip.
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("10mm", "10mm"))
+        >>> g = dwg.g()
+        >>> _ = g.add(dwg.circle((0, 0), 1))
+        >>> g.set_desc("needle point 7")
+        >>> g.tostring()
+        '<g><title>needle point 7</title><circle cx="0" cy="0" r="1" /></g>'
+        """
         self.insert(0, _element("title", {}, title))
 
     def tostring(self) -> str:
-        """The element and its children as SVG text."""
+        """The element and its children as SVG text.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Drawing(size=("10mm", "10mm")).path("M 0 0 L 3 4").tostring()
+        '<path d="M 0 0 L 3 4" />'
+        """
         return ET.tostring(self, encoding="unicode")
 
 
@@ -99,12 +174,23 @@ def _element(tag: str, extra: dict, text: str | None = None) -> Element:
 class Drawing:
     """An ``<svg>`` document of ``size`` (width, height, with units) and the shapes' factory.
 
+    Each factory method (:meth:`g`, :meth:`clipPath`, :meth:`rect`, :meth:`circle`, :meth:`line`,
+    :meth:`polyline`, :meth:`polygon`, :meth:`path`, :meth:`text`) makes one element; its
+    ``**extra`` keywords are attributes (``_`` for ``-``, a trailing ``_`` dropped, None left out).
+
     Parameters
     ----------
     size : (str, str)
         Width and height as written (``"120mm"``, ``"480"``).
     **extra
         Further attributes of ``<svg>`` (``viewBox``).
+
+    Examples
+    --------
+    >>> dwg = Drawing(size=("20mm", "10mm"), viewBox="0 0 20 10")
+    >>> _ = dwg.add(dwg.rect((0, 0), (4, 2), fill="red"))
+    >>> dwg.tostring().endswith('<defs /><rect fill="red" height="2" width="4" x="0" y="0" /></svg>')
+    True
     """
 
     def __init__(self, size, **extra) -> None:
@@ -114,36 +200,237 @@ class Drawing:
         self.defs = self.root.add(_element("defs", {}))
 
     def add(self, element: Element) -> Element:
-        """Append ``element`` to the document and return it."""
+        """Append ``element`` to the document and return it.
+
+        Parameters
+        ----------
+        element : Element
+            A top-level element.
+
+        Returns
+        -------
+        Element
+            ``element``.
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.add(dwg.g(id="z")).tostring()
+        '<g id="z" />'
+        """
         return self.root.add(element)
 
     def tostring(self) -> str:
-        """The document as SVG text."""
+        """The document as SVG text.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.tostring()[:40]
+        '<svg baseProfile="full" height="10mm" ve'
+        """
         return self.root.tostring()
 
     def g(self, **extra) -> Element:
+        """A group ``<g>``.
+
+        Parameters
+        ----------
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.g(id="a", stroke_width=0.5).tostring()
+        '<g id="a" stroke-width="0.5" />'
+        """
         return _element("g", extra)
 
     def clipPath(self, **extra) -> Element:  # noqa: N802  (the SVG element's name)
+        """A ``<clipPath>`` (its children clip what names it).
+
+        Parameters
+        ----------
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.clipPath(id="c").tostring()
+        '<clipPath id="c" />'
+        """
         return _element("clipPath", extra)
 
     def rect(self, insert, size, **extra) -> Element:
+        """A rectangle ``<rect>``.
+
+        Parameters
+        ----------
+        insert : (float, float)
+            Top-left corner.
+        size : (float, float)
+            Width and height.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.rect((0, 0), (4, 2), fill="red").tostring()
+        '<rect fill="red" height="2" width="4" x="0" y="0" />'
+        """
         return _element("rect", {**extra, "x": insert[0], "y": insert[1], "width": size[0], "height": size[1]})
 
     def circle(self, center, r, **extra) -> Element:
+        """A circle ``<circle>``.
+
+        Parameters
+        ----------
+        center : (float, float)
+            Centre.
+        r : float
+            Radius.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.circle((5, 5), 1.5).tostring()
+        '<circle cx="5" cy="5" r="1.5" />'
+        """
         return _element("circle", {**extra, "cx": center[0], "cy": center[1], "r": r})
 
     def line(self, start, end, **extra) -> Element:
+        """A straight line ``<line>``.
+
+        Parameters
+        ----------
+        start, end : (float, float)
+            End points.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.line((0, 0), (3, 4), stroke="black").tostring()
+        '<line stroke="black" x1="0" x2="3" y1="0" y2="4" />'
+        """
         return _element("line", {**extra, "x1": start[0], "y1": start[1], "x2": end[0], "y2": end[1]})
 
     def polyline(self, points, **extra) -> Element:
+        """An open polyline ``<polyline>``.
+
+        Parameters
+        ----------
+        points : iterable of (float, float)
+            Vertices.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.polyline([(0, 0), (1, 2)], fill="none").tostring()
+        '<polyline fill="none" points="0,0 1,2" />'
+        """
         return _element("polyline", {**extra, "points": _points(points)})
 
     def polygon(self, points, **extra) -> Element:
+        """A closed polygon ``<polygon>``.
+
+        Parameters
+        ----------
+        points : iterable of (float, float)
+            Vertices.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.polygon([(0, 0), (1, 0), (0, 1)]).tostring()
+        '<polygon points="0,0 1,0 0,1" />'
+        """
         return _element("polygon", {**extra, "points": _points(points)})
 
     def path(self, d: str, **extra) -> Element:
+        """A ``<path>``.
+
+        Parameters
+        ----------
+        d : str
+            Path data.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.path("M 0 0 L 3 4").tostring()
+        '<path d="M 0 0 L 3 4" />'
+        """
         return _element("path", {**extra, "d": d})
 
     def text(self, text: str, insert, **extra) -> Element:
+        """A ``<text>``.
+
+        Parameters
+        ----------
+        text : str
+            The text (escaped when written).
+        insert : (float, float)
+            Its anchor.
+        **extra
+            Attributes (``stroke_width`` for ``stroke-width``, ``class_`` for ``class``).
+
+        Returns
+        -------
+        Element
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("20mm", "10mm"))
+        >>> dwg.text("A & B", insert=(1, 2), font_size=3).tostring()
+        '<text font-size="3" x="1" y="2">A &amp; B</text>'
+        """
         return _element("text", {**extra, "x": insert[0], "y": insert[1]}, str(text))
