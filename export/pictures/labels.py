@@ -44,7 +44,19 @@ _LABEL_WEIGHT, _FRAME_WEIGHT = 10_000, 100_000_000
 
 @dataclass(frozen=True, slots=True)
 class Box:
-    """An axis-aligned box (x0 <= x1, y0 <= y1; SVG user units, y down)."""
+    """An axis-aligned box (x0 <= x1, y0 <= y1; SVG user units, y down).
+
+    Attributes
+    ----------
+    x0, y0, x1, y1 : float
+        Left, top, right and bottom edge.
+
+    Examples
+    --------
+    >>> a, b = Box(0, 0, 10, 5), Box(10, 0, 20, 5)
+    >>> a.overlaps(b), a.union(b), a.grown(1.0)
+    (False, Box(x0=0, y0=0, x1=20, y1=5), Box(x0=-1.0, y0=-1.0, x1=11.0, y1=6.0))
+    """
 
     x0: float
     y0: float
@@ -52,25 +64,105 @@ class Box:
     y1: float
 
     def overlaps(self, other: "Box") -> bool:
-        """True when the two boxes share an area (touching edges do not count)."""
+        """True when the two boxes share an area (touching edges do not count).
+
+        Parameters
+        ----------
+        other : Box
+            Another box.
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> Box(0, 0, 10, 5).overlaps(Box(5, 2, 20, 9)), Box(0, 0, 10, 5).overlaps(Box(10, 0, 20, 5))
+        (True, False)
+        """
         return min(self.x1, other.x1) > max(self.x0, other.x0) and min(self.y1, other.y1) > max(self.y0, other.y0)
 
     def contains(self, other: "Box") -> bool:
-        """True when ``other`` lies inside this box (edges included)."""
+        """True when ``other`` lies inside this box (edges included).
+
+        Parameters
+        ----------
+        other : Box
+            Another box.
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> Box(0, 0, 10, 5).contains(Box(0, 0, 10, 5)), Box(0, 0, 10, 5).contains(Box(5, 2, 20, 9))
+        (True, False)
+        """
         return self.x0 <= other.x0 and self.y0 <= other.y0 and other.x1 <= self.x1 and other.y1 <= self.y1
 
     def grown(self, d: float) -> "Box":
-        """The box grown by ``d`` on every side."""
+        """The box grown by ``d`` on every side.
+
+        Parameters
+        ----------
+        d : float
+            The margin (negative: shrunk).
+
+        Returns
+        -------
+        Box
+
+        Examples
+        --------
+        >>> Box(0, 0, 10, 5).grown(0.5)
+        Box(x0=-0.5, y0=-0.5, x1=10.5, y1=5.5)
+        """
         return Box(self.x0 - d, self.y0 - d, self.x1 + d, self.y1 + d)
 
     def union(self, other: "Box") -> "Box":
-        """The least box holding both."""
+        """The least box holding both.
+
+        Parameters
+        ----------
+        other : Box
+            Another box.
+
+        Returns
+        -------
+        Box
+
+        Examples
+        --------
+        >>> Box(0, 0, 10, 5).union(Box(5, 2, 20, 9))
+        Box(x0=0, y0=0, x1=20, y1=9)
+        """
         return Box(min(self.x0, other.x0), min(self.y0, other.y0), max(self.x1, other.x1), max(self.y1, other.y1))
 
 
 @dataclass(frozen=True, slots=True)
 class Label:
-    """A placed label: write ``text`` at baseline point (``x``, ``y``) with ``text-anchor`` ``anchor``."""
+    """A placed label: write ``text`` at baseline point (``x``, ``y``) with ``text-anchor`` ``anchor``.
+
+    Attributes
+    ----------
+    text : str
+        The label.
+    x, y : float
+        Its baseline point.
+    anchor : str
+        ``"start"``, ``"middle"`` or ``"end"``.
+    box : Box
+        The box it covers.
+    collisions : int
+        The cost of its place (:meth:`Placer.collisions`; 0: clear of everything).
+
+    Examples
+    --------
+    >>> lab = Placer(Box(0, 0, 100, 50)).place("P0", (50, 25), 10.0, gap=2.0)
+    >>> lab.anchor, lab.collisions
+    ('start', 0)
+    """
 
     text: str
     x: float
@@ -82,6 +174,21 @@ class Label:
 
 def text_box(text: str, x: float, y: float, font_size: float, anchor: str = "start") -> Box:
     """The box of one line of ``text`` written at baseline point (``x``, ``y``).
+
+    Parameters
+    ----------
+    text : str
+        One line.
+    x, y : float
+        Its baseline point.
+    font_size : float
+        Font size (same units).
+    anchor : {"start", "middle", "end"}, optional
+        Its ``text-anchor``.
+
+    Returns
+    -------
+    Box
 
     Examples
     --------
@@ -126,6 +233,14 @@ class Placer:
         The room labels must stay in (the canvas or the plot box).
     margin : float
         Clearance kept around every obstacle box (same units).
+
+    Examples
+    --------
+    >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+    >>> placer.block_box(Box(40, 20, 60, 30))  # a mark
+    >>> lab = placer.place("P0", (50, 25), 10.0, gap=2.0)
+    >>> lab.box.overlaps(Box(40, 20, 60, 30)), lab.collisions, len(placer.labels)
+    (False, 0, 1)
     """
 
     def __init__(self, frame: Box, *, margin: float = 0.0) -> None:
@@ -136,11 +251,37 @@ class Placer:
         self.labels: list[Label] = []
 
     def block_box(self, box: Box) -> None:
-        """Keep labels off ``box`` (a mark, a legend, a title)."""
+        """Keep labels off ``box`` (a mark, a legend, a title).
+
+        Parameters
+        ----------
+        box : Box
+            The obstacle (grown by the margin).
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> placer.block_box(Box(40, 20, 60, 30))
+        >>> placer.collisions(Box(45, 22, 47, 24))
+        1
+        """
         self._boxes.append(box.grown(self.margin))
 
     def block_polyline(self, points) -> None:
-        """Keep labels off the polyline through ``points`` (n x 2, the picture's units)."""
+        """Keep labels off the polyline through ``points`` (n x 2, the picture's units).
+
+        Parameters
+        ----------
+        points : array_like (n, 2)
+            The polyline (one point: a dot).
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> placer.block_polyline([(0, 10), (100, 10)])
+        >>> placer.collisions(Box(5, 8, 15, 12)), placer.collisions(Box(5, 20, 15, 25))
+        (1, 0)
+        """
         pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         if len(pts) == 1:
             pts = np.vstack([pts, pts])
@@ -148,13 +289,43 @@ class Placer:
             self._segments.append(np.hstack([pts[:-1], pts[1:]]))
 
     def block_segments(self, segments) -> None:
-        """Keep labels off the segments (n x 4: x0, y0, x1, y1)."""
+        """Keep labels off the segments (n x 4: x0, y0, x1, y1).
+
+        Parameters
+        ----------
+        segments : array_like (n, 4)
+            Straight segments.
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> placer.block_segments([(0, 40, 100, 40), (50, 0, 50, 50)])
+        >>> placer.collisions(Box(45, 35, 55, 45))
+        2
+        """
         segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
         if len(segs):
             self._segments.append(segs)
 
     def collisions(self, box: Box) -> int:
-        """A cost of ``box``: obstacles it touches (boxes, segments), far more for a label or leaving the frame."""
+        """A cost of ``box``: obstacles it touches (boxes, segments), far more for a label or leaving the frame.
+
+        Parameters
+        ----------
+        box : Box
+            A candidate place.
+
+        Returns
+        -------
+        int
+            0: clear of everything and inside the frame.
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> placer.collisions(Box(0, 0, 5, 5)), placer.collisions(Box(-5, 0, 1, 1)) > 1000
+        (0, True)
+        """
         n = sum(box.overlaps(b) for b in self._boxes)
         n += _LABEL_WEIGHT * sum(box.overlaps(lab.box.grown(self.margin)) for lab in self.labels)
         grown = box.grown(self.margin)
@@ -185,6 +356,31 @@ class Placer:
 
         For a label that may sit anywhere along a mark (a P0 line): ``points`` are the spots
         along it, best first, each tried in ``directions`` at distance ``gap``.
+
+        Parameters
+        ----------
+        text : str
+            The label.
+        points : sequence of (float, float)
+            Spots along the mark, best first.
+        font_size : float
+            Font size.
+        gap : float
+            Distance between the spot and the label.
+        directions : sequence of (int, int), optional
+            Directions to try at each spot (y down).
+
+        Returns
+        -------
+        Label
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> placer.block_box(Box(0, 20, 40, 40))  # the first spot's sides are taken
+        >>> lab = placer.place_along("A1", [(10, 30), (80, 30)], 8.0, gap=2.0)
+        >>> lab.x > 80, lab.collisions
+        (True, 0)
         """
         for anchor_xy in points:
             for x, y, anchor in self._candidates(text, anchor_xy, font_size, gap, directions, rings=(1.0,)):
@@ -201,9 +397,11 @@ class Placer:
         Parameters
         ----------
         text : str
+            The label.
         anchor_xy : (float, float)
             The point labelled.
         font_size : float
+            Font size.
         gap : float
             Distance between the point and the nearest edge of the label.
         directions : sequence of (int, int)
@@ -212,6 +410,14 @@ class Placer:
         Returns
         -------
         Label
+            The best place found (its ``collisions`` > 0 when none is clear).
+
+        Examples
+        --------
+        >>> placer = Placer(Box(0, 0, 100, 50), margin=1.0)
+        >>> lab = placer.place("tip", (95, 25), 10.0, gap=2.0)  # no room on the right: left of the point
+        >>> lab.anchor, placer.frame.contains(lab.box)
+        ('end', True)
         """
         best: Label | None = None
         for x, y, anchor in self._candidates(text, anchor_xy, font_size, gap, directions):

@@ -45,6 +45,11 @@ class FittedTitle:
         One or more lines, top to bottom.
     font_px : float
         Font size [px].
+
+    Examples
+    --------
+    >>> fit_title("short", 200.0)
+    FittedTitle(lines=('short',), font_px=15.0)
     """
 
     lines: tuple[str, ...]
@@ -52,7 +57,24 @@ class FittedTitle:
 
 
 def text_width_px(text: str, font_px: float) -> float:
-    """Width [px] of ``text`` in bold Helvetica (or Arial) at ``font_px``."""
+    """Width [px] of ``text`` in bold Helvetica (or Arial) at ``font_px``.
+
+    Parameters
+    ----------
+    text : str
+        One line.
+    font_px : float
+        Font size [px].
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> text_width_px("MM", 10.0)
+    16.66
+    """
     units = 0
     for ch in text:
         o = ord(ch)
@@ -119,6 +141,11 @@ def fit_title(text: str, width_px: float, *, font_px: float = 15.0, small_px: fl
     Returns
     -------
     FittedTitle
+
+    Examples
+    --------
+    >>> fit_title("a fairly long title that will not fit on one line", 120.0)
+    FittedTitle(lines=('a fairly long title that', 'will not fit on one …'), font_px=12.0)
     """
     for size in (font_px, small_px):
         if text_width_px(text, size) <= width_px:
