@@ -135,6 +135,12 @@ class Series:
     operating_point : (float, float), optional
         The design's operating point (pressure [kPa], bend [deg]): the target a design was made
         for, drawn as a diamond.
+
+    Examples
+    --------
+    >>> s = Series("A1", [0.0, 100.0, 200.0], [0.0, 11.5, 102.9], status=("INFLATION", "BENDING", "COILED"), p0_kpa=85.0)
+    >>> s.status, s.drawn().tolist()
+    (('inflation', 'bending', 'coiled'), [True, True, False])
     """
 
     label: str
@@ -199,6 +205,34 @@ class Series:
         optional object with ``theta_low_deg`` and ``theta_high_deg`` at the curve's pressures
         (:class:`embroact.predict.uncertainty.Band`); ``operating_point`` the design's target
         (pressure_kpa, theta_deg).
+
+        Parameters
+        ----------
+        curve : Curve
+            A predicted curve.
+        label : str
+            Legend text.
+        p0_kpa : float or None, optional
+            P0 to mark [kPa].
+        measured : tuple of array_like, optional
+            (pressure_kpa, theta_deg) of measured points.
+        band : Band, optional
+            An uncertainty band at the curve's pressures.
+        operating_point : (float, float), optional
+            The design's target (pressure_kpa, theta_deg).
+
+        Returns
+        -------
+        Series
+
+        Examples
+        --------
+        >>> from embroact.predict.curve import ActuatorModel, curve
+        >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814, beta0_deg=0, outer_radius_mm=1.5,
+        ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
+        >>> s = Series.from_curve(curve(m, [0.0, 100.0, 200.0]), label="A1", p0_kpa=85.0)
+        >>> s.status, s.theta_deg.round(2).tolist()
+        (('inflation', 'bending', 'bending'), [0.0, 11.54, 102.93])
         """
         mp, mt = (None, None) if measured is None else measured
         lo, hi = (None, None) if band is None else (band.theta_low_deg, band.theta_high_deg)
@@ -207,13 +241,35 @@ class Series:
                    operating_point=operating_point)
 
     def drawn(self) -> np.ndarray:
-        """True where the angle is a state to draw as the curve (all points without statuses)."""
+        """True where the angle is a state to draw as the curve (all points without statuses).
+
+        Returns
+        -------
+        numpy.ndarray of bool
+
+        Examples
+        --------
+        >>> s = Series("A1", [0.0, 100.0, 200.0], [0.0, 11.5, 102.9], status=("INFLATION", "BENDING", "COILED"), p0_kpa=85.0)
+        >>> s.drawn().tolist(), Series("x", [0.0, 1.0], [0.0, 1.0]).drawn().tolist()
+        ([True, True, False], [True, True])
+        """
         if self.status is None:
             return np.ones(len(self.pressure_kpa), dtype=bool)
         return np.array([name in DRAWN_STATES for name in self.status], dtype=bool)
 
     def beyond_validity(self) -> np.ndarray:
-        """True where the angle is the formula's, past a validity limit."""
+        """True where the angle is the formula's, past a validity limit.
+
+        Returns
+        -------
+        numpy.ndarray of bool
+
+        Examples
+        --------
+        >>> s = Series("A1", [0.0, 100.0, 200.0], [0.0, 11.5, 102.9], status=("INFLATION", "BENDING", "COILED"), p0_kpa=85.0)
+        >>> s.beyond_validity().tolist()
+        [False, False, True]
+        """
         if self.status is None:
             return np.zeros(len(self.pressure_kpa), dtype=bool)
         return np.array([name in BEYOND_VALIDITY for name in self.status], dtype=bool)
@@ -229,6 +285,12 @@ class Scale:
         Data range shown, equal to the first and last tick.
     left_px, top_px, width_px, height_px : float
         Plot box in SVG user units.
+
+    Examples
+    --------
+    >>> sc = Scale(0.0, 200.0, 0.0, 100.0, 64.0, 46.0, 640.0, 340.0)
+    >>> sc.x_px(100.0), sc.y_px(100.0), sc.y_px([0.0, 50.0]).tolist()
+    (384.0, 46.0, [386.0, 216.0])
     """
 
     x_min_kpa: float
@@ -241,12 +303,44 @@ class Scale:
     height_px: float
 
     def x_px(self, pressure_kpa):
-        """SVG x of a pressure [kPa] (scalar or array)."""
+        """SVG x of a pressure [kPa] (scalar or array).
+
+        Parameters
+        ----------
+        pressure_kpa : float or array_like
+            [kPa].
+
+        Returns
+        -------
+        float or numpy.ndarray
+
+        Examples
+        --------
+        >>> sc = Scale(0.0, 200.0, 0.0, 100.0, 64.0, 46.0, 640.0, 340.0)
+        >>> sc.x_px(0.0), sc.x_px([100.0, 200.0]).tolist()
+        (64.0, [384.0, 704.0])
+        """
         p = np.asarray(pressure_kpa, dtype=np.float64)
         return _scalar(self.left_px + (p - self.x_min_kpa) / (self.x_max_kpa - self.x_min_kpa) * self.width_px)
 
     def y_px(self, angle_deg):
-        """SVG y of an angle [deg] (scalar or array); larger angles are higher up."""
+        """SVG y of an angle [deg] (scalar or array); larger angles are higher up.
+
+        Parameters
+        ----------
+        angle_deg : float or array_like
+            [deg].
+
+        Returns
+        -------
+        float or numpy.ndarray
+
+        Examples
+        --------
+        >>> sc = Scale(0.0, 200.0, 0.0, 100.0, 64.0, 46.0, 640.0, 340.0)
+        >>> sc.y_px(0.0), sc.y_px(100.0)
+        (386.0, 46.0)
+        """
         a = np.asarray(angle_deg, dtype=np.float64)
         return _scalar(self.top_px + (self.y_max_deg - a) / (self.y_max_deg - self.y_min_deg) * self.height_px)
 
@@ -260,6 +354,20 @@ def nice_ticks(low: float, high: float, *, max_ticks: int = 8) -> tuple[float, .
         Data range (low <= high; an empty range is widened to one unit).
     max_ticks : int
         Upper bound on the number of ticks (>= 2).
+
+    Returns
+    -------
+    tuple of float
+
+    Raises
+    ------
+    ParameterError
+        A range that is not finite, or low > high.
+
+    Examples
+    --------
+    >>> nice_ticks(0.0, 287.0), nice_ticks(-3.0, 47.0, max_ticks=5)
+    ((0.0, 50.0, 100.0, 150.0, 200.0, 250.0, 300.0), (-20.0, 0.0, 20.0, 40.0, 60.0))
     """
     if not (math.isfinite(low) and math.isfinite(high)) or high < low:
         raise ParameterError(f"tick range must be finite with low <= high, got ({low!r}, {high!r})")
@@ -300,6 +408,24 @@ def chart_scale(series: Sequence[Series], *, width_px: float = 720.0, height_px:
     the drawn states (and their band) and the measured points only, never the formula's
     angles past a validity limit or fill values. The legend sits below the plot, so the
     plot keeps the chart's width (less the status strips' names on its right).
+
+    Parameters
+    ----------
+    series : sequence of Series
+        The chart's series.
+    width_px, height_px : float, optional
+        The chart's size [px].
+
+    Returns
+    -------
+    Scale
+
+    Examples
+    --------
+    >>> s = Series("A1", [0.0, 100.0, 200.0], [0.0, 11.5, 102.9], status=("INFLATION", "BENDING", "COILED"), p0_kpa=85.0)
+    >>> sc = chart_scale([s])
+    >>> sc.x_min_kpa, sc.x_max_kpa, sc.y_max_deg  # the coiled point is not drawn: the axis ends at 12 deg
+    (0.0, 200.0, 12.0)
     """
     xs = _finite([s.pressure_kpa for s in series] + [s.measured_pressure_kpa for s in series
                                                      if s.measured_pressure_kpa is not None])
@@ -594,6 +720,13 @@ def bend_chart_svg(
         SVG text; polylines carry ``class="curve"`` (valid states) or ``class="beyond"`` (the
         formula past a validity limit) and ``data-series="k"``; bands are polygons of
         ``class="band"``.
+
+    Examples
+    --------
+    >>> s = Series("A1", [0.0, 100.0, 200.0], [0.0, 11.5, 102.9], status=("INFLATION", "BENDING", "COILED"), p0_kpa=85.0)
+    >>> svg = bend_chart_svg([s], title="A1")
+    >>> svg.startswith("<svg"), "A1" in svg
+    (True, True)
     """
     from .svgdoc import Drawing
 
