@@ -121,6 +121,12 @@ class PlanarPath:
         Piece lengths [mm], > 0.
     kappa_per_mm : ndarray
         Piece curvatures [1/mm], positive turning left.
+
+    Examples
+    --------
+    >>> p = PlanarPath.straight(100.0)
+    >>> p.length_mm, p.lengths_mm.tolist(), p.kappa_per_mm.tolist()
+    (100.0, [100.0], [0.0])
     """
 
     start_mm: tuple[float, float]
@@ -142,7 +148,22 @@ class PlanarPath:
 
     @classmethod
     def straight(cls, length_mm: float) -> "PlanarPath":
-        """A straight path along +x from the origin."""
+        """A straight path along +x from the origin.
+
+        Parameters
+        ----------
+        length_mm : float
+            Its length [mm], > 0.
+
+        Returns
+        -------
+        PlanarPath
+
+        Examples
+        --------
+        >>> PlanarPath.straight(60.0).start_mm, PlanarPath.straight(60.0).heading_deg
+        ((0.0, 0.0), 0.0)
+        """
         return cls((0.0, 0.0), 0.0, np.array([check_range("length_mm", length_mm, low=0.0)]), np.zeros(1))
 
     @classmethod
@@ -153,6 +174,22 @@ class PlanarPath:
         segment is a piece of constant curvature; neighbouring pieces whose curvatures
         differ by less than ``KAPPA_MERGE_REL`` are merged (total length and turning kept
         exactly), so a finely flattened arc becomes one piece.
+
+        Parameters
+        ----------
+        centerline : Centerline
+            The tube path.
+
+        Returns
+        -------
+        PlanarPath
+
+        Examples
+        --------
+        >>> from embroact.patterns.centerline import Centerline
+        >>> p = PlanarPath.from_centerline(Centerline.from_svg_path("M 0,0 A 50,50 0 0,0 50,50"))
+        >>> round(p.length_mm, 2), round(float(p.kappa_per_mm.max()), 4)  # a quarter circle of radius 50
+        (78.54, 0.02)
         """
         p = np.asarray(centerline.points_mm, dtype=np.float64)
         seg = np.hypot(*np.diff(p, axis=0).T)
@@ -179,10 +216,17 @@ class BentPath:
     Attributes
     ----------
     path : PlanarPath
+        The path in the plan.
     shape : BentShape
         The chain of arcs (the one bent-shape kinematics, shared with the side view).
     segment_lengths_mm, segment_theta_deg : tuple of float
         The bending segments along the path and each one's bend [mm, deg] (one segment: uniform).
+
+    Examples
+    --------
+    >>> bent = BentPath.from_theta(PlanarPath.straight(100.0), 90.0)
+    >>> bent.segment_lengths_mm, bent.segment_theta_deg, bent.frames([100.0])[0].round(3).tolist()
+    ((100.0,), (90.0,), [[63.662, 0.0, -63.662]])
     """
 
     path: PlanarPath
@@ -192,12 +236,50 @@ class BentPath:
 
     @classmethod
     def from_theta(cls, path: PlanarPath, theta_deg: float) -> "BentPath":
-        """Bend ``path`` uniformly by ``theta_deg`` over its length."""
+        """Bend ``path`` uniformly by ``theta_deg`` over its length.
+
+        Parameters
+        ----------
+        path : PlanarPath
+            The path.
+        theta_deg : float
+            The bend [deg].
+
+        Returns
+        -------
+        BentPath
+
+        Examples
+        --------
+        >>> bent = BentPath.from_theta(PlanarPath.straight(100.0), 90.0)
+        >>> list(bent.pieces())[0][2]  # curvature pi/2 over 100 mm
+        0.015707963267948967
+        """
         return cls.from_segments(path, [path.length_mm], [check_range("theta_deg", theta_deg)])
 
     @classmethod
     def from_segments(cls, path: PlanarPath, segment_lengths_mm, segment_theta_deg) -> "BentPath":
-        """Bend consecutive segments of ``path`` (lengths adding up to the path's) each by its own angle."""
+        """Bend consecutive segments of ``path`` (lengths adding up to the path's) each by its own angle.
+
+        Parameters
+        ----------
+        path : PlanarPath
+            The path.
+        segment_lengths_mm : sequence of float
+            The segments' lengths [mm], adding up to the path's.
+        segment_theta_deg : sequence of float
+            Each one's bend [deg].
+
+        Returns
+        -------
+        BentPath
+
+        Examples
+        --------
+        >>> s = BentPath.from_segments(PlanarPath.straight(100.0), [50.0, 50.0], [90.0, -90.0])  # an S
+        >>> (s.frames([100.0])[1][0][:, 0].round(6) + 0.0).tolist()  # the tip points along +x again
+        [1.0, 0.0, 0.0]
+        """
         lengths = tuple(float(v) for v in segment_lengths_mm)
         theta = tuple(float(v) for v in segment_theta_deg)
         shape = BentShape.chain(lengths, theta, path_lengths_mm=path.lengths_mm, path_kappa_per_mm=path.kappa_per_mm,
@@ -205,15 +287,61 @@ class BentPath:
         return cls(path, shape, lengths, theta)
 
     def frames(self, s_mm) -> tuple[np.ndarray, np.ndarray]:
-        """Positions (n, 3) and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm``."""
+        """Positions (n, 3) and frames (n, 3, 3), columns T, N, B, at arc lengths ``s_mm``.
+
+        Parameters
+        ----------
+        s_mm : array_like (n,)
+            Arc lengths [mm].
+
+        Returns
+        -------
+        positions : numpy.ndarray (n, 3)
+        frames : numpy.ndarray (n, 3, 3)
+
+        Examples
+        --------
+        >>> bent = BentPath.from_theta(PlanarPath.straight(100.0), 90.0)
+        >>> bent.frames([0.0])[0].tolist()
+        [[0.0, 0.0, 0.0]]
+        """
         return self.shape.frames(s_mm)
 
     def points(self, s_mm, offsets_uv_mm) -> np.ndarray:
-        """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``."""
+        """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``.
+
+        Parameters
+        ----------
+        s_mm : array_like (n,)
+            Arc lengths [mm].
+        offsets_uv_mm : array_like (m, 2)
+            Offsets [mm].
+
+        Returns
+        -------
+        numpy.ndarray (n, m, 3)
+
+        Examples
+        --------
+        >>> bent = BentPath.from_theta(PlanarPath.straight(100.0), 90.0)
+        >>> bent.points([100.0], [(0.0, 1.0)]).round(3).tolist()
+        [[[64.662, 0.0, -63.662]]]
+        """
         return self.shape.points(s_mm, offsets_uv_mm)
 
     def pieces(self):
-        """(s_start, length, kappa_b, kappa_p) of each piece of constant bending and path curvature."""
+        """(s_start, length, kappa_b, kappa_p) of each piece of constant bending and path curvature.
+
+        Returns
+        -------
+        iterator of tuple of float
+
+        Examples
+        --------
+        >>> bent = BentPath.from_theta(PlanarPath.straight(100.0), 90.0)
+        >>> [round(v, 6) for v in next(iter(bent.pieces()))]
+        [0.0, 100.0, 0.015708, 0.0]
+        """
         return self.shape.pieces()
 
 
@@ -236,6 +364,13 @@ class Body:
         Arc length of each ring along the path [mm]; read-only.
     colour : tuple of int
         RGBA 0-255.
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> body = m.bodies[0]
+    >>> body.name, body.ring_size, body.vertices.shape[1], len(body.ring_s_mm) * body.ring_size == len(body.vertices)
+    ('fabric', 4, 3, True)
     """
 
     name: str
@@ -255,7 +390,9 @@ class ShapeMesh:
     name : str
         Actuator name (prefixes the body names in exported files).
     bodies : tuple of Body
+        Fabric, tube and rails.
     bent : BentPath
+        The bent centerline.
     theta_deg : float
         Bend angle the shape was built for [deg].
     tolerance_mm : float
@@ -266,6 +403,12 @@ class ShapeMesh:
     section_mm : tuple of float
         Rail spacing w, sleeve radius r0 and strip width the bodies were swept with [mm]
         (what :meth:`remeshed` needs).
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> [b.name for b in m.bodies], m.triangle_count, m.max_deviation_mm
+    (['fabric', 'tube', 'rail_left', 'rail_right'], 2130, None)
     """
 
     name: str
@@ -277,7 +420,26 @@ class ShapeMesh:
     section_mm: tuple[float, float, float]
 
     def remeshed(self, tolerance_mm: float, *, measure: bool = False) -> "ShapeMesh":
-        """The same shape meshed at another chordal tolerance (a picture's, say)."""
+        """The same shape meshed at another chordal tolerance (a picture's, say).
+
+        Parameters
+        ----------
+        tolerance_mm : float
+            The chordal tolerance [mm].
+        measure : bool, optional
+            Measure the realised deviation.
+
+        Returns
+        -------
+        ShapeMesh
+
+        Examples
+        --------
+        >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+        >>> coarse = m.remeshed(0.5)
+        >>> coarse.tolerance_mm, coarse.triangle_count < m.triangle_count
+        (0.5, True)
+        """
         w, r0, strip = self.section_mm
         return actuator_mesh(self.bent.path, self.theta_deg, width_mm=w, r0_mm=r0, strip_width_mm=strip,
                              tolerance_mm=tolerance_mm, name=self.name, measure=measure, coarsen=True,
@@ -290,7 +452,19 @@ class ShapeMesh:
         return int(sum(len(b.faces) for b in self.bodies))
 
     def stats(self) -> dict:
-        """Plain dict for reports."""
+        """Plain dict for reports.
+
+        Returns
+        -------
+        dict
+            Triangle count, tolerance, deviation, bend and triangles per body.
+
+        Examples
+        --------
+        >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+        >>> m.stats()["bodies"]
+        {'fabric': 236, 'tube': 1422, 'rail_left': 236, 'rail_right': 236}
+        """
         return {"triangle_count": self.triangle_count, "tolerance_mm": self.tolerance_mm,
                 "max_deviation_mm": self.max_deviation_mm, "theta_deg": self.theta_deg,
                 "bodies": {b.name: len(b.faces) for b in self.bodies}}
@@ -511,6 +685,12 @@ def actuator_mesh(
     -------
     ShapeMesh
         Closed bodies ``fabric``, ``tube``, ``rail_left``, ``rail_right``.
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58)
+    >>> m.max_deviation_mm <= m.tolerance_mm
+    True
     """
     w = check_range("width_mm", width_mm, low=0.0)
     r0 = check_range("r0_mm", r0_mm, low=0.0)
@@ -539,7 +719,28 @@ def actuator_mesh(
 
 
 def shapes_of(shapes) -> tuple[ShapeMesh, ...]:
-    """One ShapeMesh or a sequence of them, as a non-empty tuple."""
+    """One ShapeMesh or a sequence of them, as a non-empty tuple.
+
+    Parameters
+    ----------
+    shapes : ShapeMesh or sequence of ShapeMesh
+        The shapes.
+
+    Returns
+    -------
+    tuple of ShapeMesh
+
+    Raises
+    ------
+    ParameterError
+        An empty sequence, or anything else.
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> shapes_of(m) == (m,), shapes_of([m, m]) == (m, m)
+    (True, True)
+    """
     out = (shapes,) if isinstance(shapes, ShapeMesh) else tuple(shapes)
     if not out or not all(isinstance(s, ShapeMesh) for s in out):
         raise ParameterError("shapes must be a ShapeMesh or a non-empty sequence of them")
@@ -569,10 +770,27 @@ def _export_bytes(shapes: tuple[ShapeMesh, ...], kind: str) -> bytes:
 def mesh_bytes(shapes, suffix: str) -> bytes:
     """File contents of one shape or several in the format named by ``suffix`` (``".glb"``...).
 
+    Parameters
+    ----------
+    shapes : ShapeMesh or sequence of ShapeMesh
+        The shapes.
+    suffix : str
+        One of ``MESH_FORMATS``.
+
+    Returns
+    -------
+    bytes
+
     Raises
     ------
     ExportError
         Unknown suffix; the message lists the valid ones.
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> mesh_bytes(m, ".glb")[:4]
+    b'glTF'
     """
     kind = MESH_FORMATS.get(str(suffix).lower())
     if kind is None:
@@ -586,10 +804,29 @@ def write_mesh(shapes, path) -> Path:
     See ``MESH_FORMATS``.  GLB keeps one named node per body (``"A1.tube"``); STL, OBJ
     and PLY get one joined mesh.
 
+    Parameters
+    ----------
+    shapes : ShapeMesh or sequence of ShapeMesh
+        The shapes.
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    pathlib.Path
+
     Raises
     ------
     ExportError
         Unknown suffix (the message lists the valid ones) or the file cannot be written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_mesh(m, f"{tmp}/A1.glb").name
+    'A1.glb'
     """
     p = Path(path)
     write_bytes_atomic(p, mesh_bytes(shapes, p.suffix or p.name))
