@@ -117,7 +117,7 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
     >>> strip = analyse(load_design("examples/designed_hook.toml")).curves([0.0, 250.0])[0]
     >>> p, theta, parts = shape_state(strip, 250.0)
     >>> p, round(theta, 2), [round(t, 2) for t in parts], abs(sum(parts) - theta) < 1e-9
-    (250.0, 114.95, [26.34, 122.24, -33.63], True)
+    (250.0, 123.14, [32.01, 78.95, 36.48, -24.28], True)
     """
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
