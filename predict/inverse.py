@@ -16,7 +16,8 @@ Two questions (docs/model.md, segmented actuators):
   generated needle points. Each candidate is generated and analysed like any design (the
   numbers ``embroact predict`` prints for the written file); it must be in a valid model
   state at ``P*`` (BENDING: not coiled, kinked, overstretched, locked or unstable) and pass
-  the design rules without errors; clean candidates rank above ones with warnings. A
+  the design rules without errors; clean candidates rank above ones with warnings, then the
+  length asked for, then the narrower 1-sigma band of the bend (a calibration's covariance). A
   straight path moved half a grid unit sideways (:func:`rail_offset_mm`) puts the rails of
   a width of an odd number of grid units on the grid too, so a zigzag's width steps by
   0.1 mm; where that still misses, a length within ``length_tolerance_mm`` of the one asked
@@ -1049,10 +1050,14 @@ def _lowest_p0_kpa(space: DesignSpace, length_mm: float, model: _Model) -> float
 
 
 def _rank(c: BendCandidate, target_deg: float, p: float, length_mm: float):
-    """Clean candidates first, then the asked length, then the closer bend, then the wider margin to limit and
-    range end."""
-    return (c.warning_count > 0, round(abs(c.length_mm - length_mm), 6), round(abs(c.theta_deg - target_deg), 6),
-            -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
+    """Clean candidates first, then the asked length, then the narrower 1-sigma band of the bend (a candidate
+    without one after those with one), then the closer bend, then the wider margin to limit and range end.
+
+    The band comes after the length: the same design bends, and is uncertain, in proportion to its length,
+    so across lengths it would only prefer the shorter one."""
+    band = math.inf if c.theta_sd_deg is None else round(c.theta_sd_deg, 6)
+    return (c.warning_count > 0, round(abs(c.length_mm - length_mm), 6), band,
+            round(abs(c.theta_deg - target_deg), 6), -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
 
 
 def _fitted_lengths(space: DesignSpace, x: float, c: BendCandidate, length_mm: float, tolerance_mm: float,
