@@ -48,7 +48,26 @@ _METALLIC, _ROUGHNESS = 0.0, 0.8
 
 @dataclass(frozen=True, slots=True, eq=False)
 class GlbMesh:
-    """One named body: vertices (n, 3) in file units, triangles (m, 3) of vertex indices, RGBA 0-255."""
+    """One named body: vertices (n, 3) in file units, triangles (m, 3) of vertex indices, RGBA 0-255.
+
+    Attributes
+    ----------
+    name : str
+        The node's name (``"A1.tube"``).
+    vertices : numpy.ndarray (n, 3)
+        Positions, file units.
+    faces : numpy.ndarray (m, 3)
+        Triangles of vertex indices.
+    colour : tuple of int
+        RGBA, 0-255.
+
+    Examples
+    --------
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    >>> tri = GlbMesh("A1.tube", v, np.array([[0, 1, 2]]), (200, 80, 80, 255))
+    >>> tri.name, tri.faces.shape
+    ('A1.tube', (1, 3))
+    """
 
     name: str
     vertices: np.ndarray
@@ -60,6 +79,18 @@ def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Unit normal per vertex: the sum of its triangles' cross products (area-weighted), normalised.
 
     A vertex of no triangle of non-zero area gets (0, 0, 1) (glTF wants unit normals).
+
+    Parameters
+    ----------
+    vertices : numpy.ndarray (n, 3)
+        Positions.
+    faces : numpy.ndarray (m, 3)
+        Triangles of vertex indices.
+
+    Returns
+    -------
+    numpy.ndarray (n, 3)
+        Unit vectors.
 
     Examples
     --------
@@ -85,7 +116,26 @@ def _pad(data: bytes, fill: bytes) -> bytes:
 
 
 def glb_bytes(meshes) -> bytes:
-    """The ``.glb`` file of ``meshes`` (a sequence of :class:`GlbMesh`), one node each."""
+    """The ``.glb`` file of ``meshes`` (a sequence of :class:`GlbMesh`), one node each.
+
+    Parameters
+    ----------
+    meshes : iterable of GlbMesh
+        The bodies.
+
+    Returns
+    -------
+    bytes
+        A binary glTF 2.0 file: positions, area-weighted normals, one material per colour.
+
+    Examples
+    --------
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    >>> tri = GlbMesh("A1.tube", v, np.array([[0, 1, 2]]), (200, 80, 80, 255))
+    >>> data = glb_bytes([tri])
+    >>> data[:4], int.from_bytes(data[4:8], "little")  # magic and version
+    (b'glTF', 2)
+    """
     meshes = list(meshes)
     blob, colours = bytearray(), {}
     views: list[dict] = []

@@ -71,6 +71,22 @@ def view_rotation(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
 
     ``elevation_deg = 90`` looks straight down on the plan; ``0`` looks along the plan
     from the side (plan +z up on screen).
+
+    Parameters
+    ----------
+    azimuth_deg : float
+        Camera direction around the plan's z axis [deg], in [-360, 360].
+    elevation_deg : float
+        Camera height above the plan [deg], in [-90, 90].
+
+    Returns
+    -------
+    numpy.ndarray (3, 3)
+
+    Examples
+    --------
+    >>> (view_rotation(0.0, 0.0).round(6) + 0.0).tolist()  # from the side: plan +z is up on screen
+    [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]
     """
     az = math.radians(check_range("azimuth_deg", azimuth_deg, low=-360.0, high=360.0, low_inclusive=True,
                                   high_inclusive=True))
@@ -95,6 +111,20 @@ def _scale_px_per_mm(extent_mm: np.ndarray, width_px: float) -> float:
 
 def picture_tolerance_mm(shapes, rot: np.ndarray, width_px: float) -> float:
     """Chordal tolerance [mm] that is ``PICTURE_TOLERANCE_PX`` at the picture's scale.
+
+    Parameters
+    ----------
+    shapes : sequence of ShapeMesh
+        What the picture shows.
+    rot : numpy.ndarray (3, 3)
+        The view (:func:`view_rotation`).
+    width_px : float
+        The picture's width [px].
+
+    Returns
+    -------
+    float
+        [mm].
 
     Examples
     --------
@@ -157,6 +187,19 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
     title : str, optional
         Caption drawn in the top-left corner (wrapped onto up to 3 lines, shortened past them:
         :func:`embroact.export.pictures.titles.fit_title`).
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> from embroact.export.pictures.mesh import PlanarPath, actuator_mesh
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False)
+    >>> svg = mesh_svg(m, title="A1 at 300 kPa")
+    >>> svg.startswith("<svg"), "A1 at 300 kPa" in svg
+    (True, True)
     """
     from .svgdoc import Drawing
 

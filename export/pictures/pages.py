@@ -67,6 +67,14 @@ class Sheet:
         The template area it shows: x, y, width, height in the template's coordinates [mm].
     svg : str
         The sheet as an SVG document (``width``/``height`` in mm).
+
+    Examples
+    --------
+    >>> drawing = '<svg xmlns="http://www.w3.org/2000/svg" width="400mm" height="100mm" viewBox="0 0 400 100"/>'
+    >>> sheets = tile_template(drawing, "a4")
+    >>> s = sheets[1]
+    >>> s.paper, (s.width_mm, s.height_mm), (s.row, s.column, s.rows, s.columns), s.tile_mm
+    ('A4', (297.0, 210.0), (1, 2, 1, 2), (267.0, 0.0, 277.0, 176.0))
     """
 
     paper: str
@@ -132,6 +140,18 @@ def tile_template(template: str, paper: str = "a4") -> list[Sheet]:
     -------
     list of Sheet
         Row by row, left to right.
+
+    Raises
+    ------
+    ParameterError
+        An unknown paper, or a drawing without a ``viewBox``.
+
+    Examples
+    --------
+    >>> drawing = '<svg xmlns="http://www.w3.org/2000/svg" width="400mm" height="100mm" viewBox="0 0 400 100"/>'
+    >>> sheets = tile_template(drawing, "a4")
+    >>> len(sheets), sheets[0].tile_mm  # 400 mm wide: two landscape sheets, 10 mm overlap
+    (2, (0.0, 0.0, 277.0, 176.0))
     """
     key = str(paper).lower()
     if key not in PAPERS:
@@ -215,6 +235,20 @@ def _footer(svg: ET.Element, sh: float, text: str) -> None:
 
 def template_pages_html(template: str, paper: str = "a4", *, title: str = "layout template") -> str:
     """One printable HTML file of the template's sheets (:func:`tile_template`), one sheet per page.
+
+    Parameters
+    ----------
+    template : str
+        The template SVG.
+    paper : str, optional
+        ``"a4"`` or ``"letter"``.
+    title : str, optional
+        The page's title.
+
+    Returns
+    -------
+    str
+        HTML.
 
     Examples
     --------

@@ -47,8 +47,26 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     boundaries_mm : sequence of float
         Arc lengths of the segment boundaries along the predicted line [mm] (ticks).
     title : str
+        The picture's title.
     caption : sequence of str
         Lines printed under the drawing (errors, the design).
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Raises
+    ------
+    ParameterError
+        A curve of fewer than 2 points.
+
+    Examples
+    --------
+    >>> target = np.column_stack([np.linspace(0.0, 100.0, 11), np.zeros(11)])
+    >>> svg = shape_overlay_svg(target, target + [0.0, 1.0], [50.0], caption=["RMSE 1 mm"])
+    >>> svg.startswith("<svg"), "RMSE 1 mm" in svg
+    (True, True)
     """
     from .svgdoc import Drawing
 
@@ -98,6 +116,15 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
 def params_text(params) -> str:
     """Pattern parameters as ``key=value`` words (5 significant digits).
 
+    Parameters
+    ----------
+    params : PatternParams
+        A pattern's parameters.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> from embroact.patterns.params import ZigzagParams
@@ -110,7 +137,31 @@ def params_text(params) -> str:
 def design_shape_svg(result) -> str:
     """The answer of :func:`embroact.predict.inverse.design_shape` drawn over its target, captioned with the
     statement, the tip error and each segment (what ``embroact design --target-shape --svg`` writes and the
-    studio shows)."""
+    studio shows).
+
+    Parameters
+    ----------
+    result : ShapeResult
+        A target shape's answer.
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> from embroact.predict.inverse import ShapeSegment
+    >>> xy = np.column_stack([np.linspace(0.0, 100.0, 11), np.zeros(11)])
+    >>> result = SimpleNamespace(segments=(ShapeSegment(ZigzagParams(6.2, 1.0), 100.0, 60.0, 0.0105),),
+    ...                          statement="met with 1 segment(s)", pressure_kpa=150.0, tip_error_mm=0.2,
+    ...                          target_xy_mm=xy, predicted_xy_mm=xy)  # the fields of a ShapeResult it reads
+    >>> svg = design_shape_svg(result)
+    >>> "segment 0: zigzag width_mm=6.2 interval_mm=1 length_mm=100 (+60.0 deg)" in svg
+    True
+    """
     bounds = np.cumsum([s.length_mm for s in result.segments])[:-1]
     caption = [f"{result.statement} at {result.pressure_kpa:g} kPa; tip {result.tip_error_mm:.2f} mm off"]
     caption += [f"segment {i}: {s.pattern} {params_text(s.params)} length_mm={s.length_mm:g} ({s.theta_deg:+.1f} deg)"
