@@ -86,6 +86,12 @@ class SidePanel:
     marks_mm : array-like, optional
         Arc lengths along the fabric line [mm] marked (open circles on the tube) in every
         state, e.g. where one segment of a segmented actuator gives way to the next.
+
+    Examples
+    --------
+    >>> panel = SidePanel("A1", 100.0, 2.58, [100.0, 300.0], [11.5, 90.0])
+    >>> panel.label, panel.shape(1).profile_mm([100.0]).round(3).tolist()
+    ('A1', [[63.662, 63.662]])
     """
 
     label: str
@@ -120,7 +126,24 @@ class SidePanel:
         object.__setattr__(self, "segment_theta_deg", tuple(tuple(float(v) for v in r) for r in rows) if lengths else ())
 
     def shape(self, k: int) -> BentShape:
-        """The bent line of state ``k`` (a chain of arcs for a segmented actuator)."""
+        """The bent line of state ``k`` (a chain of arcs for a segmented actuator).
+
+        Parameters
+        ----------
+        k : int
+            The state's index (its pressure's).
+
+        Returns
+        -------
+        BentShape
+
+        Examples
+        --------
+        >>> hook = SidePanel("hook", 100.0, 2.58, [300.0], [60.0], segment_lengths_mm=[50.0, 50.0],
+        ...                  segment_theta_deg=[[90.0, -30.0]])
+        >>> [round(p[2] * p[1], 6) for p in hook.shape(0).pieces()]  # each segment's turn [rad]
+        [1.570796, -0.523599]
+        """
         if self.segment_lengths_mm:
             return BentShape.chain(self.segment_lengths_mm, self.segment_theta_deg[k])
         return BentShape.chain([self.length_mm], [self.theta_deg[k]])
@@ -143,6 +166,13 @@ def shape_line_mm(shape: BentShape, offset_mm: float, *,
     -------
     ndarray, shape (n, 2)
         From the clamp to the free end; x = the shape's thread-side axis, z = minus its length axis.
+
+    Examples
+    --------
+    >>> from embroact.predict.shape import BentShape
+    >>> line = shape_line_mm(BentShape.chain([100.0], [90.0]), 0.0)
+    >>> line[-1].round(3).tolist(), len(line)
+    ([-63.662, -63.662], 64)
     """
     p = shape.points(shape.samples_mm(tolerance_mm, offset_mm), [(0.0, offset_mm)])[:, 0, :]
     return np.column_stack([p[:, 2], -p[:, 0]])
@@ -167,6 +197,11 @@ def bent_line_mm(length_mm: float, theta_deg: float, offset_mm: float, *,
     -------
     ndarray, shape (n, 2)
         From the clamp (s = 0) to the free end (s = l0).
+
+    Examples
+    --------
+    >>> (bent_line_mm(100.0, 0.0, 2.0) + 0.0).tolist()  # straight: two points, 2 mm on the thread side
+    [[2.0, 0.0], [2.0, -100.0]]
     """
     l0 = check_range("length_mm", length_mm, low=0.0)
     return shape_line_mm(BentShape.chain([l0], [check_range("theta_deg", theta_deg)]), offset_mm,
@@ -284,6 +319,24 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     Units in the drawing are millimetres (1 user unit = 1 mm, shown at 3 px/mm); a
     10 mm scale bar is drawn.  Each state is a ``<g class="state">`` carrying
     ``data-pressure-kpa`` and ``data-theta-deg``.
+
+    Parameters
+    ----------
+    panels : sequence of SidePanel
+        One per actuator, at least one.
+    title : str, optional
+        The picture's title.
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> panel = SidePanel("A1", 100.0, 2.58, [100.0, 300.0], [11.5, 90.0])
+    >>> side_view_svg([panel]).count('class="state"')
+    2
     """
     from .svgdoc import Drawing
 

@@ -118,6 +118,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     Parameters
     ----------
     plan : StitchPlan
+        The records to draw.
     machine : WriteResult, optional
         A machine file written from ``plan``: the stop marks are where that file makes the
         machine wait (a colour format's colour changes, tubes laid before start named), and
@@ -128,6 +129,19 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
         Needle-point dot radius and thread stroke width [mm], in (0, 5].
     show_points : bool
         Draw a dot at every needle point.
+
+    Returns
+    -------
+    str
+        SVG, 1 user unit = 1 mm.
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> svg = plan_svg(zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0)))
+    >>> svg.startswith("<svg"), 'height="51.6mm"' in svg
+    (True, True)
     """
     from .svgdoc import INKSCAPE, Drawing, svg_id
     from .svgdoc import layer as inkscape_layer

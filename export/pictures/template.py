@@ -66,6 +66,18 @@ def _laid(act) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def start_from_centre(plan: StitchPlan) -> str:
     """Where the machine's start point lies from the hoop centre (the hoop centred on the records and the start point).
 
+    Parameters
+    ----------
+    plan : StitchPlan
+        A plan in the machine's frame (the start point at (0, 0)).
+
+    Returns
+    -------
+    str
+        ``"<x> mm right|left, <y> mm up|down"``.
+
+    Examples
+    --------
     >>> import dataclasses
     >>> from embroact.patterns.design import build_plan, default_design
     >>> start_from_centre(build_plan(default_design()))  # the default origin: the design's centre
@@ -91,8 +103,21 @@ def template_svg(plan: StitchPlan, machine=None) -> str:
     Parameters
     ----------
     plan : StitchPlan
+        The design's plan, in the machine's frame.
     machine : MachineSettings, optional
         Its ``hoop_width_mm`` x ``hoop_height_mm`` is the hoop drawn (default 200 x 200 mm).
+
+    Returns
+    -------
+    str
+        SVG in mm, 1:1, in Inkscape layers (tube axes ``tube-NAME``).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> svg = template_svg(build_plan(default_design()))
+    >>> 'id="tube-A1"' in svg, 'inkscape:label="hoop"' in svg
+    (True, True)
     """
     from .svgdoc import INKSCAPE, Drawing
     from .svgdoc import layer as inkscape_layer

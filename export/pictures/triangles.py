@@ -37,7 +37,25 @@ def _dot(a, b):
 
 
 def point_triangle_distance(triangles, points) -> np.ndarray:
-    """Distance of each point (k, 3) from its triangle (k, 3, 3) [same units]."""
+    """Distance of each point (k, 3) from its triangle (k, 3, 3) [same units].
+
+    Parameters
+    ----------
+    triangles : array_like (k, 3, 3)
+        Corners of each triangle.
+    points : array_like (k, 3)
+        One point per triangle.
+
+    Returns
+    -------
+    numpy.ndarray (k,)
+
+    Examples
+    --------
+    >>> tri = [[[0, 0, 0], [1, 0, 0], [0, 1, 0]]] * 2
+    >>> point_triangle_distance(tri, [[0.2, 0.2, 1.0], [2.0, 0.0, 0.0]]).tolist()  # above the face; beyond a corner
+    [1.0, 1.0]
+    """
     tri = np.asarray(triangles, dtype=np.float64)
     p = np.asarray(points, dtype=np.float64)
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
@@ -72,6 +90,27 @@ def subdivide_to_size(vertices, faces, max_edge: float):
     Winding is kept. A face with one long edge becomes two, with two long edges three
     (the quadrilateral left is cut along its shorter diagonal), with three the regular
     four; faces keep their input order within each of those groups, round by round.
+
+    Parameters
+    ----------
+    vertices : array_like (n, 3)
+        Positions.
+    faces : array_like (m, 3)
+        Triangles of vertex indices.
+    max_edge : float
+        Longest edge allowed (same units).
+
+    Returns
+    -------
+    vertices : numpy.ndarray
+    faces : numpy.ndarray of int64
+    parent : numpy.ndarray of int64
+
+    Examples
+    --------
+    >>> v, f, parent = subdivide_to_size([[0, 0, 0], [2, 0, 0], [0, 2, 0]], [[0, 1, 2]], 1.5)
+    >>> len(v), len(f), parent.tolist()
+    (6, 4, [0, 0, 0, 0])
     """
     v = np.array(vertices, dtype=np.float64)
     f = np.array(faces, dtype=np.int64).reshape(-1, 3)
