@@ -46,7 +46,7 @@ import shapely
 from .base.arrays import frozen_array
 from .base.errors import ParameterError, PathError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import check_coordinates
+from .base.validate import PATH_POINTS, check_coordinates
 from .spatial import SegmentIndex, self_crossings
 
 __all__ = ["Centerline", "as_centerline", "MAX_SMOOTH_TURN_DEG", "RADIUS_RTOL"]
@@ -61,8 +61,6 @@ RADIUS_RTOL = 2e-3
 MIN_LENGTH_MM = 1e-3
 #: Newton steps used by :meth:`Centerline.project` to invert the smooth-normal frame.
 _PROJECT_STEPS = 6
-#: Largest number of vertices a path may have.
-_MAX_POINTS = 2_000_000
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -570,8 +568,8 @@ def _clean_points(points) -> np.ndarray:
         raise PathError(f"path points must be numbers [[x, y], ...] in mm, got {points!r:.60}") from None
     if pts.ndim != 2 or pts.shape[1] != 2:
         raise PathError(f"path points must have shape (n, 2), got {pts.shape}")
-    if len(pts) > _MAX_POINTS:
-        raise PathError(f"path must have at most {_MAX_POINTS} points, got {len(pts)}")
+    if len(pts) > PATH_POINTS:
+        raise PathError(f"path must have at most {PATH_POINTS} points, got {len(pts)}")
     if not np.all(np.isfinite(pts)):
         raise PathError("path points must be finite numbers, got NaN or inf")
     if len(pts):

@@ -34,6 +34,8 @@ from .base.tolerances import DEFAULT_TOLERANCES
 from .plan import Command
 
 __all__ = [
+    "MAX_STITCH_MM",
+    "MIN_STITCH_MM",
     "UNITS_PER_MM",
     "TRIM_JUMP_RUN",
     "FormatLimit",
@@ -110,6 +112,12 @@ FORMAT_LIMITS: dict[str, FormatLimit] = {
         FormatLimit("vp3", 25.5, 320.0, 9_999_999, False, "Pfaff / Husqvarna VP3"),
     )
 }
+
+
+#: The default machine's longest stitch [mm]: DST's per-record limit (DST is the default format).
+MAX_STITCH_MM = FORMAT_LIMITS["dst"].max_record_mm
+#: The default machine's shortest stitch [mm] (shorter ones pile needle holes up, EA104).
+MIN_STITCH_MM = 0.3
 
 
 def format_limit(name: str) -> FormatLimit:

@@ -37,15 +37,12 @@ import numpy as np
 
 from .base.errors import PathError
 from .base.tolerances import DEFAULT_TOLERANCES
-from .base.validate import COORD_MM, PATH_CHARS, PATH_SEGMENTS, check_coordinates
+from .base.validate import COORD_MM, PATH_CHARS, PATH_POINTS, PATH_SEGMENTS, check_coordinates
 
 if TYPE_CHECKING:
     import svgelements
 
-__all__ = ["parse_d", "check_d", "flatten", "to_plan", "MAX_POINTS"]
-
-#: Largest number of polyline points a flattened path may have.
-MAX_POINTS = 2_000_000
+__all__ = ["parse_d", "check_d", "flatten", "to_plan"]
 
 _D_COMMANDS = "MmLlHhVvCcSsQqTtAaZz"
 #: Characters an SVG path d string may hold (svgelements silently skips unknown commands).
@@ -272,8 +269,8 @@ def _segment_points(seg: Any, tol: float) -> np.ndarray:
         n = max(1, math.ceil(abs(seg.sweep) / step))
     else:  # pragma: no cover - svgelements has no other drawing segment
         raise PathError(f"SVG path: unsupported segment {type(seg).__name__}")
-    if n > MAX_POINTS:
-        raise PathError(f"SVG path: curve too large to flatten ({n} points > {MAX_POINTS})")
+    if n > PATH_POINTS:
+        raise PathError(f"SVG path: curve too large to flatten ({n} points > {PATH_POINTS})")
     pts = np.asarray(seg.npoint(np.linspace(0.0, 1.0, n + 1)[1:]), dtype=np.float64)
     pts[-1] = (seg.end.x, seg.end.y)  # land exactly on the given end point
     return pts
@@ -376,8 +373,8 @@ def flatten(path: "svgelements.Path", matrix: tuple[float, float, float, float, 
             )
         drawn[k] = drawn[k][1:]
     pts = np.vstack(drawn)
-    if len(pts) > MAX_POINTS:
-        raise PathError(f"SVG path: too many points after flattening ({len(pts)} > {MAX_POINTS})")
+    if len(pts) > PATH_POINTS:
+        raise PathError(f"SVG path: too many points after flattening ({len(pts)} > {PATH_POINTS})")
     return pts
 
 

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 
 from ..patterns.base.errors import ParameterError, check_range
 from ..patterns.params import Tube
+from ..patterns.rules.settings import RuleSettings
 from .markers import MarkerSide
 from .photomarkers import COUPON_LAYOUT, PhotoLayout
 from .sleeve import neutral_angle_deg, sleeve_radius_mm
@@ -189,7 +190,11 @@ def _grid(value: float, step: float, up: bool) -> float:
     return round((math.ceil(n - 1e-9) if up else math.floor(n + 1e-9)) * step, 6)
 
 
-def default_width_range_mm(tube: Tube, min_sleeve_gap_mm: float = 0.1) -> tuple[float, float]:
+#: The rule thresholds the coupon's values keep clear of (EA202's gap, EA206's band, the longest stitch).
+_RULES = RuleSettings()
+
+
+def default_width_range_mm(tube: Tube, min_sleeve_gap_mm: float = _RULES.min_sleeve_gap_mm) -> tuple[float, float]:
     """The default zigzag widths' range for ``tube`` [mm] (module docstring).
 
     Parameters
@@ -252,9 +257,9 @@ def plan_coupon(
     length_mm: float = 100.0,
     hoop_mm: tuple[float, float] = (200.0, 200.0),
     pitch_mm: float = 25.0,
-    neutral_band_deg: float = 3.0,
-    min_sleeve_gap_mm: float = 0.1,
-    max_stitch_mm: float = 12.1,
+    neutral_band_deg: float = _RULES.neutral_band_deg,
+    min_sleeve_gap_mm: float = _RULES.min_sleeve_gap_mm,
+    max_stitch_mm: float = _RULES.max_stitch_mm,
     layout: PhotoLayout = COUPON_LAYOUT,
 ) -> Coupon:
     """The coupon's actuators and hoops (module docstring).

@@ -58,6 +58,7 @@ __all__ = [
     "check_output_dir",
     "check_writable_dir",
     "abandon_staged",
+    "NAME_BYTES",
 ]
 
 
@@ -254,7 +255,7 @@ _NAME_TRIES = 8
 
 
 #: Longest file name most file systems take [bytes]; a hidden name's copy of its target's name is cut to fit.
-_NAME_BYTES = 255
+NAME_BYTES = 255
 
 
 def _cut_name(name: str, limit: int) -> str:
@@ -279,7 +280,7 @@ def _hidden_name(p: Path, suffix: str, create):
     standard library's tempfile module would do the same for the staged file, but importing it
     (with shutil, random and the compression modules) costs a few milliseconds at every start.
     """
-    stem = _cut_name(p.name, _NAME_BYTES - len(f"..{'0' * 8}{suffix}"))
+    stem = _cut_name(p.name, NAME_BYTES - len(f"..{'0' * 8}{suffix}"))
 
     def attempt():
         name = str(p.parent / f".{stem}.{os.urandom(4).hex()}{suffix}")

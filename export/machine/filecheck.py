@@ -59,7 +59,7 @@ import numpy as np
 from ...patterns.base.errors import DesignFileError, ParameterError, check_range
 from ...patterns.base.findings import Finding
 from ...patterns.base.validate import DESIGN_ACTUATORS, check_coordinates, MACHINE_FILE_BYTES, MACHINE_FILE_RECORDS, read_input
-from ...patterns.limits import FORMAT_LIMITS
+from ...patterns.limits import FORMAT_LIMITS, UNITS_PER_MM
 from ...patterns.params import Tube
 from .vp3note import read_origin_mm
 from ...patterns.plan import Command, Role, StitchPlan
@@ -599,7 +599,7 @@ def dst_header_faults(data: bytes) -> tuple[str, ...]:
     moves, b3 = move_array(data[HEADER_SIZE:])
     counts = _field_faults(fields, {"ST": (len(b3), "records (the end record included)"),
                                     "CO": (int(np.count_nonzero(b3 == COLOR_BYTE)), "colour-change (stop) records")})
-    return counts + extent_faults(data[:HEADER_SIZE], np.cumsum(moves, axis=0) * (0.1, -0.1))
+    return counts + extent_faults(data[:HEADER_SIZE], np.cumsum(moves, axis=0) * (1.0, -1.0) / UNITS_PER_MM)
 
 
 def extent_faults(head: bytes, xy_mm: np.ndarray) -> tuple[str, ...]:

@@ -22,10 +22,10 @@ from typing import Sequence
 import numpy as np
 
 from ...patterns.base.errors import ParameterError
+from .sideview import PX_PER_MM
 
 __all__ = ["params_text", "shape_overlay_svg", "design_shape_svg"]
 
-_PX_PER_MM = 3.0
 _MARGIN_MM = 10.0
 _HEADER_MM = 16.0
 _TARGET, _PREDICTED = "#888888", "#d62728"
@@ -81,7 +81,7 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     body = float(hi[1] - lo[1])
     height = _HEADER_MM + body + 6.0 * (len(caption) + 1) + _MARGIN_MM
     top = _HEADER_MM + float(hi[1])  # page y = top - plan y (y up on the page)
-    dwg = Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+    dwg = Drawing(size=(f"{width * PX_PER_MM:.0f}", f"{height * PX_PER_MM:.0f}"),
                   viewBox=f"0 0 {width:.3f} {height:.3f}")
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)

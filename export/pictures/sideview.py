@@ -47,9 +47,10 @@ from ...predict.shape import BentShape
 from .chart import PALETTE
 from .labels import Box, Placer, text_box
 
-__all__ = ["SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg"]
+__all__ = ["SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg", "PX_PER_MM"]
 
-_PX_PER_MM = 3.0
+#: Scale of the drawings in mm (side views, shape overlays) [px per mm].
+PX_PER_MM = 3.0
 _PANEL_GAP_MM = 24.0
 _MARGIN_MM = 8.0
 _LEGEND_ROW_MM = 6.0
@@ -354,7 +355,7 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
         x += max(b[2] - b[0], _LEGEND_WIDTH_MM) + _PANEL_GAP_MM
     width = max(x - _PANEL_GAP_MM + _MARGIN_MM + 20.0, text_box(title, 0.0, 0.0, 5.0).x1 + 2 * _MARGIN_MM)
     height = legend_y + rows * _LEGEND_ROW_MM + _MARGIN_MM
-    dwg = Drawing(size=(f"{width * _PX_PER_MM:.0f}", f"{height * _PX_PER_MM:.0f}"),
+    dwg = Drawing(size=(f"{width * PX_PER_MM:.0f}", f"{height * PX_PER_MM:.0f}"),
                   viewBox=f"0 0 {width:.3f} {height:.3f}")
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)

@@ -23,13 +23,13 @@ import re
 from pathlib import Path
 
 from ...patterns.base.errors import ExportError, ParameterError
+from ..files.atomic import NAME_BYTES
 
-__all__ = ["OutsideOutputError", "output_path", "MAX_NAME_CHARS", "MAX_NAME_BYTES"]
+__all__ = ["OutsideOutputError", "output_path", "MAX_NAME_CHARS"]
 
 MAX_NAME_CHARS = 120
-#: Longest name in bytes (UTF-8): what Linux, macOS and Windows file systems allow in one name.
-#: The staged copy ``.NAME.XXXXXXXX.part`` cuts the name to 200 characters, so it fits too.
-MAX_NAME_BYTES = 255
+# Longest name in bytes (UTF-8): NAME_BYTES, what Linux, macOS and Windows file systems allow in one
+# name. The staged copy ``.NAME.XXXXXXXX.part`` cuts the name to 200 characters, so it fits too.
 _PLAIN = re.compile(r"^[^\x00-\x1f\x7f/\\:]+$")
 
 
@@ -76,8 +76,8 @@ def output_path(out_dir: str | os.PathLike, name: object, suffix: str) -> Path:
         size = len(name.encode("utf-8"))
     except UnicodeEncodeError:
         raise ParameterError(f"name must be valid Unicode text, got {name!r:.80}") from None
-    if size > MAX_NAME_BYTES:  # the file system's limit: a longer name is ENAMETOOLONG at the write
-        raise ParameterError(f"name must be at most {MAX_NAME_BYTES} bytes in UTF-8, got {size}")
+    if size > NAME_BYTES:  # the file system's limit: a longer name is ENAMETOOLONG at the write
+        raise ParameterError(f"name must be at most {NAME_BYTES} bytes in UTF-8, got {size}")
     if not name.lower().endswith(suffix):
         raise OutsideOutputError(f"name must end in {suffix}, got {name!r:.80}")
     root = Path(out_dir).resolve()

@@ -72,6 +72,7 @@ __all__ = [
     "MACHINE_FILE_RECORDS",
     "PATH_CHARS",
     "PATH_SEGMENTS",
+    "PATH_POINTS",
     "NAME_CHARS",
     "DESIGN_ACTUATORS",
     "ACTUATOR_SEGMENTS",
@@ -96,6 +97,8 @@ MACHINE_FILE_BYTES = 1536 * 1024
 MACHINE_FILE_RECORDS = 500_000
 PATH_CHARS = 1_000_000
 PATH_SEGMENTS = 5_000
+#: Largest number of points a path may have (a centerline's vertices, a flattened SVG path's points).
+PATH_POINTS = 2_000_000
 NAME_CHARS = 1_000
 DESIGN_ACTUATORS = 1_000
 ACTUATOR_SEGMENTS = 200

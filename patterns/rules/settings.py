@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from ..base.errors import ParameterError, check_range
 from ..base.tolerances import DEFAULT_TOLERANCES, Tolerances
-from ..limits import TRIM_JUMP_RUN, format_limit
+from ..limits import MAX_STITCH_MM, MIN_STITCH_MM, TRIM_JUMP_RUN, format_limit
 
 __all__ = ["RuleSettings"]
 
@@ -62,8 +62,8 @@ class RuleSettings:
     """
 
     format: str = "dst"
-    min_stitch_mm: float = 0.3
-    max_stitch_mm: float = 12.1
+    min_stitch_mm: float = MIN_STITCH_MM
+    max_stitch_mm: float = MAX_STITCH_MM
     hoop_width_mm: float | None = None
     hoop_height_mm: float | None = None
     density_radius_mm: float = 0.5
