@@ -123,11 +123,12 @@ def test_segmented_design_shows_a_row_per_segment_and_its_chart_and_side_view():
     parsed = _cells(html)
     assert parsed.svgs == 3 and "no bend chart" not in html  # stitches, bend chart, side view
     names = [c for c in parsed.cells if c.startswith("A1")]
-    assert names == ["A1 segment 0", "A1 segment 1", "A1 segment 2"]
+    n = len(analysis.actuators[0].segments)
+    assert n >= 2 and names == [f"A1 segment {k}" for k in range(n)]
     for seg in analysis.actuators[0].segments:  # each segment's own G from its calibration
         assert f"{seg.model.g_mpa:.4g}" in parsed.cells
     one = analysis.actuators[0]._repr_html_()
-    assert _cells(one).svgs == 1 and "whole strip: sum of its 3 segments" in one
+    assert _cells(one).svgs == 1 and f"whole strip: sum of its {n} segments" in one
 
 
 def test_a_renderer_that_cannot_draw_falls_back_to_the_text_repr():
