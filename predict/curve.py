@@ -92,8 +92,8 @@ from . import solvers
 from .inflation import KPA_PER_MPA
 from .floats import SCALAR
 from .kinds import MODEL_KINDS, model_kind
-from .lean import LeanTable, lean_table
-from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats, trace_outcome
+from .lean import LeanTable, lean_table, solve_rows
+from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats, trace_outcome, tube_radius_of
 from .status import Status, status_names
 from .tubelaws import check_tube_law, pressure_kpa, transition_pressure_kpa
 from .validity import apply_limits
@@ -354,8 +354,9 @@ def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
     a = np.atleast_1d(np.asarray(values, dtype=np.float64))
     if a.ndim > 1:
         raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
-    bad = ~np.isfinite(a) | (a < low) | (a > high)
-    if bad.any():
+    if a.size and not (low <= float(a.min()) and float(a.max()) <= high and math.isfinite(float(a.max()))
+                       and math.isfinite(float(a.min()))):
+        bad = ~np.isfinite(a) | (a < low) | (a > high)  # NaN fails both comparisons above
         raise ParameterError(f"{name} must be finite numbers in [{low:g}, {high:g}], got {float(a[bad][0]):g}")
     return a
 
@@ -429,6 +430,21 @@ def _trace(geo, t, full, kind, energy, deriv, rtol):
     return trace_outcome(th, where, full, kind)
 
 
+def _lean_rows(geo, t, full, kind, energy, deriv, rtol):
+    """The "trace" inverse of ``stable-analytic-trace`` on non-empty branches by the lean solve across designs
+    (:func:`~embroact.predict.lean.solve_rows`); the trace inverse itself for the rows with targets it leaves."""
+    theta, settled = solve_rows(geo, t, full, kind == Status.LOCKED, rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
+                                floor=PRESSURE_FLOOR_PER_G[deriv] * geo.g)
+    status = np.full(t.shape, Status.BENDING, dtype=np.int8)
+    rows = np.flatnonzero(~settled.all(axis=1))
+    if rows.size:  # only the targets left (the trace's zoom follows them; the others are 0: ignored)
+        th, st = _trace(geo.take(rows), np.where(settled[rows], 0.0, t[rows]), full[rows], kind[rows], energy,
+                        deriv, rtol)
+        keep = settled[rows]
+        theta[rows], status[rows] = np.where(keep, theta[rows], th), np.where(keep, Status.BENDING, st)
+    return theta, status
+
+
 def _root(geo, t, full, kind, energy, deriv, rtol):
     """The "root" inverse: brentq per design and pressure on the whole branch."""
     th = np.empty_like(t)
@@ -477,9 +493,14 @@ class _Branch:
         return self.lazy["arrays"]
 
     def laws(self):
-        """The model's tube law (:func:`_tube_laws`; made once, on first use)."""
+        """The free tube's radius at pressures [MPa] below P0 (:func:`~embroact.predict.onecurve.tube_radius_of`
+        with the model's tube law, as :func:`_tube_laws` gives it for one model; made once, on first use)."""
         if "laws" not in self.lazy:
-            self.lazy["laws"] = _tube_laws(_geometry([self.model]), [self.model])
+            mo = self.model
+            tube = (mo.outer_radius_mm, mo.inner_radius_mm, mo.g_e_mpa)
+            r0 = max(self.scalar.r0, mo.outer_radius_mm)
+            self.lazy["laws"] = tube_radius_of(mo.tube_law, tube, r0, float(pressure_kpa(r0, tube, mo.tube_law)),
+                                               self.scalar.r0)
         return self.lazy["laws"]
 
     @property
@@ -520,7 +541,8 @@ def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
                               p0_mpa=model.p0_kpa / KPA_PER_MPA)
     end, kind = _branch_end(g, SCALAR)
     atol = rtol * THETA_FLOOR_RAD
-    lean = None if end == 0.0 else lean_table(g, theta_end=end, pole_at_end=kind == _LOCKED, rtol=rtol, atol=atol)
+    lean = lean_table(g, theta_end=end, pole_at_end=kind == _LOCKED, rtol=rtol, atol=atol,
+                      floor=PRESSURE_FLOOR_PER_G[_FAST[1]] * g.g)
     return _Branch(model, g, end, kind, rtol, atol, lean, {}, settings[1], {})
 
 
@@ -534,7 +556,8 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
         return theta, status
     sub = slice(None) if rows.size == full.shape[0] else rows
     g = geo if rows.size == full.shape[0] else geo.take(rows)
-    th, st = (_trace if inverse == "trace" else _root)(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol)
+    solver = _lean_rows if (energy, deriv, inverse) == _FAST else _trace if inverse == "trace" else _root
+    th, st = solver(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol)
     bad = ~np.isfinite(th)
     theta[sub] = np.where(bad, 0.0, th)
     status[sub] = np.where(bad, Status.FAILED, st)

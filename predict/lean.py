@@ -1,36 +1,38 @@
-"""The lean solve: theta(P) of one model on its branch table, in one model evaluation per pressure.
+"""The lean solve: theta(P) of one model from its closed form, a bracket and one stencil per pressure.
 
 A curve of one model (what the studio, inverse design and every command ask for) solves
-``R(theta) = E'(theta) - t V'(theta) = 0`` for each target ``t = P - P0`` on the rising
-part of the branch. :func:`lean_table` tabulates the rates once per model on nested
-grids: level ``k`` spans ``[0, theta_end / 2^k]`` with :data:`LEVEL_POINTS` points
-(:data:`LEVELS` halvings), and the table keeps, from the finest level up, the upper half
-of each level, so every interval is at most 1/64 of the angles it serves (the whole
-finest level serves the smallest angles). Per interval it holds the cubics of ``E'``
-and ``V'`` through the four grid points of its level around it, in the interval's own
-coordinate ``w = (theta - theta_i)/h_i`` in [0, 1], and the tabulated rates at both ends.
-The table stops at the first fold of P (or holds the whole branch up to a lock-up,
-where P has a pole and R has none). :func:`solve_lean` then does, per target and with no
-Python loop over targets:
+``R = F' - t V' = 0`` for each target ``t = P - P0`` on the rising part of the branch, in the
+stretch ``m = (l - l0)/(2 l0)`` (:class:`~embroact.predict.model.StretchRates`: P as a ratio of
+rates in ``m`` needs no derivative of the constraint, about half the operations of the rates in
+theta), and gives theta at the root. The branch's *nodes* are fixed fractions of its served span: nested
+grids, level ``k`` spanning ``[0, span / 2^k]`` with :data:`LEVEL_POINTS` points
+(:data:`LEVELS` halvings), the whole finest level and the upper half of each coarser
+one, so every interval is at most 1/32 of the angles it serves. Per target:
 
-1. bracket: the interval with ``P_i <= t < P_(i+1)`` (a binary search in the table);
-2. start: the root of the cubic ``R`` from the secant of the tabulated residuals, by
-   :data:`CUBIC_STEPS` Newton step(s) on the cubic (no model evaluation);
-3. polish: one Newton step on the model's residual with the cubic's slope.
+1. bracket: the nodes with ``P_i <= t < P_(i+1)`` (a search over the nodes);
+2. start: the secant of the residuals at the two nodes (R has no pole at lock-up, P has);
+3. polish: R at four points around the start (:data:`STENCIL`, spaced 1/64 of the
+   interval), the root of the cubic through them by two Newton steps on that cubic.
 
-A target is *settled* when the step stays in its interval and the error the step
-leaves is within the tolerance: ``min(step, left) <= rtol |theta| + atol``, where
-``left = step (27 |c3| + |R_ww| step/|h|)/|R_w|`` bounds the slope error of the cubic
-(its cubic term) times the step plus Newton's quadratic term (``R_ww`` the cubic's own
-second derivative), as the trace inverse estimates it. A target that is not settled (near a fold, near the lock-up pole, or so
-small that its residual is round-off) is the caller's to solve by the full trace inverse
-(:func:`embroact.predict.solvers.trace_inverse`, which also knows P's round-off floor);
-so is every target above the table's top (beyond a fold, or past the branch end).
+The answer is *settled* when the root lies inside the stencil and inside the bracket,
+and the error the cubic leaves (its next term, estimated from its third difference) is
+within ``rtol |theta| + atol``. A target that is not settled (so small that its residual
+is round-off, or where the cubic does not hold) is the caller's to solve by the full
+trace inverse (:func:`embroact.predict.solvers.trace_inverse`, which also knows P's
+round-off floor); so is every target at or above the last node's pressure.
 
-The table depends on the model only, never on the pressures asked for, so a settled
-answer is the same whatever else the call or earlier calls asked. The same text runs on numpy
-arrays (many pressures) and on Python floats (:data:`embroact.predict.floats.SCALAR`, a
-handful of pressures): the same operations in the same order, so both give the same bits.
+Which nodes a target uses depends on the model and the target only, so an answer is the
+same whatever else the call or earlier calls asked. Many pressures evaluate every node at
+once on numpy arrays (:func:`solve_lean`, one closed-form evaluation over the nodes, one over
+the stencils); a handful evaluate only the nodes their binary search visits, on Python floats
+(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`): the same operations in the
+same order, so both give the same bits, and neither builds a table first.
+
+The served span: the whole branch of a cross design (to the lock-up, where P has a pole; its
+P rises up to it), and of a zigzag up to ``m = (r0/l0) theta = ZIGZAG_RISE_M``: a zigzag's P
+depends on ``m`` and ``c/r0^2`` alone and first folds at ``m`` 0.828-0.954 over
+``0 <= c/r0^2 < 1`` (tests/test_lean.py holds the rise). The array path checks the rise on
+its nodes and leaves every target to the trace inverse where it does not hold.
 
 Examples
 --------
@@ -40,16 +42,17 @@ Examples
 >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
 >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
 >>> t = pressure_mpa(np.array([-0.003, -0.3, -4.0]), geo)[0] - 0.17
->>> theta, settled = solve_lean(tab, t)
+>>> m, settled = solve_lean(tab, t)
+>>> theta = tab.rates.theta(m)
 >>> bool(np.all(np.abs(theta / [-0.003, -0.3, -4.0] - 1.0) < 1e-10)), settled.tolist()
 (True, [True, True, True])
->>> solve_lean_scalar(tab, float(t[1])) == float(theta[1])
+>>> solve_lean_scalar(tab, float(t[1])) == float(m[1])
 True
 """
 from __future__ import annotations
 
+import math
 from bisect import bisect_right
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,65 +60,145 @@ import numpy as np
 from . import model as _m
 from .floats import SCALAR
 
-__all__ = ["LeanTable", "lean_table", "solve_lean", "solve_lean_scalar", "LEVELS", "LEVEL_POINTS", "CUBIC_STEPS"]
+__all__ = ["LeanTable", "lean_table", "solve_lean", "solve_lean_scalar", "solve_rows", "LEVELS", "LEVEL_POINTS", "STENCIL",
+           "ZIGZAG_RISE_M"]
 
-#: Halvings of the branch below the full one (the finest level spans 1/1024 of it).
+#: Halvings of the served span below the full one (the finest level spans 1/1024 of it).
 LEVELS = 10
-#: Grid points per level: an odd count, so the midpoint of a level is the end of the next.
-LEVEL_POINTS = 129
-#: Newton steps on the interpolating cubic for the start (no model evaluations).
-CUBIC_STEPS = 1
-#: Power-basis coefficients of the cubic through the grid points j..j+3, in the coordinate of
-#: the interval starting at j + s (s = 0, 1, 2: the first, inner and last intervals' windows).
-_WINDOW = tuple(np.linalg.inv(np.vander(np.arange(4.0) - s, 4, increasing=True)) for s in range(3))
+#: Grid points per level: 2^k + 1, so each node is an exact binary fraction of the span.
+LEVEL_POINTS = 65
+#: Where the polish evaluates R around the start, in units of its spacing (1/64 of the interval).
+STENCIL = (-1.5, -0.5, 0.5, 1.5)
+_SPACING = 1.0 / 64.0
+#: A zigzag's nodes reach m = (r0/l0) theta = this (its P rises up to m = 0.828 at least).
+ZIGZAG_RISE_M = 0.8
+
+_HALF = (LEVEL_POINTS - 1) // 2
+#: The nodes as fractions of the span, rising: the finest level, then the upper half of each coarser one.
+_FRACTIONS = np.concatenate(
+    [np.arange(LEVEL_POINTS) / (LEVEL_POINTS - 1) * 0.5 ** LEVELS]
+    + [np.arange(_HALF + 1, LEVEL_POINTS) / (LEVEL_POINTS - 1) * 0.5 ** (LEVELS - k) for k in range(1, LEVELS + 1)])
+_FRACTION_LIST = _FRACTIONS.tolist()
+#: The stencil spacing of each node's interval to the next, as a fraction of the span (the last node's: its
+#: level's step).
+_KW = _SPACING * np.append(np.diff(_FRACTIONS), _FRACTIONS[-1] - _FRACTIONS[-2])
+_KW_LIST = _KW.tolist()
+_LAST = _FRACTIONS.size - 1
+_Z = np.array(STENCIL)[:, None]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class LeanTable:
-    """One branch's rising part, a row per interval (built once per model by :func:`lean_table`).
+    """One branch's served span and what has been evaluated on it (made by :func:`lean_table`).
 
     Attributes
     ----------
-    geo : Geometry
-        The model's constants as Python floats (:meth:`~embroact.predict.model.Geometry.scalar`).
-    rate : callable
-        ``rate(theta, geo, xp)``: the fused analytic rates (:func:`~embroact.predict.model.fast_rate_of`).
-    p : ndarray
-        P - P0 at the intervals' ends [MPa], rising, ``(k + 1,)``.
-    columns : ndarray
-        ``(13, k)``, a column per interval: its start theta [rad], its width h and ``|h|`` [rad] (h signed
-        as the branch), the cubics of E' and V' (4 coefficients each) and E', V' at its end.
+    rates : StretchRates
+        The model's rates in the stretch ``m`` (:class:`~embroact.predict.model.StretchRates`); its
+        ``scale`` turns their ratio into P - P0 [MPa].
+    span : float
+        The served span in ``m``, signed as the branch (the nodes are fractions of it).
+    pole : bool
+        The span ends at a lock-up (P -> inf at the last node).
     rtol, atol : float
-        Settling tolerances (module docstring).
-    p_list : list
-        ``p`` as Python floats, for :func:`solve_lean_scalar`.
+        Settling tolerances in ``m`` (module docstring).
+    floor : float
+        Targets at or below it (in units of ``rates.scale`` MPa) are round-off sized: left to the trace inverse.
+    nodes : dict
+        Node index -> (m, F', V', P - P0 over the scale) evaluated on floats so far (:func:`solve_lean_scalar`).
+    lazy : dict
+        The arrays of every node, made on first use (:meth:`arrays`).
 
     Examples
     --------
     >>> from embroact.predict.model import Geometry, lock_theta
     >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
     >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
-    >>> tab.columns.shape[0], tab.top  # up to a lock-up: every target is served
-    (13, inf)
+    >>> tab.pole, tab.top  # up to a lock-up: every target is served
+    (True, inf)
     """
 
-    geo: _m.Geometry
-    rate: Callable
-    p: np.ndarray
-    columns: np.ndarray
+    rates: _m.StretchRates
+    span: float
+    pole: bool
     rtol: float
     atol: float
-    p_list: list
+    floor: float
+    nodes: dict
+    lazy: dict
+
+    def arrays(self):
+        """The arrays of every node, made once.
+
+        Returns
+        -------
+        nodes : numpy.ndarray (5, n)
+            Per node: m, F', V', P - P0 over the scale and the stencil spacing of the interval it starts.
+        rises : bool
+            P rises over the nodes.
+
+        Examples
+        --------
+        >>> from embroact.predict.model import Geometry, lock_theta
+        >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+        >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+        >>> nodes, rises = tab.arrays()
+        >>> nodes.shape, rises
+        ((5, 385), True)
+        """
+        if "arrays" not in self.lazy:
+            m = self.span * _FRACTIONS
+            f, v = self.rates(m, np)
+            nodes = np.empty((5, m.size))
+            nodes[0], nodes[1], nodes[2] = m, f, v
+            with np.errstate(divide="ignore", invalid="ignore"):
+                np.divide(f, nodes[2], out=nodes[3])
+            nodes[3, 0] = 0.0
+            if self.pole:
+                nodes[3, -1] = np.inf
+            np.multiply(_KW, abs(self.span), out=nodes[4])
+            p = nodes[3]
+            self.lazy["arrays"] = nodes, bool(np.all(p[1:] > p[:-1]))
+        return self.lazy["arrays"]
 
     @property
     def top(self) -> float:
-        """The highest target the table serves (P - P0 at its last rising grid point) [MPa]."""
-        return self.p_list[-1]
+        """The lowest target the table does not serve: P - P0 at its last node [MPa] (inf at a lock-up)."""
+        return float(self.arrays()[0][3, -1]) * self.rates.scale
+
+    def node(self, j: int):
+        """(m, F', V', P - P0 over the scale) at node ``j`` on Python floats (kept in :attr:`nodes`).
+
+        Parameters
+        ----------
+        j : int
+            Node index, 0 (the straight state) to the last.
+
+        Returns
+        -------
+        tuple of float
+
+        Examples
+        --------
+        >>> from embroact.predict.model import Geometry, lock_theta
+        >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+        >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+        >>> tab.node(100)[0] == float(tab.arrays()[0][0, 100]), tab.node(100)[3] == float(tab.arrays()[0][3, 100])
+        (True, True)
+        """
+        got = self.nodes.get(j)
+        if got is None:
+            m = self.span * _FRACTION_LIST[j]
+            f, v = self.rates(m, SCALAR)
+            p = 0.0 if j == 0 else (np.inf if j == _LAST and self.pole else f / v)
+            got = self.nodes[j] = (m, f, v, p)
+        return got
 
 
-def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: float,
-               atol: float) -> LeanTable | None:
-    """The table of one design's branch from 0 to ``theta_end`` [rad] (module docstring).
+def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: float, atol: float,
+               floor: float = 0.0) -> LeanTable | None:
+    """The lean table of one design's branch from 0 to ``theta_end`` [rad] (module docstring); nothing is
+    evaluated until a solve asks.
 
     Parameters
     ----------
@@ -126,101 +209,62 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
     pole_at_end : bool
         ``theta_end`` is a lock-up (P -> inf there).
     rtol, atol : float
-        Settling tolerances.
+        The tolerance of theta [rad].
+    floor : float, optional
+        Targets at or below it [MPa] are left to the trace inverse.
 
     Returns
     -------
     LeanTable or None
-        None when no interval rises, or when the last interval before the pole is not finite
-        (nothing the table could serve).
+        None when the branch is empty.
 
     Examples
     --------
     >>> from embroact.predict.model import Geometry, lock_theta
     >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
     >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
-    >>> len(tab.p_list) == tab.columns.shape[1] + 1
+    >>> bool(abs(tab.rates.theta(tab.span) / float(lock_theta(geo)[0, 0]) - 1.0) < 1e-12)
     True
     """
-    n = LEVEL_POINTS
+    if theta_end == 0.0:
+        return None
     g = geo if isinstance(geo.l0, float) else geo.scalar()
-    grid = (theta_end * _HALVINGS)[:, None] * _UNIT  # finest level first; halvings: exact
-    rate = _m.fast_rate_of(g)
-    de, dv = rate(grid, g, np)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p = de / dv
-    p[:, 0] = 0.0
-    if pole_at_end or not np.isfinite(p[-1, -1]):
-        p[-1, -1] = np.inf
-    rising = p[:, 1:] > p[:, :-1]
-    tops = np.where(rising.all(axis=1), n - 1, np.argmin(rising, axis=1))
-    # finest level first: all of it, then the upper half of each coarser level, up to the first fold
-    # (P falls beyond it: the coarser levels add nothing)
-    folded = np.flatnonzero(tops < n - 1)
-    keep = _KEEP & (_INTERVAL < tops[:, None])
-    if folded.size:
-        keep[folded[0] + 1:] = False
-    kept = np.flatnonzero(keep.ravel())  # level * (n - 1) + interval, finest level first
-    if not kept.size:
-        return None
-    level, i = np.divmod(kept, n - 1)
-    at = level * n + i  # the interval's start in the flat grid
-    p_ends = np.append(p.ravel()[at], p.ravel()[at[-1] + 1])
-    if not np.isfinite(p_ends[-2]):
-        return None
-    return LeanTable(g, rate, p_ends, _columns(grid.ravel(), de.ravel(), dv.ravel(), at, i), float(rtol),
-                     float(atol), p_ends.tolist())
+    rates = _m.StretchRates.of(g)
+    span, pole = rates.m_of(float(theta_end)), bool(pole_at_end)
+    if not g.s0 > 0.0 and abs(span) > ZIGZAG_RISE_M:  # a zigzag: up to ZIGZAG_RISE_M, short of its fold
+        span, pole = (ZIGZAG_RISE_M if span > 0.0 else -ZIGZAG_RISE_M), False
+    return LeanTable(rates, span, pole, float(rtol), float(atol) / rates.theta_per_m, float(floor) / rates.scale,
+                     {}, {})
 
 
-#: The nested grids' constants: the halvings (finest level first), one level's points in [0, 1], each
-#: level's interval indices, the intervals a level serves (all of the finest, the upper half of the others).
-_HALVINGS = 0.5 ** np.arange(LEVELS, -1.0, -1.0)
-_UNIT = np.linspace(0.0, 1.0, LEVEL_POINTS)
-_INTERVAL = np.arange(LEVEL_POINTS - 1)
-_KEEP = np.broadcast_to(_INTERVAL >= (LEVEL_POINTS - 1) // 2, (LEVELS + 1, LEVEL_POINTS - 1)).copy()
-_KEEP[0] = True
-#: Per interval of a level: the offset of its four-point window from its start, and the window's matrix.
-_WINDOW_START = np.clip(_INTERVAL - 1, 0, LEVEL_POINTS - 4) - _INTERVAL
-_WINDOW_OF = np.stack(_WINDOW)[-_WINDOW_START]
+def _start(ma, mb, fa, va, fb, vb, t, zigzag):
+    """The start: the secant of the residuals at the bracket's nodes (R(ma) <= 0 < R(mb)); a zigzag's V' is 1."""
+    ra, rb = (fa - t, fb - t) if zigzag else (fa - t * va, fb - t * vb)
+    return ma + (mb - ma) * (ra / (ra - rb))
 
 
-def _columns(grid, de, dv, at, i):
-    """The ``(13, k)`` columns (:class:`LeanTable`) of the intervals starting at the flat grid indices ``at``
-    (interval ``i`` of its level)."""
-    window = (at + _WINDOW_START[i])[:, None] + np.arange(4)
-    mats = _WINDOW_OF[i]
-    out = np.empty((13, at.size))
-    out[0] = grid[at]
-    out[1] = grid[at - i + 1] - grid[at - i]  # the level's step: its second point less its first
-    out[2] = abs(out[1])
-    out[3:7] = np.einsum("kw,kcw->ck", de[window], mats)
-    out[7:11] = np.einsum("kw,kcw->ck", dv[window], mats)
-    out[3], out[7] = de[at], dv[at]  # the cubic meets the table at w = 0 exactly
-    out[11], out[12] = de[at + 1], dv[at + 1]
-    return out
-
-
-def _settle(tab: LeanTable, t, row, xp):
-    """(theta, settled) of targets ``t`` in the intervals ``row`` (steps 2-3 of the module docstring)."""
-    x_i, h, habs, e0, e1, e2, e3, v0, v1, v2, v3, e_b, v_b = row
-    c0, c1, c2, c3 = e0 - t * v0, e1 - t * v1, e2 - t * v2, e3 - t * v3
-    q2, q3 = 2.0 * c2, 3.0 * c3
-    u = c0 / (c0 - (e_b - t * v_b))  # the secant of the tabulated residuals: R(0) <= 0 < R(1)
-    for _ in range(CUBIC_STEPS):
-        u = xp.minimum(xp.maximum(u - (c0 + u * (c1 + u * (c2 + u * c3))) / (c1 + u * (q2 + u * q3)), 0.0), 1.0)
-    e, v = tab.rate(x_i + h * u, tab.geo, xp)
-    slope = c1 + u * (q2 + u * q3)
-    dw = (e - t * v) / slope
-    w = u - dw
-    theta = x_i + h * w
-    step = abs(dw) * habs
-    left = step * (27.0 * abs(c3) + abs(q2 + 2.0 * q3 * u) * step / habs) / abs(slope)
-    settled = (w >= 0.0) & (w <= 1.0) & (xp.minimum(step, left) <= tab.rtol * abs(theta) + tab.atol)
-    return theta, settled
+def _polish(tab: LeanTable, t, x0, d, r0, r1, r2, r3, xp):
+    """(m, settled) from the residuals ``r0..r3`` at ``x0 + d * STENCIL`` (step 3 of the module docstring)."""
+    f0, f1 = r1 - r0, r2 - r1
+    k2 = 0.5 * (f1 - f0)
+    k3 = ((r3 - r2 - f1) - (f1 - f0)) / 6.0
+    y = 1.0 + r1 / (r1 - r2)  # y = z + 1.5 in [0, 3]: the secant of the two middle points
+    # one Newton step on the cubic p(y) = r0 + y (f0 + (y - 1)(k2 + (y - 2) k3)) through them
+    q = k2 + (y - 2.0) * k3
+    s = f0 + (y - 1.0) * q
+    slope = s + y * (q + (y - 1.0) * k3)
+    y = y - (r0 + y * s) / slope
+    m = x0 + d * (y - 1.5)
+    # the cubic's error: its next difference (at most its third times the spacing ratio) times
+    # |y (y - 1)(y - 2)(y - 3)| <= 1 on [0, 3], over the slope; the root then lies in the bracket
+    # within the tolerance (its residuals change sign there)
+    left = abs(k3 / slope) * (d * _SPACING)
+    return m, (abs(y - 1.5) <= 1.5) & (left <= tab.rtol * abs(m) + tab.atol)  # NaN: False
 
 
 def solve_lean(tab: LeanTable, t):
-    """(theta [rad], settled) for targets ``t = P - P0`` [MPa], 1-D, ``0 < t <= tab.top``.
+    """(m, settled) for targets ``t = P - P0`` [MPa], 1-D, ``t > 0``: the stretches
+    (:meth:`~embroact.predict.model.StretchRates.state` gives theta and the state there).
 
     Entries not settled (module docstring) hold no answer: solve them by the trace inverse.
 
@@ -233,8 +277,8 @@ def solve_lean(tab: LeanTable, t):
 
     Returns
     -------
-    theta : numpy.ndarray (n,)
-        Bend angle [rad].
+    m : numpy.ndarray (n,)
+        The stretch at each root.
     settled : numpy.ndarray of bool (n,)
 
     Examples
@@ -242,21 +286,74 @@ def solve_lean(tab: LeanTable, t):
     >>> from embroact.predict.model import Geometry, lock_theta
     >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
     >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
-    >>> theta, settled = solve_lean(tab, np.array([0.01, 0.1]))
-    >>> theta.round(6).tolist(), settled.tolist()
+    >>> m, settled = solve_lean(tab, np.array([0.01, 0.1]))
+    >>> tab.rates.theta(m).round(6).tolist(), settled.tolist()
     ([-0.234103, -1.500631], [True, True])
     """
-    i = np.searchsorted(tab.p, t, side="right") - 1  # >= 0: t > 0 = p[0]
-    np.minimum(i, tab.columns.shape[1] - 1, out=i)  # t = top itself: the last interval
+    nodes, rises = tab.arrays()
+    t = t / tab.rates.scale
+    i = np.searchsorted(nodes[3], t, side="right") - 1  # >= 0: t > 0 = p[0]
+    served = i < _LAST
+    (ma, fa, va, _, kh), (mb, fb, vb, _, _) = nodes[:, np.minimum(i, _LAST - 1)], nodes[:, np.minimum(i + 1, _LAST)]
+    zigzag = tab.rates.zigzag
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        theta, settled = _settle(tab, t, tab.columns[:, i], np)
-        return theta, settled & np.isfinite(theta)
+        x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
+        d = np.minimum(kh, _SPACING * np.abs(x0))
+        fs, vs = tab.rates(x0 + d * _Z, np)
+        r = fs - t if zigzag else fs - t * vs
+        m, settled = _polish(tab, t, x0, d, r[0], r[1], r[2], r[3], np)
+    if not rises:
+        settled[:] = False
+    elif not (float(t.min()) > tab.floor and int(i.max()) < _LAST):  # i before it was clipped
+        settled &= served & (t > tab.floor)
+    return m, settled
+
+
+def _bracket(tab: LeanTable, t: float) -> int | None:
+    """The node ``lo`` with ``P_lo <= t < P_(lo+1)`` (what ``searchsorted`` finds among all nodes: P rises over
+    them), evaluating few: each probe is the node below the root that the inverse quadratic through the
+    bracket's ends and the previous probe predicts (a straight line from the straight state at first), then
+    the node above it; a bisection when a probe did not halve the bracket. None if ``t`` is at or above P at
+    the last node."""
+    lo, hi = 0, _LAST
+    p_lo, p_hi = 0.0, tab.node(hi)[3]
+    if not t < p_hi:
+        return None
+    f_lo, f_hi, third = 0.0, 1.0, None
+    halved = True
+    while hi - lo > 1:
+        width, guess = hi - lo, halved and p_hi < math.inf
+        if guess:
+            x = f_lo + (f_hi - f_lo) * (t - p_lo) / (p_hi - p_lo)
+            if third is not None:
+                p_c, f_c = third
+                q = (f_lo * (t - p_hi) * (t - p_c) / ((p_lo - p_hi) * (p_lo - p_c))
+                     + f_hi * (t - p_lo) * (t - p_c) / ((p_hi - p_lo) * (p_hi - p_c))
+                     + f_c * (t - p_lo) * (t - p_hi) / ((p_c - p_lo) * (p_c - p_hi)))
+                x = q if f_lo < q < f_hi else x
+            j = min(max(bisect_right(_FRACTION_LIST, x) - 1, lo + 1), hi - 1)
+        else:
+            j = (lo + hi) // 2
+        for k in (j, j + 1) if guess else (j,):  # the node above the guess: the bracket, when the guess was good
+            if not lo < k < hi:
+                break
+            p = tab.node(k)[3]
+            if p <= t:
+                third = (p_lo, f_lo) if lo else third
+                lo, p_lo, f_lo = k, p, _FRACTION_LIST[k]
+            else:
+                third = (p_hi, f_hi) if p_hi < math.inf else third
+                hi, p_hi, f_hi = k, p, _FRACTION_LIST[k]
+                break
+        halved = 2 * (hi - lo) <= width
+    return lo
 
 
 def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
-    """theta [rad] for one target ``0 < t <= tab.top`` [MPa] in Python floats, or None if not settled.
+    """m for one target ``t > 0`` [MPa] in Python floats, or None if not settled.
 
-    The same answer, bit for bit, as :func:`solve_lean` gives for ``t`` among any others.
+    The same answer, bit for bit, as :func:`solve_lean` gives for ``t`` among any others; it evaluates
+    only the nodes its search visits (:func:`_bracket`) and the four stencil points.
 
     Parameters
     ----------
@@ -268,7 +365,7 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
     Returns
     -------
     float or None
-        Bend angle [rad].
+        The stretch at the root.
 
     Examples
     --------
@@ -277,10 +374,101 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
     >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
     >>> solve_lean_scalar(tab, 0.1) == float(solve_lean(tab, np.array([0.01, 0.1]))[0][1])
     True
+    >>> len(tab.nodes) < 12  # of 385 nodes
+    True
     """
-    i = min(bisect_right(tab.p_list, t) - 1, tab.columns.shape[1] - 1)  # >= 0: t > 0 = p[0]
-    try:
-        theta, settled = _settle(tab, t, tab.columns[:, i].tolist(), SCALAR)
-    except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic: the trace inverse's case
+    t = t / tab.rates.scale
+    lo = _bracket(tab, t)
+    if lo is None:
         return None
-    return theta if settled and theta == theta else None
+    hi = lo + 1
+    ma, fa, va, _ = tab.node(lo)
+    mb, fb, vb, _ = tab.node(hi)
+    zigzag = tab.rates.zigzag
+    try:
+        x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
+        d = SCALAR.minimum(_KW_LIST[lo] * abs(tab.span), _SPACING * abs(x0))
+        r = [(f - t if zigzag else f - t * v) for f, v in (tab.rates(x0 + d * z, SCALAR) for z in STENCIL)]
+        m, settled = _polish(tab, t, x0, d, *r, SCALAR)
+    except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic or a stencil out of the domain
+        return None
+    return m if settled and t > tab.floor else None
+
+
+def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol: float, floor):
+    """The lean solve of many designs at once (what ``sweep`` runs): ``(theta [rad], settled)``, (n, k).
+
+    ``geo``: the designs as ``(n, 1)`` arrays; ``t``: targets P - P0 [MPa] (n, k), those <= 0 ignored (settled,
+    theta 0); ``theta_end``, ``pole_at_end``: each branch's end (n, 1), non-zero; ``floor``: per design (n, 1).
+    Each design has the nodes of :func:`lean_table` (its served span); one ``searchsorted`` brackets every
+    target, in keys ``row + P/(1 + P)`` that rise through the rows. Designs whose P does not rise over their
+    nodes leave every target unsettled, as entries not settled do: the caller's trace inverse solves them.
+
+    Parameters
+    ----------
+    geo : Geometry
+        The designs, ``(n, 1)`` columns.
+    t : numpy.ndarray (n, k)
+        Targets P - P0 [MPa]; those <= 0 are ignored.
+    theta_end : numpy.ndarray (n, 1)
+        Each branch's end [rad], non-zero.
+    pole_at_end : numpy.ndarray of bool (n, 1)
+        The end is a lock-up.
+    rtol, atol : float
+        The tolerance of theta [rad].
+    floor : numpy.ndarray (n, 1)
+        Targets at or below it [MPa] are left unsettled.
+
+    Returns
+    -------
+    theta : numpy.ndarray (n, k)
+        Bend angle [rad] (0 where ignored).
+    settled : numpy.ndarray of bool (n, k)
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, lock_theta
+    >>> geo = Geometry.from_values(beta0_rad=[0.6, 0.0], l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3,
+    ...                            p0_mpa=0.17)
+    >>> end = np.where(geo.s0 > 0.0, lock_theta(geo), 20.0)
+    >>> theta, settled = solve_rows(geo, np.array([[0.0, 0.1], [0.05, 0.1]]), end, geo.s0 > 0.0, rtol=1e-10,
+    ...                             atol=1e-22, floor=np.zeros((2, 1)))
+    >>> theta.round(6).tolist(), settled.tolist()
+    ([[0.0, -1.500631], [1.606927, 3.936154]], [[True, True], [True, True]])
+    """
+    rates = _m.StretchRates.of(geo)
+    n = t.shape[0]
+    span = rates.m_of(theta_end)
+    capped = (geo.s0 == 0.0) & (np.abs(span) > ZIGZAG_RISE_M)
+    span = np.where(capped, np.copysign(ZIGZAG_RISE_M, span), span)
+    m = span * _FRACTIONS
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        f, v = rates(m, np)
+        v = np.broadcast_to(v, m.shape)
+        p = f / v
+        p[:, 0] = 0.0
+        p[:, -1] = np.where(np.ravel(pole_at_end & ~capped), np.inf, p[:, -1])
+        rises = np.all(p[:, 1:] > p[:, :-1], axis=1)
+        p = np.where(rises[:, None], p, _FRACTIONS)  # keys that rise whatever the row's P does
+        rows = np.arange(n)[:, None]
+        tt = t / rates.scale
+        keys = (rows + p / (1.0 + p)).ravel()
+        keys[_LAST::_LAST + 1] = rows[:, 0] + 1.0  # P = inf at a pole: the row's end
+        flat = np.searchsorted(keys, (rows + tt / (1.0 + tt)).ravel(), side="right").reshape(t.shape) - 1
+        i = flat - rows * (_LAST + 1)
+        served = (i >= 0) & (i < _LAST) & rises[:, None] & (tt > floor / rates.scale)
+        at = rows * (_LAST + 1) + np.clip(i, 0, _LAST - 1)
+        ma, mb = m.ravel()[at], m.ravel()[at + 1]
+        fa, fb, va, vb = f.ravel()[at], f.ravel()[at + 1], v.ravel()[at], v.ravel()[at + 1]
+        x0 = _start(ma, mb, fa, va, fb, vb, tt, False)
+        kh = np.abs(span) * _KW[np.clip(i, 0, _LAST - 1)]
+        d = np.minimum(kh, _SPACING * np.abs(x0))
+        r = []
+        for z in STENCIL:  # one point at a time: each array of the rates then stays in cache
+            fs, vs = rates(x0 + d * z, np)
+            r.append(fs - tt * vs)
+        tab = LeanTable(rates, 0.0, False, float(rtol), atol / rates.theta_per_m, 0.0, {}, {})
+        ms, settled = _polish(tab, tt, x0, d, *r, np)
+        theta = rates.theta(ms, np)
+    ignored = t <= 0.0
+    return np.where(ignored, 0.0, theta), (settled & served) | ignored

@@ -56,6 +56,7 @@ import numpy as np
 
 from ..patterns.base.errors import ParameterError
 from . import solvers
+from .floats import SCALAR
 
 __all__ = [
     "ENERGY_FORMS",
@@ -74,6 +75,7 @@ __all__ = [
     "rate_fast",
     "pantograph",
     "fast_rate_of",
+    "StretchRates",
 ]
 
 ENERGY_FORMS = ("stable", "printed", "reference")
@@ -82,6 +84,7 @@ DERIVATIVES = ("analytic", "complex", "central")
 
 #: Gauss-Legendre nodes of the reference energy (wall depth, angle around the tube).
 REFERENCE_NODES = (12, 64)
+_DEG_PER_RAD = 180.0 / np.pi  # numpy's degrees() multiplies by this same double
 
 
 @dataclass(frozen=True, slots=True)
@@ -389,15 +392,19 @@ def lock_theta(geo: Geometry, xp=np):
     [inf, -381.59]
     """
     s0, c0 = geo.s0, geo.c0
-    if xp is not np and not s0 > 0.0:
-        return np.inf
+    if xp is not np:
+        return _lock_of(geo, s0, c0, xp) if s0 > 0.0 else np.inf
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(s0 > 0.0, _lock_of(geo, s0, c0, xp), np.inf)
+
+
+def _lock_of(geo, s0, c0, xp):
+    """:func:`lock_theta` where s0 > 0."""
     root = xp.sqrt(s0 * s0 + 3.0)
     x = (root - s0) / 3.0
     # x - s0 = (1 - 5 s0^2)/(root + 4 s0): no cancellation near the neutral angle
-    with np.errstate(divide="ignore", invalid="ignore"):
-        dl = geo.l0 * (c0 - 2.0 * s0) * (c0 + 2.0 * s0) / ((root + 4.0 * s0) * s0)
-        theta = dl / (2.0 * geo.r_c0 * xp.sqrt(1.0 - x * x))
-    return theta if xp is not np else np.where(s0 > 0.0, theta, np.inf)
+    dl = geo.l0 * (c0 - 2.0 * s0) * (c0 + 2.0 * s0) / ((root + 4.0 * s0) * s0)
+    return dl / (2.0 * geo.r_c0 * xp.sqrt(1.0 - x * x))
 
 
 # -- energy ---------------------------------------------------------------------------
@@ -735,7 +742,194 @@ def fast_rate_of(geo: Geometry):
     >>> fast_rate_of(geo)(0.5, geo, np) == rate_fast(0.5, geo)
     True
     """
-    return _cross_rate_stable if np.any(geo.s0) else _zigzag_rate_stable
+    cross = geo.s0 != 0.0 if isinstance(geo.s0, float) else np.any(geo.s0)
+    return _cross_rate_stable if cross else _zigzag_rate_stable
+
+
+# -- the stretch m: P without the constraint's theta-derivatives ---------------------------------
+@dataclass(frozen=True, slots=True)
+class StretchRates:
+    """dF/dm and dV/dm in the stretch ``m = (l - l0)/(2 l0) = A - 1``, scaled so that ``P - P0 = scale F'/V'``.
+
+    On the constraint every state is a function of ``u = l/l0 = 1 + 2 m`` alone
+    (``cos^2(beta) = 1 - s0^2 u^2``, ``lambda2^2 = cos^2(beta)/c0^2``, ``s = c/r^2 = sigma/cos^2(beta)``
+    with ``sigma = c c0^2/r0^2``), and so is theta, ``theta = (l0 c0/r0) m/cos(beta)``; P is a ratio of
+    rates along the constraint, the same in any variable, so in ``m`` it needs no derivative of
+    theta. With ``F`` the stable bracket over ``c`` (:func:`_gradient_stable`'s, in ``A``, ``m``):
+
+    * ``F = A + (lambda2^2 - 3)/A + m^2/(2A) - m^2 s/(4 A^2) + tau/lambda2^2``,
+      ``tau = 2/(sqrt(u) sqrt(b) (sqrt(u) + sqrt(b)))``, ``b = u + w``, ``w = m^2 s/A``;
+    * ``V = pi l0 r0^2/c0^2 (cos^2(beta) (1 + u)/2 - c c0^2/r0^2)``, so ``dV/dm`` is that factor times
+      ``1 - s0^2 u (2 + 3 u)`` (zero at lock-up);
+    * ``P - P0 = (G sigma/2) F'/V'`` (:attr:`scale`).
+
+    Attributes
+    ----------
+    s0sq, c0sq : float or numpy.ndarray
+        sin^2(beta0), cos^2(beta0).
+    sigma : float or numpy.ndarray
+        ``c c0^2/r0^2``.
+    lam_k, inv_c0sq : float or numpy.ndarray
+        ``4 s0^2/c0^2`` and ``1/c0^2``.
+    theta_per_m : float or numpy.ndarray
+        ``l0 c0/r0``: theta over m at the straight state [rad].
+    scale : float or numpy.ndarray
+        ``G sigma/2`` [MPa].
+    geo : Geometry
+        The design(s).
+
+    Examples
+    --------
+    >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> k = StretchRates.of(geo.scalar())
+    >>> theta = 0.4
+    >>> f, v = k(k.m_of(theta))
+    >>> bool(abs(k.scale * f / v + 0.17 - float(pressure_mpa(theta, geo)[0, 0])) < 1e-15)
+    True
+    >>> bool(abs(k.theta(k.m_of(theta)) - theta) < 1e-15)
+    True
+    """
+
+    s0sq: float
+    c0sq: float
+    sigma: float
+    lam_k: float
+    inv_c0sq: float
+    theta_per_m: float
+    scale: float
+    geo: Geometry
+
+    @classmethod
+    def of(cls, g: Geometry) -> "StretchRates":
+        """The rates of a :meth:`Geometry.scalar` geometry (floats), or of several designs ((n, 1) arrays).
+
+        Parameters
+        ----------
+        g : Geometry
+            The design(s).
+
+        Returns
+        -------
+        StretchRates
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1)
+        >>> StretchRates.of(geo.scalar()).theta_per_m  # l0/r0 for a zigzag
+        40.0
+        """
+        sigma = g.c * g.c0sq / (g.r0 * g.r0)
+        return cls(g.s0sq, g.c0sq, sigma, 4.0 * g.s0sq / g.c0sq, 1.0 / g.c0sq, g.l0 / g.r_c0, 0.5 * g.g * sigma, g)
+
+    def __call__(self, m, xp=np):
+        """(F', V') at stretches ``m`` (arrays, or one float with ``xp=SCALAR``); V' is 1.0 for a zigzag (class
+        docstring)."""
+        u = 1.0 + 2.0 * m
+        ia = 1.0 / (1.0 + m)
+        ia2 = ia * ia
+        mm = m * m
+        if self.zigzag:  # cos(beta) = 1, s = sigma
+            w = self.sigma * mm * ia
+            big_n = (2.0 * self.sigma) * m
+            tau, t_u, t_b = _stable_t_partials(u, u + w, 1.0, xp)
+            return (1.0 + 2.0 * ia2 + 0.5 * ia2 * (m * (2.0 + m) - 0.5 * big_n + w)
+                    + 2.0 * t_u + t_b * (2.0 + (big_n - w) * ia)), 1.0
+        cos2 = 1.0 - self.s0sq * (u * u)
+        k = 1.0 / cos2
+        s = self.sigma * k
+        ks = (4.0 * self.s0sq) * u
+        w = mm * s * ia
+        big_n = (2.0 * m) * s + mm * (ks * s * k)  # (m^2 s)' A = 2 m s + m^2 s'
+        tau, t_u, t_b = _stable_t_partials(u, u + w, 1.0, xp)
+        d_tau = 2.0 * t_u + t_b * (2.0 + (big_n - w) * ia)
+        f = (1.0 - (self.lam_k * u) * ia - (cos2 * self.inv_c0sq - 3.0) * ia2
+             + 0.5 * ia2 * (m * (2.0 + m) - 0.5 * big_n + w) + self.c0sq * k * (d_tau + ks * k * tau))
+        return f, 1.0 - self.s0sq * u * (2.0 + 3.0 * u)
+
+    def theta(self, m, xp=np):
+        """The bend angle [rad] at stretches ``m``.
+
+        Parameters
+        ----------
+        m : float or numpy.ndarray
+            Stretch ``(l - l0)/(2 l0)``.
+        xp : module, optional
+            numpy, or :data:`~embroact.predict.floats.SCALAR` for one float.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            theta [rad].
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1)
+        >>> float(StretchRates.of(geo.scalar()).theta(np.array(0.0125)))  # (l - l0)/(2 r0)
+        0.5
+        """
+        u = 1.0 + 2.0 * m
+        return self.theta_per_m * m / xp.sqrt(1.0 - self.s0sq * (u * u))
+
+    def state(self, m, xp=np):
+        """(theta [rad], l, r, beta [deg], d^2) at stretches ``m`` (as :meth:`theta`; ``d^2 = r^2 - 2 c/(1 + u)``).
+
+        Parameters
+        ----------
+        m : float or numpy.ndarray
+            Stretch ``(l - l0)/(2 l0)``.
+        xp : module, optional
+            numpy, or :data:`~embroact.predict.floats.SCALAR` for one float.
+
+        Returns
+        -------
+        theta, l, r, beta, d2
+            Bend angle [rad], thread-side length and tube radius [mm], thread angle [deg], inner radius
+            squared [mm^2].
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1)
+        >>> [round(float(v[0]), 6) for v in StretchRates.of(geo.scalar()).state(np.array([0.0125]))]
+        [0.5, 102.5, 2.5, 0.0, 5.015432]
+        """
+        g = self.geo
+        u = 1.0 + 2.0 * m
+        if self.zigzag:  # r = r0, beta = 0
+            r, beta = (g.r0, 0.0) if xp is SCALAR else (np.full(np.shape(m), g.r0), np.zeros(np.shape(m)))
+            return self.theta_per_m * m, g.l0 * u, r, beta, g.r0 * g.r0 - g.c * 2.0 / (1.0 + u)
+        cosb = xp.sqrt(1.0 - self.s0sq * (u * u))
+        r = g.r_c0 * cosb
+        beta = xp.arcsin(xp.minimum(xp.maximum(u * g.s0, -1.0), 1.0)) * _DEG_PER_RAD
+        return self.theta_per_m * m / cosb, g.l0 * u, r, beta, r * r - g.c * 2.0 / (1.0 + u)
+
+    @property
+    def zigzag(self) -> bool:
+        """One zigzag design (Python floats, s0 = 0): its shorter formulas; rates of several designs (arrays)
+        take the general ones, which hold for s0 = 0 too."""
+        return isinstance(self.s0sq, float) and self.s0sq == 0.0
+
+    def m_of(self, theta):
+        """The stretch at bend angles [rad]: one float, or arrays of the designs (from :func:`pantograph`: no
+        cancellation).
+
+        Parameters
+        ----------
+        theta : float or numpy.ndarray
+            Bend angle [rad]; arrays broadcast against the designs' ``(n, 1)`` columns.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The stretch ``m``.
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1)
+        >>> StretchRates.of(geo.scalar()).m_of(0.5)  # (r0/l0) theta for a zigzag
+        0.0125
+        """
+        _, _, g_s, gs2, den = pantograph(theta, self.geo, SCALAR if isinstance(theta, float) else np)
+        return (g_s - gs2) / (2.0 * den)
 
 
 def energy_rate(theta, geo: Geometry, *, form: str = "stable", derivative: str = "analytic"):

@@ -35,7 +35,8 @@ from .status import Status
 from .tubelaws import radius_mm
 from .validity import apply_limits
 
-__all__ = ["state", "free_tube_radius", "trace_outcome", "one_curve", "one_curve_floats", "FLOAT_PATH_MAX"]
+__all__ = ["state", "free_tube_radius", "tube_radius_of", "trace_outcome", "one_curve", "one_curve_floats",
+           "FLOAT_PATH_MAX"]
 
 #: Largest number of pressures :func:`one_curve_floats` takes (above it numpy's arrays are cheaper).
 FLOAT_PATH_MAX = 8
@@ -103,16 +104,56 @@ def free_tube_radius(p, law, tube, r0, p_sleeve, sleeve_r0_mm):
 
     Examples
     --------
-    >>> from embroact.predict.curve import ActuatorModel, _branch
+    >>> from embroact.predict.curve import ActuatorModel, _geometry, _tube_laws
     >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
     ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
-    >>> br = _branch(m, 1e-10)  # the branch curve(m, ...) keeps
-    >>> (_, law, tube, r0, p_sleeve), = br.laws()
+    >>> (_, law, tube, r0, p_sleeve), = _tube_laws(_geometry([m]), [m])  # as sweep takes them
     >>> free_tube_radius(np.array([0.0, 0.05, 0.09]), law, tube, r0, p_sleeve, m.r0_mm).round(4).tolist()
     [[1.5, 2.2957, 2.5814]]
     """
     pk = np.minimum(p * KPA_PER_MPA, p_sleeve)
     return np.minimum(np.where(pk >= p_sleeve, r0, radius_mm(pk, tube, law)), sleeve_r0_mm)
+
+
+def tube_radius_of(law, tube, r0, p_sleeve, sleeve_r0_mm):
+    """``radius(p)``: :func:`free_tube_radius` of one model at pressures ``p`` [MPa] (1-D), its constants bound
+    (``tube`` and the rest as numbers); the paper's law in closed form, ``r_f (q + sqrt(q^2 + 4))/2`` with
+    ``q = sqrt(2 P/G_e)`` up to the sleeve (the same values to rounding), the thick-wall law by its inverse.
+
+    Parameters
+    ----------
+    law : str
+        ``"paper"`` or ``"thick-wall"``.
+    tube : tuple of float
+        ``(r_f, d_f, G_e)`` [mm, mm, MPa].
+    r0 : float
+        Radius where the tube meets the sleeve [mm].
+    p_sleeve : float
+        The law's pressure at ``r0`` [kPa].
+    sleeve_r0_mm : float
+        The sleeve's radius [mm] (the tube never exceeds it).
+
+    Returns
+    -------
+    callable
+        ``radius(p)`` [mm] at pressures ``p`` [MPa].
+
+    Examples
+    --------
+    >>> r = tube_radius_of("paper", (1.5, 1.0, 0.13), 2.5814, 84.45, 2.5814)
+    >>> [round(float(v), 4) for v in r(np.array([0.0, 0.08445, 0.2]))]
+    [1.5, 2.5814, 2.5814]
+    """
+    if law != "paper":
+        return lambda p: free_tube_radius(p, law, tube, r0, p_sleeve, sleeve_r0_mm)
+    rf, _, g_e = (float(v) for v in tube)
+    cap, top, k = min(float(r0), float(sleeve_r0_mm)), float(p_sleeve) / KPA_PER_MPA, 2.0 / g_e
+
+    def radius(p):
+        q = np.sqrt(np.minimum(p, top) * k)
+        return np.minimum((0.5 * rf) * (q + np.sqrt(q * q + 4.0)), cap)
+
+    return radius
 
 
 def trace_outcome(theta, where, full, kind):
@@ -149,40 +190,22 @@ def trace_outcome(theta, where, full, kind):
     return np.where(bad, 0.0, theta), np.where(bad, _FAILED, status).astype(np.int8)
 
 
-def _solve(br, t):
-    """(theta, status) of bending targets ``t`` (1-D, > 0) on the branch ``br`` (curve._Branch).
-
-    The lean solve first; the trace inverse for the targets above the lean table (near a fold or
-    past it: one call, whose answers do not depend on each other there) and for each target the
-    lean solve did not settle (one call each: the trace's zoom follows the largest target of a
-    call, so an answer would otherwise depend on the others).
-    """
-    theta = np.zeros(t.size)
-    status = np.full(t.size, br.end_kind if br.end == 0.0 else _BENDING, dtype=np.int8)
-    if br.end == 0.0:
-        return theta, status
-    lean = br.lean
-    if lean is None:
-        groups = [np.arange(t.size)]
-    elif t.size and float(t.max()) <= lean.top:
-        theta, settled = solve_lean(lean, t)
-        if settled.all():
-            return theta, status
-        groups = [[k] for k in np.flatnonzero(~settled)]
-    else:
-        served = np.flatnonzero(t <= lean.top)
-        theta[served], settled = solve_lean(lean, t[served])
-        groups = [np.flatnonzero(t > lean.top)] + [[k] for k in served[~settled]]
-    for rest in groups:
-        a = br.arrays()
-        th, where, _, _ = trace_inverse(a.rate, a.full, t[None, rest], slope=a.slope, grid_points=br.points,
-                                        rtol=br.rtol, atol=br.atol, ptol=a.ptol, pole_at_end=a.pole, memo=br.memo)
-        theta[rest], status[rest] = trace_outcome(th[0], where[0], br.end, br.end_kind)
-    return theta, status
+def _trace_groups(br, t, settled):
+    """The entries of ``t`` the trace inverse solves, in calls: those at or above the lean table's last
+    node (near a fold or past it: one call, whose answers do not depend on each other there), then each
+    other target the lean solve did not settle (one call each: the trace's zoom follows the largest target
+    of a call, so an answer would otherwise depend on the others)."""
+    above = t >= br.lean.top
+    return ([np.flatnonzero(above)] if above.any() else []) + [[k] for k in np.flatnonzero(~settled & ~above)]
 
 
 def one_curve(br, p, *, limits: bool = True):
     """Arrays (P [kPa], theta [deg], status, l, r, beta, d) of one model at pressures ``p`` [MPa] (1-D).
+
+    Bending targets: the lean solve's stretch m and the state there
+    (:meth:`~embroact.predict.model.StretchRates.state`), the trace inverse's theta and its state for
+    the targets the lean solve leaves (:func:`_trace_groups`); inflation points: the straight state with
+    the tube law's radius.
 
     Parameters
     ----------
@@ -208,20 +231,39 @@ def one_curve(br, p, *, limits: bool = True):
     >>> p_kpa.tolist(), theta_deg.round(3).tolist(), status.tolist()
     ([50.0, 200.0], [0.0, 102.93], [0, 1])
     """
-    g = br.scalar
+    g, lean = br.scalar, br.lean
     t = p - g.p0
     bend = t > 0.0
-    if bend.all():
-        theta, status = _solve(br, t)
+    every = bool(bend.all())
+    status = np.full(p.size, _INFLATION if lean is None or not every else _BENDING, dtype=np.int8)
+    groups = []
+    if lean is None:  # no branch: the straight state, with the end's status for the bending targets
+        theta = np.zeros(p.size)
+        l, r, beta, d2 = state(theta, g)
+        status[bend] = br.end_kind
     else:
-        theta, status = np.zeros(p.size), np.full(p.size, _INFLATION, dtype=np.int8)
-        if bend.any():
-            theta[bend], status[bend] = _solve(br, t[bend])
-    l, r, beta, d2 = state(theta, g)
-    if not bend.all():
-        (_, law, tube, r0, p_sleeve), = br.laws()
+        at = np.arange(p.size) if every else np.flatnonzero(bend)
+        m = np.zeros(p.size)
+        if at.size:
+            tb = t if every else t[at]
+            mb, settled = solve_lean(lean, tb)
+            if not settled.all():
+                groups = [at[k] for k in _trace_groups(br, tb, settled)]
+                mb[~settled] = 0.0
+            if every:
+                m = mb
+            else:
+                m[at], status[at] = mb, _BENDING
+        theta, l, r, beta, d2 = lean.rates.state(m)
+    for rest in groups:
+        a = br.arrays()
+        th, where, _, _ = trace_inverse(a.rate, a.full, t[None, rest], slope=a.slope, grid_points=br.points,
+                                        rtol=br.rtol, atol=br.atol, ptol=a.ptol, pole_at_end=a.pole, memo=br.memo)
+        theta[rest], status[rest] = trace_outcome(th[0], where[0], br.end, br.end_kind)
+        l[rest], r[rest], beta[rest], d2[rest] = state(theta[rest], g)
+    if not every:
         infl = ~bend
-        r[infl] = free_tube_radius(p[infl], law, tube, r0, p_sleeve, g.r0)[0]
+        r[infl] = br.laws()(p[infl])
         d2[infl] = r[infl] * r[infl] - g.c
     if limits:
         status = apply_limits(status, theta, l, r, g.l0)
@@ -263,12 +305,10 @@ def one_curve_floats(br, p, *, limits: bool = True):
     rows = []
     for pk in p:
         t = pk - g.p0
-        if not 0.0 < t <= lean.top:
+        m = solve_lean_scalar(lean, t) if t > 0.0 else None
+        if m is None:
             return None
-        theta = solve_lean_scalar(lean, t)
-        if theta is None:
-            return None
-        l, r, beta, d2 = state(theta, g, SCALAR)
+        theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
         status = apply_limits(_BENDING, theta, l, r, g.l0, SCALAR) if limits else _BENDING
         rows.append((pk * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, math.sqrt(max(d2, 0.0))))
     return [list(col) for col in zip(*rows)]

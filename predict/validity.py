@@ -139,11 +139,16 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
 def _exceeded(th, l, r, l0, xp=np):
     """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR``."""
     a = abs(th)
+    return _coiled(th, a, r, l0, xp), 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+
+
+def _coiled(th, a, r, l0, xp=np):
+    """The coiled flags at states of bend ``th`` (``a = |th|``)."""
     back = th < -math.pi  # the inner coil needs a negative bend past half a turn
     coiled = a >= _FULL_TURN
     if xp.any(back):
         coiled = coiled | (back & (l0 * (1.0 - xp.cos(th)) <= 2.0 * r * a))
-    return coiled, 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+    return coiled
 
 
 _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
@@ -189,10 +194,25 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     if xp is not np:
         return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp), xp)
     st = np.asarray(status, dtype=np.int8)
-    flags = _exceeded(*(np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm)))
-    if not np.any(flags[0] | flags[1] | flags[2]):  # the common case: every state within the limits
-        return np.array(st, dtype=np.int8)  # a new array, as the other case gives
-    return _limited(st, flags).astype(np.int8)
+    th, l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm))
+    if not (th.size and l0.size == 1 and th.shape == l.shape == r.shape):
+        return _limited(st, _exceeded(th, l, r, l0)).astype(np.int8)
+    # one model's states: reductions first, then only the flags some state can raise (the same flags)
+    a = np.abs(th)
+    width = 2.0 * r * a
+    coiled = _coiled(th, a, r, l0) if a.max() >= _FULL_TURN or th.min() < -math.pi else None
+    kinked = width > l0 if width.max() > l0 else None
+    over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
+    out = np.array(st, dtype=np.int8)  # a new array in every case
+    if coiled is None and kinked is None and over is None:
+        return out
+    for flag, code in ((over, _LIMIT_CODES[2]), (kinked, _LIMIT_CODES[1]), (coiled, _LIMIT_CODES[0])):
+        if flag is not None:
+            out[flag] = code
+    kept = (st == _KEPT[0]) | (st == _KEPT[1])
+    if kept.any():
+        out[kept] = st[kept]
+    return out
 
 
 def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:

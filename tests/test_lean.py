@@ -19,8 +19,8 @@ from strategies import budget, model_designs, pressures_kpa
 from embroact.predict import curve as C
 from embroact.predict.curve import ActuatorModel, curve, lockup, sweep
 from embroact.predict.derived import derive_from_values
-from embroact.predict.lean import LEVELS, lean_table, solve_lean
-from embroact.predict.model import lock_theta
+from embroact.predict.lean import LEVEL_POINTS, LEVELS, ZIGZAG_RISE_M, lean_table, solve_lean
+from embroact.predict.model import Geometry, lock_theta, pressure_mpa
 from embroact.predict.onecurve import FLOAT_PATH_MAX, one_curve_floats
 from embroact.predict.status import Status
 from embroact.patterns.params import Tube
@@ -126,22 +126,36 @@ def test_lean_curve_agrees_with_the_trace_inverse_of_sweep(m, p):
     assert np.all(np.abs(c.theta_deg - s.theta_deg[0]) <= (2e-10 + floor) * np.abs(s.theta_deg[0]) + 1e-12)
 
 
-def test_table_covers_each_scale_and_stops_at_the_zigzags_fold():
+def test_nodes_cover_each_scale_and_stop_short_of_the_zigzags_fold():
     m = design("zigzag", 7.0, g=2.7, p0=85.0)
     br = C._branch(m, 1e-10)
     tab = br.lean
-    h = tab.columns[2]
-    starts = np.abs(tab.columns[0])
-    inner = starts > 0.0
-    # every interval but the finest level's first ones is at most 1/64 of the angles it serves
-    assert np.all(h[inner][128:] <= starts[inner][128:] / 63.99)
-    assert np.isclose(h[0], abs(br.full[0, 0]) / 2 ** LEVELS / 128, rtol=1e-15)
-    # P rises over the whole table; the fold of P (snap-through) lies beyond its last point
-    assert np.all(np.diff(tab.p) > 0.0)
+    nodes, rises = tab.arrays()
+    stretch, p = nodes[0], nodes[3]
+    h = np.diff(stretch)
+    # every interval but the finest level's is at most 1/32 of the stretches it serves
+    assert np.all(h[LEVEL_POINTS - 1:] <= stretch[LEVEL_POINTS - 1:-1] / 31.99)
+    assert np.isclose(h[0], tab.span / 2 ** LEVELS / (LEVEL_POINTS - 1), rtol=1e-15)
+    # P rises over the nodes; the zigzag's nodes end at m = ZIGZAG_RISE_M, short of the fold of P
+    assert rises and np.all(np.diff(p) > 0.0)
+    assert tab.span == ZIGZAG_RISE_M
     theta_fold, p_fold = lockup(m)
-    assert abs(tab.columns[0, -1] + tab.columns[1, -1]) <= math.radians(theta_fold)
+    assert tab.rates.theta(stretch[-1]) < math.radians(theta_fold)
     beyond = curve(m, [p_fold * 1.01], limits=False)
     assert beyond.status[0] == Status.UNSTABLE and beyond.theta_deg[0] == pytest.approx(theta_fold, rel=1e-9)
+
+
+@pytest.mark.parametrize("s", [1e-6, 1e-3, 0.05, 0.2, 0.5, 0.8, 0.95, 0.999, 1 - 1e-9])
+def test_a_zigzags_pressure_rises_up_to_the_nodes_end(s):
+    """A zigzag's P - P0 is G c/(2 r0^2) times a function of m = (r0/l0) theta and s = c/r0^2 alone: its
+    first fold lies at m = 0.828 (s -> 0) to 0.954 (s -> 1), beyond ZIGZAG_RISE_M, where the lean
+    nodes end (the float path binary-searches them on that rise)."""
+    geo = Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=s, g_mpa=1.0, p0_mpa=0.0)
+    m = np.linspace(0.0, ZIGZAG_RISE_M, 200_001)[None, 1:]
+    p = pressure_mpa(m, geo)[0]
+    assert np.all(np.diff(p) > 0.0)
+    fold = np.linspace(ZIGZAG_RISE_M, 0.96, 2001)[None, :]
+    assert np.any(np.diff(pressure_mpa(fold, geo)[0]) <= 0.0)  # the fold follows (the bound is not loose)
 
 
 def test_table_reaches_the_lock_up_of_a_cross():

@@ -119,6 +119,10 @@ def check_range(
     ...     print(exc)
     angle_deg must be in (0, 90), got 90
     """
+    if type(value) is float and low is not None and high is not None and (
+            low < value < high or (value == low and low_inclusive) or (value == high and high_inclusive)) and (
+            value == 0.0 or abs(value) >= sys.float_info.min):
+        return value  # the common case, checked before any message is formatted
     lo_b, hi_b = ("[" if low_inclusive else "("), ("]" if high_inclusive else ")")
     rng = f"{lo_b}{_fmt(low) if low is not None else '-inf'}, {_fmt(high) if high is not None else 'inf'}{hi_b}"
     if isinstance(value, bool) or not isinstance(value, (int, float)):
