@@ -452,8 +452,7 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
         p = np.where(rises[:, None], p, _FRACTIONS)  # keys that rise whatever the row's P does
         rows = np.arange(n)[:, None]
         tt = t / rates.scale
-        keys = (rows + p / (1.0 + p)).ravel()
-        keys[_LAST::_LAST + 1] = rows[:, 0] + 1.0  # P = inf at a pole: the row's end
+        keys = (rows + np.where(p < np.inf, p / (1.0 + p), 1.0)).ravel()  # P = inf at a pole: the row's end
         flat = np.searchsorted(keys, (rows + tt / (1.0 + tt)).ravel(), side="right").reshape(t.shape) - 1
         i = flat - rows * (_LAST + 1)
         served = (i >= 0) & (i < _LAST) & rises[:, None] & (tt > floor / rates.scale)

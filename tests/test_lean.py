@@ -209,3 +209,14 @@ def test_numpy_scalars_arrays_and_tuples_give_the_answers_of_floats_and_lists():
     same_bits(curve(m, np.array([230.0, 240.0])), curve(m, (230.0, 240.0)))
     same_bits(curve(m, 230), curve(m, [230.0]))
     assert curve(m, [True]).pressure_kpa.tolist() == [1.0]  # a bool is the number numpy makes of it
+
+
+def test_sweep_past_the_tracing_cap_of_a_cross_is_out_of_domain_as_a_curve():
+    """A cross whose lock-up lies beyond MAX_BEND_DEG: its nodes end at the cap, a pressure past it is not
+    bracketed by the last node (a pole only at a lock-up), so the trace inverse answers, as for curve()."""
+    m = ActuatorModel("cross", length_mm=262.0, r0_mm=3.073872177049375, beta0_deg=9.99858527677441,
+                      outer_radius_mm=2.0, inner_radius_mm=0.0, g_e_mpa=1.0, g_mpa=1.0, p0_kpa=10.0)
+    assert abs(lockup(m)[0]) == C.MAX_BEND_DEG
+    c, s = curve(m, [1e4]), sweep([m, m], [1e4])
+    assert c.status[0] == s.status[1, 0] == Status.OUT_OF_DOMAIN
+    assert c.theta_deg[0] == s.theta_deg[1, 0] == C.MAX_BEND_DEG
