@@ -513,7 +513,7 @@ class Calibration:
     g_e_mpa : float or None
         Tube modulus [MPa] when every point used carries one.
     parameter : str
-        ``"width_mm"`` (zigzag) or ``"angle_deg"`` (cross): the interpolation coordinate.
+        The interpolation coordinate: the kind's calibration axis (``"width_mm"`` for the zigzag).
     value : float
         The requested coordinate.
     range_low, range_high : float

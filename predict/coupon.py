@@ -35,6 +35,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..patterns.base.errors import ParameterError, check_range
+from ..patterns.kinds import pattern_kind
 from ..patterns.params import Tube
 from ..patterns.rules.settings import RuleSettings
 from .markers import MarkerSide
@@ -101,8 +102,8 @@ class CouponActuator:
 
     @property
     def coordinate(self) -> float:
-        """Its calibration coordinate: width (zigzag) or angle (cross)."""
-        return self.width_mm if self.pattern == "zigzag" else self.angle_deg
+        """Its calibration coordinate: the value of its kind's calibration axis (the zigzag's width, say)."""
+        return getattr(self, pattern_kind(self.pattern).calibration_axis)
 
     def design_table(self) -> dict:
         """The ``[[actuator]]`` table of a design file.
@@ -120,7 +121,7 @@ class CouponActuator:
         d: dict[str, object] = {"name": self.label, "pattern": self.pattern, "width_mm": self.width_mm,
                                 "interval_mm": self.interval_mm, "length_mm": self.length_mm,
                                 "origin_mm": list(self.origin_mm)}
-        if self.pattern == "cross":
+        if pattern_kind(self.pattern).has_angle:
             d["angle_deg"] = self.angle_deg
         return d
 

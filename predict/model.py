@@ -35,7 +35,7 @@ closed forms by hand (the stable one in the variables ``A`` and ``r`` with
 its cancellation); ``"complex"`` and ``"central"`` differentiate ``E_s(theta)``
 numerically (see :mod:`embroact.predict.solvers`).
 
-The pattern constraint is one formula for both patterns: the cross pattern's
+The pattern constraint is one formula for every thread angle: the cross pattern's
 ``l(theta)`` with ``beta0 = 0`` is the zigzag's ``l = l0 + 2 r0 theta, r = r0``.
 
 Examples

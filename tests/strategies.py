@@ -29,7 +29,7 @@ import numpy as np
 from hypothesis import assume, settings, strategies as st
 
 from embroact.patterns.centerline import Centerline
-from embroact.patterns.params import CrossParams, StitchOptions, Tube, ZigzagParams
+from embroact.patterns.params import CrossParams, PatternParams, StitchOptions, Tube, ZigzagParams
 
 #: Paths bend no tighter than this factor times the half width w/2 (the generators' limit is 1). Lock
 #: stitches and EDGE runs are measured along their rail since B8 was fixed, but the pattern's own needle
@@ -153,7 +153,7 @@ class GeneratorCase:
     """Everything one generator call needs."""
 
     pattern: str
-    params: ZigzagParams | CrossParams
+    params: PatternParams
     tube: Tube
     options: StitchOptions
     path: PathCase

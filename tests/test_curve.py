@@ -39,7 +39,7 @@ ZIGZAG7 = mpref.Ref.zigzag(width_mm=7, g_mpa=2.7, p0_kpa=85)
 
 # -- the model value ---------------------------------------------------------------------------
 @pytest.mark.parametrize("kwargs, match", [
-    ({"pattern": "spiral"}, "pattern must be one of zigzag, cross"),
+    ({"pattern": "spiral"}, "pattern must be one of zigzag, .*, got 'spiral'"),
     ({"r0": -1.0}, r"r0_mm must be in \(0, 1000\), got -1"),
     ({"beta0": 90.0}, r"beta0_deg must be in \(0, 90\), got 90"),
     ({"df": 1.5}, r"inner_radius_mm must be in \[0, 1.5\), got 1.5"),
