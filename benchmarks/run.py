@@ -188,7 +188,7 @@ def _fresh_models(model, n: int, tag: str) -> list:
 def _competitor(cfg: Config, designs, points, methods) -> dict:
     """The curve section, every ratio paired: in each of ``cfg.curve_rounds`` rounds every variant runs once
     per design, interleaved (:func:`paired_rounds`). Variants: ``auto`` (repeated calls on one model: its
-    branch table kept), ``auto_one`` (the same with only the last pressure), ``auto_cold`` and
+    branch nodes kept), ``auto_one`` (the same with only the last pressure), ``auto_cold`` and
     ``auto_cold_one`` (a first call on a model: a new model each call, built before the timing), the
     competitor (no cache: every call is a first call), the dense-grid version and one closed-form
     evaluation of the competitor at the 200 reference angles."""
@@ -200,7 +200,7 @@ def _competitor(cfg: Config, designs, points, methods) -> dict:
         errs["competitor"].append(float(model_bench.angle_errors(comp.theta_deg(p), th).max()))
         errs["dense"].append(float(model_bench.angle_errors(
             comp.theta_deg(p, grid_points=DENSE_POINTS, steps=DENSE_STEPS), th).max()))
-        curve(d.model, p)  # warm: the branch table is kept from here on
+        curve(d.model, p)  # warm: the branch nodes are kept from here on
         cold, cold_one = iter(_fresh_models(d.model, rounds, "cold")), iter(_fresh_models(d.model, rounds, "cold1"))
         angles = np.radians(th)
         calls["auto"].append(lambda m=d.model, p=p: curve(m, p))
@@ -464,7 +464,7 @@ def markdown_notes(res: dict) -> str:
         f"{ru['linear_ratio']:.3g} x): the curve and the lock-up search of identical models are made once."]
     return "\n".join([
         f"* Curves, every ratio paired ({c['rounds']} interleaved rounds over the {len(res['designs'])} designs; median "
-        f"[min, max] of the per-round ratios): repeated calls on one model (its branch table kept, as the studio and "
+        f"[min, max] of the per-round ratios): repeated calls on one model (its branch nodes kept, as the studio and "
         f"inverse design make them) `auto` {ms['auto']:.3g} ms per 200-pressure curve against the competitor's "
         f"{ms['competitor']:.3g} ms (`competitor_numpy.py`: closed form, table + 4 secant steps, "
         f"{c['angle_err_max_deg']:.1e} deg; speed-up **{x('auto_speedup')}**); a first call on a new model "

@@ -21,15 +21,16 @@ A method name is ``"<energy>-<derivative>-<inverse>"`` or ``"auto"``:
   pressure on the whole branch; may land on an unstable or later branch, or miss
   the branch, when P(theta) is not monotone; 10-20x slower).
 
-One model at a time (``curve``: what every command, the studio and inverse design ask)
-with ``stable-analytic-trace`` runs the trace as a *lean solve*
-(:mod:`embroact.predict.lean`, :mod:`embroact.predict.onecurve`): a table kept per model
-(nested grids, each interval at most 1/64 of the angles it serves) gives each pressure its
-bracket and cubic start, and one model evaluation polishes it; the trace inverse takes
-only what that leaves (beyond the last rising grid point, near a fold, round-off-sized
-targets). Up to ``FLOAT_PATH_MAX`` pressures are computed on Python floats (the same bits
-as on arrays). ``sweep`` of several models runs the trace inverse itself; the two agree
-within ``rtol`` (and the floor of P below).
+``stable-analytic-trace`` runs the trace as a *lean solve* (:mod:`embroact.predict.lean`,
+:mod:`embroact.predict.onecurve`), in the stretch ``m = (l - l0)/(2 l0)`` where P needs no
+derivative of the constraint: each pressure is bracketed among fixed nodes of the branch
+(nested grids, each interval at most 1/32 of the stretches it serves; for one model all
+evaluated at once and kept, for a handful of pressures on Python floats only the few a search
+visits, with the same bits), starts from the secant of the residuals there and is settled by
+the root of a cubic through four model evaluations around it, so a first curve of a new model
+costs two closed-form evaluations per pressure and one over the nodes. The trace inverse
+takes only what that leaves (at or above the last node, near a fold, round-off-sized targets).
+``sweep`` runs the same lean solve across designs.
 
 Accuracy of P: ``ACCURACY * |P| + PRESSURE_FLOOR_PER_G[derivative] * G``, a relative
 part (:data:`ACCURACY`) above an absolute floor (:data:`PRESSURE_FLOOR_PER_G`), both
@@ -467,7 +468,7 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
 class _Branch:
     """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry
     as floats, the branch end and its status, tolerances, the lean table (:mod:`embroact.predict.lean`;
-    None without a rising part), and, made on first use only (a first curve whose pressures the lean
+    None without a branch; its node arrays are made on first use), and, made on first use only (a first curve whose pressures the lean
     solve settles needs none of them), the arrays the trace inverse and the tube law take
     (:meth:`arrays`) and the trace inverse's memo (its tabulation, fold and zooms)
     (:mod:`embroact.predict.onecurve`)."""
@@ -522,7 +523,7 @@ class _BranchArrays:
 
 
 #: Models whose branches are kept (the studio and inverse design ask one model many times); each
-#: holds its lean table (~110 KB: 64 branches ~7 MB) and at most one tabulation per zoom the trace
+#: holds its lean nodes (~16 KB: 64 branches ~1 MB) and at most one tabulation per zoom the trace
 #: inverse needed (~3 KB each).
 BRANCH_CACHE = 64
 _FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
