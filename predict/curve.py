@@ -500,8 +500,10 @@ class _Branch:
             mo = self.model
             tube = (mo.outer_radius_mm, mo.inner_radius_mm, mo.g_e_mpa)
             r0 = max(self.scalar.r0, mo.outer_radius_mm)
-            self.lazy["laws"] = tube_radius_of(mo.tube_law, tube, r0, float(pressure_kpa(r0, tube, mo.tube_law)),
-                                               self.scalar.r0)
+            x = r0 / mo.outer_radius_mm  # the paper's law on floats: paper_pressure_kpa's operations
+            p_sleeve = (0.5 * mo.g_e_mpa * (x - 1.0 / x) ** 2 * KPA_PER_MPA if mo.tube_law == "paper"
+                        else float(pressure_kpa(r0, tube, mo.tube_law)))
+            self.lazy["laws"] = tube_radius_of(mo.tube_law, tube, r0, p_sleeve, self.scalar.r0)
         return self.lazy["laws"]
 
     @property
@@ -537,7 +539,7 @@ def _branch(model: ActuatorModel, rtol: float) -> _Branch:
 
 @lru_cache(maxsize=BRANCH_CACHE)
 def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
-    g = _m.Geometry.of_floats(beta0_rad=np.radians(model.beta0_deg), l0_mm=model.length_mm, r0_mm=model.r0_mm,
+    g = _m.Geometry.of_floats(beta0_rad=math.radians(model.beta0_deg), l0_mm=model.length_mm, r0_mm=model.r0_mm,
                               c_mm2=model.outer_radius_mm**2 - model.inner_radius_mm**2, g_mpa=model.g_mpa,
                               p0_mpa=model.p0_kpa / KPA_PER_MPA)
     end, kind = _branch_end(g, SCALAR)
