@@ -186,6 +186,39 @@ class TubeIndex:
                                                 return_distance=True, all_matches=False)
         return i, self._tube[k], dist
 
+    def legs_near(self, a_mm, b_mm, radius_mm) -> np.ndarray:
+        """True for each straight leg a -> b that comes within its radius of some tube's axis (``radius_mm``: one
+        radius per tube; distance <= radius), by one bounded query.
+
+        Parameters
+        ----------
+        a_mm, b_mm : (m, 2) arrays
+            Start and end of each leg [mm].
+        radius_mm : sequence of float
+            One radius per tube [mm].
+
+        Returns
+        -------
+        ndarray of bool (m,)
+
+        Examples
+        --------
+        >>> TubeIndex([[(0, 0), (10, 0)]]).legs_near([(5, 1), (5, 3), (11, 2)], [(6, 4), (7, 9), (11.5, -2)], [1.5]).tolist()
+        [True, False, True]
+        """
+        a = np.asarray(a_mm, dtype=np.float64).reshape(-1, 2)
+        b = np.asarray(b_mm, dtype=np.float64).reshape(-1, 2)
+        radius = np.asarray(radius_mm, dtype=np.float64).reshape(-1)
+        out = np.zeros(len(a), dtype=bool)
+        if len(a) == 0 or len(self._len) == 0:
+            return out
+        self.queries += 1
+        lines = shapely.linestrings(np.stack([a, b], axis=1))
+        j, k = self._tree.query(lines, predicate="dwithin", distance=float(radius.max()))
+        axis = shapely.linestrings(np.stack([self._a[k], self._a[k] + self._d[k]], axis=1))
+        out[j[shapely.distance(lines[j], axis) <= radius[self._tube[k]]]] = True
+        return out
+
     def crossings(self, a_mm, b_mm) -> Crossings:
         """Where straight legs a -> b cross the tube axes (a leg lying along an axis does not cross it).
 
@@ -250,13 +283,14 @@ class SegmentIndex:
     [0, 1]
     """
 
-    __slots__ = ("_a", "_d", "_len2", "_c0", "_span", "_grids", "_tree")
+    __slots__ = ("_a", "_d", "_len2", "_start_mm", "_c0", "_span", "_grids", "_tree")
 
     def __init__(self, xy_mm) -> None:
         xy = np.asarray(xy_mm, dtype=np.float64).reshape(-1, 2)
         self._a, self._d = xy[:-1], np.diff(xy, axis=0)
         self._len2 = np.einsum("ij,ij->i", self._d, self._d)
         length = np.sqrt(self._len2)
+        self._start_mm = np.concatenate([[0.0], np.cumsum(length)])
         self._c0 = max(float(length.max()), 2.0 * float(np.median(length)), 1e-9)
         self._span = float(np.ptp(xy, axis=0).max())
         self._grids: dict[float, tuple] = {}
@@ -350,6 +384,35 @@ class SegmentIndex:
         dd = self._d[seg]
         t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
         return np.hypot(*(r - t[:, None] * dd).T)
+
+    @property
+    def length_mm(self) -> float:
+        """The polyline's length [mm] (the sum :meth:`locate` measures along)."""
+        return float(self._start_mm[-1])
+
+    def locate(self, p: np.ndarray) -> np.ndarray:
+        """Arc length [mm] along the polyline of the nearest point to each of ``p`` ((m, 2) [mm]), as shapely's
+        ``line_locate_point`` gives it (in time linear in points and segments; shapely's grows with their product).
+
+        Parameters
+        ----------
+        p : (m, 2) array
+            Points [mm].
+
+        Returns
+        -------
+        ndarray (m,)
+            Arc length from the first vertex [mm], in [0, :attr:`length_mm`].
+
+        Examples
+        --------
+        >>> SegmentIndex([(0, 0), (10, 0), (10, 10)]).locate(np.array([(5.0, 1.0), (12.0, 4.0), (-3.0, 0.0)])).tolist()
+        [5.0, 14.0, 0.0]
+        """
+        seg = self.nearest(p)
+        start = self._start_mm
+        t = np.einsum("ij,ij->i", p - self._a[seg], self._d[seg]) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0)
+        return start[seg] + np.clip(t, 0.0, 1.0) * np.sqrt(self._len2[seg])
 
     def within(self, p: np.ndarray, radius_mm: float) -> np.ndarray:
         """Indices of the points of ``p`` closer than ``radius_mm`` to the polyline, ascending

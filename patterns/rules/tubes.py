@@ -35,7 +35,7 @@ import shapely
 from ..base.findings import RULES, Finding, Inputs, Severity
 from ..centerline import MAX_SMOOTH_TURN_DEG
 from ..plan import Command
-from ..spatial import self_crossings
+from ..spatial import SegmentIndex, self_crossings
 from .engine import Hits, Subject
 
 __all__ = ["TUBE_RULES", "hoop_window", "hoop_centre_mm", "hoop_overflow", "HOOP_PRECHECK_SLACK_MM"]
@@ -350,6 +350,34 @@ def couching(s: Subject) -> list[Finding]:
     return out
 
 
+def _past_an_end(xy: np.ndarray, a: np.ndarray, b: np.ndarray, tol: float) -> np.ndarray:
+    """Which legs a -> b have both ends past the same end of the path through ``xy`` (nearest path point within
+    ``tol`` of that end): only points behind the end's own segment can be (a half-plane test), and those are
+    located on the path's segment index.
+
+    Examples
+    --------
+    >>> xy = np.array([(0.0, 0.0), (10.0, 0.0)])
+    >>> _past_an_end(xy, np.array([(-3.0, 1.0), (5.0, 1.0), (12.0, 0.0)]), np.array([(-1.0, -4.0), (-2.0, 1.0), (11.0, 3.0)]),
+    ...              1e-9).tolist()
+    [True, False, True]
+    """
+    near = np.zeros(len(a), dtype=bool)
+    for end, inward in ((xy[0], xy[1] - xy[0]), (xy[-1], xy[-2] - xy[-1])):
+        size = float(np.hypot(*inward))
+        if size <= tol:  # an end segment shorter than the tolerance: no half-plane to go by
+            near[:] = True
+            break
+        near |= ((a - end) @ inward <= tol * size) & ((b - end) @ inward <= tol * size)
+    out = np.zeros(len(a), dtype=bool)
+    there = np.flatnonzero(near)
+    if len(there):
+        index = SegmentIndex(xy)
+        sa, sb, length = index.locate(a[there]), index.locate(b[there]), index.length_mm
+        out[there] = ((sa <= tol) & (sb <= tol)) | ((sa >= length - tol) & (sb >= length - tol))
+    return out
+
+
 @RULES.rule("EA308", Severity.ERROR, "legs over no tube",
             "Legs of thread longer than the tube's outer diameter that lie wholly beyond an end of every tube "
             "(an embroidery file checked against a tube path shorter than its embroidery): nothing is couched "
@@ -365,15 +393,12 @@ def uncovered_legs(s: Subject) -> Hits:
         return Hits(np.zeros(0, np.int64), str)
     a, b = lay.xy_mm[legs - 1], lay.xy_mm[legs]
     tol = s.settings.tolerances.length_mm
-    beyond = np.ones(len(legs), dtype=bool)
-    lines, on_some = shapely.linestrings(np.stack([a, b], axis=1)), np.zeros(len(legs), dtype=bool)
-    for t in lay.tubes:  # beyond this tube: off its body, and both ends past the same end of its path
-        sa, sb = shapely.line_locate_point(t.path, shapely.points(a)), shapely.line_locate_point(t.path, shapely.points(b))
-        past = ((sa <= tol) & (sb <= tol)) | ((sa >= t.path.length - tol) & (sb >= t.path.length - tol))
-        on = shapely.intersects(lines, t.path.buffer(t.outer_radius_mm))
-        on_some |= on
-        beyond &= past & ~on
-    bad = np.flatnonzero(beyond)
+    on_some = np.isin(legs, s.legs[s.crossings.leg])  # a leg crossing an axis lies on that tube's body
+    rest = np.flatnonzero(~on_some)
+    on_some[rest] = s.axes.legs_near(a[rest], b[rest], [t.outer_radius_mm for t in lay.tubes])
+    bad = np.flatnonzero(~on_some)
+    for t in lay.tubes:  # beyond every tube: both ends past the same end of each one's path
+        bad = bad[_past_an_end(shapely.get_coordinates(t.path), a[bad], b[bad], tol)]
     if not len(bad) or not on_some.any():  # no leg on any tube: a wrong tube path, EA307's finding
         return Hits(np.zeros(0, np.int64), str)
     starts = bad[np.concatenate([[True], np.diff(bad) > 1])]  # runs of neighbouring legs (among all legs)
