@@ -66,15 +66,16 @@ def test_the_same_dict_or_the_same_error_as_tomllib(text):
 
 
 def test_a_long_path_is_read_in_a_fraction_of_tomllib_time():
-    """100,000 points: the fast reading, timed against tomllib on the same text in the same process."""
+    """100,000 points: the fast reading against tomllib on the same text, in interleaved rounds in the same
+    process (the best of each: a shared machine's load falls on both); about 10x apart."""
     import time
 
     text = "[[actuator]]\npath = [" + ", ".join(f"[{k}.0, {k % 7 * 0.25}]" for k in range(100_000)) + "]\n"
-    t = time.perf_counter()
-    fast = loads_toml(text, source="d.toml")
-    fast_s = time.perf_counter() - t
-    t = time.perf_counter()
-    slow = tomllib.loads(text)
-    slow_s = time.perf_counter() - t
-    assert fast == slow
-    assert fast_s < slow_s / 3, (fast_s, slow_s)
+    best = {"fast": float("inf"), "tomllib": float("inf")}
+    for _ in range(3):
+        for name, read in (("fast", lambda: loads_toml(text, source="d.toml")), ("tomllib", lambda: tomllib.loads(text))):
+            t = time.perf_counter()
+            got = read()
+            best[name] = min(best[name], time.perf_counter() - t)
+    assert got == loads_toml(text, source="d.toml")
+    assert best["fast"] < best["tomllib"] / 3, best
