@@ -1,9 +1,11 @@
-"""Turn a generator's needle stations into a complete one-actuator :class:`StitchPlan`.
+"""Needle stations to records: what every actuator needs around its pattern's stations.
 
-A generator (zigzag, cross) decides *where* the needle goes: stations given by arc
-length ``s`` along the centerline, rail side (+1 left, -1 right) and the role of the
-stitch arriving there (LEG or EDGE). This module adds what every actuator needs, in
-this fixed record convention:
+A pattern kind's *layout* (:class:`Layout`, e.g. :func:`embroact.patterns.zigzag.zigzag_layout`)
+decides *where* the needle goes on its stretch of the path: stations given by arc length
+``s`` along the centerline, rail side (+1 left, -1 right) and the role of the stitch
+arriving there (LEG or EDGE). The chain generator (:func:`embroact.patterns.segments.segmented`)
+puts the segments' stations in a row and :func:`frame_records` adds, in this fixed record
+convention:
 
 1. ``STOP`` (CONTROL) where the lock stitches start, a needle point on the first
    station's rail: cord in, the operator lays the tube;
@@ -18,25 +20,28 @@ this fixed record convention:
 5. ``TRIM`` (CONTROL) at the last point; 6. ``END`` (CONTROL, actuator -1).
 
 It then checks the corridor invariant with shapely (every STITCH at distance
->= r_f + clearance from the centerline) and measures the realised parameters.
+>= r_f + clearance from the centerline).
 
 Examples
 --------
 >>> import numpy as np
->>> from embroact.patterns.assemble import assemble
+>>> from embroact.patterns.assemble import frame_records, inward
 >>> from embroact.patterns.centerline import Centerline
->>> from embroact.patterns.params import ZigzagParams
+>>> from embroact.patterns.params import StitchOptions, Tube
 >>> from embroact.patterns.plan import Role
->>> plan = assemble(Centerline.straight(4.0), np.array([0.0, 1.0, 2.0, 3.0]), np.array([1, -1, 1, -1]),
-...                 np.full(4, Role.LEG), params=ZigzagParams(7.0, 1.0))
->>> len(plan)   # STOP, 3 tie-in (the last on station 0), 3 more stations, 3 tie-off, TRIM, END
+>>> cl = Centerline.straight(4.0)
+>>> xy, commands, roles, owner = frame_records(cl, np.array([0.0, 1.0, 2.0, 3.0]), np.array([3.5, -3.5, 3.5, -3.5]),
+...                                            np.full(4, Role.LEG), inward(cl, 0.0, 3.0), tube=Tube(),
+...                                            options=StitchOptions())
+>>> len(xy)   # STOP, 3 tie-in (the last on station 0), 3 more stations, 3 tie-off, TRIM, END
 12
->>> plan.xy_mm[:5].round(9).tolist()   # STOP, 3 tie-in stitches ending on station 0, station 1
+>>> xy[:5].round(9).tolist()   # STOP, 3 tie-in stitches ending on station 0, station 1
 [[0.7, 3.5], [0.0, 3.5], [0.7, 3.5], [0.0, 3.5], [1.0, -3.5]]
 """
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import shapely
@@ -44,13 +49,12 @@ import shapely
 from .centerline import Centerline
 from .base.errors import ParameterError, PatternError, PathError
 from .limits import GRID_ROUNDING_MM, on_grid
-from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
-from .plan import ActuatorPlan, Command, Role, StitchPlan
+from .plan import Command, Role
 from .base.tolerances import DEFAULT_TOLERANCES
 from .spatial import corridor_hits
 
-__all__ = ["assemble", "frame_records", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm",
+__all__ = ["Layout", "frame_records", "inward", "check_pattern_inputs", "check_record_count", "rail_positions", "tie_step_mm",
            "MAX_RECORDS", "MIN_TIE_GRID_STEPS"]
 
 #: Hard cap on records in one plan; generators refuse before allocating.
@@ -246,61 +250,56 @@ def check_record_count(n_stations: float, options: StitchOptions) -> int:
     return int(n)
 
 
-def _inward(cl: Centerline, s: float) -> float:
-    return 1.0 if s <= cl.length_mm / 2.0 else -1.0
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """A pattern's needle stations on its stretch of the path, in the path frame.
+
+    Attributes
+    ----------
+    s_mm : ndarray (m,)
+        Arc length of each station along the actuator's centerline [mm].
+    side : ndarray (m,)
+        Rail of each station: +1 left, -1 right (the offset is ``side * width_mm / 2``).
+    roles : ndarray (m,)
+        :class:`~embroact.patterns.plan.Role` of the stitch arriving at each station (the first
+        station's is unused: the tie-in ends there).
+    adjustments : tuple of str
+        What the layout changed in the request (the cross closing its pattern).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lay = Layout(np.array([0.0, 1.0]), np.array([1, -1]), np.full(2, Role.LEG))
+    >>> lay.s_mm.tolist(), lay.adjustments
+    ([0.0, 1.0], ())
+    """
+
+    s_mm: np.ndarray
+    side: np.ndarray
+    roles: np.ndarray
+    adjustments: tuple[str, ...] = ()
 
 
-def assemble(
-    cl: Centerline,
-    station_s: np.ndarray,
-    station_side: np.ndarray,
-    station_role: np.ndarray,
-    *,
-    params: PatternParams,
-    tube: Tube = Tube(),
-    options: StitchOptions = StitchOptions(),
-    name: str = "actuator",
-    adjustments: tuple[str, ...] = (),
-) -> StitchPlan:
-    """Complete one-actuator plan from needle stations (see the module docstring).
+def inward(cl: Centerline, s_first_mm: float, s_last_mm: float) -> np.ndarray:
+    """Directions (+-1) along the path of the tie-in and the tie-off lock stitches: towards the inside.
 
     Parameters
     ----------
     cl : Centerline
-        The path.
-    station_s, station_side, station_role : arrays (m,)
-        Arc length [mm], rail side (+1 left / -1 right) and role of the stitch arriving
-        at each station (the first station's role is unused: the tie-in ends there).
-    params : PatternParams
-        The requested parameters (rail offset is ``params.width_mm / 2``).
-    tube, options : Tube, StitchOptions, optional
-        The tube and the lock stitches.
-    name : str, optional
-        The actuator's name.
-    adjustments : tuple of str, optional
-        Notes of what the generator changed to close the pattern.
+    s_first_mm, s_last_mm : float
+        Arc length of the first and the last station [mm].
 
     Returns
     -------
-    StitchPlan
-        One actuator, its realised parameters measured on the records.
+    ndarray (2,)
 
     Examples
     --------
-    >>> from embroact.patterns.params import ZigzagParams
-    >>> s = np.arange(0.0, 11.0)
-    >>> plan = assemble(Centerline.straight(10.0), s, np.where(s % 2 == 0, 1.0, -1.0), np.full(11, Role.LEG),
-    ...                 params=ZigzagParams(7.0, 1.0), name="A")
-    >>> plan.actuators[0].realised.width_mm, int(plan.commands[0]) == Command.STOP
-    (7.0, True)
+    >>> from embroact.patterns.centerline import Centerline
+    >>> inward(Centerline.straight(10.0), 0.5, 9.5).tolist()
+    [1.0, -1.0]
     """
-    s0, sn = float(station_s[0]), float(station_s[-1])
-    xy, commands, roles, actuator = frame_records(cl, station_s, station_side * (params.width_mm / 2.0), station_role,
-                                                  np.array([_inward(cl, s0), _inward(cl, sn)]), tube=tube,
-                                                  options=options)
-    realised = measure(xy, roles, cl, params.pattern)
-    act = ActuatorPlan(name, params, tube, cl, realised, tuple(adjustments), options)
-    return StitchPlan(xy, commands, roles, actuator, (act,), name)
+    return np.array([1.0 if s <= cl.length_mm / 2.0 else -1.0 for s in (s_first_mm, s_last_mm)])
 
 
 def frame_records(cl: Centerline, station_s: np.ndarray, station_offset_mm: np.ndarray, station_role: np.ndarray,

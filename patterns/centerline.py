@@ -394,28 +394,36 @@ class Centerline:
                 f"got {r[i]:.3g} mm near ({x:.2f}, {y:.2f}) mm"
             )
 
-    def offset_curves(self, distance_mm: float) -> tuple[shapely.LineString, shapely.LineString]:
+    def offset_curves(self, distance_mm: float, start_mm: float = 0.0,
+                      end_mm: float | None = None) -> tuple[shapely.LineString, shapely.LineString]:
         """The two rails at +-``distance_mm`` along the smooth normal: (left, right) LineStrings.
 
         Parameters
         ----------
         distance_mm : float
             Offset of each rail from the path [mm], >= 0.
+        start_mm, end_mm : float
+            The stretch of the path the rails follow [mm] (default: the whole path); clamped to it.
 
         Returns
         -------
         (shapely.LineString, shapely.LineString)
-            Left and right rail.
+            Left and right rail, through the path's vertices and the midpoints between them.
 
         Examples
         --------
         >>> left, right = Centerline.straight(10.0).offset_curves(3.5)
         >>> left.coords[0], right.coords[-1]
         ((0.0, 3.5), (10.0, -3.5))
+        >>> Centerline.straight(10.0).offset_curves(1.0, 2.0, 12.0)[0].coords[:]
+        [(2.0, 1.0), (5.0, 1.0), (10.0, 1.0)]
         """
         d = check_range("distance_mm", distance_mm, low=0.0, low_inclusive=True)
+        a = min(max(float(start_mm), 0.0), self.length_mm)
+        b = min(max(float(self.length_mm if end_mm is None else end_mm), a), self.length_mm)
         s = np.empty(2 * len(self._s) - 1)  # vertices and midpoints, interleaved (sorted: _s increases)
         s[0::2], s[1::2] = self._s, 0.5 * (self._s[1:] + self._s[:-1])
+        s = np.concatenate([[a], s[1:-1][(s[1:-1] > a) & (s[1:-1] < b)], [b]])
         return (shapely.LineString(self.offset_point_at(s, d)), shapely.LineString(self.offset_point_at(s, -d)))
 
     def project(self, xy_mm) -> tuple[np.ndarray, np.ndarray]:

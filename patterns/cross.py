@@ -38,8 +38,9 @@ Ends. Legs are clipped to the embroidered span (the largest multiple of ``s`` th
 fits the path, centred on it): a pass keeps exactly the legs whose two needle points
 lie in the span. Where a pass would end on the other rail than the one the next pass
 starts on, one leg at that turn is left out (the one that leaves the shorter edge
-stitch; it always lies within ``2 w tan(alpha0)`` of the span end). Lock stitches and
-STOP/TRIM/END follow :mod:`embroact.patterns.assemble`.
+stitch; it always lies within ``2 w tan(alpha0)`` of the span end). :func:`cross_layout` places
+the stations on a stretch of the path (the whole path, or one segment's share of it); lock
+stitches and STOP/TRIM/END follow :mod:`embroact.patterns.assemble`.
 
 Examples
 --------
@@ -62,14 +63,15 @@ import math
 
 import numpy as np
 
-from .assemble import assemble, check_pattern_inputs, check_record_count, rail_positions
-from .centerline import as_centerline
+from .assemble import Layout, check_record_count, rail_positions
+from .centerline import Centerline
 from .base.errors import ParameterError, PatternError
 from .params import ADJUST_METHODS, CrossParams, StitchOptions, Tube, whole_intervals
 from .plan import Role, StitchPlan
+from .segments import chain_of_one
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["cross", "cross_stations", "cross_realised_params", "cross_min_length_mm", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
+__all__ = ["cross", "cross_layout", "cross_stations", "cross_realised_params", "cross_min_length_mm", "closing", "ADJUST_METHODS", "MAX_EDGE_STITCH_MM"]
 
 #: Longest single EDGE stitch between passes, measured along its rail [mm]; longer edges are split.
 MAX_EDGE_STITCH_MM = 3.0
@@ -205,6 +207,68 @@ def cross_realised_params(params: CrossParams, adjust: str = "auto") -> CrossPar
     return CrossParams(params.width_mm, s, alpha)
 
 
+def cross_layout(cl: Centerline, params: CrossParams, start_mm: float, length_mm: float, *,
+                 options: StitchOptions = StitchOptions(), adjust: str = "auto") -> Layout:
+    """The cross pattern's needle stations on ``[start_mm, start_mm + length_mm]`` of ``cl`` (module docstring).
+
+    Parameters
+    ----------
+    cl : Centerline
+        The actuator's path (the edge stitches follow its rails).
+    params : CrossParams
+    start_mm, length_mm : float
+        Where the stretch starts along ``cl`` and how long it is [mm].
+    options : StitchOptions
+        Lock stitches (the stretch holds at least one).
+    adjust : {"auto", "interval", "angle"}
+        What may change to close the pattern (:func:`closing`).
+
+    Returns
+    -------
+    Layout
+        Its ``adjustments`` name the change :func:`closing` made, if any.
+
+    Raises
+    ------
+    PatternError
+        Stretch shorter than ``4 w tan(alpha0)`` or ``tie_stitch_mm``, or too many records.
+
+    Examples
+    --------
+    >>> lay = cross_layout(Centerline.straight(100.0), CrossParams(7.0, 1.4, 30.0), 0.0, 100.0)
+    >>> len(lay.s_mm), lay.adjustments
+    (143, ('angle_deg 30 -> 30.96 (6 passes)',))
+    """
+    n, s, alpha, note = closing(params, adjust)
+    d = n * s / 2.0  # = w tan(alpha), exactly closing
+    length = length_mm
+    minimum = max(4.0 * d, options.tie_stitch_mm)
+    tol = DEFAULT_TOLERANCES.length_mm
+    if length < minimum - tol:
+        raise PatternError(
+            f"path length_mm must be >= {minimum:.4g} for a cross pattern with width_mm={params.width_mm:g}, "
+            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
+        )
+    span = whole_intervals(length, s) * s
+    check_record_count(cross_stations(length, params, adjust), options)
+    start = start_mm + 0.5 * (length - span)
+    passes = []
+    for j in range(n):
+        k = np.arange(math.ceil(-j * s / d - tol / d), math.floor((span - j * s) / d + tol / d) + 1)
+        pos, side = start + j * s + k * d, np.where(k % 2 == 0, 1, -1)
+        passes.append((pos[::-1], side[::-1]) if j % 2 else (pos, side))
+    for j in range(n - 1):
+        passes[j], passes[j + 1] = _trim_turn(passes[j], passes[j + 1])
+    station_s, station_side, station_role = [passes[0][0]], [passes[0][1]], [np.full(len(passes[0][0]), Role.LEG)]
+    for (pp, _), (pos, side) in zip(passes[:-1], passes[1:]):
+        run = rail_positions(cl, pp[-1], pos[0], side[0] * params.width_mm / 2.0, MAX_EDGE_STITCH_MM)
+        station_s += [run[:-1], pos]
+        station_side += [np.full(len(run) - 1, side[0]), side]
+        station_role += [np.full(len(run), Role.EDGE), np.full(len(pos) - 1, Role.LEG)]
+    return Layout(np.concatenate(station_s), np.concatenate(station_side), np.concatenate(station_role),
+                  (note,) if note else ())
+
+
 def cross(
     centerline,
     params: CrossParams,
@@ -214,7 +278,7 @@ def cross(
     name: str = "actuator",
     adjust: str = "auto",
 ) -> StitchPlan:
-    """One cross-pattern actuator along ``centerline``, as a complete plan.
+    """One cross-pattern actuator along ``centerline``, as a complete plan (a chain of one segment).
 
     Parameters
     ----------
@@ -248,42 +312,4 @@ def cross(
     """
     if not isinstance(params, CrossParams):
         raise ParameterError(f"params must be CrossParams, got {type(params).__name__}")
-    n, s, alpha, note = closing(params, adjust)
-    cl = as_centerline(centerline)
-    check_pattern_inputs(cl, CrossParams(params.width_mm, s, alpha), tube, options)
-    d = n * s / 2.0  # = w tan(alpha), exactly closing
-    length = cl.length_mm
-    minimum = max(4.0 * d, options.tie_stitch_mm)
-    tol = DEFAULT_TOLERANCES.length_mm
-    if length < minimum - tol:
-        raise PatternError(
-            f"path length_mm must be >= {minimum:.4g} for a cross pattern with width_mm={params.width_mm:g}, "
-            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
-        )
-    span = whole_intervals(length, s) * s
-    check_record_count(cross_stations(length, params, adjust), options)
-    start = 0.5 * (length - span)
-    passes = []
-    for j in range(n):
-        k = np.arange(math.ceil(-j * s / d - tol / d), math.floor((span - j * s) / d + tol / d) + 1)
-        pos, side = start + j * s + k * d, np.where(k % 2 == 0, 1, -1)
-        passes.append((pos[::-1], side[::-1]) if j % 2 else (pos, side))
-    for j in range(n - 1):
-        passes[j], passes[j + 1] = _trim_turn(passes[j], passes[j + 1])
-    station_s, station_side, station_role = [passes[0][0]], [passes[0][1]], [np.full(len(passes[0][0]), Role.LEG)]
-    for (pp, _), (pos, side) in zip(passes[:-1], passes[1:]):
-        run = rail_positions(cl, pp[-1], pos[0], side[0] * params.width_mm / 2.0, MAX_EDGE_STITCH_MM)
-        station_s += [run[:-1], pos]
-        station_side += [np.full(len(run) - 1, side[0]), side]
-        station_role += [np.full(len(run), Role.EDGE), np.full(len(pos) - 1, Role.LEG)]
-    return assemble(
-        cl,
-        np.concatenate(station_s),
-        np.concatenate(station_side),
-        np.concatenate(station_role),
-        params=params,
-        tube=tube,
-        options=options,
-        name=name,
-        adjustments=(note,) if note else (),
-    )
+    return chain_of_one(centerline, params, tube=tube, options=options, name=name, adjust=adjust)

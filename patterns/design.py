@@ -89,18 +89,19 @@ import numpy as np
 
 import enum
 
-from .assemble import MAX_RECORDS, check_pattern_inputs, check_record_count
+from .assemble import MAX_RECORDS
 from .base.choices import check_choice
 from .base.display import repr_svg
 from .base.errors import DesignFileError, EmbroactError, ParameterError, PatternError, check_range
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
+from .chain import Chain
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit, on_grid
 from .params import PatternParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
-from .segments import SegmentSpec, check_segments, segment_stations, segmented
+from .segments import SegmentSpec, chain_records, check_segments, segmented
 from .origin import MachineOrigin, check_origin, to_machine_frame
 from .placement import placement_records, with_placement
 from .stops import cord_stop as _cord_stop
@@ -321,17 +322,21 @@ class ActuatorSpec(KindFields):
     model : ModelSettings
     adjust : str
         Cross only: which of interval/angle may change to make the pattern close
-        (``"auto"``, ``"interval"``, ``"angle"``; see :mod:`embroact.patterns.cross`).
-    segments : tuple of SegmentSpec
-        A segmented actuator (:mod:`embroact.patterns.segments`): its segments in order
-        along the path, lengths adding up to the path's; ``params`` must then be the first
-        segment's (:meth:`segmented` sets it). Empty (default): one pattern over the path.
+        (``"auto"``, ``"interval"``, ``"angle"``; see :mod:`embroact.patterns.cross`); the first
+        segment's when ``segments`` are given.
+    segments : Chain of SegmentSpec
+        The actuator's chain (:mod:`embroact.patterns.segments`): its segments in order along
+        the path, lengths adding up to the path's; ``params`` must be the first segment's
+        (:meth:`segmented` sets it). Given none (default): a chain of one, ``params`` (and
+        ``adjust``) over the whole path.
 
     Examples
     --------
     >>> a = ActuatorSpec("A1", ZigzagParams(width_mm=7.0, interval_mm=1.0), Centerline.straight(100.0))
     >>> a.pattern, a.centerline.length_mm, a.model.calibration
     ('zigzag', 100.0, 'paper-2025')
+    >>> a.segments
+    (SegmentSpec(params=ZigzagParams(width_mm=7.0, interval_mm=1.0), length_mm=100.0, adjust='auto'),)
     """
 
     name: str
@@ -340,18 +345,19 @@ class ActuatorSpec(KindFields):
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)
     adjust: str = "auto"
-    segments: tuple[SegmentSpec, ...] = ()
+    segments: Chain = ()
 
     def __post_init__(self) -> None:
         check_name("name", self.name)
         PATTERN_KINDS.for_params(self.params)
         object.__setattr__(self, "centerline", as_centerline(self.centerline))
-        segs = tuple(self.segments)
-        if segs:
-            check_segments(self.centerline, segs)
-            if self.params != segs[0].params:
-                raise ParameterError("params must be the first segment's parameters for a segmented actuator")
+        segs = Chain.given_or_one(self.segments, lambda: SegmentSpec(self.params, self.centerline.length_mm,
+                                                                     self.adjust))
+        check_segments(self.centerline, segs)
+        if self.params != segs[0].params:
+            raise ParameterError("params must be the first segment's parameters for a segmented actuator")
         object.__setattr__(self, "segments", segs)
+        object.__setattr__(self, "adjust", segs[0].adjust)  # the first segment's too (a chain of one: its own)
 
     @classmethod
     def segmented(cls, name: str, segments, centerline=None, **kwargs) -> "ActuatorSpec":
@@ -689,8 +695,8 @@ def design_from_dict(d) -> Design:
     if len(acts) > DESIGN_ACTUATORS:
         raise DesignFileError(f"actuator: a design must have at most {DESIGN_ACTUATORS:,} actuators, got {len(acts):,}")
     try:  # before any actuator is read: 20 actuators of 200 segments took a minute to check
-        _check_total_segments(sum(len(a["segment"]) for a in acts if isinstance(a, dict)
-                                  and isinstance(a.get("segment"), list)), "actuator: a design")
+        _check_total_segments(sum(len(a["segment"]) if isinstance(a, dict) and isinstance(a.get("segment"), list)
+                                  else 1 for a in acts), "actuator: a design")
     except ParameterError as exc:
         raise DesignFileError(str(exc)) from None
     specs = tuple(_actuator(a, i) for i, a in enumerate(acts))
@@ -734,12 +740,10 @@ def design_to_dict(design: Design) -> dict:
     """
     acts = []
     for a in design.actuators:
-        if a.segments:
-            d: dict[str, object] = {"name": a.name, "segment": [{"pattern": seg.pattern, **_plain(seg.params), **seg.kind_options,
-                                              "length_mm": seg.length_mm} for seg in a.segments]}
-        else:
-            d = {"name": a.name, "pattern": a.pattern, **_plain(a.params)}
-            d.update(a.kind_options)
+        tables = [{"pattern": seg.pattern, **_plain(seg.params), **seg.kind_options, "length_mm": seg.length_mm}
+                  for seg in a.segments]  # a chain of one: its segment's keys in the actuator's table, as written
+        d: dict[str, object] = {"name": a.name, **a.segments.one_or_all(
+            lambda: {k: v for k, v in tables[0].items() if k != "length_mm"}, lambda: {"segment": tables})}
         d["path"] = a.centerline.points_mm.tolist()
         d.update(_plain(a.options))
         d["model"] = {k: v.value if isinstance(v, enum.Enum) else v for k, v in _plain(a.model).items() if v is not None}
@@ -757,10 +761,7 @@ def design_to_dict(design: Design) -> dict:
 def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
     """One actuator's complete plan; errors are prefixed with the actuator's name."""
     try:
-        if spec.segments:
-            return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
-        kwargs = {"tube": tube, "options": spec.options, "name": spec.name, **spec.kind_options}
-        return pattern_kind(spec.pattern).generate(spec.centerline, spec.params, **kwargs)
+        return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
 
@@ -820,16 +821,15 @@ def _records(spec: ActuatorSpec, tube: Tube) -> int:
     The generator's own input checks run first, so a degenerate interval or width is reported
     as such (not as an overflowing count).
     """
-    kind = pattern_kind(spec.pattern)
     try:
-        if spec.segments:
-            return check_record_count(segment_stations(spec.segments), spec.options)
-        check_pattern_inputs(spec.centerline, kind.realised_params(spec.params, **spec.kind_options), tube,
-                             spec.options)
-        stations = kind.stations(spec.centerline.length_mm, spec.params, **spec.kind_options)
-        return check_record_count(stations, spec.options)
+        return chain_records(spec.centerline, spec.segments, tube, spec.options)
     except EmbroactError as exc:
         raise type(exc)(f"actuator {spec.name!r}: {exc}") from None
+
+
+def _half_width_mm(spec: ActuatorSpec) -> float:
+    """Half the widest segment's width [mm]: how far its needle points can lie from the path."""
+    return max(seg.params.width_mm for seg in spec.segments) / 2.0
 
 
 def _placement_records(design: Design) -> int:
@@ -838,7 +838,7 @@ def _placement_records(design: Design) -> int:
     if not m.placement_line:
         return 0
     return sum(placement_records(spec.centerline.length_mm, m.placement_stitch_mm, spec.options.tie_count,
-                                 spec.params.width_mm / 2.0) for spec in design.actuators)
+                                 _half_width_mm(spec)) for spec in design.actuators)
 
 
 def _travel_records(design: Design) -> int:
@@ -851,7 +851,7 @@ def _travel_records(design: Design) -> int:
     total = 0
     for spec in design.actuators:
         pts = spec.centerline.points_mm
-        half = spec.params.width_mm / 2.0
+        half = _half_width_mm(spec)
         last, reach = ends[-1]
         first = pts[-1] if design.machine.placement_line else pts[0]
         total += max(1, math.ceil((float(np.max(np.abs(first - last))) + reach + half) / step))
@@ -862,7 +862,7 @@ def _travel_records(design: Design) -> int:
 def _start_estimate(design: Design) -> tuple[np.ndarray, float]:
     """The machine's start point before generating, and how far the real one can lie from it [mm]."""
     origin = design.machine.origin
-    half = max(spec.params.width_mm / 2.0 for spec in design.actuators)
+    half = max(_half_width_mm(spec) for spec in design.actuators)
     if origin == MachineOrigin.CENTER.value:  # the records' box is the paths' box widened by at most a half width
         pts = np.vstack([spec.centerline.points_mm for spec in design.actuators])
         return (pts.min(axis=0) + pts.max(axis=0)) / 2.0, half

@@ -1,12 +1,12 @@
 """The pattern kinds embroact knows, in one registry: parameters, generator, record estimate, calibration axis.
 
-Importing this module is light (no numpy, no shapely): a kind names its generator module,
+Importing this module is light (no numpy, no shapely): a kind names its module (its layout),
 which loads on first use, so the command line can list the choices in ``--help`` cheaply.
 
 Every place that needs to know "which patterns exist" or "what is special about this one"
 (the design-file schema, the command line's choices, the record-count estimate, the
 calibration lookup) asks :data:`PATTERN_KINDS` instead of branching on a name. A third
-pattern is one new generator module plus one :func:`register` call.
+pattern is one new module (its layout) plus one :func:`register` call.
 
 Examples
 --------
@@ -81,8 +81,8 @@ class PatternKind:
         Its frozen parameter class (fields ``width_mm``, ``interval_mm`` and any others, each
         checked against its range by the class itself).
     module : str
-        The generator module's absolute name (``"embroact.patterns.zigzag"``); it defines ``<name>`` (the generator),
-        ``<name>_stations`` and ``<name>_realised_params`` (see the properties), loaded on first use.
+        The module's absolute name (``"embroact.patterns.zigzag"``); it defines ``<name>_layout`` (the needle
+        stations), ``<name>_stations`` and ``<name>_realised_params`` (see the properties), loaded on first use.
     calibration_axis : str
         The parameter a calibration set interpolates over for this pattern.
     options : tuple of str
@@ -128,9 +128,10 @@ class PatternKind:
         return importlib.import_module(self.module)
 
     @property
-    def generate(self) -> Callable:
-        """``generate(centerline, params, *, tube, options, name, **options) -> StitchPlan``."""
-        return self._function("")
+    def layout(self) -> Callable:
+        """``layout(cl, params, start_mm, length_mm, *, options, **options) -> Layout``: the needle stations on a
+        stretch of the path (:class:`~embroact.patterns.assemble.Layout`)."""
+        return self._function("_layout")
 
     @property
     def stations(self) -> Callable:

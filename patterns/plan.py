@@ -25,13 +25,14 @@ import numpy as np
 
 from .base.arrays import frozen_array
 from .base.display import repr_svg
+from .chain import Chain
 from .kinds import KindOf
 from .params import PatternParams, StitchOptions, Tube
 
 if TYPE_CHECKING:  # pragma: no cover
     from .centerline import Centerline
 
-__all__ = ["Command", "Role", "Realised", "ActuatorPlan", "StitchPlan"]
+__all__ = ["Command", "Role", "Realised", "SegmentPlan", "ActuatorPlan", "StitchPlan"]
 
 
 class Command(IntEnum):
@@ -99,6 +100,51 @@ class Realised:
 
 
 @dataclass(frozen=True, slots=True)
+class SegmentPlan(KindOf):
+    """One generated segment of an actuator's chain (a single-pattern actuator: one over its whole path).
+
+    Attributes
+    ----------
+    params : PatternParams
+        The request.
+    start_mm, length_mm : float
+        Where the segment's share of the path starts and how long it is [mm].
+    realised : Realised
+        Measured on the segment's needle points (``length_mm`` there: first to last leg).
+    first_leg_mm : float
+        Arc length where the segment's legs start [mm] (``realised.start_mm``); they end at
+        ``first_leg_mm + realised.length_mm`` (the part of the path that bends).
+    transition_mm : float
+        Path length from the end of this segment's legs to the start of the next
+        segment's [mm] (bends by zero); 0 for the last segment.
+    join_run_mm : float
+        Path length the thread runs along a rail from this segment's last needle point to
+        the next segment's first [mm]; 0 for the last segment.
+    adjustments : tuple of str
+        What the generator changed (cross closing).
+    mirrored : bool
+        True when the segment starts on the right rail (:mod:`embroact.patterns.segments`).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> seg = SegmentPlan(ZigzagParams(7.0, 1.0), 0.0, 100.0, Realised(7.0, 1.0, 8.13, 100.0), 0.0, 0.0, 0.0)
+    >>> seg.pattern, seg.length_mm
+    ('zigzag', 100.0)
+    """
+
+    params: PatternParams
+    start_mm: float
+    length_mm: float
+    realised: Realised
+    first_leg_mm: float
+    transition_mm: float
+    join_run_mm: float
+    adjustments: tuple[str, ...] = ()
+    mirrored: bool = False
+
+
+@dataclass(frozen=True, slots=True)
 class ActuatorPlan(KindOf):
     """One actuator's share of a plan: what was asked, what was built, on which path.
 
@@ -107,21 +153,21 @@ class ActuatorPlan(KindOf):
     name : str
         Actuator name (thread list / colour table entry).
     params : PatternParams
-        The requested pattern parameters.
+        The first segment's requested pattern parameters (a chain of one: the actuator's).
     tube : Tube
         The tube it is sewn over.
     centerline : Centerline
         The tube path, mm, plan frame.
     realised : Realised
-        Parameters measured on the generated stitches.
+        The first segment's parameters measured on the generated stitches.
     adjustments : tuple of str
-        Human-readable notes where the generator had to change a request.
+        Human-readable notes where the generator had to change a request (prefixed with the
+        segment, :meth:`~embroact.patterns.chain.Chain.where`).
     options : StitchOptions
         Lock-stitch settings used.
-    segments : tuple of SegmentPlan
-        A segmented actuator's segments (:mod:`embroact.patterns.segments`), in order along
-        the path; ``params`` and ``realised`` are then the first segment's. Empty for a
-        single-pattern actuator.
+    segments : Chain of SegmentPlan
+        The actuator's segments (:mod:`embroact.patterns.segments`), one or more, in order along
+        the path. Given none, a chain of one over the whole path made of ``params`` and ``realised``.
     """
 
     name: str
@@ -131,14 +177,18 @@ class ActuatorPlan(KindOf):
     realised: Realised
     adjustments: tuple[str, ...] = ()
     options: StitchOptions = field(default_factory=StitchOptions)
-    segments: tuple = ()
+    segments: Chain = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "segments", Chain.given_or_one(self.segments, lambda: SegmentPlan(
+            self.params, 0.0, self.centerline.length_mm, self.realised, self.realised.start_mm, 0.0, 0.0,
+            tuple(self.adjustments))))
 
     def rails(self) -> tuple:
-        """The rails at +-w/2 of the realised width, as shapely LineStrings.
+        """The rails at +-w/2 of each segment's realised width, as shapely LineStrings.
 
-        ``(left, right)`` along the whole path for a single-pattern actuator; for a segmented
-        one each segment's own pair along its legs, at its own realised width, in path order
-        (``left_0, right_0, left_1, right_1, ...``).
+        Each segment's own pair along its share of the path, in path order (``left_0, right_0,
+        left_1, right_1, ...``); a chain of one: ``(left, right)`` along the whole path.
 
         Returns
         -------
@@ -153,20 +203,12 @@ class ActuatorPlan(KindOf):
         >>> segs = (SegmentSpec(ZigzagParams(8.0, 1.0), 40.0), SegmentSpec(ZigzagParams(6.0, 1.0), 40.0))
         >>> plan = generate_actuator(ActuatorSpec("A1", segs[0].params, Centerline.straight(80.0), segments=segs))
         >>> rails = plan.actuators[0].rails()
-        >>> len(rails), [round(r.coords[0][1], 1) for r in rails]
-        (4, [4.0, -4.0, 3.0, -3.0])
+        >>> len(rails), [round(r.coords[0][1], 1) for r in rails], [r.coords[0][0] for r in rails]
+        (4, [4.0, -4.0, 3.0, -3.0], [0.0, 0.0, 40.0, 40.0])
         """
-        if not self.segments:
-            return self.centerline.offset_curves(self.realised.width_mm / 2.0)
-        import shapely
-
-        out = []
-        for seg in self.segments:
-            start, end = seg.first_leg_mm, seg.first_leg_mm + seg.realised.length_mm
-            s = np.linspace(start, end, max(2, int(np.ceil((end - start) / 0.5)) + 1))
-            half = seg.realised.width_mm / 2.0
-            out += [shapely.LineString(self.centerline.offset_point_at(s, d)) for d in (half, -half)]
-        return tuple(out)
+        return tuple(rail for seg in self.segments
+                     for rail in self.centerline.offset_curves(seg.realised.width_mm / 2.0, seg.start_mm,
+                                                               seg.start_mm + seg.length_mm))
 
     def corridor(self):
         """Shapely polygon where no needle may land: centerline buffered by r_f + clearance."""

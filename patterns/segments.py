@@ -6,10 +6,11 @@ series decouple, each bends with its own uniform curvature). The machine sews th
 run: one cord-in STOP, one set of lock stitches at each end, one TRIM.
 
 Construction. Segment ``k`` covers ``[S_k, S_k + L_k]`` of the path (``S_k`` the sum of the
-lengths before it). Its needle stations are those its own generator puts on a straight
-path of length ``L_k`` (legs centred in the segment, as for a single actuator), placed on
-the real path at arc length ``S_k + x`` and offset ``y``. A segment is mirrored (every
-offset negated, the same pattern started on the other rail) when its first needle point
+lengths before it). Its kind's layout (:class:`~embroact.patterns.assemble.Layout`) puts its
+needle stations on that stretch of the real path (legs centred in it, as for a single
+actuator, which is a chain of one segment over the whole path) at arc length ``s`` and offset
+``side * w_k / 2``; every needle point goes onto the machine grid once. A segment is mirrored
+(every offset negated, the same pattern started on the other rail) when its first needle point
 would lie on the other rail than the one the segment before ended on, so that every
 *transition* is a run along one rail, never a stitch across the tube::
 
@@ -27,7 +28,7 @@ passes ends near its start, so the run goes back along its rail). The *transitio
 path between the last leg of segment ``k`` and the first leg of ``k + 1``
 (:attr:`SegmentPlan.transition_mm`, well under a stitch interval or two): the model treats
 it as part of no segment (it bends by zero). Each segment's realised parameters are
-measured on its own needle points on the real path.
+measured on its own needle points in the plan.
 
 Examples
 --------
@@ -47,32 +48,31 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .assemble import check_pattern_inputs, frame_records
+from .assemble import check_pattern_inputs, check_record_count, frame_records, inward
 from .base.errors import EmbroactError, ParameterError
 from .centerline import Centerline, as_centerline
-from .kinds import PATTERN_KINDS, KindFields, KindOf, pattern_kind
-from .limits import on_grid
+from .chain import Chain
+from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .measure import measure
 from .params import PatternParams, StitchOptions, Tube
-from .plan import ActuatorPlan, Realised, Role, StitchPlan
+from .plan import ActuatorPlan, Realised, Role, SegmentPlan, StitchPlan
 
-__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "check_segments", "segment_stations", "pattern_parts",
+__all__ = ["SegmentSpec", "SegmentPlan", "segmented", "chain_of_one", "check_segments", "chain_records", "pattern_parts",
            "MAX_TRANSITION_STITCH_MM", "LENGTH_MATCH_MM"]
 
 #: Longest stitch of a transition between segments, along the path [mm].
 MAX_TRANSITION_STITCH_MM = 3.0
 #: The segments' lengths must add up to the path's length within this [mm].
 LENGTH_MATCH_MM = 0.05
-_STATION_ROLES = (Role.LEG, Role.EDGE)
 
 
 @dataclass(frozen=True, slots=True)
 class SegmentSpec(KindFields):
-    """One segment of a segmented actuator, as asked for.
+    """One segment of an actuator's chain, as asked for (a single-pattern actuator: one over its whole path).
 
     Parameters
     ----------
@@ -95,59 +95,22 @@ class SegmentSpec(KindFields):
         object.__setattr__(self, "length_mm", float(self.length_mm))
 
 
-@dataclass(frozen=True, slots=True)
-class SegmentPlan(KindOf):
-    """One generated segment.
-
-    Attributes
-    ----------
-    params : PatternParams
-        The request.
-    start_mm, length_mm : float
-        Where the segment's share of the path starts and how long it is [mm].
-    realised : Realised
-        Measured on the segment's needle points (``length_mm`` there: first to last leg).
-    first_leg_mm : float
-        Arc length where the segment's legs start [mm]; they end at
-        ``first_leg_mm + realised.length_mm`` (the part of the path that bends).
-    transition_mm : float
-        Path length from the end of this segment's legs to the start of the next
-        segment's [mm] (bends by zero); 0 for the last segment.
-    join_run_mm : float
-        Path length the thread runs along a rail from this segment's last needle point to
-        the next segment's first [mm]; 0 for the last segment.
-    adjustments : tuple of str
-        What the generator changed (cross closing).
-    mirrored : bool
-        True when the segment starts on the right rail (see the module docstring).
-    """
-
-    params: PatternParams
-    start_mm: float
-    length_mm: float
-    realised: Realised
-    first_leg_mm: float
-    transition_mm: float
-    join_run_mm: float
-    adjustments: tuple[str, ...] = ()
-    mirrored: bool = False
-
-
 def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised], ...]:
-    """``(label, requested parameters, realised)`` of an actuator's patterns: one per segment of a segmented one.
+    """``(label, requested parameters, realised)`` of each segment of an actuator's chain.
 
-    Rules comparing the request with what was sewn loop over these; ``label`` is ``""`` for a
-    single-pattern actuator and ``"segment k: "`` for a segment (a message prefix).
+    Rules comparing the request with what was sewn loop over these; ``label`` is the chain's
+    message prefix (:meth:`~embroact.patterns.chain.Chain.label`: ``""`` in a chain of one).
 
     >>> from embroact.patterns.params import ZigzagParams
     >>> segs = (SegmentSpec(ZigzagParams(7.0, 1.0), 30.0), SegmentSpec(ZigzagParams(9.0, 1.0), 30.0))
     >>> act = segmented(Centerline.straight(60.0), segs).actuators[0]
     >>> [(label, p.width_mm, round(r.width_mm, 6)) for label, p, r in pattern_parts(act)]
     [('segment 0: ', 7.0, 7.0), ('segment 1: ', 9.0, 9.0)]
+    >>> one = segmented(Centerline.straight(60.0), [SegmentSpec(ZigzagParams(7.0, 1.0), 60.0)]).actuators[0]
+    >>> [label for label, _, _ in pattern_parts(one)]
+    ['']
     """
-    if act.segments:
-        return tuple((f"segment {k}: ", seg.params, seg.realised) for k, seg in enumerate(act.segments))
-    return (("", act.params, act.realised),)
+    return tuple((act.segments.label(k), seg.params, seg.realised) for k, seg in enumerate(act.segments))
 
 
 def check_segments(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:
@@ -170,35 +133,56 @@ def check_segments(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:
     return segs
 
 
-def segment_stations(segments, tube: Tube = Tube(), options: StitchOptions = StitchOptions()) -> int:
-    """Upper bound of the needle stations of all segments (no allocation).
+def chain_records(cl: Centerline, segments, tube: Tube = Tube(), options: StitchOptions = StitchOptions()) -> int:
+    """Records an actuator of this chain will need, from its parameters alone (no allocation).
 
+    Each segment's own input checks run first (a degenerate interval or width is reported as
+    such, prefixed as :func:`segmented` prefixes it); then the upper bound of every segment's
+    stations and of the transition runs between segments is held against the record cap.
+
+    Parameters
+    ----------
+    cl : Centerline
+    segments : sequence of SegmentSpec
+    tube : Tube
+    options : StitchOptions
+
+    Returns
+    -------
+    int
+        The bound (:func:`~embroact.patterns.assemble.check_record_count`).
+
+    Raises
+    ------
+    ParameterError, PathError, PatternError
+        A segment's inputs refused, or more records than the cap.
+
+    Examples
+    --------
     >>> from embroact.patterns.params import ZigzagParams
-    >>> segment_stations([SegmentSpec(ZigzagParams(7.0, 1.0), 50.0)] * 2)   # 2 x (51 + transition bound)
-    152
+    >>> seg = SegmentSpec(ZigzagParams(7.0, 1.0), 50.0)
+    >>> chain_records(Centerline.straight(50.0), [seg]), chain_records(Centerline.straight(100.0), [seg] * 2)
+    (59, 135)
     """
+    segs = Chain(segments)
     total = 0.0
-    for seg in segments:
+    for k, seg in enumerate(segs):
         kind = pattern_kind(seg.pattern)
+        try:
+            check_pattern_inputs(cl, kind.realised_params(seg.params, **seg.kind_options), tube, options)
+        except EmbroactError as exc:
+            raise type(exc)(f"{segs.where(k)}{exc}") from None
         total += kind.stations(seg.length_mm, seg.params, **seg.kind_options)
-        total += seg.length_mm / MAX_TRANSITION_STITCH_MM + 8
-    return int(math.ceil(total))
-
-
-def _stations(seg: SegmentSpec, tube: Tube, options: StitchOptions, name: str):
-    """(x, y, role) of a segment's needle stations as its generator puts them on a straight path."""
-    plan = pattern_kind(seg.pattern).generate(Centerline.straight(seg.length_mm), seg.params, tube=tube,
-                                              options=options, name=name, **seg.kind_options)
-    roles = plan.roles
-    keep = np.isin(roles, _STATION_ROLES)
-    first = int(np.argmax(keep)) - 1  # the last tie-in stitch ends on the first station
-    keep[first] = True
-    return plan.xy_mm[keep], roles[keep], plan.actuators[0].adjustments
+    total += sum(seg.length_mm / MAX_TRANSITION_STITCH_MM + 8 for seg in segs[:-1])  # the transition runs
+    return check_record_count(math.ceil(total), options)
 
 
 def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptions = StitchOptions(),
               name: str = "actuator") -> StitchPlan:
-    """One segmented actuator along ``centerline``, as a complete plan (see the module docstring).
+    """One actuator along ``centerline`` from its chain of segments, as a complete plan (see the module docstring).
+
+    The one generator of every actuator: a single-pattern one is a chain of one segment over
+    the whole path (:func:`chain_of_one`).
 
     Parameters
     ----------
@@ -217,23 +201,23 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
     Raises
     ------
     ParameterError, PathError, PatternError
-        As the generators, the message prefixed with ``segment[k]``.
+        As the layouts, the message prefixed with ``segment[k]: `` in a chain of more than one.
     """
     cl = as_centerline(centerline)
-    segs = check_segments(cl, segments)
+    segs = Chain(check_segments(cl, segments))
     s_all: list[np.ndarray] = []
     o_all: list[np.ndarray] = []
     role_all: list[np.ndarray] = []
     parts = []
     start = 0.0
     for k, seg in enumerate(segs):
+        kind = pattern_kind(seg.pattern)
         try:
-            check_pattern_inputs(cl, pattern_kind(seg.pattern).realised_params(seg.params, **seg.kind_options),
-                                 tube, options)
-            x, roles, notes = _stations(seg, tube, options, name)
+            check_pattern_inputs(cl, kind.realised_params(seg.params, **seg.kind_options), tube, options)
+            lay = kind.layout(cl, seg.params, start, seg.length_mm, options=options, **seg.kind_options)
         except EmbroactError as exc:
-            raise type(exc)(f"segment[{k}]: {exc}") from None
-        s, o = start + x[:, 0], x[:, 1].copy()
+            raise type(exc)(f"{segs.where(k)}{exc}") from None
+        s, o, roles = lay.s_mm, lay.side * (seg.params.width_mm / 2.0), lay.roles
         mirrored = bool(o_all) and bool(np.sign(o[0]) != np.sign(o_all[-1][-1]))
         if mirrored:
             o = -o
@@ -246,32 +230,66 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
             role_all.append(np.full(count - 1, Role.EDGE))
             roles = roles.copy()
             roles[0] = Role.EDGE
+        parts.append((seg, start, s, sum(map(len, s_all)), lay.adjustments, mirrored))
         s_all.append(s)
         o_all.append(o)
         role_all.append(roles)
-        parts.append((seg, start, s, o, roles, tuple(notes), mirrored))
         start += seg.length_mm
-    plans = []
-    for k, (seg, s0, s, o, roles, notes, mirrored) in enumerate(parts):
-        xy = on_grid(cl.offset_point_at(s, o))  # as frame_records puts them in the plan
-        r = roles.copy()
-        r[0] = Role.TIE_IN  # the segment's first point starts its first leg
-        realised = measure(xy, r, cl, seg.pattern)
-        last = k + 1 == len(parts)
-        gap = 0.0 if last else float(parts[k + 1][2].min() - s.max())
-        run = 0.0 if last else float(abs(parts[k + 1][2][0] - s[-1]))
-        plans.append(SegmentPlan(seg.params, s0, seg.length_mm, realised, float(s.min()), gap, run, notes, mirrored))
-    return _wrap(cl, np.concatenate(s_all), np.concatenate(o_all), np.concatenate(role_all), tuple(plans),
-                 tube=tube, options=options, name=name)
-
-
-def _wrap(cl: Centerline, station_s, station_o, station_role, segs: tuple[SegmentPlan, ...], *, tube: Tube,
-          options: StitchOptions, name: str) -> StitchPlan:
-    """STOP, lock stitches, the stations, lock stitches, TRIM, END (the record convention of assemble)."""
-    xy, commands, roles, actuator = frame_records(cl, station_s, station_o, station_role, np.array([1.0, -1.0]),
-                                                  tube=tube, options=options)
-    first = segs[0]
-    act = ActuatorPlan(name, first.params, tube, cl, first.realised,
-                       tuple(f"segment[{i}]: {note}" for i, s in enumerate(segs) for note in s.adjustments), options,
-                       segs)
+    station_s, station_role = np.concatenate(s_all), np.concatenate(role_all)
+    xy, commands, roles, actuator = frame_records(cl, station_s, np.concatenate(o_all), station_role,
+                                                  inward(cl, float(station_s[0]), float(station_s[-1])), tube=tube,
+                                                  options=options)
+    at = [(options.tie_count + first, options.tie_count + first + len(s)) for _, _, s, first, _, _ in parts]
+    plans = [_segment_plan(cl, xy[i:j], station_role[i - options.tie_count:j - options.tie_count], seg, s0, notes,
+                           mirrored) for (i, j), (seg, s0, _, _, notes, mirrored) in zip(at, parts)]
+    ends, _ = cl.project(xy[[k for i, j in at for k in (i, j - 1)]])  # each segment's first and last needle point
+    plans = [replace(p, transition_mm=b.first_leg_mm - (p.first_leg_mm + p.realised.length_mm),
+                     join_run_mm=float(abs(ends[2 * k + 2] - ends[2 * k + 1])))
+             for k, (p, b) in enumerate(zip(plans, plans[1:]))] + plans[-1:]
+    chain = Chain(plans)
+    # a chain of one is the actuator's own values over its whole path, made again when the path moves
+    # (embroact.patterns.origin.to_machine_frame): the plan holds it as ActuatorPlan makes it
+    act = ActuatorPlan(name, chain[0].params, tube, cl, chain[0].realised,
+                       tuple(f"{chain.where(i)}{note}" for i, p in enumerate(chain) for note in p.adjustments), options,
+                       chain.one_or_all((), chain))
     return StitchPlan(xy, commands, roles, actuator, (act,), name)
+
+
+def chain_of_one(centerline, params: PatternParams, *, tube: Tube = Tube(), options: StitchOptions = StitchOptions(),
+                 name: str = "actuator", **kind_options) -> StitchPlan:
+    """One single-pattern actuator along ``centerline``: a chain of one segment over the whole path.
+
+    Parameters
+    ----------
+    centerline : Centerline or anything :func:`as_centerline` takes
+    params : PatternParams
+        Any registered kind's parameters.
+    tube, options, name
+        As for :func:`segmented`.
+    **kind_options
+        The kind's generator options (``adjust`` for the cross pattern).
+
+    Returns
+    -------
+    StitchPlan
+        One actuator (:func:`segmented`).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> plan = chain_of_one([(0, 0), (50, 0)], ZigzagParams(7.0, 1.0), name="Z")
+    >>> plan.actuators[0].name, plan.stitch_count, len(plan.actuators[0].segments)
+    ('Z', 56, 1)
+    """
+    cl = as_centerline(centerline)
+    return segmented(cl, (SegmentSpec(params, cl.length_mm, **kind_options),), tube=tube, options=options, name=name)
+
+
+def _segment_plan(cl: Centerline, xy, station_roles, seg: SegmentSpec, start_mm: float, notes: tuple[str, ...],
+                  mirrored: bool) -> SegmentPlan:
+    """A segment as generated, measured on its needle points in the plan (:func:`segmented` then sets the
+    transition to the next segment and the thread's run there)."""
+    r = np.array(station_roles)
+    r[0] = Role.TIE_IN  # the segment's first point starts its first leg
+    realised = measure(xy, r, cl, seg.pattern)
+    return SegmentPlan(seg.params, start_mm, seg.length_mm, realised, realised.start_mm, 0.0, 0.0, notes, mirrored)

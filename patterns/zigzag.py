@@ -13,8 +13,9 @@ centred on the path (``s0 = (L - n*s) / 2``, ``n = floor(L / s)``)::
                   s0 + 0 s,  s0 + 1 s, ...
 
 Each leg leans by ``atan(s / w)`` from the local perpendicular (its "angle" in the
-realised values). Lock stitches, STOP, TRIM and END follow the record convention of
-:mod:`embroact.patterns.assemble`.
+realised values). :func:`zigzag_layout` places the stations on a stretch of the path (the
+whole path, or one segment's share of it); lock stitches, STOP, TRIM and END follow the
+record convention of :mod:`embroact.patterns.assemble`.
 
 Examples
 --------
@@ -32,14 +33,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .assemble import assemble, check_pattern_inputs, check_record_count
-from .centerline import as_centerline
+from .assemble import Layout, check_record_count
+from .centerline import Centerline
 from .base.errors import ParameterError, PatternError
 from .params import StitchOptions, Tube, ZigzagParams, whole_intervals
 from .plan import Role, StitchPlan
+from .segments import chain_of_one
 from .base.tolerances import DEFAULT_TOLERANCES
 
-__all__ = ["zigzag", "zigzag_stations", "zigzag_realised_params", "MIN_LEGS"]
+__all__ = ["zigzag", "zigzag_layout", "zigzag_stations", "zigzag_realised_params", "MIN_LEGS"]
 
 #: Fewest legs a zigzag actuator may have.
 MIN_LEGS = 2
@@ -89,6 +91,49 @@ def zigzag_realised_params(params: ZigzagParams) -> ZigzagParams:
     return params
 
 
+def zigzag_layout(cl: Centerline, params: ZigzagParams, start_mm: float, length_mm: float, *,
+                  options: StitchOptions = StitchOptions()) -> Layout:
+    """The zigzag's needle stations on ``[start_mm, start_mm + length_mm]`` of ``cl``, legs centred there.
+
+    Parameters
+    ----------
+    cl : Centerline
+        The actuator's path.
+    params : ZigzagParams
+    start_mm, length_mm : float
+        Where the stretch starts along ``cl`` and how long it is [mm].
+    options : StitchOptions
+        Lock stitches (the stretch holds at least one).
+
+    Returns
+    -------
+    Layout
+
+    Raises
+    ------
+    PatternError
+        Stretch shorter than ``MIN_LEGS`` legs, or too many records.
+
+    Examples
+    --------
+    >>> lay = zigzag_layout(Centerline.straight(10.0), ZigzagParams(7.0, 1.0), 2.0, 4.5)
+    >>> lay.s_mm.tolist(), lay.side.tolist()
+    ([2.25, 3.25, 4.25, 5.25, 6.25], [1, -1, 1, -1, 1])
+    """
+    s = params.interval_mm
+    minimum = max(MIN_LEGS * s, options.tie_stitch_mm)
+    if length_mm < minimum - DEFAULT_TOLERANCES.length_mm:
+        raise PatternError(
+            f"path length_mm must be >= {minimum:g} for a zigzag with interval_mm={s:g} "
+            f"(at least {MIN_LEGS} legs), got {length_mm:g}"
+        )
+    n = zigzag_stations(length_mm, params) - 1
+    check_record_count(n + 1, options)
+    i = np.arange(n + 1)
+    return Layout(start_mm + (0.5 * max(length_mm - n * s, 0.0) + i * s), np.where(i % 2 == 0, 1, -1),
+                  np.full(n + 1, Role.LEG))
+
+
 def zigzag(
     centerline,
     params: ZigzagParams,
@@ -97,7 +142,7 @@ def zigzag(
     options: StitchOptions = StitchOptions(),
     name: str = "actuator",
 ) -> StitchPlan:
-    """One zigzag actuator along ``centerline``, as a complete plan.
+    """One zigzag actuator along ``centerline``, as a complete plan (a chain of one segment).
 
     Parameters
     ----------
@@ -134,20 +179,4 @@ def zigzag(
     """
     if not isinstance(params, ZigzagParams):
         raise ParameterError(f"params must be ZigzagParams, got {type(params).__name__}")
-    cl = as_centerline(centerline)
-    check_pattern_inputs(cl, params, tube, options)
-    s, length = params.interval_mm, cl.length_mm
-    minimum = max(MIN_LEGS * s, options.tie_stitch_mm)
-    if length < minimum - DEFAULT_TOLERANCES.length_mm:
-        raise PatternError(
-            f"path length_mm must be >= {minimum:g} for a zigzag with interval_mm={s:g} "
-            f"(at least {MIN_LEGS} legs), got {length:g}"
-        )
-    n = zigzag_stations(length, params) - 1
-    check_record_count(n + 1, options)
-    i = np.arange(n + 1)
-    station_s = 0.5 * max(length - n * s, 0.0) + i * s
-    side = np.where(i % 2 == 0, 1, -1)
-    return assemble(
-        cl, station_s, side, np.full(n + 1, Role.LEG), params=params, tube=tube, options=options, name=name
-    )
+    return chain_of_one(centerline, params, tube=tube, options=options, name=name)

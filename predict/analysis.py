@@ -44,9 +44,9 @@ import numpy as np
 
 from ..patterns.base.display import repr_html
 from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterError
+from ..patterns.chain import Chain
 from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
-from ..patterns.plan import ActuatorPlan, StitchPlan
-from ..patterns.segments import SegmentPlan
+from ..patterns.plan import ActuatorPlan, SegmentPlan, StitchPlan
 from .calibration import CalibrationSet, ModelChoice, as_calibration_sets, model_for
 from .derived import DerivedGeometry, derive
 
@@ -77,7 +77,7 @@ def pressure_grid_kpa(max_pressure_kpa: float, step_kpa: float = PRESSURE_STEP_K
 
 @dataclass(frozen=True, slots=True)
 class SegmentAnalysis:
-    """One segment of a segmented actuator: what was sewn there and its own model (docs/model.md, segments).
+    """One segment of an actuator's chain: what was sewn there and its own model (docs/model.md, segments).
 
     Attributes
     ----------
@@ -237,38 +237,40 @@ class ActuatorAnalysis:
         The request.
     plan : ActuatorPlan
         The generated actuator (realised parameters, centerline, rails).
-    derived : DerivedGeometry
-        Sleeve geometry measured on the generated stitches.
-    choice : ModelChoice or None
-        Model, calibration and the source of G and P0; ``None`` when no model exists
-        (``model_error`` says why, e.g. no sleeve).
-    model_error : str
-        Empty when ``choice`` is set.
-    segments : tuple of SegmentAnalysis
-        A segmented actuator's segments, each with its own model; ``derived`` is then the
-        first segment's and ``choice`` is ``None`` (there is no one model: use
-        :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`). Empty otherwise.
-    chain : tuple of SegmentAnalysis
+    segments : Chain of SegmentAnalysis
         The actuator as a chain of one or more segments, each with its pattern, where it lies,
-        its derived geometry and model: a single-pattern actuator is a chain of one (its
-        ``derived`` and ``choice``), a segmented one its :attr:`segments`. Outputs give one
-        entry per link, in the same keys for one segment as for five.
+        its derived geometry and model (a single-pattern actuator: a chain of one). Outputs
+        give one entry per segment, in the same keys for one segment as for five.
 
     Examples
     --------
     >>> from embroact.patterns.design import default_design
     >>> act = analyse(default_design()).actuators[0]
-    >>> act.name, act.plan.pattern, act.model.g_mpa
-    ('A1', 'zigzag', 2.7)
+    >>> act.name, act.plan.pattern, act.model.g_mpa, len(act.segments)
+    ('A1', 'zigzag', 2.7, 1)
     """
 
     spec: ActuatorSpec
     plan: ActuatorPlan
-    derived: DerivedGeometry
-    choice: ModelChoice | None
-    model_error: str = ""
-    segments: tuple[SegmentAnalysis, ...] = ()
-    chain: tuple[SegmentAnalysis, ...] = ()
+    segments: Chain
+
+    @property
+    def derived(self) -> DerivedGeometry:
+        """Sleeve geometry measured on the generated stitches: the first segment's (a chain of one: the actuator's)."""
+        return self.segments[0].derived
+
+    @property
+    def choice(self) -> ModelChoice | None:
+        """The actuator's one model, calibration and sources of G and P0: its segment's in a chain of one;
+        ``None`` when there is none (``model_error`` says why: no sleeve, or a longer chain, whose segments
+        have a model each; use :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`)."""
+        return self.segments.one_or_all(lambda: self.segments[0].choice, None)
+
+    @property
+    def model_error(self) -> str:
+        """Empty when :attr:`choice` is set; else why there is no one model."""
+        return self.segments.one_or_all(lambda: self.segments[0].model_error, lambda: (
+            f"segmented actuator with {len(self.segments)} segments: one model per segment (ActuatorAnalysis.segments)"))
 
     def bend_pieces(self) -> tuple[tuple[float, int], ...]:
         """The fabric line from the clamp as ``(length_mm, segment index)`` pieces; index -1 bends by zero.
@@ -287,7 +289,7 @@ class ActuatorAnalysis:
         >>> [(round(length, 6), k) for length, k in analyse(default_design()).actuators[0].bend_pieces()]
         [(100.0, 0)]
         """
-        spans = [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.chain]
+        spans = [(seg.plan.first_leg_mm, seg.derived.length_mm) for seg in self.segments]
         out, at = [], 0.0
         for k, (start, length) in enumerate(spans):
             if start - at > 1e-9:
@@ -327,16 +329,13 @@ class ActuatorAnalysis:
         """
         return {"name": self.name, "pattern": self.derived.pattern, "derived": self.derived.as_dict(),
                 "model": self.choice.as_dict() if self.choice is not None else None,
-                "model_error": self.model_error or None, "segments": [s.as_dict() for s in self.chain]}
+                "model_error": self.model_error or None, "segments": [s.as_dict() for s in self.segments]}
 
     def __repr__(self) -> str:
         d = self.derived
-        if self.segments:
-            model = f"{len(self.segments)} segments"
-        elif self.choice is None:
-            model = f"no model: {self.model_error}"
-        else:
-            model = f"G {self.model.g_mpa:.4g} MPa, P0 {self.model.p0_kpa:.4g} kPa"
+        model = self.segments.one_or_all(lambda: (
+            f"no model: {self.model_error}" if self.choice is None
+            else f"G {self.model.g_mpa:.4g} MPa, P0 {self.model.p0_kpa:.4g} kPa"), f"{len(self.segments)} segments")
         return (f"ActuatorAnalysis({self.name!r}: {d.pattern}, w {d.width_mm:.4g} mm, l0 {d.length_mm:.4g} mm, "
                 f"r0 {d.r0_mm:.4g} mm; {model})")
 
@@ -470,19 +469,43 @@ class DesignAnalysis:
         ModelDomainError
             A segment (or actuator) has no model.
         """
-        from .curve import curve
-
         p = self._grid(pressures_kpa)
         key = ("segments", p, method)
         if key not in self._curves:
-            same: dict = {}  # identical models (identical actuators): one curve, shared (curves are read-only)
+            self._curves[key] = tuple(tuple(self.model_curve(s.model, p, method=method) for s in a.segments)
+                                      for a in self.actuators)
+        return self._curves[key]
 
-            def curve_of(model):
-                if model not in same:
-                    same[model] = curve(model, p, method=method)
-                return same[model]
+    def model_curve(self, model, pressures_kpa: Sequence[float], *, method: str = "auto"):
+        """The curve of one segment's model at these pressures, memoised: identical models (identical
+        actuators or segments) share one curve (curves are read-only).
 
-            self._curves[key] = tuple(tuple(curve_of(s.model) for s in a.chain) for a in self.actuators)
+        Parameters
+        ----------
+        model : ActuatorModel
+            A segment's model (:attr:`SegmentAnalysis.model`).
+        pressures_kpa : sequence of float
+            Pressures [kPa], >= 0.
+        method : str
+            As for :func:`~embroact.predict.curve.curve`.
+
+        Returns
+        -------
+        Curve
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> a = analyse(default_design())
+        >>> a.model_curve(a.actuators[0].model, [200.0]) is a.segment_curves([200.0])[0][0]
+        True
+        """
+        from .curve import curve
+
+        p = self._grid(pressures_kpa)
+        key = ("model", model, p, method)
+        if key not in self._curves:
+            self._curves[key] = curve(model, p, method=method)
         return self._curves[key]
 
     def shapes(self, name: str, pressures_kpa: Sequence[float], *, method: str = "auto") -> tuple:
@@ -558,7 +581,7 @@ class DesignAnalysis:
         from .layoutchoice import layout_for
 
         act = self.actuator(name)
-        choices = [s.choice for s in act.chain]
+        choices = [s.choice for s in act.segments]
         if not any(c is not None and c.calibration is not None for c in choices):
             return layout_for(given=given)
         cset = get_set(act.spec.model.calibration, self.calibration_sets)
@@ -640,7 +663,7 @@ class DesignAnalysis:
         key = ("band", p, method, measurement)
         if key not in self._curves:
             # no band is claimed for a sum of segments
-            self._curves[key] = tuple(None if len(a.chain) > 1 else _band(a, p, method, measurement)
+            self._curves[key] = tuple(a.segments.one_or_all(lambda a=a: _band(a, p, method, measurement), None)
                                       for a in self.actuators)
         return self._curves[key]
 
@@ -726,42 +749,32 @@ def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets) -> tuple[
 
 
 def segment_plans(act: ActuatorPlan) -> tuple[ActuatorPlan, ...]:
-    """Each segment of a segmented actuator as a single-pattern plan (named ``A1[0]``...), what its sleeve
-    geometry is derived from; ``()`` for a single-pattern actuator.
+    """Each segment of an actuator's chain as a single-pattern plan (named ``A1[0]``..., a chain of one
+    ``A1``), what its sleeve geometry is derived from.
 
     Examples
     --------
-    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.patterns.design import default_design, design_from_dict
     >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
     ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 40},
     ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 40}]}]})
     >>> [(p.name, p.realised.width_mm) for p in segment_plans(build_plan(d).actuators[0])]
     [('S[0]', 7.0), ('S[1]', 9.0)]
+    >>> [p.name for p in segment_plans(build_plan(default_design()).actuators[0])]
+    ['A1']
     """
-    return tuple(ActuatorPlan(f"{act.name}[{k}]", seg.params, act.tube, act.centerline, seg.realised, seg.adjustments,
-                              act.options) for k, seg in enumerate(act.segments))
-
-
-def _analyse_segments(spec: ActuatorSpec, act: ActuatorPlan, sets) -> ActuatorAnalysis:
-    segs = []
-    for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
-        derived = derive(part)
-        choice, error = _model_of(derived, spec.model, sets)
-        segs.append(SegmentAnalysis(seg, derived, choice, f"segment {k}: {error}" if error else ""))
-    return ActuatorAnalysis(spec, act, segs[0].derived, None,
-                            f"segmented actuator with {len(segs)} segments: one model per segment "
-                            f"(ActuatorAnalysis.segments)", tuple(segs), tuple(segs))
+    return tuple(ActuatorPlan(act.segments.ref(act.name, k), seg.params, act.tube, act.centerline, seg.realised,
+                              seg.adjustments, act.options) for k, seg in enumerate(act.segments))
 
 
 def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
     act = plan.actuators[index]
-    if act.segments:
-        return _analyse_segments(spec, act, sets)
-    derived = derive(act)
-    choice, error = _model_of(derived, spec.model, sets)
-    whole = SegmentPlan(act.params, 0.0, act.centerline.length_mm, act.realised, act.realised.start_mm, 0.0, 0.0,
-                        act.adjustments)
-    return ActuatorAnalysis(spec, act, derived, choice, error, chain=(SegmentAnalysis(whole, derived, choice, error),))
+    segs = []
+    for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
+        derived = derive(part)
+        choice, error = _model_of(derived, spec.model, sets)
+        segs.append(SegmentAnalysis(seg, derived, choice, f"{act.segments.label(k)}{error}" if error else ""))
+    return ActuatorAnalysis(spec, act, Chain(segs))
 
 
 def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapping[str, CalibrationSet] = (),

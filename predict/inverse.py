@@ -70,7 +70,7 @@ from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
 from ..patterns.kinds import PATTERN_KINDS, Interval, param_values, pattern_kind
 from ..patterns.params import PatternParams, Tube, whole_intervals
-from ..patterns.segments import SegmentSpec
+from ..patterns.segments import SegmentSpec, chain_of_one
 from .kinds import model_kind
 from .shape import planar_chain_mm
 from .status import Status
@@ -400,7 +400,7 @@ def _legs_sewn(params, length_mm: float) -> tuple[float, float]:
         return _legs(params, length_mm)
     from ..patterns.plan import Role
 
-    plan = pattern_kind(params.pattern).generate(Centerline.straight(length_mm), params)
+    plan = chain_of_one(Centerline.straight(length_mm), params)
     x = plan.xy_mm[:, 0]
     legs = np.flatnonzero(plan.roles == Role.LEG)
     ends = np.union1d(legs, legs - 1)

@@ -110,8 +110,9 @@ class ModelRuleSettings:
 
 
 def _model_findings(choice, model_error: str, curve_of, calibration: str, settings: ModelRuleSettings, *,
-                    where: dict, prefix: str = "", bend_limit: bool = True) -> list[Finding]:
-    """EA401-EA406 of one model (an actuator's, or one segment's: ``prefix`` names it)."""
+                    where: dict, prefix: str = "") -> list[Finding]:
+    """EA401, EA402 and EA404-EA406 of one segment's model (``prefix`` names the segment); the bend limit EA403
+    is the whole strip's (:func:`_actuator_findings`)."""
     from .analysis import pressure_grid_kpa
     from .curve import lockup
 
@@ -143,9 +144,6 @@ def _model_findings(choice, model_error: str, curve_of, calibration: str, settin
             "EA405", f"{prefix}model state {Status(int(c.status[i])).name} from {pressures[i]:.0f} kPa on, below "
             f"the working pressure {p_max:g} kPa", **where))
     theta = float(c.theta_deg[-1])
-    if bend_limit and abs(theta) > settings.max_bend_deg:
-        out.append(RULES.finding(
-            "EA403", f"bend {theta:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
     lock_theta, lock_p = lockup(model)
     locked = int(c.status[-1]) == Status.LOCKED or (
         np.isinf(lock_p) and lock_theta != 0.0 and abs(theta) >= settings.lockup_fraction * abs(lock_theta))
@@ -157,18 +155,12 @@ def _model_findings(choice, model_error: str, curve_of, calibration: str, settin
 
 
 def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Finding]:
-    """The model rules of one actuator; a segmented one per segment, the bend limit on its total bend."""
-    from .curve import curve
-
-    where = dict(actuator=act.name)
-    index = analysis.actuators.index(act)
-    calibration = act.spec.model.calibration
-    if not act.segments:
-        return _model_findings(act.choice, act.model_error,
-                               lambda p: analysis.curves(p, method=settings.method)[index], calibration, settings,
-                               where=where)
+    """The model rules of one actuator, segment by segment (a segment's message names it unless the chain is of
+    one), and the bend limit on the bend of the whole strip (the sum of its segments')."""
     from .analysis import pressure_grid_kpa
 
+    where = dict(actuator=act.name)
+    calibration = act.spec.model.calibration
     out, total = [], 0.0
     p_max = settings.max_pressure_kpa
     pressures = pressure_grid_kpa(p_max)
@@ -176,14 +168,14 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
         if not seg.derived.has_sleeve:
             continue  # EA201 reports it
         bends = seg.choice is not None and seg.model.p0_kpa <= p_max
-        c = curve(seg.model, pressures, method=settings.method) if bends else None
+        c = analysis.model_curve(seg.model, pressures, method=settings.method) if bends else None
         out += _model_findings(seg.choice, seg.model_error, lambda p, c=c: c, calibration, settings, where=where,
-                               prefix=f"segment {k}: ", bend_limit=False)
+                               prefix=act.segments.label(k))
         total += float(c.theta_deg[-1]) if c is not None else 0.0
     if abs(total) > settings.max_bend_deg:
+        what = act.segments.one_or_all("bend", lambda: f"total bend of the {len(act.segments)} segments")
         out.append(RULES.finding(
-            "EA403", f"total bend of the {len(act.segments)} segments {total:.1f} deg at {p_max:g} kPa, limit "
-            f"{settings.max_bend_deg:g} deg", **where))
+            "EA403", f"{what} {total:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
     return out
 
 

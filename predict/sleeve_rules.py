@@ -37,16 +37,17 @@ def _sleeve_gaps(s: Subject) -> list[tuple[int, str, float, float, float, object
     """Per tube with a known width, per pattern part: tube index, message prefix, width w, sleeve radius r0,
     r0 - r_f [mm] and where to place a finding (None: the tube's first needle point).
 
-    A design's segmented actuator is checked segment by segment at each segment's realised width
-    (placed where its legs start); a file's tube at the width read from its needle points.
+    A design's actuator is checked segment by segment at each segment's realised width (the first
+    segment placed at the tube's first needle point, each later one where its legs start); a
+    file's tube at the width read from its needle points.
     """
     out = []
     for k, tube in enumerate(s.layout.tubes):
         act = s.plan.actuators[k] if s.plan is not None and k < len(s.plan.actuators) else None
         parts: list[tuple[str, float, object]]
-        if act is not None and act.segments:
-            parts = [(label, real.width_mm, act.centerline.point_at(seg.first_leg_mm))
-                     for (label, _, real), seg in zip(pattern_parts(act), act.segments)]
+        if act is not None:
+            parts = [(label, real.width_mm, act.centerline.point_at(seg.first_leg_mm) if j else None)
+                     for j, ((label, _, real), seg) in enumerate(zip(pattern_parts(act), act.segments))]
         elif tube.half_width_mm is not None:
             parts = [("", 2.0 * tube.half_width_mm, None)]
         else:

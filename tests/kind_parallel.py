@@ -1,8 +1,8 @@
 """A third pattern kind, "parallel" (straight couching), registered from this one module.
 
 This is what the README's "Adding a pattern kind" section describes, step by step: a frozen
-parameter class, a generator with its station bound and realised parameters, the pattern
-kind (:func:`embroact.patterns.kinds.register`) and one model row
+parameter class, a layout (the needle stations on a stretch of the path) with its station bound
+and realised parameters, the pattern kind (:func:`embroact.patterns.kinds.register`) and one model row
 (:func:`embroact.predict.kinds.register_model`). Nothing else in embroact changes.
 
 Parallel couching: legs straight across the tube (perpendicular to the path), one every
@@ -20,11 +20,10 @@ from typing import ClassVar
 
 import numpy as np
 
-from embroact.patterns.assemble import assemble, check_pattern_inputs, check_record_count
+from embroact.patterns.assemble import Layout, check_record_count
 from embroact.patterns.base.errors import check_range
-from embroact.patterns.centerline import as_centerline
 from embroact.patterns.kinds import PATTERN_KINDS, PatternKind, register
-from embroact.patterns.params import StitchOptions, Tube, whole_intervals
+from embroact.patterns.params import StitchOptions, whole_intervals
 from embroact.patterns.plan import Role
 from embroact.predict.kinds import MODEL_KINDS, Constraint, ModelKind, register_model
 
@@ -60,21 +59,17 @@ def parallel_interval_mm(sa, oa, sb, ob) -> float:
     return float(np.median(np.diff(pos))) if pos.size > 1 else 0.0
 
 
-def parallel(centerline, params: ParallelParams, *, tube: Tube = Tube(), options: StitchOptions = StitchOptions(),
-             name: str = "actuator"):
-    """One parallel-couching actuator along ``centerline`` (legs across, edge stitches along the rails)."""
-    cl = as_centerline(centerline)
-    check_pattern_inputs(cl, params, tube, options)
-    s, length = params.interval_mm, cl.length_mm
-    n = whole_intervals(length, s)
+def parallel_layout(cl, params: ParallelParams, start_mm: float, length_mm: float, *,
+                    options: StitchOptions = StitchOptions()) -> Layout:
+    """Parallel couching on ``[start_mm, start_mm + length_mm]`` of ``cl``: legs across, edge stitches along the
+    rails, the legs centred on the stretch."""
+    s = params.interval_mm
+    n = whole_intervals(length_mm, s)
     check_record_count(2 * (n + 1), options)
     leg = np.arange(n + 1)
-    at = 0.5 * max(length - n * s, 0.0) + leg * s
-    station_s = np.repeat(at, 2)
+    at = start_mm + 0.5 * max(length_mm - n * s, 0.0) + leg * s
     first = np.where(leg % 2 == 0, 1, -1)  # each leg starts on the rail the previous one ended on
-    side = np.column_stack([first, -first]).ravel()
-    role = np.tile([Role.EDGE, Role.LEG], n + 1)
-    return assemble(cl, station_s, side, role, params=params, tube=tube, options=options, name=name)
+    return Layout(np.repeat(at, 2), np.column_stack([first, -first]).ravel(), np.tile([Role.EDGE, Role.LEG], n + 1))
 
 
 def parallel_design(x: float, width_mm: float, interval_mm: float) -> ParallelParams:

@@ -112,6 +112,6 @@ def test_first_leg_is_where_the_projected_legs_start():
     plan = a.plan
     legs = np.flatnonzero((plan.actuator == 0) & (plan.roles == Role.LEG))
     s, _ = plan.actuators[0].centerline.project(plan.xy_mm[np.concatenate([legs - 1, legs])])
-    (link,) = a.actuators[0].chain  # a single-pattern actuator: a chain of one
+    (link,) = a.actuators[0].segments  # a single-pattern actuator: a chain of one
     assert link.plan.first_leg_mm == pytest.approx(float(s.min()), abs=1e-9)
     assert 0.0 < link.plan.first_leg_mm < 10.0

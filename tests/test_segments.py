@@ -107,11 +107,14 @@ def test_design_file_segments_round_trip_and_errors():
         design_from_dict(bad)
 
 
-def test_single_pattern_actuators_unchanged():
+def test_a_single_pattern_actuator_is_a_chain_of_one():
     spec = ActuatorSpec("A", ZigzagParams(7.0, 1.0), Centerline.straight(100.0))
-    assert spec.segments == ()
+    assert spec.segments == (SegmentSpec(ZigzagParams(7.0, 1.0), 100.0),)
     plan = build_plan(Design("d", Tube(), MachineSettings(), OperationSettings(), (spec,)))
-    assert plan.actuators[0].segments == () and plan.stitch_count == 106
+    (seg,) = plan.actuators[0].segments
+    # 101 stations 1 mm apart over the whole 100 mm path, 2 x 3 lock stitches, the first station shared
+    assert (seg.start_mm, seg.length_mm, seg.first_leg_mm, seg.transition_mm, seg.join_run_mm) == (0, 100, 0, 0, 0)
+    assert plan.stitch_count == 106 and seg.realised.width_mm == 7.0 and seg.realised.length_mm == 100.0
 
 
 def test_each_segment_bends_as_the_same_pattern_alone():

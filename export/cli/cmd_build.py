@@ -163,8 +163,8 @@ def run(args) -> int:
 def _models_line(analysis) -> str:
     """Per actuator: G and P0 with their sources (one line each)."""
     lines = []
-    for a in analysis.actuators:  # a segmented actuator: one line per segment, each its own model
-        for name, part in ([(f"{a.name} segment {k}", s) for k, s in enumerate(a.segments)] or [(a.name, a)]):
+    for a in analysis.actuators:  # one line per segment of the chain, each its own model
+        for name, part in [(a.segments.part_name(a.name, k), s) for k, s in enumerate(a.segments)]:
             if part.choice is None:
                 lines.append(f"{name}: no model ({part.model_error})")
                 continue

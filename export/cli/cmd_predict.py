@@ -99,9 +99,9 @@ def _measured(out: dict, reading) -> dict:
 
 def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
-    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.chain, segment_curves)]
+    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
     # the whole strip: a chain of one is its segment (with its sleeve's l, r, beta, limits), else the sum of bends
-    out.update(out["segment_curves"][0] if len(act.chain) == 1 else c.as_dict())
+    out.update(act.segments.one_or_all(lambda: out["segment_curves"][0], c.as_dict))
     out["band"] = _band_dict(band)
     return _measured(out, reading)  # the reading of the whole chain of arcs
 
@@ -144,9 +144,13 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
 
 
 def _table(act, c, band, segment_curves, reading=None) -> str:
-    if not act.segments:
-        return _piece_table(act.name, act.derived, act.choice, c, band, reading)
-    parts = [_piece_table(f"{act.name} segment {k}", s.derived, s.choice, sc, None)
+    """The actuator's text table: a chain of one as one table, a longer chain one per segment and the whole strip."""
+    return act.segments.one_or_all(lambda: _piece_table(act.name, act.derived, act.choice, c, band, reading),
+                                   lambda: _strip_table(act, c, segment_curves, reading))
+
+
+def _strip_table(act, c, segment_curves, reading) -> str:
+    parts = [_piece_table(act.segments.part_name(act.name, k), s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
     total = c.as_dict()  # the whole strip (embroact.predict.analysis.strip_curve)
     rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends"

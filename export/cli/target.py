@@ -398,8 +398,8 @@ def _calibrations_used(analysis) -> set[str]:
     """Names of the calibration sets the analysis's models took G or P0 from."""
     names = set()
     for a in analysis.actuators:
-        for part in (list(a.segments) or [a]):
-            c = getattr(part, "choice", None)
+        for part in a.segments:
+            c = part.choice
             if c is not None and c.calibration is not None:
                 names.add(c.calibration.name)
     return names

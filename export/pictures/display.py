@@ -63,10 +63,8 @@ def design_svg(design: Design) -> str:
 
 
 def _rows(act: ActuatorAnalysis) -> str:
-    """One table row per actuator; a segmented actuator's one per segment (``A1 segment 0``...)."""
-    if act.segments:
-        return "".join(_row(f"{act.name} segment {k}", s) for k, s in enumerate(act.segments))
-    return _row(act.name, act)
+    """One table row per segment of the actuator's chain (``A1 segment 0``...; a chain of one: ``A1``)."""
+    return "".join(_row(act.segments.part_name(act.name, k), s) for k, s in enumerate(act.segments))
 
 
 def _row(name: str, act) -> str:
@@ -156,12 +154,12 @@ def actuator_html(act: ActuatorAnalysis) -> str:
     from .previews import actuator_series
 
     parts = [_table([act])]
-    missing = [p.model_error for p in act.chain if p.choice is None]
+    missing = [p.model_error for p in act.segments if p.choice is None]
     if missing:
         parts.append(f"<p>no bend chart: {escape('; '.join(missing))}</p>")
     else:  # the whole strip and each segment
         grid = pressure_grid_kpa(OperationSettings().max_pressure_kpa)
-        c = whole_strip([curve(s.model, grid) for s in act.chain])
+        c = whole_strip([curve(s.model, grid) for s in act.segments])
         parts.append(_figure(bend_chart_svg(actuator_series(act, c), title=f"{act.name}: predicted bend angle")))
     return f'<div class="embroact">{"".join(parts)}</div>'
 

@@ -150,7 +150,7 @@ def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...
 def segment_boundaries_mm(act) -> tuple[float, ...]:
     """Arc lengths where one segment gives way to the next [mm]: the middle of the unbent transition
     between one segment's legs and the next's (``()`` for a chain of one)."""
-    segs = act.chain
+    segs = act.segments
     return tuple((a.plan.first_leg_mm + a.derived.length_mm + b.plan.first_leg_mm) / 2.0
                  for a, b in zip(segs, segs[1:]))
 
@@ -158,7 +158,7 @@ def segment_boundaries_mm(act) -> tuple[float, ...]:
 def sleeve_mm(act) -> tuple[float, float]:
     """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
     segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
-    parts = [s.derived for s in act.chain]
+    parts = [s.derived for s in act.segments]
     return max(d.width_mm for d in parts), max(d.r0_mm for d in parts)
 
 
@@ -192,7 +192,7 @@ def model_caption(analysis) -> str:
     'paper law, r_f 1.5, d_f 1 mm, G_e 0.13 MPa'
     """
     parts: list[str] = []
-    for choice in (p.choice for act in analysis.actuators for p in act.chain):
+    for choice in (p.choice for act in analysis.actuators for p in act.segments):
         if choice is None:
             continue
         m = choice.model
@@ -209,15 +209,17 @@ def actuator_series(act, curve, measured: tuple | None = None, band=None,
     (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or None, ``operating_point`` the design's
     target (pressure_kpa, theta_deg) marked on the actuator's curve (:func:`operating_points`) or None.
 
-    A segmented actuator gets its whole strip (the sum, which measurements of the tip angle
-    are compared with) and then one series per segment, each with its own pattern, G and P0."""
-    if not act.segments:
-        return [Series.from_curve(curve, label=_label(act.name, act.derived, act.choice), p0_kpa=act.model.p0_kpa,
-                                  measured=measured, band=band, operating_point=operating_point)]
-    return [Series.from_curve(curve, label=f"{act.name} whole strip: sum of its {len(act.segments)} segments",
-                              measured=measured, operating_point=operating_point)] + [
-        Series.from_curve(c, label=_label(f"{act.name} segment {k} ({seg.derived.pattern})", seg.derived, seg.choice),
-                          p0_kpa=seg.model.p0_kpa) for k, (seg, c) in enumerate(zip(act.segments, curve.segments))]
+    The whole strip (the sum of its segments' bends, which measurements of the tip angle are
+    compared with) and then, for a chain of more than one, one series per segment, each with its
+    own pattern, G and P0 (a chain of one: its segment is the whole strip)."""
+    segs = act.segments
+    whole = segs.one_or_all(lambda: _label(act.name, act.derived, act.choice),
+                            lambda: f"{act.name} whole strip: sum of its {len(segs)} segments")
+    return [Series.from_curve(curve, label=whole, p0_kpa=act.choice.model.p0_kpa if act.choice is not None else None,
+                              measured=measured, band=band, operating_point=operating_point)] + [
+        Series.from_curve(c, label=_label(f"{segs.part_name(act.name, k)} ({seg.derived.pattern})", seg.derived,
+                                          seg.choice), p0_kpa=seg.model.p0_kpa)
+        for k, (seg, c) in enumerate(zip(segs.listed, curve.segments))]
 
 
 def operating_points(analysis) -> tuple:
@@ -269,7 +271,7 @@ def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, b
 def breakpoints_kpa(analysis) -> tuple[float, ...]:
     """Where a curve of the design changes branch: the transition pressure P0 of every actuator and
     segment with a model, ascending, each once."""
-    models = [p.model for a in analysis.actuators for p in (a.segments or (a,)) if p.choice is not None]
+    models = [p.model for a in analysis.actuators for p in a.segments if p.choice is not None]
     return tuple(sorted({float(m.p0_kpa) for m in models}))
 
 
@@ -313,16 +315,15 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
     for a, c in zip(analysis.actuators, curves):
         picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
         states = [shape_state(c, p) for p in picks]
-        if not a.segments:
-            panels.append(SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
-                                    theta_deg=tuple(t for _, t, _ in states)))
-            continue
-        lengths = piece_lengths_mm(a)
-        panels.append(SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(lengths),
-                                r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=tuple(t for _, t, _ in states),
-                                segment_lengths_mm=lengths,
-                                segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states),
-                                marks_mm=segment_boundaries_mm(a)))
+        thetas = tuple(t for _, t, _ in states)
+        panels.append(a.segments.one_or_all(
+            lambda: SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
+                              theta_deg=thetas),
+            lambda: SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(piece_lengths_mm(a)),
+                              r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=thetas,
+                              segment_lengths_mm=piece_lengths_mm(a),
+                              segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states),
+                              marks_mm=segment_boundaries_mm(a))))
     return panels
 
 
@@ -334,8 +335,8 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     shapes, pressures = [], {}
     for a, c in zip(analysis.actuators, curves):
         p, theta, parts = shape_state(c, pressure_kpa)
-        chain: dict = ({"segment_lengths_mm": piece_lengths_mm(a),
-                        "segment_theta_deg": piece_theta_deg(a, parts)} if a.segments else {})
+        chain: dict = a.segments.one_or_all({}, lambda: {"segment_lengths_mm": piece_lengths_mm(a),
+                                                         "segment_theta_deg": piece_theta_deg(a, parts)})
         width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
                                     tolerance_mm=tol, name=a.name, coarsen=tolerance_mm is None, **chain))

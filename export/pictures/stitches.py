@@ -99,10 +99,9 @@ def _param_lines(plan: StitchPlan) -> list[str]:
     n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
     lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
              f"{n_trim} trim{'s' * (n_trim != 1)}"]
-    for a in plan.actuators:  # a segmented actuator: one line per segment
-        parts = [(f"{a.name} segment {k}", s.pattern, s.realised) for k, s in enumerate(a.segments)] \
-            or [(a.name, a.pattern, a.realised)]
-        for name, pattern, r in parts:
+    for a in plan.actuators:  # one line per segment of the chain
+        for name, pattern, r in [(a.segments.part_name(a.name, k), s.pattern, s.realised)
+                                 for k, s in enumerate(a.segments)]:
             angle = f", alpha0 {r.angle_deg:.2f} deg" if pattern_kind(pattern).has_angle else ""
             lines.append(
                 f"{name} {pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "

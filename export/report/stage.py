@@ -57,9 +57,8 @@ def _check_inputs(analysis, curves, side_states) -> None:
     if not n or n != len(curves):
         raise ParameterError(f"need one curve per actuator ({n}), got {len(curves)}")
     for a, c in zip(analysis.actuators, curves):
-        if len(c.segments) != len(a.chain):
-            raise ParameterError(f"actuator {a.name!r} has {len(a.chain)} segments: its curve must be its whole "
-                                 f"strip (DesignAnalysis.curves), got {type(c).__name__}")
+        a.segments.check_parts(c.segments, f"actuator {a.name!r}",
+                               f"its curve must be its whole strip (DesignAnalysis.curves), got {type(c).__name__}")
     check_side_states(side_states)
 
 

@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...patterns.base.errors import check_range
+from ...patterns.chain import Chain
 from ...patterns.params import FABRIC_THICKNESS_MM
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
 from ..machine.census import COLOR_FORMATS
@@ -138,10 +139,10 @@ class ActuatorSheet:
         G, P0, tube and tube law with their sources (``ModelChoice.as_dict()``), when the
         worksheet was made from an analysis and the actuator has a model.
     segments : tuple of dict
-        A segmented actuator's segments in order along the path
+        The actuator's chain of segments in order along the path, one or more
         (:meth:`~embroact.predict.analysis.SegmentAnalysis.as_dict`: where each lies, its legs,
         the unbent transition to the next and the thread's run there, the realised parameters
-        and derived geometry, its model); empty for a single-pattern actuator.
+        and derived geometry, its model); empty for a tube read from a machine file.
     """
 
     name: str
@@ -279,21 +280,18 @@ class Worksheet:
             "STOP SEQUENCE",
             *[f"  {s}" for s in self.stops],
         ]
-        for a in self.actuators:
-            kind = (f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}"
-                    if len(a.segments) > 1 else a.pattern)
+        for a in self.actuators:  # a chain of one: its segment is the actuator, shown as one block
+            kind = Chain.shown(a.segments, a.pattern,
+                               lambda: f"{len(a.segments)} segments: {', '.join(s['pattern'] for s in a.segments)}")
             lines += ["", f"ACTUATOR {a.name} ({kind})",
                       f"  tube cut length  {a.tube_cut_mm:.0f} mm"
                       f" = {a.path_length_mm:.1f} mm path + 2 x {a.end_margin_mm:g} mm end margin",
                       f"  stitches         {a.stitches} ({a.legs_over_tube} legs over the tube)",
                       f"  thread           top {a.top_thread_mm / 1000:.2f} m, bobbin {a.bobbin_thread_mm / 1000:.2f} m"]
-            if len(a.segments) > 1:  # a chain of one: its segment is the actuator, shown as one block
-                for k, seg in enumerate(a.segments):
-                    lines += _segment_lines(k, seg)
-                continue
-            lines += _derived_lines(a.derived)
-            lines += _model_lines(a.model)
-            lines += [f"  adjustment: {s}" for s in a.adjustments]
+            lines += Chain.shown(
+                a.segments,
+                lambda: _derived_lines(a.derived) + _model_lines(a.model) + [f"  adjustment: {s}" for s in a.adjustments],
+                lambda: [line for k, seg in enumerate(a.segments) for line in _segment_lines(k, seg)])
         lines += ["", "DESIGN-RULE FINDINGS"]
         lines += [f"  {f.get('severity', '')} {f.get('code', '')}: {f.get('message', '')}" for f in self.findings] or ["  none"]
         return "\n".join(lines) + "\n"
@@ -393,7 +391,7 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
                          for seg, part in zip(act.segments, segment_plans(act)))
     else:
         derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
-        segments = tuple(s.as_dict() for s in analysed.chain)
+        segments = tuple(s.as_dict() for s in analysed.segments)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
     return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,

@@ -238,8 +238,7 @@ class Studio:
         with self._lock:
             design = self.design
             index, spec = self._actuator(actuator)
-        if spec.segments:
-            raise ParameterError(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
+        spec.segments.single(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
         target = _number("bend_deg", bend_deg, low=-720.0, high=720.0)
         p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
         with self._searching():  # the design is not locked meanwhile: views and edits go on

@@ -151,10 +151,8 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
         return message_svg("no 3D view: the model gives no finite bend here")
     shapes = []
     for a, b in zip(analysis.actuators, bends):
-        segs: dict = {}
-        if a.segments:
-            lengths, thetas = _pieces(a, b)
-            segs = {"segment_lengths_mm": lengths, "segment_theta_deg": thetas}
+        segs: dict = a.segments.one_or_all({}, lambda: dict(zip(("segment_lengths_mm", "segment_theta_deg"),
+                                                                _pieces(a, b))))
         width, r0 = sleeve_mm(a)
         shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), b["theta_deg"],
                                     width_mm=width, r0_mm=r0,

@@ -1,0 +1,275 @@
+"""The chain type: an actuator's segments in order along its path, one or more.
+
+Every actuator is a path and a chain of segments; a single-pattern actuator is a chain of
+one. The request (:attr:`~embroact.patterns.design.ActuatorSpec.segments`), the plan
+(:attr:`~embroact.patterns.plan.ActuatorPlan.segments`) and the analysis
+(:attr:`~embroact.predict.analysis.ActuatorAnalysis.segments`) each hold a :class:`Chain`.
+Outputs that show a chain of one as one block (its segment *is* the actuator) ask the
+chain, not the length of a tuple: :meth:`Chain.shown` is the one place that decides it
+(:meth:`Chain.one_or_all`, :attr:`Chain.listed`, :meth:`Chain.label`, :meth:`Chain.where`,
+:meth:`Chain.ref` and :meth:`Chain.part_name` ask it).
+
+Examples
+--------
+>>> from embroact.patterns.chain import Chain
+>>> one, three = Chain(["z"]), Chain(["z", "x", "z"])
+>>> one.is_single, one.listed, one.label(0), one.part_name("A1", 0)
+(True, (), '', 'A1')
+>>> three.listed, three.label(1), three.where(1), three.part_name("A1", 2)
+(('z', 'x', 'z'), 'segment 1: ', 'segment[1]: ', 'A1 segment 2')
+>>> Chain([])
+Traceback (most recent call last):
+...
+embroact.patterns.base.errors.ParameterError: segments must hold at least one segment, got none
+"""
+from __future__ import annotations
+
+from .base.errors import ParameterError
+
+__all__ = ["Chain"]
+
+
+class Chain(tuple):
+    """A non-empty tuple of segments (requests, plans or analyses) in order along the path.
+
+    Parameters
+    ----------
+    segments : iterable
+        One or more segments.
+
+    Raises
+    ------
+    ParameterError
+        No segment given.
+
+    Examples
+    --------
+    >>> c = Chain(("a", "b"))
+    >>> c == ("a", "b"), len(c), c.is_single
+    (True, 2, False)
+    """
+
+    __slots__ = ()
+
+    def __new__(cls, segments=()):
+        chain = super().__new__(cls, segments)
+        if not chain:
+            raise ParameterError("segments must hold at least one segment, got none")
+        return chain
+
+    @classmethod
+    def given_or_one(cls, segments, whole) -> "Chain":
+        """``segments`` as a chain, or when none are given a chain of one: ``whole()``, the segment over the whole path.
+
+        A chain made here from ``whole`` is made again each time (a single-pattern actuator
+        copied with other parameters or another path gets the segment of its new ones).
+
+        Parameters
+        ----------
+        segments : iterable
+            The segments a constructor was given (may be empty, or a chain of one made here).
+        whole : callable
+            Makes the one segment of a single-pattern actuator.
+
+        Returns
+        -------
+        Chain
+
+        Examples
+        --------
+        >>> one = Chain.given_or_one((), lambda: "z")
+        >>> one, Chain.given_or_one(one, lambda: "y"), Chain.given_or_one(("a", "b"), lambda: "z")
+        (('z',), ('y',), ('a', 'b'))
+        """
+        if isinstance(segments, _Whole) or not tuple(segments):
+            return _Whole((whole(),))
+        return cls(segments)
+
+    @property
+    def is_single(self) -> bool:
+        """True for a chain of one (a single-pattern actuator: its segment is the whole actuator)."""
+        return len(self) == 1
+
+    @property
+    def listed(self) -> tuple:
+        """The segments an output lists beside the whole strip: none for a chain of one, else all of them."""
+        return self.one_or_all((), tuple(self))
+
+    def one_or_all(self, whole, each):
+        """``whole`` for a chain of one (its segment is the whole actuator), ``each`` otherwise.
+
+        What an output shows for the actuator: a chain of one as one block, a longer chain
+        segment by segment. Given callables, only the chosen one is called.
+
+        Parameters
+        ----------
+        whole, each : object or callable
+            What to show for a chain of one, and for a longer chain.
+
+        Returns
+        -------
+        object
+
+        Examples
+        --------
+        >>> Chain("a").one_or_all("plain", "segments"), Chain("ab").one_or_all(lambda: "plain", lambda: "segments")
+        ('plain', 'segments')
+        """
+        return Chain.shown(self, whole, each)
+
+    @staticmethod
+    def shown(segments, whole, each):
+        """:meth:`one_or_all` for any sequence of segments, also none (an actuator read from a machine file,
+        whose chain is not known, shows as one block).
+
+        Parameters
+        ----------
+        segments : sequence
+            A chain, or the segments an output holds (may be empty).
+        whole, each : object or callable
+            As for :meth:`one_or_all`.
+
+        Returns
+        -------
+        object
+
+        Examples
+        --------
+        >>> Chain.shown((), "plain", "segments"), Chain.shown([{}, {}], "plain", "segments")
+        ('plain', 'segments')
+        """
+        chosen = whole if len(segments) < 2 else each
+        return chosen() if callable(chosen) else chosen
+
+    def single(self, message: str):
+        """The one segment of a chain of one; :class:`ParameterError` with ``message`` for a longer chain.
+
+        Parameters
+        ----------
+        message : str
+            Why a longer chain is refused (one line).
+
+        Returns
+        -------
+        object
+
+        Examples
+        --------
+        >>> Chain("a").single("one pattern only")
+        'a'
+        >>> Chain("ab").single("one pattern only")
+        Traceback (most recent call last):
+        ...
+        embroact.patterns.base.errors.ParameterError: one pattern only
+        """
+        return self.one_or_all(lambda: self[0], lambda: _refuse(message))
+
+    def check_parts(self, parts, owner: str, reason: str) -> None:
+        """:class:`ParameterError` unless ``parts`` holds one item per segment.
+
+        Parameters
+        ----------
+        parts : sequence
+            One item per segment (e.g. a whole strip's segment curves).
+        owner, reason : str
+            Who has the chain and what is wrong, for the message.
+
+        Examples
+        --------
+        >>> Chain("ab").check_parts([1], "actuator 'A1'", "give one curve per segment")
+        Traceback (most recent call last):
+        ...
+        embroact.patterns.base.errors.ParameterError: actuator 'A1' has 2 segments: give one curve per segment
+        """
+        if len(parts) != len(self):
+            raise ParameterError(f"{owner} has {len(self)} segments: {reason}")
+
+    def label(self, k: int) -> str:
+        """Message prefix of segment ``k`` (``"segment 1: "``; ``""`` in a chain of one).
+
+        Parameters
+        ----------
+        k : int
+            Index of the segment.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Chain("ab").label(0), Chain("a").label(0)
+        ('segment 0: ', '')
+        """
+        return self.one_or_all("", f"segment {k}: ")
+
+    def where(self, k: int) -> str:
+        """Error and note prefix of segment ``k`` (``"segment[1]: "``; ``""`` in a chain of one).
+
+        Parameters
+        ----------
+        k : int
+            Index of the segment.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Chain("ab").where(1), Chain("a").where(0)
+        ('segment[1]: ', '')
+        """
+        return self.one_or_all("", f"segment[{k}]: ")
+
+    def ref(self, actuator: str, k: int) -> str:
+        """How a value of segment ``k`` of ``actuator`` is named (``"A1[0]"``; the actuator's name in a chain of one).
+
+        Parameters
+        ----------
+        actuator : str
+            The actuator's name.
+        k : int
+            Index of the segment.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Chain("ab").ref("A1", 1), Chain("a").ref("A1", 0)
+        ('A1[1]', 'A1')
+        """
+        return self.one_or_all(actuator, f"{actuator}[{k}]")
+
+    def part_name(self, actuator: str, k: int) -> str:
+        """The name a row or a legend gives segment ``k`` of ``actuator`` (the actuator's own in a chain of one).
+
+        Parameters
+        ----------
+        actuator : str
+            The actuator's name.
+        k : int
+            Index of the segment.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Chain("ab").part_name("A1", 1), Chain("a").part_name("A1", 0)
+        ('A1 segment 1', 'A1')
+        """
+        return self.one_or_all(actuator, f"{actuator} segment {k}")
+
+
+def _refuse(message: str):
+    raise ParameterError(message)
+
+
+class _Whole(Chain):
+    """A chain of one made from a single-pattern actuator's own pattern (:meth:`Chain.given_or_one`)."""
+
+    __slots__ = ()
