@@ -178,11 +178,24 @@ def _number_rows(array: str) -> list[list[int | float]]:
 
 
 def _put_rows(value: Any, rows: list[str]) -> Any:
-    """``value`` (tomllib's result) with each ``_MARK + k`` string replaced by the rows of array k."""
+    """``value`` (tomllib's result) with each ``_MARK + k`` string replaced by the rows of array k (the garbage
+    collector paused: a long path's 100,000 new lists would start full collections that find nothing)."""
+    import gc
+
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return _replaced(value, rows)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _replaced(value: Any, rows: list[str]) -> Any:
     if isinstance(value, dict):
-        return {k: _put_rows(v, rows) for k, v in value.items()}
+        return {k: _replaced(v, rows) for k, v in value.items()}
     if isinstance(value, list):
-        return [_put_rows(v, rows) for v in value]
+        return [_replaced(v, rows) for v in value]
     if isinstance(value, str) and value.startswith(_MARK):
         return _number_rows(rows[int(value[1:])])
     return value
