@@ -345,7 +345,7 @@ class ActuatorSpec(KindFields):
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)
     adjust: str = "auto"
-    segments: Chain = ()
+    segments: Chain = ()  # type: ignore[assignment]  # none given: __post_init__ makes the chain of one
 
     def __post_init__(self) -> None:
         check_name("name", self.name)
@@ -391,7 +391,7 @@ class ActuatorSpec(KindFields):
             raise ParameterError("segments must hold at least one SegmentSpec, got none")
         if centerline is None:
             centerline = Centerline.straight(sum(seg.length_mm for seg in segs))
-        return cls(name, segs[0].params, centerline, segments=segs, **kwargs)
+        return cls(name, segs[0].params, centerline, segments=Chain(segs), **kwargs)
 
 
 @dataclass(frozen=True, slots=True)

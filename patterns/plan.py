@@ -177,7 +177,7 @@ class ActuatorPlan(KindOf):
     realised: Realised
     adjustments: tuple[str, ...] = ()
     options: StitchOptions = field(default_factory=StitchOptions)
-    segments: Chain = ()
+    segments: Chain = ()  # type: ignore[assignment]  # none given: __post_init__ makes the chain of one
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "segments", Chain.given_or_one(self.segments, lambda: SegmentPlan(

@@ -1073,7 +1073,8 @@ def _fitted_lengths(space: DesignSpace, x: float, c: BendCandidate, length_mm: f
     """
     grid = DEFAULT_TOLERANCES.machine_grid_mm
     low, high = max(10.0, length_mm - tolerance_mm), min(1000.0, length_mm + tolerance_mm)
-    out, at = [], c
+    out: list[BendCandidate] = []
+    at = c
     for _ in range(2):
         if at.theta_deg == 0.0 or math.copysign(1.0, at.theta_deg) != math.copysign(1.0, target_deg):
             break

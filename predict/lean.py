@@ -389,7 +389,7 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
         d = SCALAR.minimum(_KW_LIST[lo] * abs(tab.span), _SPACING * abs(x0))
         r = [(f - t if zigzag else f - t * v) for f, v in (tab.rates(x0 + d * z, SCALAR) for z in STENCIL)]
-        m, settled = _polish(tab, t, x0, d, *r, SCALAR)
+        m, settled = _polish(tab, t, x0, d, r[0], r[1], r[2], r[3], SCALAR)
     except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic or a stencil out of the domain
         return None
     return m if settled and t > tab.floor else None
@@ -467,7 +467,7 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
             fs, vs = rates(x0 + d * z, np)
             r.append(fs - tt * vs)
         tab = LeanTable(rates, 0.0, False, float(rtol), atol / rates.theta_per_m, 0.0, {}, {})
-        ms, settled = _polish(tab, tt, x0, d, *r, np)
+        ms, settled = _polish(tab, tt, x0, d, r[0], r[1], r[2], r[3], np)
         theta = rates.theta(ms, np)
     ignored = t <= 0.0
     return np.where(ignored, 0.0, theta), (settled & served) | ignored

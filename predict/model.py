@@ -51,6 +51,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -790,13 +791,13 @@ class StretchRates:
     True
     """
 
-    s0sq: float
-    c0sq: float
-    sigma: float
-    lam_k: float
-    inv_c0sq: float
-    theta_per_m: float
-    scale: float
+    s0sq: Any  # float, or an array for an array geometry
+    c0sq: Any
+    sigma: Any
+    lam_k: Any
+    inv_c0sq: Any
+    theta_per_m: Any
+    scale: Any
     geo: Geometry
 
     @classmethod
