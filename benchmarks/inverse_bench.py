@@ -11,7 +11,8 @@ design's decoded DST, or answered with the nearest design and its exact pressure
 kept and once with ``--length-tolerance-mm`` (default 5) of length allowed. The import floor
 (``python -c "import numpy, scipy.optimize, shapely"``) is measured in the same run and the
 times are printed as ratios to it as well as against the limits (0.5 s per bend, 5 s per
-shape, RMSE 0.5 mm, bend 0.5 deg). Run::
+shape, RMSE 0.5 mm, bend 0.5 deg). Every written design is also checked with ``embroact check``: its
+findings must be the ones ``design`` listed. Run::
 
     python benchmarks/inverse_bench.py [--targets 24] [--runs 5]
 
@@ -40,15 +41,25 @@ _EMBROACT = [sys.executable, "-m", "embroact.export"]
 
 def _timed(argv) -> tuple[float, str]:
     t0 = time.perf_counter()
-    done = subprocess.run(argv, check=True, capture_output=True, text=True)
+    done = subprocess.run(argv, capture_output=True, text=True)
+    if done.returncode not in (0, 5):  # 5: a target not met, answered
+        raise RuntimeError(f"{' '.join(argv[3:])} exited {done.returncode}: {done.stderr.strip()[-200:]}")
     return time.perf_counter() - t0, done.stdout
 
 
-def _sewn_bends(count: int, length_tolerance_mm: float = 0.0) -> bool:
+def _check_findings(path) -> list[str]:
+    """``CODE severity: message`` of every finding ``embroact check --json`` gives for a design file."""
+    done = subprocess.run(_EMBROACT + ["check", str(path), "--json"], capture_output=True, text=True)
+    return [f"{f['code']} {f['severity']}: {f['message']}" for f in json.loads(done.stdout)["findings"]]
+
+
+def _sewn_bends(count: int, length_tolerance_mm: float = 0.0, tmp: Path | None = None) -> bool:
     """Seeded target bends: the bend recomputed from the written design's decoded DST (pystitch's reader, geometry
     measured on its needle points) is within BEND_LIMIT_DEG of the target, or the answer says why not and names
-    the nearest design and a pressure at which that design bends by the target exactly. Prints how many are met,
-    of those inside the calibrated range, per pattern."""
+    the nearest design and a pressure at which that design bends by the target exactly; ``embroact check`` on the
+    written design gives the findings the answer lists. Prints how many are met, of those inside the calibrated
+    range, per pattern."""
+    from embroact.export.files.designfile import save_design
     from embroact.predict.curve import curve
     from embroact.predict.inverse import design_bend
 
@@ -67,8 +78,11 @@ def _sewn_bends(count: int, length_tolerance_mm: float = 0.0) -> bool:
         sewn, model = sewn_bend_deg(r.best.design, p)
         exact = r.best.exact_pressure_kpa
         exact_ok = exact is None or abs(float(curve(model, [exact]).theta_deg[0]) - bend) <= 1e-3
-        fine = abs(sewn - r.best.theta_deg) <= 1e-6 and (abs(sewn - bend) <= BEND_LIMIT_DEG if r.reached else
-                                                         "Nearest" in r.statement and exact_ok)
+        path = (tmp or Path(tempfile.mkdtemp())) / "bend.toml"
+        save_design(r.best.design, path)
+        same = list(r.best.findings) == _check_findings(path)
+        fine = same and abs(sewn - r.best.theta_deg) <= 1e-6 and (
+            abs(sewn - bend) <= BEND_LIMIT_DEG if r.reached else "Nearest" in r.statement and exact_ok)
         good += fine
         met[pattern][0] += r.reached
         met[pattern][1] += r.in_range
@@ -101,6 +115,9 @@ def main() -> int:
         wall, out = _timed(_EMBROACT + ["design", "--target-shape", str(csv), "--at-kpa", str(PRESSURE_KPA),
                                         "-o", str(tmp / f"t{seed}.toml"), "--json"])
         res = json.loads(out)
+        if res["findings"] != _check_findings(tmp / f"t{seed}.toml"):
+            print(f"seed {seed}: design and check give different findings: FAIL")
+            ok = False
         rows.append((seed, len(truth.actuators[0].segments), len(res["segments"]), res["rmse_mm"],
                      res["max_deviation_mm"], res["reached"], wall))
     print(f"\ntarget shapes at {PRESSURE_KPA:g} kPa ({len(rows)} seeded round trips)")
@@ -128,7 +145,7 @@ def main() -> int:
               f"import floor x{wall / floor:.1f})")
         ok &= bool(err <= BEND_LIMIT_DEG and wall <= BEND_LIMIT_S)
     for tolerance in (0.0, args.length_tolerance_mm):
-        ok &= _sewn_bends(args.bends, tolerance)
+        ok &= _sewn_bends(args.bends, tolerance, tmp)
     print("\nPASS" if ok else "\nFAIL: a limit is missed (see above)")
     return 0 if ok else 1
 

@@ -312,6 +312,11 @@ def run(args) -> int:
 
     check_target_pressure(args.at_kpa, "--at-kpa")  # named as the user typed it, before any search
     _limits(args)
+    if args.bend_deg is not None and args.length_tolerance_mm:
+        from ...patterns.base.errors import check_range
+
+        check_range("--length-tolerance-mm", args.length_tolerance_mm, low=0.0, high=args.length_mm,
+                    low_inclusive=True)
     outputs = [("--output", args.output)]
     if args.bend_deg is None:  # the overlay's default name derives from a checked --output
         out = check_command_files(outputs, input_files(args))[0]
