@@ -39,6 +39,63 @@ BENDS = (("zigzag", 84.5, 150.0), ("cross", -40.0, 250.0), ("cross", 25.0, 220.0
 _EMBROACT = [sys.executable, "-m", "embroact.export"]
 
 
+#: Targets no design reaches, answered before any search (``embroact design`` arguments; the CSVs are written by
+#: :func:`cli_timings`): a sharp corner, a start heading +y at the clamp, a bend beyond every design at its pressure.
+UNREACHABLE = {
+    "sharp_corner": ["--target-shape", "corner.csv", "--at-kpa", "200"],
+    "wrong_heading": ["--target-shape", "heading.csv", "--at-kpa", "200"],
+    "bend_beyond_any": ["--bend-deg", "700", "--at-kpa", "200"],
+}
+#: The import floor of the design command: what it imports (numpy and shapely; not scipy).
+DESIGN_FLOOR = [sys.executable, "-c", "import numpy, shapely"]
+#: Their exit codes: 2 (refused, one line) or 5 (judged, not met, nothing written).
+UNREACHABLE_CODES = (2, 5)
+
+
+def cli_timings(rounds: int) -> dict:
+    """``embroact design`` in fresh processes, in paired rounds with the import floor (:data:`DESIGN_FLOOR`): the
+    unreachable targets of :data:`UNREACHABLE` and the target bends of :data:`BENDS` (wall time, median
+    [min, max] over rounds, and each as a ratio to the floor of the same round; exit codes).
+
+    Examples
+    --------
+    >>> sorted(UNREACHABLE)
+    ['bend_beyond_any', 'sharp_corner', 'wrong_heading']
+    """
+    from run import paired_ratio, paired_rounds
+    from stitch_bench import _env
+
+    tmp = Path(tempfile.mkdtemp())
+    (tmp / "corner.csv").write_text("x_mm,y_mm\n0,0\n50,0\n50,50\n")
+    (tmp / "heading.csv").write_text("x_mm,y_mm\n" + "".join(f"0,{0.5 * k:g}\n" for k in range(201)))
+    codes: dict[str, set] = {}
+
+    def call(name, argv):
+        def run():
+            done = subprocess.run(argv, cwd=tmp, capture_output=True, text=True, env=_env())
+            codes.setdefault(name, set()).add(done.returncode)
+        return run
+
+    bends = {f"bend_{pattern}_{bend:g}_at_{p:g}": ["--bend-deg", str(bend), "--at-kpa", str(p), "--pattern", pattern]
+             for pattern, bend, p in BENDS}
+    calls = {"floor": [call("floor", DESIGN_FLOOR)]}
+    for name, argv in {**UNREACHABLE, **bends}.items():
+        calls[name] = [call(name, _EMBROACT + ["design", *argv, "-o", str(tmp / f"{name}.toml")])]
+    for run in calls.values():  # warm-up: byte code and file caches
+        run[0]()
+    times = paired_rounds(calls, rounds)
+    out = {"rounds": rounds, "floor_s": statistics.median(times["floor"]), "floor": " ".join(DESIGN_FLOOR[1:])}
+    for group, names in (("unreachable", UNREACHABLE), ("bend", bends)):
+        out[group] = {n: {"median_s": statistics.median(times[n]), "min_s": min(times[n]), "max_s": max(times[n]),
+                          "over_floor": paired_ratio(times, n, "floor"), "exit_codes": sorted(codes[n])}
+                      for n in names}
+    out["unreachable_answered"] = all(set(v["exit_codes"]) <= set(UNREACHABLE_CODES)
+                                      for v in out["unreachable"].values())
+    out["bends_met"] = all(v["exit_codes"] == [0] for v in out["bend"].values())
+    out["bend_median_s"] = statistics.median([statistics.median(times[n]) for n in bends])
+    return out
+
+
 def _timed(argv) -> tuple[float, str]:
     t0 = time.perf_counter()
     done = subprocess.run(argv, capture_output=True, text=True)

@@ -9,8 +9,12 @@ The picture is modelled only as finely as it can show: shapes meshed finer than
 tolerance (the GLB keeps the chordal tolerance asked for), and long triangles are
 split for depth sorting to a fraction of the whole drawing.  A scene that would still
 need more than ``PICTURE_MAX_TRIANGLES`` (a long path coiled into a small picture, many
-actuators) is meshed coarser until it fits, so the picture's size is bounded whatever
-the design's length or actuator count.
+actuators) is meshed coarser until it fits. Where the bodies' least triangles are still
+more than the pixels show (a thousand small actuators), the triangles' corners are moved to
+the centres of ``PICTURE_CELL_PX`` screen cells: those left with fewer than three distinct
+corners, and those under a later one on the same three cells, are not drawn, so the picture
+holds no more polygons than its pixels resolve. Past ``PICTURE_MAX_NAMES`` shapes they are
+not named (the names would cover each other); the key says how many there are.
 
 The camera turns the plan frame by ``azimuth_deg`` about +z, then tilts it by
 ``elevation_deg`` about the screen's horizontal axis; the view is along -z' (x' right,
@@ -50,6 +54,11 @@ __all__ = ["view_rotation", "mesh_svg", "picture_tolerance_mm", "PICTURE_TOLERAN
 PICTURE_TOLERANCE_PX = 0.25
 #: Triangles the picture's mesh may have (about 1 MB of SVG once back faces are dropped).
 PICTURE_MAX_TRIANGLES = 24_000
+#: Most shapes the picture names (beyond, the names would cover each other and the shapes).
+PICTURE_MAX_NAMES = 100
+#: Width of the screen cells [px] the picture's triangle corners are moved to the centres of (what its pixels
+#: resolve: triangles left with fewer than three distinct cells are not drawn).
+PICTURE_CELL_PX = 1.0
 #: Coarsest picture mesh [mm] (the mesh's own upper limit).
 _MAX_TOLERANCE_MM = 10.0
 
@@ -249,15 +258,43 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
                          style=_FONT))
         placer.block_box(text_box(line, _MARGIN_PX, 20 + 15 * k, font_px))
     _draw_names(dwg, placer, [s.name for s in shapes], px, who)
-    _draw_key(dwg, shapes, height - _MARGIN_PX)
-    return _with_polygons(dwg.tostring(), g.tostring(), px[order].reshape(-1, 6).tolist(), rgb[order].tolist())
+    _draw_key(dwg, shapes, height - _MARGIN_PX, width)
+    shown, snapped = _pixel_polygons(px[order])
+    return _with_polygons(dwg.tostring(), g.tostring(), snapped.reshape(-1, 6).tolist(), rgb[order][shown].tolist())
+
+
+def _pixel_polygons(px: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The triangles (in drawing order, (n, 3, 2) [px]) a picture shows at its pixel size: corners moved to the
+    centres of cells ``PICTURE_CELL_PX`` wide (vertex clustering on the screen), those left with fewer than three
+    distinct corners dropped, and of triangles on the same three cells only the last drawn (it covers the others).
+    Returns the indices kept (ascending) and their corners.
+
+    Examples
+    --------
+    >>> px = np.array([[[0.1, 0.1], [9.9, 0.2], [0.2, 9.9]], [[0.1, 0.1], [0.3, 0.2], [0.2, 9.9]],
+    ...                [[0.2, 0.2], [9.8, 0.1], [0.1, 9.8]]])
+    >>> kept, corners = _pixel_polygons(px)
+    >>> kept.tolist(), corners[0].tolist()
+    ([2], [[0.5, 0.5], [9.5, 0.5], [0.5, 9.5]])
+    """
+    cell = np.floor(px / PICTURE_CELL_PX).astype(np.int64)
+    key = (cell[:, :, 0] - cell[:, :, 0].min()) * (int(cell[:, :, 1].max() - cell[:, :, 1].min()) + 1) \
+        + (cell[:, :, 1] - cell[:, :, 1].min()) if len(px) else np.zeros((0, 3), dtype=np.int64)
+    distinct = (key[:, 0] != key[:, 1]) & (key[:, 1] != key[:, 2]) & (key[:, 0] != key[:, 2])
+    corners = np.sort(key, axis=1)[::-1]  # reversed: np.unique keeps the first of equal rows, i.e. the last drawn
+    _, last = np.unique(corners, axis=0, return_index=True)
+    kept = np.zeros(len(px), dtype=bool)
+    kept[len(px) - 1 - last] = True
+    kept = np.flatnonzero(kept & distinct)
+    return kept, (cell[kept] + 0.5) * PICTURE_CELL_PX
 
 
 _KEY_TEXT = (("fabric", "fabric"), ("tube", "tube (thread side)"), ("rail", "rails (leg ends)"))
 
 
-def _draw_key(dwg, shapes, y: float) -> None:
-    """Which colour is which part: the fabric strip, the tube on the thread side, the rails."""
+def _draw_key(dwg, shapes, y: float, width_px: float) -> None:
+    """Which colour is which part: the fabric strip, the tube on the thread side, the rails; and how many shapes
+    there are when they are too many to name (where the row has room)."""
     colours: dict[str, tuple] = {}
     for s in shapes:
         for b in s.bodies:
@@ -271,10 +308,17 @@ def _draw_key(dwg, shapes, y: float) -> None:
         dwg.add(dwg.text(text, insert=(f"{x + 16:.1f}", f"{y:.1f}"), font_size=f"{_NAME_PX - 1:g}", style=_FONT,
                          **{"class": "key"}))
         x += 16 + text_width_px(text, _NAME_PX - 1) + 14
+    count = f"{len(shapes)} actuators (unnamed)"
+    if len(shapes) > PICTURE_MAX_NAMES and x + text_width_px(count, _NAME_PX - 1) <= width_px - _MARGIN_PX:
+        dwg.add(dwg.text(count, insert=(f"{x:.1f}", f"{y:.1f}"), font_size=f"{_NAME_PX - 1:g}", style=_FONT,
+                         **{"class": "key"}))
 
 
 def _draw_names(dwg, placer: Placer, names, px: np.ndarray, who: np.ndarray) -> None:
-    """Each shape's name above its highest point (the clamp of a hanging strip), clear of the other names."""
+    """Each shape's name above its highest point (the clamp of a hanging strip), clear of the other names; past
+    ``PICTURE_MAX_NAMES`` shapes none (they could not be read), and the key says how many there are."""
+    if len(names) > PICTURE_MAX_NAMES:
+        return
     for k, name in enumerate(names):
         pts = px[who == k].reshape(-1, 2)
         if not len(pts):
