@@ -28,10 +28,12 @@ the stencils); a handful evaluate only the nodes their binary search visits, on 
 (:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`): the same operations in the
 same order, so both give the same bits, and neither builds a table first.
 
-The served span: the whole branch of a cross design (to the lock-up, where P has a pole; its
-P rises up to it), and of a zigzag up to ``m = (r0/l0) theta = ZIGZAG_RISE_M``: a zigzag's P
-depends on ``m`` and ``c/r0^2`` alone and first folds at ``m`` 0.828-0.954 over
-``0 <= c/r0^2 < 1`` (tests/test_lean.py holds the rise). The array path checks the rise on
+The served span: the branch up to its lock-up (where P has a pole) or up to the stretch
+``m = RISE_M``, whichever comes first; beyond it P may fold. A zigzag's P depends on ``m`` and
+``c/r0^2`` alone and first folds at ``m`` 0.828-0.954 over ``0 <= c/r0^2 < 1``; a cross design
+of a small thread angle folds as a zigzag does (its lock-up lies far beyond), one of a larger
+angle locks up first (tests/test_lean.py holds the rise up to the span over the designs'
+parameter space). The array path checks the rise on
 its nodes and leaves every target to the trace inverse where it does not hold.
 
 Examples
@@ -61,7 +63,7 @@ from . import model as _m
 from .floats import SCALAR
 
 __all__ = ["LeanTable", "lean_table", "solve_lean", "solve_lean_scalar", "solve_rows", "LEVELS", "LEVEL_POINTS", "STENCIL",
-           "ZIGZAG_RISE_M"]
+           "RISE_M"]
 
 #: Halvings of the served span below the full one (the finest level spans 1/1024 of it).
 LEVELS = 10
@@ -70,8 +72,8 @@ LEVEL_POINTS = 65
 #: Where the polish evaluates R around the start, in units of its spacing (1/64 of the interval).
 STENCIL = (-1.5, -0.5, 0.5, 1.5)
 _SPACING = 1.0 / 64.0
-#: A zigzag's nodes reach m = (r0/l0) theta = this (its P rises up to m = 0.828 at least).
-ZIGZAG_RISE_M = 0.8
+#: The nodes reach at most the stretch m = this (a zigzag's P rises up to m = 0.828 at least).
+RISE_M = 0.8
 
 _HALF = (LEVEL_POINTS - 1) // 2
 #: The nodes as fractions of the span, rising: the finest level, then the upper half of each coarser one.
@@ -231,8 +233,8 @@ def lean_table(geo: _m.Geometry, *, theta_end: float, pole_at_end: bool, rtol: f
     g = geo if isinstance(geo.l0, float) else geo.scalar()
     rates = _m.StretchRates.of(g)
     span, pole = rates.m_of(float(theta_end)), bool(pole_at_end)
-    if not g.s0 > 0.0 and abs(span) > ZIGZAG_RISE_M:  # a zigzag: up to ZIGZAG_RISE_M, short of its fold
-        span, pole = (ZIGZAG_RISE_M if span > 0.0 else -ZIGZAG_RISE_M), False
+    if abs(span) > RISE_M:  # up to RISE_M, short of a fold
+        span, pole = (RISE_M if span > 0.0 else -RISE_M), False
     return LeanTable(rates, span, pole, float(rtol), float(atol) / rates.theta_per_m, float(floor) / rates.scale,
                      {}, {})
 
@@ -439,8 +441,8 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
     rates = _m.StretchRates.of(geo)
     n = t.shape[0]
     span = rates.m_of(theta_end)
-    capped = (geo.s0 == 0.0) & (np.abs(span) > ZIGZAG_RISE_M)
-    span = np.where(capped, np.copysign(ZIGZAG_RISE_M, span), span)
+    capped = np.abs(span) > RISE_M
+    span = np.where(capped, np.copysign(RISE_M, span), span)
     m = span * _FRACTIONS
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         f, v = rates(m, np)

@@ -19,7 +19,7 @@ from strategies import budget, model_designs, pressures_kpa
 from embroact.predict import curve as C
 from embroact.predict.curve import ActuatorModel, curve, lockup, sweep
 from embroact.predict.derived import derive_from_values
-from embroact.predict.lean import LEVEL_POINTS, LEVELS, ZIGZAG_RISE_M, lean_table, solve_lean
+from embroact.predict.lean import LEVEL_POINTS, LEVELS, RISE_M, lean_table, solve_lean
 from embroact.predict.model import Geometry, lock_theta, pressure_mpa
 from embroact.predict.onecurve import FLOAT_PATH_MAX, one_curve_floats
 from embroact.predict.status import Status
@@ -136,9 +136,9 @@ def test_nodes_cover_each_scale_and_stop_short_of_the_zigzags_fold():
     # every interval but the finest level's is at most 1/32 of the stretches it serves
     assert np.all(h[LEVEL_POINTS - 1:] <= stretch[LEVEL_POINTS - 1:-1] / 31.99)
     assert np.isclose(h[0], tab.span / 2 ** LEVELS / (LEVEL_POINTS - 1), rtol=1e-15)
-    # P rises over the nodes; the zigzag's nodes end at m = ZIGZAG_RISE_M, short of the fold of P
+    # P rises over the nodes; the zigzag's nodes end at m = RISE_M, short of the fold of P
     assert rises and np.all(np.diff(p) > 0.0)
-    assert tab.span == ZIGZAG_RISE_M
+    assert tab.span == RISE_M
     theta_fold, p_fold = lockup(m)
     assert tab.rates.theta(stretch[-1]) < math.radians(theta_fold)
     beyond = curve(m, [p_fold * 1.01], limits=False)
@@ -148,13 +148,13 @@ def test_nodes_cover_each_scale_and_stop_short_of_the_zigzags_fold():
 @pytest.mark.parametrize("s", [1e-6, 1e-3, 0.05, 0.2, 0.5, 0.8, 0.95, 0.999, 1 - 1e-9])
 def test_a_zigzags_pressure_rises_up_to_the_nodes_end(s):
     """A zigzag's P - P0 is G c/(2 r0^2) times a function of m = (r0/l0) theta and s = c/r0^2 alone: its
-    first fold lies at m = 0.828 (s -> 0) to 0.954 (s -> 1), beyond ZIGZAG_RISE_M, where the lean
+    first fold lies at m = 0.828 (s -> 0) to 0.954 (s -> 1), beyond RISE_M, where the lean
     nodes end (the float path binary-searches them on that rise)."""
     geo = Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=s, g_mpa=1.0, p0_mpa=0.0)
-    m = np.linspace(0.0, ZIGZAG_RISE_M, 200_001)[None, 1:]
+    m = np.linspace(0.0, RISE_M, 200_001)[None, 1:]
     p = pressure_mpa(m, geo)[0]
     assert np.all(np.diff(p) > 0.0)
-    fold = np.linspace(ZIGZAG_RISE_M, 0.96, 2001)[None, :]
+    fold = np.linspace(RISE_M, 0.96, 2001)[None, :]
     assert np.any(np.diff(pressure_mpa(fold, geo)[0]) <= 0.0)  # the fold follows (the bound is not loose)
 
 
@@ -220,3 +220,29 @@ def test_sweep_past_the_tracing_cap_of_a_cross_is_out_of_domain_as_a_curve():
     c, s = curve(m, [1e4]), sweep([m, m], [1e4])
     assert c.status[0] == s.status[1, 0] == Status.OUT_OF_DOMAIN
     assert c.theta_deg[0] == s.theta_deg[1, 0] == C.MAX_BEND_DEG
+
+
+@given(m=model_designs())
+@budget(0.3)
+def test_pressure_rises_over_the_served_span(m):
+    """The float path binary-searches the nodes on the rise of P the array path checks: it holds up to the
+    served span (the lock-up or m = RISE_M) over the designs' parameter space, on a grid finer than the nodes."""
+    br = C._branch(m, C.DEFAULT_TOLERANCES.model_rtol)
+    if br.lean is None:
+        return
+    tab = br.lean
+    assert abs(tab.span) <= RISE_M and tab.arrays()[1]
+    f, v = tab.rates(tab.span * np.linspace(0.0, 1.0, 4001)[1:-1])
+    assert np.all(np.diff(f / v) > 0.0)
+
+
+def test_a_cross_of_a_small_thread_angle_folds_as_a_zigzag_and_the_float_path_leaves_it():
+    """beta0 = 1.6 deg: P folds at m = 1.1 (274.8 deg), long before the lock-up (2948 deg); past the fold the
+    answer is the fold (UNSTABLE) on both paths, never an equilibrium found beyond it."""
+    m = ActuatorModel("cross", length_mm=10.0, r0_mm=2.2972394456619596, beta0_deg=1.5910423532081408,
+                      outer_radius_mm=2.0, inner_radius_mm=1.5, g_e_mpa=1.0, g_mpa=1.0, p0_kpa=38.644658675636244)
+    theta_fold, p_fold = lockup(m)
+    one = curve(m, [2.0 * p_fold], limits=False)
+    many = C._solve([m], [2.0 * p_fold] * 20, "auto", C.DEFAULT_TOLERANCES.model_rtol, squeeze=True, limits=False)
+    assert one.status[0] == many.status[0] == Status.UNSTABLE
+    assert one.theta_deg[0] == pytest.approx(theta_fold, rel=1e-9)
