@@ -112,12 +112,14 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
 
     Examples
     --------
-    >>> from embroact.export.files.designfile import load_design
+    >>> from embroact.patterns.design import design_from_dict
     >>> from embroact.predict.analysis import analyse
-    >>> strip = analyse(load_design("examples/designed_hook.toml")).curves([0.0, 250.0])[0]
+    >>> strip = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})).curves([0.0, 250.0])[0]
     >>> p, theta, parts = shape_state(strip, 250.0)
     >>> p, round(theta, 2), [round(t, 2) for t in parts], abs(sum(parts) - theta) < 1e-9
-    (250.0, 123.14, [32.01, 78.95, 36.48, -24.28], True)
+    (250.0, 109.4, [80.86, 28.54], True)
     """
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
