@@ -55,7 +55,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .markers import MarkerLayout
     from .uncertainty import Band
 
-__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "strip_curve", "whole_strip", "DesignAnalysis", "analyse",
+__all__ = ["ActuatorAnalysis", "SegmentAnalysis", "StripCurve", "whole_strip", "DesignAnalysis", "analyse",
            "segment_plans", "with_model_overrides", "PRESSURE_STEP_KPA", "pressure_grid_kpa"]
 
 #: Step of a design's standard pressure grid (0 to the working pressure) [kPa].
@@ -121,10 +121,10 @@ class StripCurve:
     pressure_kpa, theta_deg : ndarray
         Pressure [kPa] and the whole strip's bend, the sum of the segments' bends [deg].
     status : ndarray of int8
-        :class:`~embroact.predict.status.Status` code of the whole strip per pressure (see
-        :func:`strip_curve`): a model state only where every segment's state is one and the
-        strip has not coiled, so :func:`~embroact.predict.validity.valid_mask` tells the views
-        which shapes to draw.
+        :class:`~embroact.predict.status.Status` code of the whole strip per pressure
+        (:func:`~embroact.predict.validity.strip_status`): a model state only where every
+        segment's state is one and the strip touches neither itself nor the clamp, so
+        :func:`~embroact.predict.validity.valid_mask` tells the views which shapes to draw.
     segments : tuple of Curve
         Each segment's own curve, in order along the path.
     method : str
@@ -156,38 +156,27 @@ class StripCurve:
         return f"StripCurve({len(self.segments)} segments, {len(names)} pressures; {counts or 'no statuses'})"
 
 
-def whole_strip(segment_curves: Sequence):
-    """The whole strip's curve of a chain of segments: :func:`strip_curve` of them; a chain of one is its segment.
+def whole_strip(segment_curves: Sequence, pieces: Sequence[tuple[float, int]], stub_mm: float = 0.0):
+    """The whole strip's curve of a chain of segments, its status decided on the whole bent line.
 
-    Examples
-    --------
-    >>> from embroact.predict.curve import ActuatorModel, curve
-    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
-    ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
-    >>> c = curve(m, [0, 100])
-    >>> whole_strip([c]) is c, type(whole_strip([c, c])).__name__
-    (True, 'StripCurve')
-    """
-    curves = tuple(segment_curves)
-    return curves[0] if len(curves) == 1 else strip_curve(curves)
-
-
-def strip_curve(segment_curves: Sequence) -> StripCurve:
-    """The whole strip of a segmented actuator from its segments' curves (one pressure grid).
-
-    The bend is the sum of the segments' bends. The status per pressure is the first segment
-    state the model does not describe (a segment past a validity limit, out of its domain,
-    failed), else COILED when the total reaches a full turn, else BENDING when any segment
-    bends, else INFLATION.
+    The bend is the sum of the segments' bends; the status per pressure is
+    :func:`~embroact.predict.validity.strip_status`'s (a segment's own limit first, then the
+    strip touching itself, the clamp or the fixed fabric, with its sealed stub). A chain of
+    one gives its segment's :class:`~embroact.predict.curve.Curve` with that status (the same
+    object when nothing changes), a longer chain a :class:`StripCurve`.
 
     Parameters
     ----------
     segment_curves : sequence of Curve
         One per segment, all at the same pressures.
+    pieces : sequence of (float, int)
+        The fabric line from the clamp, :meth:`ActuatorAnalysis.bend_pieces`.
+    stub_mm : float
+        Sealed tube beyond the tip [mm] (the tube's ``end_margin_mm``).
 
     Returns
     -------
-    StripCurve
+    Curve or StripCurve
 
     Examples
     --------
@@ -195,12 +184,13 @@ def strip_curve(segment_curves: Sequence) -> StripCurve:
     >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.58, beta0_deg=0, outer_radius_mm=1.5,
     ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
     >>> c = curve(m, [0, 100, 200, 300])
-    >>> s = strip_curve([c, c])   # at 300 kPa each bends 233.9 deg: together past a full turn
+    >>> whole_strip([c], [(100.0, 0)]) is c, whole_strip([c], [(100.0, 0)], 30.0).status.tolist()
+    (True, [0, 1, 1, 1])
+    >>> s = whole_strip([c, c], [(100.0, 0), (100.0, 1)])   # at 300 kPa each bends 233.9 deg
     >>> [round(float(t), 2) for t in s.theta_deg], s.as_dict()["status"]
     ([0.0, 23.07, 205.71, 467.89], ['INFLATION', 'BENDING', 'BENDING', 'COILED'])
     """
-    from .status import Status
-    from .validity import valid_mask
+    from .validity import strip_status
 
     curves = tuple(segment_curves)
     if not curves:
@@ -208,21 +198,12 @@ def strip_curve(segment_curves: Sequence) -> StripCurve:
     p = curves[0].pressure_kpa
     if any(c.pressure_kpa.shape != p.shape or not np.array_equal(c.pressure_kpa, p) for c in curves):
         raise ParameterError("segment_curves must all be at the same pressures")
+    status = strip_status(pieces, curves, stub_mm)
+    if len(curves) == 1:
+        one = curves[0]
+        return one if np.array_equal(one.status, status) else dataclasses.replace(one, status=status)
     theta = np.sum([c.theta_deg for c in curves], axis=0)
-    valid = [valid_mask(c) for c in curves]
-    status = np.empty(len(theta), dtype=np.int8)
-    for k in range(len(theta)):
-        bad = [int(c.status[k]) for c, ok in zip(curves, valid) if not ok[k]]
-        if bad:
-            status[k] = bad[0]
-        elif abs(theta[k]) >= 360.0:
-            status[k] = Status.COILED
-        elif any(int(c.status[k]) == Status.BENDING for c in curves):
-            status[k] = Status.BENDING
-        else:
-            status[k] = Status.INFLATION
-    for a in (theta, status):
-        a.setflags(write=False)
+    theta.setflags(write=False)
     method = ", ".join(dict.fromkeys(c.method for c in curves))
     return StripCurve(p, theta, status, curves, method)
 
@@ -271,6 +252,33 @@ class ActuatorAnalysis:
         """Empty when :attr:`choice` is set; else why there is no one model."""
         return self.segments.one_or_all(lambda: self.segments[0].model_error, lambda: (
             f"segmented actuator with {len(self.segments)} segments: one model per segment (ActuatorAnalysis.segments)"))
+
+    def strip(self, segment_curves: Sequence):
+        """The whole strip's curve from one curve per segment of :attr:`segments` (:func:`whole_strip`).
+
+        Its status is decided on the bent line of :meth:`bend_pieces` with the tube's sealed
+        stub (``end_margin_mm``) beyond the tip and the supply line at the clamp.
+
+        Parameters
+        ----------
+        segment_curves : sequence of Curve
+            One per link of :attr:`segments`, at the same pressures.
+
+        Returns
+        -------
+        Curve or StripCurve
+            A chain of one: its curve with the whole strip's status; else the sum of the bends.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> from embroact.predict.curve import curve
+        >>> act = analyse(default_design()).actuators[0]
+        >>> c = curve(act.model, [310.0, 320.0])   # 250.9 and 268.5 deg: the 30 mm stub reaches the clamp at 253.9
+        >>> c.status.tolist(), act.strip([c]).status.tolist()
+        ([1, 1], [1, 6])
+        """
+        return whole_strip(segment_curves, self.bend_pieces(), self.plan.tube.end_margin_mm)
 
     def bend_pieces(self) -> tuple[tuple[float, int], ...]:
         """The fabric line from the clamp as ``(length_mm, segment index)`` pieces; index -1 bends by zero.
@@ -436,7 +444,8 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = (p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(whole_strip(pieces) for pieces in self.segment_curves(p, method=method))
+            self._curves[key] = tuple(a.strip(pieces) for a, pieces in zip(self.actuators,
+                                                                             self.segment_curves(p, method=method)))
         return self._curves[key]
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:

@@ -765,14 +765,13 @@ def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, sett
               name: str, operation: OperationSettings, offset_path: bool = True):
     """(design, analysis, theta_deg or None, status or None) of the generated one-actuator design."""
     from .analysis import analyse
-    from .curve import curve
 
     d = _one_actuator(params, length_mm, tube, settings, name, operation, offset_path)
     a = analyse(d, calibration_sets=sets)
     act = a.actuators[0]
     if act.choice is None:
         return d, a, None, None
-    c = curve(act.model, [pressure_kpa])
+    c = a.curves([pressure_kpa])[0]  # the whole strip's status: its stub and the clamp count (validity.py)
     return d, a, float(c.theta_deg[0]), int(c.status[0])
 
 
@@ -1899,6 +1898,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]
     curves = a.segment_curves([p])[0]
     bad = [i for i, c in enumerate(curves) if int(c.status[0]) not in _VALID]
+    strip = Status(int(a.curves([p])[0].status[0]))  # the whole bent line with its stub (validity.py)
     pred = shape.profile_mm(sj)
     dev = np.hypot(*(pred - xy).T)
     t_tgt = math.degrees(math.atan2(*(xy[-1] - xy[-2])[::-1]))
@@ -1911,12 +1911,15 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
                      for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[3] for c in chosen]))
     rmse = float(np.sqrt(np.mean(dev**2)))
     # a segment whose curvature alone is out of reach may still leave the whole line close: the sewn line decides
-    reached = not bad and not errors and rmse <= tolerance_mm
+    reached = not bad and int(strip) in _VALID and not errors and rmse <= tolerance_mm
     why = []
     if notes:
         why.append("; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3]))
     if bad:
         why.append(f"segments {bad} leave the valid model states at {p:g} kPa")
+    elif int(strip) not in _VALID:
+        why.append(f"the whole strip is {strip.name} at {p:g} kPa: with its {tube.end_margin_mm:g} mm sealed stub "
+                   f"it touches itself, the clamp or the fixed fabric")
     if errors:
         why.append(f"design-rule errors {', '.join(errors)}")
     if rmse > tolerance_mm:

@@ -12,7 +12,9 @@ curve the build's chart and report draw.
 * EA403: |bend| at the working pressure above ``operation.max_bend_deg``.
 * EA404: the calibration set was extrapolated for this design.
 * EA405: between P0 and the working pressure the curve leaves the model's domain,
-  snaps through (UNSTABLE) or fails; or no model can be built.
+  snaps through (UNSTABLE), fails or passes a validity limit (a segmented actuator's
+  segments one by one, then its whole strip: the bent line with its stub touching itself,
+  the clamp or the fixed fabric); or no model can be built.
 * EA406 (info): the calibration's notes (approximate match, e.g. another cross width;
   a tube other than the calibrated one).
 
@@ -36,7 +38,7 @@ from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.rules import RuleSettings, sort_findings
 from .sleeve_rules import DESIGN_RULES, check_without_model
-from .status import VALIDITY_LIMITS, Status
+from .status import VALIDITY_LIMITS, Status, is_model_state
 
 __all__ = ["ModelRuleSettings", "PER_FORMAT_RULES", "check_model", "check_design"]
 
@@ -176,6 +178,16 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
         what = act.segments.one_or_all("bend", lambda: f"total bend of the {len(act.segments)} segments")
         out.append(RULES.finding(
             "EA403", f"{what} {total:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
+    if all(s.choice is not None for s in act.segments):
+        strip = analysis.curves(pressures, method=settings.method)[analysis.actuators.index(act)]  # validity.py
+        own = np.all([is_model_state(c.status) for c in strip.segments], axis=0)  # the segments' states are valid
+        bad = np.flatnonzero(own & np.isin(strip.status, [int(s) for s in _BAD_STATES]))
+        if len(bad):
+            i = int(bad[0])
+            out.append(RULES.finding(
+                "EA405", f"whole strip {Status(int(strip.status[i])).name} from {pressures[i]:.0f} kPa on "
+                f"({float(strip.theta_deg[i]):.1f} deg: it touches itself, the clamp or the fixed fabric), below the "
+                f"working pressure {p_max:g} kPa", **where))
     return out
 
 

@@ -23,8 +23,11 @@ UNSTABLE       4     dP/dtheta < 0: snap-through. ``curve``: theta = the fold an
                      last stable state before the jump); ``pressure_at``: the real P(theta)
 FAILED         5     the chosen method produced no finite number (a documented failure of
                      that method, e.g. "printed" where B^2 underflows); theta 0, pressure P0
-COILED         6     the strip has closed a full turn (|theta| >= 360 deg), or, in a negative
-                     bend, its tip has landed on the tube where it leaves the clamped end
+COILED         6     the strip touches itself, the clamp or the fixed fabric: one arc past a
+                     full turn, a negative bend's tip on the tube where it leaves the clamped
+                     end, or (the whole strip, :func:`~embroact.predict.validity.strip_status`)
+                     its bent line with the sealed stub beyond the tip crossing itself or the
+                     fixed band behind the clamp
 KINKED         7     the bend radius l0/|theta| is below the tube's diameter 2 r
 OVERSTRETCHED  8     the thread side is stretched to l/l0 >= 2
 ============== ===== ========================================================================

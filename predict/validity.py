@@ -31,6 +31,12 @@ statuses (:class:`~embroact.predict.status.Status`, precedence documented there)
 For a zigzag (``r = r0``, ``l = l0 + 2 r0 theta``) the kink and the stretch limit fall
 on the same angle, ``theta = l0/(2 r0)``.
 
+The limits above are those of one arc (one model's curve). A strip is valid only as a
+whole: :func:`strip_contact` tests its bent line (a chain of arcs, with the sealed tube
+stub beyond the tip) against itself and against the fixed part behind the clamp, and
+:func:`strip_status` decides the status of a whole strip per pressure from its segments'
+curves and that test; it is the status every view reads.
+
 Examples
 --------
 >>> import numpy as np
@@ -48,7 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.base.errors import check_range
+from ..patterns.base.errors import ParameterError, check_range
 from .status import VALIDITY_LIMITS, Status, is_model_state
 
 __all__ = [
@@ -59,6 +65,10 @@ __all__ = [
     "coil_angle_deg",
     "valid_mask",
     "LIMIT_BISECTIONS",
+    "strip_contact",
+    "strip_status",
+    "strip_coil_angle_deg",
+    "CONTACT_TOLERANCE_MM",
 ]
 
 #: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md section 12).
@@ -277,3 +287,223 @@ def valid_mask(curve) -> np.ndarray:
     [True, True, False]
     """
     return is_model_state(curve.status)
+
+
+#: Chordal tolerance of the polylines the whole-strip contact test draws the strip's outline with [mm].
+CONTACT_TOLERANCE_MM = 0.005
+#: Total turning [deg] up to which a strip cannot touch itself or the fixed part (:func:`strip_contact`).
+_NO_CONTACT_TURNING_DEG = 90.0
+
+
+def strip_contact(lengths_mm, theta_deg, radius_mm, stub_mm: float = 0.0) -> np.ndarray:
+    """Whether the bent strip touches itself, the clamp or the fixed fabric (docs/model.md section 12).
+
+    The strip is seen in its bending plane (the profile of a straight path: ``x`` along the
+    clamped tangent, ``y`` toward positive bends). Its body is the band the tube fills: from
+    the fabric line to ``2 r`` on the tube's side (the thread side, to the right of the line
+    when it heads +x), over the chain of arcs and then ``stub_mm`` of sealed tube straight on
+    beyond the tip, cut square at its end. The fixed part is the same band behind the clamp,
+    ``x <= 0``, ``-2 r <= y <= 0``: the fabric held flat there and the supply line leaving
+    the clamp along the base tangent. The strip touches when its outline crosses itself, or
+    a corner or an edge of it reaches into the fixed part. A band of arcs whose radius is at
+    least its thickness ``2 r`` (not kinked) crosses itself nowhere locally, so a crossing is
+    a real contact; a strip that turns by 90 deg or less in all cannot reach back.
+
+    Parameters
+    ----------
+    lengths_mm : sequence of float
+        Lengths of the pieces from the clamp [mm], > 0 (unbent pieces bend by 0).
+    theta_deg : array_like
+        Bend of each piece [deg], shape ``(pieces,)`` or ``(states, pieces)``.
+    radius_mm : float or array_like
+        Tube outer radius r [mm], > 0, one or one per state.
+    stub_mm : float
+        Sealed tube beyond the tip [mm], >= 0 (a design's ``tube.end_margin_mm``).
+
+    Returns
+    -------
+    ndarray of bool
+        One per state (a 0-d array for one state).
+
+    Examples
+    --------
+    One 100 mm arc, r = 2.58 mm: without a stub a negative bend's tip lands on the supply line
+    at 315.7 deg; a 30 mm stub reaches it already at 243 deg, and a positive bend's stub reaches
+    the fixed fabric at 254 deg.
+
+    >>> strip_contact([100.0], [[-315.0], [-316.0], [300.0]], 2.58).tolist()
+    [False, True, False]
+    >>> strip_contact([100.0], [[-242.0], [-244.0], [253.0], [255.0]], 2.58, 30.0).tolist()
+    [False, True, False, True]
+    """
+    lengths = np.asarray(lengths_mm, dtype=np.float64).reshape(-1)
+    theta = np.asarray(theta_deg, dtype=np.float64)
+    rows = np.atleast_2d(theta)
+    if rows.shape[-1] != len(lengths):
+        raise ParameterError(f"theta_deg must have one bend per piece ({len(lengths)}), got shape {theta.shape}")
+    radius = np.broadcast_to(np.asarray(radius_mm, dtype=np.float64), rows.shape[:1])
+    stub = check_range("stub_mm", stub_mm, low=0.0, low_inclusive=True, high=1e4)
+    out = np.zeros(len(rows), dtype=bool)
+    busy = np.sum(np.abs(rows), axis=1) > _NO_CONTACT_TURNING_DEG
+    for i in np.flatnonzero(busy):
+        out[i] = _touches(lengths, rows[i], float(radius[i]), stub)
+    return out.reshape(theta.shape[:-1])
+
+
+def _outline(lengths: np.ndarray, theta_deg: np.ndarray, r: float, stub: float):
+    """Fabric line and tube-side edge (complex points) of the strip and its stub, sampled chordally."""
+    from .shape import sample_count
+
+    pts, heads = [np.zeros(1, dtype=complex)], [np.zeros(1)]
+    z, phi = 0j, 0.0
+    for length, t in zip(lengths.tolist(), np.radians(theta_deg).tolist()):
+        radius = length / abs(t) + 2.0 * r if t else math.inf
+        n = sample_count(t, radius, CONTACT_TOLERANCE_MM) if t else 1
+        h = length * np.arange(1, n + 1) / n
+        k = t / length
+        pts.append(z + np.exp(1j * (phi + 0.5 * k * h)) * h * np.sinc(0.5 * k * h / math.pi))
+        heads.append(phi + k * h)
+        z, phi = complex(pts[-1][-1]), float(heads[-1][-1])
+    if stub > 0.0:
+        pts.append(np.array([z + stub * complex(math.cos(phi), math.sin(phi))]))
+        heads.append(np.array([phi]))
+    fabric, head = np.concatenate(pts), np.concatenate(heads)
+    return fabric, fabric - 2j * r * np.exp(1j * head)
+
+
+def _touches(lengths: np.ndarray, theta_deg: np.ndarray, r: float, stub: float) -> bool:
+    """:func:`strip_contact` of one state."""
+    if np.any(np.abs(theta_deg) >= 360.0):
+        return True  # an arc past a full turn overlaps itself
+    fabric, edge = _outline(lengths, theta_deg, r, stub)
+    # the outline without the clamp's section (it is the fixed part's edge): fabric line, end, tube edge back
+    ring = np.concatenate([fabric, edge[::-1]])
+    a, b = ring[:-1], ring[1:]
+    inner = np.ones(len(ring), dtype=bool)
+    inner[[0, -1]] = False  # the two clamp corners lie on the fixed part's edge
+    x, y = ring.real, ring.imag
+    if np.any(inner & (x <= 0.0) & (y <= 0.0) & (y >= -2.0 * r)):
+        return True
+    free = np.ones(len(a), dtype=bool)
+    free[[0, -1]] = False  # the edges leaving the clamp corners
+    for level in (0.0, -2.0 * r):  # the fixed band's two edges behind the clamp
+        da, db = a.imag - level, b.imag - level
+        cross = free & (da * db < 0.0)
+        xc = a.real + (b.real - a.real) * da / np.where(cross, da - db, 1.0)
+        if np.any(cross & (xc <= 0.0)):
+            return True
+    return _self_crossing(a, b)
+
+
+def _self_crossing(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether two non-neighbouring edges ``a[i] -> b[i]`` of an open polyline cross properly."""
+    lo_x, hi_x = np.minimum(a.real, b.real), np.maximum(a.real, b.real)
+    lo_y, hi_y = np.minimum(a.imag, b.imag), np.maximum(a.imag, b.imag)
+    i, j = np.triu_indices(len(a), k=2)
+    near = (lo_x[i] <= hi_x[j]) & (lo_x[j] <= hi_x[i]) & (lo_y[i] <= hi_y[j]) & (lo_y[j] <= hi_y[i])
+    i, j = i[near], j[near]
+    if not len(i):
+        return False
+
+    def side(p, q, s):
+        return ((q - p).conjugate() * (s - p)).imag
+
+    d1, d2 = side(a[i], b[i], a[j]), side(a[i], b[i], b[j])
+    d3, d4 = side(a[j], b[j], a[i]), side(a[j], b[j], b[i])
+    return bool(np.any((d1 * d2 < 0.0) & (d3 * d4 < 0.0)))
+
+
+def strip_coil_angle_deg(lengths_mm, bends_deg, radius_mm: float, stub_mm: float = 0.0) -> float:
+    """The turning [deg] at which a strip bending in proportion to ``bends_deg`` first touches.
+
+    The pieces bend by ``f * bends_deg``; the smallest ``f`` in ``(0, 360 / max|bend|]`` at
+    which :func:`strip_contact` reports contact is found by bisection (one arc: the bend at
+    which it coils).
+
+    Parameters
+    ----------
+    lengths_mm : sequence of float
+        Piece lengths from the clamp [mm].
+    bends_deg : sequence of float
+        The pattern of the bends (any scale; at least one non-zero).
+    radius_mm : float
+        Tube outer radius r [mm].
+    stub_mm : float
+        Sealed tube beyond the tip [mm].
+
+    Returns
+    -------
+    float
+        ``f * sum(bends_deg)`` at the first contact [deg] (signed).
+
+    Examples
+    --------
+    >>> round(strip_coil_angle_deg([100.0], [-1.0], 2.58), 2), round(strip_coil_angle_deg([100.0], [1.0], 2.58, 30.0), 2)
+    (-315.7, 253.9)
+    """
+    bends = np.asarray(bends_deg, dtype=np.float64).reshape(-1)
+    top = float(np.max(np.abs(bends)))
+    if top == 0.0:
+        raise ParameterError("bends_deg must hold a non-zero bend")
+    lo, hi = 0.0, 360.0 / top
+    for _ in range(LIMIT_BISECTIONS // 2):  # to about 1e-9 of the range
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if strip_contact(lengths_mm, mid * bends, radius_mm, stub_mm) else (mid, hi)
+    return float(hi * bends.sum())
+
+
+def strip_status(pieces, segment_curves, stub_mm: float = 0.0) -> np.ndarray:
+    """The status of a whole strip per pressure, from its segments' curves and its bent line.
+
+    The one place a strip's status is decided; every view reads it (through
+    :meth:`embroact.predict.analysis.DesignAnalysis.curves`). Per pressure: the first segment
+    whose state the model does not describe gives its status (out of the domain, failed, or a
+    segment past its own limit); else ``COILED`` where the strip touches itself, the clamp or
+    the fixed fabric (:func:`strip_contact`, with the stub and the largest tube radius of its
+    segments at that pressure); else a single segment's own status, and for several segments
+    BENDING where any bends, INFLATION otherwise.
+
+    Parameters
+    ----------
+    pieces : sequence of (float, int)
+        The fabric line from the clamp as ``(length_mm, segment index)``, index -1 unbent
+        (:meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`).
+    segment_curves : sequence of Curve
+        One per segment, at the same pressures.
+    stub_mm : float
+        Sealed tube beyond the tip [mm].
+
+    Returns
+    -------
+    ndarray of int8
+        Read-only, one :class:`~embroact.predict.status.Status` code per pressure.
+
+    Examples
+    --------
+    Two 50 mm arcs bending 130 deg each stay apart; with 30 mm of stub beyond the tip
+    (260 deg in all) the stub reaches the fixed fabric behind the clamp:
+
+    >>> from types import SimpleNamespace as C
+    >>> arc = C(theta_deg=np.array([130.0]), status=np.array([1], dtype=np.int8), radius_mm=np.array([2.58]))
+    >>> [Status(int(strip_status([(50.0, 0), (50.0, 1)], [arc, arc], stub)[0])).name for stub in (0.0, 30.0)]
+    ['BENDING', 'COILED']
+    """
+    curves = tuple(segment_curves)
+    codes = np.stack([np.asarray(c.status, dtype=np.int8).reshape(-1) for c in curves])
+    model = is_model_state(codes)
+    zero = np.zeros(codes.shape[1])
+    bends = np.stack([np.asarray(curves[k].theta_deg, dtype=np.float64).reshape(-1) if k >= 0 else zero
+                      for _, k in pieces], axis=-1)
+    radius = np.max([np.asarray(c.radius_mm, dtype=np.float64).reshape(-1) for c in curves], axis=0)
+    ok = np.all(model, axis=0)
+    touching = np.zeros(len(zero), dtype=bool)
+    if np.any(ok):
+        touching[ok] = strip_contact([length for length, _ in pieces], bends[ok], radius[ok], stub_mm)
+    first_bad = codes[np.argmin(model, axis=0), np.arange(codes.shape[1])]
+    if len(curves) == 1:
+        own = codes[0]
+    else:
+        own = np.where(np.any(codes == int(Status.BENDING), axis=0), int(Status.BENDING), int(Status.INFLATION))
+    out = np.where(~ok, first_bad, np.where(touching, int(Status.COILED), own)).astype(np.int8)
+    out.setflags(write=False)
+    return out

@@ -157,10 +157,12 @@ def test_parse_pressures_inclusive_stop():
 
 
 def test_paper_w5_zigzag_reports_its_coiled_and_over_stretched_states(capsys):
-    """Built-in calibration (G = 0.8 MPa, P0 = 50 kPa): 2032 deg at 250 kPa is not a valid bend."""
+    """Built-in calibration (G = 0.8 MPa, P0 = 50 kPa): 2032 deg at 250 kPa is not a valid bend; 293 deg at
+    150 kPa neither (short of a full turn, but the 30 mm sealed stub beyond the tip reaches the clamp)."""
     d = quick_json(capsys, "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50")
-    assert d["status"] == ["BENDING", "BENDING", "COILED", "COILED", "COILED"]
+    assert d["status"] == ["BENDING", "COILED", "COILED", "COILED", "COILED"]
     assert d["limits"][3] == ["COILED", "KINKED", "OVERSTRETCHED"] and d["limits"][0] == []
+    assert d["limits"][1] == ["COILED"] and 253.9 < d["theta_deg"][1] < 360.0
     assert main(["predict", "zigzag", "--width-mm", "5", "--pressure-kpa", "100:300:50"]) == 0
     rows = capsys.readouterr().out.splitlines()[2:]
     assert rows[3].split()[2] == "COILED" and rows[3].endswith("COILED+KINKED+OVERSTRETCHED")

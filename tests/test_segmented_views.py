@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 from embroact.export.cli.main import main
 from embroact.export.files.designfile import load_design
@@ -132,8 +133,13 @@ def test_a_strip_that_coils_is_drawn_only_where_it_has_not(tmp_path, capsys):
     assert names[-1] == "COILED"
     assert all(s == "BENDING" for s in (seg[0].as_dict()["status"][-1], seg[1].as_dict()["status"][-1]))
     first_coiled = names.index("COILED")
-    assert abs(float(seg[0].theta_deg[first_coiled] + seg[1].theta_deg[first_coiled])) >= 360.0
-    assert abs(float(seg[0].theta_deg[first_coiled - 1] + seg[1].theta_deg[first_coiled - 1])) < 360.0
+    # one uniform 200 mm arc: its 30 mm square-cut stub's fabric corner reaches the fabric behind the clamp
+    # where R (1 - cos theta) + 30 sin theta = 0, R = 200 mm / theta (before a full turn)
+    limit = math.degrees(brentq(lambda t: 200.0 / t * (1.0 - math.cos(t)) + 30.0 * math.sin(t), math.pi * 1.1,
+                                math.pi * 1.99))
+    assert 280.0 < limit < 300.0
+    assert abs(float(seg[0].theta_deg[first_coiled] + seg[1].theta_deg[first_coiled])) >= limit
+    assert abs(float(seg[0].theta_deg[first_coiled - 1] + seg[1].theta_deg[first_coiled - 1])) < limit
     (panel,) = pv.side_panels(a, a.curves())
     last_valid = float(strip.pressure_kpa[first_coiled - 1])
     assert max(panel.pressure_kpa) == last_valid

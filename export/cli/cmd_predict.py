@@ -65,12 +65,15 @@ def _finite(x: float):
 
 
 def _limits(model, c) -> list[list[str]]:
-    """Every validity limit each point exceeds (its status names only the first)."""
+    """Every validity limit each point exceeds (its status names only the first); a whole strip that
+    touches itself or the clamp (status COILED, ``embroact.predict.validity.strip_status``) is COILED."""
     import numpy as np
 
+    from ...predict.status import Status
     from ...predict.validity import limit_flags
 
-    return limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm).names()
+    names = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm).names()
+    return [["COILED"] + n if s == Status.COILED and "COILED" not in n else n for n, s in zip(names, c.status)]
 
 
 def _band_dict(band):
@@ -101,7 +104,7 @@ def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
     out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
     # the whole strip: a chain of one is its segment (with its sleeve's l, r, beta, limits), else the sum of bends
-    out.update(act.segments.one_or_all(lambda: out["segment_curves"][0], c.as_dict))
+    out.update(act.segments.one_or_all(lambda: _piece(act.segments[0].model, c), c.as_dict))
     out["band"] = _band_dict(band)
     return _measured(out, reading)  # the reading of the whole chain of arcs
 
@@ -152,7 +155,7 @@ def _table(act, c, band, segment_curves, reading=None) -> str:
 def _strip_table(act, c, segment_curves, reading) -> str:
     parts = [_piece_table(act.segments.part_name(act.name, k), s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
-    total = c.as_dict()  # the whole strip (embroact.predict.analysis.strip_curve)
+    total = c.as_dict()  # the whole strip (embroact.predict.analysis.whole_strip)
     rows = [f"{act.name}: whole strip, {len(act.segments)} segments (sum of the segments' bends"
             + ("; the reading is the marker sum on their chain of arcs)" if reading is not None else ")")]
     rows += _reading_head(reading)
@@ -180,8 +183,8 @@ def run(args) -> int:
             valid = ", ".join(a.name for a in analysis.actuators)
             raise ParameterError(f"--actuator must be one of {valid}, got {args.actuator!r}")
     names = [a.name for a in analysis.actuators]
-    pieces = dict(zip(names, analysis.segment_curves(pressures, method=args.method)))
     curves = dict(zip(names, analysis.curves(pressures, method=args.method)))  # segmented: the whole strip
+    pieces = {name: c.segments for name, c in curves.items()}  # a chain of one: the whole strip's own curve
     readings, bands = {}, {}
     for a in acts:  # the marker reading: the actuator's layout (flags > its calibration set's > the paper's)
         choice = analysis.marker_layout(a.name, **given) if wants_markers(args) else None

@@ -148,7 +148,7 @@ def actuator_html(act: ActuatorAnalysis) -> str:
     1
     """
     from ...patterns.design import OperationSettings
-    from ...predict.analysis import pressure_grid_kpa, whole_strip
+    from ...predict.analysis import pressure_grid_kpa
     from ...predict.curve import curve
     from .chart import bend_chart_svg
     from .previews import actuator_series
@@ -159,7 +159,7 @@ def actuator_html(act: ActuatorAnalysis) -> str:
         parts.append(f"<p>no bend chart: {escape('; '.join(missing))}</p>")
     else:  # the whole strip and each segment
         grid = pressure_grid_kpa(OperationSettings().max_pressure_kpa)
-        c = whole_strip([curve(s.model, grid) for s in act.segments])
+        c = act.strip([curve(s.model, grid) for s in act.segments])
         parts.append(_figure(bend_chart_svg(actuator_series(act, c), title=f"{act.name}: predicted bend angle")))
     return f'<div class="embroact">{"".join(parts)}</div>'
 

@@ -53,7 +53,7 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
     """Per actuator: bend [deg] and status at ``pressure_kpa`` (per segment too), or why there is none.
 
     A segmented actuator's bend and status are its whole strip's
-    (:func:`~embroact.predict.analysis.strip_curve`), as ``embroact predict`` gives them."""
+    (:func:`~embroact.predict.analysis.whole_strip`), as ``embroact predict`` gives them."""
     from ...predict.status import Status
 
     try:
