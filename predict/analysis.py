@@ -274,9 +274,11 @@ class ActuatorAnalysis:
         >>> from embroact.patterns.design import default_design
         >>> from embroact.predict.curve import curve
         >>> act = analyse(default_design()).actuators[0]
-        >>> c = curve(act.model, [310.0, 320.0])   # 250.9 and 268.5 deg: the 30 mm stub reaches the clamp at 253.9
+        >>> act.model.stub_mm   # a single-pattern actuator's model is its whole strip, with the tube's stub
+        30.0
+        >>> c = curve(act.model, [310.0, 320.0])   # 250.9 and 268.5 deg: the stub reaches the clamp at 253.9
         >>> c.status.tolist(), act.strip([c]).status.tolist()
-        ([1, 1], [1, 6])
+        ([1, 6], [1, 6])
         """
         return whole_strip(segment_curves, self.bend_pieces(), self.plan.tube.end_margin_mm)
 
@@ -747,12 +749,13 @@ def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = No
     return dataclasses.replace(design, actuators=specs)
 
 
-def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets) -> tuple[ModelChoice | None, str]:
+def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets,
+              stub_mm: float | None) -> tuple[ModelChoice | None, str]:
     if not derived.has_sleeve:
         return None, (f"no sleeve: sleeve radius r0 {derived.r0_mm:.4g} mm is not above the tube radius "
                       f"{derived.tube.outer_radius_mm:g} mm (width_mm {derived.width_mm:.4g} too small)")
     try:
-        return model_for(derived, settings, sets=sets), ""
+        return model_for(derived, settings, sets=sets, stub_mm=stub_mm), ""
     except EmbroactError as exc:
         return None, str(exc)
 
@@ -779,9 +782,12 @@ def segment_plans(act: ActuatorPlan) -> tuple[ActuatorPlan, ...]:
 def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
     act = plan.actuators[index]
     segs = []
+    # a chain of one is the whole strip's model, with the tube's sealed stub; a longer chain's links check their
+    # own arcs, the strip being tested as a whole (ActuatorAnalysis.strip)
+    stub = act.tube.end_margin_mm if len(act.segments) == 1 else None
     for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
         derived = derive(part)
-        choice, error = _model_of(derived, spec.model, sets)
+        choice, error = _model_of(derived, spec.model, sets, stub)
         segs.append(SegmentAnalysis(seg, derived, choice, f"{act.segments.label(k)}{error}" if error else ""))
     return ActuatorAnalysis(spec, act, Chain(segs))
 

@@ -165,8 +165,8 @@ def first_limit(model) -> FirstLimit | None:
     >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
     ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
     >>> f = first_limit(m)
-    >>> f.status.name, round(f.theta_deg, 6)
-    ('COILED', 360.0)
+    >>> f.status.name, round(f.theta_deg, 6)   # the tip's tube-side corner enters the supply tube
+    ('COILED', 320.870003)
     """
     end = branch_end(model)
     if end.kind is EndKind.NONE:

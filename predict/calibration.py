@@ -991,7 +991,7 @@ class ModelChoice:
 
 def model_for(derived, settings: ModelSettings | None = None, *,
               sets: Mapping[str, CalibrationSet] | Iterable[CalibrationSet] | None = None,
-              branch: str = "loading", extrapolation: str = "clamp") -> ModelChoice:
+              branch: str = "loading", extrapolation: str = "clamp", stub_mm: float | None = 0.0) -> ModelChoice:
     """The deformation model of a design under its settings: the one model factory.
 
     Policy (docs/model.md, calibration policy): G is ``settings.g_mpa`` when given, else
@@ -1010,6 +1010,9 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         Sets searched before the registry (e.g. read from calibration files).
     branch, extrapolation
         As for :func:`lookup`.
+    stub_mm : float or None, optional
+        The model's sealed tube beyond the tip (:class:`~embroact.predict.curve.ActuatorModel`):
+        a single-pattern actuator's ``tube.end_margin_mm``; None for a segment of a chain.
 
     Returns
     -------
@@ -1068,7 +1071,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     model = ActuatorModel(derived.pattern, length_mm=derived.length_mm, r0_mm=derived.r0_mm,
                           beta0_deg=derived.beta0_deg, outer_radius_mm=tube.outer_radius_mm,
                           inner_radius_mm=tube.inner_radius_mm, g_e_mpa=tube.g_e_mpa, g_mpa=g, p0_kpa=p0,
-                          tube_law=law, calibration=label)
+                          tube_law=law, calibration=label, stub_mm=stub_mm)
     return ModelChoice(model, cal, g_src, p0_src, tube_p0, notes)
 
 

@@ -156,6 +156,12 @@ class ActuatorModel:
         "paper" or "thick-wall": tube radius below P0 (see :mod:`embroact.predict.tubelaws`).
     calibration : str
         Where ``g_mpa`` and ``p0_kpa`` came from; carried into every result.
+    stub_mm : float or None
+        Sealed tube beyond the tip [mm], >= 0: the model is a whole strip clamped at its start
+        (a single-pattern actuator: its tube's ``end_margin_mm``; 0, the default: no stub), and
+        its curve's COILED status tests the stub and the supply line
+        (:func:`~embroact.predict.validity.arc_contact`). ``None``: one segment of a chain,
+        checked for its own full turn only (the analysis tests the chain as a whole).
 
     Examples
     --------
@@ -181,6 +187,7 @@ class ActuatorModel:
     p0_kpa: float
     tube_law: str = "paper"
     calibration: str = "given"
+    stub_mm: float | None = 0.0
 
     def __post_init__(self) -> None:
         for name in ("beta0_deg", "p0_kpa", "inner_radius_mm"):  # those that may be 0: -0.0 is 0.0, one cache entry
@@ -194,6 +201,8 @@ class ActuatorModel:
         check_range("inner_radius_mm", self.inner_radius_mm, low=0.0, low_inclusive=True,
                     high=float(self.outer_radius_mm))
         check_range("p0_kpa", self.p0_kpa, low=0.0, low_inclusive=True, high=1e6)
+        if self.stub_mm is not None:
+            check_range("stub_mm", self.stub_mm, low=0.0, low_inclusive=True, high=1e4)
         if not self.r0_mm > self.outer_radius_mm:
             raise ModelDomainError(
                 f"r0_mm must be > outer_radius_mm={self.outer_radius_mm:g} (no sleeve: the thread squeezes the tube "
@@ -605,7 +614,8 @@ def _block(models, p, energy, deriv, inverse, rtol, limits=True):
     status = np.where(infl, Status.INFLATION, status).astype(np.int8)
     states = _states(geo, theta, pressure, status, _tube_laws(geo, models))
     if limits:  # validity limits (validity.py)
-        status = apply_limits(status, theta, states[0], states[1], geo.l0)
+        stub = np.array([[math.nan if m.stub_mm is None else m.stub_mm] for m in models], dtype=np.float64)
+        status = apply_limits(status, theta, states[0], states[1], geo.l0, stub_mm=stub)
     return (pressure * KPA_PER_MPA, np.degrees(theta), status) + states
 
 
@@ -789,7 +799,7 @@ def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits
     theta = np.where(status == Status.FAILED, 0.0, th)  # other points show the state at the angle asked for
     states = _states(geo, theta, p, status, _tube_laws(geo, [model]))
     if limits:  # validity limits (validity.py); the pressure keeps the value of the status replaced
-        status = apply_limits(status, theta, states[0], states[1], geo.l0)
+        status = apply_limits(status, theta, states[0], states[1], geo.l0, stub_mm=model.stub_mm)
     arrays = [p * KPA_PER_MPA, np.degrees(theta), status, *states]
     return Curve(*(frozen_array(a[0], dtype=None) for a in arrays), method=f"{energy}-{deriv}-{inverse}",  # type: ignore[misc, arg-type]
                  calibration=model.calibration)

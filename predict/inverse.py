@@ -410,8 +410,11 @@ def _legs_sewn(params, length_mm: float) -> tuple[float, float]:
 class _Model:
     """theta(P*) of pattern parameters, through the same derived geometry and model factory as a design."""
 
-    def __init__(self, pressure_kpa: float, tube: Tube, settings: ModelSettings, sets) -> None:
+    def __init__(self, pressure_kpa: float, tube: Tube, settings: ModelSettings, sets,
+                 stub_mm: float | None = None) -> None:
+        # stub_mm: a one-actuator design's models are whole strips (the tube's end margin); a segment's are arcs
         self.p, self.tube, self.settings, self.sets = float(pressure_kpa), tube, settings, tuple(sets)
+        self.stub_mm = stub_mm
 
     def model(self, params, l0_mm: float):
         from .calibration import model_for
@@ -419,7 +422,7 @@ class _Model:
 
         d = derive_from_values(params.pattern, width_mm=params.width_mm, interval_mm=params.interval_mm,
                                angle_deg=getattr(params, "angle_deg", 0.0), length_mm=l0_mm, tube=self.tube)
-        return model_for(d, self.settings, sets=self.sets).model
+        return model_for(d, self.settings, sets=self.sets, stub_mm=self.stub_mm).model
 
     def theta(self, params_list, l0_list) -> tuple[np.ndarray, np.ndarray]:
         """Bend [deg] and status at P* of each (params, l0)."""
@@ -1159,7 +1162,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     else:
         spaces, notes = {pattern: design_space(pattern, settings, sets=sets, tube=tube,
                                                allow_extrapolation=allow_extrapolation)}, ()
-    model = _Model(p, tube, settings, sets)
+    model = _Model(p, tube, settings, sets, tube.end_margin_mm)  # one actuator: a whole strip with its stub
     length_tolerance_mm = check_range("length_tolerance_mm", length_tolerance_mm, low=0.0, high=length,
                                       low_inclusive=True)
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name,

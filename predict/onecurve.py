@@ -266,7 +266,7 @@ def one_curve(br, p, *, limits: bool = True):
         r[infl] = br.laws()(p[infl])
         d2[infl] = r[infl] * r[infl] - g.c
     if limits:
-        status = apply_limits(status, theta, l, r, g.l0)
+        status = apply_limits(status, theta, l, r, g.l0, stub_mm=br.model.stub_mm)
     return p * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, np.sqrt(np.maximum(d2, 0.0))
 
 
@@ -309,6 +309,6 @@ def one_curve_floats(br, p, *, limits: bool = True):
         if m is None:
             return None
         theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
-        status = apply_limits(_BENDING, theta, l, r, g.l0, SCALAR) if limits else _BENDING
+        status = apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm) if limits else _BENDING
         rows.append((pk * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, math.sqrt(max(d2, 0.0))))
     return [list(col) for col in zip(*rows)]

@@ -252,7 +252,8 @@ def theta_band(model, pressures_kpa, parameters, covariance, *, measurement: Mar
     c = curve(model, pressures_kpa, method=method, limits=False)
     theta = np.asarray(c.theta_deg)
     equilibrium = c.status == Status.BENDING  # of the formula, also past a validity limit
-    status = apply_limits(c.status, np.radians(theta), c.length_mm, c.radius_mm, model.length_mm)
+    status = apply_limits(c.status, np.radians(theta), c.length_mm, c.radius_mm, model.length_mm,
+                          stub_mm=model.stub_mm)
 
     def p_of(t):
         return np.asarray(pressure_at(model, t, method=method, limits=False).pressure_kpa)

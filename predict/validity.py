@@ -6,19 +6,17 @@ thread-side length l, tube outer radius r, fabric-side length l0) and reported a
 statuses (:class:`~embroact.predict.status.Status`, precedence documented there):
 
 ``COILED``
-    A uniform bend puts the fabric line on a circle of radius ``R = l0/|theta|``; it
-    closes a full turn at ``|theta| = 2 pi``. In a *negative* bend the tube lies on the
-    inner side: between the fabric line and the centre, with thickness ``2 r``. Where
-    the tube leaves the clamped end it continues straight along the base tangent (into
-    the clamp and the supply line), so it stands inside the circle: at the tangent
-    line's point a distance ``x`` behind the base, the circle is ``R - sqrt(R^2 - x^2)``
-    away from the fabric line. The tip, ``phi = 2 pi - |theta|`` short of a full turn,
-    is at height ``R (1 - cos(phi))`` above the fabric line and a distance
-    ``R sin(phi)`` behind the base; it lands on the tube's top (height ``2 r``) once
-    ``R (1 - cos(phi)) <= 2 r`` with ``pi < |theta| < 2 pi``, i.e. once
-    ``l0 (1 - cos(theta)) <= 2 r |theta|``. In a positive bend the tube is outside the
-    circle and the fabric (of negligible thickness) is the inner side: the limit is the
-    full turn. For ``l0 = 100 mm`` and ``r = 2.58 mm`` a negative bend coils at 315.70 deg.
+    The strip touches itself, the clamp or the fixed fabric (:func:`strip_contact`). Its
+    body is the band the tube fills, ``2 r`` thick on the thread side of the fabric line,
+    over the bent length and over the sealed tube stub beyond the tip (``stub_mm``, cut
+    square); behind the clamp the same band is fixed (the fabric held flat, the supply
+    line leaving along the base tangent). For one uniform arc (one model's curve,
+    :func:`arc_contact`) the first contact is always the stub's end meeting that fixed
+    band. Without a stub a negative bend's tip lands on the supply tube's top once
+    ``l0 (1 - cos(theta)) <= 2 r |theta|`` (315.70 deg for ``l0 = 100 mm``,
+    ``r = 2.58 mm``) and a positive bend's tube-side tip corner enters the supply tube at
+    ``cos theta = R / (R + 2 r)`` (320.9 deg); the worksheet's 30 mm stub reaches it at
+    243.1 and 253.9 deg.
 ``KINKED``
     The bend radius ``l0/|theta|`` is below the tube's diameter ``2 r``: the tube's
     inner side would have to pass through the centre of its own bend.
@@ -31,11 +29,12 @@ statuses (:class:`~embroact.predict.status.Status`, precedence documented there)
 For a zigzag (``r = r0``, ``l = l0 + 2 r0 theta``) the kink and the stretch limit fall
 on the same angle, ``theta = l0/(2 r0)``.
 
-The limits above are those of one arc (one model's curve). A strip is valid only as a
-whole: :func:`strip_contact` tests its bent line (a chain of arcs, with the sealed tube
-stub beyond the tip) against itself and against the fixed part behind the clamp, and
-:func:`strip_status` decides the status of a whole strip per pressure from its segments'
-curves and that test; it is the status every view reads.
+A model's curve checks its one arc (with the stub when the model is a whole strip,
+``ActuatorModel.stub_mm``). A strip is valid only as a whole: :func:`strip_contact` tests
+its bent line (a chain of arcs, with the sealed tube stub beyond the tip) against itself
+and against the fixed part behind the clamp, and :func:`strip_status` decides the status
+of a whole strip per pressure from its segments' curves and that test; it is the status
+every view reads.
 
 Examples
 --------
@@ -44,8 +43,8 @@ Examples
 >>> f = limit_flags(np.radians([90.0, 400.0, -320.0]), [104.0, 118.0, 86.0], 2.58, 100.0)
 >>> f.coiled.tolist(), f.kinked.tolist(), f.overstretched.tolist()
 ([False, True, True], [False, False, False], [False, False, False])
->>> round(coil_angle_deg(100.0, 2.58, negative=True), 1), coil_angle_deg(100.0, 2.58, negative=False)
-(315.7, 360.0)
+>>> round(coil_angle_deg(100.0, 2.58, negative=True), 1), round(coil_angle_deg(100.0, 2.58, negative=False), 1)
+(315.7, 320.9)
 """
 from __future__ import annotations
 
@@ -63,6 +62,7 @@ __all__ = [
     "limit_flags",
     "apply_limits",
     "coil_angle_deg",
+    "arc_contact",
     "valid_mask",
     "LIMIT_BISECTIONS",
     "strip_contact",
@@ -115,7 +115,7 @@ class LimitFlags:
                 for row in rows]
 
 
-def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
+def limit_flags(theta_rad, length_mm, radius_mm, l0_mm, stub_mm=0.0) -> LimitFlags:
     """The limits exceeded at states (theta [rad], l, r, l0 [mm]; arrays broadcast).
 
     Parameters
@@ -128,6 +128,8 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
         Tube outer radius r at the state.
     l0_mm : array_like
         Fabric-side length.
+    stub_mm : float, optional
+        Sealed tube beyond the tip [mm] (as :func:`apply_limits`).
 
     Returns
     -------
@@ -141,24 +143,79 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm) -> LimitFlags:
     """
     th = np.asarray(theta_rad, dtype=np.float64)
     l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (length_mm, radius_mm, l0_mm))
-    flags = _exceeded(th, l, r, l0)
+    flags = _exceeded(th, l, r, l0, stub=stub_mm)
     shape = np.broadcast(th, l, r, l0).shape
     return LimitFlags(*(f if f.shape == shape else np.broadcast_to(f, shape).copy() for f in flags))
 
 
-def _exceeded(th, l, r, l0, xp=np):
+def _exceeded(th, l, r, l0, xp=np, stub=0.0):
     """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR``."""
     a = abs(th)
-    return _coiled(th, a, r, l0, xp), 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+    return _coiled(th, a, r, l0, xp, stub), 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
 
 
-def _coiled(th, a, r, l0, xp=np):
-    """The coiled flags at states of bend ``th`` (``a = |th|``)."""
-    back = th < -math.pi  # the inner coil needs a negative bend past half a turn
-    coiled = a >= _FULL_TURN
-    if xp.any(back):
-        coiled = coiled | (back & (l0 * (1.0 - xp.cos(th)) <= 2.0 * r * a))
-    return coiled
+def _coiled(th, a, r, l0, xp=np, stub=0.0):
+    """The coiled flags at states of bend ``th`` (``a = |th|``): :func:`arc_contact` with the stub
+    (None: an arc inside a chain); one state on floats with ``xp=SCALAR``."""
+    stub = math.nan if stub is None else stub
+    if xp is np:
+        return arc_contact(th, r, l0, stub)
+    return a > 0.5 * math.pi and bool(arc_contact(th, r, l0, stub))  # only past a quarter turn can it reach back
+
+
+def arc_contact(theta_rad, radius_mm, l0_mm, stub_mm=0.0) -> np.ndarray:
+    """:func:`strip_contact` of one uniform arc clamped at its start, in closed form (arrays broadcast).
+
+    For one arc the first contact is always between the square-cut end of the straight
+    stub (from the tip section to the stub's end: a rectangle ``stub_mm`` by ``2 r``) and
+    the fixed band behind the clamp: the arc's own band reaches lowest at its tip and the
+    stub can reach the arc's start only across the clamp's section. So the strip touches
+    once it has turned a full turn, or once that rectangle meets the band
+    ``x <= 0, -2 r <= y <= 0``; two convex sets meet unless one of their four edge normals
+    (``x``, ``y``, the tip's tangent and normal) separates them.
+
+    Parameters
+    ----------
+    theta_rad : array_like
+        Bend [rad] (signed).
+    radius_mm : array_like
+        Tube outer radius r [mm].
+    l0_mm : array_like
+        Arc length [mm].
+    stub_mm : array_like
+        Sealed tube beyond the tip [mm], >= 0; NaN (a model's ``stub_mm=None``) for an arc inside
+        a chain, which is only checked for its own full turn (the chain is tested as a whole).
+
+    Returns
+    -------
+    ndarray of bool
+
+    Examples
+    --------
+    >>> arc_contact(np.radians([-315.0, -316.0, 253.0, 255.0]), 2.58, 100.0, [0.0, 0.0, 30.0, 30.0]).tolist()
+    [False, True, False, True]
+    >>> arc_contact(np.radians([-316.0, 360.0]), 2.58, 100.0, np.nan).tolist()
+    [False, True]
+    """
+    th, r, l0, m = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (theta_rad, radius_mm, l0_mm,
+                                                                                    stub_mm)))
+    inside = np.isnan(m)
+    m = np.where(inside, 0.0, m)
+    half = 0.5 * th
+    chord = l0 * np.sinc(half / math.pi)
+    px, py = chord * np.cos(half), chord * np.sin(half)  # the tip (fabric side)
+    tx, ty = np.cos(th), np.sin(th)  # tangent there; the tube side is (ty, -tx)
+    nx, ny = ty, -tx
+    w = 2.0 * r
+    cx = np.stack([px, px + w * nx, px + m * tx, px + m * tx + w * nx])
+    cy = np.stack([py, py + w * ny, py + m * ty, py + m * ty + w * ny])
+    apart = (cx.min(axis=0) > 0.0) | (cy.min(axis=0) > 0.0) | (cy.max(axis=0) < -w)
+    for ux, uy, low, span in ((tx, ty, px * tx + py * ty, m), (nx, ny, px * nx + py * ny, w)):
+        b0, b1 = 0.0, -w * uy  # the band's corners (0, 0) and (0, -2 r) on the axis; it runs on toward -x
+        b_lo = np.where(ux > 0.0, -np.inf, np.minimum(b0, b1))
+        b_hi = np.where(ux < 0.0, np.inf, np.maximum(b0, b1))
+        apart |= (low > b_hi) | (low + span < b_lo)
+    return (np.abs(th) >= _FULL_TURN) | (~apart & ~inside)
 
 
 _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
@@ -174,7 +231,7 @@ def _limited(st, flags, xp=np):
     return xp.where((st == _KEPT[0]) | (st == _KEPT[1]), st, out)
 
 
-def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
+def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=0.0):
     """Status codes with the validity limits applied (precedence: :mod:`embroact.predict.status`).
 
     FAILED and OUT_OF_DOMAIN points keep their status (their theta is a fill value);
@@ -189,6 +246,10 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
         The states (as :func:`limit_flags`).
     xp : module, optional
         numpy, or :data:`~embroact.predict.floats.SCALAR` for one state.
+    stub_mm : float, array_like or None, optional
+        Sealed tube beyond the tip [mm] of a whole strip (:attr:`ActuatorModel.stub_mm
+        <embroact.predict.curve.ActuatorModel>`; 0: clamped at its start, no stub; None or
+        NaN: an arc inside a chain, its own full turn only).
 
     Returns
     -------
@@ -202,15 +263,15 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     True
     """
     if xp is not np:
-        return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp), xp)
+        return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp, stub_mm), xp)
     st = np.asarray(status, dtype=np.int8)
     th, l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm))
     if not (th.size and l0.size == 1 and th.shape == l.shape == r.shape):
-        return _limited(st, _exceeded(th, l, r, l0)).astype(np.int8)
+        return _limited(st, _exceeded(th, l, r, l0, stub=stub_mm)).astype(np.int8)
     # one model's states: reductions first, then only the flags some state can raise (the same flags)
     a = np.abs(th)
     width = 2.0 * r * a
-    coiled = _coiled(th, a, r, l0) if a.max() >= _FULL_TURN or th.min() < -math.pi else None
+    coiled = _coiled(th, a, r, l0, stub=stub_mm) if a.max() > 0.5 * math.pi else None
     kinked = width > l0 if width.max() > l0 else None
     over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
     out = np.array(st, dtype=np.int8)  # a new array in every case
@@ -225,12 +286,13 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np):
     return out
 
 
-def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
-    """|theta| [deg] at which a uniform bend coils, for a constant tube radius.
+def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool, stub_mm: float = 0.0) -> float:
+    """|theta| [deg] at which one uniform arc, clamped at its start, first touches (:func:`arc_contact`).
 
-    Positive bends: 360. Negative bends: the root of ``theta + arccos(1 - 2 r theta/l0)
-    = 2 pi`` (module docstring), found by bisection in ``(pi, 2 pi]``; when the bend is
-    kinked before it can coil (``l0 <= pi r``) the full-turn angle is returned.
+    Found by bisection between a quarter turn (no contact) and a full turn (contact), for a
+    constant tube radius. Without a stub a negative bend's tip lands on the supply tube where
+    ``l0 (1 - cos theta) = 2 r |theta|`` and a positive bend's tube-side corner of the tip
+    enters it where ``cos theta = R / (R + 2 r)``, ``R = l0 / theta``; a stub reaches sooner.
 
     Parameters
     ----------
@@ -240,6 +302,8 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
         Tube outer radius [mm], > 0.
     negative : bool
         The bend is negative (towards the tube).
+    stub_mm : float, optional
+        Sealed tube beyond the tip [mm], >= 0.
 
     Returns
     -------
@@ -248,17 +312,19 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool) -> float:
 
     Examples
     --------
-    >>> coil_angle_deg(100.0, 2.58, negative=False), round(coil_angle_deg(100.0, 2.58, negative=True), 2)
-    (360.0, 315.7)
+    >>> [round(coil_angle_deg(100.0, 2.58, negative=n, stub_mm=m), 1) for m in (0.0, 30.0) for n in (True, False)]
+    [315.7, 320.9, 243.1, 253.9]
     """
     l0 = check_range("l0_mm", l0_mm, low=0.0)
     r = check_range("radius_mm", radius_mm, low=0.0)
-    if not negative or l0 <= math.pi * r:
-        return 360.0
-    lo, hi = math.pi, _FULL_TURN  # contact false at pi (no kink: l0 > pi r), true at 2 pi
+    m = check_range("stub_mm", stub_mm, low=0.0, low_inclusive=True, high=1e4)
+    sign = -1.0 if negative else 1.0
+    lo, hi = 0.5 * math.pi, _FULL_TURN
     for _ in range(LIMIT_BISECTIONS):
         mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if l0 * (1.0 - math.cos(mid)) <= 2.0 * r * mid else (mid, hi)
+        if mid in (lo, hi):
+            break
+        lo, hi = (lo, mid) if arc_contact(sign * mid, r, l0, m) else (mid, hi)
     return math.degrees(hi)
 
 

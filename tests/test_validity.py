@@ -36,15 +36,24 @@ def test_negative_coil_angle_is_where_the_tip_lands_on_the_tube():
         root = mp.findroot(lambda t: (L0 / t) * (1 - mp.cos(2 * mp.pi - t)) - 2 * r, 5.5)
     assert coil_angle_deg(L0, r, negative=True) == pytest.approx(float(mp.degrees(root)), abs=1e-9)
     assert coil_angle_deg(L0, r, negative=True) == pytest.approx(315.7, abs=0.05)
-    assert coil_angle_deg(L0, r, negative=False) == 360.0
     a = math.radians(float(mp.degrees(root)))
     f = limit_flags([-(a - 1e-9), -(a + 1e-9), a + 1e-9], L0, r, L0)
-    assert f.coiled.tolist() == [False, True, False]  # positive bends coil at the full turn only
+    assert f.coiled.tolist() == [False, True, False]  # a positive bend reaches the supply tube later
+
+
+def test_positive_coil_angle_is_where_the_tips_tube_corner_enters_the_supply_tube():
+    """Tube outside the bend, centre (0, R): the tip section's tube-side corner (0, R) + (R + 2 r)(sin, -cos)
+    reaches the supply tube's band (y <= 0) at cos(theta) = R / (R + 2 r), R = l0 / theta."""
+    r = 2.58
+    with mp.workdps(30):
+        root = mp.findroot(lambda t: mp.cos(t) - (L0 / t) / (L0 / t + 2 * r), 5.6)
+    assert coil_angle_deg(L0, r, negative=False) == pytest.approx(float(mp.degrees(root)), abs=1e-9)
+    assert coil_angle_deg(L0, r, negative=False) == pytest.approx(320.9, abs=0.05)
 
 
 def test_full_turn_and_kink_and_stretch_thresholds():
     r = 2.0
-    th = np.radians([359.999, 360.0, -360.0])
+    th = np.radians([300.0, 360.0, -360.0])  # a positive bend's tip reaches the supply tube at 324.6 deg
     assert limit_flags(th, L0, r, L0).coiled.tolist() == [False, True, True]
     kink = L0 / (2 * r)  # radius l0/theta = 2 r
     assert limit_flags([kink * (1 - 1e-12), kink * (1 + 1e-12)], L0, r, L0).kinked.tolist() == [False, True]
@@ -53,11 +62,13 @@ def test_full_turn_and_kink_and_stretch_thresholds():
     assert STRETCH_LIMIT == 2.0
 
 
-def test_short_strip_kinks_before_it_coils():
-    """l0 = 20 mm, r = 2.58 mm: kinked at l0/(2 r) = 222 deg, long before a turn; l0 <= pi r never coils early."""
-    f = limit_flags(np.radians([-230.0]), 20.0, 2.58, 20.0)
-    assert f.kinked.tolist() == [True] and f.coiled.tolist() == [False]
-    assert coil_angle_deg(8.0, 2.58, negative=True) == 360.0
+def test_short_strip_kinks_where_its_tube_reaches_the_clamp():
+    """l0 = 20 mm, r = 2.58 mm: kinked at l0/(2 r) = 222.1 deg, long before a turn; there the tube's band
+    (2 r thick, inside a radius of 2 r) fills the circle to its centre, where the clamp's section ends too."""
+    kink = math.degrees(20.0 / (2 * 2.58))
+    f = limit_flags(np.radians([-(kink - 0.01), -(kink + 0.01)]), 20.0, 2.58, 20.0)
+    assert f.kinked.tolist() == [False, True] and f.coiled.tolist() == [False, True]
+    assert coil_angle_deg(20.0, 2.58, negative=True) == pytest.approx(kink, abs=1e-6)
     with pytest.raises(ParameterError, match="l0_mm must be in"):
         coil_angle_deg(-1.0, 2.0, negative=True)
 
@@ -119,13 +130,15 @@ def test_branch_end_at_the_tracing_cap(monkeypatch):
     assert e.kind is EndKind.TRACING_CAP and e.theta_deg == 90.0 and e.status is Status.OUT_OF_DOMAIN
 
 
-def test_first_limit_of_a_zigzag_is_the_full_turn_at_the_reference_pressure():
+def test_first_limit_of_a_zigzag_is_the_tip_on_the_supply_tube_at_the_reference_pressure():
+    """r = r0 along a zigzag's bend: the tip's tube-side corner enters the supply tube at cos(theta) = R / (R + 2 r0)."""
     m = zigzag()
     f = first_limit(m)
-    assert f.status is Status.COILED and f.theta_deg == pytest.approx(360.0, abs=1e-9)
     ref = mpref.Ref.zigzag(width_mm=7, g_mpa=2.7, p0_kpa=85)
     with mp.workdps(30):
-        assert f.pressure_kpa == pytest.approx(float(ref.pressure(2 * mp.pi)) * 1000, rel=1e-9)
+        root = mp.findroot(lambda t: mp.cos(t) - (L0 / t) / (L0 / t + 2 * m.r0_mm), 5.6)
+        assert f.status is Status.COILED and f.theta_deg == pytest.approx(float(mp.degrees(root)), abs=1e-7)
+        assert f.pressure_kpa == pytest.approx(float(ref.pressure(root)) * 1000, rel=1e-7)
 
 
 def test_first_limit_of_a_negative_cross_bend_is_the_tube_contact():

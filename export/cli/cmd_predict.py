@@ -72,7 +72,7 @@ def _limits(model, c) -> list[list[str]]:
     from ...predict.status import Status
     from ...predict.validity import limit_flags
 
-    names = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm).names()
+    names = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm, model.stub_mm).names()
     return [["COILED"] + n if s == Status.COILED and "COILED" not in n else n for n, s in zip(names, c.status)]
 
 
