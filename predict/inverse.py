@@ -1586,6 +1586,25 @@ def curvature_range(model: _Model, spaces: dict) -> tuple[float, float]:
     return lo, hi
 
 
+def _target_touches(sj: np.ndarray, xy: np.ndarray, tube: Tube) -> str | None:
+    """Why a strip along the resampled target would touch itself or the clamp, or None.
+
+    The target as a chain of short arcs (each turning by its chord's change of heading) with the
+    tube's sealed stub beyond its tip, tested as a sewn strip's line is
+    (:func:`~embroact.predict.validity.strip_contact`), with the thinnest strip a design can be (the
+    unpressurised tube's radius): a strip thicker still touches sooner.
+    """
+    from .validity import strip_contact
+
+    d = np.diff(xy, axis=0)
+    heading = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    turns = np.degrees(np.diff(np.concatenate([[0.0], heading])))
+    if not strip_contact(np.diff(sj), turns, tube.outer_radius_mm, tube.end_margin_mm):
+        return None
+    return (f"touches itself or the clamp as a strip with the {tube.end_margin_mm:g} mm sealed tube beyond its tip "
+            f"(even one as thin as the unpressurised tube, radius {tube.outer_radius_mm:g} mm)")
+
+
 def shape_unreachable(sj: np.ndarray, xy: np.ndarray, kappa_range: tuple[float, float]) -> str | None:
     """Why no chain of segments with curvatures in ``kappa_range`` [1/mm] can follow the resampled target
     (``sj``, ``xy`` as :func:`design_shape` resamples it), or None when one may come near it. Only clear
@@ -1707,7 +1726,7 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
     model = _Model(p, tube, settings, sets)
     spaces, notes = design_spaces(settings, sets=sets, tube=tube, allow_extrapolation=allow_extrapolation)
     reach = curvature_range(model, spaces)
-    why = shape_unreachable(sj, xy, reach)
+    why = shape_unreachable(sj, xy, reach) or _target_touches(sj, xy, tube)
     if why is not None:
         raise ParameterError(f"target shape at pressure_kpa {p:g}: not reachable by any design: it {why}")
     say(f"reachable curvature at {p:g} kPa: {reach[0]:+.3g} to {reach[1]:+.3g} /mm; fitting the target")

@@ -193,12 +193,24 @@ def spiral_target(tmp_path_factory):
     return path
 
 
-def test_design_does_not_call_a_coiled_spiral_met(spiral_target, tmp_path, capsys):
+def test_design_refuses_a_spiral_target_that_touches_itself(spiral_target, tmp_path, capsys):
+    """The target itself, as a strip with the 30 mm stub, reaches the clamp: refused before any search."""
+    assert main(["design", "--target-shape", str(spiral_target), "--at-kpa", "200", "-o", str(tmp_path / "s.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "not reachable by any design" in err and "touches itself or the clamp" in err and "30 mm" in err
+
+
+def test_design_does_not_call_a_coiled_spiral_met(spiral_target, tmp_path, capsys, monkeypatch):
+    """Past the up-front check (switched off here), the search's answer is judged on its whole strip: the
+    nearest design follows the spiral within 0.1 mm yet is COILED, so it is not met; predict and check agree."""
+    from embroact.predict import inverse
+
+    monkeypatch.setattr(inverse, "_target_touches", lambda sj, xy, tube: None)
     out = tmp_path / "spiral.toml"
     code = main(["design", "--target-shape", str(spiral_target), "--at-kpa", "200", "-o", str(out), "--json",
                  "--write-nearest"])
     result = json.loads(capsys.readouterr().out)
-    assert code == 5 and not result["reached"]
+    assert code == 5 and not result["reached"] and result["rmse_mm"] < 0.5
     assert "whole strip is COILED at 200 kPa" in result["statement"]
     assert main(["predict", str(out), "--pressure-kpa", "200", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["actuators"][0]["status"] == ["COILED"]
