@@ -583,6 +583,8 @@ def _draw_p0_labels(dwg, g, series: Sequence[Series], sc: Scale) -> None:
     for s in marked:  # the dashed P0 lines: a label sits beside its own line, never across another
         placer.block_polyline([(sc.x_px(s.p0_kpa), sc.top_px), (sc.x_px(s.p0_kpa), sc.top_px + sc.height_px)])
     rows = np.arange(sc.top_px + 12.0, sc.top_px + sc.height_px - 4.0, 12.0)
+    if not len(rows):  # no row of text fits in the plot: the dashed lines alone mark P0
+        return
     for k, s in enumerate(series):
         if s.p0_kpa is None or not sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa:
             continue

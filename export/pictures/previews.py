@@ -24,6 +24,7 @@ Examples
 """
 from __future__ import annotations
 
+import dataclasses
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -69,6 +70,8 @@ DEFAULT_SIDE_STATES = 5
 #: Width of the bend chart [px], and the least width of its plot box [px] (a wider legend widens the chart).
 CHART_WIDTH_PX = 720.0
 CHART_MIN_PLOT_PX = 300.0
+#: Most series a bend chart draws one by one; past them identical ones are drawn once (:func:`merged_series`).
+CHART_MAX_SERIES = 12
 MAX_SIDE_STATES = 12
 
 
@@ -266,8 +269,55 @@ def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, b
     (pressure_kpa, theta_deg); ``bands`` has one band (or None) per actuator (default :func:`curve_bands`)."""
     measured = dict(measured or {})
     bands = curve_bands(analysis, curves) if bands is None else bands
-    return [s for a, c, b, op in zip(analysis.actuators, curves, bands, operating_points(analysis))
-            for s in actuator_series(a, c, measured.get(a.name), b, op)]
+    series = [s for a, c, b, op in zip(analysis.actuators, curves, bands, operating_points(analysis))
+              for s in actuator_series(a, c, measured.get(a.name), b, op)]
+    return series if len(series) <= CHART_MAX_SERIES else merged_series(series)
+
+
+def merged_series(series: Sequence[Series]) -> list[Series]:
+    """Series with the same curve, status, P0, measurements, band and operating point as one, labelled by the
+    first with how many more it stands for (in the order they first appear): a chart of many identical actuators
+    draws one curve and one status strip, not one each.
+
+    Parameters
+    ----------
+    series : sequence of Series
+
+    Returns
+    -------
+    list of Series
+
+    Examples
+    --------
+    >>> same = [Series(f"A{k}", [0.0, 100.0], [0.0, 20.0], p0_kpa=50.0) for k in range(3)]
+    >>> [s.label for s in merged_series(same + [Series("B", [0.0, 100.0], [0.0, 30.0])])]
+    ['A0 (and 2 identical)', 'B']
+    """
+    groups: dict[tuple, list[Series]] = {}
+    for s in series:
+        key = tuple(v.tobytes() if isinstance(v, np.ndarray) else v for k, v in vars_of(s).items() if k != "label")
+        groups.setdefault(key, []).append(s)
+    return [g[0] if len(g) == 1 else dataclasses.replace(g[0], label=f"{g[0].label} (and {len(g) - 1} identical)")
+            for g in groups.values()]
+
+
+def vars_of(s: Series) -> dict:
+    """The fields of a series by name (a frozen dataclass with slots has no ``__dict__``).
+
+    Parameters
+    ----------
+    s : Series
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> sorted(vars_of(Series("A", [0.0], [0.0])))[:3]
+    ['label', 'measured_pressure_kpa', 'measured_theta_deg']
+    """
+    return {f.name: getattr(s, f.name) for f in dataclasses.fields(s)}
 
 
 def breakpoints_kpa(analysis) -> tuple[float, ...]:
