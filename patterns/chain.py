@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from .base.errors import ParameterError
 
-__all__ = ["Chain"]
+__all__ = ["Chain", "UNGIVEN"]
 
 
 class Chain(tuple):
@@ -273,3 +273,7 @@ class _Whole(Chain):
     """A chain of one made from a single-pattern actuator's own pattern (:meth:`Chain.given_or_one`)."""
 
     __slots__ = ()
+
+
+UNGIVEN: Chain = tuple.__new__(_Whole, ())
+"""The default of a chain field: no segments given, so :meth:`Chain.given_or_one` makes the chain of one."""

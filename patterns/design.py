@@ -96,7 +96,7 @@ from .base.errors import DesignFileError, EmbroactError, ParameterError, Pattern
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
-from .chain import Chain
+from .chain import UNGIVEN, Chain
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import format_limit, on_grid
 from .params import PatternParams, StitchOptions, Tube, ZigzagParams
@@ -345,7 +345,7 @@ class ActuatorSpec(KindFields):
     options: StitchOptions = field(default_factory=StitchOptions)
     model: ModelSettings = field(default_factory=ModelSettings)
     adjust: str = "auto"
-    segments: Chain = ()  # type: ignore[assignment]  # none given: __post_init__ makes the chain of one
+    segments: Chain = UNGIVEN
 
     def __post_init__(self) -> None:
         check_name("name", self.name)

@@ -25,7 +25,7 @@ import numpy as np
 
 from .base.arrays import frozen_array
 from .base.display import repr_svg
-from .chain import Chain
+from .chain import UNGIVEN, Chain
 from .kinds import KindOf
 from .params import PatternParams, StitchOptions, Tube
 
@@ -177,7 +177,7 @@ class ActuatorPlan(KindOf):
     realised: Realised
     adjustments: tuple[str, ...] = ()
     options: StitchOptions = field(default_factory=StitchOptions)
-    segments: Chain = ()  # type: ignore[assignment]  # none given: __post_init__ makes the chain of one
+    segments: Chain = UNGIVEN
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "segments", Chain.given_or_one(self.segments, lambda: SegmentPlan(

@@ -90,8 +90,8 @@ class SegmentSpec(KindFields):
     def __post_init__(self) -> None:
         PATTERN_KINDS.for_params(self.params)
         if isinstance(self.length_mm, bool) or not isinstance(self.length_mm, (int, float)) \
-                or not 0.0 < self.length_mm < 1e6:
-            raise ParameterError(f"length_mm must be in (0, 1e6) mm, got {self.length_mm!r}")
+                or not 0.0 < self.length_mm < math.inf:
+            raise ParameterError(f"length_mm must be a finite number > 0 mm, got {self.length_mm!r}")
         object.__setattr__(self, "length_mm", float(self.length_mm))
 
 

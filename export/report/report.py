@@ -227,10 +227,13 @@ def _cell(v) -> str:
 
 
 def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
-    """One entry per segment of each actuator's chain (named ``A1 segment 0``...), with its ``derived`` and
-    ``model``; an entry that holds no chain (``segments``) is its own one segment."""
-    return [{**s, "name": f"{a.get('name')} segment {k}"} for a in actuators
-            for k, s in enumerate(a.get("segments", [a]))]
+    """One entry per actuator, or per segment of a segmented one (named ``A1 segment 0``), with its
+    ``derived`` and ``model``."""
+    out: list[Mapping] = []
+    for a in actuators:
+        segs = a.get("segments") or []
+        out += [{**s, "name": f"{a.get('name')} segment {k}"} for k, s in enumerate(segs)] or [a]
+    return out
 
 
 #: Columns (actuators, segments) a per-actuator table shows at most; beyond it identical entries share one
@@ -289,7 +292,7 @@ def _segments_table(actuators: Sequence[Mapping]) -> str:
     bends), the unbent transition to the next segment and the thread's run along a rail there [mm]."""
     rows = []
     for a in actuators:
-        for k, s in enumerate(a.get("segments", ())):
+        for k, s in enumerate(a.get("segments") or []):
             legs = s["first_leg_mm"] + (s.get("derived") or {}).get("length_mm", 0.0)
             rows.append(f"<tr><th>{_e(a.get('name'))} segment {k}</th><td>{_e(s.get('pattern'))}</td>"
                         f"{_cell(s['start_mm'])}{_cell(s['start_mm'] + s['length_mm'])}{_cell(s['first_leg_mm'])}"
