@@ -784,7 +784,7 @@ def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) ->
     segs = []
     # a chain of one is the whole strip's model, with the tube's sealed stub; a longer chain's links check their
     # own arcs, the strip being tested as a whole (ActuatorAnalysis.strip)
-    stub = act.tube.end_margin_mm if len(act.segments) == 1 else None
+    stub = act.segments.one_or_all(act.tube.end_margin_mm, None)
     for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
         derived = derive(part)
         choice, error = _model_of(derived, spec.model, sets, stub)

@@ -3,9 +3,10 @@
 A single-pattern actuator is a chain of one in the request (``ActuatorSpec.segments``), the
 plan (``ActuatorPlan.segments``) and the analysis (``ActuatorAnalysis.segments``), and the
 code decides nothing by whether an actuator "has segments": the source is read here (an AST
-walk over every module of the package) for a branch whose condition reads ``segments`` (``if``,
-``... if ... else ...``, ``while``, ``and``/``or`` and comprehension filters), which may only
-appear in the chain type itself (``patterns/chain.py``). A test of the test feeds it modules
+walk over every module of the package) for a branch whose condition asks something of ``segments``
+itself (its truth, length, an item or a property; in ``if``, ``... if ... else ...``, ``while``,
+``and``/``or`` and comprehension filters), which may only appear in the chain type itself
+(``patterns/chain.py``). A test of the test feeds it modules
 with each kind of branch and shows that it finds them.
 """
 from __future__ import annotations
@@ -27,13 +28,33 @@ PACKAGES = ("api", "patterns", "predict", "export")
 CHAIN_TYPE = ROOT / "patterns" / "chain.py"
 
 
-def _reads_segments(node: ast.AST) -> bool:
-    """True when ``node`` reads a name or attribute called ``segments`` (``a.segments``, ``len(segments)``).
+def _is_segments(node: ast.AST) -> bool:
+    return (isinstance(node, ast.Attribute) and node.attr == "segments") or (isinstance(node, ast.Name)
+                                                                              and node.id == "segments")
 
-    Keys of plain dicts (a JSON entry's ``"segments"``, a design file's ``"segment"`` tables) are the
-    file formats' business, not the chain type's, and are not counted."""
-    return any((isinstance(n, ast.Attribute) and n.attr == "segments") or (isinstance(n, ast.Name) and n.id == "segments")
-               for n in ast.walk(node))
+
+#: Calls that hand on the segments themselves (their length or a copy): a condition on them is one on the segments.
+_AS_IS = {"len", "list", "tuple", "bool", "set", "sorted", "reversed"}
+
+
+def _decides_on_segments(test: ast.AST) -> bool:
+    """True when the condition ``test`` asks something of ``segments`` itself: its truth (``if a.segments``,
+    ``a.segments or ...``), its length, a comparison, one of its items or properties (``a.segments.is_single``).
+
+    Going over the segments (``all(s.choice is not None for s in a.segments)``, ``zip(a.segments, ...)``)
+    decides nothing about the chain's shape and passes. Keys of plain dicts (a JSON entry's
+    ``"segments"``, a design file's ``"segment"`` tables) are the file formats' business, not counted."""
+    parents = {child: node for node in ast.walk(test) for child in ast.iter_child_nodes(node)}
+    for node in ast.walk(test):
+        if not _is_segments(node):
+            continue
+        up = parents.get(node)
+        if isinstance(up, ast.comprehension) and up.iter is node:
+            continue
+        if isinstance(up, ast.Call) and node in up.args and not (isinstance(up.func, ast.Name) and up.func.id in _AS_IS):
+            continue
+        return True
+    return False
 
 
 def segment_branches(source: str, filename: str = "<source>") -> list[tuple[int, str]]:
@@ -47,7 +68,7 @@ def segment_branches(source: str, filename: str = "<source>") -> list[tuple[int,
             tests += node.values
         elif isinstance(node, ast.comprehension):
             tests += node.ifs
-    return sorted((t.lineno, ast.get_source_segment(source, t) or "") for t in tests if _reads_segments(t))
+    return sorted((t.lineno, ast.get_source_segment(source, t) or "") for t in tests if _decides_on_segments(t))
 
 
 def _modules() -> list[Path]:
@@ -71,6 +92,9 @@ def test_no_branch_on_segments_outside_the_chain_type():
     "while segments:\n    segments = segments[1:]\n",
     "rows = [r for r in rows if len(a.segments) == 1]\n",
     "def f(a):\n    return (lambda: 1) if a.segments is None else 2\n",
+    "if a.segments.is_single:\n    pass\n",
+    "if act.segments[1:]:\n    pass\n",
+    "ok = bool(x) and len(segments) == 1\n",
 ])
 def test_the_branch_finder_finds_every_kind_of_branch(code):
     assert segment_branches(code), code
@@ -79,7 +103,9 @@ def test_the_branch_finder_finds_every_kind_of_branch(code):
 def test_the_branch_finder_lets_uses_of_a_chain_pass():
     code = ("for k, seg in enumerate(act.segments):\n    out.append(seg)\n"
             "n = len(act.segments)\nlabel = act.segments.label(0)\n"
-            "rows = [s.choice for s in a.segments if s.choice is not None]\n")
+            "rows = [s.choice for s in a.segments if s.choice is not None]\n"
+            "if all(s.choice is not None for s in act.segments):\n    pass\n"
+            "if any(map(bool, zip(a.segments, b))):\n    pass\n")
     assert segment_branches(code) == []
 
 
