@@ -446,8 +446,13 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = (p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(a.strip(pieces) for a, pieces in zip(self.actuators,
-                                                                             self.segment_curves(p, method=method)))
+            strips: dict = {}  # identical actuators (the same segment curves, bent pieces and stub) share one strip
+            for a, pieces in zip(self.actuators, self.segment_curves(p, method=method)):
+                same = (tuple(map(id, pieces)), a.bend_pieces(), a.plan.tube.end_margin_mm)
+                if same not in strips:
+                    strips[same] = a.strip(pieces)
+                strips[a.name] = strips[same]
+            self._curves[key] = tuple(strips[a.name] for a in self.actuators)
         return self._curves[key]
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
@@ -483,7 +488,7 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = ("segments", p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(tuple(self.model_curve(s.model, p, method=method) for s in a.segments)
+            self._curves[key] = tuple(tuple(self._model_curve(s.model, p, method) for s in a.segments)
                                       for a in self.actuators)
         return self._curves[key]
 
@@ -511,9 +516,11 @@ class DesignAnalysis:
         >>> a.model_curve(a.actuators[0].model, [200.0]) is a.segment_curves([200.0])[0][0]
         True
         """
+        return self._model_curve(model, self._grid(pressures_kpa), method)
+
+    def _model_curve(self, model, p: tuple[float, ...], method: str):
         from .curve import curve
 
-        p = self._grid(pressures_kpa)
         key = ("model", model, p, method)
         if key not in self._curves:
             self._curves[key] = curve(model, p, method=method)
