@@ -98,7 +98,7 @@ from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS,
 from .centerline import Centerline, as_centerline
 from .chain import UNGIVEN, Chain
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
-from .limits import format_limit, on_grid
+from .limits import MAX_STITCH_MM, MIN_STITCH_MM, format_limit, on_grid
 from .params import PatternParams, StitchOptions, Tube, ZigzagParams
 from .plan import ActuatorPlan, Command, Role, StitchPlan
 from .segments import SegmentSpec, chain_records, check_segments, segmented
@@ -126,14 +126,26 @@ __all__ = [
 
 
 class P0Source(str, enum.Enum):
-    """Where an actuator's transition pressure P0 comes from when no ``p0_kpa`` is given."""
+    """Where an actuator's transition pressure P0 comes from when no ``p0_kpa`` is given.
+
+    Examples
+    --------
+    >>> P0Source("geometry"), ModelSettings().p0_source.value
+    (<P0Source.GEOMETRY: 'geometry'>, 'calibration')
+    """
 
     CALIBRATION = "calibration"  #: the calibration set's fitted P0 (fitted together with its G)
     GEOMETRY = "geometry"  #: the tube law's pressure at the sleeve radius r0 of the generated stitches
 
 
 class TubeLaw(str, enum.Enum):
-    """Inflation-phase law of the tube (docs/model.md, inflation phase)."""
+    """Inflation-phase law of the tube (docs/model.md, inflation phase).
+
+    Examples
+    --------
+    >>> TubeLaw("thick-wall").name, ModelSettings().tube_law.value
+    ('THICK_WALL', 'paper')
+    """
 
     PAPER = "paper"  #: the paper's fitted Neo-Hookean law with G_e
     THICK_WALL = "thick-wall"  #: exact thick-walled plane-strain Neo-Hookean tube
@@ -182,8 +194,8 @@ class MachineSettings:
     format: str = "dst"
     hoop_width_mm: float = 200.0
     hoop_height_mm: float = 200.0
-    min_stitch_mm: float = 0.3
-    max_stitch_mm: float = 12.1
+    min_stitch_mm: float = MIN_STITCH_MM
+    max_stitch_mm: float = MAX_STITCH_MM
     speed_spm: float = 600.0
     cord_stop: str = "sequence"
     placement_line: bool = False
@@ -255,6 +267,15 @@ class OperationSettings:
 
 def names_calibration_file(value: str) -> bool:
     """True when a calibration setting names a file (``.toml`` or a path) rather than a set.
+
+    Parameters
+    ----------
+    value : str
+        A ``calibration`` setting.
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
@@ -759,7 +780,27 @@ def design_to_dict(design: Design) -> dict:
 
 # ---------------------------------------------------------------------- plans
 def generate_actuator(spec: ActuatorSpec, tube: Tube = Tube()) -> StitchPlan:
-    """One actuator's complete plan; errors are prefixed with the actuator's name."""
+    """One actuator's complete plan; errors are prefixed with the actuator's name.
+
+    Parameters
+    ----------
+    spec : ActuatorSpec
+        The actuator as the design asks for it.
+    tube : Tube, optional
+        The design's tube.
+
+    Returns
+    -------
+    StitchPlan
+        One actuator's plan.
+
+    Examples
+    --------
+    >>> d = default_design()
+    >>> plan = generate_actuator(d.actuators[0], d.tube)
+    >>> plan.actuators[0].name, plan.stitch_count
+    ('A1', 106)
+    """
     try:
         return segmented(spec.centerline, spec.segments, tube=tube, options=spec.options, name=spec.name)
     except EmbroactError as exc:
@@ -773,13 +814,34 @@ def _jumps(a: np.ndarray, b: np.ndarray, max_jump_mm: float) -> np.ndarray:
     return on_grid(a + (b - a) * (np.arange(1, n + 1) / n)[:, None])
 
 
-def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = 12.1) -> StitchPlan:
+def join_plans(plans, *, name: str = "embroact", max_jump_mm: float = MAX_STITCH_MM) -> StitchPlan:
     """Concatenate complete plans into one, in order.
 
     Each plan's END is dropped; JUMP records (role TRAVEL, owned by the next actuator) lead
     from one plan's last point to the next plan's first, each step at most
     ``max_jump_mm - machine_grid_mm`` per axis (room for rounding to the machine grid);
     actuator indices are renumbered; one END closes the result.
+
+    Parameters
+    ----------
+    plans : iterable of StitchPlan
+        Complete plans, at least one.
+    name : str, optional
+        The joined plan's name.
+    max_jump_mm : float, optional
+        Longest jump per axis [mm].
+
+    Returns
+    -------
+    StitchPlan
+
+    Examples
+    --------
+    >>> d = default_design()
+    >>> one = generate_actuator(d.actuators[0], d.tube)
+    >>> both = join_plans([one, one])  # the second sewn over the first: 100 mm of travel back
+    >>> len(both.actuators), both.stitch_count, int((both.commands == Command.JUMP).sum())
+    (2, 212, 9)
     """
     plans = list(plans)
     if not plans:
@@ -874,6 +936,16 @@ def _start_estimate(design: Design) -> tuple[np.ndarray, float]:
 def check_design_records(design: Design) -> None:
     """PatternError when ``design`` would need more than :data:`~embroact.patterns.assemble.MAX_RECORDS`
     records, travel jumps between actuators included; counted from the parameters, nothing generated.
+
+    Parameters
+    ----------
+    design : Design
+        The design.
+
+    Raises
+    ------
+    PatternError
+        Too many records; the message says how many and what to change.
 
     Examples
     --------

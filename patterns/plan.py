@@ -89,6 +89,15 @@ class Realised:
         Number of passes over the path (1 for zigzag).
     start_mm : float
         Arc length along the centerline where the legs start (the first leg's nearer end) [mm].
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> act = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1").actuators[0]
+    >>> r = act.realised
+    >>> r.width_mm, r.interval_mm, round(r.angle_deg, 4), r.length_mm, r.passes
+    (7.0, 1.0, 8.1301, 20.0, 1)
     """
 
     width_mm: float
@@ -168,6 +177,14 @@ class ActuatorPlan(KindOf):
     segments : Chain of SegmentPlan
         The actuator's segments (:mod:`embroact.patterns.segments`), one or more, in order along
         the path. Given none, a chain of one over the whole path made of ``params`` and ``realised``.
+
+    Examples
+    --------
+    >>> from embroact.patterns.zigzag import zigzag
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> act = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1").actuators[0]
+    >>> act.name, act.pattern, act.params.width_mm, len(act.segments)
+    ('A1', 'zigzag', 7.0, 1)
     """
 
     name: str
@@ -211,7 +228,20 @@ class ActuatorPlan(KindOf):
                                                                seg.start_mm + seg.length_mm))
 
     def corridor(self):
-        """Shapely polygon where no needle may land: centerline buffered by r_f + clearance."""
+        """Shapely polygon where no needle may land: centerline buffered by r_f + clearance.
+
+        Returns
+        -------
+        shapely.Polygon
+
+        Examples
+        --------
+        >>> from embroact.patterns.zigzag import zigzag
+        >>> from embroact.patterns.params import ZigzagParams
+        >>> act = zigzag([[0.0, 0.0], [20.0, 0.0]], ZigzagParams(7.0, 1.0), name="A1").actuators[0]
+        >>> act.corridor().bounds, act.corridor().area  # 1.5 + 0.3 mm each side of a 20 mm path
+        ((0.0, -1.8, 20.0, 1.8), 72.0)
+        """
         return self.centerline.as_linestring().buffer(self.tube.corridor_radius_mm, cap_style="flat")
 
 

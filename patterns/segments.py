@@ -77,10 +77,17 @@ class SegmentSpec(KindFields):
     Parameters
     ----------
     params : PatternParams
+        Its pattern.
     length_mm : float
         Length of the path the segment covers [mm], > 0.
     adjust : str
         Cross only: what may change to close the pattern (``"auto"``, ``"interval"``, ``"angle"``).
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> SegmentSpec(ZigzagParams(7.0, 1.0), 30.0)
+    SegmentSpec(params=ZigzagParams(width_mm=7.0, interval_mm=1.0), length_mm=30.0, adjust='auto')
     """
 
     params: PatternParams
@@ -101,6 +108,17 @@ def pattern_parts(act: ActuatorPlan) -> tuple[tuple[str, PatternParams, Realised
     Rules comparing the request with what was sewn loop over these; ``label`` is the chain's
     message prefix (:meth:`~embroact.patterns.chain.Chain.label`: ``""`` in a chain of one).
 
+    Parameters
+    ----------
+    act : ActuatorPlan
+        A generated actuator.
+
+    Returns
+    -------
+    tuple of (str, PatternParams, Realised)
+
+    Examples
+    --------
     >>> from embroact.patterns.params import ZigzagParams
     >>> segs = (SegmentSpec(ZigzagParams(7.0, 1.0), 30.0), SegmentSpec(ZigzagParams(9.0, 1.0), 30.0))
     >>> act = segmented(Centerline.straight(60.0), segs).actuators[0]
@@ -117,6 +135,19 @@ def check_segments(cl: Centerline, segments) -> tuple[SegmentSpec, ...]:
     """``segments`` as a tuple if it is a non-empty sequence of :class:`SegmentSpec` whose lengths
     add up to the path's within ``LENGTH_MATCH_MM``; :class:`ParameterError` otherwise.
 
+    Parameters
+    ----------
+    cl : Centerline
+        The path.
+    segments : sequence of SegmentSpec
+        The chain.
+
+    Returns
+    -------
+    tuple of SegmentSpec
+
+    Examples
+    --------
     >>> from embroact.patterns.params import ZigzagParams
     >>> check_segments(Centerline.straight(60.0), [SegmentSpec(ZigzagParams(7.0, 1.0), 50.0)])
     Traceback (most recent call last):
@@ -187,6 +218,7 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
     Parameters
     ----------
     centerline : Centerline or anything :func:`as_centerline` takes
+        The path.
     segments : sequence of SegmentSpec
         In order from the path's start; lengths adding up to the path's (within ``LENGTH_MATCH_MM``).
     tube, options, name
@@ -202,6 +234,14 @@ def segmented(centerline, segments, *, tube: Tube = Tube(), options: StitchOptio
     ------
     ParameterError, PathError, PatternError
         As the layouts, the message prefixed with ``segment[k]: `` in a chain of more than one.
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import ZigzagParams
+    >>> segs = [SegmentSpec(ZigzagParams(7.0, 1.0), 30.0), SegmentSpec(ZigzagParams(9.0, 1.0), 30.0)]
+    >>> act = segmented(Centerline.straight(60.0), segs, name="S").actuators[0]
+    >>> [round(s.realised.width_mm, 3) for s in act.segments]
+    [7.0, 9.0]
     """
     cl = as_centerline(centerline)
     segs = Chain(check_segments(cl, segments))

@@ -65,6 +65,17 @@ PRESSURE_STEP_KPA = 10.0
 def pressure_grid_kpa(max_pressure_kpa: float, step_kpa: float = PRESSURE_STEP_KPA) -> tuple[float, ...]:
     """0 to ``max_pressure_kpa`` in ``step_kpa`` steps, the top pressure always included.
 
+    Parameters
+    ----------
+    max_pressure_kpa : float
+        The top [kPa].
+    step_kpa : float, optional
+        The step [kPa].
+
+    Returns
+    -------
+    tuple of float
+
     Examples
     --------
     >>> pressure_grid_kpa(25.0)
@@ -88,6 +99,18 @@ class SegmentAnalysis:
     choice : ModelChoice or None
         The segment's model (calibration at its own pattern); ``None`` with ``model_error``.
     model_error : str
+        Why it has no model (empty when it has one).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+    >>> analysis = analyse(d)
+    >>> seg = analysis.actuators[0].segments[1]
+    >>> seg.plan.start_mm, round(seg.derived.r0_mm, 4), seg.choice.model.g_mpa, seg.model_error
+    (50.0, 3.1539, 3.4, '')
     """
 
     plan: SegmentPlan
@@ -103,7 +126,23 @@ class SegmentAnalysis:
         return self.choice.model
 
     def as_dict(self) -> dict:
-        """JSON-ready: where the segment lies, its derived geometry and model."""
+        """JSON-ready: where the segment lies, its derived geometry and model.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import design_from_dict
+        >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+        ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+        ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+        >>> analysis = analyse(d)
+        >>> d = analysis.actuators[0].segments[1].as_dict()
+        >>> d["pattern"], d["start_mm"], d["model_error"]
+        ('zigzag', 50.0, None)
+        """
         p = self.plan
         return {"pattern": p.pattern, "start_mm": p.start_mm, "length_mm": p.length_mm,
                 "first_leg_mm": p.first_leg_mm, "transition_mm": p.transition_mm, "join_run_mm": p.join_run_mm,
@@ -129,6 +168,17 @@ class StripCurve:
         Each segment's own curve, in order along the path.
     method : str
         The segments' methods (one name when they agree).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+    >>> analysis = analyse(d)
+    >>> strip = analysis.curves([0.0, 200.0])[0]
+    >>> type(strip).__name__, strip.theta_deg.round(2).tolist(), len(strip.segments)
+    ('StripCurve', [0.0, 58.94], 2)
     """
 
     pressure_kpa: np.ndarray
@@ -138,11 +188,47 @@ class StripCurve:
     method: str
 
     def segment_theta_deg(self, index: int) -> tuple[float, ...]:
-        """Each segment's bend at pressure number ``index`` [deg]."""
+        """Each segment's bend at pressure number ``index`` [deg].
+
+        Parameters
+        ----------
+        index : int
+            Index into ``pressure_kpa``.
+
+        Returns
+        -------
+        tuple of float
+            In order along the path; they add up to ``theta_deg[index]``.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import design_from_dict
+        >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+        ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+        ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+        >>> analysis = analyse(d)
+        >>> [round(t, 2) for t in analysis.curves([0.0, 200.0])[0].segment_theta_deg(1)]
+        [51.47, 7.47]
+        """
         return tuple(float(c.theta_deg[index]) for c in self.segments)
 
     def as_dict(self) -> dict:
-        """JSON-ready: ``pressure_kpa``, ``theta_deg``, ``status`` names and ``method``."""
+        """JSON-ready: ``pressure_kpa``, ``theta_deg``, ``status`` names and ``method``.
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import design_from_dict
+        >>> d = design_from_dict({"actuator": [{"name": "S", "segment": [
+        ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+        ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
+        >>> analysis = analyse(d)
+        >>> analysis.curves([0.0, 200.0])[0].as_dict()["status"]
+        ['INFLATION', 'BENDING']
+        """
         from .status import status_names
 
         return {"pressure_kpa": self.pressure_kpa.tolist(), "theta_deg": self.theta_deg.tolist(),
@@ -360,6 +446,17 @@ class DesignAnalysis:
     Curves are computed on request and kept: the same pressures and method give the same
     :class:`~embroact.predict.curve.Curve` objects, so a build's rules, chart, side view,
     3D shape and report share one evaluation.
+
+    Attributes
+    ----------
+    design : Design
+        The design analysed.
+    plan : StitchPlan
+        Its stitch plan.
+    actuators : tuple of ActuatorAnalysis
+        One per actuator, in sewing order.
+    calibration_sets : tuple of CalibrationSet
+        The sets read from files that its settings name.
 
     Examples
     --------
@@ -737,6 +834,24 @@ def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = No
     How command-line flags (``--g-mpa``, ``--p0-kpa``, ``--p0-source``, ``--calibration``,
     ``--tube-law``) take precedence over a design file: flag > design file > default.
 
+    Parameters
+    ----------
+    design : Design
+        The design.
+    actuators : iterable of str or None, optional
+        Only these actuators (default: all).
+    **overrides
+        :class:`ModelSettings` fields; None values are ignored.
+
+    Returns
+    -------
+    Design
+
+    Raises
+    ------
+    ParameterError
+        A name that is no ModelSettings field.
+
     Examples
     --------
     >>> from embroact.patterns.design import default_design
@@ -770,6 +885,15 @@ def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets,
 def segment_plans(act: ActuatorPlan) -> tuple[ActuatorPlan, ...]:
     """Each segment of an actuator's chain as a single-pattern plan (named ``A1[0]``..., a chain of one
     ``A1``), what its sleeve geometry is derived from.
+
+    Parameters
+    ----------
+    act : ActuatorPlan
+        A generated actuator.
+
+    Returns
+    -------
+    tuple of ActuatorPlan
 
     Examples
     --------

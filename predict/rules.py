@@ -35,6 +35,7 @@ import numpy as np
 
 from ..patterns.base.errors import check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
+from ..patterns.design import OperationSettings
 from ..patterns.rules import RuleSettings, sort_findings
 from .sleeve_rules import DESIGN_RULES, check_without_model
 from .status import VALIDITY_LIMITS, Status, is_model_state
@@ -90,10 +91,15 @@ class ModelRuleSettings:
         Fraction of the lock-up angle counted as locked, in (0, 1].
     method : str
         Model method (``embroact.predict.curve``), default ``"auto"``.
+
+    Examples
+    --------
+    >>> ModelRuleSettings()
+    ModelRuleSettings(max_pressure_kpa=300.0, max_bend_deg=180.0, lockup_fraction=0.9, method='auto')
     """
 
-    max_pressure_kpa: float = 300.0
-    max_bend_deg: float = 180.0
+    max_pressure_kpa: float = OperationSettings().max_pressure_kpa  # the design's defaults: one home
+    max_bend_deg: float = OperationSettings().max_bend_deg
     lockup_fraction: float = 0.9
     method: str = "auto"
 
@@ -104,7 +110,25 @@ class ModelRuleSettings:
 
     @classmethod
     def for_operation(cls, operation, **overrides) -> "ModelRuleSettings":
-        """From a design's ``OperationSettings`` (``max_pressure_kpa``, ``max_bend_deg``)."""
+        """From a design's ``OperationSettings`` (``max_pressure_kpa``, ``max_bend_deg``).
+
+        Parameters
+        ----------
+        operation : OperationSettings
+            The design's operation limits.
+        **overrides
+            Any other field.
+
+        Returns
+        -------
+        ModelRuleSettings
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import OperationSettings
+        >>> ModelRuleSettings.for_operation(OperationSettings(max_pressure_kpa=250.0), method="stable-analytic-trace")
+        ModelRuleSettings(max_pressure_kpa=250.0, max_bend_deg=180.0, lockup_fraction=0.9, method='stable-analytic-trace')
+        """
         base = dict(max_pressure_kpa=operation.max_pressure_kpa, max_bend_deg=operation.max_bend_deg)
         base.update(overrides)
         return cls(**base)
@@ -204,6 +228,25 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
 
     Actuators without a sleeve (r0 <= r_f) are left to EA201: the model has no
     inflation phase to start from.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    settings : ModelRuleSettings or None, optional
+        Thresholds; None: from the design's operation limits.
+
+    Returns
+    -------
+    tuple of Finding
+        Worst first.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> [f.code for f in check_model(analyse(default_design()))]  # bends past 180 deg at 300 kPa; demo calibration
+    ['EA403', 'EA406']
     """
     settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
     found: list[Finding] = []

@@ -118,10 +118,50 @@ DESIGN_RULES = tuple(sorted(GEOMETRY_RULES + SLEEVE_RULES, key=lambda r: r.code)
 
 def check_without_model(plan: StitchPlan, settings: RuleSettings | None = None, *, rules=DESIGN_RULES):
     """Every geometric, pattern, file-structure and sleeve rule (or those of ``rules``) on a design's plan;
-    findings worst first."""
+    findings worst first.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        A design's plan.
+    settings : RuleSettings or None, optional
+        Thresholds; None: the defaults.
+    rules : iterable of Rule, optional
+        The rules to run.
+
+    Returns
+    -------
+    tuple of Finding
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> check_without_model(build_plan(default_design()))
+    ()
+    """
     return geometry.check_geometry(plan, settings, rules=rules)
 
 
 def check_layout(layout: Layout, settings: RuleSettings | None = None):
-    """The same rules for an embroidery file's layout (rules for designs only are skipped)."""
+    """The same rules for an embroidery file's layout (rules for designs only are skipped).
+
+    Parameters
+    ----------
+    layout : Layout
+        An embroidery file's records and tubes.
+    settings : RuleSettings or None, optional
+        Thresholds; None: the defaults.
+
+    Returns
+    -------
+    tuple of Finding
+
+    Examples
+    --------
+    >>> from embroact.patterns.rules import TubeLayout
+    >>> tube = TubeLayout.from_path("A", [(0, 0), (8, 0)], outer_radius_mm=1.5, clearance_mm=0.3, end_margin_mm=0.0,
+    ...                             half_width_mm=1.6)
+    >>> sorted({f.code for f in check_layout(Layout.from_points([(2, 1.6), (3, -1.6)], [0, 0], [0, 0], tubes=(tube,)))})
+    ['EA101', 'EA202']
+    """
     return geometry.check_layout(layout, settings, rules=DESIGN_RULES)

@@ -83,13 +83,9 @@ import textwrap  # noqa: E402
 
 PACKAGES = ("embroact", "embroact.patterns", "embroact.predict", "embroact.export")
 
-#: Modules whose public names are not yet all documented to the standard above (shrinking).
-UNDOCUMENTED_MODULES = frozenset({
-    "embroact.export.cli.cmd_predict", "embroact.export.pictures.previews", "embroact.export.report.worksheet",
-    "embroact.export.studio.session", "embroact.export.studio.views", "embroact.patterns.design",
-    "embroact.patterns.plan", "embroact.patterns.segments", "embroact.predict.analysis", "embroact.predict.rules",
-    "embroact.predict.sleeve_rules",
-})
+#: Modules whose public names are not yet all documented to the standard above: none left. A module
+#: may be listed here only while it is being brought up to the standard, and leaves once it passes.
+UNDOCUMENTED_MODULES: frozenset[str] = frozenset()
 
 
 def _modules() -> list[str]:

@@ -38,7 +38,24 @@ from .target import add_model_arguments, add_quick_arguments, analyse_target, lo
 __all__ = ["add_arguments", "run", "parse_pressures"]
 
 def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
-    """Options of ``embroact predict``."""
+    """Options of ``embroact predict``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+    name : str
+        The command's name (``"predict"``).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact predict")
+    >>> add_arguments(parser, "predict")
+    >>> args = parser.parse_args(["zigzag", "--width-mm", "7", "--pressure-kpa", "0,100"])
+    >>> args.target, args.width_mm, args.pressure_kpa, args.method
+    ('zigzag', 7.0, '0,100', 'auto')
+    """
     parser.add_argument("target", metavar="KIND|DESIGN.toml",
                         help="a pattern kind with quick parameters ("
                         + ", ".join(PATTERN_KINDS.names()) + "), or a design file")
@@ -167,7 +184,31 @@ def _strip_table(act, c, segment_curves, reading) -> str:
 
 
 def run(args) -> int:
-    """Predict and print; return the exit code."""
+    """Predict and print; return the exit code.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (:func:`add_arguments`), with ``command`` set to ``"predict"``.
+
+    Returns
+    -------
+    int
+        The exit code (:mod:`embroact.export.cli.main`).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="embroact predict")
+    >>> add_arguments(parser, "predict")
+    >>> args = parser.parse_args(["zigzag", "--width-mm", "7", "--g-mpa", "2.7", "--p0-kpa", "85", "--pressure-kpa", "200"])
+    >>> args.command = "predict"
+    >>> run(args)  # doctest: +ELLIPSIS
+    A1: zigzag w=7 mm s=1 mm l0=100 mm; r0 2.581 mm; G 2.7 MPa (given), P0 85 kPa (given); ...
+    pressure_kpa  theta_deg  status ...
+       200.000     102.930   BENDING ...
+    0
+    """
     from ...patterns.base.errors import ParameterError
 
     quick = args.target in PATTERN_KINDS.names()

@@ -79,6 +79,23 @@ def side_pressures(pressure_kpa, theta_deg, *, count: int = DEFAULT_SIDE_STATES)
     """Up to ``count`` sampled pressures, evenly spread over the range, with a finite angle.
 
     The nearest sample to each of ``count`` evenly spaced targets is taken (no repeats).
+
+    Parameters
+    ----------
+    pressure_kpa, theta_deg : array_like (n,)
+        A curve's samples [kPa, deg]; NaN angles are skipped.
+    count : int, optional
+        Most pressures.
+
+    Returns
+    -------
+    tuple of float
+        Ascending [kPa].
+
+    Examples
+    --------
+    >>> side_pressures([0, 10, 20, 30, 40], [0, 1, 2, float("nan"), 4], count=3)
+    (0.0, 20.0, 40.0)
     """
     p = np.asarray(pressure_kpa, dtype=np.float64)[np.isfinite(np.asarray(theta_deg, dtype=np.float64))]
     if len(p) == 0:
@@ -99,7 +116,29 @@ def _valid(curve) -> np.ndarray:
 def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     """(pressure, theta) for a drawn shape: the highest sampled pressure whose state the model
     describes (not coiled, kinked or over-stretched: :func:`embroact.predict.validity.valid_mask`),
-    or the curve interpolated linearly at ``pressure_kpa`` (which must lie in that valid range)."""
+    or the curve interpolated linearly at ``pressure_kpa`` (which must lie in that valid range).
+
+    Parameters
+    ----------
+    curve : Curve or StripCurve
+        A predicted curve.
+    pressure_kpa : float or None
+        The pressure wanted [kPa]; None: the highest drawable one.
+
+    Returns
+    -------
+    tuple of float
+        [kPa, deg].
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> [round(v, 2) for v in shape_theta_deg(curves[0], None)], [round(v, 2) for v in shape_theta_deg(curves[0], 150.0)]
+    ([300.0, 234.19], [150.0, 53.71])
+    """
     p, theta, _ = shape_state(curve, pressure_kpa)
     return p, theta
 
@@ -112,6 +151,20 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
     A strip's state is drawable only where every segment's is and the strip has not coiled
     (its status); each segment's bend is interpolated over the same drawable pressures, so the
     segments' bends add up to the strip's.
+
+    Parameters
+    ----------
+    curve : Curve or StripCurve
+        A predicted curve.
+    pressure_kpa : float or None
+        The pressure wanted [kPa]; None: the highest drawable one.
+
+    Returns
+    -------
+    pressure, theta : float
+        [kPa, deg].
+    parts : tuple of float
+        Each segment's bend there [deg].
 
     Examples
     --------
@@ -143,18 +196,83 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
 
 
 def piece_lengths_mm(act) -> tuple[float, ...]:
-    """The length of each of ``act.bend_pieces()`` [mm]: the chain of arcs, transitions unbent."""
+    """The length of each of ``act.bend_pieces()`` [mm]: the chain of arcs, transitions unbent.
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> piece_lengths_mm(act)
+    (50.0, 50.0)
+    """
     return tuple(length for length, _ in act.bend_pieces())
 
 
 def piece_theta_deg(act, segment_theta_deg: Sequence[float]) -> tuple[float, ...]:
-    """The bend of each of ``act.bend_pieces()`` given each segment's bend [deg] (0 for the unbent pieces)."""
+    """The bend of each of ``act.bend_pieces()`` given each segment's bend [deg] (0 for the unbent pieces).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+    segment_theta_deg : sequence of float
+        Each segment's bend [deg].
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> piece_theta_deg(act, [30.0, 10.0])
+    (30.0, 10.0)
+    """
     return tuple(float(segment_theta_deg[k]) if k >= 0 else 0.0 for _, k in act.bend_pieces())
 
 
 def segment_boundaries_mm(act) -> tuple[float, ...]:
     """Arc lengths where one segment gives way to the next [mm]: the middle of the unbent transition
-    between one segment's legs and the next's (``()`` for a chain of one)."""
+    between one segment's legs and the next's (``()`` for a chain of one).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> segment_boundaries_mm(act)
+    (50.0,)
+    """
     segs = act.segments
     return tuple((a.plan.first_leg_mm + a.derived.length_mm + b.plan.first_leg_mm) / 2.0
                  for a, b in zip(segs, segs[1:]))
@@ -162,7 +280,28 @@ def segment_boundaries_mm(act) -> tuple[float, ...]:
 
 def sleeve_mm(act) -> tuple[float, float]:
     """(width w, sleeve radius r0) [mm] a view draws an actuator with: a segmented one's widest
-    segment and largest r0 (the views draw one tube and one pair of rails per actuator)."""
+    segment and largest r0 (the views draw one tube and one pair of rails per actuator).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> [round(v, 4) for v in sleeve_mm(act)]
+    [9.0, 3.1539]
+    """
     parts = [s.derived for s in act.segments]
     return max(d.width_mm for d in parts), max(d.r0_mm for d in parts)
 
@@ -189,6 +328,16 @@ def _label(name: str, d, choice) -> str:
 def model_caption(analysis) -> str:
     """The tube law(s) and tube(s) of the models, for the chart title (the legend names G and P0).
 
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+
+    Returns
+    -------
+    str
+        Empty when no actuator has a model.
+
     Examples
     --------
     >>> from embroact.patterns.design import default_design
@@ -209,14 +358,41 @@ def model_caption(analysis) -> str:
 
 def actuator_series(act, curve, measured: tuple | None = None, band=None,
                     operating_point: tuple[float, float] | None = None) -> list[Series]:
-    """Chart series of one analysed actuator and its curve; ``measured`` is (pressure_kpa, theta_deg) or None,
-    ``band`` the 1-sigma band of its fitted calibration at the curve's pressures
-    (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or None, ``operating_point`` the design's
-    target (pressure_kpa, theta_deg) marked on the actuator's curve (:func:`operating_points`) or None.
+    """Chart series of one analysed actuator and its curve.
 
     The whole strip (the sum of its segments' bends, which measurements of the tip angle are
     compared with) and then, for a chain of more than one, one series per segment, each with its
-    own pattern, G and P0 (a chain of one: its segment is the whole strip)."""
+    own pattern, G and P0 (a chain of one: its segment is the whole strip).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        The actuator.
+    curve : Curve or StripCurve
+        Its curve.
+    measured : tuple or None, optional
+        (pressure_kpa, theta_deg) of measured points.
+    band : Band or None, optional
+        The 1-sigma band of its fitted calibration at the curve's pressures
+        (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`).
+    operating_point : (float, float) or None, optional
+        The design's target (pressure_kpa, theta_deg) marked on the curve (:func:`operating_points`).
+
+    Returns
+    -------
+    list of Series
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> [s.label.split(":")[0] for s in actuator_series(act, seg.curves()[0])]
+    ['S whole strip', 'S segment 0 (zigzag), w 7.0 mm', 'S segment 1 (zigzag), w 9.0 mm']
+    """
     segs = act.segments
     whole = segs.one_or_all(lambda: _label(act.name, act.derived, act.choice),
                             lambda: f"{act.name} whole strip: sum of its {len(segs)} segments")
@@ -235,6 +411,18 @@ def operating_points(analysis) -> tuple:
     actuator's predicted bend there (a target-shape design). None for every actuator when the design has no
     target pressure, and for one without a bend there.
 
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+
+    Returns
+    -------
+    tuple
+        One (pressure_kpa, theta_deg) or None per actuator.
+
+    Examples
+    --------
     >>> import dataclasses
     >>> from embroact.patterns.design import OperationSettings, default_design
     >>> from embroact.predict.analysis import analyse
@@ -257,7 +445,28 @@ def operating_points(analysis) -> tuple:
 
 def curve_bands(analysis, curves) -> tuple:
     """The 1-sigma band of each actuator at its curve's pressures, None where its calibration has no
-    covariance (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or the curves' pressures differ."""
+    covariance (:meth:`~embroact.predict.analysis.DesignAnalysis.bands`) or the curves' pressures differ.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator.
+
+    Returns
+    -------
+    tuple of Band or None
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> curve_bands(analysis, curves)  # the paper's set records no covariance
+    (None,)
+    """
     grids = {tuple(float(p) for p in c.pressure_kpa) for c in curves}
     if len(grids) != 1:
         return (None,) * len(curves)
@@ -265,8 +474,32 @@ def curve_bands(analysis, curves) -> tuple:
 
 
 def bend_series(analysis, curves, measured: Mapping[str, tuple] | None = None, bands=None) -> list[Series]:
-    """Chart series of every actuator (:func:`actuator_series`); ``measured`` maps actuator name ->
-    (pressure_kpa, theta_deg); ``bands`` has one band (or None) per actuator (default :func:`curve_bands`)."""
+    """Chart series of every actuator (:func:`actuator_series`).
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator.
+    measured : mapping, optional
+        Actuator name -> (pressure_kpa, theta_deg) of measured points.
+    bands : sequence, optional
+        One band (or None) per actuator (default :func:`curve_bands`).
+
+    Returns
+    -------
+    list of Series
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> [s.label for s in bend_series(analysis, curves)]
+    ['A1, w 7.0 mm: G 2.7 MPa, P0 85 kPa (paper-2025)']
+    """
     measured = dict(measured or {})
     bands = curve_bands(analysis, curves) if bands is None else bands
     series = [s for a, c, b, op in zip(analysis.actuators, curves, bands, operating_points(analysis))
@@ -322,7 +555,29 @@ def vars_of(s: Series) -> dict:
 
 def breakpoints_kpa(analysis) -> tuple[float, ...]:
     """Where a curve of the design changes branch: the transition pressure P0 of every actuator and
-    segment with a model, ascending, each once."""
+    segment with a model, ascending, each once.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+
+    Returns
+    -------
+    tuple of float
+        [kPa].
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> seg = analyse(design_from_dict({"actuator": [{"name": "S", "segment": [
+    ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
+    ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]}))
+    >>> act = seg.actuators[0]
+    >>> breakpoints_kpa(seg)
+    (85.0, 180.0)
+    """
     models = [p.model for a in analysis.actuators for p in a.segments if p.choice is not None]
     return tuple(sorted({float(m.p0_kpa) for m in models}))
 
@@ -331,7 +586,29 @@ def chart_curves(analysis, curves) -> tuple:
     """``curves`` at their own pressures and at every breakpoint among them (:func:`breakpoints_kpa`).
 
     Sampled there, each drawn curve's inflation part ends exactly at its P0 and its bending branch
-    starts there, instead of a chord from the last inflation sample to the first bending one."""
+    starts there, instead of a chord from the last inflation sample to the first bending one.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator, at one set of pressures.
+
+    Returns
+    -------
+    tuple of Curve
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> drawn = chart_curves(analysis, curves)
+    >>> len(curves[0].pressure_kpa), len(drawn[0].pressure_kpa), 85.0 in drawn[0].pressure_kpa
+    (31, 32, True)
+    """
     grids = {tuple(float(p) for p in c.pressure_kpa) for c in curves}
     if len(grids) != 1:
         return tuple(curves)
@@ -345,7 +622,34 @@ def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None, ba
     came from, the title the tube law and tube; a fitted calibration's 1-sigma band is shaded.
 
     The curves are drawn at their pressures and breakpoints (:func:`chart_curves`); ``bands``, when
-    given for other pressures, are taken again at those."""
+    given for other pressures, are taken again at those.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator.
+    measured : mapping, optional
+        Actuator name -> (pressure_kpa, theta_deg) of measured points.
+    bands : sequence, optional
+        One band (or None) per actuator.
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> svg = bend_chart(analysis, curves)
+    >>> svg.startswith("<svg"), "paper-zigzag: predicted bend" in svg
+    (True, True)
+    """
     caption = model_caption(analysis)
     title = f"{analysis.plan.name}: predicted bend" + (f"; tube {caption}" if caption else "")
     drawn = chart_curves(analysis, curves)
@@ -357,12 +661,55 @@ def bend_chart(analysis, curves, measured: Mapping[str, tuple] | None = None, ba
 
 def bend_chart_width_px(series) -> float:
     """Width [px] of :func:`bend_chart` for these series: long legends (a segment's pattern, G and P0)
-    widen the chart rather than narrow its plot below ``CHART_MIN_PLOT_PX``."""
+    widen the chart rather than narrow its plot below ``CHART_MIN_PLOT_PX``.
+
+    Parameters
+    ----------
+    series : sequence of Series
+        The chart's series.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> bend_chart_width_px(bend_series(analysis, curves))
+    720.0
+    """
     return CHART_WIDTH_PX + max(0.0, CHART_MIN_PLOT_PX - chart_scale(series, width_px=CHART_WIDTH_PX).width_px)
 
 
 def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[SidePanel]:
-    """Side-view panels, one per actuator, at up to ``count`` of the curve's pressures."""
+    """Side-view panels, one per actuator, at up to ``count`` of the curve's pressures.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator.
+    count : int, optional
+        Most states per panel.
+
+    Returns
+    -------
+    list of SidePanel
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> panel, = side_panels(analysis, curves, count=3)
+    >>> panel.label, panel.pressure_kpa, [round(t, 2) for t in panel.theta_deg]
+    ('A1', (0.0, 150.0, 300.0), [0.0, 53.71, 234.19])
+    """
     panels = []
     for a, c in zip(analysis.actuators, curves):
         picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
@@ -380,7 +727,35 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
 
 
 def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
-    """3D shape per actuator at ``pressure_kpa`` (default the highest predicted)."""
+    """3D shape per actuator at ``pressure_kpa`` (default the highest predicted).
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    curves : sequence of Curve
+        One per actuator.
+    pressure_kpa : float or None, optional
+        The pressure of the shapes [kPa].
+    tolerance_mm : float or None, optional
+        The meshes' chordal tolerance [mm]; None: the default, coarsened where the picture allows.
+
+    Returns
+    -------
+    shapes : list of ShapeMesh
+    pressures : dict of str to float
+        Each actuator's shape's pressure [kPa].
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> curves = analysis.curves()
+    >>> shapes, pressures = shape_meshes(analysis, curves)
+    >>> [s.name for s in shapes], pressures
+    (['A1'], {'A1': 300.0})
+    """
     from .mesh import DEFAULT_CHORD_TOLERANCE_MM, PlanarPath, actuator_mesh
 
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
@@ -399,6 +774,15 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
 def shape3d_title(pressures: Mapping[str, float]) -> str:
     """Title of the 3D picture: the pressure of each actuator's shape (one pressure when they agree).
 
+    Parameters
+    ----------
+    pressures : mapping of str to float
+        Each actuator's shape's pressure [kPa].
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> shape3d_title({"A1": 150.0, "A2": 87.5})
@@ -413,6 +797,17 @@ def shape3d_title(pressures: Mapping[str, float]) -> str:
 
 def check_side_states(value, *, name: str = "side_states") -> int:
     """``value`` if it is an integer in [1, :data:`MAX_SIDE_STATES`], else :class:`ParameterError` naming ``name``.
+
+    Parameters
+    ----------
+    value : object
+        The count given.
+    name : str, optional
+        The parameter's name for the message.
+
+    Returns
+    -------
+    int
 
     Examples
     --------

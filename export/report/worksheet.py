@@ -103,6 +103,11 @@ def over_tube_extra_mm(half_span_mm, radius_mm):
     radius_mm : float
         Tube outer radius [mm].
 
+    Returns
+    -------
+    numpy.ndarray or float
+        [mm].
+
     Examples
     --------
     >>> round(float(over_tube_extra_mm(3.5, 1.5)), 4)   # paper's zigzag, 7 mm wide
@@ -121,6 +126,7 @@ class ActuatorSheet:
     Attributes
     ----------
     name, pattern : str
+        The actuator's name and pattern kind.
     path_length_mm : float
         Centerline length [mm].
     end_margin_mm : float
@@ -128,6 +134,7 @@ class ActuatorSheet:
     tube_cut_mm : float
         Tube length to cut [mm] = path length + 2 * end margin.
     stitches : int
+        Its needle points.
     top_thread_mm, bobbin_thread_mm : float
         Estimated consumption [mm].
     legs_over_tube : int
@@ -135,6 +142,7 @@ class ActuatorSheet:
     derived : dict
         Realised parameters and derived geometry (``DerivedGeometry.as_dict()``).
     adjustments : tuple of str
+        What the generator changed to close the pattern.
     model : dict or None
         G, P0, tube and tube law with their sources (``ModelChoice.as_dict()``), when the
         worksheet was made from an analysis and the actuator has a model.
@@ -143,6 +151,16 @@ class ActuatorSheet:
         (:meth:`~embroact.predict.analysis.SegmentAnalysis.as_dict`: where each lies, its legs,
         the unbent transition to the next and the thread's run there, the realised parameters
         and derived geometry, its model); empty for a tube read from a machine file.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> sheet = worksheet(analysis.plan, analysis.design, analysis=analysis)
+    >>> a = sheet.actuators[0]
+    >>> a.name, a.path_length_mm, a.tube_cut_mm, a.stitches, a.legs_over_tube
+    ('A1', 100.0, 160.0, 106, 100)
     """
 
     name: str
@@ -167,15 +185,21 @@ class Worksheet:
     Attributes
     ----------
     name : str
+        The design's name.
     size_mm : tuple of float
         Width and height of the needle points' bounding box [mm].
     stitch_count, jump_count, trim_count, stop_count : int
+        Record counts.
     stops : tuple of str
         What the operator does at each stop, in order.
     actuators : tuple of ActuatorSheet
+        One per actuator.
     top_thread_mm, bobbin_thread_mm : float
+        Thread for the whole design [mm].
     speed_spm : float
+        Machine speed [stitches/min].
     sewing_time_s, handling_time_s : float
+        Sewing time, and the operator's time laying tubes [s].
     findings : tuple of dict
         Design-rule findings passed in (``Finding.as_dict()``).
     color_change_count : int
@@ -191,6 +215,15 @@ class Worksheet:
     operating_point : dict or None
         The design's operating point (``[operation] target_pressure_kpa``, ``target_bend_deg``) beside
         the pressure the rules judge up to (``max_pressure_kpa``); None when the design names none.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> sheet = worksheet(analysis.plan, analysis.design, analysis=analysis)
+    >>> sheet.name, sheet.size_mm, sheet.stitch_count, sheet.stop_count
+    ('paper-zigzag', (100.0, 7.0), 106, 1)
     """
 
     name: str
@@ -215,7 +248,22 @@ class Worksheet:
     operating_point: dict | None = None
 
     def as_dict(self) -> dict:
-        """JSON-ready dict with unit-suffixed keys (lengths mm, thread also m, times s)."""
+        """JSON-ready dict with unit-suffixed keys (lengths mm, thread also m, times s).
+
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> from embroact.predict.analysis import analyse
+        >>> analysis = analyse(default_design())
+        >>> sheet = worksheet(analysis.plan, analysis.design, analysis=analysis)
+        >>> d = sheet.as_dict()
+        >>> d["stitch_count"], d["top_thread_m"]
+        (106, 1.044)
+        """
         return {
             "name": self.name,
             "size_mm": [round(v, 3) for v in self.size_mm],
@@ -257,7 +305,21 @@ class Worksheet:
         }
 
     def as_text(self) -> str:
-        """Human-readable worksheet (plain text, fixed layout)."""
+        """Human-readable worksheet (plain text, fixed layout).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> from embroact.predict.analysis import analyse
+        >>> analysis = analyse(default_design())
+        >>> sheet = worksheet(analysis.plan, analysis.design, analysis=analysis)
+        >>> print(sheet.as_text().splitlines()[0])
+        PRODUCTION WORKSHEET  paper-zigzag
+        """
         t = self.sewing_time_s
         lines = [
             f"PRODUCTION WORKSHEET  {self.name}",
@@ -300,6 +362,17 @@ class Worksheet:
 def operating_point(operation) -> dict | None:
     """The worksheet's operating point of a design's ``OperationSettings`` (None without a target pressure).
 
+    Parameters
+    ----------
+    operation : OperationSettings or None
+        The design's operation limits.
+
+    Returns
+    -------
+    dict or None
+
+    Examples
+    --------
     >>> from embroact.patterns.design import OperationSettings
     >>> operating_point(OperationSettings(target_pressure_kpa=150.0, target_bend_deg=84.5))
     {'target_pressure_kpa': 150.0, 'target_bend_deg': 84.5, 'max_pressure_kpa': 300.0}
@@ -462,6 +535,17 @@ def machine_setup(machine, *, placement: bool = False) -> tuple[str, ...]:
     ``placement``: the actuators have placement lines (sewn first, then the machine stops for
     each tube).
 
+    Parameters
+    ----------
+    machine : WriteResult or None
+        The machine file written.
+    placement : bool, optional
+        The actuators have placement lines.
+
+    Returns
+    -------
+    tuple of str
+
     Examples
     --------
     >>> from embroact.export.machine.formats import WriteResult
@@ -530,6 +614,17 @@ def _start_line(plan: StitchPlan, machine) -> str:
 def check_speed_spm(speed_spm: float) -> float:
     """The worksheet's machine speed [stitches/min] if in [1, 2000]; commands call it before any work.
 
+    Parameters
+    ----------
+    speed_spm : float
+        The speed given.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
     >>> check_speed_spm(600)
     600.0
     """
@@ -551,6 +646,7 @@ def worksheet(
     Parameters
     ----------
     plan : StitchPlan
+        The design's plan.
     design : optional
         The design the plan came from; its ``name`` (if any) titles the sheet, its
         ``machine`` hoop sizes the fabric (default 200 x 200 mm).
@@ -565,6 +661,19 @@ def worksheet(
     analysis : DesignAnalysis, optional
         The analysis the plan came from: its derived geometry and models (G, P0, tube, tube
         law and their sources) go on the sheet instead of a second derivation.
+
+    Returns
+    -------
+    Worksheet
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> sheet = worksheet(analysis.plan, analysis.design, analysis=analysis)
+    >>> round(sheet.sewing_time_s, 1), sheet.stops[0].split(":")[0]
+    (18.6, 'stop 1')
     """
     spm = check_speed_spm(speed_spm)
     t_f = check_range("fabric_thickness_mm", fabric_thickness_mm, low=0.0, high=10.0, low_inclusive=True,

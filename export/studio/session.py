@@ -72,6 +72,16 @@ class Studio:
         The design file the design was read from and the design the file itself gives (before
         any command-line override): :meth:`save` then writes that file's text with only the
         fields that differ changed (:mod:`.roundtrip`), comments and drawing references kept.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from embroact.patterns.design import default_design
+    >>> out = tempfile.TemporaryDirectory()
+    >>> studio = Studio(default_design(), out.name)
+    >>> studio.design.name, studio.pressure(None)  # no operating point: 2/3 of 300 kPa
+    ('paper-zigzag', 200.0)
+    >>> out.cleanup()
     """
 
     def __init__(self, design, out_dir, calibration_sets: tuple = (), source=None) -> None:
@@ -116,7 +126,33 @@ class Studio:
 
     def pressure(self, value) -> float:
         """``value`` checked against the design's pressure range [0, max_pressure_kpa] (None: the design's
-        operating point ``target_pressure_kpa``, else 2/3 of the range)."""
+        operating point ``target_pressure_kpa``, else 2/3 of the range).
+
+        Parameters
+        ----------
+        value : object
+            A pressure [kPa], or None.
+
+        Returns
+        -------
+        float
+            [kPa].
+
+        Raises
+        ------
+        ParameterError
+            Not a number in the range.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> studio.pressure(150)
+        150.0
+        >>> out.cleanup()
+        """
         top = self.design.operation.max_pressure_kpa
         if value is None:
             target = self.design.operation.target_pressure_kpa
@@ -124,7 +160,29 @@ class Studio:
         return _number("pressure_kpa", value, low=0.0, high=top)
 
     def views(self, pressure_kpa=None) -> dict:
-        """Everything the page shows except the 3D picture (:meth:`shape3d`), as JSON-ready data."""
+        """Everything the page shows except the 3D picture (:meth:`shape3d`), as JSON-ready data.
+
+        Parameters
+        ----------
+        pressure_kpa : float or None, optional
+            The slider's pressure [kPa] (None: :meth:`pressure`'s default).
+
+        Returns
+        -------
+        dict
+            The design's name, the pressure, the fields, the findings, the pictures, the worksheet.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> v = studio.views(150.0)
+        >>> v["design"], v["pressure_kpa"], v["chart_svg"].startswith("<svg")
+        ('paper-zigzag', 150.0, True)
+        >>> out.cleanup()
+        """
         from ...patterns.base.findings import summary_line
         from .views import bend_at, chart_svg, side_svg, worksheet_figures
 
@@ -149,7 +207,28 @@ class Studio:
             }
 
     def shape3d(self, pressure_kpa=None) -> dict:
-        """The 3D picture at ``pressure_kpa`` (a separate request: it takes longest to draw)."""
+        """The 3D picture at ``pressure_kpa`` (a separate request: it takes longest to draw).
+
+        Parameters
+        ----------
+        pressure_kpa : float or None, optional
+            The slider's pressure [kPa].
+
+        Returns
+        -------
+        dict
+            ``pressure_kpa`` and ``svg``.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> sorted(studio.shape3d(150.0))
+        ['pressure_kpa', 'svg']
+        >>> out.cleanup()
+        """
         from .views import bend_at, shape3d_svg
 
         with self._lock:
@@ -161,12 +240,35 @@ class Studio:
     def edit(self, values, pressure_kpa=None) -> dict:
         """Apply ``values`` (field key -> value); the views of the new design.
 
+        Parameters
+        ----------
+        values : mapping of str to object
+            Field key -> new value.
+        pressure_kpa : float or None, optional
+            The slider's pressure [kPa].
+
+        Returns
+        -------
+        dict
+            :meth:`views` of the edited design.
+
         Raises
         ------
         FieldError
             The design file would refuse the edited design (nothing changes).
         ParameterError
             A key that is not a field, or a bad pressure.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> _ = studio.edit({"actuator[0].width_mm": 6.5})
+        >>> studio.design.actuators[0].params.width_mm
+        6.5
+        >>> out.cleanup()
         """
         with self._lock:
             form, design = apply_edits(self.form, values, self._names)
@@ -186,7 +288,33 @@ class Studio:
     def save(self, name) -> dict:
         """Write the design as TOML into the output directory: the design file it was read from with
         the edited fields changed (:func:`.roundtrip.edited_toml`), else every field
-        (:func:`~embroact.export.files.designfile.save_design`)."""
+        (:func:`~embroact.export.files.designfile.save_design`).
+
+        Parameters
+        ----------
+        name : str
+            A plain file name ending in ``.toml``.
+
+        Returns
+        -------
+        dict
+            ``file`` and ``out_dir``.
+
+        Raises
+        ------
+        OutsideOutputError
+            A name that is not a plain ``.toml`` file name inside the output directory.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> studio.save("design.toml")["file"]
+        'design.toml'
+        >>> out.cleanup()
+        """
         from ..files.atomic import write_text_atomic
         from ..files.designfile import save_design
 
@@ -204,10 +332,30 @@ class Studio:
     def build(self, *, force: bool = False) -> dict:
         """``embroact build`` of the design into the output directory (machine files, worksheet, previews, report).
 
+        Parameters
+        ----------
+        force : bool, optional
+            Write despite design-rule errors.
+
+        Returns
+        -------
+        dict
+            ``files`` written, ``out_dir``, ``stitch_count`` and the rest of the build's result.
+
         Raises
         ------
         DesignRuleError
             The rules found errors and ``force`` is false (nothing written).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> studio.build()["files"][:2]
+        ['paper-zigzag.dst', 'worksheet.json']
+        >>> out.cleanup()
         """
         from ..report.stage import previews_stage
         from ..report.build import build
@@ -230,8 +378,38 @@ class Studio:
     def inverse(self, bend_deg, pressure_kpa, *, pattern="any", actuator=0) -> dict:
         """Inverse design (:func:`embroact.predict.inverse.design_bend`) for one straight actuator of the design.
 
-        Returns the result and ``values``: the field edits that give the actuator the best
-        candidate's pattern parameters (the page applies them as any edit).
+        Parameters
+        ----------
+        bend_deg : float
+            The target bend [deg], |.| <= 720.
+        pressure_kpa : float
+            At this pressure [kPa], > 0.
+        pattern : str, optional
+            A registered pattern kind, or ``"any"``.
+        actuator : int, optional
+            Index of the actuator in the design.
+
+        Returns
+        -------
+        dict
+            The result (:meth:`~embroact.predict.inverse.BendResult.as_dict`) and ``values``: the field edits
+            that give the actuator the best candidate's pattern parameters (the page applies them as any edit).
+
+        Raises
+        ------
+        ParameterError
+            A segmented actuator, or a target out of range.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> answer = studio.inverse(84.5, 150.0, pattern="zigzag")
+        >>> answer["values"]["actuator[0].width_mm"]
+        6.2
+        >>> out.cleanup()
         """
         from ...predict.inverse import design_bend
 
@@ -257,6 +435,39 @@ class Studio:
         heading +x; y down as in SVG, so bends toward the back of the fabric go up on screen).
         The answer is kept as a proposal: :meth:`apply_proposal` puts it in the design in
         place of the actuator (same name, origin, rotation and model settings).
+
+        Parameters
+        ----------
+        path_d : str
+            SVG path data [mm].
+        pressure_kpa : float
+            At this pressure [kPa].
+        max_segments : int, optional
+            At most this many segments, in [1, 12].
+        actuator : int, optional
+            Index of the actuator in the design.
+
+        Returns
+        -------
+        dict
+            The answer (:meth:`~embroact.predict.inverse.ShapeResult.as_dict`), the actuator's name and the
+            overlay picture (``svg``).
+
+        Raises
+        ------
+        ParameterError
+            Bad path data, segment count or pressure.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> answer = studio.inverse_shape("M 0 0 A 95.5 95.5 0 0 0 82.7 -47.7", 150.0, max_segments=1)
+        >>> answer["reached"], answer["actuator"], answer["svg"].startswith("<svg")
+        (True, 'A1', True)
+        >>> out.cleanup()
         """
         from ...patterns.centerline import Centerline
         from ...predict.inverse import design_shape
@@ -300,10 +511,33 @@ class Studio:
     def apply_proposal(self, pressure_kpa=None) -> dict:
         """Put the last inverse-design proposal in the design; the new views.
 
+        Parameters
+        ----------
+        pressure_kpa : float or None, optional
+            The slider's pressure [kPa].
+
+        Returns
+        -------
+        dict
+            :meth:`views` of the design with the proposal.
+
         Raises
         ------
         ParameterError
             No proposal is waiting (none made, or already applied).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from embroact.patterns.design import default_design
+        >>> out = tempfile.TemporaryDirectory()
+        >>> studio = Studio(default_design(), out.name)
+        >>> try:
+        ...     studio.apply_proposal()
+        ... except ValueError as exc:
+        ...     print(exc)
+        no inverse-design proposal to apply: design a reachable shape first
+        >>> out.cleanup()
         """
         with self._lock:
             if self._proposal is None:

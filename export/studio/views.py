@@ -38,7 +38,28 @@ _VIEWBOX = re.compile(r'viewBox="([-\d.e]+) ([-\d.e]+) ([-\d.e]+) ([-\d.e]+)"')
 
 
 def message_svg(text: str, *, width_px: int = 480, chars_per_line: int = 70) -> str:
-    """A small SVG that says ``text``, wrapped (where a view cannot be drawn, e.g. no model)."""
+    """A small SVG that says ``text``, wrapped (where a view cannot be drawn, e.g. no model).
+
+    Parameters
+    ----------
+    text : str
+        The message (cut to 600 characters).
+    width_px : int, optional
+        The picture's width [px].
+    chars_per_line : int, optional
+        Where it wraps.
+
+    Returns
+    -------
+    str
+        SVG.
+
+    Examples
+    --------
+    >>> svg = message_svg("no side view: A1 has no model")
+    >>> svg.startswith('<svg xmlns="http://www.w3.org/2000/svg" width="480"'), "no side view" in svg
+    (True, True)
+    """
     import textwrap
 
     lines = textwrap.wrap(text[:600], chars_per_line) or [""]
@@ -53,7 +74,30 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
     """Per actuator: bend [deg] and status at ``pressure_kpa`` (per segment too), or why there is none.
 
     A segmented actuator's bend and status are its whole strip's
-    (:func:`~embroact.predict.analysis.whole_strip`), as ``embroact predict`` gives them."""
+    (:func:`~embroact.predict.analysis.strip_curve`), as ``embroact predict`` gives them.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The analysed design.
+    pressure_kpa : float
+        The pressure [kPa].
+
+    Returns
+    -------
+    list of dict
+        ``name``, ``theta_deg``, ``status``, ``segment_theta_deg`` and ``model_error`` per actuator.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> bends = bend_at(analysis, 150.0)
+    >>> b, = bends
+    >>> b["name"], round(b["theta_deg"], 2), b["status"], b["model_error"]
+    ('A1', 53.71, 'BENDING', None)
+    """
     from ...predict.status import Status
 
     try:
@@ -67,7 +111,29 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
 
 
 def stitches_svg(plan, findings) -> str:
-    """The stitch preview (:func:`~embroact.export.pictures.stitches.plan_svg`) with every placed finding circled."""
+    """The stitch preview (:func:`~embroact.export.pictures.stitches.plan_svg`) with every placed finding circled.
+
+    Parameters
+    ----------
+    plan : StitchPlan
+        The design's plan.
+    findings : sequence of Finding
+        Its design-rule findings.
+
+    Returns
+    -------
+    str
+        SVG; each finding with a place is a ``<circle class="finding ...">``.
+
+    Examples
+    --------
+    >>> import embroact.patterns.rules  # declares the rules
+    >>> from embroact.patterns.base.findings import RULES
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> svg = stitches_svg(build_plan(default_design()), [RULES.finding("EA105", "dense", xy_mm=(0.0, 3.5))])
+    >>> svg.count('class="finding warning"')
+    1
+    """
     from ..pictures.stitches import plan_svg
 
     svg = plan_svg(plan)
@@ -91,7 +157,32 @@ def stitches_svg(plan, findings) -> str:
 def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """The build's bend chart (:func:`~embroact.export.pictures.previews.bend_chart`) with the slider's
     pressure as a vertical line and each actuator's bend there as a dot; a segmented actuator has
-    the build's curve (and dot) for its whole strip and for each segment."""
+    the build's curve (and dot) for its whole strip and for each segment.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The studio's analysed design.
+    bends : list of dict
+        :func:`bend_at` at ``pressure_kpa``.
+    pressure_kpa : float
+        The slider's pressure [kPa].
+
+    Returns
+    -------
+    str
+        SVG (a message when it cannot be drawn).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> bends = bend_at(analysis, 150.0)
+    >>> svg = chart_svg(analysis, bends, 150.0)
+    >>> 'class="pressure-dot" cx="384.00"' in svg  # the bend at 150 kPa, on the curve
+    True
+    """
     from ..pictures import previews as pv
     from ..pictures.chart import chart_scale
 
@@ -123,7 +214,31 @@ def _pieces(act, bend: dict) -> tuple[tuple[float, ...], tuple[float, ...]]:
 
 def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure
-    (a segmented actuator drawn as the build draws it: widest sleeve, segment boundaries marked)."""
+    (a segmented actuator drawn as the build draws it: widest sleeve, segment boundaries marked).
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The studio's analysed design.
+    bends : list of dict
+        :func:`bend_at` at ``pressure_kpa``.
+    pressure_kpa : float
+        The slider's pressure [kPa].
+
+    Returns
+    -------
+    str
+        SVG (a message when it cannot be drawn).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> bends = bend_at(analysis, 150.0)
+    >>> side_svg(analysis, bends, 150.0).count('class="state"')
+    2
+    """
     from ..pictures import previews as pv
     from ..pictures.sideview import SidePanel, side_view_svg
 
@@ -142,7 +257,31 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
 
 def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
-    """The 3D picture (:func:`~embroact.export.pictures.meshview.mesh_svg`) of every actuator at the slider's pressure."""
+    """The 3D picture (:func:`~embroact.export.pictures.meshview.mesh_svg`) of every actuator at the slider's pressure.
+
+    Parameters
+    ----------
+    analysis : DesignAnalysis
+        The studio's analysed design.
+    bends : list of dict
+        :func:`bend_at` at ``pressure_kpa``.
+    pressure_kpa : float
+        The slider's pressure [kPa].
+
+    Returns
+    -------
+    str
+        SVG (a message when it cannot be drawn).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> analysis = analyse(default_design())
+    >>> bends = bend_at(analysis, 150.0)
+    >>> "3D shape at 150 kPa" in shape3d_svg(analysis, bends, 150.0)
+    True
+    """
     from ..pictures.mesh import PlanarPath, actuator_mesh
     from ..pictures.meshview import mesh_svg
     from ..pictures.previews import shape3d_title, sleeve_mm
@@ -162,7 +301,28 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
 
 def worksheet_figures(ws) -> dict:
-    """The worksheet's production figures (counts, thread, time, fabric, tube to cut per actuator)."""
+    """The worksheet's production figures (counts, thread, time, fabric, tube to cut per actuator).
+
+    Parameters
+    ----------
+    ws : Worksheet
+        The design's worksheet.
+
+    Returns
+    -------
+    dict
+        The figures ``worksheet.json`` holds, by the same keys.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> from embroact.export.report.worksheet import worksheet
+    >>> analysis = analyse(default_design())
+    >>> figures = worksheet_figures(worksheet(analysis.plan, analysis.design, analysis=analysis))
+    >>> figures["stitch_count"], figures["actuators"]
+    (106, [{'name': 'A1', 'tube_cut_mm': 160.0, 'stitches': 106, 'legs_over_tube': 100}])
+    """
     d = ws.as_dict()
     keep = ("stitch_count", "jump_count", "trim_count", "stop_count", "top_thread_m", "bobbin_thread_m",
             "sewing_time_s", "handling_time_s", "size_mm", "fabric_mm", "operating_point")
