@@ -15,6 +15,11 @@ from __future__ import annotations
 
 import math
 
+#: Time limit of every command [s] unless ``--time-limit-s`` says otherwise (0: none). An hour: far
+#: beyond any command on the documented input limits (the longest, a 5,000-segment path, takes ~30 s).
+#: Here (no numpy, no threads) so that ``embroact --help`` and the watchdog read one value.
+DEFAULT_TIME_LIMIT_S = 3600.0
+
 __all__ = ["TUBE_FLAGS", "MAX_PRESSURES", "MAX_PRESSURE_KPA", "add_tube_arguments", "tube_from_args", "parse_pressures",
            "check_shape_flags", "input_files", "materials_of", "plus_minus"]
 

@@ -36,6 +36,7 @@ import sys
 import warnings
 
 from .. import __version__
+from .args import DEFAULT_TIME_LIMIT_S
 
 __all__ = ["main", "COMMANDS", "commands"]
 
@@ -164,9 +165,6 @@ def _option_like_value(argv: list[str]) -> str | None:
     return None
 
 
-#: The time limit's default [s]: the value of :data:`embroact.export.cli.signals.DEFAULT_TIME_LIMIT_S`
-#: (a test holds them equal), here so that ``embroact --help`` imports no threads.
-DEFAULT_TIME_LIMIT_S = 3600.0
 #: Longest time limit [s] (a day; setitimer takes any float, a typo of 1e300 is no limit).
 MAX_TIME_LIMIT_S = 86400.0
 

@@ -36,14 +36,13 @@ import sys
 import threading
 from typing import Iterator
 
+from .args import DEFAULT_TIME_LIMIT_S
+
 __all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S",
            "time_limit_message"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
-#: Time limit of every command [s] unless ``--time-limit-s`` says otherwise (0: none). An hour: far
-#: beyond any command on the documented input limits (the longest, a 5,000-segment path, takes ~30 s).
-DEFAULT_TIME_LIMIT_S = 3600.0
 #: Exit codes: the shell's 128 + signal number, and the solver's code for a time limit.
 _EXIT = {signal.SIGINT: (130, "interrupted"), signal.SIGTERM: (143, "terminated")}
 _EXIT_TIME_LIMIT = 4
