@@ -1215,8 +1215,9 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p, length)) if c is not best]
         note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
         sized = "" if best.length_mm == length else f" with a length of {best.length_mm:g} mm (asked {length:g})"
+        band = "" if best.theta_sd_deg is None else f" (+- {best.theta_sd_deg:.2f} deg, 1 sigma of the calibration)"
         return BendResult(target, p, length, best, tuple(others[:2]), True,
-                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg at {p:g} kPa{sized}{note}", in_range,
+                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg{band} at {p:g} kPa{sized}{note}", in_range,
                           whole, tol, notes)
     cands.sort(key=lambda c: (round(abs(c.theta_deg - target), 6), c.warning_count > 0, c.pattern))
     best = cands[0]

@@ -43,5 +43,6 @@ def test_the_narrower_band_wins_among_designs_that_meet_the_target(zigzag_scale,
     assert each[loser].theta_sd_deg > 1.5 * each[winner].theta_sd_deg
     r = _design("any", zigzag_scale, cross_scale)
     assert r.reached and r.best.pattern == winner and r.best.theta_sd_deg == each[winner].theta_sd_deg
+    assert f"bends {r.best.theta_deg:.2f} deg (+- {r.best.theta_sd_deg:.2f} deg, 1 sigma of the calibration) at" in r.statement
     # the cross meets it more closely either way: the band, not the distance to the target, decides
     assert abs(each["cross"].theta_deg - TARGET_DEG) < abs(each["zigzag"].theta_deg - TARGET_DEG)
