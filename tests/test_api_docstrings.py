@@ -1,7 +1,13 @@
 """Every name ``import embroact`` gives, and every public method of its classes, is documented
 in numpydoc form: Parameters (when it takes any), Returns (functions that return a value) and
-a runnable Examples section (classes too). The examples themselves run in tests/test_doctests.py."""
+a runnable Examples section (classes too); so is every public name of every module, by the rule
+written out below. The examples themselves run in tests/test_doctests.py."""
+import ast
+import enum
+import importlib
 import inspect
+import pkgutil
+import textwrap
 
 import pytest
 
@@ -72,14 +78,8 @@ def test_numpydoc_sections(name, obj):
 # * an exception class and a property need a docstring (when it is raised; what the value is,
 #   with its unit): both are read as one line in the class's context, not called like a function.
 #
-# The examples run in tests/test_doctests.py. Modules still to be brought up to this standard are
-# listed in UNDOCUMENTED_MODULES; the list only shrinks, and a module leaves it when it passes.
-
-import ast  # noqa: E402
-import enum  # noqa: E402
-import importlib  # noqa: E402
-import pkgutil  # noqa: E402
-import textwrap  # noqa: E402
+# The examples run in tests/test_doctests.py. A module still to be brought up to this standard
+# is listed in UNDOCUMENTED_MODULES; the list only shrinks, and a module leaves it when it passes.
 
 PACKAGES = ("embroact", "embroact.patterns", "embroact.predict", "embroact.export")
 
