@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .base.arrays import median
 from .base.errors import PatternError
 from .base.tolerances import DEFAULT_TOLERANCES
 
@@ -85,4 +86,4 @@ def _family_spacing(pos: np.ndarray, family: np.ndarray) -> float:
     g = np.concatenate(gaps)
     if g.size == 0:
         raise PatternError("cannot measure the interval: fewer than two parallel legs in each family")
-    return float(np.median(g))
+    return median(g)

@@ -30,6 +30,7 @@ import math
 import numpy as np
 import shapely
 
+from .base.arrays import median
 from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["TubeIndex", "SegmentIndex", "Crossings", "needle_density", "self_crossings", "corridor_hits"]
@@ -291,7 +292,7 @@ class SegmentIndex:
         self._len2 = np.einsum("ij,ij->i", self._d, self._d)
         length = np.sqrt(self._len2)
         self._start_mm = np.concatenate([[0.0], np.cumsum(length)])
-        self._c0 = max(float(length.max()), 2.0 * float(np.median(length)), 1e-9)
+        self._c0 = max(float(length.max()), 2.0 * median(length), 1e-9)
         self._span = float(np.ptp(xy, axis=0).max())
         self._grids: dict[float, tuple] = {}
         self._tree: shapely.STRtree | None = None

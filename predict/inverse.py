@@ -64,6 +64,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from ..patterns.base.arrays import median
 from ..patterns.base.errors import EmbroactError, ParameterError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
@@ -323,8 +324,8 @@ def design_space(pattern: str, settings: ModelSettings = ModelSettings(), *, set
     points = [p for p in cset.points if p.pattern == pattern]
     if cover is None or not points:
         raise ParameterError(f"calibration {cset.name!r} has no {pattern} points; choose another pattern or set")
-    interval = float(np.median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0]))
-    width = float(np.median([p.width_mm for p in points]))
+    interval = median([p.interval_mm for p in points if p.interval_mm is not None] or [1.0])
+    width = median([p.width_mm for p in points])
     param = kind.calibration_axis
     low, high = cover
     if pattern_kind(pattern).has_angle:  # a leg w / cos(alpha0) must fit one machine stitch, rounded to the grid

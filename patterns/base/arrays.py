@@ -1,4 +1,4 @@
-"""Read-only numpy arrays for the frozen values embroact returns.
+"""Read-only numpy arrays for the frozen values embroact returns, and :func:`median`.
 
 Examples
 --------
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["frozen_array"]
+__all__ = ["frozen_array", "median"]
 
 
 def frozen_array(values, dtype=np.float64) -> np.ndarray:
@@ -38,3 +38,29 @@ def frozen_array(values, dtype=np.float64) -> np.ndarray:
     a = np.array(values, dtype=dtype, copy=True)
     a.setflags(write=False)
     return a
+
+
+def median(values) -> float:
+    """The median of finite numbers, as ``numpy.median`` gives it (the mean of the two middle ones for an even
+    count), without its first call's import of ``numpy.ma`` (30 ms of a command's start).
+
+    Parameters
+    ----------
+    values : array_like
+        At least one finite number.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> median([3.0, 1.0, 2.0]), median([4, 1, 3, 2])
+    (2.0, 2.5)
+    """
+    v = np.asarray(values, dtype=np.float64).ravel()
+    k = len(v) // 2
+    if len(v) % 2:
+        return float(np.partition(v, k)[k])
+    low, high = np.partition(v, (k - 1, k))[k - 1:k + 1]
+    return float(np.mean([low, high]))
