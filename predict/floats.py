@@ -26,7 +26,7 @@ __all__ = ["SCALAR"]
 
 
 class _ScalarMath:
-    """``sqrt``, ``cos``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats
+    """``sqrt``, ``cos``, ``sin``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats
     (module docstring)."""
 
     __slots__ = ()
@@ -51,6 +51,11 @@ class _ScalarMath:
     def cos(x):
         """numpy's cos as a float (as :meth:`arcsin`)."""
         return float(np.cos(x))
+
+    @staticmethod
+    def sin(x):
+        """numpy's sin as a float (as :meth:`arcsin`)."""
+        return float(np.sin(x))
 
     @staticmethod
     def where(condition, a, b):

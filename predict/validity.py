@@ -54,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..patterns.base.errors import ParameterError, check_range
+from .floats import SCALAR
 from .status import VALIDITY_LIMITS, Status, is_model_state
 
 __all__ = [
@@ -160,7 +161,30 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
     stub = math.nan if stub is None else stub
     if xp is np:
         return arc_contact(th, r, l0, stub)
-    return a > 0.5 * math.pi and bool(arc_contact(th, r, l0, stub))  # only past a quarter turn can it reach back
+    return a > 0.5 * math.pi and _arc_contact_float(th, r, l0, stub)  # only past a quarter turn can it reach back
+
+
+def _arc_contact_float(th: float, r: float, l0: float, m: float) -> bool:
+    """:func:`arc_contact` of one state on Python floats: its operations in its order (numpy's sin and cos on
+    floats, its sinc written out), so the same answer without a numpy array per operation."""
+    inside = m != m
+    m = 0.0 if inside else m
+    half = 0.5 * th
+    y = math.pi * (half / math.pi) if half != 0.0 else math.pi * 1.0e-20  # numpy's sinc(half / pi)
+    chord = l0 * (SCALAR.sin(y) / y)
+    px, py = chord * SCALAR.cos(half), chord * SCALAR.sin(half)
+    tx, ty = SCALAR.cos(th), SCALAR.sin(th)
+    nx, ny = ty, -tx
+    w = 2.0 * r
+    cx = (px, px + w * nx, px + m * tx, px + m * tx + w * nx)
+    cy = (py, py + w * ny, py + m * ty, py + m * ty + w * ny)
+    apart = min(cx) > 0.0 or min(cy) > 0.0 or max(cy) < -w
+    for ux, uy, low, span in ((tx, ty, px * tx + py * ty, m), (nx, ny, px * nx + py * ny, w)):
+        b0, b1 = 0.0, -w * uy
+        b_lo = -math.inf if ux > 0.0 else min(b0, b1)
+        b_hi = math.inf if ux < 0.0 else max(b0, b1)
+        apart = apart or low > b_hi or low + span < b_lo
+    return abs(th) >= _FULL_TURN or (not apart and not inside)
 
 
 def arc_contact(theta_rad, radius_mm, l0_mm, stub_mm=0.0) -> np.ndarray:

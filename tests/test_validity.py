@@ -175,3 +175,19 @@ def test_apply_limits_takes_numbers_and_lists_and_returns_a_new_array():
     calm = apply_limits(st, [0.1, 0.2], [100.0, 101.0], 2.5, 100.0)
     assert calm.tolist() == st.tolist() and calm is not st and calm.dtype == np.int8
     assert apply_limits(int(Status.BENDING), 0.1, 100.0, 2.5, 100.0).tolist() == int(Status.BENDING)
+
+
+def test_one_state_on_floats_decides_contact_as_the_arrays_do():
+    """The float path's arc contact (one state, numpy's sin and cos on floats) gives arc_contact's answer,
+    also at the neighbouring floats of each contact angle."""
+    import random
+
+    from embroact.predict.validity import _arc_contact_float, arc_contact, coil_angle_deg
+
+    rng = random.Random(3)
+    for _ in range(300):
+        r, l0, m = rng.uniform(0.5, 5.0), rng.uniform(10.0, 300.0), rng.choice([0.0, math.nan, rng.uniform(0.0, 50.0)])
+        neg = rng.random() < 0.5
+        edge = math.radians(coil_angle_deg(l0, r, negative=neg, stub_mm=0.0 if m != m else m)) * (-1 if neg else 1)
+        for x in (edge, math.nextafter(edge, math.inf), math.nextafter(edge, -math.inf), rng.uniform(-7.0, 7.0)):
+            assert _arc_contact_float(x, r, l0, m) == bool(arc_contact(x, r, l0, m)), (x, r, l0, m)
