@@ -41,6 +41,8 @@ __all__ = ["PAPERS", "MARGIN_MM", "OVERLAP_MM", "CHECK_SQUARE_MM", "Sheet", "til
 PAPERS = {"a4": ("A4", 210.0, 297.0), "letter": ("Letter", 215.9, 279.4)}
 #: Clear border on every side of a sheet [mm]: wider than most printers' unprintable margin (4-6.35 mm).
 MARGIN_MM = 10.0
+#: Most sheets a template is tiled on (100 A4 sheets hold about 2.5 x 1.8 m); a larger one gets a page saying so.
+MAX_SHEETS = 100
 #: Width of the strip two neighbouring sheets both print [mm].
 OVERLAP_MM = 10.0
 #: Side of the square on every sheet that checks the print scale [mm].
@@ -144,7 +146,7 @@ def tile_template(template: str, paper: str = "a4") -> list[Sheet]:
     Raises
     ------
     ParameterError
-        An unknown paper, or a drawing without a ``viewBox``.
+        An unknown paper, a drawing without a ``viewBox``, or one that needs more than :data:`MAX_SHEETS`.
 
     Examples
     --------
@@ -162,6 +164,9 @@ def tile_template(template: str, paper: str = "a4") -> list[Sheet]:
         raise ParameterError("template must be an SVG drawing in mm with a viewBox, got one without")
     vx, vy, w, h = (float(v) for v in box.split())
     name, (sw, sh, tw, th, cols, rows) = _layout(key, w, h)
+    if rows * cols > MAX_SHEETS:
+        raise ParameterError(f"a {_f(w)} x {_f(h)} mm template needs {rows * cols} {name} sheets at 1:1, more than "
+                             f"{MAX_SHEETS}: print template.svg on a plotter or tile it in a drawing program")
     # tiles from the template's corner, each sharing OVERLAP_MM with the next; the last may run past the far edge
     step_x, step_y = tw - OVERLAP_MM, th - OVERLAP_MM
     over = (tw - step_x, th - step_y)
@@ -259,7 +264,13 @@ def template_pages_html(template: str, paper: str = "a4", *, title: str = "layou
     """
     from html import escape
 
-    sheets = tile_template(template, paper)
+    try:
+        sheets = tile_template(template, paper)
+    except ParameterError as exc:
+        if "sheets at 1:1" not in str(exc):
+            raise
+        return (f'<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>{escape(title)}</title></head>'
+                f"<body><p>{escape(str(exc))}.</p></body></html>\n")  # beyond what a printer and a table can use
     size = f"{_f(sheets[0].width_mm)}mm {_f(sheets[0].height_mm)}mm"
     style = (f"@page{{size:{size};margin:0}}body{{margin:0}}svg.sheet{{display:block;break-after:page}}"
              "svg.sheet:last-child{break-after:auto}")
