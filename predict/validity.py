@@ -435,7 +435,14 @@ def strip_contact(lengths_mm, theta_deg, radius_mm, stub_mm: float = 0.0) -> np.
     stub = check_range("stub_mm", stub_mm, low=0.0, low_inclusive=True, high=1e4)
     out = np.zeros(len(rows), dtype=bool)
     busy = np.sum(np.abs(rows), axis=1) > _NO_CONTACT_TURNING_DEG
-    for i in np.flatnonzero(busy):
+    bent = rows != 0.0
+    one = busy & (np.sum(bent, axis=1) == 1)  # one arc between straight pieces: the closed form
+    if np.any(one):
+        # a straight lead-in moves the clamp (it continues the fixed band), a straight tail lengthens the stub
+        j = np.argmax(bent[one], axis=1)
+        after = np.concatenate([np.cumsum(lengths[::-1])[::-1][1:], [0.0]])
+        out[one] = arc_contact(np.radians(rows[one, j]), radius[one], lengths[j], stub + after[j])
+    for i in np.flatnonzero(busy & ~one):
         out[i] = _touches(lengths, rows[i], float(radius[i]), stub)
     return out.reshape(theta.shape[:-1])
 

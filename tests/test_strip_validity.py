@@ -77,6 +77,21 @@ def test_unbent_pieces_lengthen_the_stub_and_move_the_clamp():
     assert a == pytest.approx(strip_coil_angle_deg([100.0], [1.0], R_TUBE, 30.0), abs=1e-6)
 
 
+def test_one_arc_between_straight_pieces_takes_the_closed_form_of_the_outline_test():
+    """A straight lead-in continues the fixed band (it moves the clamp), a straight tail lengthens the stub: the
+    closed form strip_contact takes for one bent piece agrees with the general outline test."""
+    from embroact.predict.validity import _touches
+
+    rng = np.random.default_rng(11)
+    for _ in range(300):
+        lead, length, tail = rng.uniform(0.5, 30.0), rng.uniform(40.0, 150.0), rng.uniform(0.5, 30.0)
+        r, stub = float(rng.uniform(1.5, 3.2)), float(rng.choice([0.0, 15.0, 30.0]))
+        theta = float(rng.uniform(-1.0, 1.0) * min(359.0, math.degrees(length / (2.1 * r))))
+        fast = bool(strip_contact([lead, length, tail], [0.0, theta, 0.0], r, stub))
+        assert fast == _touches(np.array([lead, length, tail]), np.array([0.0, theta, 0.0]), r, stub)
+        assert fast == bool(strip_contact([length], [theta], r, stub + tail))
+
+
 def test_small_turning_never_touches_and_arrays_broadcast():
     rng = np.random.default_rng(7)
     bends = rng.uniform(-1.0, 1.0, (200, 3))
