@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 import mpref
 from markerdata import paper_frame
@@ -109,7 +110,10 @@ def test_states_beyond_validity_are_counted():
     p = np.arange(0.0, 201.0, 10.0)
     (r,) = fit_design(d5, p, _theta(p, 0.8, 50.0, design=d5), branch="loading")
     assert r.g_mpa == pytest.approx(0.8, rel=1e-6)
-    assert r.beyond_validity == int(np.sum(_theta(p, 0.8, 50.0, design=d5) >= 360.0)) > 0
+    # a zigzag keeps r = r0: the tip's tube-side corner enters the supply tube at cos(theta) = R / (R + 2 r0)
+    limit = math.degrees(brentq(lambda t: math.cos(t) - (100.0 / t) / (100.0 / t + 2.0 * d5.r0_mm), 4.0, 6.28))
+    assert 320.0 < limit < 330.0
+    assert r.beyond_validity == int(np.sum(_theta(p, 0.8, 50.0, design=d5) >= limit)) > 0
     assert "beyond its validity limits" in r.notes[-1]
 
 
