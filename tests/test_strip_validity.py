@@ -268,3 +268,12 @@ def test_every_view_reads_the_same_strip_status(tmp_path, capsys):
                for f in json.loads(capsys.readouterr().out)["findings"])
     (view,) = bend_at(analyse(design), 200.0)
     assert view["status"] == "COILED"
+
+
+def test_predict_text_says_what_a_coiled_strip_means(tmp_path, capsys):
+    path = tmp_path / "zc.toml"
+    save_design(_segmented(ZIGZAG_5, CROSS_45, max_kpa=200.0), path)
+    assert main(["predict", str(path), "--pressure-kpa", "170,180"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[-3].split()[-1] == "BENDING" and lines[-2].split()[-1] == "COILED"
+    assert lines[-1].startswith("COILED: the strip, with the 30 mm sealed tube beyond its tip, touches itself")

@@ -164,9 +164,16 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
 
 
 def _table(act, c, band, segment_curves, reading=None) -> str:
-    """The actuator's text table: a chain of one as one table, a longer chain one per segment and the whole strip."""
-    return act.segments.one_or_all(lambda: _piece_table(act.name, act.derived, act.choice, c, band, reading),
-                                   lambda: _strip_table(act, c, segment_curves, reading))
+    """The actuator's text table: a chain of one as one table, a longer chain one per segment and the whole strip;
+    a line saying what COILED means when the whole strip reads it."""
+    from ...predict.status import Status
+
+    table = act.segments.one_or_all(lambda: _piece_table(act.name, act.derived, act.choice, c, band, reading),
+                                    lambda: _strip_table(act, c, segment_curves, reading))
+    if not (c.status == Status.COILED).any():
+        return table
+    return (table + f"\nCOILED: the strip, with the {act.plan.tube.end_margin_mm:g} mm sealed tube beyond its tip, "
+            "touches itself, the clamp or the fixed fabric (docs/model.md, where the model stops)")
 
 
 def _strip_table(act, c, segment_curves, reading) -> str:
