@@ -201,17 +201,27 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
         what = act.segments.one_or_all("bend", lambda: f"total bend of the {len(act.segments)} segments")
         out.append(RULES.finding(
             "EA403", f"{what} {total:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
-    if all(s.choice is not None for s in act.segments):
-        strip = analysis.curves(pressures, method=settings.method)[analysis.actuators.index(act)]  # validity.py
-        own = np.all([is_model_state(c.status) for c in strip.segments], axis=0)  # the segments' states are valid
-        bad = np.flatnonzero(own & np.isin(strip.status, [int(s) for s in _BAD_STATES]))
-        if len(bad):
-            i = int(bad[0])
-            out.append(RULES.finding(
-                "EA405", f"whole strip {Status(int(strip.status[i])).name} from {pressures[i]:.0f} kPa on "
-                f"({float(strip.theta_deg[i]):.1f} deg: it touches itself, the clamp or the fixed fabric), below the "
-                f"working pressure {p_max:g} kPa", **where))
-    return out
+    return out + _strip_findings(act, analysis, pressures, settings, where)
+
+
+def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where: dict) -> list[Finding]:
+    """EA405 for the whole strip where it touches itself, the clamp or the fixed fabric while every segment's own
+    state is valid (:func:`~embroact.predict.validity.strip_status`); none when a segment has no model."""
+    from ..patterns.base.errors import ModelDomainError
+
+    try:
+        strip = analysis.curves(pressures, method=settings.method)[analysis.actuators.index(act)]
+    except ModelDomainError:
+        return []  # the segment's own EA405 names it
+    own = np.all([is_model_state(c.status) for c in strip.segments], axis=0)  # the segments' states are valid
+    bad = np.flatnonzero(own & np.isin(strip.status, [int(s) for s in _BAD_STATES]))
+    if not len(bad):
+        return []
+    i = int(bad[0])
+    return [RULES.finding(
+        "EA405", f"whole strip {Status(int(strip.status[i])).name} from {pressures[i]:.0f} kPa on "
+        f"({float(strip.theta_deg[i]):.1f} deg: it touches itself, the clamp or the fixed fabric), below the "
+        f"working pressure {settings.max_pressure_kpa:g} kPa", **where)]
 
 
 def _for_actuator(finding: Finding, name: str) -> Finding:
