@@ -260,11 +260,11 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     """
     settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
     found: list[Finding] = []
-    shared: dict = {}  # identical actuators (same models, calibration): their findings are made once
+    shared: dict = {}  # identical actuators (same models, calibration, bent line): their findings are made once
     for act in analysis.actuators:
         if not act.derived.has_sleeve:
             continue
-        key = (act.choice, act.model_error, act.spec.model.calibration,
+        key = (act.choice, act.model_error, act.spec.model.calibration, act.bend_pieces(),
                tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
         if key not in shared:
             shared[key] = _actuator_findings(act, analysis, settings)
