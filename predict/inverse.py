@@ -1829,18 +1829,23 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
 
     tried = [0]
 
-    def evaluate(v, ls):
+    def evaluate(v, ls, trial=True):
         tried[0] += 1
         if progress is not None and tried[0] % _PROGRESS_EVERY == 1:
             progress(f"{len(ls)} segment(s) on the machine grid: {tried[0]} sewn designs tried")
-        design = _shape_design(seg_spaces, v, ls, name, tube, settings, operation)
-        a = analyse(design, calibration_sets=sets)
+        try:  # a trial move may ask what no generator sews (a cross angle too steep for its segment's length)
+            design = _shape_design(seg_spaces, v, ls, name, tube, settings, operation)
+            a = analyse(design, calibration_sets=sets)
+        except EmbroactError:
+            if not trial:
+                raise
+            return math.inf, None
         shape, theta = a.shapes(name, [p])[0]
         return float(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))), (design, a, shape, theta)
 
     v = np.array([min(sp.sewable(u), key=lambda g: (abs(g - u), g)) for sp, u in zip(seg_spaces, x)])
     ls = np.asarray(lengths, dtype=np.float64).copy()
-    cost, found = evaluate(v, ls)
+    cost, found = evaluate(v, ls, trial=False)
     angle_step, length_step = _SHAPE_ANGLE_STEP_DEG, _SHAPE_LENGTH_STEP_MM
     for _ in range(_GRID_ROUNDS):
         trials = []

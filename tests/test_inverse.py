@@ -12,6 +12,7 @@ from embroact.patterns.design import design_to_dict
 from embroact.predict.analysis import analyse
 from embroact.predict.curve import curve
 from embroact.predict.inverse import design_bend, design_shape, fit_curvature
+from embroact.predict.rules import check_design
 from embroact.predict.shape import BentShape
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
@@ -136,3 +137,14 @@ def test_the_time_limit_stops_the_search_and_progress_reports_it():
     assert said and said[0].startswith("reachable curvature at 200 kPa")
     with pytest.raises(ParameterError, match="time_limit_s"):
         design_shape(xy, PRESSURE_KPA, time_limit_s=0.0)
+
+
+def test_a_grid_move_no_generator_sews_is_a_rejected_trial_not_a_failed_search():
+    """A straight 40 mm lead then a hook, at 200 kPa: the machine-grid search tried a steeper cross angle on a
+    15.41 mm segment (its shortest is 4 w tan(angle) = 15.46 mm) and the whole search ended with exit 2 and
+    "no design found". Such a move is a trial the search rejects; the answer is a sewable design whose written
+    file `check` passes without errors."""
+    xy = np.array([(0.0, 0.0), (40.0, 0.0), (70.0, 10.0), (90.0, 30.0), (100.0, 55.0)])
+    r = design_shape(xy, 200.0)
+    assert r.reached and r.rmse_mm <= 0.5
+    assert not [f for f in check_design(analyse(r.design)) if f.severity.name == "ERROR"]
