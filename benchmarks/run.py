@@ -31,6 +31,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import charts  # noqa: E402
+import inverse_bench  # noqa: E402
 import model_bench  # noqa: E402
 import rules_scaling  # noqa: E402
 import scale_bench  # noqa: E402
@@ -70,15 +71,16 @@ class Config:
     curve_rounds: int
     sweep_rounds: int
     rules_rounds: int
+    inverse_rounds: int
 
 
 CONFIGS = {
     "full": Config(n_designs=12, n_pressures=200, time_budget_s=0.25, baseline_designs=4, baseline_points=6,
                    stability_grid="full", sweep_designs=1000, cli_runs=11, long_path_mm=10_000.0, long_path_runs=3,
-                   scale_runs=3, curve_rounds=31, sweep_rounds=7, rules_rounds=5),
+                   scale_runs=3, curve_rounds=31, sweep_rounds=7, rules_rounds=5, inverse_rounds=5),
     "quick": Config(n_designs=2, n_pressures=12, time_budget_s=0.0, baseline_designs=1, baseline_points=2,
                     stability_grid="quick", sweep_designs=8, cli_runs=1, long_path_mm=500.0, long_path_runs=1,
-                    scale_runs=0, curve_rounds=3, sweep_rounds=2, rules_rounds=0),
+                    scale_runs=0, curve_rounds=3, sweep_rounds=2, rules_rounds=0, inverse_rounds=0),
 }
 
 #: Targets (issue 17: ratios measured in the same run, sizes, limits): name -> (unit, comparison, limit).
@@ -109,6 +111,8 @@ TARGETS = {
     "report_100_actuators_mb": ("MB", "<", 5.0),
     "build_1000_actuators_ok": ("ok", "==", 1),
     "far_apart_refused_s": ("s", "<", 5.0),
+    "inverse_unreachable_s": ("s", "<", 1.0),
+    "inverse_bend_median_s": ("s", "<", 0.5),
 }
 
 
@@ -371,6 +375,13 @@ def targets(res: dict) -> dict:
             "far_apart_refused_s": sc["far_apart"]["s"] if sc["far_apart"]["rc"] in (1, 2) and not
             sc["far_apart"]["sizes_mb"] else math.inf,
         })
+    inv = res.get("inverse")
+    if inv:
+        values.update({
+            "inverse_unreachable_s": max(v["median_s"] for v in inv["unreachable"].values())
+            if inv["unreachable_answered"] else math.inf,
+            "inverse_bend_median_s": inv["bend_median_s"] if inv["bends_met"] else math.inf,
+        })
     ops = {"<": lambda a, b: a < b, "<=": lambda a, b: a <= b, ">=": lambda a, b: a >= b, "==": lambda a, b: a == b}
     return {k: {"value": values.get(k), "unit": TARGETS[k][0], "target": f"{TARGETS[k][1]} {TARGETS[k][2]:g}",
                 "pass": bool(values.get(k) is not None and ops[TARGETS[k][1]](values[k], TARGETS[k][2]))}
@@ -462,6 +473,17 @@ def markdown_notes(res: dict) -> str:
         f"{' / '.join(f'{ru_s[str(n)]:.3g}' for n in ru['sizes'])} s (**{ru['ratio']['median']:.3g} x** "
         f"[{ru['ratio']['min']:.3g}, {ru['ratio']['max']:.3g}], {ru['ratio']['rounds']} paired rounds; linear would be "
         f"{ru['linear_ratio']:.3g} x): the curve and the lock-up search of identical models are made once."]
+    inv = res.get("inverse")
+    inverse_lines = [] if not inv else [
+        f"* Inverse design from the command line (fresh `embroact design` processes, {inv['rounds']} rounds paired with "
+        f"the import floor `python {inv['floor']}`, {inv['floor_s']:.2f} s): unreachable targets answered without a "
+        f"search in " + ", ".join(f"{k.replace('_', ' ')} {v['median_s']:.2f} s ({v['over_floor']['median']:.3g} x "
+                                  f"floor, exit {'/'.join(map(str, v['exit_codes']))})"
+                                  for k, v in inv["unreachable"].items())
+        + "; target bends " + ", ".join(f"{k.split('_')[1]} {k.split('_')[2]} deg at {k.split('_')[4]} kPa "
+                                        f"{v['median_s']:.2f} s ({v['over_floor']['median']:.3g} x floor)"
+                                        for k, v in inv["bend"].items())
+        + f" (median **{inv['bend_median_s']:.2f} s**)."]
     return "\n".join([
         f"* Curves, every ratio paired ({c['rounds']} interleaved rounds over the {len(res['designs'])} designs; median "
         f"[min, max] of the per-round ratios): repeated calls on one model (its branch nodes kept, as the studio and "
@@ -505,7 +527,7 @@ def markdown_notes(res: dict) -> str:
         f"{', '.join(st['help_heavy_imports']) or 'none of numpy, shapely, trimesh, scipy'}.",
         f"* Machine: {res['machine']['cpus']} cores, Python {res['machine']['python']}, load average at the start "
         f"{res['machine']['load_average'][0]:.2f} (other jobs were running); whole run {res['elapsed_s']:.0f} s.",
-    ] + rules_lines + scale_lines)
+    ] + rules_lines + scale_lines + inverse_lines)
 
 
 def markdown_stability(res: dict) -> str:
@@ -602,21 +624,11 @@ def run(cfg: Config, out_dir: Path) -> dict:
     tp = res["throughput"]
     _log(f"  sweep {tp['default_rtol']['time_s'] * 1e3:.0f} ms, competitor {tp['competitor']['time_s'] * 1e3:.0f} ms: "
          f"{tp['sweep_speedup_vs_competitor']['median']:.3g}x (agree to {tp['competitor_vs_sweep_max_rel']:.1e} of the angle)")
-    if cfg.rules_rounds:
-        _log("model rules on identical actuators, paired rounds:")
-        res["rules"] = rules_scaling.identical_model_rules(cfg.rules_rounds)
-        _log(f"  {res['rules']['median_s']} s: {res['rules']['ratio']['median']:.3g}x")
     _log("stability maps:")
     res["stability"] = _stability(cfg)
     _log("stitches, files, command line:")
     res["stitches"] = _stitches(cfg)
-    if cfg.scale_runs:
-        _log("scale (fresh build processes):")
-        res["scale"] = scale_bench.scale(cfg.scale_runs)
-        res["scale"]["long_paths"] = scale_bench.long_paths(cfg.scale_runs)
-        lp = res["scale"]["long_paths"]
-        _log(f"  10 m / 100 m meander analysed {lp['median_s']}: {lp['ratio']['median']:.3g}x; 100 m build refused "
-             f"(exit {lp['refused']['rc']}) in {lp['refused']['s']:.2f} s")
+    run_sections(cfg, res, SECTIONS)
     for r in res["stitches"]["needle_rate"]:
         _log(f"  {r['pattern']}: {r['needle_points']} needle points on {r['length_mm']:g} mm in "
              f"{r['time_s'] * 1e3:.1f} ms = {r['points_per_s']:.3g} points/s")
@@ -625,6 +637,51 @@ def run(cfg: Config, out_dir: Path) -> dict:
     out_dir.mkdir(parents=True, exist_ok=True)
     (out_dir / "results.json").write_text(json.dumps(_jsonable(res), indent=1, sort_keys=True) + "\n")
     write_charts(res, out_dir)
+    return res
+
+
+def _rules(cfg: Config, res: dict) -> None:
+    if cfg.rules_rounds:
+        _log("model rules on identical actuators, paired rounds:")
+        res["rules"] = rules_scaling.identical_model_rules(cfg.rules_rounds)
+        _log(f"  {res['rules']['median_s']} s: {res['rules']['ratio']['median']:.3g}x")
+
+
+def _scale(cfg: Config, res: dict) -> None:
+    if cfg.scale_runs:
+        _log("scale (fresh build processes):")
+        res["scale"] = scale_bench.scale(cfg.scale_runs)
+        res["scale"]["long_paths"] = scale_bench.long_paths(cfg.scale_runs)
+        lp = res["scale"]["long_paths"]
+        _log(f"  10 m / 100 m meander analysed {lp['median_s']}: {lp['ratio']['median']:.3g}x; 100 m build refused "
+             f"(exit {lp['refused']['rc']}) in {lp['refused']['s']:.2f} s")
+
+
+def _inverse(cfg: Config, res: dict) -> None:
+    if cfg.inverse_rounds:
+        _log(f"inverse design from the command line, paired rounds ({cfg.inverse_rounds}) with the import floor:")
+        res["inverse"] = inv = inverse_bench.cli_timings(cfg.inverse_rounds)
+        _log("  " + ", ".join(f"{k} {v['median_s']:.2f} s ({v['over_floor']['median']:.3g} x floor)"
+                              for k, v in {**inv["unreachable"], **inv["bend"]}.items()))
+
+
+#: The sections :func:`run_sections` can run again into an existing results.json (``run.py --only``).
+SECTIONS = {"rules": _rules, "scale": _scale, "inverse": _inverse}
+
+
+def run_sections(cfg: Config, res: dict, names) -> dict:
+    """Run the sections ``names`` of :data:`SECTIONS` with ``cfg`` into ``res`` (a results dict; what the others
+    measured is kept) and recompute the targets; returns ``res``.
+
+    Examples
+    --------
+    >>> sorted(SECTIONS)
+    ['inverse', 'rules', 'scale']
+    """
+    for name in names:
+        SECTIONS[name](cfg, res)
+    if "methods" in res and "stitches" in res:
+        res["targets"] = targets(res)
     return res
 
 
@@ -652,11 +709,28 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=None,
                     help="output folder (default: this folder; with --quick a temporary folder, so the smoke run "
                          "never overwrites the committed results)")
+    ap.add_argument("--only", default=None, metavar="SECTIONS",
+                    help=f"run only these sections again ({', '.join(SECTIONS)}; comma-separated) into OUT/results.json, "
+                         "keeping the rest, and regenerate the charts and README blocks")
     ap.add_argument("--replot", action="store_true",
                     help="only redraw the charts from OUT/results.json (and its README tables, if OUT has a README)")
     args = ap.parse_args(argv)
     if args.out is None:
         args.out = Path(tempfile.gettempdir()) / "embroact-bench-quick" if args.quick else Path(__file__).resolve().parent
+    if args.only:
+        names = [n for n in args.only.split(",") if n]
+        unknown = sorted(set(names) - set(SECTIONS))
+        if unknown:
+            ap.error(f"--only: unknown section(s) {', '.join(unknown)}; choose from {', '.join(SECTIONS)}")
+        res = json.loads((args.out / "results.json").read_text())
+        res["machine"][f"load_average_{'_'.join(names)}"] = list(os.getloadavg())
+        run_sections(CONFIGS["quick" if args.quick else "full"], res, names)
+        (args.out / "results.json").write_text(json.dumps(_jsonable(res), indent=1, sort_keys=True) + "\n")
+        res = json.loads((args.out / "results.json").read_text())  # as --replot reads it (keys are strings)
+        write_charts(res, args.out)
+        _update_readmes(res, args.out)
+        _log("\n" + markdown_targets(res) + "\n")
+        return 0
     if args.replot:
         res = json.loads((args.out / "results.json").read_text())
         write_charts(res, args.out)
