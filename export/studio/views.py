@@ -189,7 +189,8 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     try:
         curves = analysis.curves()
         series, svg = pv.bend_series(analysis, pv.chart_curves(analysis, curves)), pv.bend_chart(analysis, curves)
-        thetas = [t for b in bends for t in [b["theta_deg"], *b["segment_theta_deg"]]]
+        thetas = [t for a, b in zip(analysis.actuators, bends)  # the series drawn: whole strip, then listed segments
+                  for t in [b["theta_deg"], *a.segments.one_or_all((), b["segment_theta_deg"])]]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")
     sc = chart_scale(series, width_px=pv.bend_chart_width_px(series))  # the chart's own (a long legend widens it)
