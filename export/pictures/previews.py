@@ -51,6 +51,7 @@ __all__ = [
     "bend_chart",
     "bend_chart_width_px",
     "side_panels",
+    "actuator_shape",
     "shape_meshes",
     "shape3d_title",
     "check_side_states",
@@ -756,19 +757,52 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     >>> [s.name for s in shapes], pressures
     (['A1'], {'A1': 300.0})
     """
-    from .mesh import DEFAULT_CHORD_TOLERANCE_MM, PlanarPath, actuator_mesh
+    from .mesh import DEFAULT_CHORD_TOLERANCE_MM
 
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
     shapes, pressures = [], {}
     for a, c in zip(analysis.actuators, curves):
         p, theta, parts = shape_state(c, pressure_kpa)
-        chain: dict = a.segments.one_or_all({}, lambda: {"segment_lengths_mm": piece_lengths_mm(a),
-                                                         "segment_theta_deg": piece_theta_deg(a, parts)})
-        width, r0 = sleeve_mm(a)
-        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), theta, width_mm=width, r0_mm=r0,
-                                    tolerance_mm=tol, name=a.name, coarsen=tolerance_mm is None, **chain))
+        shapes.append(actuator_shape(a, theta, parts, tolerance_mm=tol, coarsen=tolerance_mm is None))
         pressures[a.name] = p
     return shapes, pressures
+
+
+def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **options):
+    """The 3D shape of one analysed actuator bent by ``theta_deg`` (a segmented one: each segment by its own
+    bend, the transitions unbent), on its path and with the sleeve a view draws it with (:func:`sleeve_mm`).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+    theta_deg : float
+        Its whole strip's bend [deg].
+    segment_theta_deg : sequence of float
+        Each segment's bend [deg] (read for a chain of more than one only).
+    **options
+        Further keywords of :func:`~embroact.export.pictures.mesh.actuator_mesh` (``tolerance_mm``, ``measure``...).
+
+    Returns
+    -------
+    ShapeMesh
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import default_design
+    >>> from embroact.predict.analysis import analyse
+    >>> act = analyse(default_design()).actuators[0]
+    >>> shape = actuator_shape(act, 90.0, [90.0], measure=False)
+    >>> shape.name, shape.theta_deg
+    ('A1', 90.0)
+    """
+    from .mesh import PlanarPath, actuator_mesh
+
+    chain: dict = act.segments.one_or_all({}, lambda: {"segment_lengths_mm": piece_lengths_mm(act),
+                                                       "segment_theta_deg": piece_theta_deg(act, segment_theta_deg)})
+    width, r0 = sleeve_mm(act)
+    return actuator_mesh(PlanarPath.from_centerline(act.plan.centerline), theta_deg, width_mm=width, r0_mm=r0,
+                         name=act.name, **chain, **options)
 
 
 def shape3d_title(pressures: Mapping[str, float]) -> str:

@@ -283,20 +283,13 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     >>> "3D shape at 150 kPa" in shape3d_svg(analysis, bends, 150.0)
     True
     """
-    from ..pictures.mesh import PlanarPath, actuator_mesh
     from ..pictures.meshview import mesh_svg
-    from ..pictures.previews import shape3d_title, sleeve_mm
+    from ..pictures.previews import actuator_shape, shape3d_title
 
     if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
         return message_svg("no 3D view: the model gives no finite bend here")
-    shapes = []
-    for a, b in zip(analysis.actuators, bends):
-        segs: dict = a.segments.one_or_all({}, lambda: dict(zip(("segment_lengths_mm", "segment_theta_deg"),
-                                                                _pieces(a, b))))
-        width, r0 = sleeve_mm(a)
-        shapes.append(actuator_mesh(PlanarPath.from_centerline(a.plan.centerline), b["theta_deg"],
-                                    width_mm=width, r0_mm=r0,
-                                    tolerance_mm=SHAPE3D_TOLERANCE_MM, name=a.name, measure=False, **segs))
+    shapes = [actuator_shape(a, b["theta_deg"], b["segment_theta_deg"], tolerance_mm=SHAPE3D_TOLERANCE_MM, measure=False)
+              for a, b in zip(analysis.actuators, bends)]
     return mesh_svg(shapes, width_px=SHAPE3D_WIDTH_PX,
                     title=shape3d_title({a.name: pressure_kpa for a in analysis.actuators}))
 
