@@ -79,7 +79,7 @@ def pchip_slopes(xs: Sequence[float], ys: Sequence[float]) -> list[float]:
     return m
 
 
-def pchip(xs: Sequence[float], ys: Sequence[float], x: float, slopes: Sequence[float] | None = None) -> float:
+def pchip(xs: Sequence[float], ys: Sequence[float], x: float) -> float:
     """The interpolant through ``(xs, ys)`` at ``x`` (``xs[0] <= x <= xs[-1]``; ends extend as cubics).
 
     Parameters
@@ -90,8 +90,6 @@ def pchip(xs: Sequence[float], ys: Sequence[float], x: float, slopes: Sequence[f
         Values at ``xs``.
     x : float
         Where to evaluate.
-    slopes : sequence of float, optional
-        :func:`pchip_slopes` of the same points, when already computed.
 
     Returns
     -------
@@ -105,7 +103,7 @@ def pchip(xs: Sequence[float], ys: Sequence[float], x: float, slopes: Sequence[f
     """
     if len(xs) == 1:
         return float(ys[0])
-    m = pchip_slopes(xs, ys) if slopes is None else slopes
+    m = pchip_slopes(xs, ys)
     k = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
     h = xs[k + 1] - xs[k]
     t = (x - xs[k]) / h
