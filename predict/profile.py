@@ -13,20 +13,20 @@ an end of the range the neighbours' trend carried on, marked ``extrapolated``), 
 of that prediction against its measured readings is its leave-one-out error [deg].
 
 Disagreement: a pattern's coupons disagree when a leave-one-out error exceeds
-:data:`DISAGREE_FACTOR` times the pattern's measurement noise (the median RMSE of the
-coupons' own fits; at least :data:`DISAGREE_FLOOR_DEG`). Which coupon is to blame is not
-the one with the largest error: one bad coupon spoils its neighbours' predictions too, and
-an end coupon, predicted by extrapolating through a bad neighbour, reads about twice the
-bad coupon's own error. So each coupon is deleted in turn and the others are predicted
-again without it as well (leave two out); the coupon whose deletion leaves the smallest
-worst error is flagged when its own error is over the limit and its deletion at least
-halves the worst error (:data:`DISAGREE_EXPLAINED`): it explains the disagreement. The
-search repeats on the rest while four or more coupons remain. A disagreement no single
-coupon explains (three coupons of a pattern cannot tell which one is off: a trend through
-two of them always predicts the third equally badly) is reported for the pattern
-(:attr:`Profile.unexplained`). A flagged coupon disagrees with the rest (a bad sample, a
-wrong label, a misread photo), or the coordinate is sampled too coarsely there; either way,
-sew another one there.
+:data:`DISAGREE_FLOOR_DEG` and :data:`DISAGREE_FACTOR` times its expected size
+(:attr:`LeaveOneOut.expected_deg`: the pattern's measurement noise, the median RMSE of the
+coupons' own fits, with the others' covariance propagated to the coupon). Which coupon is to
+blame is not the one with the largest error: one bad coupon spoils its neighbours'
+predictions too, and an end coupon, predicted by extrapolating through a bad neighbour,
+reads about twice the bad coupon's own error. So each coupon is deleted in turn and the
+others are predicted again without it as well (leave two out); the coupon whose deletion
+leaves the smallest worst error is flagged when its own error is over the limit and its
+deletion at least halves the worst error (:data:`DISAGREE_EXPLAINED`): it explains the
+disagreement (one coupon per pattern at most). A disagreement no single coupon explains
+(three coupons of a pattern cannot tell which one is off: a trend through two of them always
+predicts the third equally badly) is reported for the pattern (:attr:`Profile.unexplained`).
+A flagged coupon disagrees with the rest (a bad sample, a wrong label, a misread photo), or
+the coordinate is sampled too coarsely there; either way, sew another one there.
 
 Examples
 --------
@@ -70,7 +70,7 @@ from .markers import MarkerLayout, reading_deg
 __all__ = ["DISAGREE_EXPLAINED", "DISAGREE_FACTOR", "DISAGREE_FLOOR_DEG", "CouponData", "CouponFit", "LeaveOneOut", "Profile",
            "fit_profile", "predicted_reading_deg"]
 
-#: A coupon disagrees when its leave-one-out error exceeds this many times its pattern's median ...
+#: A coupon disagrees when its leave-one-out error exceeds this many times its expected size ...
 DISAGREE_FACTOR = 3.0
 #: ... and this many degrees.
 DISAGREE_FLOOR_DEG = 2.0
