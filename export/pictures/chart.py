@@ -555,9 +555,14 @@ def _draw_series(dwg, g, k: int, s: Series, sc: Scale) -> None:
 
 def _diamond(dwg, x: float, y: float, colour: str, **extra):
     """The operating point's mark: a filled diamond 10 px across centred on (x, y)."""
-    r = 5.0
-    return dwg.polygon([(_fmt(x), _fmt(y - r)), (_fmt(x + r), _fmt(y)), (_fmt(x), _fmt(y + r)), (_fmt(x - r), _fmt(y))],
+    return dwg.polygon([(_fmt(cx), _fmt(cy)) for cx, cy in _diamond_corners(x, y)],
                        fill=colour, stroke="#fff", stroke_width=1.0, **extra)
+
+
+def _diamond_corners(x: float, y: float) -> list[tuple[float, float]]:
+    """Top, right, bottom and left corner of the operating point's diamond centred on (x, y) [px]."""
+    r = 5.0
+    return [(x, y - r), (x + r, y), (x, y + r), (x - r, y)]
 
 
 def _curve_points_px(s: Series, sc: Scale) -> list[np.ndarray]:
@@ -578,7 +583,8 @@ def _draw_p0_labels(dwg, g, series: Sequence[Series], sc: Scale) -> None:
             placer.block_polyline(pts)
         if s.operating_point is not None:  # the diamond's outline
             x, y = float(sc.x_px(s.operating_point[0])), float(sc.y_px(s.operating_point[1]))
-            placer.block_polyline([(x, y - 5.0), (x + 5.0, y), (x, y + 5.0), (x - 5.0, y), (x, y - 5.0)])
+            corners = _diamond_corners(x, y)
+            placer.block_polyline(corners + corners[:1])
     marked = [s for s in series if s.p0_kpa is not None and sc.x_min_kpa <= s.p0_kpa <= sc.x_max_kpa]
     for s in marked:  # the dashed P0 lines: a label sits beside its own line, never across another
         placer.block_polyline([(sc.x_px(s.p0_kpa), sc.top_px), (sc.x_px(s.p0_kpa), sc.top_px + sc.height_px)])
