@@ -245,8 +245,9 @@ def _start(ma, mb, fa, va, fb, vb, t, zigzag):
     return ma + (mb - ma) * (ra / (ra - rb))
 
 
-def _polish(tab: LeanTable, t, x0, d, r0, r1, r2, r3, xp):
-    """(m, settled) from the residuals ``r0..r3`` at ``x0 + d * STENCIL`` (step 3 of the module docstring)."""
+def _polish(x0, d, r0, r1, r2, r3, rtol, atol):
+    """(m, settled) from the residuals ``r0..r3`` at ``x0 + d * STENCIL`` (step 3 of the module docstring),
+    settled within ``rtol |m| + atol``."""
     f0, f1 = r1 - r0, r2 - r1
     k2 = 0.5 * (f1 - f0)
     k3 = ((r3 - r2 - f1) - (f1 - f0)) / 6.0
@@ -261,7 +262,7 @@ def _polish(tab: LeanTable, t, x0, d, r0, r1, r2, r3, xp):
     # |y (y - 1)(y - 2)(y - 3)| <= 1 on [0, 3], over the slope; the root then lies in the bracket
     # within the tolerance (its residuals change sign there)
     left = abs(k3 / slope) * (d * _SPACING)
-    return m, (abs(y - 1.5) <= 1.5) & (left <= tab.rtol * abs(m) + tab.atol)  # NaN: False
+    return m, (abs(y - 1.5) <= 1.5) & (left <= rtol * abs(m) + atol)  # NaN: False
 
 
 def solve_lean(tab: LeanTable, t):
@@ -303,7 +304,7 @@ def solve_lean(tab: LeanTable, t):
         d = np.minimum(kh, _SPACING * np.abs(x0))
         fs, vs = tab.rates(x0 + d * _Z, np)
         r = fs - t if zigzag else fs - t * vs
-        m, settled = _polish(tab, t, x0, d, r[0], r[1], r[2], r[3], np)
+        m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
     if not rises:
         settled[:] = False
     elif not (float(t.min()) > tab.floor and int(i.max()) < _LAST):  # i before it was clipped
@@ -391,7 +392,7 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
         d = SCALAR.minimum(_KW_LIST[lo] * abs(tab.span), _SPACING * abs(x0))
         r = [(f - t if zigzag else f - t * v) for f, v in (tab.rates(x0 + d * z, SCALAR) for z in STENCIL)]
-        m, settled = _polish(tab, t, x0, d, r[0], r[1], r[2], r[3], SCALAR)
+        m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
     except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic or a stencil out of the domain
         return None
     return m if settled and t > tab.floor else None
@@ -468,8 +469,7 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
         for z in STENCIL:  # one point at a time: each array of the rates then stays in cache
             fs, vs = rates(x0 + d * z, np)
             r.append(fs - tt * vs)
-        tab = LeanTable(rates, 0.0, False, float(rtol), atol / rates.theta_per_m, 0.0, {}, {})
-        ms, settled = _polish(tab, tt, x0, d, r[0], r[1], r[2], r[3], np)
+        ms, settled = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / rates.theta_per_m)
         theta = rates.theta(ms, np)
     ignored = t <= 0.0
     return np.where(ignored, 0.0, theta), (settled & served) | ignored
