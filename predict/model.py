@@ -75,7 +75,6 @@ __all__ = [
     "inner_radius_sq",
     "rate_fast",
     "pantograph",
-    "fast_rate_of",
     "StretchRates",
 ]
 
@@ -631,7 +630,7 @@ def _energy_of_theta(geo: Geometry, form: str):
     return e
 
 
-def _zigzag_rate_stable(theta, geo: Geometry, xp=np):
+def _zigzag_rate_stable(theta, geo: Geometry):
     """(dE/dtheta, dV/dtheta) of the stable form on zigzag rows (beta0 = 0), the fast path.
 
     On the zigzag ``r = r0`` (so ``lambda2 = 1`` and ``s = c/r0^2`` are constants),
@@ -647,14 +646,14 @@ def _zigzag_rate_stable(theta, geo: Geometry, xp=np):
     a = 1.0 + 2.0 * m
     w = m * m * s * ia
     b = a + w
-    T, T_a, T_b = _stable_t_partials(a, b, c, xp)
+    T, T_a, T_b = _stable_t_partials(a, b, c)
     f_a = (c * (1.0 + 2.0 * ia2) + 0.5 * c * m * ia2 * ((2.0 * A - s) - m * (1.0 - s * ia))
            + 2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2))
     de = geo.e_scale * k * f_a
-    return xp.where(theta == 0.0, 0.0, de), np.pi * geo.r0 ** 3 + 0.0 * theta
+    return np.where(theta == 0.0, 0.0, de), np.pi * geo.r0 ** 3 + 0.0 * theta
 
 
-def _cross_rate_stable(theta, geo: Geometry, xp=np):
+def _cross_rate_stable(theta, geo: Geometry):
     """(dE/dtheta, dV/dtheta) of the stable form with the analytic derivative, fused (any beta0), the fast path.
 
     :func:`constraint`, :func:`constraint_rates`, :func:`volume_gradient` and
@@ -664,8 +663,8 @@ def _cross_rate_stable(theta, geo: Geometry, xp=np):
     no intermediate is computed twice (real theta only).
     """
     c = geo.c
-    u, cos2, gS, gs2, den = pantograph(theta, geo, xp)
-    cosb = xp.sqrt(cos2)
+    u, cos2, gS, gs2, den = pantograph(theta, geo)
+    cosb = np.sqrt(cos2)
     r = geo.r_c0 * cosb
     # constraint rates: -dr/dl = r_slope tan(beta), dl/dtheta = r/(1/2 + theta (-dr/dl))
     r_l = geo.r_slope * (u * geo.s0) / cosb
@@ -681,7 +680,7 @@ def _cross_rate_stable(theta, geo: Geometry, xp=np):
     il2 = 1.0 / lam2
     w = m * m * s * ia
     b = u + w
-    T, T_a, T_b = _stable_t_partials(u, b, c, xp)
+    T, T_a, T_b = _stable_t_partials(u, b, c)
     cm = 0.5 * c * m * ia2
     f_a = (c * (1.0 - (lam2 - 3.0) * ia2) + cm * ((2.0 * A - s) - m * (1.0 - s * ia))
            + (2.0 * T_a + T_b * (2.0 + s * m * (A + 1.0) * ia2)) * il2)
@@ -689,62 +688,35 @@ def _cross_rate_stable(theta, geo: Geometry, xp=np):
     l_sum = geo.l0 * (1.0 + u)  # l + l0
     de = geo.e_scale * (f_a * (0.5 / geo.l0) * l_t + f_r * r_t)
     dv = np.pi * r * (0.5 * r * l_t + l_sum * r_t)
-    return xp.where(theta == 0.0, 0.0, de), dv
+    return np.where(theta == 0.0, 0.0, de), dv
 
 
-def rate_fast(theta, geo: Geometry, xp=np):
+def rate_fast(theta, geo: Geometry):
     """(dE/dtheta, dV/dtheta) of the stable form with the analytic derivative, the fused fast path, on
-    real theta: numpy arrays (``xp=np``) or, with a :meth:`Geometry.scalar` geometry and ``xp=SCALAR``,
-    one Python float (the same operations, so the same bits).
+    real theta: the zigzag's formula when no row has an angle, else the cross pattern's.
 
     Parameters
     ----------
-    theta : float or numpy.ndarray
+    theta : numpy.ndarray
         Bend angle [rad], real.
     geo : Geometry
         The designs.
-    xp : module, optional
-        numpy, or :data:`~embroact.predict.floats.SCALAR`.
 
     Returns
     -------
-    de, dv
+    de, dv : numpy.ndarray
         dE/dtheta [N mm/rad] and dV/dtheta [mm^3/rad].
 
     Examples
     --------
-    >>> from embroact.predict.floats import SCALAR
     >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
-    >>> one = rate_fast(0.4, geo.scalar(), xp=SCALAR)
-    >>> many = rate_fast(np.array([0.4, 0.5]), geo.scalar())
-    >>> one == (many[0][0], many[1][0])
+    >>> theta = np.array([0.4, 0.5])
+    >>> de, dv = rate_fast(theta, geo)
+    >>> bool(np.allclose(de, energy_rate(theta, geo, derivative="complex")[0], rtol=1e-12))
     True
     """
-    return fast_rate_of(geo)(theta, geo, xp)
-
-
-def fast_rate_of(geo: Geometry):
-    """The function :func:`rate_fast` calls for ``geo``: ``f(theta, geo, xp)`` (chosen once by a caller
-    that evaluates one geometry many times).
-
-    Parameters
-    ----------
-    geo : Geometry
-        The designs.
-
-    Returns
-    -------
-    callable
-        The zigzag's formula when no row has an angle, else the cross pattern's.
-
-    Examples
-    --------
-    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=2.7, p0_mpa=0.085)
-    >>> fast_rate_of(geo)(0.5, geo, np) == rate_fast(0.5, geo)
-    True
-    """
-    cross = geo.s0 != 0.0 if isinstance(geo.s0, float) else np.any(geo.s0)
-    return _cross_rate_stable if cross else _zigzag_rate_stable
+    rate = _cross_rate_stable if np.any(geo.s0) else _zigzag_rate_stable
+    return rate(theta, geo)
 
 
 # -- the stretch m: P without the constraint's theta-derivatives ---------------------------------
