@@ -26,7 +26,7 @@ __all__ = ["SCALAR"]
 
 
 class _ScalarMath:
-    """``sqrt``, ``cos``, ``sin``, ``arcsin``, ``minimum``, ``maximum``, ``where``, ``any`` and ``real`` on floats
+    """``sqrt``, ``cos``, ``sin``, ``arcsin``, ``minimum``, ``maximum``, ``where`` and ``real`` on floats
     (module docstring)."""
 
     __slots__ = ()
@@ -61,11 +61,6 @@ class _ScalarMath:
     def where(condition, a, b):
         """``a`` if ``condition`` else ``b`` (both already evaluated, as with numpy)."""
         return a if condition else b
-
-    @staticmethod
-    def any(x):
-        """``bool(x)``."""
-        return bool(x)
 
     @staticmethod
     def real(x):
