@@ -7,7 +7,8 @@ below P0, then the states and the validity limits. :func:`one_curve_floats` answ
 handful of pressures on Python floats, where numpy's fixed cost per operation would be
 most of the time; it serves only bending points the lean solve settles and returns None
 otherwise (the caller then asks :func:`one_curve`). Both compute each state with the
-same operations (:func:`state`), so a pressure gets the same bits whichever path, and
+same operations (:meth:`~embroact.predict.model.StretchRates.state`), so a pressure gets
+the same bits whichever path, and
 whatever other pressures the call holds (the targets the trace inverse solves are solved
 one at a time for that, except those beyond the lean table, which do not depend on each other).
 
@@ -45,17 +46,16 @@ _INFLATION, _BENDING, _UNSTABLE, _FAILED = (int(s) for s in (Status.INFLATION, S
                                                               Status.FAILED))
 
 
-def state(theta, g: _m.Geometry, xp=np):
-    """(l, r, beta [deg], d^2) on the constraint at bend angles ``theta`` [rad] of the scalar geometry ``g``.
+def state(theta, g: _m.Geometry):
+    """(l, r, beta [deg], d^2) on the constraint at bend angles ``theta`` [rad] of the scalar geometry ``g``
+    (the trace inverse's answers, the straight state; the lean solve's come from its stretch).
 
     Parameters
     ----------
-    theta : float or numpy.ndarray
+    theta : numpy.ndarray
         Bend angles [rad].
     g : Geometry
         One design, its fields floats (:meth:`~embroact.predict.model.Geometry.scalar`).
-    xp : module, optional
-        numpy, or :data:`~embroact.predict.floats.SCALAR` for one float ``theta``.
 
     Returns
     -------
@@ -66,13 +66,13 @@ def state(theta, g: _m.Geometry, xp=np):
     --------
     >>> from embroact.predict.model import Geometry
     >>> g = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1).scalar()
-    >>> [round(float(v), 6) for v in state(0.5, g, SCALAR)]   # l = l0 + 2 r0 theta, d^2 = r0^2 - c 2 l0/(l + l0)
+    >>> [round(float(v[0]), 6) for v in state(np.array([0.5]), g)]  # l = l0 + 2 r0 theta, d^2 = r0^2 - c 2 l0/(l + l0)
     [102.5, 2.5, 0.0, 5.015432]
     """
-    u, cos2, _, _, _ = _m.pantograph(theta, g, xp)
+    u, cos2, _, _, _ = _m.pantograph(theta, g)
     l = g.l0 * u
-    r = g.r_c0 * xp.sqrt(cos2)
-    beta = xp.arcsin(xp.minimum(xp.maximum(u * g.s0, -1.0), 1.0)) * _DEG_PER_RAD
+    r = g.r_c0 * np.sqrt(cos2)
+    beta = np.arcsin(np.minimum(np.maximum(u * g.s0, -1.0), 1.0)) * _DEG_PER_RAD
     return l, r, beta, _m.inner_radius_sq(l, r, g)
 
 
