@@ -206,13 +206,6 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     return svg[: svg.rfind("</svg>")] + layer + "</svg>"
 
 
-def _pieces(act, bend: dict) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """Piece lengths along the fabric line and each piece's bend at the slider's pressure."""
-    from ..pictures.previews import piece_lengths_mm, piece_theta_deg
-
-    return piece_lengths_mm(act), piece_theta_deg(act, bend["segment_theta_deg"] or [bend["theta_deg"]])
-
-
 def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure
     (a segmented actuator drawn as the build draws it: widest sleeve, segment boundaries marked).
@@ -248,7 +241,7 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
                                                         for b in bends if b["theta_deg"] is None))
     panels = []
     for a, b in zip(analysis.actuators, bends):
-        lengths, thetas = _pieces(a, b)
+        lengths, thetas = pv.piece_lengths_mm(a), pv.piece_theta_deg(a, b["segment_theta_deg"])
         states = (0.0, pressure_kpa) if pressure_kpa > 0 else (0.0,)
         rows = [[0.0] * len(lengths), list(thetas)][: len(states)]
         panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=pv.sleeve_mm(a)[1], pressure_kpa=states,
