@@ -529,29 +529,11 @@ def merged_series(series: Sequence[Series]) -> list[Series]:
     """
     groups: dict[tuple, list[Series]] = {}
     for s in series:
-        key = tuple(v.tobytes() if isinstance(v, np.ndarray) else v for k, v in vars_of(s).items() if k != "label")
+        values = (getattr(s, f.name) for f in dataclasses.fields(s) if f.name != "label")
+        key = tuple(v.tobytes() if isinstance(v, np.ndarray) else v for v in values)
         groups.setdefault(key, []).append(s)
     return [g[0] if len(g) == 1 else dataclasses.replace(g[0], label=f"{g[0].label} (and {len(g) - 1} identical)")
             for g in groups.values()]
-
-
-def vars_of(s: Series) -> dict:
-    """The fields of a series by name (a frozen dataclass with slots has no ``__dict__``).
-
-    Parameters
-    ----------
-    s : Series
-
-    Returns
-    -------
-    dict
-
-    Examples
-    --------
-    >>> sorted(vars_of(Series("A", [0.0], [0.0])))[:3]
-    ['label', 'measured_pressure_kpa', 'measured_theta_deg']
-    """
-    return {f.name: getattr(s, f.name) for f in dataclasses.fields(s)}
 
 
 def breakpoints_kpa(analysis) -> tuple[float, ...]:
