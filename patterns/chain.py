@@ -13,8 +13,8 @@ Examples
 --------
 >>> from embroact.patterns.chain import Chain
 >>> one, three = Chain(["z"]), Chain(["z", "x", "z"])
->>> one.is_single, one.listed, one.label(0), one.part_name("A1", 0)
-(True, (), '', 'A1')
+>>> one.listed, one.label(0), one.part_name("A1", 0)
+((), '', 'A1')
 >>> three.listed, three.label(1), three.where(1), three.part_name("A1", 2)
 (('z', 'x', 'z'), 'segment 1: ', 'segment[1]: ', 'A1 segment 2')
 >>> Chain([])
@@ -45,8 +45,8 @@ class Chain(tuple):
     Examples
     --------
     >>> c = Chain(("a", "b"))
-    >>> c == ("a", "b"), len(c), c.is_single
-    (True, 2, False)
+    >>> c == ("a", "b"), len(c)
+    (True, 2)
     """
 
     __slots__ = ()
@@ -84,11 +84,6 @@ class Chain(tuple):
         if isinstance(segments, _Whole) or not tuple(segments):
             return _Whole((whole(),))
         return cls(segments)
-
-    @property
-    def is_single(self) -> bool:
-        """True for a chain of one (a single-pattern actuator: its segment is the whole actuator)."""
-        return len(self) == 1
 
     @property
     def listed(self) -> tuple:
