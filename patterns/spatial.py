@@ -383,8 +383,7 @@ class SegmentIndex:
         """
         r = p - self._a[seg]
         dd = self._d[seg]
-        t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
-        return np.hypot(*(r - t[:, None] * dd).T)
+        return np.hypot(*(r - _along(r, dd, self._len2[seg])[:, None] * dd).T)
 
     @property
     def length_mm(self) -> float:
@@ -411,9 +410,7 @@ class SegmentIndex:
         [5.0, 14.0, 0.0]
         """
         seg = self.nearest(p)
-        start = self._start_mm
-        t = np.einsum("ij,ij->i", p - self._a[seg], self._d[seg]) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0)
-        return start[seg] + np.clip(t, 0.0, 1.0) * np.sqrt(self._len2[seg])
+        return self._start_mm[seg] + _along(p - self._a[seg], self._d[seg], self._len2[seg]) * np.sqrt(self._len2[seg])
 
     def within(self, p: np.ndarray, radius_mm: float) -> np.ndarray:
         """Indices of the points of ``p`` closer than ``radius_mm`` to the polyline, ascending
@@ -462,8 +459,7 @@ class SegmentIndex:
             seg = owners[idx]
             r = p[owner] - self._a[seg]
             dd = self._d[seg]
-            t = np.clip(np.einsum("ij,ij->i", r, dd) / np.where(self._len2[seg] > 0, self._len2[seg], 1.0), 0.0, 1.0)
-            r -= t[:, None] * dd
+            r -= _along(r, dd, self._len2[seg])[:, None] * dd
             d2 = np.einsum("ij,ij->i", r, r)
             counts = per_point[start:stop]
             has = counts > 0
@@ -581,6 +577,12 @@ def self_crossings(xy_mm) -> tuple[np.ndarray, np.ndarray | None]:
     pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
     meet = shapely.intersection(segs[pairs[0, 0]], segs[pairs[0, 1]])
     return pairs, shapely.get_coordinates(meet)[0]
+
+
+def _along(r: np.ndarray, d: np.ndarray, len2: np.ndarray) -> np.ndarray:
+    """Where along segments ``d`` (squared lengths ``len2``) the nearest point to each offset ``r`` from a
+    segment's start lies, in [0, 1] (0 on a zero-length segment)."""
+    return np.clip(np.einsum("ij,ij->i", r, d) / np.where(len2 > 0, len2, 1.0), 0.0, 1.0)
 
 
 def corridor_hits(path, xy_mm, radius_mm: float) -> np.ndarray:
