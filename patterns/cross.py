@@ -241,17 +241,16 @@ def cross_layout(cl: Centerline, params: CrossParams, start_mm: float, length_mm
     """
     n, s, alpha, note = closing(params, adjust)
     d = n * s / 2.0  # = w tan(alpha), exactly closing
-    length = length_mm
     minimum = max(4.0 * d, options.tie_stitch_mm)
     tol = DEFAULT_TOLERANCES.length_mm
-    if length < minimum - tol:
+    if length_mm < minimum - tol:
         raise PatternError(
             f"path length_mm must be >= {minimum:.4g} for a cross pattern with width_mm={params.width_mm:g}, "
-            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length:g}"
+            f"angle_deg={alpha:.4g} (4*w*tan(angle), two leg pitches, and >= tie_stitch_mm), got {length_mm:g}"
         )
-    span = whole_intervals(length, s) * s
-    check_record_count(cross_stations(length, params, adjust), options)
-    start = start_mm + 0.5 * (length - span)
+    span = whole_intervals(length_mm, s) * s
+    check_record_count(cross_stations(length_mm, params, adjust), options)
+    start = start_mm + 0.5 * (length_mm - span)
     passes = []
     for j in range(n):
         k = np.arange(math.ceil(-j * s / d - tol / d), math.floor((span - j * s) / d + tol / d) + 1)
