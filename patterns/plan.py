@@ -137,20 +137,24 @@ class SegmentPlan(KindOf):
     Examples
     --------
     >>> from embroact.patterns.params import ZigzagParams
-    >>> seg = SegmentPlan(ZigzagParams(7.0, 1.0), 0.0, 100.0, Realised(7.0, 1.0, 8.13, 100.0), 0.0, 0.0, 0.0)
-    >>> seg.pattern, seg.length_mm
-    ('zigzag', 100.0)
+    >>> seg = SegmentPlan(ZigzagParams(7.0, 1.0), 0.0, 100.0, Realised(7.0, 1.0, 8.13, 100.0), 0.0, 0.0)
+    >>> seg.pattern, seg.length_mm, seg.first_leg_mm
+    ('zigzag', 100.0, 0.0)
     """
 
     params: PatternParams
     start_mm: float
     length_mm: float
     realised: Realised
-    first_leg_mm: float
     transition_mm: float
     join_run_mm: float
     adjustments: tuple[str, ...] = ()
     mirrored: bool = False
+
+    @property
+    def first_leg_mm(self) -> float:
+        """Arc length where the segment's legs start [mm]: the realised ``start_mm``."""
+        return self.realised.start_mm
 
 
 @dataclass(frozen=True, slots=True)
@@ -198,7 +202,7 @@ class ActuatorPlan(KindOf):
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "segments", Chain.given_or_one(self.segments, lambda: SegmentPlan(
-            self.params, 0.0, self.centerline.length_mm, self.realised, self.realised.start_mm, 0.0, 0.0,
+            self.params, 0.0, self.centerline.length_mm, self.realised, 0.0, 0.0,
             tuple(self.adjustments))))
 
     def rails(self) -> tuple:

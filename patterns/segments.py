@@ -332,4 +332,4 @@ def _segment_plan(cl: Centerline, xy, station_roles, seg: SegmentSpec, start_mm:
     r = np.array(station_roles)
     r[0] = Role.TIE_IN  # the segment's first point starts its first leg
     realised = measure(xy, r, cl, seg.pattern)
-    return SegmentPlan(seg.params, start_mm, seg.length_mm, realised, realised.start_mm, 0.0, 0.0, notes, mirrored)
+    return SegmentPlan(seg.params, start_mm, seg.length_mm, realised, 0.0, 0.0, notes, mirrored)
