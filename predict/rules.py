@@ -264,7 +264,7 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     for act in analysis.actuators:
         if not act.derived.has_sleeve:
             continue
-        key = (act.choice, act.model_error, act.spec.model.calibration, act.bend_pieces(),
+        key = (act.spec.model.calibration, act.bend_pieces(),
                tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
         if key not in shared:
             shared[key] = _actuator_findings(act, analysis, settings)
