@@ -544,12 +544,13 @@ class DesignAnalysis:
         key = (p, method)
         if key not in self._curves:
             strips: dict = {}  # identical actuators (the same segment curves, bent pieces and stub) share one strip
+            out = []
             for a, pieces in zip(self.actuators, self.segment_curves(p, method=method)):
                 same = (tuple(map(id, pieces)), a.bend_pieces(), a.plan.tube.end_margin_mm)
                 if same not in strips:
                     strips[same] = a.strip(pieces)
-                strips[a.name] = strips[same]
-            self._curves[key] = tuple(strips[a.name] for a in self.actuators)
+                out.append(strips[same])
+            self._curves[key] = tuple(out)
         return self._curves[key]
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
