@@ -134,10 +134,11 @@ class ModelRuleSettings:
         return cls(**base)
 
 
-def _model_findings(choice, model_error: str, curve_of, calibration: str, settings: ModelRuleSettings, *,
+def _model_findings(choice, model_error: str, c, calibration: str, settings: ModelRuleSettings, *,
                     where: dict, prefix: str = "") -> list[Finding]:
-    """EA401, EA402 and EA404-EA406 of one segment's model (``prefix`` names the segment); the bend limit EA403
-    is the whole strip's (:func:`_actuator_findings`)."""
+    """EA401, EA402 and EA404-EA406 of one segment's model (``prefix`` names the segment) from its curve ``c`` on the
+    working pressure's grid (None without a model or with P0 above); the bend limit EA403 is the whole strip's
+    (:func:`_actuator_findings`)."""
     from .analysis import pressure_grid_kpa
     from .curve import lockup
 
@@ -161,7 +162,6 @@ def _model_findings(choice, model_error: str, curve_of, calibration: str, settin
             "EA401", f"{prefix}P0 {model.p0_kpa:.1f} kPa above the working pressure {p_max:g} kPa", **where))
         return out
     pressures = pressure_grid_kpa(p_max)
-    c = curve_of(pressures)
     bad = np.flatnonzero(np.isin(c.status, [int(s) for s in _BAD_STATES]))
     if len(bad):
         i = int(bad[0])
@@ -194,7 +194,7 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
             continue  # EA201 reports it
         bends = seg.choice is not None and seg.model.p0_kpa <= p_max
         c = analysis.model_curve(seg.model, pressures, method=settings.method) if bends else None
-        out += _model_findings(seg.choice, seg.model_error, lambda p, c=c: c, calibration, settings, where=where,
+        out += _model_findings(seg.choice, seg.model_error, c, calibration, settings, where=where,
                                prefix=act.segments.label(k))
         total += float(c.theta_deg[-1]) if c is not None else 0.0
     if abs(total) > settings.max_bend_deg:
