@@ -36,7 +36,7 @@ from .base.errors import ParameterError
 from .params import ADJUST_METHODS, CrossParams, PatternParams, ZigzagParams
 
 __all__ = ["Interval", "KindFields", "KindOf", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind",
-           "param_values", "register"]
+           "param_values", "params_text", "register"]
 
 
 class Interval(enum.Enum):
@@ -371,6 +371,26 @@ def param_values(params: PatternParams) -> dict[str, float]:
     {'width_mm': 7.0, 'interval_mm': 1.4, 'angle_deg': 45.0}
     """
     return pattern_kind(params.pattern).values(params)
+
+
+def params_text(params) -> str:
+    """Pattern parameters as ``key=value`` words (5 significant digits).
+
+    Parameters
+    ----------
+    params : PatternParams
+        A pattern's parameters.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> params_text(ZigzagParams(width_mm=7.0, interval_mm=1.0))
+    'width_mm=7 interval_mm=1'
+    """
+    return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
 
 
 class KindOf:

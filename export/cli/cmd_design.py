@@ -219,8 +219,8 @@ def _operation_line(design) -> str:
 
 
 def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
+    from ...patterns.kinds import params_text
     from ...predict.inverse import design_bend
-    from ..pictures.shapefit import params_text
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
@@ -253,10 +253,9 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
 
 
 def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bool]:
-    from ...predict.inverse import design_shape
-    from ..pictures.shapefit import design_shape_svg, params_text
-
-    from ...predict.inverse import DEFAULT_TIME_LIMIT_S
+    from ...patterns.kinds import params_text
+    from ...predict.inverse import DEFAULT_TIME_LIMIT_S, design_shape
+    from ..pictures.shapefit import design_shape_svg
 
     progress = (lambda message: print(f"design: {message}", file=sys.stderr, flush=True)) \
         if sys.stderr.isatty() and not args.json else None  # on a terminal: what the search is doing

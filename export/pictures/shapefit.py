@@ -22,9 +22,10 @@ from typing import Sequence
 import numpy as np
 
 from ...patterns.base.errors import ParameterError
+from ...patterns.kinds import params_text
 from .sideview import PX_PER_MM
 
-__all__ = ["params_text", "shape_overlay_svg", "design_shape_svg"]
+__all__ = ["shape_overlay_svg", "design_shape_svg"]
 
 _MARGIN_MM = 10.0
 _HEADER_MM = 16.0
@@ -111,27 +112,6 @@ def shape_overlay_svg(target_xy_mm, predicted_xy_mm, boundaries_mm: Sequence[flo
     root.add(dwg.line((bar_x, bar_y), (bar_x + 10.0, bar_y), stroke="#000", stroke_width=0.6))
     root.add(dwg.text("10 mm", insert=(bar_x + 5.0, bar_y - 1.5), font_size=3.5, text_anchor="middle"))
     return dwg.tostring()
-
-
-def params_text(params) -> str:
-    """Pattern parameters as ``key=value`` words (5 significant digits).
-
-    Parameters
-    ----------
-    params : PatternParams
-        A pattern's parameters.
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> from embroact.patterns.params import ZigzagParams
-    >>> params_text(ZigzagParams(width_mm=7.0, interval_mm=1.0))
-    'width_mm=7 interval_mm=1'
-    """
-    return " ".join(f"{k}={getattr(params, k):.5g}" for k in params.__slots__)
 
 
 def design_shape_svg(result) -> str:
