@@ -218,13 +218,13 @@ def _operation_line(design) -> str:
             f"judge the design up to them); operating point {bend}{op.target_pressure_kpa:g} kPa")
 
 
-def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
+def _bend(args, tube, settings, sets, operation) -> tuple[dict, Design, list[str], bool]:
     from ...patterns.kinds import params_text
     from ...predict.inverse import design_bend
 
     r = design_bend(args.bend_deg, args.at_kpa, pattern=args.pattern, length_mm=args.length_mm, tube=tube,
                     settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
-                    tolerance_deg=args.tolerance_deg, operation=_limits(args),
+                    tolerance_deg=args.tolerance_deg, operation=operation,
                     length_tolerance_mm=args.length_tolerance_mm)
     lines = [f"target {r.target_deg:g} deg at {r.pressure_kpa:g} kPa, l0 {r.length_mm:g} mm: {r.statement}"]
     if r.range_deg is not None:
@@ -252,7 +252,7 @@ def _bend(args, tube, settings, sets) -> tuple[dict, Design, list[str], bool]:
     return r.as_dict(), r.best.design, lines, r.reached
 
 
-def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bool]:
+def _shape(args, tube, settings, sets, operation) -> tuple[dict, Design, list[str], str, bool]:
     from ...patterns.kinds import params_text
     from ...predict.inverse import DEFAULT_TIME_LIMIT_S, design_shape
     from ..pictures.shapefit import design_shape_svg
@@ -262,7 +262,7 @@ def _shape(args, tube, settings, sets) -> tuple[dict, Design, list[str], str, bo
     r = design_shape(read_target_shape(args.target_shape), args.at_kpa, max_segments=args.max_segments, tube=tube,
                      settings=settings, sets=sets, allow_extrapolation=args.allow_extrapolation, name=args.name,
                      time_limit_s=DEFAULT_TIME_LIMIT_S if args.time_limit is None else args.time_limit,
-                     tolerance_mm=args.tolerance_mm, progress=progress, operation=_limits(args))
+                     tolerance_mm=args.tolerance_mm, progress=progress, operation=operation)
     lines = [f"target shape {args.target_shape} at {r.pressure_kpa:g} kPa: {r.statement}",
              f"RMSE {r.rmse_mm:.3f} mm, max deviation {r.max_deviation_mm:.3f} mm, tip {r.tip_error_mm:.3f} mm off, "
              f"tip angle {r.tip_angle_error_deg:+.2f} deg off (curvature fit alone: RMSE {r.fit_rmse_mm:.3f} mm)"]
@@ -310,7 +310,7 @@ def run(args) -> int:
     from .args import input_files
 
     check_target_pressure(args.at_kpa, "--at-kpa")  # named as the user typed it, before any search
-    _limits(args)
+    operation = _limits(args)
     if args.bend_deg is not None and args.length_tolerance_mm:
         from ...patterns.base.errors import check_range
 
@@ -325,10 +325,10 @@ def run(args) -> int:
     tube = tube_from_args(args)
     settings, sets = _settings(args)
     if args.bend_deg is not None:
-        result, design, lines, reached = _bend(args, tube, settings, sets)
+        result, design, lines, reached = _bend(args, tube, settings, sets, operation)
         files: dict[str | os.PathLike, bytes] = {out: dumps_design(design).encode("utf-8")}
     else:
-        result, design, lines, svg, reached = _shape(args, tube, settings, sets)
+        result, design, lines, svg, reached = _shape(args, tube, settings, sets, operation)
         files = {out: dumps_design(design).encode("utf-8"), more[0]: svg.encode("utf-8")}
         result["svg"] = str(more[0])
     write = reached or args.write_nearest
