@@ -1211,15 +1211,18 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
                              + "; ".join(reasons or ["every design fails the design rules or leaves the valid states"]))
     met = sorted((c for c in cands if in_range and abs(c.theta_deg - target) <= tol),
                  key=lambda c: _rank(c, target, p, length))
+
+    def sized(c):  # the statement's length note: a length other than the one asked for
+        return "" if c.length_mm == length else f" with a length of {c.length_mm:g} mm (asked {length:g})"
+
     if met:
         best = met[0]
         others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p, length)) if c is not best]
         note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
-        sized = "" if best.length_mm == length else f" with a length of {best.length_mm:g} mm (asked {length:g})"
         band = "" if best.theta_sd_deg is None else f" (+- {best.theta_sd_deg:.2f} deg, 1 sigma of the calibration)"
         return BendResult(target, p, length, best, tuple(others[:2]), True,
-                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg{band} at {p:g} kPa{sized}{note}", in_range,
-                          whole, tol, notes)
+                          f"met: {best.pattern} bends {best.theta_deg:.2f} deg{band} at {p:g} kPa{sized(best)}{note}",
+                          in_range, whole, tol, notes)
     cands.sort(key=lambda c: (round(abs(c.theta_deg - target), 6), c.warning_count > 0, c.pattern))
     best = cands[0]
     exact = (f"; it bends by {target:g} deg at {best.exact_pressure_kpa:.1f} kPa" if best.exact_pressure_kpa
@@ -1238,8 +1241,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         bound = None if whole is None else (whole[1] if target > whole[1] else whole[0])
         why = "; ".join(reasons) if bound is None else (f"the calibrated designs bend {extreme} {bound:+.2f} deg at "
                                                         f"{p:g} kPa in a valid state ({'; '.join(reasons)})")
-    sized = "" if best.length_mm == length else f" with a length of {best.length_mm:g} mm (asked {length:g})"
-    statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg{sized} "
+    statement = (f"not met: {why}. Nearest: {best.pattern} {best.theta_deg:.2f} deg{sized(best)} "
                  f"({best.theta_deg - target:+.2f} deg off){exact}")
     return BendResult(target, p, length, dataclasses.replace(best, binding=why), tuple(cands[1:3]), False, statement,
                       in_range, whole, tol, notes)
