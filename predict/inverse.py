@@ -880,7 +880,7 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
                polish: bool, offset_path: bool = True, interval_mm: float | None = None) -> BendCandidate | None:
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
     needle points are on the machine grid); None if it is not in a valid state or fails the rules.
-    ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_length`)."""
+    ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_lengths`)."""
     from .rules import check_design
 
     def params_at(v):
@@ -1063,16 +1063,16 @@ def _rank(c: BendCandidate, target_deg: float, p: float, length_mm: float):
             round(abs(c.theta_deg - target_deg), 6), -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
 
 
-def _fitted_lengths(space: DesignSpace, x: float, c: BendCandidate, length_mm: float, tolerance_mm: float,
-                    target_deg: float, make) -> list[BendCandidate]:
-    """Candidates of parameter ``x`` at other lengths within ``tolerance_mm`` of ``length_mm``, nearer the target.
+def _fitted_lengths(c: BendCandidate, length_mm: float, tolerance_mm: float, target_deg: float, interval_mm: float,
+                    make) -> list[BendCandidate]:
+    """Candidates of ``c``'s parameter at other lengths within ``tolerance_mm`` of ``length_mm``, nearer the target.
 
     The bend of a uniform actuator is its curvature times its bent length, and the curvature does not
     depend on the length: the length that bends by the target is ``L theta* / theta(L)``, moved to the
-    machine grid and to ``length_mm +- tolerance_mm``. Its stitch interval is the space's one adjusted to
-    a whole number of intervals over it (the legs then span the length exactly, first and last needle
-    point on the grid); one more step corrects what the rounding left. ``make(x, length, interval)``
-    generates and analyses a candidate (None when it is invalid).
+    machine grid and to ``length_mm +- tolerance_mm``. Its stitch interval is ``interval_mm`` (the space's)
+    adjusted to a whole number of intervals over it (the legs then span the length exactly, first and last
+    needle point on the grid); one more step corrects what the rounding left. ``make(length, interval)``
+    generates and analyses a candidate of the parameter (None when it is invalid).
     """
     grid = DEFAULT_TOLERANCES.machine_grid_mm
     low, high = max(10.0, length_mm - tolerance_mm), min(1000.0, length_mm + tolerance_mm)
@@ -1086,8 +1086,8 @@ def _fitted_lengths(space: DesignSpace, x: float, c: BendCandidate, length_mm: f
         fitted = fitted if low - 1e-9 <= fitted <= high + 1e-9 else round(round(at.length_mm / grid) * grid, 10)
         if any(abs(fitted - o.length_mm) < 1e-9 for o in [c, *out]):
             break
-        n = max(1, round(fitted / space.interval_mm))
-        at = make(x, fitted, fitted / n)
+        n = max(1, round(fitted / interval_mm))
+        at = make(fitted, fitted / n)
         if at is None:
             break
         out.append(at)
@@ -1200,9 +1200,9 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
                 add(c)
                 if c is not None and inside and space.grid_step > 0.0 and length_tolerance_mm > 0.0 \
                         and abs(c.theta_deg - target) > _BEND_TOL_DEG:
-                    for other in _fitted_lengths(space, v, c, length, length_tolerance_mm, target,
-                                                 lambda x, L, s, space=space: _candidate(
-                                                     space, x, L, p, target, polish=False, interval_mm=s, **kw)):
+                    for other in _fitted_lengths(c, length, length_tolerance_mm, target, space.interval_mm,
+                                                 lambda L, s, space=space, v=v: _candidate(
+                                                     space, v, L, p, target, polish=False, interval_mm=s, **kw)):
                         add(other)
     whole = (min(r[0] for r in ranges), max(r[1] for r in ranges)) if ranges else None
     in_range = whole is not None and any(r[0] <= target <= r[1] for r in ranges)
