@@ -1780,11 +1780,6 @@ def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: Model
     return Design(name, tube, MachineSettings(), operation, (spec,))
 
 
-def _rmse_mm(shape, sj, xy) -> float:
-    """RMSE [mm] of a predicted shape against the resampled target."""
-    return float(np.sqrt(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))))
-
-
 def _split_stepped(model: _Model, seg_spaces, x, lengths):
     """Each segment whose stepped parameter (a zigzag width) lies between two grid values, as two segments of
     those values whose bends add up to its own: ``(spaces, x, lengths, index)``, ``index`` the segment each
@@ -1825,7 +1820,8 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
     single move that lowers the position error: a stepped parameter one grid step either way, a
     continuous one (a cross angle) by 0.2 deg, and, while the error is above ``_SHAPE_GOOD_MM``, a
     boundary between two segments by 1 mm (the grid's coarse widths are met by segment lengths);
-    the continuous steps are refined to an eighth. Returns ``(x, lengths, (design, analysis, shape, theta))``.
+    the continuous steps are refined to an eighth. Returns ``(x, lengths, rmse_mm, (design, analysis, shape,
+    theta))``, ``rmse_mm`` the sewn line's against the target.
     """
     from .analysis import analyse
 
@@ -1875,7 +1871,7 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
             if angle_step <= _SHAPE_ANGLE_STEP_DEG / 8.0:
                 break
             angle_step, length_step = angle_step / 2.0, length_step / 2.0
-    return v, ls, found
+    return v, ls, math.sqrt(cost), found
 
 
 def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,
@@ -1916,14 +1912,14 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     x = np.round(best[1] if best is not None else x, 4)
     grid = dict(name=name, tube=tube, settings=settings, sets=sets, p=p, progress=progress, operation=operation)
     found = _on_grid(seg_spaces, x, lengths, sj, xy, **grid)
-    if _rmse_mm(found[2][2], sj, xy) > tolerance_mm:  # not met: mix the two grid widths around each width wanted
-        split = _split_stepped(model, seg_spaces, x, lengths)
-        if len(split[0]) > len(seg_spaces):
-            mixed = _on_grid(split[0], split[1], split[2], sj, xy, **grid)
-            if _rmse_mm(mixed[2][2], sj, xy) < _rmse_mm(found[2][2], sj, xy):
-                seg_spaces, found = split[0], mixed
-                kappa, chosen = np.asarray(kappa)[list(split[3])], [chosen[i] for i in split[3]]
-    x, lengths, (design, a, shape, theta) = found
+    if found[2] > tolerance_mm:  # not met: mix the two grid widths around each width wanted
+        split_spaces, split_x, split_lengths, source = _split_stepped(model, seg_spaces, x, lengths)
+        if len(split_spaces) > len(seg_spaces):
+            mixed = _on_grid(split_spaces, split_x, split_lengths, sj, xy, **grid)
+            if mixed[2] < found[2]:
+                seg_spaces, found = split_spaces, mixed
+                kappa, chosen = np.asarray(kappa)[list(source)], [chosen[i] for i in source]
+    x, lengths, _, (design, a, shape, theta) = found
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
     act = a.actuators[0]
     seg_thetas = [float(t) for (length_k, k), t in zip(act.bend_pieces(), theta) if k >= 0]
