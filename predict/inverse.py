@@ -1933,15 +1933,15 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     angle_err = (t_pred - t_tgt + 180.0) % 360.0 - 180.0
     findings = check_design(a)  # the gate `embroact check` and `build` run on the written file
     errors = sorted({f.code for f in findings if f.severity.name == "ERROR"})
-    notes = [c[3] for c in chosen if c[3]]
+    near = "; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3])  # what each segment misses
     out_segs = tuple(ShapeSegment(sg.params, sg.length_mm, t, float(k), note)
                      for sg, t, k, note in zip(segs, seg_thetas, kappa, [c[3] for c in chosen]))
     rmse = float(np.sqrt(np.mean(dev**2)))
     # a segment whose curvature alone is out of reach may still leave the whole line close: the sewn line decides
     reached = not bad and int(strip) in _VALID and not errors and rmse <= tolerance_mm
     why = []
-    if notes:
-        why.append("; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3]))
+    if near:
+        why.append(near)
     if bad:
         why.append(f"segments {bad} leave the valid model states at {p:g} kPa")
     elif int(strip) not in _VALID:
@@ -1954,7 +1954,6 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
                  for sp in spaces.values() if sp.grid_step for name, _, unit in [sp.parameter.rpartition("_")]]
         why.append(f"the sewable designs ({', '.join(steps) or 'on the machine grid'}) leave an RMSE above "
                    f"{tolerance_mm:g} mm")
-    near = "; ".join(f"segment {i}: {c[3]}" for i, c in enumerate(chosen) if c[3])
     statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm"
                  + (f" ({near}; the whole sewn line is within {tolerance_mm:g} mm)" if near else "") if reached else
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")
