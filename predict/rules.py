@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..patterns.base.errors import check_range
+from ..patterns.base.errors import ModelDomainError, check_range
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.design import OperationSettings
 from ..patterns.rules import RuleSettings, sort_findings
@@ -207,8 +207,6 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
 def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where: dict) -> list[Finding]:
     """EA405 for the whole strip where it touches itself, the clamp or the fixed fabric while every segment's own
     state is valid (:func:`~embroact.predict.validity.strip_status`); none when a segment has no model."""
-    from ..patterns.base.errors import ModelDomainError
-
     try:
         strip = analysis.curves(pressures, method=settings.method)[analysis.actuators.index(act)]
     except ModelDomainError:
