@@ -80,10 +80,11 @@ class Chain(tuple):
         >>> one = Chain.given_or_one((), lambda: "z")
         >>> one, Chain.given_or_one(one, lambda: "y"), Chain.given_or_one(("a", "b"), lambda: "z")
         (('z',), ('y',), ('a', 'b'))
+        >>> Chain.given_or_one((s for s in "ab"), lambda: "z")
+        ('a', 'b')
         """
-        if isinstance(segments, _Whole) or not tuple(segments):
-            return _Whole((whole(),))
-        return cls(segments)
+        segs = () if isinstance(segments, _Whole) else tuple(segments)  # read once: a generator is used up
+        return cls(segs) if segs else _Whole((whole(),))
 
     @property
     def listed(self) -> tuple:

@@ -145,3 +145,12 @@ def test_a_chain_of_one_is_written_and_read_as_a_plain_actuator():
     assert build_plan(dataclasses.replace(default_design(), actuators=(wider,))).actuators[0].realised.width_mm == 9.0
     cross = ActuatorSpec("C", CrossParams(7.0, 1.4, 30.0), Centerline.straight(100.0), adjust="angle")
     assert cross.segments == (SegmentSpec(CrossParams(7.0, 1.4, 30.0), 100.0, adjust="angle"),)
+
+
+def test_segments_given_as_a_generator_make_the_same_chain():
+    """A generator of segments is read once: it was emptied by the emptiness test and then refused as none."""
+    segs = (SegmentSpec(ZigzagParams(width_mm=6.0, interval_mm=1.0), 40.0),
+            SegmentSpec(CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=45.0), 60.0))
+    cl = Centerline.straight(100.0)
+    given = ActuatorSpec("S", segs[0].params, cl, segments=(s for s in segs))
+    assert given == ActuatorSpec("S", segs[0].params, cl, segments=segs) and tuple(given.segments) == segs
