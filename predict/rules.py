@@ -207,8 +207,8 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
 def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where: dict) -> list[Finding]:
     """EA405 for the whole strip where it touches itself, the clamp or the fixed fabric while every segment's own
     state is valid (:func:`~embroact.predict.validity.strip_status`); none when a segment has no model."""
-    try:
-        strip = analysis.curves(pressures, method=settings.method)[analysis.actuators.index(act)]
+    try:  # this actuator's strip alone: another actuator without a model must not hide it
+        strip = act.strip([analysis.model_curve(s.model, pressures, method=settings.method) for s in act.segments])
     except ModelDomainError:
         return []  # the segment's own EA405 names it
     own = np.all([is_model_state(c.status) for c in strip.segments], axis=0)  # the segments' states are valid

@@ -277,3 +277,19 @@ def test_predict_text_says_what_a_coiled_strip_means(tmp_path, capsys):
     lines = capsys.readouterr().out.splitlines()
     assert lines[-3].split()[-1] == "BENDING" and lines[-2].split()[-1] == "COILED"
     assert lines[-1].startswith("COILED: the strip, with the 30 mm sealed tube beyond its tip, touches itself")
+
+
+def test_the_whole_strip_finding_stands_beside_an_actuator_without_a_model():
+    """The whole-strip EA405 of one actuator was read from every actuator's strips at once, so a second actuator
+    without a model (its calibration has no points of its kind) dropped it for the whole design."""
+    from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+
+    only_zigzag = CalibrationSet("zigzag-only", (CalibrationPoint("zigzag", 6.0, 2.0, 60.0, branch="both"),),
+                                 "synthetic", {})
+    lone = {"name": "N", "origin_mm": [0.0, 40.0], "model": {"calibration": "zigzag-only"}, **CROSS_45}
+    d = design_from_dict({"operation": {"max_pressure_kpa": 300.0},
+                          "actuator": [{"name": "S", "segment": [ZIGZAG_5, CROSS_45]}, lone]})
+    a = analyse(d, calibration_sets=[only_zigzag])
+    assert a.actuators[1].choice is None
+    assert any(f.code == "EA405" and f.actuator == "S" and "whole strip COILED from 180 kPa" in f.message
+               for f in check_design(a))
