@@ -110,3 +110,19 @@ def test_an_operating_point_beyond_the_limits_is_refused_in_the_design_file(tmp_
         design_from_dict({"operation": {"target_pressure_kpa": 400}, "actuator": [act]})
     with pytest.raises(DesignFileError, match="target_bend_deg 90 needs target_pressure_kpa"):
         design_from_dict({"operation": {"target_bend_deg": 90}, "actuator": [act]})
+
+
+def test_the_studios_target_bend_is_judged_by_the_designs_own_limits(tmp_path, capsys):
+    """The studio searched with the default 300 kPa / 180 deg limits whatever the design's [operation] said, so
+    its answer listed EA403/EA405 that `design --max-pressure-kpa 150` and `check` of that design do not give."""
+    import dataclasses
+
+    from embroact.patterns.design import default_design
+
+    code, cli = _run_json(capsys, ["design", "--bend-deg", "84.5", "--at-kpa", "150", "--pattern", "zigzag",
+                                   "--max-pressure-kpa", "150", "-o", str(tmp_path / "d.toml")])
+    assert code == 0
+    design = dataclasses.replace(default_design(), operation=OperationSettings(150.0, 180.0))
+    answer = Studio(design, str(tmp_path)).inverse(84.5, 150.0, pattern="zigzag")
+    assert answer["best"]["findings"] == cli["best"]["findings"]
+    assert not [f for f in answer["best"]["findings"] if f.startswith(("EA403", "EA405"))]

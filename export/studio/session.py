@@ -422,6 +422,7 @@ class Studio:
         with self._searching():  # the design is not locked meanwhile: views and edits go on
             result = design_bend(target, p, pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
                                  settings=spec.model, sets=self.calibration_sets, name=spec.name,
+                                 operation=design.operation,  # judged by the limits the studio then shows
                                  offset_path=False)  # the answer's parameters go on the actuator where it lies
         best = result.best
         values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
@@ -479,12 +480,13 @@ class Studio:
             raise ParameterError(f"max_segments must be an integer in [1, 12], got {max_segments!r:.40}")
         with self._lock:
             index, spec = self._actuator(actuator)
-            tube, old = self.design.tube, self.form["actuator"][index]
+            tube, operation, old = self.design.tube, self.design.operation, self.form["actuator"][index]
         target = Centerline.from_svg_path(path_d).points_mm
         p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
         with self._searching():  # the design is not locked meanwhile: views and edits go on
             result = design_shape(target, p, max_segments=max_segments, tube=tube, settings=spec.model,
-                                  sets=self.calibration_sets, name=spec.name, time_limit_s=SHAPE_SEARCH_S)
+                                  sets=self.calibration_sets, name=spec.name, time_limit_s=SHAPE_SEARCH_S,
+                                  operation=operation)
         table = design_form(result.design)["actuator"][0]
         table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
         with self._lock:  # only a reachable answer is offered: an unreachable one is shown, never applied
