@@ -24,6 +24,7 @@ import sys
 import tempfile
 import time
 from dataclasses import asdict, dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -189,7 +190,7 @@ def _fresh_models(model, n: int, tag: str) -> list:
     return [replace(model, calibration=f"{tag} {k}") for k in range(n)]
 
 
-def _competitor(cfg: Config, designs, points, methods) -> dict:
+def _competitor(cfg: Config, designs, points) -> dict:
     """The curve section, every ratio paired: in each of ``cfg.curve_rounds`` rounds every variant runs once
     per design, interleaved (:func:`paired_rounds`). Variants: ``auto`` (repeated calls on one model: its
     branch nodes kept), ``auto_one`` (the same with only the last pressure), ``auto_cold`` and
@@ -597,8 +598,7 @@ def run(cfg: Config, out_dir: Path) -> dict:
                                               "platform": platform.platform(),
                                               "load_average": list(os.getloadavg())}}
     _log(f"design sample: {cfg.n_designs} designs x {cfg.n_pressures} pressures; 50-digit references")
-    designs = sample_designs(cfg.n_designs)
-    points = [reference_points(d, cfg.n_pressures) for d in designs]
+    designs, points = _sample(cfg.n_designs, cfg.n_pressures)
     res["designs"] = [{**d.as_dict(), "max_pressure_kpa": float(p[-1]), "max_theta_deg": float(th[-1])}
                       for d, (p, th) in zip(designs, points)]
     _log("methods (time per curve, max errors vs mpmath):")
@@ -613,17 +613,6 @@ def run(cfg: Config, out_dir: Path) -> dict:
     b = res["baseline_scipy"]
     _log(f"  scipy {b['time_per_curve_ms']:.4g} ms/curve (auto {b['auto_time_per_curve_ms']:.3g} ms on the same "
          f"designs: {b['speedup_auto']:.3g}x), angle err {b['angle_err_max_deg']:.2e} deg")
-    _log(f"curves, paired rounds ({cfg.curve_rounds}): auto warm and cold, the competitor, the dense grid:")
-    res["competitor"] = _competitor(cfg, designs, points, res["methods"])
-    c, r = res["competitor"], res["competitor"]["ratios"]
-    _log("  ms/curve " + ", ".join(f"{k} {v:.3f}" for k, v in c["per_curve_ms"].items()))
-    _log("  ratios (median [min, max]) " + ", ".join(f"{k} {v['median']:.3g} [{v['min']:.3g}, {v['max']:.3g}]"
-                                                  for k, v in r.items()))
-    _log(f"sweep against the competitor vectorised across designs, paired rounds ({cfg.sweep_rounds}):")
-    res["throughput"] = _throughput(cfg)
-    tp = res["throughput"]
-    _log(f"  sweep {tp['default_rtol']['time_s'] * 1e3:.0f} ms, competitor {tp['competitor']['time_s'] * 1e3:.0f} ms: "
-         f"{tp['sweep_speedup_vs_competitor']['median']:.3g}x (agree to {tp['competitor_vs_sweep_max_rel']:.1e} of the angle)")
     _log("stability maps:")
     res["stability"] = _stability(cfg)
     _log("stitches, files, command line:")
@@ -638,6 +627,29 @@ def run(cfg: Config, out_dir: Path) -> dict:
     (out_dir / "results.json").write_text(json.dumps(_jsonable(res), indent=1, sort_keys=True) + "\n")
     write_charts(res, out_dir)
     return res
+
+
+@lru_cache(maxsize=2)
+def _sample(n_designs: int, n_pressures: int):
+    """The design sample and its 50-digit reference points (made once per run: the methods and the curve
+    section time the same designs)."""
+    designs = sample_designs(n_designs)
+    return designs, [reference_points(d, n_pressures) for d in designs]
+
+
+def _curve(cfg: Config, res: dict) -> None:
+    designs, points = _sample(cfg.n_designs, cfg.n_pressures)
+    _log(f"curves, paired rounds ({cfg.curve_rounds}): auto warm and cold, the competitor, the dense grid:")
+    res["competitor"] = _competitor(cfg, designs, points)
+    c, r = res["competitor"], res["competitor"]["ratios"]
+    _log("  ms/curve " + ", ".join(f"{k} {v:.3f}" for k, v in c["per_curve_ms"].items()))
+    _log("  ratios (median [min, max]) " + ", ".join(f"{k} {v['median']:.3g} [{v['min']:.3g}, {v['max']:.3g}]"
+                                                  for k, v in r.items()))
+    _log(f"sweep against the competitor vectorised across designs, paired rounds ({cfg.sweep_rounds}):")
+    res["throughput"] = _throughput(cfg)
+    tp = res["throughput"]
+    _log(f"  sweep {tp['default_rtol']['time_s'] * 1e3:.0f} ms, competitor {tp['competitor']['time_s'] * 1e3:.0f} ms: "
+         f"{tp['sweep_speedup_vs_competitor']['median']:.3g}x (agree to {tp['competitor_vs_sweep_max_rel']:.1e} of the angle)")
 
 
 def _rules(cfg: Config, res: dict) -> None:
@@ -666,7 +678,7 @@ def _inverse(cfg: Config, res: dict) -> None:
 
 
 #: The sections :func:`run_sections` can run again into an existing results.json (``run.py --only``).
-SECTIONS = {"rules": _rules, "scale": _scale, "inverse": _inverse}
+SECTIONS = {"curve": _curve, "rules": _rules, "scale": _scale, "inverse": _inverse}
 
 
 def run_sections(cfg: Config, res: dict, names) -> dict:
@@ -676,7 +688,7 @@ def run_sections(cfg: Config, res: dict, names) -> dict:
     Examples
     --------
     >>> sorted(SECTIONS)
-    ['inverse', 'rules', 'scale']
+    ['curve', 'inverse', 'rules', 'scale']
     """
     for name in names:
         SECTIONS[name](cfg, res)
