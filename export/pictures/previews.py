@@ -31,7 +31,7 @@ import numpy as np
 
 from ...patterns.base.errors import ParameterError
 from .chart import Series, bend_chart_svg, chart_scale
-from .sideview import SidePanel, side_view_svg
+from .sideview import SidePanel
 
 __all__ = [
     "OUTPUT_NAMES",
@@ -733,9 +733,9 @@ def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]]) -> S
     """
     lengths = piece_lengths_mm(act)
     return SidePanel(act.segments.one_or_all(act.name, lambda: f"{act.name} ({len(act.segments)} segments)"),
-                     length_mm=sum(lengths), r0_mm=sleeve_mm(act)[1], pressure_kpa=[p for p, _, _ in states],
-                     theta_deg=[t for _, t, _ in states], segment_lengths_mm=lengths,
-                     segment_theta_deg=[piece_theta_deg(act, parts) for _, _, parts in states],
+                     length_mm=sum(lengths), r0_mm=sleeve_mm(act)[1], pressure_kpa=tuple(p for p, _, _ in states),
+                     theta_deg=tuple(t for _, t, _ in states), segment_lengths_mm=lengths,
+                     segment_theta_deg=tuple(piece_theta_deg(act, parts) for _, _, parts in states),
                      marks_mm=segment_boundaries_mm(act))
 
 
