@@ -9,6 +9,13 @@ chain, not the length of a tuple: :meth:`Chain.shown` is the one place that deci
 (:meth:`Chain.one_or_all`, :attr:`Chain.listed`, :meth:`Chain.label`, :meth:`Chain.where`,
 :meth:`Chain.ref` and :meth:`Chain.part_name` ask it).
 
+The whole strip's value of a quantity has one definition for any chain length, so an output
+gives it in the same keys for one segment as for five: a length is the sum of the
+segments' (:func:`math.fsum`), the pattern the kinds in chain order (:func:`strip_pattern`),
+and any other value the one every segment has (:func:`common`: equal within float noise),
+``None`` where they differ (each segment's own value is under ``segments``). A chain of
+one's whole-strip values are its segment's, to the last digit.
+
 Examples
 --------
 >>> from embroact.patterns.chain import Chain
@@ -24,9 +31,73 @@ embroact.patterns.base.errors.ParameterError: segments must hold at least one se
 """
 from __future__ import annotations
 
+import math
+from itertools import groupby
+from typing import Iterable
+
 from .base.errors import ParameterError
 
-__all__ = ["Chain", "UNGIVEN"]
+__all__ = ["Chain", "UNGIVEN", "common", "strip_pattern", "COMMON_REL_TOL"]
+
+#: Two segments' floats are the same value when they differ by no more than this, relative (float noise).
+COMMON_REL_TOL = 1e-9
+
+
+def common(values: Iterable):
+    """The value every segment has, ``None`` where they differ (the whole strip's value of an intensive quantity).
+
+    Floats agree within :data:`COMMON_REL_TOL` (relative; 1e-12 absolute near zero) and the first segment's is returned, so
+    a chain of one gives its segment's value unchanged; other values agree when equal.
+
+    Parameters
+    ----------
+    values : iterable
+        One value per segment, in chain order (at least one).
+
+    Returns
+    -------
+    object or None
+
+    Examples
+    --------
+    >>> common([7.0]), common([7.0, 7.0 + 1e-12]), common([7.0, 9.0]), common(["paper", "paper"])
+    (7.0, 7.0, None, 'paper')
+    >>> common([True, False]), common([None, None])
+    (None, None)
+    """
+    items = list(values)
+    if not items:
+        raise ParameterError("values must hold one value per segment, got none")
+    first = items[0]
+    for v in items[1:]:
+        if isinstance(first, float) and isinstance(v, float) and not isinstance(v, bool):
+            if not math.isclose(v, first, rel_tol=COMMON_REL_TOL, abs_tol=1e-12):
+                return None
+        elif v != first or type(v) is not type(first):
+            return None
+    return first
+
+
+def strip_pattern(patterns: Iterable[str]) -> str:
+    """The whole strip's pattern: its segments' kinds in chain order, a run of one kind named once.
+
+    Parameters
+    ----------
+    patterns : iterable of str
+        Each segment's pattern kind, in chain order.
+
+    Returns
+    -------
+    str
+        ``"zigzag"`` for a chain of zigzag segments (of one or more), ``"zigzag+cross"`` for a
+        zigzag then a cross segment.
+
+    Examples
+    --------
+    >>> strip_pattern(["zigzag"]), strip_pattern(["zigzag"] * 4), strip_pattern(["zigzag", "cross", "cross", "zigzag"])
+    ('zigzag', 'zigzag', 'zigzag+cross+zigzag')
+    """
+    return "+".join(kind for kind, _ in groupby(patterns))
 
 
 class Chain(tuple):

@@ -37,6 +37,7 @@ True
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Iterable, Mapping, Sequence
 
@@ -44,11 +45,12 @@ import numpy as np
 
 from ..patterns.base.display import repr_html
 from ..patterns.base.errors import EmbroactError, ModelDomainError, ParameterError
-from ..patterns.chain import Chain
+from ..patterns.chain import Chain, common
 from ..patterns.design import ActuatorSpec, Design, ModelSettings, build_plan
 from ..patterns.plan import ActuatorPlan, SegmentPlan, StitchPlan
 from .calibration import CalibrationSet, ModelChoice, as_calibration_sets, model_for
 from .derived import DerivedGeometry, derive
+from .strip import StripChoice, StripGeometry, StripModel, strip_choice, strip_geometry
 
 if TYPE_CHECKING:  # pragma: no cover
     from .layoutchoice import LayoutChoice
@@ -213,7 +215,12 @@ class StripCurve:
         return tuple(float(c.theta_deg[index]) for c in self.segments)
 
     def as_dict(self) -> dict:
-        """JSON-ready: ``pressure_kpa``, ``theta_deg``, ``status`` names and ``method``.
+        """JSON-ready, in the keys of :meth:`Curve.as_dict <embroact.predict.curve.Curve.as_dict>`, by the chain's rule.
+
+        ``theta_deg`` and ``status`` are the whole strip's, ``length_mm`` the sum of the
+        segments' thread-side lengths; ``radius_mm``, ``beta_deg`` and ``inner_radius_mm`` are
+        per pressure the value every segment has (``None`` where they differ), ``calibration``
+        likewise; ``method`` names the segments' methods.
 
         Returns
         -------
@@ -226,13 +233,21 @@ class StripCurve:
         ...     {"pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 50},
         ...     {"pattern": "zigzag", "width_mm": 9, "interval_mm": 1, "length_mm": 50}]}]})
         >>> analysis = analyse(d)
-        >>> analysis.curves([0.0, 200.0])[0].as_dict()["status"]
-        ['INFLATION', 'BENDING']
+        >>> d = analysis.curves([0.0, 200.0])[0].as_dict()
+        >>> d["status"], d["radius_mm"][0], d["radius_mm"][1], d["calibration"]
+        (['INFLATION', 'BENDING'], 1.5, None, None)
+        >>> d["length_mm"] == [a + b for a, b in zip(*(c.length_mm.tolist() for c in analysis.curves([0.0, 200.0])[0].segments))]
+        True
         """
         from .status import status_names
 
+        segs = self.segments
         return {"pressure_kpa": self.pressure_kpa.tolist(), "theta_deg": self.theta_deg.tolist(),
-                "status": status_names(self.status), "method": self.method}
+                "status": status_names(self.status),
+                "length_mm": [math.fsum(v) for v in zip(*(c.length_mm.tolist() for c in segs))],
+                **{k: [common(v) for v in zip(*(getattr(c, k).tolist() for c in segs))]
+                   for k in ("radius_mm", "beta_deg", "inner_radius_mm")},
+                "method": self.method, "calibration": common(c.calibration for c in segs)}
 
     def __repr__(self) -> str:
         from .status import status_names
@@ -308,6 +323,17 @@ class ActuatorAnalysis:
         The actuator as a chain of one or more segments, each with its pattern, where it lies,
         its derived geometry and model (a single-pattern actuator: a chain of one). Outputs
         give one entry per segment, in the same keys for one segment as for five.
+    derived : StripGeometry
+        The whole strip's sleeve geometry (:mod:`embroact.predict.strip`): ``length_mm`` the sum
+        of the segments' legs, every other value the one all segments have, ``None`` where they
+        differ (a chain of one: its segment's numbers).
+    choice : StripChoice or None
+        The whole strip's model and sources by the same rule; ``None`` when a segment has no
+        model (``model_error`` names it). A curve is computed from each segment's own model
+        (:meth:`DesignAnalysis.curves`, :meth:`DesignAnalysis.segment_curves`).
+    model_error : str
+        Empty when every segment has a model; else each model-less segment's reason, prefixed
+        with the segment (:meth:`~embroact.patterns.chain.Chain.label`).
 
     Examples
     --------
@@ -320,24 +346,17 @@ class ActuatorAnalysis:
     spec: ActuatorSpec
     plan: ActuatorPlan
     segments: Chain
+    derived: StripGeometry = field(init=False, repr=False, compare=False)
+    choice: StripChoice | None = field(init=False, repr=False, compare=False)
+    model_error: str = field(init=False, repr=False, compare=False)
 
-    @property
-    def derived(self) -> DerivedGeometry:
-        """Sleeve geometry measured on the generated stitches: the first segment's (a chain of one: the actuator's)."""
-        return self.segments[0].derived
-
-    @property
-    def choice(self) -> ModelChoice | None:
-        """The actuator's one model, calibration and sources of G and P0: its segment's in a chain of one;
-        ``None`` when there is none (``model_error`` says why: no sleeve, or a longer chain, whose segments
-        have a model each; use :meth:`DesignAnalysis.segment_curves` and :meth:`bend_pieces`)."""
-        return self.segments.one_or_all(lambda: self.segments[0].choice, None)
-
-    @property
-    def model_error(self) -> str:
-        """Empty when :attr:`choice` is set; else why there is no one model."""
-        return self.segments.one_or_all(lambda: self.segments[0].model_error, lambda: (
-            f"segmented actuator with {len(self.segments)} segments: one model per segment (ActuatorAnalysis.segments)"))
+    def __post_init__(self) -> None:
+        segs = self.segments
+        object.__setattr__(self, "derived", strip_geometry(self.spec.name, [s.derived for s in segs], self.plan.tube))
+        errors = [s.model_error for s in segs if s.choice is None]
+        object.__setattr__(self, "model_error", "; ".join(errors))
+        object.__setattr__(self, "choice", None if errors else strip_choice([s.choice for s in segs],
+                                                                            self.plan.tube.end_margin_mm))
 
     def strip(self, segment_curves: Sequence):
         """The whole strip's curve from one curve per segment of :attr:`segments` (:func:`whole_strip`).
@@ -360,9 +379,9 @@ class ActuatorAnalysis:
         >>> from embroact.patterns.design import default_design
         >>> from embroact.predict.curve import curve
         >>> act = analyse(default_design()).actuators[0]
-        >>> act.model.stub_mm   # a single-pattern actuator's model is its whole strip, with the tube's stub
+        >>> act.segments[0].model.stub_mm   # a single-pattern actuator's model is its whole strip, with the tube's stub
         30.0
-        >>> c = curve(act.model, [310.0, 320.0])   # 250.9 and 268.5 deg: the stub reaches the clamp at 253.9
+        >>> c = curve(act.segments[0].model, [310.0, 320.0])   # 250.9 and 268.5 deg: the stub reaches the clamp at 253.9
         >>> c.status.tolist(), act.strip([c]).status.tolist()
         ([1, 6], [1, 6])
         """
@@ -403,8 +422,21 @@ class ActuatorAnalysis:
         return self.spec.name
 
     @property
-    def model(self):
-        """The :class:`~embroact.predict.curve.ActuatorModel` (:class:`ModelDomainError` when there is none)."""
+    def model(self) -> StripModel:
+        """The whole strip's model (:attr:`choice`'s); :class:`ModelDomainError` when a segment has none.
+
+        Returns
+        -------
+        StripModel
+            Fields common to every segment's model, ``None`` where they differ; each segment's own
+            :class:`~embroact.predict.curve.ActuatorModel` is ``segments[k].model``.
+
+        Examples
+        --------
+        >>> from embroact.patterns.design import default_design
+        >>> analyse(default_design()).actuators[0].model.g_mpa
+        2.7
+        """
         if self.choice is None:
             raise ModelDomainError(f"actuator {self.name!r}: {self.model_error}")
         return self.choice.model
@@ -429,14 +461,18 @@ class ActuatorAnalysis:
 
     def __repr__(self) -> str:
         d = self.derived
-        model = self.segments.one_or_all(lambda: (
-            f"no model: {self.model_error}" if self.choice is None
-            else f"G {self.model.g_mpa:.4g} MPa, P0 {self.model.p0_kpa:.4g} kPa"), f"{len(self.segments)} segments")
-        return (f"ActuatorAnalysis({self.name!r}: {d.pattern}, w {d.width_mm:.4g} mm, l0 {d.length_mm:.4g} mm, "
-                f"r0 {d.r0_mm:.4g} mm; {model})")
+        model = (f"no model: {self.model_error}" if self.choice is None
+                 else f"G {_shown(self.choice.model.g_mpa, 'MPa')}, P0 {_shown(self.choice.model.p0_kpa, 'kPa')}")
+        return (f"ActuatorAnalysis({self.name!r}: {d.pattern}, w {_shown(d.width_mm, 'mm')}, "
+                f"l0 {_shown(d.length_mm, 'mm')}, r0 {_shown(d.r0_mm, 'mm')}; {model})")
 
     #: Table row and bend chart in Jupyter (registered by ``embroact``).
     _repr_html_ = repr_html
+
+
+def _shown(value: float | None, unit: str) -> str:
+    """A whole-strip number for a one-line summary: ``"7 mm"``, or ``"per segment"`` where the segments differ."""
+    return "per segment" if value is None else f"{value:.4g} {unit}"
 
 
 @dataclass(frozen=True, slots=True)
@@ -611,7 +647,7 @@ class DesignAnalysis:
         --------
         >>> from embroact.patterns.design import default_design
         >>> a = analyse(default_design())
-        >>> a.model_curve(a.actuators[0].model, [200.0]) is a.segment_curves([200.0])[0][0]
+        >>> a.model_curve(a.actuators[0].segments[0].model, [200.0]) is a.segment_curves([200.0])[0][0]
         True
         """
         return self._model_curve(model, self._grid(pressures_kpa), method)
@@ -779,7 +815,7 @@ class DesignAnalysis:
         key = ("band", p, method, measurement)
         if key not in self._curves:
             # no band is claimed for a sum of segments
-            self._curves[key] = tuple(a.segments.one_or_all(lambda a=a: _band(a, p, method, measurement), None)
+            self._curves[key] = tuple(a.segments.one_or_all(lambda a=a: _band(a.segments[0], p, method, measurement), None)
                                       for a in self.actuators)
         return self._curves[key]
 
@@ -807,21 +843,21 @@ class DesignAnalysis:
     _repr_html_ = repr_html
 
 
-def _band(act: ActuatorAnalysis, pressures_kpa: tuple, method: str, measurement) -> Band | None:
-    """The 1-sigma band of one actuator's fitted calibration point, or None (:meth:`DesignAnalysis.bands`).
+def _band(seg: SegmentAnalysis, pressures_kpa: tuple, method: str, measurement) -> Band | None:
+    """The 1-sigma band of a single-pattern actuator's fitted calibration point, or None (:meth:`DesignAnalysis.bands`).
 
     The model's G and P0 must both be the point's: fitted as (G, P0), or as (G, G_e) with P0 the tube
     law's at the fitted modulus (its band acts through P0, scaled by that modulus, not the design's).
     """
     from .uncertainty import theta_band
 
-    choice = act.choice
+    choice = seg.choice
     if choice is None or choice.calibration is None or not choice.calibration.covariance:
         return None
     if not (choice.g_source.startswith("calibration") and choice.p0_source.startswith("calibration")):
         return None  # G or P0 given, or P0 from the geometry: not the fitted pair
     cal = choice.calibration
-    model = act.model
+    model = seg.model
     if set(cal.fitted) <= {"g_mpa", "g_e_mpa"} and "g_e_mpa" in cal.fitted and cal.g_e_mpa is not None:
         model = dataclasses.replace(model, g_e_mpa=cal.g_e_mpa)
     elif not set(cal.fitted) <= {"g_mpa", "p0_kpa"}:

@@ -82,6 +82,7 @@ __all__ = [
     "EXTRAPOLATIONS",
     "CalibrationPoint",
     "CalibrationSet",
+    "model_dict",
     "Calibration",
     "PAPER_2025",
     "lookup",
@@ -980,13 +981,36 @@ class ModelChoice:
         >>> d["p0_kpa"], round(d["tube_law_p0_kpa"], 3), d["calibration"]["p0_kpa"]
         (85.0, 84.455, 85.0)
         """
-        m = self.model
-        return {"g_mpa": m.g_mpa, "g_source": self.g_source, "p0_kpa": m.p0_kpa, "p0_source": self.p0_source,
-                "tube_law_p0_kpa": self.tube_law_p0_kpa,
-                "tube_law": m.tube_law, "tube": {"outer_radius_mm": m.outer_radius_mm,
-                                                 "inner_radius_mm": m.inner_radius_mm, "g_e_mpa": m.g_e_mpa},
-                "calibration": None if self.calibration is None else self.calibration.as_dict(),
-                "notes": list(self.notes)}
+        return model_dict(self)
+
+
+def model_dict(choice) -> dict:
+    """The dict of a segment's or a whole strip's model and sources (:meth:`ModelChoice.as_dict`).
+
+    Parameters
+    ----------
+    choice : ModelChoice or StripChoice
+        Anything with a ``model`` and the sources of its G and P0.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> model_dict(model_for(d))["tube"]
+    {'outer_radius_mm': 1.5, 'inner_radius_mm': 1.0, 'g_e_mpa': 0.13}
+    """
+    m = choice.model
+    return {"g_mpa": m.g_mpa, "g_source": choice.g_source, "p0_kpa": m.p0_kpa, "p0_source": choice.p0_source,
+            "tube_law_p0_kpa": choice.tube_law_p0_kpa,
+            "tube_law": m.tube_law, "tube": {"outer_radius_mm": m.outer_radius_mm,
+                                             "inner_radius_mm": m.inner_radius_mm, "g_e_mpa": m.g_e_mpa},
+            "calibration": None if choice.calibration is None else choice.calibration.as_dict(),
+            "notes": list(choice.notes)}
 
 
 def model_for(derived, settings: ModelSettings | None = None, *,

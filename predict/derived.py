@@ -30,7 +30,7 @@ from ..patterns.plan import ActuatorPlan
 from .kinds import model_kind
 from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius_mm
 
-__all__ = ["DerivedGeometry", "derive", "derive_from_values"]
+__all__ = ["DerivedGeometry", "derive", "derive_from_values", "geometry_dict", "GEOMETRY_KEYS"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,12 +106,40 @@ class DerivedGeometry:
         >>> d.as_dict()["min_sleeve_width_mm"] == float(min_sleeve_width_mm(1.5)), "tube" in d.as_dict()
         (True, False)
         """
-        keys = [k for k in self.__slots__ if k != "tube"]
-        d = {k: getattr(self, k) for k in keys}
-        d["min_sleeve_width_mm"] = float(min_sleeve_width_mm(self.tube.outer_radius_mm))
-        d["has_sleeve"] = self.has_sleeve
-        d["bends_positive"] = bool(self.bends_positive)
-        return d
+        return geometry_dict(self)
+
+
+#: The fields of a sleeve geometry in its dict, in order (a segment's and the whole strip's alike).
+GEOMETRY_KEYS = ("name", "pattern", "length_mm", "width_mm", "interval_mm", "angle_deg", "requested_width_mm",
+                 "requested_interval_mm", "requested_angle_deg", "r0_mm", "beta0_deg", "gamma", "neutral_angle_deg")
+
+
+def geometry_dict(geometry) -> dict:
+    """The dict of a segment's or a whole strip's sleeve geometry: :data:`GEOMETRY_KEYS`, then
+    ``min_sleeve_width_mm``, ``has_sleeve`` and ``bends_positive``.
+
+    Parameters
+    ----------
+    geometry : DerivedGeometry or StripGeometry
+        Anything with those fields and a ``tube``.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> d = derive_from_values("zigzag", width_mm=7.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0, tube=Tube())
+    >>> list(geometry_dict(d))[-3:]
+    ['min_sleeve_width_mm', 'has_sleeve', 'bends_positive']
+    """
+    d = {k: getattr(geometry, k) for k in GEOMETRY_KEYS}
+    d["min_sleeve_width_mm"] = float(min_sleeve_width_mm(geometry.tube.outer_radius_mm))
+    d["has_sleeve"] = geometry.has_sleeve
+    bends = geometry.bends_positive
+    d["bends_positive"] = None if bends is None else bool(bends)
+    return d
 
 
 def derive_from_values(

@@ -907,8 +907,7 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     findings = check_design(a)
     if any(f.severity.name == "ERROR" for f in findings):
         return None
-    act = a.actuators[0]
-    model = act.model
+    model = a.actuators[0].segments.single("a target-bend design is one pattern").model
     limit, margin = _limits(model, pressure_kpa)
     span = space.high - space.low
     edge = min(x - space.low, space.high - x) / span if span > 0.0 else 0.0  # a one-point calibration: no room

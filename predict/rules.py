@@ -259,9 +259,7 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
     found: list[Finding] = []
     shared: dict = {}  # identical actuators (same models, calibration, bent line): their findings are made once
-    for act in analysis.actuators:
-        if not act.derived.has_sleeve:
-            continue
+    for act in analysis.actuators:  # a segment without a sleeve is skipped by _actuator_findings (EA201 reports it)
         key = (act.spec.model.calibration, act.bend_pieces(),
                tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
         if key not in shared:

@@ -19,7 +19,8 @@ def _lab_set(cov=((0.01, 0.05), (0.05, 4.0))):
 
 def test_analysis_models_the_realised_geometry_with_the_set_pair():
     a = analyse(default_design()).actuators[0]
-    assert a.derived == derive(a.plan)  # measured on the generated stitches
+    assert a.segments[0].derived == derive(a.plan)  # measured on the generated stitches
+    assert a.derived.as_dict() == a.segments[0].derived.as_dict()  # a chain of one: the whole strip is its segment
     assert (a.model.g_mpa, a.model.p0_kpa) == (2.7, 85.0)  # the paper's fitted pair for w = 7 mm
     assert a.model.r0_mm == a.derived.r0_mm and a.model.length_mm == a.derived.length_mm
 
@@ -37,7 +38,7 @@ def test_curves_are_computed_once_and_equal_the_api():
     a = analyse(default_design())
     c = a.curves()
     assert a.curves() is c
-    ref = curve(a.actuators[0].model, pressure_grid_kpa(300.0))
+    ref = curve(a.actuators[0].segments[0].model, pressure_grid_kpa(300.0))
     np.testing.assert_array_equal(c[0].theta_deg, ref.theta_deg)
     assert c[0].pressure_kpa.tolist() == [10.0 * k for k in range(31)]
 
@@ -72,7 +73,7 @@ def test_band_only_from_a_fitted_covariance_and_equal_to_linear_propagation():
     p = np.array([120.0, 200.0, 260.0])
     band = a.bands(p)[0]
     # independent check: central differences of the curve in (G, P0), sd^2 = J C J^T
-    m = a.actuators[0].model
+    m = a.actuators[0].segments[0].model
     def theta(g, p0):
         return curve(dataclasses.replace(m, g_mpa=g, p0_kpa=p0), p).theta_deg
     hg, hp = 1e-4, 1e-3

@@ -10,7 +10,6 @@ from embroact.export.cli.main import main
 from embroact.patterns.base.errors import ParameterError
 from embroact.patterns.design import design_to_dict
 from embroact.predict.analysis import analyse
-from embroact.predict.curve import curve
 from embroact.predict.inverse import design_bend, design_shape, fit_curvature
 from embroact.predict.rules import check_design
 from embroact.predict.shape import BentShape
@@ -21,7 +20,7 @@ from inverse_targets import PRESSURE_KPA, target_shape  # noqa: E402
 
 def _bend_of(design, pressure_kpa):
     """The bend the analysed design predicts (what `embroact predict` prints)."""
-    return float(curve(analyse(design).actuators[0].model, [pressure_kpa]).theta_deg[0])
+    return float(analyse(design).curves([pressure_kpa])[0].theta_deg[0])
 
 
 @pytest.mark.parametrize("bend, pressure, pattern", [(84.5, 150.0, "zigzag"), (-40.0, 250.0, "cross"),

@@ -136,8 +136,10 @@ def test_each_segment_bends_as_the_same_pattern_alone():
     act = a.actuators[0]
     assert [s.derived.pattern for s in act.segments] == ["zigzag", "cross"]
     assert act.segments[1].model.g_mpa == b.actuators[1].model.g_mpa == 1.3
-    with pytest.raises(Exception, match="one model per segment"):
-        act.model
+    # the whole strip's model: what the segments share (tube, tube law), None where they differ, lengths summed
+    assert (act.model.g_mpa, act.model.pattern, act.model.tube_law, act.model.outer_radius_mm) == \
+        (None, "zigzag+cross", "paper", 1.5)
+    assert act.model.length_mm == pytest.approx(act.segments[0].model.length_mm + act.segments[1].model.length_mm)
     # the shape: zigzag arc, a 0.6 mm straight transition, the cross arc, a 0.6 mm straight tail
     pieces = act.bend_pieces()
     assert [k for _, k in pieces] == [0, -1, 1, -1]

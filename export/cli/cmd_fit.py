@@ -293,7 +293,8 @@ def run(args) -> int:
                               calibration="" if old is None else old.name)
     layout = None if choice is None else choice.layout
     act = _actuator(args)
-    derived = act.derived
+    derived = act.segments.single(f"actuator {act.name!r} has {len(act.segments)} segments: "
+                                  "a fit is of one pattern (fit each segment's coupon alone)").derived
     pressure, angle, labels, note = _data(args, derived, choice)
     results = fit_design(
         derived,

@@ -81,15 +81,19 @@ def _finite(x: float):
     return x if math.isfinite(x) else None
 
 
-def _limits(model, c) -> list[list[str]]:
-    """Every validity limit each point exceeds (its status names only the first); a whole strip that
-    touches itself or the clamp (status COILED, ``embroact.predict.validity.strip_status``) is COILED."""
+def _limits(pieces, c) -> list[list[str]]:
+    """Every validity limit each point exceeds (its status names only the first), for the ``(model, curve)``
+    pieces of a strip (one segment, or every segment of the whole strip: the limits any of them exceeds there);
+    a whole strip that touches itself or the clamp (status COILED, ``embroact.predict.validity.strip_status``)
+    is COILED."""
     import numpy as np
 
     from ...predict.status import Status
     from ...predict.validity import limit_flags
 
-    names = limit_flags(np.radians(c.theta_deg), c.length_mm, c.radius_mm, model.length_mm, model.stub_mm).names()
+    per_piece = [limit_flags(np.radians(pc.theta_deg), pc.length_mm, pc.radius_mm, m.length_mm, m.stub_mm).names()
+                 for m, pc in pieces]
+    names = [list(dict.fromkeys(n for piece in at for n in piece)) for at in zip(*per_piece)]
     return [["COILED"] + n if s == Status.COILED and "COILED" not in n else n for n, s in zip(names, c.status)]
 
 
@@ -98,12 +102,16 @@ def _band_dict(band):
     return None if band is None else band.summary()
 
 
-def _piece(model, c) -> dict:
+def _piece(pieces, c) -> dict:
+    """The curve ``c`` of a segment or a whole strip with its branch end and validity limits, from the
+    ``(model, curve)`` of each of its segments (a whole strip's branch end: the one every segment has, else None)."""
+    from ...patterns.chain import common
     from ...predict.branch import branch_end
 
-    out: dict[str, object] = {"branch_end": branch_end(model).as_dict()}  # lock-up, fold (zigzag), tracing cap or none
+    # lock-up, fold (zigzag), tracing cap or none
+    out: dict[str, object] = {"branch_end": common(branch_end(m).as_dict() for m, _ in pieces)}
     out.update(c.as_dict())
-    out["limits"] = _limits(model, c)
+    out["limits"] = _limits(pieces, c)
     return out
 
 
@@ -119,9 +127,9 @@ def _measured(out: dict, reading) -> dict:
 
 def _result(act, c, band, segment_curves, reading=None) -> dict:
     out = act.as_dict()
-    out["segment_curves"] = [_piece(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
-    # the whole strip: a chain of one is its segment (with its sleeve's l, r, beta, limits), else the sum of bends
-    out.update(act.segments.one_or_all(lambda: _piece(act.segments[0].model, c), c.as_dict))
+    pieces = [(s.model, sc) for s, sc in zip(act.segments, segment_curves)]
+    out["segment_curves"] = [_piece([piece], piece[1]) for piece in pieces]
+    out.update(_piece(pieces, c))  # the whole strip, in the same keys (a chain of one: its segment's numbers)
     out["band"] = _band_dict(band)
     return _measured(out, reading)  # the reading of the whole chain of arcs
 
@@ -158,7 +166,7 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
     column = [f"{v:10.3f} " for v in reading[1]] if reading is not None else [""] * len(d["theta_deg"])
     rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "")
                 + " status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
-    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits(model, c)):
+    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits([(model, c)], c)):
         rows.append(f"{p:10.3f}  {t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
 

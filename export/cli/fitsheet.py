@@ -43,7 +43,10 @@ def _coupons(rows, base: str):
         if name not in acts:
             raise ParameterError(f"sheet line {rs[0].line}: actuator {name!r} is not in {design!r} "
                                  f"(it has {', '.join(map(repr, acts))})")
-        out.append(CouponData(name, acts[name].derived, np.array([r.pressure_kpa for r in rs]),
+        segs = acts[name].segments
+        coupon = segs.single(f"sheet line {rs[0].line}: actuator {name!r} in {design!r} has {len(segs)} segments: "
+                             "a coupon is one pattern")
+        out.append(CouponData(name, coupon.derived, np.array([r.pressure_kpa for r in rs]),
                               np.array([r.bend_deg for r in rs]), tuple(r.branch for r in rs)))
     first = next(iter(tubes.values()))
     if any(t != first for t in tubes.values()):

@@ -140,12 +140,15 @@ class ActuatorSheet:
     legs_over_tube : int
         Legs that cross the tube.
     derived : dict
-        Realised parameters and derived geometry (``DerivedGeometry.as_dict()``).
+        The whole strip's realised parameters and derived geometry
+        (:meth:`~embroact.predict.strip.StripGeometry.as_dict`: values common to its segments,
+        ``None`` where they differ, ``length_mm`` the sum of their legs).
     adjustments : tuple of str
         What the generator changed to close the pattern.
     model : dict or None
-        G, P0, tube and tube law with their sources (``ModelChoice.as_dict()``), when the
-        worksheet was made from an analysis and the actuator has a model.
+        The whole strip's G, P0, tube and tube law with their sources
+        (:meth:`~embroact.predict.strip.StripChoice.as_dict`), when the worksheet was made from
+        an analysis and every segment has a model.
     segments : tuple of dict
         The actuator's chain of segments in order along the path, one or more
         (:meth:`~embroact.predict.analysis.SegmentAnalysis.as_dict`: where each lies, its legs,
@@ -458,16 +461,17 @@ def _actuator_sheet(plan: StitchPlan, k: int, act: ActuatorPlan | None, t_fabric
     if analysed is None:
         from ...predict.analysis import SegmentAnalysis, segment_plans
         from ...predict.derived import derive
+        from ...predict.strip import strip_geometry
 
-        derived, model = derive(act), None
-        segments = tuple(SegmentAnalysis(seg, derive(part), None).as_dict()
-                         for seg, part in zip(act.segments, segment_plans(act)))
+        parts = [derive(part) for part in segment_plans(act)]
+        derived, model = strip_geometry(act.name, parts, act.tube), None
+        segments = tuple(SegmentAnalysis(seg, d, None).as_dict() for seg, d in zip(act.segments, parts))
     else:
         derived, model = analysed.derived, (analysed.choice.as_dict() if analysed.choice is not None else None)
         segments = tuple(s.as_dict() for s in analysed.segments)
     path = act.centerline.length_mm
     margin = act.tube.end_margin_mm
-    return ActuatorSheet(act.name, act.pattern, path, margin, path + 2 * margin, n, top, bobbin,
+    return ActuatorSheet(act.name, derived.pattern, path, margin, path + 2 * margin, n, top, bobbin,
                          len(extra), derived.as_dict(), tuple(act.adjustments), model, segments)
 
 

@@ -271,7 +271,7 @@ def layout_from_plan(plan: StitchPlan) -> Layout:
             outer_radius_mm=a.tube.outer_radius_mm,
             clearance_mm=a.tube.clearance_mm,
             end_margin_mm=a.tube.end_margin_mm,
-            half_width_mm=a.realised.width_mm / 2.0,
+            half_width_mm=max(seg.realised.width_mm for seg in a.segments) / 2.0,  # the widest segment's
             centerline=a.centerline,
         )
         for a in plan.actuators

@@ -299,7 +299,7 @@ def hoop_overflow(design) -> Finding | None:
     pts = [a.centerline.points_mm for a in design.actuators]
     lo = np.min([p.min(axis=0) for p in pts], axis=0)
     hi = np.max([p.max(axis=0) for p in pts], axis=0)
-    slack = 2.0 * HOOP_PRECHECK_SLACK_MM + max(a.params.width_mm for a in design.actuators)
+    slack = 2.0 * HOOP_PRECHECK_SLACK_MM + max(seg.params.width_mm for a in design.actuators for seg in a.segments)
     size = hi - lo
     if not np.any(size - slack > np.array([machine.hoop_width_mm, machine.hoop_height_mm])):
         return None
