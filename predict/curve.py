@@ -364,8 +364,8 @@ def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
     a = np.atleast_1d(np.asarray(values, dtype=np.float64))
     if a.ndim > 1:
         raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
-    if a.size and not (low <= float(a.min()) and float(a.max()) <= high and math.isfinite(float(a.max()))
-                       and math.isfinite(float(a.min()))):
+    lo, hi = (float(a.min()), float(a.max())) if a.size else (0.0, 0.0)  # NaN: both NaN
+    if not (low <= lo and hi <= high and math.isfinite(lo) and math.isfinite(hi)):
         bad = ~np.isfinite(a) | (a < low) | (a > high)  # NaN fails both comparisons above
         raise ParameterError(f"{name} must be finite numbers in [{low:g}, {high:g}], got {float(a[bad][0]):g}")
     return a
@@ -743,8 +743,11 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     cols = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
     if cols is None:
         return None
-    return Curve(*(_frozen(np.array(c, dtype=np.int8 if k == 2 else np.float64)) for k, c in enumerate(cols)),
-                 method="-".join(_FAST), calibration=_calibrations([model]))
+    status = np.array(cols[2], dtype=np.int8)
+    rows = np.array(cols[:2] + cols[3:], dtype=np.float64)  # one array for the float columns (read-only rows)
+    status.setflags(write=False)
+    rows.setflags(write=False)
+    return Curve(rows[0], rows[1], status, *rows[2:], method="-".join(_FAST), calibration=model.calibration)
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:

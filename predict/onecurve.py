@@ -10,7 +10,8 @@ otherwise (the caller then asks :func:`one_curve`). Both compute each state with
 same operations (:meth:`~embroact.predict.model.StretchRates.state`), so a pressure gets
 the same bits whichever path, and
 whatever other pressures the call holds (the targets the trace inverse solves are solved
-one at a time for that, except those beyond the lean table, which do not depend on each other).
+one at a time for that, except those beyond the lean table: one call that keeps one tabulation, where
+they do not depend on each other).
 
 Examples
 --------
@@ -191,12 +192,14 @@ def trace_outcome(theta, where, full, kind):
 
 
 def _trace_groups(br, t, settled):
-    """The entries of ``t`` the trace inverse solves, in calls: those at or above the lean table's last
-    node (near a fold or past it: one call, whose answers do not depend on each other there), then each
-    other target the lean solve did not settle (one call each: the trace's zoom follows the largest target
-    of a call, so an answer would otherwise depend on the others)."""
+    """The entries of ``t`` the trace inverse solves, in calls, and whether the call may zoom: those at or
+    above the lean table's last node (near a fold or past it) in one call without a zoom, whose answers then
+    depend each on its own target only (:func:`~embroact.predict.solvers.trace_inverse`); then each other
+    target the lean solve did not settle, one call each with the zoom (it follows the largest target of a
+    call, so an answer would otherwise depend on the others)."""
     above = t >= br.lean.top
-    return ([np.flatnonzero(above)] if above.any() else []) + [[k] for k in np.flatnonzero(~settled & ~above)]
+    return ([(np.flatnonzero(above), False)] if above.any() else []) + [([k], True)
+                                                                          for k in np.flatnonzero(~settled & ~above)]
 
 
 def one_curve(br, p, *, limits: bool = True):
@@ -248,17 +251,18 @@ def one_curve(br, p, *, limits: bool = True):
             tb = t if every else t[at]
             mb, settled = solve_lean(lean, tb)
             if not settled.all():
-                groups = [at[k] for k in _trace_groups(br, tb, settled)]
+                groups = [(at[k], zoom) for k, zoom in _trace_groups(br, tb, settled)]
                 mb[~settled] = 0.0
             if every:
                 m = mb
             else:
                 m[at], status[at] = mb, _BENDING
         theta, l, r, beta, d2 = lean.rates.state(m)
-    for rest in groups:
+    for rest, zoom in groups:
         a = br.arrays()
         th, where, _, _ = trace_inverse(a.rate, a.full, t[None, rest], slope=a.slope, grid_points=br.points,
-                                        rtol=br.rtol, atol=br.atol, ptol=a.ptol, pole_at_end=a.pole, memo=br.memo)
+                                        rtol=br.rtol, atol=br.atol, ptol=a.ptol, pole_at_end=a.pole, memo=br.memo,
+                                        zoom=zoom)
         theta[rest], status[rest] = trace_outcome(th[0], where[0], br.end, br.end_kind)
         l[rest], r[rest], beta[rest], d2[rest] = state(theta[rest], g)
     if not every:

@@ -222,7 +222,7 @@ def illinois(residual, a, b, fa, fb, *, rtol, atol, max_iterations: int = ILLINO
 
 
 def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, atol, ptol=0.0,
-                  pole_at_end=False, memo=None):
+                  pole_at_end=False, memo=None, zoom=True):
     """theta(P) along the branch from 0 to ``theta_end`` by tabulation and polish.
 
     Parameters
@@ -252,6 +252,10 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
         One design only (n = 1): keeps the tabulation, the located fold and each zoom
         (by the grid point it reaches) for the next call with the same arguments, which
         then only polishes; the answers are those of a call without it.
+    zoom : bool, optional
+        Tabulate again the part up to the highest target where it is short (below); False keeps the one
+        tabulation, so that each answer depends on its own target only (the fold is located when some
+        target lies above the last rising grid point, and locating it changes no other target's bracket).
 
     Returns
     -------
@@ -301,13 +305,13 @@ def trace_inverse(rate, theta_end, targets, *, slope, grid_points: int, rtol, at
     # the stable part ends at the last grid point before the fold (the fold may precede grid[ff])
     last = first_fall - (np.abs(grid[rows, first_fall]) > np.abs(theta_stop[:, 0]))
     reach = np.array([np.searchsorted(p[k, :last[k] + 1], top[k]) for k in rows])  # first point >= top
-    zoom = np.flatnonzero((reach + 1) * ZOOM < last)
-    if zoom.size:
-        key = ("zoom", zoom.tobytes(), reach[zoom].tobytes())
+    short = np.flatnonzero((reach + 1) * ZOOM < last) if zoom else rows[:0]
+    if short.size:
+        key = ("zoom", short.tobytes(), reach[short].tobytes())
         if key not in memo:
-            memo[key] = _zoom(rate, grid, de, dv, p, zoom, reach[zoom], grid_points)
+            memo[key] = _zoom(rate, grid, de, dv, p, short, reach[short], grid_points)
         grid, de, dv, p = memo[key]
-        last[zoom] = grid_points - 1
+        last[short] = grid_points - 1
     beyond = targets > p_stop
     where = np.where(beyond, np.where(first_fall[:, None] < grid_points - 1, 2, 1), 0).astype(np.int8)
     theta = np.where(beyond, theta_stop, 0.0)
@@ -380,8 +384,14 @@ def _residual_fn(rate, rows, t, ptol):
     return residual
 
 
-#: Power-basis coefficients of the cubic through (0, f0), (1, f1), (2, f2), (3, f3).
-_CUBIC = np.linalg.inv(np.vander(np.arange(4.0), 4, increasing=True))
+def _power_cubic(f):
+    """Power-basis coefficients (k, 4) of the cubic through (u, f[:, u]), u = 0..3, from its differences:
+    elementwise operations, so each row's coefficients are the same bits however many rows there are (a
+    matrix product's are not: BLAS sums a single row in another order)."""
+    f0, f1, f2, f3 = f[:, 0], f[:, 1], f[:, 2], f[:, 3]
+    d1, d2 = f1 - f0, (f2 - f1) - (f1 - f0)
+    d3 = ((f3 - f2) - (f2 - f1)) - d2
+    return np.stack([f0, d1 - 0.5 * d2 + d3 / 3.0, 0.5 * (d2 - d3), d3 / 6.0], axis=1)
 
 
 def _cubics(de, dv, rows, i):
@@ -391,7 +401,7 @@ def _cubics(de, dv, rows, i):
     """
     j = np.clip(i - 1, 0, de.shape[1] - 4)
     window = (rows[:, None], j[:, None] + np.arange(4))
-    return de[window] @ _CUBIC.T, dv[window] @ _CUBIC.T, j
+    return _power_cubic(de[window]), _power_cubic(dv[window]), j
 
 
 def _polish(rate, grid, de, dv, i, rows, t, tols):

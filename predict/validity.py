@@ -157,11 +157,106 @@ def _exceeded(th, l, r, l0, xp=np, stub=0.0):
 
 def _coiled(th, a, r, l0, xp=np, stub=0.0):
     """The coiled flags at states of bend ``th`` (``a = |th|``): :func:`arc_contact` with the stub
-    (None: an arc inside a chain); one state on floats with ``xp=SCALAR``."""
+    (None: an arc inside a chain); one state on floats with ``xp=SCALAR``, where the bound
+    :func:`_contact_free_below` spares the contact test of a state far from contact."""
     stub = math.nan if stub is None else stub
     if xp is np:
         return arc_contact(th, r, l0, stub)
-    return a > 0.5 * math.pi and _arc_contact_float(th, r, l0, stub)  # only past a quarter turn can it reach back
+    # only past a quarter turn can it reach back
+    return a > 0.5 * math.pi and a >= _contact_free_below(l0, 2.0 * r, stub) and _arc_contact_float(th, r, l0, stub)
+
+
+#: Margin of :func:`_contact_free_below`'s reach, relative to the lengths involved (the round-off of
+#: :func:`arc_contact`'s corners is a few 1e-16 of them).
+_BOUND_MARGIN = 1e-9
+_SMALLEST = math.ulp(0.0)
+#: Bisection steps of :func:`_contact_free_below` (to 1/4096 of the range: the bound need not be tight).
+_BOUND_BISECTIONS = 12
+
+
+def _contact_free_below(l0: float, w: float, m: float) -> float:
+    """|theta| [rad] below which one arc (length ``l0``, band width ``w = 2 r`` or less, stub ``m``; NaN: an arc
+    inside a chain) cannot touch: :func:`arc_contact` is False at every smaller bend (0: the bound says
+    nothing).
+
+    Every corner of the stub's rectangle lies within ``m + w`` of the tip ``(px, py)`` (``|t| = |n| = 1``), so
+    :func:`arc_contact`'s first tests separate it from the band ``x <= 0, -w <= y <= 0`` once
+    ``px > m + w`` or ``|py| > reach = m + 2 w`` (each with a margin for round-off). With ``a = |theta|``,
+    ``px = l0 sin(a)/a`` and ``|py| = q(a) = l0 (1 - cos a)/a``. ``px`` falls on ``[0, pi]`` and
+    ``sin(a)/a >= max(1 - a/pi, 2/pi [a <= pi/2])`` there, which clears ``[0, a1)``; ``q`` rises, then falls on
+    ``[pi/2, 2 pi]``, so from ``a1 >= pi/2`` with ``q(a1) > reach`` it stays above ``reach`` up to its root on
+    the falling side. Where ``pi reach < l0`` that root is at least ``2 pi - 2 asin(sqrt(pi reach/l0))``
+    (``q >= (l0/pi) sin^2(b/2)`` with ``b = 2 pi - a``, and ``q >= l0/pi`` on ``[pi/2, pi]``): for
+    ``l0 = 100 mm``, ``r = 2.58 mm`` and no stub 290.6 deg (the contact comes at 315.7 deg); else a
+    bisection of ``q`` finds it from below.
+    """
+    if m != m:
+        return _FULL_TURN  # an arc inside a chain: only its own full turn
+    size = _BOUND_MARGIN * (l0 + m + w)
+    reach = m + 2.0 * w + size
+    if math.pi * reach < l0:
+        return _FULL_TURN - 2.0 * math.asin(math.sqrt(math.pi * reach / l0))
+    k = m + w + size
+    if not k < l0:  # also NaN
+        return 0.0
+    a1 = max(math.pi * (1.0 - k / l0), 0.5 * math.pi if k < 2.0 * l0 / math.pi else 0.0)
+    lo, hi = a1, _FULL_TURN
+    if not (lo >= 0.5 * math.pi and l0 * (1.0 - math.cos(lo)) / lo > reach):
+        return lo
+    for _ in range(_BOUND_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if l0 * (1.0 - math.cos(mid)) / mid > reach else (lo, mid)
+    return lo
+
+
+def _coiled_states(th, a, top, r, l0, stub):
+    """:func:`arc_contact` of one model's states (``l0`` and ``stub`` one value each; ``top = max(a)``), or None
+    where no state touches; the contact test runs only on the states :func:`_contact_free_below` cannot clear
+    (the straight state never touches: its stub points away along +x)."""
+    if np.size(stub) != 1:
+        return arc_contact(th, r, l0, stub)
+    m = math.nan if stub is None else stub if isinstance(stub, float) else np.asarray(stub).item()
+    l0 = l0 if isinstance(l0, float) else np.asarray(l0).item()
+    free = max(_contact_free_below(l0, 2.0 * float(r.max()), m), _SMALLEST)
+    if top < free:
+        return None
+    if m != m:
+        return arc_contact(th, r, l0, m)
+    near = a >= free
+    if near.all():
+        return _arc_contact_lean(th, r, l0, m)
+    out = np.zeros(a.shape, dtype=bool)
+    out[near] = _arc_contact_lean(th[near], r[near], l0, m)
+    return out
+
+
+def _arc_contact_lean(th, r, l0: float, m: float):
+    """:func:`arc_contact` of 1-D states ``th`` (none 0), ``r`` with one ``l0`` and one stub ``m`` (not NaN):
+    its operations in its order on each value (so the same answer), without its broadcasting, stacking
+    and selections (numpy's fixed cost per call is most of its time on a curve's states)."""
+    half = 0.5 * th
+    y = math.pi * (half / math.pi)  # numpy's sinc(half / pi): y is not 0 here
+    chord = l0 * (np.sin(y) / y)
+    px, py = chord * np.cos(half), chord * np.sin(half)
+    tx, ty = np.cos(th), np.sin(th)
+    nx, ny = ty, -tx
+    w = 2.0 * r
+    wx, wy = w * nx, w * ny
+    if m == 0.0:  # the stub's corners are the tip's (x + 0.0 * t is x)
+        x_lo, y_lo, y_hi = np.minimum(px, px + wx), np.minimum(py, py + wy), np.maximum(py, py + wy)
+    else:
+        x2, y2 = px + m * tx, py + m * ty
+        x_lo = np.minimum(np.minimum(px, px + wx), np.minimum(x2, x2 + wx))
+        y0, y1, y3 = py + wy, y2, y2 + wy
+        y_lo = np.minimum(np.minimum(py, y0), np.minimum(y1, y3))
+        y_hi = np.maximum(np.maximum(py, y0), np.maximum(y1, y3))
+    neg_w = -w
+    apart = (x_lo > 0.0) | (y_lo > 0.0) | (y_hi < neg_w)
+    for ux, uy, low, span in ((tx, ty, px * tx + py * ty, m), (nx, ny, px * nx + py * ny, w)):
+        b1 = neg_w * uy  # the band's corner (0, -2 r) on the axis; (0, 0) is at 0
+        apart |= (ux >= 0.0) & (low > np.maximum(0.0, b1))
+        apart |= (ux <= 0.0) & ((low + span) < np.minimum(0.0, b1))
+    return (np.abs(th) >= _FULL_TURN) | ~apart
 
 
 def _arc_contact_float(th: float, r: float, l0: float, m: float) -> bool:
@@ -295,7 +390,8 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     # one model's states: reductions first, then only the flags some state can raise (the same flags)
     a = np.abs(th)
     width = 2.0 * r * a
-    coiled = _coiled(th, a, r, l0, stub=stub_mm) if a.max() > 0.5 * math.pi else None
+    top = float(a.max())
+    coiled = _coiled_states(th, a, top, r, l0, stub_mm) if top > 0.5 * math.pi else None
     kinked = width > l0 if width.max() > l0 else None
     over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
     out = np.array(st, dtype=np.int8)  # a new array in every case

@@ -3,7 +3,9 @@
 Every ``import`` and ``from ... import`` of every module counts, at any depth: inside
 functions (lazy imports), under ``if TYPE_CHECKING:`` and in sub-packages. Relative imports
 are resolved against the module's own package, so ``from ...export import x`` in
-``patterns/rules/engine.py`` is ``embroact.export``.
+``patterns/rules/engine.py`` is ``embroact.export``. A string naming a module by its full
+dotted name (``importlib.import_module("embroact.export.cli.main")``, or a ``"module:function"``
+reference a registry loads later) counts as an import of that module too.
 
 Rules (README, Architecture):
 
@@ -62,6 +64,16 @@ def _typing_only(tree: ast.AST) -> set[int]:
     return out
 
 
+def _named_module(node: ast.AST) -> str | None:
+    """The module a string constant names by its dotted name (``"embroact.x.y"`` or ``"embroact.x.y:f"``), if any."""
+    if not (isinstance(node, ast.Constant) and isinstance(node.value, str)):
+        return None
+    module, _, attr = node.value.partition(":")
+    if "." not in module or not all(p.isidentifier() for p in module.split(".")) or (attr and not attr.isidentifier()):
+        return None
+    return module
+
+
 def import_graph(root: Path, *, typing: bool = True) -> dict[str, set[str]]:
     """Module -> the embroact modules it imports (names as installed), for every module under ``root``.
 
@@ -82,6 +94,8 @@ def import_graph(root: Path, *, typing: bool = True) -> dict[str, set[str]]:
                 found.update(a.name for a in node.names)
             elif isinstance(node, ast.ImportFrom):
                 found.update(_resolve(name, is_package, node))
+            elif (named := _named_module(node)) is not None:
+                found.add(named)
         # keep the modules that exist (``from .x import func`` names x, not x.func)
         graph[name] = {m for m in found if m in files and m != name}
     return graph

@@ -124,5 +124,8 @@ def test_shows_in_the_studio(design_file, tmp_path):
     pattern_field = next(f for f in v["fields"] if f["key"] == "actuator[0].pattern")
     assert "parallel" in pattern_field["choices"] and pattern_field["value"] == "parallel"
     assert "<svg" in v["stitches_svg"] and v["actuators"][0]["theta_deg"] > 0.0
+    assert v["inverse_patterns"][0] == "any" and "parallel" in v["inverse_patterns"]  # the page lists what it may search
+    with pytest.raises(ParameterError, match="no parallel points"):
+        s.inverse(90.0, 150.0, pattern="parallel")
     v = s.edit({"actuator[0].interval_mm": 2.5}, pressure_kpa=200.0)
     assert v["actuators"][0]["derived"]["interval_mm"] == pytest.approx(2.5, abs=1e-9)

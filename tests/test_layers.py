@@ -74,6 +74,11 @@ BASE = {"export/cli/main.py": "", "export/report/report.py": "", "export/picture
      "embroact.predict.solve -> embroact.export.report"),
     ("predict/solve.py", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from embroact.export.cli.main import x\n",
      "embroact.predict.solve -> embroact.export.cli.main"),
+    # imports by name: importlib, and a "module:function" a registry loads later
+    ("patterns/rules/deep.py", "import importlib\ndef f():\n    return importlib.import_module('embroact.predict.curve')\n",
+     "embroact.patterns.rules.deep -> embroact.predict.curve"),
+    ("predict/solve.py", "RENDERERS = {'Curve': 'embroact.export.report.report:curve_html'}\n",
+     "embroact.predict.solve -> embroact.export.report.report"),
 ])
 def test_a_planted_back_import_is_found(tmp_path, rel, text, expected):
     g = layers.import_graph(_tree(tmp_path, {**BASE, rel: text}))

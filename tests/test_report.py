@@ -146,6 +146,18 @@ def test_report_html_holds_every_section(built):
     assert "script" not in scan.tags and scan.refs == []
 
 
+def test_report_names_a_chain_of_one_as_its_actuator(built):
+    """A single-pattern actuator is one block named "A1" in every table (as in the worksheet, the bend chart's
+    legend and embroact predict), never "A1 segment 0" or a whole strip beside itself."""
+    out, _ = built
+    html = (out / "report.html").read_text()
+    assert "A1 segment" not in html and "whole strip" not in html
+    derived = html[html.index('<section id="derived">'):html.index('<section id="worksheet">')]
+    assert derived.count("<th>A1</th>") == 2  # the derived geometry's column and the segments-along-the-path row
+    assert "<th>A1 theta [deg]</th>" in html
+    assert "A1 segment" not in (out / "bend.svg").read_text()
+
+
 def test_render_is_deterministic_and_mesh_optional(built):
     from embroact.predict.analysis import analyse
 

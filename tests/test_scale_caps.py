@@ -1,10 +1,10 @@
 """Outputs bounded whatever the number of actuators: the side view, the summary line."""
+import re
 import xml.etree.ElementTree as ET
 
 import pytest
 
-from embroact.export.pictures.previews import SIDE_VIEW_MAX_PANELS, _side_view
-from embroact.export.pictures.sideview import SidePanel
+from embroact.export.pictures.sideview import SIDE_VIEW_MAX_PANELS, SidePanel, side_view_svg
 
 _SVG = "{http://www.w3.org/2000/svg}"
 
@@ -24,14 +24,37 @@ def _drawn(svg):
 
 @pytest.mark.parametrize("n", [1, SIDE_VIEW_MAX_PANELS])
 def test_side_view_draws_every_panel_up_to_the_cap(n):
-    labels, title = _drawn(_side_view(_panels(n)))
+    labels, title = _drawn(side_view_svg(_panels(n)))
     assert labels == [f"A{k}" for k in range(n)] and "of" not in title
 
 
 def test_side_view_past_the_cap_draws_the_first_and_says_so():
-    labels, title = _drawn(_side_view(_panels(SIDE_VIEW_MAX_PANELS + 7)))
+    labels, title = _drawn(side_view_svg(_panels(SIDE_VIEW_MAX_PANELS + 7)))
     assert labels == [f"A{k}" for k in range(SIDE_VIEW_MAX_PANELS)]
     assert title.endswith(f"the first {SIDE_VIEW_MAX_PANELS} of {SIDE_VIEW_MAX_PANELS + 7} actuators")
+
+
+def test_every_side_view_caller_draws_at_most_the_cap():
+    """The build's report, the notebook display and the studio all draw through side_view_svg's one cap."""
+    from embroact.export.pictures.display import analysis_html
+    from embroact.export.report.stage import render_previews
+    from embroact.export.studio.views import bend_at, side_svg
+    from embroact.patterns.design import design_from_dict
+    from embroact.predict.analysis import analyse
+
+    n = SIDE_VIEW_MAX_PANELS + 2
+    analysis = analyse(design_from_dict({"machine": {"hoop_width_mm": 400, "hoop_height_mm": 400}, "actuator": [
+        {"name": f"A{k}", "pattern": "zigzag", "width_mm": 7, "interval_mm": 1, "length_mm": 20,
+         "origin_mm": [-150.0 + 40.0 * (k % 8), -150.0 + 25.0 * (k // 8)]} for k in range(n)]}))
+    note = f"the first {SIDE_VIEW_MAX_PANELS} of {n} actuators"
+    build = render_previews(analysis, mesh_suffix=None).files["shape.svg"]
+    studio = side_svg(analysis, bend_at(analysis, 150.0), 150.0)
+    html = analysis_html(analysis)
+    shown = next(svg for svg in re.findall(r"<svg.*?</svg>", html, flags=re.S) if "Bent shape" in svg)
+    for svg in (build, studio, shown):
+        assert _drawn(svg)[0] == [f"A{k}" for k in range(SIDE_VIEW_MAX_PANELS)]
+    assert _drawn(build)[1].endswith(note) and _drawn(shown)[1].endswith(note)
+    assert _drawn(studio)[1] == f"Side view at 150 kPa: {note}"
 
 
 def test_summary_line_names_five_actuators_per_code_and_counts_the_rest():

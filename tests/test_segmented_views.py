@@ -118,6 +118,32 @@ def test_mesh_bends_each_segment_by_its_own_angle(hook):
     assert sum(mesh.bent.segment_lengths_mm) == pytest.approx(act.plan.centerline.length_mm, abs=1e-9)
 
 
+@pytest.mark.parametrize("example", ["paper_cross.toml", "designed_hook.toml"])
+def test_a_chain_of_one_and_of_many_are_drawn_by_their_bend_pieces(example):
+    """The side view, the 3D shape and the studio draw any chain by its pieces: the cross (a chain of one whose
+    legs start 0.3 mm in) with its lead-in and tail unbent, the hook with its transitions unbent too."""
+    from embroact.export.studio.views import bend_at, side_svg
+
+    a = analyse(load_design(ROOT / "examples" / example))
+    act = a.actuators[0]
+    pieces = act.bend_pieces()
+    assert [k for _, k in pieces].count(-1) >= 2  # a lead-in and a tail in both
+    lengths = [length for length, _ in pieces]
+    at = a.segment_curves([200.0])[0]
+    want = [float(at[i].theta_deg[0]) if i >= 0 else 0.0 for _, i in pieces]
+    (panel,) = pv.side_panels(a, a.curves([0.0, 200.0]))
+    assert panel.segment_lengths_mm == pytest.approx(lengths, abs=1e-12)
+    assert panel.segment_theta_deg[-1] == pytest.approx(want, abs=1e-9)
+    tip = _hand_tip(lengths, want)
+    shape = panel.shape(1)
+    assert shape.profile_mm([shape.length_mm])[0] == pytest.approx([tip.real, tip.imag], abs=1e-9)
+    (mesh,), _ = pv.shape_meshes(a, a.curves([0.0, 200.0]), pressure_kpa=200.0, tolerance_mm=0.2)
+    assert mesh.bent.segment_lengths_mm == pytest.approx(lengths, abs=1e-12)
+    assert mesh.bent.segment_theta_deg == pytest.approx(want, abs=1e-9)
+    svg = side_svg(a, bend_at(a, 200.0), 200.0)
+    assert svg.count('class="mark"') == 2 * (len(act.segments) - 1)  # segment boundaries, none in a chain of one
+
+
 def _coiling(max_kpa: float = 300.0):
     """Two 100 mm zigzags of the paper's width: each about 234 deg at 300 kPa, together past a full turn."""
     return design_from_dict({"operation": {"max_pressure_kpa": max_kpa}, "actuator": [{"name": "C", "segment": [

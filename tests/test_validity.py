@@ -191,3 +191,50 @@ def test_one_state_on_floats_decides_contact_as_the_arrays_do():
         edge = math.radians(coil_angle_deg(l0, r, negative=neg, stub_mm=0.0 if m != m else m)) * (-1 if neg else 1)
         for x in (edge, math.nextafter(edge, math.inf), math.nextafter(edge, -math.inf), rng.uniform(-7.0, 7.0)):
             assert _arc_contact_float(x, r, l0, m) == bool(arc_contact(x, r, l0, m)), (x, r, l0, m)
+
+
+def test_contact_bound_clears_only_bends_short_of_contact():
+    """The bound that spares the contact test of a curve's states far from contact lies below the first contact
+    (the closed form of the module docstring for l0 = 100 mm, r = 2.58 mm: 315.70 deg), and an arc of any bend
+    below it is apart on a fine grid, with a stub, without, and as a segment of a chain."""
+    import random
+
+    from embroact.predict.validity import _contact_free_below, arc_contact
+
+    with mp.workdps(30):
+        first = float(mp.degrees(mp.findroot(lambda t: L0 * (1 - mp.cos(t)) - 2 * 2.58 * t, 5.5)))
+    assert first == pytest.approx(315.70, abs=0.01)
+    assert 280.0 < math.degrees(_contact_free_below(L0, 2 * 2.58, 0.0)) < first
+    assert _contact_free_below(L0, 2 * 2.58, math.nan) == 2 * math.pi  # a chain's arc: its full turn only
+    rng = random.Random(11)
+    for _ in range(200):
+        l0, r, m = rng.uniform(5.0, 400.0), rng.uniform(0.3, 9.0), rng.choice([0.0, rng.uniform(0.0, 60.0)])
+        free = _contact_free_below(l0, 2 * r, m)
+        for neg in (True, False):
+            assert free <= math.radians(coil_angle_deg(l0, r, negative=neg, stub_mm=m)) + 1e-12
+            grid = np.linspace(0.0, free, 1001)[:-1] * (-1.0 if neg else 1.0)
+            assert not arc_contact(grid, r, l0, m).any(), (l0, r, m, free)
+
+
+def test_one_models_limits_equal_the_limits_of_every_state():
+    """apply_limits on one model's states (the bound, the contact test only where it cannot clear) gives the
+    statuses limit_flags gives state by state, also at the floats next to each contact angle."""
+    import random
+
+    rng = random.Random(12)
+    for _ in range(300):
+        l0, r0, stub = rng.uniform(10.0, 300.0), rng.uniform(0.5, 8.0), rng.choice([0.0, 30.0, None])
+        m = math.nan if stub is None else stub
+        edges = [math.radians(coil_angle_deg(l0, r0, negative=n, stub_mm=0.0 if stub is None else stub))
+                 * (-1.0 if n else 1.0) for n in (True, False)]
+        th = np.array([rng.uniform(-7.0, 7.0) for _ in range(rng.choice([2, 40]))]
+                      + [f(e, g) for e in edges for f, g in ((math.nextafter, math.inf), (math.nextafter, -math.inf),
+                                                            (lambda e, _: e, None))])
+        r = r0 * np.array([rng.uniform(0.95, 1.0) for _ in th])
+        length = l0 * (1.0 + 0.05 * np.abs(th))
+        st = np.full(th.size, int(Status.BENDING), dtype=np.int8)
+        got = apply_limits(st, th, length, r, l0, stub_mm=stub)
+        f = limit_flags(th, length, r, l0, stub_mm=m)
+        want = np.where(f.coiled, Status.COILED, np.where(f.kinked, Status.KINKED,
+                                                           np.where(f.overstretched, Status.OVERSTRETCHED, st)))
+        assert got.tolist() == want.tolist(), (l0, r0, stub)

@@ -225,7 +225,7 @@ def _detect(cv2, gray) -> dict[int, list[np.ndarray]]:
     detector = cv2.aruco.ArucoDetector(cv2.aruco.getPredefinedDictionary(cv2.aruco.DICT_4X4_250), params)
     corners, ids, _ = detector.detectMarkers(small)
     found: dict[int, list[np.ndarray]] = {}
-    if ids is None:
+    if ids is None or len(ids) == 0:  # OpenCV 4 gives None, OpenCV 5 an empty array
         return found
     pts = np.concatenate([np.asarray(c, dtype=np.float32).reshape(4, 2) for c in corners])
     if scale > 1:  # pixel centres: full = scale * small + (scale - 1) / 2

@@ -31,7 +31,7 @@ import numpy as np
 
 from ...patterns.base.errors import ParameterError
 from .chart import Series, bend_chart_svg, chart_scale
-from .sideview import SidePanel, side_view_svg
+from .sideview import SidePanel
 
 __all__ = [
     "OUTPUT_NAMES",
@@ -51,6 +51,7 @@ __all__ = [
     "bend_chart",
     "bend_chart_width_px",
     "side_panels",
+    "side_panel",
     "actuator_shape",
     "shape_meshes",
     "shape3d_title",
@@ -696,17 +697,46 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
     panels = []
     for a, c in zip(analysis.actuators, curves):
         picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
-        states = [shape_state(c, p) for p in picks]
-        thetas = tuple(t for _, t, _ in states)
-        panels.append(a.segments.one_or_all(
-            lambda: SidePanel(a.name, length_mm=a.derived.length_mm, r0_mm=a.derived.r0_mm, pressure_kpa=picks,
-                              theta_deg=thetas),
-            lambda: SidePanel(f"{a.name} ({len(a.segments)} segments)", length_mm=sum(piece_lengths_mm(a)),
-                              r0_mm=sleeve_mm(a)[1], pressure_kpa=picks, theta_deg=thetas,
-                              segment_lengths_mm=piece_lengths_mm(a),
-                              segment_theta_deg=tuple(piece_theta_deg(a, parts) for _, _, parts in states),
-                              marks_mm=segment_boundaries_mm(a))))
+        panels.append(side_panel(a, [shape_state(c, p) for p in picks]))
     return panels
+
+
+def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]]) -> SidePanel:
+    """The side-view panel of one analysed actuator in ``states``, for a chain of one segment as for five.
+
+    The fabric line is the chain of :meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`:
+    the unbent lead-in, each segment's legs bent by its own angle with the unbent transitions
+    between them, and the unbent tail; the tube is drawn with the largest r0 (:func:`sleeve_mm`)
+    and the segment boundaries are marked (:func:`segment_boundaries_mm`; none in a chain of one).
+
+    Parameters
+    ----------
+    act : ActuatorAnalysis
+        An analysed actuator.
+    states : sequence of (float, float, sequence of float)
+        Per state drawn its pressure [kPa], the whole strip's bend [deg] and each segment's bend [deg],
+        as :func:`shape_state` gives them.
+
+    Returns
+    -------
+    SidePanel
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> act = analyse(design_from_dict({"actuator": [{"name": "A1", "pattern": "cross", "width_mm": 7,
+    ...     "interval_mm": 1.4, "angle_deg": 45, "length_mm": 100}]})).actuators[0]   # legs 0.3 mm in from each end
+    >>> panel = side_panel(act, [(0.0, 0.0, (0.0,)), (200.0, -40.0, (-40.0,))])
+    >>> panel.label, [round(v, 3) for v in panel.segment_lengths_mm], panel.segment_theta_deg[1]
+    ('A1', [0.3, 99.4, 0.3], (0.0, -40.0, 0.0))
+    """
+    lengths = piece_lengths_mm(act)
+    return SidePanel(act.segments.one_or_all(act.name, lambda: f"{act.name} ({len(act.segments)} segments)"),
+                     length_mm=sum(lengths), r0_mm=sleeve_mm(act)[1], pressure_kpa=tuple(p for p, _, _ in states),
+                     theta_deg=tuple(t for _, t, _ in states), segment_lengths_mm=lengths,
+                     segment_theta_deg=tuple(piece_theta_deg(act, parts) for _, _, parts in states),
+                     marks_mm=segment_boundaries_mm(act))
 
 
 def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):
@@ -751,8 +781,9 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
 
 
 def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **options):
-    """The 3D shape of one analysed actuator bent by ``theta_deg`` (a segmented one: each segment by its own
-    bend, the transitions unbent), on its path and with the sleeve a view draws it with (:func:`sleeve_mm`).
+    """The 3D shape of one analysed actuator: each segment's legs bent by its own bend, the lead-in, the
+    transitions and the tail unbent (:meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`, for a
+    chain of one as for five), on its path and with the sleeve a view draws it with (:func:`sleeve_mm`).
 
     Parameters
     ----------
@@ -761,7 +792,7 @@ def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **
     theta_deg : float
         Its whole strip's bend [deg].
     segment_theta_deg : sequence of float
-        Each segment's bend [deg] (read for a chain of more than one only).
+        Each segment's bend [deg] (adding up to ``theta_deg``).
     **options
         Further keywords of :func:`~embroact.export.pictures.mesh.actuator_mesh` (``tolerance_mm``, ``measure``...).
 
@@ -780,11 +811,10 @@ def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **
     """
     from .mesh import PlanarPath, actuator_mesh
 
-    chain: dict = act.segments.one_or_all({}, lambda: {"segment_lengths_mm": piece_lengths_mm(act),
-                                                       "segment_theta_deg": piece_theta_deg(act, segment_theta_deg)})
     width, r0 = sleeve_mm(act)
     return actuator_mesh(PlanarPath.from_centerline(act.plan.centerline), theta_deg, width_mm=width, r0_mm=r0,
-                         name=act.name, **chain, **options)
+                         name=act.name, segment_lengths_mm=piece_lengths_mm(act),
+                         segment_theta_deg=piece_theta_deg(act, segment_theta_deg), **options)
 
 
 def shape3d_title(pressures: Mapping[str, float]) -> str:
@@ -833,18 +863,3 @@ def check_side_states(value, *, name: str = "side_states") -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_SIDE_STATES:
         raise ParameterError(f"{name} must be an integer in [1, {MAX_SIDE_STATES}], got {value!r}")
     return value
-
-
-#: Most actuators the side view draws, side by side (a wider drawing shows nothing more on a screen, and its
-#: size and time grew with the design: 1000 panels were 13 MB and a fifth of the build); the report keeps
-#: every actuator's side-view states.
-SIDE_VIEW_MAX_PANELS = 24
-
-
-def _side_view(panels) -> str:
-    """The side-view SVG of the first :data:`SIDE_VIEW_MAX_PANELS` panels; its title says when some are left out."""
-    if len(panels) <= SIDE_VIEW_MAX_PANELS:
-        return side_view_svg(panels)
-    return side_view_svg(panels[:SIDE_VIEW_MAX_PANELS],
-                         title=f"Bent shape (side view, clamped top): the first {SIDE_VIEW_MAX_PANELS} of "
-                               f"{len(panels)} actuators")

@@ -18,8 +18,10 @@ With the clamp at the origin, x across, z up, arc length s along the fabric line
 
 and a line at distance ``o`` on the thread side is ``(x, z) + o * (cos(kappa s), -sin(kappa s))``.
 The lines come from :class:`embroact.predict.shape.BentShape` (the one bent-shape
-kinematics, shared with the 3D mesh): a segmented actuator is drawn as its chain of arcs
-(``SidePanel.segment_lengths_mm`` / ``segment_theta_deg``), each segment bending by its own angle.
+kinematics, shared with the 3D mesh): every panel is a chain of arcs
+(``SidePanel.segment_lengths_mm`` / ``segment_theta_deg``), each piece bending by its own angle;
+an actuator's pieces are its unbent lead-in, each segment's legs with the transitions between
+them, and its tail, for a chain of one segment as for five.
 
 Examples
 --------
@@ -47,10 +49,15 @@ from ...predict.shape import BentShape
 from .chart import PALETTE
 from .labels import Box, Placer, text_box
 
-__all__ = ["SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg", "PX_PER_MM"]
+__all__ = ["SidePanel", "bent_line_mm", "shape_line_mm", "side_view_svg", "PX_PER_MM", "SIDE_VIEW_MAX_PANELS"]
 
 #: Scale of the drawings in mm (side views, shape overlays) [px per mm].
 PX_PER_MM = 3.0
+#: Most actuators a side view draws, side by side (a wider drawing shows nothing more on a screen, and its
+#: size and time grew with the design: 1000 panels were 13 MB and a fifth of the build); :func:`side_view_svg`
+#: draws the first ones and says so in its title, for every caller (build, report, preview, studio). The
+#: report keeps every actuator's side-view states.
+SIDE_VIEW_MAX_PANELS = 24
 _PANEL_GAP_MM = 24.0
 _MARGIN_MM = 8.0
 _LEGEND_ROW_MM = 6.0
@@ -79,11 +86,13 @@ class SidePanel:
         Pressures [kPa] and the predicted bend angles there [deg]; NaN angles are skipped, a
         NaN pressure (a shape not tied to one) is left out of the legend.
     segment_lengths_mm : array-like, optional
-        A segmented actuator: the fabric-side length of each segment [mm] (adding up to
-        ``length_mm``); empty (default) for one uniform segment.
+        The fabric line as pieces from the clamp, each bent uniformly [mm] (adding up to
+        ``length_mm``): an actuator's :meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`,
+        whatever its chain's length. Empty (default): one piece over ``length_mm``; the panel then
+        holds that one piece (``segment_lengths_mm == (length_mm,)``).
     segment_theta_deg : array-like, optional
-        With ``segment_lengths_mm``: one row per pressure, the bend of each segment [deg]
-        (``theta_deg`` is then their sum, the total bend).
+        With ``segment_lengths_mm``: one row per pressure, the bend of each piece [deg]
+        (``theta_deg`` is then their sum, the total bend); without it, ``theta_deg`` itself.
     marks_mm : array-like, optional
         Arc lengths along the fabric line [mm] marked (open circles on the tube) in every
         state, e.g. where one segment of a segmented actuator gives way to the next.
@@ -111,23 +120,24 @@ class SidePanel:
         t = tuple(float(v) for v in np.asarray(self.theta_deg, dtype=np.float64).reshape(-1))
         if len(p) != len(t):
             raise ParameterError(f"theta_deg must have one value per pressure ({len(p)}), got {len(t)}")
-        object.__setattr__(self, "pressure_kpa", p)
-        object.__setattr__(self, "theta_deg", t)
         lengths = tuple(float(v) for v in np.asarray(self.segment_lengths_mm, dtype=np.float64).reshape(-1))
-        rows = np.asarray(self.segment_theta_deg, dtype=np.float64).reshape(-1, max(len(lengths), 1)) \
-            if lengths else np.zeros((0, 1))
-        if lengths and (rows.shape[0] != len(p) or abs(sum(lengths) - self.length_mm) > 1e-6):
+        rows = np.asarray(self.segment_theta_deg, dtype=np.float64).reshape(-1, max(len(lengths), 1))
+        if not lengths:  # no pieces given: one piece over the whole length, bent by the whole angle
+            lengths, rows = (float(self.length_mm),), np.reshape(t, (-1, 1))
+        if rows.shape != (len(p), len(lengths)) or abs(sum(lengths) - self.length_mm) > 1e-6:
             raise ParameterError(f"segment_theta_deg must have one row of {len(lengths)} angles per pressure "
                                  f"({len(p)}) and segment_lengths_mm must add up to length_mm {self.length_mm:g}")
         marks = tuple(float(v) for v in np.asarray(self.marks_mm, dtype=np.float64).reshape(-1))
         if not all(0.0 <= m <= self.length_mm for m in marks):
             raise ParameterError(f"marks_mm must lie in [0, length_mm {self.length_mm:g}], got {marks}")
+        object.__setattr__(self, "pressure_kpa", p)
+        object.__setattr__(self, "theta_deg", t)
         object.__setattr__(self, "marks_mm", marks)
         object.__setattr__(self, "segment_lengths_mm", lengths)
-        object.__setattr__(self, "segment_theta_deg", tuple(tuple(float(v) for v in r) for r in rows) if lengths else ())
+        object.__setattr__(self, "segment_theta_deg", tuple(tuple(float(v) for v in r) for r in rows))
 
     def shape(self, k: int) -> BentShape:
-        """The bent line of state ``k`` (a chain of arcs for a segmented actuator).
+        """The bent line of state ``k``: the chain of arcs of its pieces, each bent by its own angle.
 
         Parameters
         ----------
@@ -145,9 +155,7 @@ class SidePanel:
         >>> [round(p[2] * p[1], 6) for p in hook.shape(0).pieces()]  # each segment's turn [rad]
         [1.570796, -0.523599]
         """
-        if self.segment_lengths_mm:
-            return BentShape.chain(self.segment_lengths_mm, self.segment_theta_deg[k])
-        return BentShape.chain([self.length_mm], [self.theta_deg[k]])
+        return BentShape.chain(self.segment_lengths_mm, self.segment_theta_deg[k])
 
 
 def shape_line_mm(shape: BentShape, offset_mm: float, *,
@@ -216,7 +224,7 @@ def _band(lines: dict[float, np.ndarray], lo_mm: float, hi_mm: float) -> np.ndar
 
 def _states(panel: SidePanel) -> list[tuple[float, float, BentShape]]:
     return [(p, t, panel.shape(k)) for k, (p, t) in enumerate(zip(panel.pressure_kpa, panel.theta_deg))
-            if math.isfinite(t) and (not panel.segment_lengths_mm or all(map(math.isfinite, panel.segment_theta_deg[k])))]
+            if math.isfinite(t) and all(map(math.isfinite, panel.segment_theta_deg[k]))]
 
 
 def _state_lines(panel: SidePanel) -> list[tuple[float, float, BentShape, dict[float, np.ndarray]]]:
@@ -292,7 +300,7 @@ def _draw_sides(dwg, parent, panel: SidePanel, dx: float, dy: float, placer: Pla
 def _draw_segment_names(dwg, parent, panel: SidePanel, states, dx: float, dy: float, placer: Placer) -> None:
     """A segmented actuator's segments (between its ``marks_mm``) numbered beside the middle of each, on the
     first state drawn."""
-    if not panel.segment_lengths_mm or not panel.marks_mm or not states:
+    if not panel.marks_mm or not states:
         return
     shape = states[0][2]
     ends = np.array([0.0, *sorted(panel.marks_mm), panel.length_mm])
@@ -319,7 +327,8 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
 
     Units in the drawing are millimetres (1 user unit = 1 mm, shown at 3 px/mm); a
     10 mm scale bar is drawn.  Each state is a ``<g class="state">`` carrying
-    ``data-pressure-kpa`` and ``data-theta-deg``.
+    ``data-pressure-kpa`` and ``data-theta-deg``. Past :data:`SIDE_VIEW_MAX_PANELS` panels
+    the first ones are drawn and the title says how many of how many.
 
     Parameters
     ----------
@@ -343,6 +352,9 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
 
     if not panels:
         raise ParameterError("panels must hold at least one side view")
+    if len(panels) > SIDE_VIEW_MAX_PANELS:
+        title = f"{title}: the first {SIDE_VIEW_MAX_PANELS} of {len(panels)} actuators"
+        panels = panels[:SIDE_VIEW_MAX_PANELS]
     states = [_state_lines(p) for p in panels]
     bounds = [_panel_bounds(p, s) for p, s in zip(panels, states)]
     top = max(b[3] for b in bounds) + 24.0

@@ -25,6 +25,7 @@ import math
 from typing import Mapping, Sequence
 
 from .. import __version__
+from ...patterns.chain import Chain
 
 __all__ = ["FIGURES", "report_data", "report_json", "report_html", "finding_dict"]
 
@@ -226,14 +227,18 @@ def _cell(v) -> str:
     return f"<td>{_value(v)}</td>"
 
 
+def _named_segments(actuator: Mapping) -> list[Mapping]:
+    """The actuator's segments, each named as the chain names its parts (:meth:`Chain.part_name
+    <embroact.patterns.chain.Chain.part_name>`): ``A1`` in a chain of one, ``A1 segment 0``, ``A1 segment 1``
+    ... in a longer one; an entry without segments (read from a machine file) is its own one."""
+    segs = list(actuator.get("segments") or [actuator])
+    chain = Chain(segs)
+    return [{**s, "name": chain.part_name(str(actuator.get("name")), k)} for k, s in enumerate(segs)]
+
+
 def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
-    """One entry per actuator, or per segment of a segmented one (named ``A1 segment 0``), with its
-    ``derived`` and ``model``."""
-    out: list[Mapping] = []
-    for a in actuators:
-        segs = a.get("segments") or []
-        out += [{**s, "name": f"{a.get('name')} segment {k}"} for k, s in enumerate(segs)] or [a]
-    return out
+    """One entry per segment of every actuator (:func:`_named_segments`), with its ``derived`` and ``model``."""
+    return [s for a in actuators for s in _named_segments(a)]
 
 
 #: Columns (actuators, segments) a per-actuator table shows at most; beyond it identical entries share one
@@ -288,15 +293,15 @@ def _derived_table(actuators: Sequence[Mapping]) -> str:
 
 
 def _segments_table(actuators: Sequence[Mapping]) -> str:
-    """Where each segment of a segmented actuator lies: its share of the path, its legs (the part that
-    bends), the unbent transition to the next segment and the thread's run along a rail there [mm]."""
+    """Where each segment lies (named as :func:`_named_segments` names it: a chain of one as its actuator): its
+    share of the path, its legs (the part that bends), the unbent transition to the next segment and the
+    thread's run along a rail there [mm]."""
     rows = []
-    for a in actuators:
-        for k, s in enumerate(a.get("segments") or []):
-            legs = s["first_leg_mm"] + (s.get("derived") or {}).get("length_mm", 0.0)
-            rows.append(f"<tr><th>{_e(a.get('name'))} segment {k}</th><td>{_e(s.get('pattern'))}</td>"
-                        f"{_cell(s['start_mm'])}{_cell(s['start_mm'] + s['length_mm'])}{_cell(s['first_leg_mm'])}"
-                        f"{_cell(legs)}{_cell(s['transition_mm'])}{_cell(s['join_run_mm'])}</tr>")
+    for s in (s for s in _parts(actuators) if "start_mm" in s):
+        legs = s["first_leg_mm"] + (s.get("derived") or {}).get("length_mm", 0.0)
+        rows.append(f"<tr><th>{_e(s['name'])}</th><td>{_e(s.get('pattern'))}</td>"
+                    f"{_cell(s['start_mm'])}{_cell(s['start_mm'] + s['length_mm'])}{_cell(s['first_leg_mm'])}"
+                    f"{_cell(legs)}{_cell(s['transition_mm'])}{_cell(s['join_run_mm'])}</tr>")
     if not rows:
         return ""
     head = "".join(f"<th>{h}</th>" for h in ("segment", "pattern", "path from [mm]", "path to [mm]", "legs from [mm]",
@@ -365,13 +370,12 @@ def _worksheet_html(ws: Mapping | None) -> str:
 
 
 def _curve_columns(actuator: Mapping) -> list[Mapping]:
-    """The curves of one actuator in the table: its own, or a segmented one's whole strip and each segment's."""
-    segs = actuator.get("segment_curves") or []
-    if not segs:
-        return [actuator]
+    """The curves of one actuator in the table: a chain of one its own (named as the actuator), a longer one its
+    whole strip and each segment's (named as the chain names them, :func:`_named_segments`)."""
+    curves = actuator.get("segment_curves") or []
     name = actuator.get("name")
-    return [{**actuator, "name": f"{name} whole strip"}] + [{"name": f"{name} segment {k}", "curve": c}
-                                                            for k, c in enumerate(segs)]
+    return Chain.shown(curves, lambda: [actuator], lambda: [{**actuator, "name": f"{name} whole strip"}] + [
+        {"name": Chain(curves).part_name(str(name), k), "curve": c} for k, c in enumerate(curves)])
 
 
 def _curve_table(actuators: Sequence[Mapping]) -> str:

@@ -19,8 +19,9 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 from ...patterns.base.errors import ExportError, ParameterError
-from ..pictures.previews import (DEFAULT_SIDE_STATES, OUTPUT_NAMES, _side_view, bend_chart, check_side_states,
+from ..pictures.previews import (DEFAULT_SIDE_STATES, OUTPUT_NAMES, bend_chart, check_side_states,
                                  curve_bands, shape3d_title, shape_meshes, shape_state, side_panels)
+from ..pictures.sideview import side_view_svg
 from .report import report_data, report_html, report_json
 
 __all__ = ["Previews", "actuator_entry", "render_previews", "previews_stage"]
@@ -160,7 +161,7 @@ def render_previews(
     plan = analysis.plan
     panels = side_panels(analysis, curves, count=side_states)
     bands = curve_bands(analysis, curves)
-    figures = {"bend": bend_chart(analysis, curves, measured, bands), "side": _side_view(panels)}
+    figures = {"bend": bend_chart(analysis, curves, measured, bands), "side": side_view_svg(panels)}
     files: dict = {OUTPUT_NAMES["bend"]: figures["bend"], OUTPUT_NAMES["side"]: figures["side"]}
     mesh_info = None
     if mesh_suffix is not None:

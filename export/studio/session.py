@@ -28,7 +28,7 @@ from pathlib import Path
 
 from ...patterns.base.errors import EmbroactError, ParameterError, check_range
 from ...patterns.design import ActuatorSpec, design_from_dict
-from ...patterns.kinds import param_values
+from ...patterns.kinds import PATTERN_KINDS, param_values
 from .form import FieldError, apply_edits, design_form, fields
 from .outputs import output_path
 
@@ -170,7 +170,8 @@ class Studio:
         Returns
         -------
         dict
-            The design's name, the pressure, the fields, the findings, the pictures, the worksheet.
+            The design's name, the pressure, the fields, the findings, the pictures, the worksheet, and the
+            choices of the target-bend search's pattern (``"any"`` and every kind inverse design searches).
 
         Examples
         --------
@@ -179,8 +180,8 @@ class Studio:
         >>> out = tempfile.TemporaryDirectory()
         >>> studio = Studio(default_design(), out.name)
         >>> v = studio.views(150.0)
-        >>> v["design"], v["pressure_kpa"], v["chart_svg"].startswith("<svg")
-        ('paper-zigzag', 150.0, True)
+        >>> v["design"], v["pressure_kpa"], v["chart_svg"].startswith("<svg"), v["inverse_patterns"][:3]
+        ('paper-zigzag', 150.0, True, ['any', 'zigzag', 'cross'])
         >>> out.cleanup()
         """
         from ...patterns.base.findings import summary_line
@@ -204,6 +205,7 @@ class Studio:
                 "findings": [f.as_dict() for f in findings],
                 "summary": summary_line(findings),
                 "worksheet": worksheet_figures(ws),
+                "inverse_patterns": ["any", *(k.name for k in PATTERN_KINDS if k.design_params is not None)],
             }
 
     def shape3d(self, pressure_kpa=None) -> dict:

@@ -207,8 +207,8 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
 
 def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
-    """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure
-    (a segmented actuator drawn as the build draws it: widest sleeve, segment boundaries marked).
+    """Side view (:func:`~embroact.export.pictures.sideview.side_view_svg`) unbent and at the slider's pressure,
+    each actuator's panel made as the build makes it (:func:`~embroact.export.pictures.previews.side_panel`).
 
     Parameters
     ----------
@@ -234,19 +234,16 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     2
     """
     from ..pictures import previews as pv
-    from ..pictures.sideview import SidePanel, side_view_svg
+    from ..pictures.sideview import side_view_svg
 
     if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
         return message_svg("no side view: " + "; ".join(b["model_error"] or f"{b['name']}: no finite bend"
                                                         for b in bends if b["theta_deg"] is None))
     panels = []
     for a, b in zip(analysis.actuators, bends):
-        lengths, thetas = pv.piece_lengths_mm(a), pv.piece_theta_deg(a, b["segment_theta_deg"])
-        states = (0.0, pressure_kpa) if pressure_kpa > 0 else (0.0,)
-        rows = [[0.0] * len(lengths), list(thetas)][: len(states)]
-        panels.append(SidePanel(a.name, length_mm=sum(lengths), r0_mm=pv.sleeve_mm(a)[1], pressure_kpa=states,
-                                theta_deg=(0.0, b["theta_deg"])[: len(states)], segment_lengths_mm=tuple(lengths),
-                                segment_theta_deg=tuple(tuple(r) for r in rows), marks_mm=pv.segment_boundaries_mm(a)))
+        unbent = (0.0, 0.0, (0.0,) * len(b["segment_theta_deg"]))
+        at = (pressure_kpa, b["theta_deg"], b["segment_theta_deg"])
+        panels.append(pv.side_panel(a, [unbent, at] if pressure_kpa > 0 else [unbent]))
     return side_view_svg(panels, title=f"Side view at {pressure_kpa:g} kPa")
 
 

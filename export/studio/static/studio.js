@@ -247,6 +247,12 @@ function showViews(v) {
   if (sel.options.length !== state.actuators.length) {
     sel.replaceChildren(...state.actuators.map((n, i) => new Option(n, String(i))));
   }
+  const kinds = $("inv-pattern");  // the registered kinds inverse design searches, as the server lists them
+  if ([...kinds.options].map((o) => o.value).join("|") !== v.inverse_patterns.join("|")) {
+    const chosen = kinds.value;
+    kinds.replaceChildren(...v.inverse_patterns.map((n) => new Option(n, n)));
+    if (v.inverse_patterns.includes(chosen)) kinds.value = chosen;
+  }
   if (!$("save-name").value) $("save-name").value = `${v.design}.toml`;
 }
 
