@@ -63,6 +63,9 @@ def test_svg_references_resolve_as_on_the_command_line(monkeypatch, tmp_path, ca
     assert main(["predict", str(EXAMPLES / "inkscape_tubes.toml"), "--pressure-kpa", "100", "--json"]) == 0
     cli = json.loads(capsys.readouterr().out)["actuators"]
     assert [x.derived.length_mm for x in a.actuators] == [c["derived"]["length_mm"] for c in cli]
+    # and the same bend and model: the paths the drawing gives decide both
+    assert [[float(t) for t in c.theta_deg] for c in a.curves([100.0])] == [c["theta_deg"] for c in cli]
+    assert [x.as_dict()["model"] for x in a.actuators] == [c["model"] for c in cli]
 
 
 def test_predict_json_has_one_schema_for_quick_parameters_and_design_files(tmp_path, capsys):
