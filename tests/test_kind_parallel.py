@@ -129,3 +129,24 @@ def test_shows_in_the_studio(design_file, tmp_path):
         s.inverse(90.0, 150.0, pattern="parallel")
     v = s.edit({"actuator[0].interval_mm": 2.5}, pressure_kpa=200.0)
     assert v["actuators"][0]["derived"]["interval_mm"] == pytest.approx(2.5, abs=1e-9)
+
+
+def test_the_readme_lists_the_steps_this_module_takes():
+    """The README's "Adding a pattern kind" names every function the module defines for the kind, every
+    keyword its PatternKind and ModelKind are made with, and the two register calls, and nothing else."""
+    import ast
+    import re
+
+    readme = (EXAMPLES.parent / "README.md").read_text(encoding="utf-8")
+    section = readme.split("### Adding a pattern kind", 1)[1].split("\n## ", 1)[0]
+    tree = ast.parse(Path(kind_parallel.__file__).read_text(encoding="utf-8"))
+    passed = {"parallel_interval_mm", "parallel_design"}  # handed over as interval= and design_params=
+    functions = {n.name.replace(kind_parallel.NAME, "<name>", 1) for n in tree.body if isinstance(n, ast.FunctionDef)
+                 and n.name.startswith(kind_parallel.NAME + "_") and n.name not in passed}
+    promised = set(re.findall(r"`(<name>_[a-z0-9_]+)", section))
+    assert functions == promised - {"<name>_min_length_mm"}  # the optional one this kind leaves out
+    calls = {n.func.id: n for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
+    for kw in calls["PatternKind"].keywords:
+        assert f"{kw.arg}=" in section or f"`{kw.arg}`" in section, kw.arg
+    assert "register(PatternKind(" in section and "register_model(ModelKind(" in section
+    assert {"register", "register_model"} <= set(calls)
