@@ -79,7 +79,7 @@ from .status import Status
 __all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
            "Sensitivity", "BendCandidate", "BendResult", "design_bend", "exact_pressure_kpa", "angle_grid_step_deg",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
-           "DEFAULT_TIME_LIMIT_S", "operating_limits"]
+           "DEFAULT_TIME_LIMIT_S", "operating_limits", "rail_offset_mm", "grid_origin_mm"]
 
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
@@ -482,8 +482,8 @@ class Sensitivity:
         ``"width_mm"`` or ``"angle_deg"``.
     step : float
         One grid step of the parameter [mm or deg]: a width moves one rail by one grid unit (0.1 mm,
-        the path moving by half a unit, :func:`rail_offset_mm`; both rails, 0.2 mm, on a path that
-        stays), an angle moves a leg end by one grid unit along the path.
+        the path moving by half a unit, :func:`grid_origin_mm`), an angle moves a leg end by one grid
+        unit along the path.
     minus_deg, plus_deg : float
         Change of the bend at the target pressure for one step lower / higher [deg].
 
@@ -756,21 +756,69 @@ def rail_offset_mm(width_mm: float) -> float:
     return 0.5 * grid if round(width_mm / grid) % 2 else 0.0
 
 
+def grid_origin_mm(width_mm: float, origin_mm=(0.0, 0.0), rotation_deg: float = 0.0) -> tuple[float, float]:
+    """Where a straight actuator starts so that both rails of ``width_mm`` lie on the machine grid.
+
+    A path along a grid axis (``rotation_deg`` a multiple of 90) starts on the nearest grid point along
+    itself (so its legs round as on a path from the origin) and is moved across itself to the grid
+    line at or below its start, then by :func:`rail_offset_mm` (so moving it back and forth between
+    an odd and an even width does not creep); a path at another angle (its needle points round one
+    by one) keeps its start.
+
+    Parameters
+    ----------
+    width_mm : float
+        The width [mm], on the machine grid.
+    origin_mm : (float, float)
+        The path's start [mm].
+    rotation_deg : float
+        The path's direction [deg, counter-clockwise from +x].
+
+    Returns
+    -------
+    tuple of float
+        The start [mm].
+
+    Examples
+    --------
+    >>> grid_origin_mm(6.1), grid_origin_mm(6.2, (0.0, 0.05)), grid_origin_mm(6.1, (10.0, 20.03), 90.0)
+    ((0.0, 0.05), (0.0, 0.0), (10.05, 20.0))
+    """
+    quarter = rotation_deg / 90.0
+    x, y = (float(v) for v in origin_mm)
+    if abs(quarter - round(quarter)) > 1e-9:
+        return x, y
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+
+    def across(c: float) -> float:
+        return round(math.floor(c / grid + 1e-6) * grid + rail_offset_mm(width_mm), 10)
+
+    def along(c: float) -> float:
+        return round(round(c / grid) * grid, 10)
+
+    return (along(x), across(y)) if round(quarter) % 2 == 0 else (across(x), along(y))
+
+
+#: Where the one straight actuator of a target-bend search lies: its start [mm] and direction [deg].
+_Place = tuple[tuple[float, float], float]
+
+
 def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings, name: str,
-                  operation: OperationSettings, offset_path: bool = True) -> Design:
-    """The written design: one straight actuator along +x from the origin, moved sideways by
-    :func:`rail_offset_mm` when ``offset_path`` (so both rails of its width lie on the machine grid)."""
-    shift = rail_offset_mm(params.width_mm) if offset_path else 0.0
-    return Design(name, tube, MachineSettings(), operation,
-                  (ActuatorSpec(name, params, Centerline.straight(length_mm, origin_mm=(0.0, shift)), model=settings),))
+                  operation: OperationSettings, place: _Place = ((0.0, 0.0), 0.0)) -> Design:
+    """The written design: one straight actuator of ``length_mm`` from ``place``, moved across its path by
+    :func:`grid_origin_mm` (so both rails of its width lie on the machine grid)."""
+    origin, rotation = place
+    path = Centerline.straight(length_mm, origin_mm=grid_origin_mm(params.width_mm, origin, rotation),
+                               rotation_deg=rotation)
+    return Design(name, tube, MachineSettings(), operation, (ActuatorSpec(name, params, path, model=settings),))
 
 
 def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, settings: ModelSettings, sets,
-              name: str, operation: OperationSettings, offset_path: bool = True):
+              name: str, operation: OperationSettings, place: _Place = ((0.0, 0.0), 0.0)):
     """(design, analysis, theta_deg or None, status or None) of the generated one-actuator design."""
     from .analysis import analyse
 
-    d = _one_actuator(params, length_mm, tube, settings, name, operation, offset_path)
+    d = _one_actuator(params, length_mm, tube, settings, name, operation, place)
     a = analyse(d, calibration_sets=sets)
     act = a.actuators[0]
     if act.choice is None:
@@ -805,8 +853,8 @@ def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
 
 def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float, **kw) -> tuple[Sensitivity, ...]:
     """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again: one grid
-    unit of width where the path moves to keep the rails on the grid (``offset_path``), else two."""
-    steps = [("width_mm", (1.0 if kw.get("offset_path", True) else 2.0) * DEFAULT_TOLERANCES.machine_grid_mm)]
+    unit of width (the path moves to keep both rails on the grid, :func:`grid_origin_mm`)."""
+    steps = [("width_mm", DEFAULT_TOLERANCES.machine_grid_mm)]
     if pattern_kind(params.pattern).has_angle:
         steps.append(("angle_deg", angle_grid_step_deg(params.width_mm, params.angle_deg)))
     out = []
@@ -877,7 +925,7 @@ def exact_pressure_kpa(model, target_deg: float) -> float | None:
 
 def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
                tube: Tube, settings: ModelSettings, sets, name: str, operation: OperationSettings,
-               polish: bool, offset_path: bool = True, interval_mm: float | None = None) -> BendCandidate | None:
+               polish: bool, place: _Place = ((0.0, 0.0), 0.0), interval_mm: float | None = None) -> BendCandidate | None:
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
     needle points are on the machine grid); None if it is not in a valid state or fails the rules.
     ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_lengths`)."""
@@ -887,8 +935,7 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
         q = space.params(v)
         return q if interval_mm is None else dataclasses.replace(q, interval_mm=interval_mm)
 
-    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation,
-                              offset_path=offset_path)
+    kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation, place=place)
     d, a, theta, status = _analysed(params_at(x), length_mm, pressure_kpa, **kw)
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
         x0, t0 = x, theta
@@ -1096,12 +1143,12 @@ def _fitted_lengths(c: BendCandidate, length_mm: float, tolerance_mm: float, tar
 def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", length_mm: float = 100.0,
                 tube: Tube = Tube(), settings: ModelSettings = ModelSettings(), sets: Iterable = (),
                 allow_extrapolation: bool = False, name: str = "A1", tolerance_deg: float = 0.5,
-                operation: OperationSettings = OperationSettings(), offset_path: bool = True,
+                operation: OperationSettings = OperationSettings(), origin_mm=(0.0, 0.0), rotation_deg: float = 0.0,
                 length_tolerance_mm: float = 0.0) -> BendResult:
     """The single sewable actuator that bends by ``bend_deg`` at ``pressure_kpa`` (see the module docstring).
 
     The continuous parameter's roots are found on the model; the designs tried are those a
-    machine sews (a zigzag width on the 0.2 mm grid of a straight actuator's rails, a cross
+    machine sews (a zigzag width on the 0.1 mm grid, both rails on it, :func:`grid_origin_mm`; a cross
     angle polished on the generated needle points), each generated and analysed as ``embroact
     predict`` does, so the reported bend is that of the written file's needle points.
 
@@ -1126,10 +1173,11 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     operation : OperationSettings
         The operation limits the written design keeps (:func:`operating_limits`: the target is added
         as its operating point); every candidate is judged by the rules up to them.
-    offset_path : bool
-        Move the straight path half a machine-grid unit sideways for a width of an odd number of grid
-        units (:func:`rail_offset_mm`): both rails land on the grid, so widths step by one grid unit
-        (0.1 mm) instead of two. False: the path stays on y = 0 (an actuator placed elsewhere keeps its place).
+    origin_mm, rotation_deg
+        Where the straight actuator starts [mm] and its direction [deg, counter-clockwise from +x] (the
+        studio searches an actuator where it lies). Each design is moved across its path to where both
+        rails of its width lie on the machine grid (:func:`grid_origin_mm`; half a grid unit for a width
+        of an odd number of units), so widths step by one grid unit (0.1 mm) on a path along a grid axis.
     length_tolerance_mm : float
         The length may differ from ``length_mm`` by up to this, on the machine grid, where the grid's width
         steps miss the target (:func:`_fitted_lengths`: the stitch interval is adjusted to whole intervals
@@ -1166,10 +1214,11 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
     length_tolerance_mm = check_range("length_tolerance_mm", length_tolerance_mm, low=0.0, high=length,
                                       low_inclusive=True)
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name,
-                              operation=operating_limits(operation, p, target), offset_path=offset_path)
+                              operation=operating_limits(operation, p, target),
+                              place=((float(origin_mm[0]), float(origin_mm[1])), float(rotation_deg)))
     cands: list[BendCandidate] = []
     reasons, ranges = [], []
-    step = DEFAULT_TOLERANCES.machine_grid_mm if offset_path else None  # one grid unit of width: the path moves
+    step = DEFAULT_TOLERANCES.machine_grid_mm  # one grid unit of width: the path moves (grid_origin_mm)
 
     def add(c):
         if c is not None and all((c.params, c.length_mm) != (o.params, o.length_mm) for o in cands):

@@ -214,3 +214,35 @@ def test_embroacts_own_tbf_and_dst_headers_agree_with_their_records(tmp_path):
         path = tmp_path / f"a.{fmt}"
         write(build_plan(default_design()), str(path))
         assert [f for f in _check(path, "0,0 100,0") if f.code == "EA505"] == []
+
+
+def test_a_bare_machine_file_gets_no_ea203_at_the_transitions_the_generator_made(tmp_path, capsys):
+    """`check file.dst` of a segmented actuator warned EA203 at each transition between segments (a 4.45 mm gap
+    in the README's hook) which `check design.toml` leaves out: the file has no plan to name its segments, so a
+    gap across which the legs' extents change (7 mm zigzag to 7 mm cross: along the tube 1 mm against 2 x 7 tan 45)
+    is read as a transition; a segment whose own interval is too wide still gets EA203 inside it (3.5 mm gaps)."""
+    from embroact.export.machine.formats import encode
+    from embroact.patterns.centerline import Centerline
+    from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings, build_plan
+    from embroact.patterns.origin import origin_point_mm
+    from embroact.patterns.rules import check_geometry
+    from embroact.patterns.params import CrossParams, Tube, ZigzagParams
+    from embroact.patterns.segments import SegmentSpec
+
+    for interval_mm, inside in ((1.0, 0), (3.5, 8)):
+        segs = (SegmentSpec(ZigzagParams(7.0, interval_mm), 40.0), SegmentSpec(CrossParams(7.0, 1.4, 45.0), 30.0),
+                SegmentSpec(ZigzagParams(8.0, 1.0), 30.0))
+        design = Design("s", Tube(), MachineSettings(), OperationSettings(),
+                        (ActuatorSpec.segmented("S", segs, Centerline.straight(100.0)),))
+        plan = build_plan(design)
+        path = tmp_path / "s.dst"
+        path.write_bytes(encode(plan, "dst")[0])
+        tube = " ".join(f"{x:g},{y:g}" for x, y in plan.actuators[0].centerline.points_mm)  # the path as placed
+        origin = ",".join(f"{v:g}" for v in origin_point_mm(plan, design.machine.origin))
+        capsys.readouterr()
+        main(["check", str(path), "--tube-path", tube, "--origin-mm", origin, "--json"])
+        found = json.loads(capsys.readouterr().out)["findings"]
+        assert not [f for f in found if f["severity"] == "error"], found  # the file is read on its tube
+        gaps = [f["message"] for f in found if f["code"] == "EA203"]
+        design_gaps = [f.message.replace("S ", "tube 1 ") for f in check_geometry(plan) if f.code == "EA203"]
+        assert gaps == design_gaps and len(gaps) >= inside and all("3.50 mm apart" in m for m in gaps)

@@ -228,3 +228,39 @@ def test_design_and_check_give_the_same_findings(tmp_path, capsys):
     assert main(["design", "--target-shape", str(csv), "--at-kpa", "200", "-o", str(out), "--json"]) == 0
     res = json.loads(capsys.readouterr().out)
     assert res["findings"] == _check_findings(capsys, out)
+
+
+@pytest.mark.parametrize("place", [((0.0, 0.0), 0.0), ((10.0, 20.03), 90.0)])
+def test_the_studio_searches_the_designs_design_searches(place, tmp_path, capsys):
+    """The studio's target bend searched 0.2 mm width steps (the path kept on its grid line) where `design` searches
+    0.1 mm ones: 88 deg at 150 kPa got 6.2 mm (84.53 deg) in the studio and 6.1 mm (90.22 deg) from `design`. Both now
+    give the same answer, for an actuator at the origin and one elsewhere along +y; the studio's proposal starts the
+    actuator half a grid unit across its path, so the applied design is sewn 6.1 mm wide and bends as answered."""
+    from embroact.export.studio.session import Studio
+    from embroact.patterns.centerline import Centerline
+    from embroact.patterns.design import default_design
+
+    base = default_design()
+    origin, rotation = place
+    spec = dataclasses.replace(base.actuators[0], centerline=Centerline.straight(100.0, origin_mm=origin,
+                                                                                 rotation_deg=rotation))
+    studio = Studio(dataclasses.replace(base, actuators=(spec,)), str(tmp_path))
+    for bend, pressure, pattern in [(90.0, 150.0, "zigzag"), (88.0, 150.0, "zigzag"), (-40.0, 250.0, "cross")]:
+        capsys.readouterr()
+        main(["design", "--bend-deg", str(bend), "--at-kpa", str(pressure), "--pattern", pattern, "-o",
+              str(tmp_path / "d.toml"), "--write-nearest", "--json"])
+        cli = json.loads(capsys.readouterr().out)
+        answer = studio.inverse(bend, pressure, pattern=pattern)
+        for key in ("reached", "statement"):
+            assert answer[key] == cli[key]
+        assert answer["best"]["params"] == cli["best"]["params"]
+        assert answer["best"]["theta_deg"] == pytest.approx(cli["best"]["theta_deg"], abs=1e-9)
+        width = cli["best"]["params"]["width_mm"]
+        across = answer["origin_mm"][1 if rotation == 0.0 else 0]
+        assert (across * 10 + width * 10 / 2) % 1 == pytest.approx(0.0, abs=1e-6)  # both rails on the 0.1 mm grid
+        if answer["reached"]:
+            views = studio.apply_proposal(pressure)
+            act = views["actuators"][0]
+            assert act["derived"]["width_mm"] == pytest.approx(width, abs=1e-9)
+            assert act["theta_deg"] == pytest.approx(answer["best"]["theta_deg"], abs=1e-9)
+            assert sewn_bend_deg(studio.design, pressure)[0] == pytest.approx(answer["best"]["theta_deg"], abs=1e-6)

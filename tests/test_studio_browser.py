@@ -158,7 +158,7 @@ def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_pa
     page.click(f"#finding-list li[data-finding='{k}']")
     assert "active" in placed.first.get_attribute("class")
     assert page.inner_text(f"#finding-list li[data-finding='{k}']").startswith("EA105")
-    # inverse design: 84.5 deg at 150 kPa with a zigzag (the sewable 6.2 mm bends 84.53), applied as an edit
+    # inverse design: 84.5 deg at 150 kPa with a zigzag (the sewable 6.2 mm bends 84.53), applied as its proposal
     page.fill("#inv-bend", "84.5")
     page.fill("#inv-pressure", "150")
     page.select_option("#inv-pattern", "zigzag")
@@ -166,7 +166,7 @@ def test_findings_are_marked_on_the_preview_and_inverse_design_applies(studio_pa
     page.wait_for_selector("#inv-apply:not([hidden])", timeout=60_000)
     text = page.inner_text("#inv-result")
     assert text.startswith("met: zigzag bends 84.53 deg at 150 kPa")
-    assert "one machine-grid step (sewn again, G, P0 and geometry following): width_mm -0.200 mm: 12.04 deg" in text
+    assert "one machine-grid step (sewn again, G, P0 and geometry following): width_mm -0.100 mm: 5.68 deg" in text
     version = page.get_attribute("body", "data-version")
     page.click("#inv-apply")
     wait_for_update(page, version)

@@ -241,12 +241,12 @@ def test_build_refuses_on_rule_errors_and_writes_nothing(client, out_dir):
     assert (out_dir / "paper-zigzag.dst").exists()
 
 
-def test_inverse_design_gives_edits_that_reach_the_target(client):
+def test_inverse_design_is_a_proposal_that_reaches_the_target(client):
     r = client.post("/api/inverse", json={"bend_deg": 84.5, "pressure_kpa": 150, "pattern": "zigzag"}, headers=AUTH)
     assert r.status_code == 200, r.text
     res = r.json()
-    assert res["reached"] is True
-    v = edit(client, res["values"], 150).json()
+    assert res["reached"] is True and res["origin_mm"] == [0.0, 0.0]  # 6.2 mm: both rails on the grid at y = 0
+    v = client.post("/api/apply-proposal", json={"pressure_kpa": 150}, headers=AUTH).json()
     width = res["values"]["actuator[0].width_mm"]
     theta = float(analyse(design_from_dict(paper_dict(width_mm=width))).curves([150.0])[0].theta_deg[0])
     assert v["actuators"][0]["theta_deg"] == pytest.approx(theta, rel=1e-12)

@@ -15,7 +15,7 @@ before a route runs):
 ``POST /api/save``              ``{"name": "x.toml"}``: the design file, in the output directory
 ``POST /api/build``             ``{"force": false}``: ``embroact build`` into the output directory
 ``POST /api/inverse``           ``{"bend_deg", "pressure_kpa", "pattern", "actuator"}``: a target
-                                bend, answered with the field edits that meet it
+                                bend, kept as a proposal (pattern and start)
 ``POST /api/inverse-shape``     ``{"path_d", "pressure_kpa", "max_segments", "actuator"}``: a
                                 target shape, kept as a proposal
 ``POST /api/apply-proposal``    ``{"pressure_kpa"}``: the proposal in the design; the new views

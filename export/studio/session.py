@@ -22,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import json
+import math
 import threading
 from collections import OrderedDict
 from pathlib import Path
@@ -380,6 +381,11 @@ class Studio:
     def inverse(self, bend_deg, pressure_kpa, *, pattern="any", actuator=0) -> dict:
         """Inverse design (:func:`embroact.predict.inverse.design_bend`) for one straight actuator of the design.
 
+        A straight actuator is searched where it lies, over the same sewable designs as ``embroact design``:
+        widths in steps of one grid unit, each moved across its path by at most half a unit so that both
+        rails lie on the machine grid (:func:`~embroact.predict.inverse.grid_origin_mm`). The answer is kept
+        as a proposal when it is met: :meth:`apply_proposal` puts its pattern and that start in the design.
+
         Parameters
         ----------
         bend_deg : float
@@ -394,8 +400,9 @@ class Studio:
         Returns
         -------
         dict
-            The result (:meth:`~embroact.predict.inverse.BendResult.as_dict`) and ``values``: the field edits
-            that give the actuator the best candidate's pattern parameters (the page applies them as any edit).
+            The result (:meth:`~embroact.predict.inverse.BendResult.as_dict`), ``values``: the field values
+            of the best candidate's pattern parameters, and ``origin_mm``: where the proposal starts the
+            actuator (its rails on the grid).
 
         Raises
         ------
@@ -408,9 +415,11 @@ class Studio:
         >>> from embroact.patterns.design import default_design
         >>> out = tempfile.TemporaryDirectory()
         >>> studio = Studio(default_design(), out.name)
-        >>> answer = studio.inverse(84.5, 150.0, pattern="zigzag")
-        >>> answer["values"]["actuator[0].width_mm"]
-        6.2
+        >>> answer = studio.inverse(90.0, 150.0, pattern="zigzag")
+        >>> answer["values"]["actuator[0].width_mm"], answer["origin_mm"]
+        (6.1, [0.0, 0.05])
+        >>> round(studio.apply_proposal(150.0)["actuators"][0]["derived"]["width_mm"], 9)  # sewn 6.1 mm wide
+        6.1
         >>> out.cleanup()
         """
         from ...predict.inverse import design_bend
@@ -418,18 +427,32 @@ class Studio:
         with self._lock:
             design = self.design
             index, spec = self._actuator(actuator)
+            old = self.form["actuator"][index]
         spec.segments.single(f"actuator {spec.name!r} is segmented: a target bend designs one pattern")
         target = _number("bend_deg", bend_deg, low=-720.0, high=720.0)
         p = _number("pressure_kpa", pressure_kpa, low=0.0, high=10_000.0, inclusive=False)
+        start, end = spec.centerline.points_mm[0], spec.centerline.points_mm[-1]
+        straight = len(spec.centerline.points_mm) == 2  # else searched as a straight actuator of its length
+        origin, rotation = ((float(start[0]), float(start[1])), math.degrees(math.atan2(*(end - start)[::-1]))) \
+            if straight else ((0.0, 0.0), 0.0)
         with self._searching():  # the design is not locked meanwhile: views and edits go on
             result = design_bend(target, p, pattern=pattern, length_mm=spec.centerline.length_mm, tube=design.tube,
                                  settings=spec.model, sets=self.calibration_sets, name=spec.name,
                                  operation=design.operation,  # judged by the limits the studio then shows
-                                 offset_path=False)  # the answer's parameters go on the actuator where it lies
+                                 origin_mm=origin, rotation_deg=rotation)
         best = result.best
+        table = design_form(best.design)["actuator"][0]  # the searched actuator: its pattern and its start
+        table.update({k: old[k] for k in ("tie_stitch_mm", "tie_count", *(() if straight else ("path",)))
+                      if k in old})
+        if not straight:
+            for k in ("length_mm", "origin_mm", "rotation_deg"):
+                table.pop(k, None)
+        with self._lock:  # only a met answer is offered: an unmet one is shown, never applied
+            self._proposal = (index, spec.name, table) if result.reached else None
         values: dict[str, object] = {f"actuator[{index}].pattern": best.pattern}
         values.update({f"actuator[{index}].{k}": v for k, v in param_values(best.params).items()})
-        return {**result.as_dict(), "values": values}
+        placed = [float(v) for v in best.design.actuators[0].centerline.points_mm[0]] if straight else None
+        return {**result.as_dict(), "values": values, "origin_mm": placed}
 
     def inverse_shape(self, path_d, pressure_kpa, *, max_segments=6, actuator=0) -> dict:
         """Inverse design of a target shape (:func:`embroact.predict.inverse.design_shape`) for one actuator.
@@ -540,12 +563,12 @@ class Studio:
         ...     studio.apply_proposal()
         ... except ValueError as exc:
         ...     print(exc)
-        no inverse-design proposal to apply: design a reachable shape first
+        no inverse-design proposal to apply: design a reachable bend or shape first
         >>> out.cleanup()
         """
         with self._lock:
             if self._proposal is None:
-                raise ParameterError("no inverse-design proposal to apply: design a reachable shape first")
+                raise ParameterError("no inverse-design proposal to apply: design a reachable bend or shape first")
             index, name, table = self._proposal
             if index >= len(self.form["actuator"]) or self.design.actuators[index].name != name:
                 self._proposal = None

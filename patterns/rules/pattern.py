@@ -24,18 +24,21 @@ __all__ = ["PATTERN_RULES"]
 
 @RULES.rule("EA203", Severity.WARNING, "stitch interval over tube diameter",
             "Neighbouring legs cross the tube further apart than its diameter 2 r_f: the tube bulges between "
-            "legs, which the model does not describe. In a design, the transition the generator leaves between "
-            "two segments of a segmented actuator is not reported: the model counts it as unbent tube.",
+            "legs, which the model does not describe. The transition the generator leaves between two segments "
+            "of a segmented actuator is not reported (the model counts it as unbent tube): in a design where its "
+            "plan puts it; in a file, a gap across which the legs change (the extents across or along the tube of "
+            "the legs on its two sides lie more than 1.5 grid units apart: one segment's pattern ends, another's "
+            "begins).",
             "Decrease the stitch interval.", Inputs.DESIGNS | Inputs.FILES)
 def interval(s: Subject) -> Hits:
-    """Gaps between neighbouring crossings of a tube by the legs it owns, larger than 2 r_f, except (in a
-    design) the gap across a transition between two segments (:func:`_transitions`)."""
+    """Gaps between neighbouring crossings of a tube by the legs it owns, larger than 2 r_f, except the gap across
+    a transition between two segments (a design's, :func:`_transitions`; a file's, :func:`_pattern_changes`)."""
     c, owner, legs = s.crossings, s.layout.owner, s.legs
     end = legs[c.leg]
     mine = (owner[end] == c.tube) & (owner[end - 1] == c.tube)
-    tube, s_mm, end = c.tube[mine], c.s_mm[mine], end[mine]
+    tube, s_mm, end, along = c.tube[mine], c.s_mm[mine], end[mine], c.along_mm[mine]
     order = np.lexsort((s_mm, tube))  # by tube, then along it
-    tube, s_mm, end = tube[order], s_mm[order], end[order]
+    tube, s_mm, end, along = tube[order], s_mm[order], end[order], along[order]
     same = tube[1:] == tube[:-1]
     gaps = np.diff(s_mm)
     limit = 2.0 * np.array([t.outer_radius_mm for t in s.layout.tubes])[tube[1:]] if len(tube) else np.zeros(0)
@@ -44,6 +47,10 @@ def interval(s: Subject) -> Hits:
         mids = _transitions(s.plan)
         made = [any(s_mm[g] < m < s_mm[g + 1] for m in mids.get(int(tube[g + 1]), ())) for g in bad]
         bad = bad[~np.asarray(made, dtype=bool)]
+    elif len(bad):
+        leg = s.layout.xy_mm[end] - s.layout.xy_mm[end - 1]
+        across = np.sqrt(np.maximum(np.sum(leg**2, axis=1) - along**2, 0.0))
+        bad = bad[~_pattern_changes(tube, np.column_stack([across, along]), bad, s.settings.tolerances.machine_grid_mm)]
     bad = bad[np.argsort(end[bad + 1], kind="stable")]
 
     def message(j: int) -> str:
@@ -52,6 +59,31 @@ def interval(s: Subject) -> Hits:
                 f"more than the tube diameter {limit[g]:g} mm")
 
     return Hits(end[bad + 1], message)
+
+
+#: Crossing legs on each side of a gap that stand for the pattern there (a file's transitions).
+_SIDE_LEGS = 4
+
+
+def _pattern_changes(tube: np.ndarray, extent: np.ndarray, gaps: np.ndarray, grid_mm: float) -> np.ndarray:
+    """For a file, which has no plan to name its segments: True for each gap (between crossings ``g`` and
+    ``g + 1``, sorted by tube then along it) across which the legs change: the ranges of the extents across or
+    along the tube (``extent``, (n, 2) [mm]) of up to ``_SIDE_LEGS`` crossing legs on each side lie more than 1.5
+    grid units apart (the rounding of the needle points spreads each side by up to two units, so a gap inside
+    a pattern, or with legs of both patterns on one side, is no change). One segment's pattern ends there and the
+    next one's begins, as at the transition the generator leaves between two segments.
+
+    >>> extent = np.array([[7.0, 3.4], [7.0, 3.6]] * 4 + [[7.0, 7.0]] * 4)  # gaps in a zigzag; where a cross begins
+    >>> _pattern_changes(np.zeros(12, dtype=np.int64), extent, np.array([3, 5, 7]), 0.1).tolist()
+    [False, False, True]
+    """
+    out = np.zeros(len(gaps), dtype=bool)
+    for k, g in enumerate(gaps):
+        before = extent[[i for i in range(max(g - _SIDE_LEGS + 1, 0), g + 1) if tube[i] == tube[g]]]
+        after = extent[[i for i in range(g + 1, min(g + 1 + _SIDE_LEGS, len(tube))) if tube[i] == tube[g]]]
+        apart = np.maximum(after.min(axis=0) - before.max(axis=0), before.min(axis=0) - after.max(axis=0))
+        out[k] = bool(np.any(apart > 1.5 * grid_mm))
+    return out
 
 
 def _transitions(plan) -> dict[int, tuple[float, ...]]:

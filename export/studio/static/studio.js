@@ -5,7 +5,7 @@
 
 const TOKEN = new URLSearchParams(location.search).get("token") || "";
 const $ = (id) => document.getElementById(id);
-const state = { chain: Promise.resolve(), shown: 0, sliderQueued: false, fieldKeys: "", inverse: null,
+const state = { chain: Promise.resolve(), shown: 0, sliderQueued: false, fieldKeys: "",
   actuators: [] };
 
 async function api(path, body) {
@@ -318,6 +318,7 @@ async function build() {
 async function inverse() {
   resultText("inv-result", "searching...");
   $("inv-apply").hidden = true;
+  $("shape-apply").hidden = true;  // one proposal at a time: this search replaces the shape's
   const res = await api("api/inverse", {
     bend_deg: $("inv-bend").value, pressure_kpa: $("inv-pressure").value,
     pattern: $("inv-pattern").value, actuator: Number($("inv-actuator").value || 0),
@@ -339,7 +340,6 @@ async function inverse() {
     `${params}: ${fmt(b.theta_deg, 2)} deg sewn${exact}; limit ${b.limit}; ${band}\n` +
     `one machine-grid step (sewn again, G, P0 and geometry following): ${steps}\n` +
     `findings: ${b.findings.length ? b.findings.join("; ") : "none"}`, !res.data.reached);
-  state.inverse = res.data.values;
   $("inv-apply").hidden = !res.data.reached;  // offered only for a design that bends as wanted
 }
 
@@ -347,6 +347,7 @@ async function inverseShape() {
   resultText("shape-result", "searching...");
   $("shape-fit").innerHTML = "";
   $("shape-apply").hidden = true;
+  $("inv-apply").hidden = true;  // one proposal at a time: this search replaces the bend's
   const res = await api("api/inverse-shape", {
     path_d: $("shape-d").value, pressure_kpa: $("shape-pressure").value,
     max_segments: Number($("shape-segments").value), actuator: Number($("inv-actuator").value || 0),
@@ -370,7 +371,10 @@ function start() {
   $("save").addEventListener("click", save);
   $("build").addEventListener("click", build);
   $("inv-run").addEventListener("click", inverse);
-  $("inv-apply").addEventListener("click", () => state.inverse && edit(state.inverse));
+  $("inv-apply").addEventListener("click", () => {  // the proposal: the pattern, and a start with the rails on the grid
+    $("inv-apply").hidden = true;
+    enqueue(() => api("api/apply-proposal", { pressure_kpa: pressure() }));
+  });
   $("shape-run").addEventListener("click", inverseShape);
   $("shape-apply").addEventListener("click", () => {
     $("shape-apply").hidden = true;
