@@ -285,3 +285,24 @@ def test_control_characters_in_an_input_file_name_are_escaped_on_stdout(tmp_path
     code, out, err = _run(["check", str(f)])
     assert code == 0 and "\x1b" not in out + err, (out, err)
     assert out.startswith(f"{tmp_path}/e\\x1b[2Jx.dst: embroidery file, format dst"), out
+
+
+@pytest.mark.parametrize("sig, code, word", [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")])
+def test_a_signal_a_library_turns_into_its_own_error_still_ends_as_the_signal(tmp_path, monkeypatch, sig, code, word):
+    """SIGTERM while numpy was being imported ended with exit 1 and numpy's ImportError traceback: the import
+    machinery replaced the handler's exception with its own. A command ends as the signal asks, one line."""
+    real = os.fsync
+
+    def fsync(fd):
+        try:
+            os.kill(os.getpid(), sig)
+            time.sleep(5.0)  # the handler raises here
+        except KeyboardInterrupt:  # Terminated is one: what PyCapsule_Import does to it
+            raise ImportError('PyCapsule_Import could not import module "datetime"') from None
+        return real(fd)
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    rc, _, err = _run(ZZ + ["-o", str(tmp_path / "a.dst")])
+    monkeypatch.undo()
+    assert (rc, err.splitlines()[-1]) == (code, f"embroact: {word}") and "Traceback" not in err, err
+    assert list(tmp_path.iterdir()) == []

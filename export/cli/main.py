@@ -329,7 +329,7 @@ def _exit_now(code: int) -> None:
 def _run(module, args, debug: bool) -> int:
     """``module.run(args)`` with every failure turned into its exit code and one stderr line."""
     from ...patterns.base.errors import EmbroactError, ExportError, SolverError
-    from .signals import Terminated, TimeLimitError
+    from .signals import Terminated, TimeLimitError, interrupted_by
 
     err: EmbroactError | str
     try:
@@ -361,6 +361,12 @@ def _run(module, args, debug: bool) -> int:
     except MemoryError:  # past the documented input limits; one line, not a traceback
         code, err = EXIT_INPUT, _OUT_OF_MEMORY
     except Exception as exc:  # C++ libraries (GEOS via shapely) report exhausted memory as their own error
+        signum = interrupted_by()
+        if signum is not None:  # a library made the signal's exception its own (an import it interrupted)
+            import signal
+
+            print(f"embroact: {'terminated' if signum == signal.SIGTERM else 'interrupted'}", file=sys.stderr)
+            return EXIT_TERMINATED if signum == signal.SIGTERM else EXIT_INTERRUPTED
         if "bad_alloc" not in str(exc):
             raise
         code, err = EXIT_INPUT, _OUT_OF_MEMORY

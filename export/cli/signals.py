@@ -39,7 +39,7 @@ from typing import Iterator
 from .args import DEFAULT_TIME_LIMIT_S
 
 __all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S",
-           "time_limit_message"]
+           "time_limit_message", "interrupted_by"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
@@ -85,8 +85,39 @@ def time_limit_message(seconds: float) -> str:
     return f"the command took longer than its time limit of {seconds:g} s (--time-limit-s)"
 
 
+#: The signals the handlers met in the running block, in order (a library may turn the exception a handler
+#: raised into an error of its own: numpy, imported while SIGTERM arrives, raises ImportError).
+_RECEIVED: list[signal.Signals] = []
+
+
+def interrupted_by() -> signal.Signals | None:
+    """The signal (SIGINT or SIGTERM) that interrupted the running :func:`watchdog` block, if one did.
+
+    An error a command ends with is the signal's doing when this is set: the handler's
+    exception was turned into another one on the way out (an import that fails because the
+    signal interrupted it), and the command ends as the signal asks, not with a traceback.
+
+    Returns
+    -------
+    signal.Signals or None
+
+    Examples
+    --------
+    >>> with watchdog(time_limit_s=0):
+    ...     interrupted_by() is None
+    True
+    """
+    return _RECEIVED[0] if _RECEIVED else None
+
+
 def _on_sigterm(signum, frame):
+    _RECEIVED.append(signal.SIGTERM)
     raise Terminated()
+
+
+def _on_sigint(signum, frame):
+    _RECEIVED.append(signal.SIGINT)
+    raise KeyboardInterrupt()
 
 
 #: Set while a server runs (:func:`serving`): its event loop answers signals itself, and it has no time limit.
@@ -202,7 +233,11 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
         finally:
             threading.stack_size(stack)
     # the handlers last in and first out: a signal outside the block meets the handler the caller had
+    _RECEIVED.clear()
     old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    old_int = signal.getsignal(signal.SIGINT)
+    if old_int is signal.default_int_handler:  # Python's own (an ignored SIGINT stays ignored)
+        signal.signal(signal.SIGINT, _on_sigint)
     old_alarm = signal.signal(signal.SIGALRM, on_alarm) if time_limit_s > 0 else None
     if time_limit_s > 0:
         signal.setitimer(signal.ITIMER_REAL, time_limit_s)
@@ -213,6 +248,8 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
             signal.setitimer(signal.ITIMER_REAL, 0)
             signal.signal(signal.SIGALRM, old_alarm)
         signal.signal(signal.SIGTERM, old_term)
+        if old_int is signal.default_int_handler:
+            signal.signal(signal.SIGINT, old_int)
         done.set()
         if old_fd is not None:
             signal.set_wakeup_fd(old_fd)
