@@ -222,13 +222,24 @@ def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where
         f"working pressure {settings.max_pressure_kpa:g} kPa", **where)]
 
 
-def _for_actuator(finding: Finding, name: str) -> Finding:
-    """``finding`` of another actuator, the same in every field but its actuator (a copy of its slots: the fields
-    were checked when it was made, and ``dataclasses.replace`` would introspect them again for each of 1000)."""
-    copy = object.__new__(Finding)
-    for field in Finding.__slots__:
-        object.__setattr__(copy, field, name if field == "actuator" else getattr(finding, field))
-    return copy
+def _for_actuator(fields, name: str) -> list[Finding]:
+    """The findings of one actuator for another, ``name``: ``fields`` per finding its (slot, value) pairs but the
+    actuator's (:func:`_fields`). Copies of the slots: the values were checked when the findings were made, and
+    ``dataclasses.replace`` would introspect them again for each of 1000."""
+    new, put = object.__new__, object.__setattr__
+    out = []
+    for pairs in fields:
+        copy = new(Finding)
+        for field, value in pairs:
+            put(copy, field, value)
+        put(copy, "actuator", name)
+        out.append(copy)
+    return out
+
+
+def _fields(findings) -> list:
+    """Per finding, its (slot, value) pairs but the actuator's, read once for all the copies (:func:`_for_actuator`)."""
+    return [[(field, getattr(f, field)) for field in Finding.__slots__ if field != "actuator"] for f in findings]
 
 
 def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
@@ -262,11 +273,14 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     for act in analysis.actuators:  # a segment without a sleeve is skipped by _actuator_findings (EA201 reports it)
         key = (act.spec.model.calibration, act.bend_pieces(),
                tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
-        if key not in shared:
-            shared[key] = _actuator_findings(act, analysis, settings)
-            found += shared[key]
-        else:
-            found += [_for_actuator(f, act.name) for f in shared[key]]
+        got = shared.get(key)
+        if got is None:
+            shared[key] = got = [_actuator_findings(act, analysis, settings), None]
+            found += got[0]
+        elif got[0]:
+            if got[1] is None:
+                got[1] = _fields(got[0])
+            found += _for_actuator(got[1], act.name)
     return sort_findings(found)
 
 
