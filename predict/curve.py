@@ -440,19 +440,43 @@ def _trace(geo, t, full, kind, energy, deriv, rtol):
     return trace_outcome(th, where, full, kind)
 
 
-def _lean_rows(geo, t, full, kind, energy, deriv, rtol):
+def _lean_rows(geo, t, full, kind, energy, deriv, rtol, later=None):
     """The "trace" inverse of ``stable-analytic-trace`` on non-empty branches by the lean solve across designs
-    (:func:`~embroact.predict.lean.solve_rows`); the trace inverse itself for the rows with targets it leaves."""
+    (:func:`~embroact.predict.lean.solve_rows`); the trace inverse itself for the rows with targets it leaves,
+    or, given a list ``later``, those rows and their settled entries appended to it (the caller traces the
+    rows of many blocks in one call: :func:`_trace_later`)."""
     theta, settled = solve_rows(geo, t, full, kind == Status.LOCKED, rtol=rtol, atol=rtol * THETA_FLOOR_RAD,
                                 floor=PRESSURE_FLOOR_PER_G[deriv] * geo.g)
     status = np.full(t.shape, Status.BENDING, dtype=np.int8)
     rows = np.flatnonzero(~settled.all(axis=1))
-    if rows.size:  # only the targets left (the trace's zoom follows them; the others are 0: ignored)
+    if rows.size and later is not None:
+        later.append((rows, settled[rows]))
+    elif rows.size:  # only the targets left (the trace's zoom follows them; the others are 0: ignored)
         th, st = _trace(geo.take(rows), np.where(settled[rows], 0.0, t[rows]), full[rows], kind[rows], energy,
                         deriv, rtol)
         keep = settled[rows]
         theta[rows], status[rows] = np.where(keep, theta[rows], th), np.where(keep, Status.BENDING, st)
     return theta, status
+
+
+def _trace_later(models, blocks, later, size, rtol):
+    """The trace inverse of the entries the lean solve left in ``blocks`` (``[geo, pressure, targets, theta,
+    status]`` of the models from ``start``, by :func:`_block_theta`), ``later`` holding (start, rows, settled)
+    per block: the rows of all blocks together, ``size`` at a time (a block leaves a few rows: their calls
+    would cost mostly numpy's fixed cost per operation). Each row's answers are those of its own call."""
+    jobs = [(b, r, keep) for b, (rows, settled) in enumerate(later) for r, keep in zip(rows, settled)]
+    for k in range(0, len(jobs), size):
+        part = jobs[k:k + size]
+        starts = [blocks[b][0] for b, _, _ in part]
+        geo = _geometry([models[start + r] for start, (_, r, _) in zip(starts, part)])
+        full, kind = _branch_end(geo)
+        t = np.array([np.where(keep, 0.0, blocks[b][3][r]) for b, r, keep in part])
+        th, st = _trace(geo, t, full, kind, *_FAST[:2], rtol)
+        bad = ~np.isfinite(th)
+        for j, (b, r, keep) in enumerate(part):
+            theta, status = blocks[b][4], blocks[b][5]
+            theta[r] = np.where(keep, theta[r], np.where(bad[j], 0.0, th[j]))
+            status[r] = np.where(keep, status[r], np.where(bad[j], Status.FAILED, st[j]))
 
 
 def _root(geo, t, full, kind, energy, deriv, rtol):
@@ -558,8 +582,10 @@ def _cached_branch(model: ActuatorModel, rtol: float, *settings) -> _Branch:
     return _Branch(model, g, end, kind, rtol, atol, lean, {}, settings[1], {})
 
 
-def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
-    """theta (n, m) for P - P0 = targets > 0 (other entries ignored) and the status per point."""
+def _solve_theta(geo, targets, energy, deriv, inverse, rtol, later=None):
+    """theta (n, m) for P - P0 = targets > 0 (other entries ignored) and the status per point; with a list
+    ``later``, the rows the lean solve leaves (``"auto"``) appended to it as (rows, settled entries), to be
+    traced by the caller."""
     full, kind = _branch_end(geo)
     theta = np.zeros(targets.shape)
     status = np.broadcast_to(kind, targets.shape).astype(np.int8)  # empty branches: the end's status
@@ -568,8 +594,13 @@ def _solve_theta(geo, targets, energy, deriv, inverse, rtol):
         return theta, status
     sub = slice(None) if rows.size == full.shape[0] else rows
     g = geo if rows.size == full.shape[0] else geo.take(rows)
-    solver = _lean_rows if (energy, deriv, inverse) == _FAST else _trace if inverse == "trace" else _root
-    th, st = solver(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol)
+    if (energy, deriv, inverse) == _FAST:
+        left: list | None = None if later is None else []
+        th, st = _lean_rows(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol, left)
+        if left:
+            later += [(rows[r] if sub is rows else r, keep) for r, keep in left]
+    else:
+        th, st = (_trace if inverse == "trace" else _root)(g, targets[sub], full[sub], kind[sub], energy, deriv, rtol)
     bad = ~np.isfinite(th)
     theta[sub] = np.where(bad, 0.0, th)
     status[sub] = np.where(bad, Status.FAILED, st)
@@ -603,12 +634,19 @@ def _states(geo, theta, pressure_mpa, status, laws):
     return l, r, np.degrees(np.arcsin(np.clip(sinb, -1.0, 1.0))), np.sqrt(np.maximum(d2, 0.0))
 
 
-def _block(models, p, energy, deriv, inverse, rtol, limits=True):
-    """Arrays (P, theta, status, l, r, beta, d) of a block of models at pressures ``p`` [MPa]."""
+def _block_theta(models, start, p, energy, deriv, inverse, rtol, later=None):
+    """[start, geo, pressure [MPa], targets, theta, status] of a block of models at pressures ``p`` [MPa]
+    (``later``: as :func:`_solve_theta` takes it)."""
     geo = _geometry(models)
     pressure = p[None, :] if len(models) == 1 else np.broadcast_to(p, (len(models), p.size))
     targets = pressure - geo.p0
-    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol)
+    theta, status = _solve_theta(geo, np.where(targets > 0.0, targets, 0.0), energy, deriv, inverse, rtol, later)
+    return [start, geo, pressure, np.where(targets > 0.0, targets, 0.0), theta, status]
+
+
+def _block_states(models, block, limits=True):
+    """Arrays (P, theta, status, l, r, beta, d) of a block (:func:`_block_theta`)."""
+    _, geo, pressure, targets, theta, status = block
     infl = targets <= 0.0
     theta = np.where(infl, 0.0, theta)
     status = np.where(infl, Status.INFLATION, status).astype(np.int8)
@@ -667,9 +705,17 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
             arrays = tuple(a[None, :] for a in arrays)
     else:
         size = max(1, min(SWEEP_BLOCK, SWEEP_BLOCK_POINTS // max(p.size, 1)))
-        blocks = [_block(models[k:k + size], p, energy, deriv, inverse, rtol, limits)
-                  for k in range(0, len(models), size)]
-        arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in zip(*blocks))
+        blocks, left = [], []  # per block, the rows the lean solve leaves: traced together
+        for k in range(0, len(models), size):
+            mine: list = []
+            blocks.append(_block_theta(models[k:k + size], k, p, energy, deriv, inverse, rtol, mine))
+            left.append(mine)
+        later = [(np.concatenate([r for r, _ in mine]), np.concatenate([s for _, s in mine]))
+                 if mine else (np.empty(0, dtype=np.intp), np.empty((0, p.size), dtype=bool)) for mine in left]
+        if any(rows.size for rows, _ in later):
+            _trace_later(models, blocks, later, size, rtol)
+        arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in
+                       zip(*(_block_states(models[b[0]:b[0] + size], b, limits) for b in blocks)))
     return Curve(*(_frozen(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
 
