@@ -96,7 +96,7 @@ from .base.errors import DesignFileError, EmbroactError, ParameterError, Pattern
 from .base.tolerances import DEFAULT_TOLERANCES
 from .base.validate import ACTUATOR_SEGMENTS, DESIGN_ACTUATORS, DESIGN_SEGMENTS, check_name, shown
 from .centerline import Centerline, as_centerline
-from .chain import UNGIVEN, Chain
+from .chain import UNGIVEN, Chain, strip_pattern
 from .kinds import PATTERN_KINDS, KindFields, pattern_kind
 from .limits import MAX_STITCH_MM, MIN_STITCH_MM, format_limit, on_grid
 from .params import PatternParams, StitchOptions, Tube, ZigzagParams
@@ -379,6 +379,12 @@ class ActuatorSpec(KindFields):
             raise ParameterError("params must be the first segment's parameters for a segmented actuator")
         object.__setattr__(self, "segments", segs)
         object.__setattr__(self, "adjust", segs[0].adjust)  # the first segment's too (a chain of one: its own)
+
+    @property
+    def pattern(self) -> str:
+        """The chain's pattern: its segments' kinds in chain order (:func:`~embroact.patterns.chain.strip_pattern`;
+        a chain of one: its kind)."""
+        return strip_pattern(seg.pattern for seg in self.segments)
 
     @classmethod
     def segmented(cls, name: str, segments, centerline=None, **kwargs) -> "ActuatorSpec":

@@ -25,7 +25,7 @@ import numpy as np
 
 from .base.arrays import frozen_array
 from .base.display import repr_svg
-from .chain import UNGIVEN, Chain
+from .chain import UNGIVEN, Chain, strip_pattern
 from .kinds import KindOf
 from .params import PatternParams, StitchOptions, Tube
 
@@ -166,13 +166,15 @@ class ActuatorPlan(KindOf):
     name : str
         Actuator name (thread list / colour table entry).
     params : PatternParams
-        The first segment's requested pattern parameters (a chain of one: the actuator's).
+        What a chain of one is made of when no ``segments`` are given (the single-pattern
+        generators' plan); equal to ``segments[0].params``. Read each segment's from ``segments``.
     tube : Tube
         The tube it is sewn over.
     centerline : Centerline
         The tube path, mm, plan frame.
     realised : Realised
-        The first segment's parameters measured on the generated stitches.
+        Likewise, measured on the generated stitches: ``segments[0].realised``. The whole strip's
+        realised geometry is the analysis's (:attr:`~embroact.predict.analysis.ActuatorAnalysis.derived`).
     adjustments : tuple of str
         Human-readable notes where the generator had to change a request (prefixed with the
         segment, :meth:`~embroact.patterns.chain.Chain.where`).
@@ -204,6 +206,12 @@ class ActuatorPlan(KindOf):
         object.__setattr__(self, "segments", Chain.given_or_one(self.segments, lambda: SegmentPlan(
             self.params, 0.0, self.centerline.length_mm, self.realised, 0.0, 0.0,
             tuple(self.adjustments))))
+
+    @property
+    def pattern(self) -> str:
+        """The chain's pattern: its segments' kinds in chain order (:func:`~embroact.patterns.chain.strip_pattern`;
+        a chain of one: its kind)."""
+        return strip_pattern(seg.pattern for seg in self.segments)
 
     def rails(self) -> tuple:
         """The rails at +-w/2 of each segment's realised width, as shapely LineStrings.

@@ -208,12 +208,13 @@ def derive_from_values(
 
 
 def derive(actuator: ActuatorPlan) -> DerivedGeometry:
-    """Derived geometry of one generated actuator, from its realised parameters.
+    """Derived geometry of one generated single-pattern actuator (a chain of one), from its realised parameters.
 
     Parameters
     ----------
     actuator : ActuatorPlan
-        A generated actuator.
+        A generated actuator of one segment (a longer chain: :class:`ParameterError`; each segment is
+        derived from :func:`~embroact.predict.analysis.segment_plans`).
 
     Returns
     -------
@@ -227,15 +228,17 @@ def derive(actuator: ActuatorPlan) -> DerivedGeometry:
     >>> d.name, d.width_mm, d.length_mm
     ('A1', 7.0, 100.0)
     """
-    r = actuator.realised
-    p = actuator.params
+    seg = actuator.segments.single(f"actuator {actuator.name!r} has {len(actuator.segments)} segments: derive each "
+                                   "(embroact.predict.analysis.segment_plans), the whole strip is "
+                                   "embroact.predict.strip.strip_geometry of them")
+    r, p = seg.realised, seg.params
     return derive_from_values(
-        actuator.pattern,
+        seg.pattern,
         width_mm=r.width_mm,
         interval_mm=r.interval_mm,
-        angle_deg=r.angle_deg if pattern_kind(actuator.pattern).has_angle else 0.0,
+        angle_deg=r.angle_deg if pattern_kind(seg.pattern).has_angle else 0.0,
         length_mm=r.length_mm,
         tube=actuator.tube,
         name=actuator.name,
-        requested=(p.width_mm, p.interval_mm, actuator.requested_angle_deg),
+        requested=(p.width_mm, p.interval_mm, seg.requested_angle_deg),
     )

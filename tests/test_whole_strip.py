@@ -160,3 +160,22 @@ def test_model_error_names_the_segment_without_a_model(tmp_path, capsys):
     entry = act.as_dict()
     assert entry["model"] is None and entry["model_error"].startswith("segment 1: ")
     assert entry["derived"]["width_mm"] == 7.0 and entry["derived"]["pattern"] == "zigzag+cross"
+
+
+def test_the_request_and_the_plan_name_the_chains_pattern_and_derive_takes_one_segment():
+    """An actuator's pattern is its chain's (it was the first segment's), and the geometry of a longer chain is
+    derived segment by segment, not from its first segment under the actuator's name."""
+    from embroact.patterns.design import build_plan
+    from embroact.patterns.base.errors import ParameterError
+    from embroact.predict.analysis import segment_plans
+    from embroact.predict.derived import derive
+
+    d = design_from_dict({"actuator": [{"name": "H", "segment": [
+        {"pattern": "zigzag", "width_mm": 8, "interval_mm": 1, "length_mm": 40},
+        {"pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45, "length_mm": 60}]}]})
+    plan = build_plan(d).actuators[0]
+    assert d.actuators[0].pattern == plan.pattern == "zigzag+cross"
+    assert build_plan(design_from_dict(ONE)).actuators[0].pattern == "zigzag"
+    with pytest.raises(ParameterError, match="'H' has 2 segments: derive each"):
+        derive(plan)
+    assert [derive(p).pattern for p in segment_plans(plan)] == ["zigzag", "cross"]
