@@ -1,16 +1,19 @@
 """The calibration coupon: which test actuators to sew, and how they share hoops.
 
-A material profile gives G and P0 along each pattern's calibration coordinate (width for
-zigzag, angle for cross; docs/calibration.md). The coupon samples that coordinate:
+A material profile gives G and P0 along each pattern's calibration coordinate (its kind's
+``calibration_axis``; docs/calibration.md). The coupon samples that coordinate for every
+registered pattern kind (:data:`~embroact.patterns.kinds.PATTERN_KINDS`) it can sample
+(:func:`coupon_kinds`), each at its kind's default stitch interval:
 
-* **zigzag**: ``zigzag_count`` widths evenly over ``width_range_mm``. The default range is
-  the paper's prototypes' relative to the tube, 10/3 to 6 tube radii (5 to 9 mm for
-  r_f = 1.5 mm), raised where needed so that the sleeve clears the tube by 3 times the
-  EA202 gap (a narrower sleeve makes P0 tiny and steep in the width);
-* **cross**: ``cross_count`` angles at one width (the middle of the zigzag range), half of
-  them below and half above the neutral angle (where the bending direction flips),
-  evenly over ``angle_range_deg`` but at least ``neutral_band_deg + 2`` away from it
-  (EA206 warns within the band).
+* a kind calibrated along **width** (``width_mm``): ``width_count`` widths evenly over
+  ``width_range_mm``. The default range is the paper's prototypes' relative to the tube,
+  10/3 to 6 tube radii (5 to 9 mm for r_f = 1.5 mm), raised where needed so that the sleeve
+  clears the tube by 3 times the EA202 gap (a narrower sleeve makes P0 tiny and steep in the width);
+* a kind calibrated along **angle** (``angle_deg``): ``angle_count`` angles at one width
+  (``angle_width_mm``, default the middle of the width range), evenly over ``angle_range_deg``;
+  where the kind's threads lie at an angle (a pantograph, :mod:`embroact.predict.kinds`) half of
+  them below and half above the neutral angle (where the bending direction flips), at least
+  ``neutral_band_deg + 2`` away from it (EA206 warns within the band).
 
 Widths are on a 0.2 mm grid (each rail at +-w/2 on the machine formats' 0.1 mm grid),
 angles on 1 deg. Each actuator is 100 mm long by default, sewn straight along +x; the
@@ -23,7 +26,7 @@ the fins fan out as it bends.
 Examples
 --------
 >>> from embroact.patterns.params import Tube
->>> c = plan_coupon(tube=Tube())
+>>> c = plan_coupon(("zigzag", "cross"), tube=Tube())
 >>> [a.label for a in c.actuators][:2], [round(a.coordinate, 1) for a in c.actuators]
 (['01 zigzag w5.0', '02 zigzag w6.0'], [5.0, 6.0, 7.0, 8.0, 9.0, 16.7, 21.8, 26.6, 38.7, 45.0, 52.4])
 >>> c.hoops, [a.hoop for a in c.actuators].count(0)
@@ -35,16 +38,18 @@ import math
 from dataclasses import dataclass, field
 
 from ..patterns.base.errors import ParameterError, check_range
-from ..patterns.kinds import pattern_kind
+from ..patterns.kinds import PATTERN_KINDS, pattern_kind
 from ..patterns.params import Tube
 from ..patterns.rules.settings import RuleSettings
+from .kinds import model_kind
 from .markers import MarkerSide
 from .photomarkers import COUPON_LAYOUT, PhotoLayout
 from .sleeve import neutral_angle_deg, sleeve_radius_mm
 
-__all__ = ["COUPON_PATTERNS", "Coupon", "CouponActuator", "default_width_range_mm", "plan_coupon"]
+__all__ = ["COUPON_AXES", "Coupon", "CouponActuator", "coupon_kinds", "default_width_range_mm", "plan_coupon"]
 
-COUPON_PATTERNS = ("zigzag", "cross")
+#: The calibration axes the coupon samples: a kind's widths, or its angles at one width.
+COUPON_AXES = ("width_mm", "angle_deg")
 #: Width grid [mm]: both rails on the formats' 0.1 mm grid.
 _WIDTH_STEP_MM = 0.2
 #: The paper's prototypes span these widths in tube radii (5 and 9 mm on r_f = 1.5 mm).
@@ -82,7 +87,7 @@ class CouponActuator:
 
     Examples
     --------
-    >>> c = plan_coupon(tube=Tube())
+    >>> c = plan_coupon(("zigzag", "cross"), tube=Tube())
     >>> a = c.actuators[2]
     >>> a.order, a.label, a.coordinate, a.hoop
     (3, '03 zigzag w7.0', 7.0, 0)
@@ -114,7 +119,7 @@ class CouponActuator:
 
         Examples
         --------
-        >>> c = plan_coupon(tube=Tube())
+        >>> c = plan_coupon(("zigzag", "cross"), tube=Tube())
         >>> c.actuators[0].design_table()
         {'name': '01 zigzag w5.0', 'pattern': 'zigzag', 'width_mm': 5.0, 'interval_mm': 1.0, 'length_mm': 100.0, 'origin_mm': [-50.0, 87.5]}
         """
@@ -141,11 +146,11 @@ class Coupon:
     layout : PhotoLayout
         The marker layout.
     neutral_angle_deg : float or None
-        The cross actuators' neutral angle [deg], when there are any.
+        The neutral angle of the angle-sampled actuators whose threads lie at an angle [deg], when there are any.
 
     Examples
     --------
-    >>> c = plan_coupon(tube=Tube())
+    >>> c = plan_coupon(("zigzag", "cross"), tube=Tube())
     >>> c.hoops, c.hoop_mm, len(c.actuators)
     (2, (200.0, 200.0), 11)
     """
@@ -170,7 +175,7 @@ class Coupon:
 
         Examples
         --------
-        >>> c = plan_coupon(tube=Tube())
+        >>> c = plan_coupon(("zigzag", "cross"), tube=Tube())
         >>> [a.order for a in c.on_hoop(1)]
         [9, 10, 11]
         """
@@ -221,10 +226,12 @@ def default_width_range_mm(tube: Tube, min_sleeve_gap_mm: float = _RULES.min_sle
 
 
 def _sewn_angle_deg(target: float, width_mm: float, interval_mm: float, neutral: float, keep: float) -> float:
-    """The angle nearest ``target`` that the cross pattern sews exactly, outside the neutral band.
+    """The angle nearest ``target`` that a pattern of two crossing leg families sews exactly, outside the
+    neutral band.
 
-    A cross of ``n`` passes has ``tan(alpha0) = n s / (2 w)`` (:mod:`embroact.patterns.cross`); any other
-    request is adjusted by the generator, so the coupon asks for one of these, rounded to 1e-4 deg.
+    Such a pattern closes after ``n`` passes where ``tan(alpha0) = n s / (2 w)`` (the cross pattern,
+    :mod:`embroact.patterns.cross`); any other request is adjusted by the generator, so the coupon asks
+    for one of these, rounded to 1e-4 deg.
     """
     n = max(round(2.0 * width_mm * math.tan(math.radians(target)) / interval_mm), 1)
     for cand in (n, n + 1, n - 1, n + 2, n - 2):
@@ -244,17 +251,55 @@ def _count(name: str, n, high: int = 40) -> int:
     return n
 
 
+def coupon_kinds() -> tuple[str, ...]:
+    """The registered pattern kinds the coupon samples: those calibrated along an axis of :data:`COUPON_AXES`.
+
+    Returns
+    -------
+    tuple of str
+        In registration order.
+
+    Examples
+    --------
+    >>> coupon_kinds()[:2]
+    ('zigzag', 'cross')
+    """
+    return tuple(k.name for k in PATTERN_KINDS if k.calibration_axis in COUPON_AXES)
+
+
+def _angles(name: str, count: int, angle_range_deg, cw: float, tube: Tube, neutral_band_deg: float,
+            max_stitch_mm: float) -> tuple[list[float], float | None]:
+    """The angles of an angle-sampled kind at width ``cw`` and its neutral angle (None without a thread angle)."""
+    kind = pattern_kind(name)
+    a_lo, a_hi = angle_range_deg
+    check_range("angle_range_deg low", a_lo, low=0.0, high=90.0)
+    check_range("angle_range_deg high", a_hi, low=a_lo, high=90.0)
+    a_hi = min(a_hi, math.degrees(math.acos(min(cw / (max_stitch_mm - _LEG_MARGIN_MM), 1.0))))
+    if not model_kind(name).has_thread_angle:
+        return _spread(a_lo, a_hi, count), None
+    if count < 2:
+        raise ParameterError(f"angle_count must be at least 2 (one angle on each side of the neutral angle), "
+                             f"got {count}")
+    neutral = float(neutral_angle_deg(cw, tube.outer_radius_mm))
+    keep = neutral_band_deg + 2.0
+    below, above = count // 2, count - count // 2
+    if not a_lo < neutral - keep or not neutral + keep < a_hi:
+        raise ParameterError(f"angle_range_deg must reach past the neutral angle {neutral:.1f} deg by more than "
+                             f"{keep:g} deg on both sides, got [{a_lo:g}, {a_hi:g}]")
+    angles = _spread(a_lo, neutral - keep, below) if below > 1 else [a_lo]
+    angles += _spread(neutral + keep, a_hi, above) if above > 1 else [a_hi]
+    return [_sewn_angle_deg(a, cw, kind.default_interval_mm, neutral, keep) for a in angles], neutral
+
+
 def plan_coupon(
-    patterns=COUPON_PATTERNS,
+    patterns=None,
     *,
     tube: Tube | None = None,
-    zigzag_count: int = 5,
-    cross_count: int = 6,
+    width_count: int = 5,
+    angle_count: int = 6,
     width_range_mm: tuple[float, float] | None = None,
     angle_range_deg: tuple[float, float] = (15.0, 60.0),
-    cross_width_mm: float | None = None,
-    zigzag_interval_mm: float = 1.0,
-    cross_interval_mm: float = 1.4,
+    angle_width_mm: float | None = None,
     length_mm: float = 100.0,
     hoop_mm: tuple[float, float] = (200.0, 200.0),
     pitch_mm: float = 25.0,
@@ -267,20 +312,21 @@ def plan_coupon(
 
     Parameters
     ----------
-    patterns : sequence of str
-        Patterns to calibrate, from ``"zigzag"``, ``"cross"``.
+    patterns : sequence of str, optional
+        Patterns to calibrate, from :func:`coupon_kinds`; default all of them, in registration order.
     tube : Tube, optional
         Default: the paper's tube.
-    zigzag_count, cross_count : int
-        Zigzag widths, cross angles (cross: at least 2, half on each side of the neutral angle).
+    width_count, angle_count : int
+        Widths per width-sampled kind, angles per angle-sampled kind (with a thread angle: at least 2,
+        half on each side of the neutral angle).
     width_range_mm : (float, float), optional
-        Zigzag widths' range [mm]; default :func:`default_width_range_mm`.
+        The widths' range [mm]; default :func:`default_width_range_mm`.
     angle_range_deg : (float, float)
-        Cross angles' range [deg], within (0, 90).
-    cross_width_mm : float, optional
-        Width of the cross actuators [mm]; default the middle of the zigzag range.
-    zigzag_interval_mm, cross_interval_mm, length_mm : float
-        Stitch intervals and bent length [mm].
+        The angles' range [deg], within (0, 90).
+    angle_width_mm : float, optional
+        Width of the angle-sampled actuators [mm]; default the middle of the width range.
+    length_mm : float
+        Bent length [mm] (each kind sewn at its default stitch interval).
     hoop_mm : (float, float)
         Sewing field, width and height [mm].
     pitch_mm : float
@@ -288,7 +334,7 @@ def plan_coupon(
     neutral_band_deg, min_sleeve_gap_mm : float
         The EA206 band and the EA202 gap the values keep clear of.
     max_stitch_mm : float
-        The machine's longest stitch [mm]: a cross leg ``w / cos(alpha0)`` stays 0.5 mm below it
+        The machine's longest stitch [mm]: a leg ``w / cos(alpha0)`` stays 0.5 mm below it
         (which lowers the top of ``angle_range_deg``: 54 deg for w = 7 mm).
     layout : PhotoLayout
         How the actuators are measured; its marker span must cover ``length_mm``.
@@ -299,17 +345,23 @@ def plan_coupon(
 
     Examples
     --------
-    >>> c = plan_coupon(("zigzag",), tube=Tube(), zigzag_count=3)
+    >>> c = plan_coupon(("zigzag",), tube=Tube(), width_count=3)
     >>> [a.label for a in c.actuators], c.hoops
     (['01 zigzag w5.0', '02 zigzag w7.0', '03 zigzag w9.0'], 1)
+    >>> try:
+    ...     plan_coupon(("satin",))
+    ... except ValueError as exc:
+    ...     print(exc)  # doctest: +ELLIPSIS
+    patterns must list distinct names from zigzag, cross..., got 'satin'
     """
     tube = Tube() if tube is None else tube
-    pats = tuple(patterns)
-    bad = [p for p in pats if p not in COUPON_PATTERNS]
+    kinds = coupon_kinds()
+    pats = kinds if patterns is None else tuple(patterns)
+    bad = [p for p in pats if p not in kinds]
     if bad or not pats or len(set(pats)) != len(pats):
-        raise ParameterError(f"patterns must list distinct names from {', '.join(COUPON_PATTERNS)}, got {','.join(pats)!r}")
-    zigzag_count = _count("zigzag_count", zigzag_count)
-    cross_count = _count("cross_count", cross_count)
+        raise ParameterError(f"patterns must list distinct names from {', '.join(kinds)}, got {','.join(pats)!r}")
+    width_count = _count("width_count", width_count)
+    angle_count = _count("angle_count", angle_count)
     check_range("length_mm", length_mm, low=10.0, high=1000.0, high_inclusive=True)
     check_range("pitch_mm", pitch_mm, low=2.0 * tube.outer_radius_mm, high=1000.0)
     hoop_w = check_range("hoop_width_mm", hoop_mm[0], low=0.0, high=10_000.0)
@@ -317,33 +369,20 @@ def plan_coupon(
     lo_w, hi_w = width_range_mm if width_range_mm is not None else default_width_range_mm(tube, min_sleeve_gap_mm)
     check_range("width_range_mm low", lo_w, low=0.0, high=200.0)
     check_range("width_range_mm high", hi_w, low=lo_w, low_inclusive=True, high=200.0)
+    cw = angle_width_mm if angle_width_mm is not None else _grid(0.5 * (lo_w + hi_w), _WIDTH_STEP_MM, up=False)
     values: list[tuple[str, float, float]] = []  # (pattern, width, angle)
-    if "zigzag" in pats and zigzag_count:
-        values += [("zigzag", _grid(w, _WIDTH_STEP_MM, up=False) if i else _grid(w, _WIDTH_STEP_MM, up=True), 0.0)
-                   for i, w in enumerate(_spread(lo_w, hi_w, zigzag_count))]
     neutral = None
-    if "cross" in pats and cross_count:
-        if cross_count < 2:
-            raise ParameterError(f"cross_count must be at least 2 (one angle on each side of the neutral angle), "
-                                 f"got {cross_count}")
-        a_lo, a_hi = angle_range_deg
-        check_range("angle_range_deg low", a_lo, low=0.0, high=90.0)
-        check_range("angle_range_deg high", a_hi, low=a_lo, high=90.0)
-        cw = cross_width_mm if cross_width_mm is not None else _grid(0.5 * (lo_w + hi_w), _WIDTH_STEP_MM, up=False)
-        check_range("cross_width_mm", cw, low=0.0, high=200.0)
-        a_hi = min(a_hi, math.degrees(math.acos(min(cw / (max_stitch_mm - _LEG_MARGIN_MM), 1.0))))
-        neutral = float(neutral_angle_deg(cw, tube.outer_radius_mm))
-        keep = neutral_band_deg + 2.0
-        below, above = cross_count // 2, cross_count - cross_count // 2
-        if not a_lo < neutral - keep or not neutral + keep < a_hi:
-            raise ParameterError(f"angle_range_deg must reach past the neutral angle {neutral:.1f} deg by more than "
-                                 f"{keep:g} deg on both sides, got [{a_lo:g}, {a_hi:g}]")
-        angles = _spread(a_lo, neutral - keep, below) if below > 1 else [a_lo]
-        angles += _spread(neutral + keep, a_hi, above) if above > 1 else [a_hi]
-        angles = [_sewn_angle_deg(a, cw, cross_interval_mm, neutral, keep) for a in angles]
-        values += [("cross", cw, a) for a in angles]
+    for name in pats:
+        if pattern_kind(name).calibration_axis == "width_mm":
+            values += [(name, _grid(w, _WIDTH_STEP_MM, up=not i), 0.0)
+                       for i, w in enumerate(_spread(lo_w, hi_w, width_count) if width_count else [])]
+        elif angle_count:
+            check_range("angle_width_mm", cw, low=0.0, high=200.0)
+            angles, at = _angles(name, angle_count, angle_range_deg, cw, tube, neutral_band_deg, max_stitch_mm)
+            neutral = at if at is not None else neutral
+            values += [(name, cw, a) for a in angles]
     if not values:
-        raise ParameterError("the coupon needs at least one actuator: zigzag_count or cross_count above 0")
+        raise ParameterError("the coupon needs at least one actuator: width_count or angle_count above 0")
     if len(values) > layout.blocks:
         raise ParameterError(f"a coupon has at most {layout.blocks} actuators (marker ids), got {len(values)}")
     span = layout.positions_mm()
@@ -358,9 +397,10 @@ def plan_coupon(
         hoop, row = divmod(i, per_hoop)
         n_here = min(per_hoop, len(values) - hoop * per_hoop)
         y = ((n_here - 1) / 2.0 - row) * pitch_mm
-        bends_back = pattern == "zigzag" or a < neutral  # type: ignore[operator]
-        label = f"{i + 1:02d} {pattern} " + (f"w{w:.1f}" if pattern == "zigzag" else f"a{a:.1f} w{w:.1f}")
-        acts.append(CouponActuator(i + 1, label, pattern, w, zigzag_interval_mm if pattern == "zigzag" else cross_interval_mm,
-                                   a, float(length_mm), hoop, (-length_mm / 2.0, round(y, 6)), i,
+        kind, model = pattern_kind(pattern), model_kind(pattern)
+        bends_back = model.bends_positive(model.beta0_deg(w, a, tube.outer_radius_mm))  # fins outside the bend
+        label = f"{i + 1:02d} {pattern} " + (f"w{w:.1f}" if kind.calibration_axis == "width_mm" else f"a{a:.1f} w{w:.1f}")
+        acts.append(CouponActuator(i + 1, label, pattern, w, kind.default_interval_mm, a, float(length_mm), hoop,
+                                   (-length_mm / 2.0, round(y, 6)), i,
                                    MarkerSide.THREAD if bends_back else MarkerSide.FABRIC))
     return Coupon(tuple(acts), acts[-1].hoop + 1, (hoop_w, hoop_h), layout, neutral)

@@ -150,3 +150,31 @@ def test_the_readme_lists_the_steps_this_module_takes():
         assert f"{kw.arg}=" in section or f"`{kw.arg}`" in section, kw.arg
     assert "register(PatternKind(" in section and "register_model(ModelKind(" in section
     assert {"register", "register_model"} <= set(calls)
+
+
+def test_the_calibration_coupon_samples_the_new_kind(tmp_path, capsys):
+    """Every registered kind gets coupon strips along its calibration axis (the width, for parallel couching),
+    and a refused pattern's message lists the registered kinds."""
+    from embroact.predict.coupon import coupon_kinds, plan_coupon
+
+    assert "parallel" in coupon_kinds()
+    c = plan_coupon(width_count=3, angle_count=2)
+    par = [a for a in c.actuators if a.pattern == "parallel"]
+    # 3 widths over 10/3 to 6 tube radii of the 1.5 mm tube (5 and 9 mm) on the 0.2 mm grid, at the kind's interval
+    assert [a.width_mm for a in par] == [5.0, 7.0, 9.0] and {a.interval_mm for a in par} == {1.0}
+    assert [a.coordinate for a in par] == [5.0, 7.0, 9.0]
+    assert all(a.fin_side.value == "thread" for a in par)  # fixed radius: bends toward the back
+    assert par[0].design_table() == {"name": par[0].label, "pattern": "parallel", "width_mm": 5.0, "interval_mm": 1.0,
+                                      "length_mm": 100.0, "origin_mm": list(par[0].origin_mm)}
+    with pytest.raises(ParameterError, match="parallel, got 'satin'"):
+        plan_coupon(("satin",))
+    out = tmp_path / "coupon"
+    out.mkdir()
+    assert main(["calibrate", "coupon", "--patterns", "parallel", "--width-count", "2", "--out", str(out), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [(a["pattern"], a["width_mm"]) for a in doc["actuators"]] == [("parallel", 5.0), ("parallel", 9.0)]
+    assert (out / "hoop1" / "coupon-hoop1.dst").exists() and (out / "hoop1" / "worksheet.txt").exists()
+    # no calibration holds parallel points yet (the coupon is there to make them): no bend previews, said once
+    assert doc["notes"] == ["hoop 1: no bend previews (calibration set 'paper-2025' has no parallel points for the "
+                            "loading branch)"]
+    assert not (out / "hoop1" / "bend.svg").exists()

@@ -77,7 +77,7 @@ def test_duplicate_marker_refused():
 def test_measure_fills_the_coupon_sheet(tmp_path, capsys):
     coupon = tmp_path / "coupon"
     coupon.mkdir()
-    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--zigzag-count", "2", "--out", str(coupon)]) == 0
+    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--width-count", "2", "--out", str(coupon)]) == 0
     photos = tmp_path / "photos"
     photos.mkdir()
     truths = {}

@@ -131,7 +131,7 @@ def test_a_disagreeing_coupon_is_flagged(coupon, capsys, spoil):
 def test_three_coupons_cannot_tell_which_one_disagrees(tmp_path, capsys):
     """A trend through two of three coupons predicts the third as badly whichever is off: the pattern is
     reported as disagreeing, no coupon is blamed."""
-    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--zigzag-count", "3", "--out", str(tmp_path)]) == 0
+    assert main(["calibrate", "coupon", "--patterns", "zigzag", "--width-count", "3", "--out", str(tmp_path)]) == 0
     capsys.readouterr()
     sheet, truth = _simulate(tmp_path, seed=3, spoil="02 zigzag w7.0")
     assert main(["fit", "--sheet", str(sheet), "--json"]) == 0

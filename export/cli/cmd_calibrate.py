@@ -15,7 +15,7 @@ Examples
 >>> import os, tempfile
 >>> from embroact.export.cli.main import main
 >>> out = tempfile.mkdtemp()
->>> main(["calibrate", "coupon", "--patterns", "zigzag", "--zigzag-count", "2", "--out", out])  # doctest: +ELLIPSIS
+>>> main(["calibrate", "coupon", "--patterns", "zigzag", "--width-count", "2", "--out", out])  # doctest: +ELLIPSIS
 coupon: 2 actuators on 1 hoop(s) (zigzag w 5-9 mm): ...
 0
 >>> sorted(os.listdir(out))
@@ -49,19 +49,22 @@ def add_arguments(parser: argparse.ArgumentParser, name: str) -> None:
     >>> args.what, args.out
     ('coupon', 'coupon')
     """
+    from ...predict.coupon import coupon_kinds
     from .args import add_tube_arguments
 
     parser.add_argument("what", choices=("coupon",), help="what to make: coupon (test actuators to sew and measure)")
     parser.add_argument("--out", required=True, help="existing output directory")
     c = parser.add_argument_group("coupon")
-    c.add_argument("--patterns", default="zigzag,cross", help="patterns to calibrate (default zigzag,cross)")
-    c.add_argument("--zigzag-count", type=int, default=5, help="zigzag widths (default 5)")
-    c.add_argument("--cross-count", type=int, default=6,
-                   help="cross angles, half on each side of the neutral angle (default 6)")
+    kinds = ",".join(coupon_kinds())
+    c.add_argument("--patterns", default=kinds, help=f"patterns to calibrate (default every registered kind: {kinds})")
+    c.add_argument("--width-count", type=int, default=5, help="widths per kind calibrated along its width (default 5)")
+    c.add_argument("--angle-count", type=int, default=6,
+                   help="angles per kind calibrated along its angle, half on each side of a neutral angle (default 6)")
     c.add_argument("--width-range-mm", metavar="LO:HI",
-                   help="zigzag widths' range [mm] (default 10/3 to 6 tube radii: 5:9 for the default tube)")
-    c.add_argument("--angle-range-deg", metavar="LO:HI", default="15:60", help="cross angles' range [deg] (default 15:60)")
-    c.add_argument("--cross-width-mm", type=float, help="width of the cross actuators [mm] (default: middle of the widths)")
+                   help="the widths' range [mm] (default 10/3 to 6 tube radii: 5:9 for the default tube)")
+    c.add_argument("--angle-range-deg", metavar="LO:HI", default="15:60", help="the angles' range [deg] (default 15:60)")
+    c.add_argument("--angle-width-mm", type=float,
+                   help="width of the actuators sampled along their angle [mm] (default: middle of the widths)")
     c.add_argument("--length-mm", type=float, default=100.0, help="bent length of each actuator [mm] (default 100)")
     c.add_argument("--pitch-mm", type=float, default=25.0, help="distance between neighbouring tubes on a hoop [mm] "
                                                                    "(default 25)")
@@ -85,6 +88,17 @@ def _range(flag: str, text: str | None):
     except ValueError:
         raise ParameterError(f"{flag} must be LO:HI (two numbers), got {text!r}") from None
     return lo, hi
+
+
+def _sampled(coupon, name: str) -> str:
+    """What the coupon samples of kind ``name``: ``zigzag w 5-9 mm``, ``cross alpha0 16.7, ... deg (neutral 33.4)``."""
+    from ...patterns.kinds import pattern_kind
+
+    acts = [x for x in coupon.actuators if x.pattern == name]
+    if pattern_kind(name).calibration_axis == "width_mm":
+        return f"{name} w {min(x.width_mm for x in acts):g}-{max(x.width_mm for x in acts):g} mm"
+    neutral = "" if coupon.neutral_angle_deg is None else f" (neutral {coupon.neutral_angle_deg:.1f})"
+    return f"{name} alpha0 {', '.join(f'{x.angle_deg:g}' for x in acts)} deg{neutral}"
 
 
 def _pressures(args) -> list[float]:
@@ -158,10 +172,10 @@ def run(args) -> int:
     formats = parse_formats(args.format) if args.format is not None else ("dst",)
     tube = tube_from_args(args)
     coupon = plan_coupon(tuple(p.strip() for p in args.patterns.split(",") if p.strip()), tube=tube,
-                         zigzag_count=args.zigzag_count, cross_count=args.cross_count,
+                         width_count=args.width_count, angle_count=args.angle_count,
                          width_range_mm=_range("--width-range-mm", args.width_range_mm),
                          angle_range_deg=_range("--angle-range-deg", args.angle_range_deg),
-                         cross_width_mm=args.cross_width_mm, length_mm=args.length_mm,
+                         angle_width_mm=args.angle_width_mm, length_mm=args.length_mm,
                          hoop_mm=(args.hoop_width_mm, args.hoop_height_mm), pitch_mm=args.pitch_mm)
     pressures = _pressures(args)
     designs = _designs(coupon, tube, args)
@@ -195,21 +209,27 @@ def run(args) -> int:
     files["coupon.json"] = (json.dumps(doc, indent=1, sort_keys=True) + "\n").encode("utf-8")
     for h in range(coupon.hoops):
         os.makedirs(out / f"hoop{h + 1}", exist_ok=True)
-    written = []
+    written, notes = [], []
     for h, ((design, _), a) in enumerate(zip(designs, analyses)):
-        res = build(design, out / f"hoop{h + 1}", formats=formats, analysis=a, check=rules)
+        # a kind the calibration holds no points of has no model yet (the coupon is there to make one): its hoop
+        # gets the machine files, worksheet, stitch preview and template, without the model's previews
+        missing = list(dict.fromkeys(s.model_error for act in a.actuators for s in act.segments if s.choice is None))
+        if missing:
+            notes.append(f"hoop {h + 1}: no bend previews ({'; '.join(missing)})")
+        res = build(design, out / f"hoop{h + 1}", formats=formats, analysis=a, check=rules,
+                    stages=() if missing else None)
         written += [f"hoop{h + 1}/{f}" for f in res.files]
     write_files_atomic({out / name: data for name, data in files.items()})
     written = sorted(files) + written
-    zig = [x.width_mm for x in coupon.actuators if x.pattern == "zigzag"]
-    cross = [x.angle_deg for x in coupon.actuators if x.pattern == "cross"]
-    parts = ([f"zigzag w {min(zig):g}-{max(zig):g} mm"] if zig else []) + (
-        [f"cross alpha0 {', '.join(f'{v:g}' for v in cross)} deg (neutral {coupon.neutral_angle_deg:.1f})"] if cross else [])
+    parts = [_sampled(coupon, name) for name in dict.fromkeys(x.pattern for x in coupon.actuators)]
     if args.json:
-        print(json.dumps({"out_dir": str(out), "files": written, "hoops": coupon.hoops, **doc}, indent=1, sort_keys=True))
+        print(json.dumps({"out_dir": str(out), "files": written, "hoops": coupon.hoops, "notes": notes, **doc}, indent=1,
+                         sort_keys=True))
     else:
         print(f"coupon: {len(coupon.actuators)} actuators on {coupon.hoops} hoop(s) ({'; '.join(parts)}): "
               f"wrote {len(written)} files to {out}")
+        for note in notes:
+            print(f"note: {note}")
         print(f"measurement sheet: {len(pressures)} pressure steps up to {pressures[-1]:g} kPa and back, per actuator")
         print("next: sew each hoop (hoopK/), glue the fins (fins.svg), photograph each pressure step with the board "
               "(board.svg), then embroact measure PHOTOS --sheet measurements.csv and embroact fit --sheet")

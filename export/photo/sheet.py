@@ -17,7 +17,7 @@ with a white quiet zone of one cell around the black border.
 Examples
 --------
 >>> from embroact.predict.coupon import plan_coupon
->>> svg = fins_svg(plan_coupon(patterns=("zigzag",), zigzag_count=2))
+>>> svg = fins_svg(plan_coupon(patterns=("zigzag",), width_count=2))
 >>> svg.count('class="marker"'), 'width="210mm"' in svg
 (22, True)
 """
@@ -75,7 +75,7 @@ def fins_svg(coupon) -> str:
     Examples
     --------
     >>> from embroact.predict.coupon import plan_coupon
-    >>> fins_svg(plan_coupon(("zigzag",), zigzag_count=2)).count('class="marker"')  # 11 fins each
+    >>> fins_svg(plan_coupon(("zigzag",), width_count=2)).count('class="marker"')  # 11 fins each
     22
     """
     lay: PhotoLayout = coupon.layout
