@@ -34,7 +34,9 @@ Two questions (docs/model.md, segmented actuators):
   width, or a cross angle below the neutral angle when no zigzag reaches it; negative:
   a cross angle above it), and all parameters are polished together on the predicted
   shape of the segmented design (legs, transitions and unbent gaps as generated). The widths
-  are then moved to sewable ones and a pattern search on the analysed design (needle points
+  are then moved to sewable ones (the segments share one straight path: all an even number of
+  grid units, or, with no cross segment whose calibrated width holds the path on a grid line, all
+  odd on a path moved half a unit) and a pattern search on the analysed design (needle points
   on the machine grid) refines widths, angles and segment boundaries.
 
 Unreachable targets get the best achievable design and a plain ``statement`` of why.
@@ -226,12 +228,13 @@ class DesignSpace:
             return 0.0
         return 2.0 * DEFAULT_TOLERANCES.machine_grid_mm
 
-    def sewable(self, x: float, spread: int = 1, *, step: float | None = None) -> tuple[float, ...]:
+    def sewable(self, x: float, spread: int = 1, *, step: float | None = None, offset: float = 0.0) -> tuple[float, ...]:
         """The sewable values of the parameter around ``x``: the grid values below and above it and
         ``spread - 1`` more on each side, inside the range (``(x,)`` for a continuous parameter).
 
         ``step`` is the grid step of the parameter (default :attr:`grid_step`; one machine-grid unit for a
-        straight path moved by :func:`rail_offset_mm`).
+        straight path moved by :func:`rail_offset_mm`); the values are ``offset`` plus whole steps (one
+        grid unit: the widths of an odd number of units, on a path moved half a unit).
 
         Parameters
         ----------
@@ -241,6 +244,8 @@ class DesignSpace:
             Grid values on each side.
         step : float or None, optional
             The grid step; None: :attr:`grid_step`.
+        offset : float, optional
+            The grid's value next to 0 [mm].
 
         Returns
         -------
@@ -256,13 +261,16 @@ class DesignSpace:
         (8.8, 9.0)
         >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(6.1529, step=0.1)
         (6.1, 6.2)
+        >>> DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0).sewable(8.95, offset=0.1)
+        (8.9,)
         """
         step = self.grid_step if step is None or self.grid_step == 0.0 else step
         if step == 0.0:
             return (float(x),)
-        k_lo, k_hi = math.floor(x / step + 1e-9), math.ceil(x / step - 1e-9)
+        u = (x - offset) / step
+        k_lo, k_hi = math.floor(u + 1e-9), math.ceil(u - 1e-9)
         ks = range(k_lo - spread + 1, k_hi + spread)
-        return tuple(v for v in (round(k * step, 10) for k in ks) if self.low - 1e-9 <= v <= self.high + 1e-9)
+        return tuple(v for v in (round(k * step + offset, 10) for k in ks) if self.low - 1e-9 <= v <= self.high + 1e-9)
 
     def describe(self) -> str:
         """``"width_mm 5 to 9 (calibrated)"``.
@@ -1819,19 +1827,23 @@ def design_shape(target_xy_mm, pressure_kpa: float, *, max_segments: int = 6, tu
 
 def _shape_design(seg_spaces, x, lengths, name: str, tube: Tube, settings: ModelSettings,
                   operation: OperationSettings) -> Design:
-    """The (segmented) one-actuator design of parameters ``x`` and segment ``lengths``."""
+    """The (segmented) one-actuator design of parameters ``x`` and segment ``lengths``, its straight path moved
+    half a grid unit across itself where every width is an odd number of units (:func:`rail_offset_mm`: the
+    segments share the path, so the rails of all of them lie on the grid)."""
     segs = tuple(SegmentSpec(sp.params(v), float(L)) for sp, v, L in zip(seg_spaces, x, lengths))
+    shifts = {rail_offset_mm(sg.params.width_mm) for sg in segs}
+    path = Centerline.straight(float(np.sum(lengths)), origin_mm=(0.0, shifts.pop() if len(shifts) == 1 else 0.0))
     if len(segs) == 1:
-        spec = ActuatorSpec(name, segs[0].params, Centerline.straight(float(lengths[0])), model=settings)
+        spec = ActuatorSpec(name, segs[0].params, path, model=settings)
     else:
-        spec = ActuatorSpec.segmented(name, segs, Centerline.straight(float(lengths.sum())), model=settings)
+        spec = ActuatorSpec.segmented(name, segs, path, model=settings)
     return Design(name, tube, MachineSettings(), operation, (spec,))
 
 
-def _split_stepped(model: _Model, seg_spaces, x, lengths):
-    """Each segment whose stepped parameter (a zigzag width) lies between two grid values, as two segments of
-    those values whose bends add up to its own: ``(spaces, x, lengths, index)``, ``index`` the segment each
-    new one comes from.
+def _split_stepped(model: _Model, seg_spaces, x, lengths, offset: float = 0.0):
+    """Each segment whose stepped parameter (a zigzag width) lies between two grid values (``offset`` plus whole
+    grid steps, :meth:`DesignSpace.sewable`), as two segments of those values whose bends add up to its own:
+    ``(spaces, x, lengths, index)``, ``index`` the segment each new one comes from.
 
     A segment bends by its curvature times its bent length, so the grid widths ``a`` and ``b`` around ``x``
     share its length ``L`` as ``L_a kappa_a + L_b kappa_b = L kappa_x``; a segment whose share would be
@@ -1839,7 +1851,7 @@ def _split_stepped(model: _Model, seg_spaces, x, lengths):
     """
     out_sp, out_x, out_len, index = [], [], [], []
     for i, (sp, v, L) in enumerate(zip(seg_spaces, x, lengths)):
-        around = sp.sewable(float(v))
+        around = sp.sewable(float(v), offset=offset)
         parts = [(float(v), float(L))]
         if sp.grid_step > 0.0 and len(around) == 2:
             params = [sp.params(u) for u in (around[0], around[1], float(v))]
@@ -1860,10 +1872,11 @@ def _split_stepped(model: _Model, seg_spaces, x, lengths):
 
 
 def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, progress=None, *,
-             operation: OperationSettings):
+             operation: OperationSettings, offset: float = 0.0):
     """The sewable design nearest ``x`` that fits the target best on the analysed (sewn) design.
 
-    Each stepped parameter (a zigzag width) is moved to a value a straight actuator sews exactly;
+    Each stepped parameter (a zigzag width) is moved to a value a straight actuator sews exactly, ``offset``
+    plus whole grid steps (one grid unit: every width odd, the path moved half a unit, :func:`_shape_design`);
     then a pattern search on the analysed design (its needle points on the machine grid) keeps every
     single move that lowers the position error: a stepped parameter one grid step either way, a
     continuous one (a cross angle) by 0.2 deg, and, while the error is above ``_SHAPE_GOOD_MM``, a
@@ -1889,14 +1902,14 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
         shape, theta = a.shapes(name, [p])[0]
         return float(np.mean(np.sum((shape.profile_mm(sj) - xy) ** 2, axis=1))), (design, a, shape, theta)
 
-    v = np.array([min(sp.sewable(u), key=lambda g: (abs(g - u), g)) for sp, u in zip(seg_spaces, x)])
+    v = np.array([min(sp.sewable(u, offset=offset), key=lambda g: (abs(g - u), g)) for sp, u in zip(seg_spaces, x)])
     ls = np.asarray(lengths, dtype=np.float64).copy()
     cost, found = evaluate(v, ls, trial=False)
     angle_step, length_step = _SHAPE_ANGLE_STEP_DEG, _SHAPE_LENGTH_STEP_MM
     for _ in range(_GRID_ROUNDS):
         trials = []
         for i, sp in enumerate(seg_spaces):
-            near = sp.sewable(v[i], spread=2) if sp.grid_step else (v[i] - angle_step, v[i] + angle_step)
+            near = sp.sewable(v[i], spread=2, offset=offset) if sp.grid_step else (v[i] - angle_step, v[i] + angle_step)
             trials += [(i, round(float(g), 4)) for g in near if g != v[i] and sp.low <= g <= sp.high]
         moves = []
         if cost > _SHAPE_GOOD_MM**2:
@@ -1920,6 +1933,40 @@ def _on_grid(seg_spaces, x, lengths, sj, xy, name, tube, settings, sets, p, prog
                 break
             angle_step, length_step = angle_step / 2.0, length_step / 2.0
     return v, ls, math.sqrt(cost), found
+
+
+def _width_offsets(seg_spaces) -> tuple[float, ...]:
+    """The grids the stepped widths of one chain may take: 0 (even numbers of grid units) and, where no segment's
+    width is fixed (a cross segment's calibrated 7 mm holds the shared path on a grid line), one unit (all odd).
+
+    >>> z, c = DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0), DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
+    >>> _width_offsets([z, z]), _width_offsets([z, c])
+    ((0.0, 0.1), (0.0,))
+    """
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    fixed = {round(sp.width_mm / grid) % 2 for sp in seg_spaces if not sp.grid_step}
+    return tuple(float(o) * grid for o in ((0, 1) if not fixed else sorted(fixed)))
+
+
+def _grid_note(seg_spaces) -> str:
+    """What the machine grid lets the chain's stepped widths be, for a not-reached shape's statement.
+
+    >>> z, c = DesignSpace("zigzag", "width_mm", 5.0, 9.0, 7.0, 1.0), DesignSpace("cross", "angle_deg", 15.0, 60.0, 7.0, 1.4)
+    >>> print(_grid_note([z, c]))  # doctest: +NORMALIZE_WHITESPACE
+    zigzag widths in 0.2 mm steps, even numbers of 0.1 mm units: the segments share one path,
+    which the cross segments' fixed widths keep on a grid line
+    """
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    stepped = sorted({sp.pattern for sp in seg_spaces if sp.grid_step})
+    if not stepped:
+        return "on the machine grid"
+    fixed = sorted({sp.pattern for sp in seg_spaces if not sp.grid_step})
+    what = f"{', '.join(stepped)} widths in {2 * grid:g} mm steps"
+    if fixed:
+        return (f"{what}, even numbers of {grid:g} mm units: the segments share one path, which the "
+                f"{', '.join(fixed)} segments' fixed widths keep on a grid line")
+    return (f"{what}, all even or all odd numbers of {grid:g} mm units: the segments share one path, moved half a "
+            f"unit across for odd widths")
 
 
 def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube, settings, sets, name,
@@ -1959,11 +2006,15 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
             break
     x = np.round(best[1] if best is not None else x, 4)
     grid = dict(name=name, tube=tube, settings=settings, sets=sets, p=p, progress=progress, operation=operation)
-    found = _on_grid(seg_spaces, x, lengths, sj, xy, **grid)
+    # the segments share one straight path: all widths even (the path on a grid line), or, where every width is
+    # stepped (no fixed width of a cross segment holds the path), all odd (the path half a unit across)
+    offsets = _width_offsets(seg_spaces)
+    found, offset = min(((_on_grid(seg_spaces, x, lengths, sj, xy, offset=o, **grid), o) for o in offsets),
+                        key=lambda f: f[0][2])
     if found[2] > tolerance_mm:  # not met: mix the two grid widths around each width wanted
-        split_spaces, split_x, split_lengths, source = _split_stepped(model, seg_spaces, x, lengths)
+        split_spaces, split_x, split_lengths, source = _split_stepped(model, seg_spaces, x, lengths, offset)
         if len(split_spaces) > len(seg_spaces):
-            mixed = _on_grid(split_spaces, split_x, split_lengths, sj, xy, **grid)
+            mixed = _on_grid(split_spaces, split_x, split_lengths, sj, xy, offset=offset, **grid)
             if mixed[2] < found[2]:
                 seg_spaces, found = split_spaces, mixed
                 kappa, chosen = np.asarray(kappa)[list(source)], [chosen[i] for i in source]
@@ -1998,10 +2049,7 @@ def _shape_attempt(model, spaces, sj, xy, length, lengths, kappa, rmse_fit, tube
     if errors:
         why.append(f"design-rule errors {', '.join(errors)}")
     if rmse > tolerance_mm:
-        steps = [f"{sp.pattern} {name}s in {sp.grid_step:g} {unit} steps on the machine grid"
-                 for sp in spaces.values() if sp.grid_step for name, _, unit in [sp.parameter.rpartition("_")]]
-        why.append(f"the sewable designs ({', '.join(steps) or 'on the machine grid'}) leave an RMSE above "
-                   f"{tolerance_mm:g} mm")
+        why.append(f"the sewable designs ({_grid_note(seg_spaces)}) leave an RMSE above {tolerance_mm:g} mm")
     statement = (f"met with {len(segs)} segment(s): RMSE {rmse:.3f} mm, max {dev.max():.3f} mm"
                  + (f" ({near}; the whole sewn line is within {tolerance_mm:g} mm)" if near else "") if reached else
                  f"not reachable as asked: {'; '.join(why)}; best achievable: RMSE {rmse:.3f} mm")

@@ -147,3 +147,31 @@ def test_a_grid_move_no_generator_sews_is_a_rejected_trial_not_a_failed_search()
     r = design_shape(xy, 200.0)
     assert r.reached and r.rmse_mm <= 0.5
     assert not [f for f in check_design(analyse(r.design)) if f.severity.name == "ERROR"]
+
+
+def test_a_zigzag_chain_takes_odd_widths_on_a_path_half_a_grid_unit_across():
+    """The shape search stepped every zigzag width by 0.2 mm (even numbers of 0.1 mm units, the path on y = 0), so a
+    chain of 6.1 and 7.3 mm zigzags was out of its reach. With no cross segment to hold the shared path on a grid
+    line, the widths may all be odd on a path at y = 0.05 mm: the target predicted for that chain is met by it,
+    and the written file's needle points lie on the grid with rails 6.1 and 7.3 mm apart."""
+    from embroact.patterns.centerline import Centerline
+    from embroact.patterns.design import ActuatorSpec, Design, MachineSettings, OperationSettings, build_plan
+    from embroact.patterns.params import Tube, ZigzagParams
+    from embroact.patterns.plan import Command
+    from embroact.patterns.segments import SegmentSpec
+
+    segs = (SegmentSpec(ZigzagParams(6.1, 1.0), 50.0), SegmentSpec(ZigzagParams(7.3, 1.0), 50.0))
+    target = Design("t", Tube(), MachineSettings(), OperationSettings(),
+                    (ActuatorSpec.segmented("T", segs, Centerline.straight(100.0, origin_mm=(0.0, 0.05))),))
+    shape, _ = analyse(target).shapes("T", [200.0])[0]
+    xy = shape.profile_mm(np.linspace(0.0, shape.length_mm, 401))
+    r = design_shape(xy, 200.0, max_segments=2)
+    assert r.reached and r.rmse_mm < 0.05
+    assert [s.params.width_mm for s in r.segments] == [6.1, 7.3]
+    assert r.design.actuators[0].centerline.points_mm[0].tolist() == [0.0, 0.05]
+    plan = build_plan(r.design)
+    xy_sewn = plan.xy_mm[plan.commands == Command.STITCH]
+    assert np.allclose(xy_sewn * 10.0, np.round(xy_sewn * 10.0), atol=1e-9)  # on the 0.1 mm grid
+    rails = [sorted({round(float(y), 6) for x, y in xy_sewn if lo < x - plan.actuators[0].centerline.points_mm[0][0] < hi})
+             for lo, hi in ((5.0, 45.0), (55.0, 95.0))]
+    assert [round(r_[-1] - r_[0], 6) for r_ in rails] == [6.1, 7.3]

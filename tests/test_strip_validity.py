@@ -293,3 +293,35 @@ def test_the_whole_strip_finding_stands_beside_an_actuator_without_a_model():
     assert a.actuators[1].choice is None
     assert any(f.code == "EA405" and f.actuator == "S" and "whole strip COILED from 180 kPa" in f.message
                for f in check_design(a))
+
+
+def test_a_single_pattern_strip_counts_its_unbent_ends_and_ea405_follows_it():
+    """A 100 mm zigzag of 2.9 mm interval is sewn with 0.7 mm unbent at each end (legs over 98.6 mm). Its model's
+    own limit (the legs' arc with the 30 mm stub: 253.3 deg) leaves out the tail, which is straight tube before the
+    stub: the whole strip (bend_pieces) coils at the angle of one 98.6 mm arc with a 30.7 mm stub (the hand-derived
+    corner), earlier than the model alone; every view reads that status, and EA405 names the first working-grid
+    pressure at which it is not valid."""
+    from embroact.predict.analysis import pressure_grid_kpa
+    from embroact.predict.rules import ModelRuleSettings, check_model
+    from embroact.predict.status import Status
+
+    d = design_from_dict({"operation": {"max_pressure_kpa": 300.0},
+                          "actuator": [{"name": "A", "pattern": "zigzag", "width_mm": 5.3, "interval_mm": 2.9,
+                                        "length_mm": 100.0}]})
+    a = analyse(d)
+    act = a.actuators[0]
+    (lead, _), (l0, k), (tail, _) = act.bend_pieces()
+    assert k == 0 and lead == pytest.approx(0.7, abs=1e-6) and tail == pytest.approx(0.7, abs=1e-6)
+    r = float(a.model_curve(act.segments[0].model, [180.0]).radius_mm[0])
+    alone = _root_deg(_positive, l0, r, 30.0)
+    whole = _root_deg(_positive, l0, r, 30.0 + tail)
+    assert whole < alone - 0.5
+    p = np.linspace(170.0, 190.0, 4001)
+    theta = np.asarray(a.model_curve(act.segments[0].model, p).theta_deg)
+    status = np.asarray(a.curves(p)[0].status)
+    first = int(np.flatnonzero(status == int(Status.COILED))[0])
+    assert theta[first - 1] < whole <= theta[first] + 0.01  # the strip coils where the tail counts (r at 180 kPa)
+    grid = pressure_grid_kpa(300.0)
+    bad = np.flatnonzero(~np.isin(a.curves(grid)[0].status, [int(Status.BENDING), int(Status.INFLATION)]))
+    (ea405,) = [f for f in check_model(a, ModelRuleSettings(max_pressure_kpa=300.0)) if f.code == "EA405"]
+    assert f"from {grid[bad[0]]:.0f} kPa on" in ea405.message

@@ -496,7 +496,7 @@ class Studio:
         >>> out.cleanup()
         """
         from ...patterns.centerline import Centerline
-        from ...predict.inverse import design_shape
+        from ...predict.inverse import design_shape, grid_origin_mm
 
         if not isinstance(path_d, str) or not path_d.strip():
             raise ParameterError(f"path_d must be SVG path data in mm (e.g. 'M 0 0 A 60 60 0 0 0 60 -60'), "
@@ -513,7 +513,12 @@ class Studio:
                                   sets=self.calibration_sets, name=spec.name, time_limit_s=SHAPE_SEARCH_S,
                                   operation=operation)
         table = design_form(result.design)["actuator"][0]
-        table.update({k: old[k] for k in ("origin_mm", "rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
+        table.update({k: old[k] for k in ("rotation_deg", "tie_stitch_mm", "tie_count") if k in old})
+        table.pop("origin_mm", None)  # the actuator's own start, moved as the search moved its path (rails on the grid)
+        start = grid_origin_mm(result.segments[0].params.width_mm, old.get("origin_mm", (0.0, 0.0)),
+                               old.get("rotation_deg", 0.0))
+        if start != (0.0, 0.0):
+            table["origin_mm"] = list(start)
         with self._lock:  # only a reachable answer is offered: an unreachable one is shown, never applied
             self._proposal = (index, spec.name, table) if result.reached else None
         from ..pictures.shapefit import design_shape_svg
