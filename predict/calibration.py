@@ -25,10 +25,14 @@ written by :mod:`embroact.export.files.calibfile`.
 
 Lookup scheme
 -------------
-* Points are keyed by the requested design parameters (what a design file asks for,
-  as in the paper's table), not by the slightly different realised stitch geometry.
+* Points are keyed by the geometry their sample was sewn with: a point fitted from a
+  coupon (:func:`embroact.predict.fit.fit_design`) by the width and angle measured on the
+  coupon's needle points; the paper's set by the values of the paper's table (all it gives).
+  A design is looked up at the coordinate its own needle points realise
+  (:func:`lookup_design`), so the set is read where the machine sews, not where the design
+  file asked; the requested coordinate is reported beside it where the two differ.
 * Zigzag points are interpolated over ``width_mm``; cross points over ``angle_deg``
-  (among the cross points of the width closest to the requested one; a different
+  (among the cross points of the width closest to the design's; a different
   width is reported in ``notes``).
 * Interpolation is monotone piecewise cubic (PCHIP, :mod:`embroact.predict.pchip`) in the
   parameter, separately for ``G`` and ``P0`` (and ``G_e`` when every point has one): exact at
@@ -93,6 +97,7 @@ __all__ = [
     "CalibrationTube",
     "ModelChoice",
     "model_for",
+    "lookup_design",
     "as_calibration_sets",
 ]
 
@@ -516,7 +521,8 @@ class Calibration:
     parameter : str
         The interpolation coordinate: the kind's calibration axis (``"width_mm"`` for the zigzag).
     value : float
-        The requested coordinate.
+        The coordinate looked up: for a design, the one realised on its needle points
+        (:func:`lookup_design`).
     range_low, range_high : float
         Calibrated range of the coordinate.
     interpolated : bool
@@ -532,6 +538,9 @@ class Calibration:
         exactly, or, between points that each carry a G and P0 covariance (a profile), the
         covariance of the interpolated values propagated from theirs (:func:`_propagated`);
         empty when averaged or unknown: no band is claimed then.
+    requested_value : float or None
+        The coordinate the design asked for, when the needle points realise another
+        (:func:`lookup_design`); None when they realise it or nothing was requested.
 
     Examples
     --------
@@ -556,10 +565,19 @@ class Calibration:
     notes: tuple[str, ...] = ()
     fitted: tuple[str, ...] = ()
     covariance: tuple[tuple[float, ...], ...] = ()
+    requested_value: float | None = None
 
     @property
     def label(self) -> str:
-        """Short provenance string, e.g. for ``ActuatorModel.calibration``."""
+        """Short provenance string, e.g. for ``ActuatorModel.calibration``: the coordinate looked up, the
+        requested one where it differs, and how the values were obtained.
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> dataclasses.replace(lookup("zigzag", width_mm=6.0), requested_value=6.1).label
+        'paper-2025 (zigzag, width_mm=6, requested 6.1, interpolated in [5, 9])'
+        """
         lo, hi = f"{self.range_low:g}", f"{self.range_high:g}"
         if self.extrapolated:
             how = "clamped to" if self.extrapolation == "clamp" else "extrapolated beyond"
@@ -568,7 +586,8 @@ class Calibration:
             how = f", interpolated in [{lo}, {hi}]"
         else:
             how = ""
-        return f"{self.name} ({self.pattern}, {self.parameter}={self.value:g}{how})"
+        asked = "" if self.requested_value is None else f", requested {self.requested_value:g}"
+        return f"{self.name} ({self.pattern}, {self.parameter}={self.value:g}{asked}{how})"
 
     def as_dict(self) -> dict:
         """Plain dict with unit-suffixed keys, plus ``label``.
@@ -925,6 +944,45 @@ def lookup(
     )
 
 
+def lookup_design(derived, *, name: str = "paper-2025", sets: Iterable[CalibrationSet] | None = None,
+                  branch: str = "loading", extrapolation: str = "clamp", interpolation: str = "pchip") -> Calibration:
+    """:func:`lookup` at the calibration coordinate a design's needle points realise.
+
+    The coordinate is the kind's calibration axis measured on the generated stitches
+    (``derived.width_mm``, with ``derived.angle_deg`` for a kind with an angle): the geometry
+    the machine file holds and the model uses, not the value the design asked for. Where the
+    two differ (a 6.1 mm zigzag on a straight path sews rails 6.0 mm apart on the 0.1 mm grid)
+    the result records the requested one as ``requested_value``. A realised value equal to a
+    calibrated coordinate up to float noise (7.000000000000001 mm) is that point.
+
+    Parameters
+    ----------
+    derived : DerivedGeometry
+        The design's derived geometry.
+    name, sets, branch, extrapolation, interpolation
+        As for :func:`lookup`.
+
+    Returns
+    -------
+    Calibration
+
+    Examples
+    --------
+    >>> from embroact.patterns.params import Tube
+    >>> from embroact.predict.derived import derive_from_values
+    >>> d = derive_from_values("zigzag", width_mm=6.0, interval_mm=1.0, angle_deg=0.0, length_mm=100.0,
+    ...                        tube=Tube(), requested=(6.1, 1.0, 0.0))
+    >>> c = lookup_design(d)
+    >>> c.value, c.requested_value, c.g_mpa == lookup("zigzag", width_mm=6.0).g_mpa
+    (6.0, 6.1, True)
+    """
+    kind = pattern_kind(derived.pattern)
+    cal = lookup(derived.pattern, width_mm=derived.width_mm, angle_deg=derived.angle_deg if kind.has_angle else None,
+                 name=name, sets=sets, branch=branch, extrapolation=extrapolation, interpolation=interpolation)
+    requested = float(getattr(derived, "requested_" + kind.calibration_axis))
+    return cal if _same_coordinate(cal.value, requested) else dataclasses.replace(cal, requested_value=requested)
+
+
 @dataclass(frozen=True, slots=True)
 class ModelChoice:
     """The model of one actuator (or segment) and where each of its numbers came from.
@@ -1022,8 +1080,8 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     the calibration set's; P0 is ``settings.p0_kpa`` when given, else the set's fitted P0
     (``p0_source="calibration"``, default: the set's G and P0 were fitted as a pair) or the
     tube law's pressure at the realised sleeve radius (``p0_source="geometry"``). The set is
-    looked up at the design's *requested* pattern coordinate (points are keyed by the design
-    a user asks for); the model uses the geometry realised by the generator.
+    looked up at the pattern coordinate the needle points realise (:func:`lookup_design`), the
+    geometry the model uses too; the requested one is reported where it differs.
 
     Parameters
     ----------
@@ -1064,10 +1122,8 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     p0_from_set = settings.p0_kpa is None and settings.p0_source is P0Source.CALIBRATION
     cal = None
     if settings.g_mpa is None or p0_from_set:
-        axis = pattern_kind(derived.pattern).calibration_axis
-        angle = derived.requested_angle_deg if axis == "angle_deg" else None
-        cal = lookup(derived.pattern, width_mm=derived.requested_width_mm, angle_deg=angle,
-                     name=settings.calibration, sets=as_calibration_sets(sets), branch=branch, extrapolation=extrapolation)
+        cal = lookup_design(derived, name=settings.calibration, sets=as_calibration_sets(sets), branch=branch,
+                            extrapolation=extrapolation)
     tube = derived.tube
     tube_p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
     if settings.p0_kpa is not None:

@@ -58,6 +58,7 @@ import numpy as np
 
 from ..patterns.base.arrays import frozen_array
 from ..patterns.base.errors import ModelDomainError, ParameterError, SolverError
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.kinds import pattern_kind
 from .calibration import CalibrationPoint
 from .derived import DerivedGeometry
@@ -91,6 +92,10 @@ HOLD_FRACTION = 0.01
 CLOSURE_FRACTION = 0.02
 #: A point counts as bent for the onset estimate above this fraction of the largest |angle|.
 _ONSET_FRACTION = 0.05
+#: Decimals a fitted point keeps of its realised coordinates: the needle points' float noise
+#: (7.000000000000001 mm) goes, and the rounding (at most half the lookup's tolerance for "the same
+#: coordinate", DEFAULT_TOLERANCES.length_mm) keeps a design sewn like the sample on the point.
+_KEY_DECIMALS = round(-math.log10(DEFAULT_TOLERANCES.length_mm))
 #: Coarse scan of G for the start value [MPa], logarithmic.
 _G_SCAN_MPA = (1e-2, 1e3, 31)
 #: Candidate-pressure points of the start scan evaluated at once (its curves are ~60 bytes a point).
@@ -137,8 +142,8 @@ class FitResult:
     nfev : int
         Model evaluations by the optimiser.
     design : tuple of (str, float) pairs
-        Requested design fields (pattern, width_mm, angle_deg, interval_mm, length_mm)
-        when known.
+        The design fields the sample's needle points realise (pattern, width_mm, angle_deg,
+        interval_mm, length_mm), when known: the calibration point's key (:meth:`to_point`).
     covariance : tuple of tuples
         Covariance of the fitted parameters, in the order of ``fitted`` [MPa, kPa units].
     measurement : MarkerLayout or None
@@ -638,12 +643,13 @@ def _geometry_p0_kpa(derived: DerivedGeometry, g_e_mpa, tube_law: str = "paper")
 
 
 def _design_fields(derived: DerivedGeometry) -> tuple:
-    """The requested design parameters: calibration points are keyed by them (see calibration.py)."""
+    """The design parameters its needle points realise: a fitted point is keyed by them (see calibration.py),
+    to :data:`_KEY_DECIMALS` decimals."""
     return (
         ("pattern", derived.pattern),
-        ("width_mm", derived.requested_width_mm),
-        ("angle_deg", derived.requested_angle_deg if pattern_kind(derived.pattern).has_angle else 0.0),
-        ("interval_mm", derived.requested_interval_mm),
+        ("width_mm", round(derived.width_mm, _KEY_DECIMALS)),
+        ("angle_deg", round(derived.angle_deg, _KEY_DECIMALS) if pattern_kind(derived.pattern).has_angle else 0.0),
+        ("interval_mm", round(derived.interval_mm, _KEY_DECIMALS)),
         ("length_mm", derived.length_mm),
     )
 

@@ -62,7 +62,7 @@ from typing import Any
 import numpy as np
 
 from ..patterns.base.errors import ModelDomainError, ParameterError
-from .calibration import CalibrationSet, CalibrationTube, lookup
+from .calibration import CalibrationSet, CalibrationTube, lookup_design
 from .derived import DerivedGeometry
 from .fit import FitResult, fit_design
 from .markers import MarkerLayout, reading_deg
@@ -146,7 +146,7 @@ class LeaveOneOut:
     name, pattern : str
         The coupon actuator and its pattern kind.
     coordinate : float
-        Its calibration coordinate.
+        Its calibration coordinate as its needle points realise it.
     rmse_deg : float or None
         RMSE of its readings predicted from the others [deg]; None: fewer than 2 other
         coupons of its pattern.
@@ -243,11 +243,11 @@ def _set(name, fits, *, description, materials, tube, tube_law, layout) -> Calib
                           tube_law=tube_law, marker_layout=layout)
 
 
-def _coordinate(d: DerivedGeometry) -> tuple[str, float]:
+def _coordinate(d: DerivedGeometry) -> float:
+    """The coupon's calibration coordinate as its needle points realise it (what its point is keyed by)."""
     from ..patterns.kinds import pattern_kind
 
-    axis = pattern_kind(d.pattern).calibration_axis
-    return axis, float(d.requested_width_mm if axis == "width_mm" else d.requested_angle_deg)
+    return float(getattr(d, pattern_kind(d.pattern).calibration_axis))
 
 
 def fit_profile(coupons, *, layout: MarkerLayout | None, name: str, tube=None, description: str = "",
@@ -310,7 +310,7 @@ def fit_profile(coupons, *, layout: MarkerLayout | None, name: str, tube=None, d
     for k, c in enumerate(coupons):
         got = error(k, [j for j in range(len(coupons)) if j != k and patterns[j] == patterns[k]])
         rmse, extrap, expected = got or (None, False, None)
-        loo.append(LeaveOneOut(c.name, patterns[k], _coordinate(c.derived)[1], rmse, extrap, False, expected))
+        loo.append(LeaveOneOut(c.name, patterns[k], _coordinate(c.derived), rmse, extrap, False, expected))
     flagged, unexplained = _flag(loo, error)
     return Profile(_set(name, fits, **kw), tuple(fits),
                    tuple(dataclasses.replace(e, flagged=k in flagged) for k, e in enumerate(loo)), unexplained)
@@ -326,18 +326,16 @@ def _prediction_error(c: CouponData, others: list[CouponFit], noise_deg: float, 
 
     if len(others) < 2:
         return None
-    axis, _ = _coordinate(c.derived)
     cset = _set(name, others, **kw)
     sq, band_sq, n, extrap = 0.0, 0.0, 0, False
     for branch in sorted(set(c.branch)):
         mask = np.array([b == branch for b in c.branch])
-        where: dict[str, Any] = {"width_mm": c.derived.requested_width_mm, "name": name, "sets": [cset], "branch": branch,
-                 "angle_deg": c.derived.requested_angle_deg if axis == "angle_deg" else None}
+        where: dict[str, Any] = {"name": name, "sets": [cset], "branch": branch}
         # linear between the others: a spoiled coupon then moves only its own intervals
         try:  # an end coupon: the others' trend carried on (clamped where it leaves the model's domain)
-            cal = lookup(c.derived.pattern, extrapolation="linear", interpolation="linear", **where)
+            cal = lookup_design(c.derived, extrapolation="linear", interpolation="linear", **where)
         except ModelDomainError:
-            cal = lookup(c.derived.pattern, interpolation="linear", **where)
+            cal = lookup_design(c.derived, interpolation="linear", **where)
         extrap = extrap or cal.extrapolated
         p = c.pressure_kpa[mask]
         pred = predicted_reading_deg(c.derived, cal.g_mpa, cal.p0_kpa, p, kw["layout"])
