@@ -35,7 +35,7 @@ Calibration TOML (what the set was fitted with, then one table per fitted point)
     [[points]]
     pattern = "zigzag"
     coordinate = "width_mm"          # the key interpolated over for this pattern
-    width_mm = 7.0
+    width_mm = 7.0                   # as the sample's needle points realise it (embroact fit)
     g_mpa = 2.7
     p0_kpa = 85.0
     branch = "loading"
