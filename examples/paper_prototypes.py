@@ -7,7 +7,8 @@ l0 = 100 mm.  For each one this script
 1. generates the stitches and measures the realised width and leg angle, from which
    the sleeve radius r0, thread angle beta0 and the transition pressure P0 follow
    (docs/model.md sections 2-3; default tube r_f = 1.5 mm, d_f = 1.0 mm, G_e = 0.13 MPa);
-2. takes G and P0 from the calibration set "paper-2025" (the paper's fitted values: demonstration
+2. takes G and P0 from the calibration set "paper-2025" at the realised width or angle (the 30 and
+   60 deg crosses sew 30.96 and 59.53 deg, between the paper's points; the paper's fitted values: demonstration
    data, fitted on a tube whose size the paper does not give; with the default tube the w = 5 mm
    zigzag coils far below the paper's measured ~155 deg at 290 kPa, and the table marks such states
    as ``embroact predict`` reports them: C coiled, K kinked, S overstretched);

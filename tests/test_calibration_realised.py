@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pytest
 import pyembroidery
+from paper_sewn import A30_DEG, SEWN_FIT
 
 from embroact.export.cli.main import main
 from embroact.export.machine.formats import encode
@@ -90,20 +91,11 @@ def test_quick_cross_prediction_is_the_decoded_files(capsys):
     assert np.asarray(got["theta_deg"]) == pytest.approx(np.asarray(theta), abs=1e-9)
 
 
-def _hermite(x, x0, x1, y0, y1, m0, m1):
-    t, h = (x - x0) / (x1 - x0), x1 - x0
-    return ((2 * t**3 - 3 * t**2 + 1) * y0 + (t**3 - 2 * t**2 + t) * h * m0 + (-2 * t**3 + 3 * t**2) * y1
-            + (t**3 - t**2) * h * m1)
-
-
 def test_cross_calibration_is_interpolated_at_the_realised_angle(capsys):
-    """cross w 7, s 1.4, alpha0 30 sews tan(alpha0) = 3/5 (30.96 deg). The paper's points (15, 30, 45, 60 deg;
-    G 2.9, 12, 1.3, 2.9 MPa; P0 150, 160, 170, 200 kPa) are 15 deg apart; on [30, 45] the Fritsch-Carlson slopes
-    are G' = 0 at both ends (G turns at 30 and at 45) and P0' = 2/3 at 30 (two equal secants of 2/3) and
-    2 / (1/(2/3) + 1/2) = 1 kPa/deg at 45 (harmonic mean of the secants 2/3 and 2)."""
-    alpha = math.degrees(math.atan(0.6))
-    g = _hermite(alpha, 30.0, 45.0, 12.0, 1.3, 0.0, 0.0)
-    p0 = _hermite(alpha, 30.0, 45.0, 160.0, 170.0, 2.0 / 3.0, 1.0)
+    """cross w 7, s 1.4, alpha0 30 sews tan(alpha0) = 3/5 (30.96 deg); G and P0 are the paper's table read by hand
+    there (tests/paper_sewn.py), in the lookup, the model and predict's JSON."""
+    alpha = A30_DEG
+    g, p0 = SEWN_FIT["cross a30"]
     d = derive(build_plan(_quick(CrossParams(7.0, 1.4, 30.0))).actuators[0])
     assert d.angle_deg == pytest.approx(alpha, abs=1e-9) and d.requested_angle_deg == 30.0
     c = lookup_design(d)
