@@ -5,6 +5,7 @@ parameters: zigzag w = 7 mm loading G = 2.7 MPa, P0 = 85 kPa, unloading 2.3 / 70
 cross alpha0 = 45 deg loading 1.3 / 170, unloading 1.1 / 150; noise 1 deg.
 """
 import json
+import math
 import runpy
 from pathlib import Path
 
@@ -236,7 +237,8 @@ def test_fit_of_an_adjusted_cross_recovers_g_and_p0_within_their_errors(capsys, 
     (fit,) = _fit_json(capsys, data, *CROSS30)["fits"]
     assert abs(fit["g_mpa"] - 2.0) < 3 * fit["g_mpa_se"] and fit["g_mpa_se"] < 0.05
     assert abs(fit["p0_kpa"] - 120.0) < 3 * fit["p0_kpa_se"] and fit["p0_kpa_se"] < 3.0
-    assert fit["design"]["angle_deg"] == 30.0  # the point is keyed by the requested angle
+    # the point is keyed by the angle the legs are sewn at, tan(alpha0) = 0.6, not the requested 30 deg
+    assert fit["design"]["angle_deg"] == pytest.approx(math.degrees(math.atan(0.6)), abs=1e-9)
 
 
 def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
@@ -249,12 +251,13 @@ def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
     assert cset.tube is not None and (cset.tube.outer_radius_mm, cset.tube.inner_radius_mm, cset.tube.g_e_mpa) == (
         1.5, 1.0, 0.13)
     assert cset.tube_law == "paper" and cset.measurement == "whole-strip"
-    assert cset.coverage() == {"cross": (30.0, 30.0)}
+    sewn = math.degrees(math.atan(0.6))
+    assert cset.coverage()["cross"] == (pytest.approx(sewn, abs=1e-9), pytest.approx(sewn, abs=1e-9))
     grid = ",".join(f"{p:g}" for p in pressures)
     assert main(["predict", "cross", "--width-mm", "7", "--interval-mm", "1.4", "--angle-deg", "30",
                  "--calibration", str(cal), "--pressure-kpa", grid, "--json"]) == 0
     (doc,) = json.loads(capsys.readouterr().out)["actuators"]
-    assert doc["model"]["g_source"].startswith("calibration lab (cross, angle_deg=30")
+    assert doc["model"]["g_source"] == f"calibration lab (cross, angle_deg={sewn:g}, requested 30)"  # on the point
     assert max(abs(a - b) for a, b in zip(doc["theta_deg"], truth)) < 1e-6
     # the same file named by a design, relative to the design file
     sub = tmp_path / "designs"
