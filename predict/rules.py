@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..patterns.base.errors import ModelDomainError, check_range
+from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.design import OperationSettings
 from ..patterns.rules import RuleSettings, sort_findings
@@ -63,7 +64,8 @@ for _rule in (
          "The predicted bend at the working pressure exceeds operation.max_bend_deg.",
          "Shorten the actuator or lower the working pressure.", _MODEL),
     Rule("EA404", _W, "prediction extrapolated",
-         "The calibration (G, P0) is extrapolated outside the measured designs.",
+         "The calibration (G, P0) is extrapolated outside the measured designs (by more than a sewn "
+         "coordinate may differ from the asked one: 0.1 deg of angle, half a grid unit of width).",
          "Measure a sample of this design and fit it ('embroact fit').", _MODEL),
     Rule("EA405", _W, "model outside its domain",
          "Between P0 and the working pressure the model leaves its domain, becomes unstable, or passes a "
@@ -134,6 +136,18 @@ class ModelRuleSettings:
         return cls(**base)
 
 
+def _outside_by(cal) -> float:
+    """How far the looked-up coordinate lies outside the calibrated range (0 inside)."""
+    return max(cal.range_low - cal.value, cal.value - cal.range_high, 0.0)
+
+
+def _realisation_tolerance(parameter: str) -> float:
+    """How far a sewn coordinate may sit from the one asked for and still count as it: the leg-angle
+    tolerance for an angle, half a machine-grid unit for a length (both rails of a width are on the grid)."""
+    tol = DEFAULT_TOLERANCES
+    return tol.angle_deg if parameter.endswith("_deg") else tol.machine_grid_mm / 2.0
+
+
 def _model_findings(choice, model_error: str, c, calibration: str, settings: ModelRuleSettings, *,
                     where: dict, prefix: str = "") -> list[Finding]:
     """EA401, EA402 and EA404-EA406 of one segment's model (``prefix`` names the segment) from its curve ``c`` on the
@@ -150,7 +164,7 @@ def _model_findings(choice, model_error: str, c, calibration: str, settings: Mod
     if notes:
         name = cal.name if cal is not None else calibration
         out.append(RULES.finding("EA406", f"{prefix}calibration {name}: " + "; ".join(notes), **where))
-    if cal is not None and cal.extrapolated:
+    if cal is not None and cal.extrapolated and _outside_by(cal) > _realisation_tolerance(cal.parameter):
         p0_note = (f"; its P0 {model.p0_kpa:.1f} kPa is the set's, the tube law gives {choice.tube_law_p0_kpa:.1f} kPa at this "
                    f"sleeve (p0_source = \"geometry\" uses that)" if choice.p0_source.startswith("calibration") else "")
         out.append(RULES.finding(

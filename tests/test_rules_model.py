@@ -56,6 +56,23 @@ def test_ea404_extrapolated_calibration():
     assert "EA404" not in _codes(_design(11.0, model=ModelSettings(g_mpa=3.0, p0_source="geometry")))  # no set used
 
 
+def _cross(angle_deg):
+    spec = ActuatorSpec("A1", CrossParams(width_mm=7.0, interval_mm=1.4, angle_deg=angle_deg), Centerline.straight(100.0))
+    return Design("t", Tube(), MachineSettings(), OperationSettings(300.0, 360.0), (spec,))
+
+
+def test_ea404_ignores_a_sewn_angle_within_the_angle_tolerance_of_the_range():
+    # the paper's 15 deg cross (w 7, s 1.4) sews its legs at 14.998 deg: 0.002 deg below the set's [15, 60],
+    # within the 0.1 deg a sewn angle may differ from the asked one; 13 deg asked lies a degree and more outside
+    act = analyse(_cross(15.0)).actuators[0]
+    assert 14.99 < act.derived.angle_deg < 15.0 and "clamped to [15, 60]" in act.model.calibration
+    assert (act.model.g_mpa, act.model.p0_kpa) == (2.9, 150.0)  # the 15 deg point's values (the paper's table)
+    assert "EA404" not in _codes(_cross(15.0))
+    low = analyse(_cross(13.0)).actuators[0].derived.angle_deg
+    assert low < 14.9
+    assert "EA404" in _codes(_cross(13.0))
+
+
 def test_ea405_snap_through_below_working_pressure():
     # zigzag w = 5, G 0.8 MPa, P0 50 kPa: the strip coils (a full turn, 360 deg) near 165 kPa, the branch folds near 251 kPa
     model = ModelSettings(g_mpa=0.8, p0_kpa=50.0)
