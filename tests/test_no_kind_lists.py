@@ -24,10 +24,6 @@ PACKAGES = ("api", "patterns", "predict", "export")
 SHIPPED = [k for k in PATTERN_KINDS if k.module.startswith("embroact.")]
 #: Where the kinds' names belong: their own modules and the registry that registers them.
 OWN = {ROOT / "patterns" / "kinds.py", *(ROOT / "patterns" / f"{k.module.rsplit('.', 1)[1]}.py" for k in SHIPPED)}
-#: Listings another change removes (module -> why); each must still be found, so a fixed one is taken out here.
-PENDING = {
-    "export/cli/cmd_calibrate.py": "the coupon's patterns default to its COUPON_PATTERNS (the coupon's kinds change)",
-}
 
 
 def _docstrings(tree: ast.AST) -> set[int]:
@@ -75,8 +71,7 @@ def test_no_annotation_or_message_lists_the_kinds():
     assert len(SHIPPED) >= 2 and len(_modules()) > 100
     found = {rel: hits for p in _modules()
              if (hits := kind_listings(p.read_text(encoding="utf-8"))) and (rel := str(p.relative_to(ROOT)))}
-    assert {k: v for k, v in found.items() if k not in PENDING} == {}
-    assert set(PENDING) <= set(found), "a pending listing is gone: take it out of PENDING"
+    assert found == {}
 
 
 @pytest.mark.parametrize("code", [
