@@ -253,7 +253,11 @@ def test_the_studio_searches_the_designs_design_searches(place, tmp_path, capsys
         answer = studio.inverse(bend, pressure, pattern=pattern)
         for key in ("reached", "statement"):
             assert answer[key] == cli[key]
-        assert answer["best"]["params"] == cli["best"]["params"]
+        # a cross's angle and interval are asked continuously and many requests sew the same needle points: the
+        # rotated actuator's search settles on another request (41.4596 vs 41.4665 deg) that sews the same legs
+        # (the same bend to 1e-9 deg below); the width is a grid value and agrees exactly
+        assert answer["best"]["params"] == pytest.approx(cli["best"]["params"], abs=0.01)
+        assert answer["best"]["params"]["width_mm"] == cli["best"]["params"]["width_mm"]
         assert answer["best"]["theta_deg"] == pytest.approx(cli["best"]["theta_deg"], abs=1e-9)
         width = cli["best"]["params"]["width_mm"]
         across = answer["origin_mm"][1 if rotation == 0.0 else 0]
