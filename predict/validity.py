@@ -224,25 +224,23 @@ def _coiled_states(th, a, top, r, l0, stub):
         return arc_contact(th, r, l0, m)
     near = a >= free
     if near.all():
-        return _arc_contact_lean(th, r, l0, m)
+        return (a >= _FULL_TURN) | ~_apart(th, r, l0, m)
     out = np.zeros(a.shape, dtype=bool)
-    out[near] = _arc_contact_lean(th[near], r[near], l0, m)
+    out[near] = (a[near] >= _FULL_TURN) | ~_apart(th[near], r[near], l0, m)
     return out
 
 
-def _arc_contact_lean(th, r, l0: float, m: float):
-    """:func:`arc_contact` of 1-D states ``th`` (none 0), ``r`` with one ``l0`` and one stub ``m`` (not NaN):
-    its operations in its order on each value (so the same answer), without its broadcasting, stacking
-    and selections (numpy's fixed cost per call is most of its time on a curve's states)."""
+def _apart(th, r, l0, m):
+    """Whether the stub's rectangle and the fixed band are apart at states ``th`` (arrays broadcast, ``m`` not
+    NaN): :func:`arc_contact`'s separation test, on the rectangle's corners and the four edge normals."""
     half = 0.5 * th
-    y = math.pi * (half / math.pi)  # numpy's sinc(half / pi): y is not 0 here
-    chord = l0 * (np.sin(y) / y)
-    px, py = chord * np.cos(half), chord * np.sin(half)
-    tx, ty = np.cos(th), np.sin(th)
+    chord = l0 * np.sinc(half / math.pi)
+    px, py = chord * np.cos(half), chord * np.sin(half)  # the tip (fabric side)
+    tx, ty = np.cos(th), np.sin(th)  # tangent there; the tube side is (ty, -tx)
     nx, ny = ty, -tx
     w = 2.0 * r
     wx, wy = w * nx, w * ny
-    if m == 0.0:  # the stub's corners are the tip's (x + 0.0 * t is x)
+    if isinstance(m, float) and m == 0.0:  # the stub's corners are the tip's (x + 0.0 * t is x)
         x_lo, y_lo, y_hi = np.minimum(px, px + wx), np.minimum(py, py + wy), np.maximum(py, py + wy)
     else:
         x2, y2 = px + m * tx, py + m * ty
@@ -253,10 +251,10 @@ def _arc_contact_lean(th, r, l0: float, m: float):
     neg_w = -w
     apart = (x_lo > 0.0) | (y_lo > 0.0) | (y_hi < neg_w)
     for ux, uy, low, span in ((tx, ty, px * tx + py * ty, m), (nx, ny, px * nx + py * ny, w)):
-        b1 = neg_w * uy  # the band's corner (0, -2 r) on the axis; (0, 0) is at 0
+        b1 = neg_w * uy  # the band's corners (0, 0) and (0, -2 r) on the axis; it runs on toward -x
         apart |= (ux >= 0.0) & (low > np.maximum(0.0, b1))
         apart |= (ux <= 0.0) & ((low + span) < np.minimum(0.0, b1))
-    return (np.abs(th) >= _FULL_TURN) | ~apart
+    return apart
 
 
 def _arc_contact_float(th: float, r: float, l0: float, m: float) -> bool:
@@ -319,22 +317,7 @@ def arc_contact(theta_rad, radius_mm, l0_mm, stub_mm=0.0) -> np.ndarray:
     th, r, l0, m = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (theta_rad, radius_mm, l0_mm,
                                                                                     stub_mm)))
     inside = np.isnan(m)
-    m = np.where(inside, 0.0, m)
-    half = 0.5 * th
-    chord = l0 * np.sinc(half / math.pi)
-    px, py = chord * np.cos(half), chord * np.sin(half)  # the tip (fabric side)
-    tx, ty = np.cos(th), np.sin(th)  # tangent there; the tube side is (ty, -tx)
-    nx, ny = ty, -tx
-    w = 2.0 * r
-    cx = np.stack([px, px + w * nx, px + m * tx, px + m * tx + w * nx])
-    cy = np.stack([py, py + w * ny, py + m * ty, py + m * ty + w * ny])
-    apart = (cx.min(axis=0) > 0.0) | (cy.min(axis=0) > 0.0) | (cy.max(axis=0) < -w)
-    for ux, uy, low, span in ((tx, ty, px * tx + py * ty, m), (nx, ny, px * nx + py * ny, w)):
-        b0, b1 = 0.0, -w * uy  # the band's corners (0, 0) and (0, -2 r) on the axis; it runs on toward -x
-        b_lo = np.where(ux > 0.0, -np.inf, np.minimum(b0, b1))
-        b_hi = np.where(ux < 0.0, np.inf, np.maximum(b0, b1))
-        apart |= (low > b_hi) | (low + span < b_lo)
-    return (np.abs(th) >= _FULL_TURN) | (~apart & ~inside)
+    return (np.abs(th) >= _FULL_TURN) | (~_apart(th, r, l0, np.where(inside, 0.0, m)) & ~inside)
 
 
 _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
