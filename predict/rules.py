@@ -287,14 +287,12 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     for act in analysis.actuators:  # a segment without a sleeve is skipped by _actuator_findings (EA201 reports it)
         key = (act.spec.model.calibration, act.bend_pieces(),
                tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
-        got = shared.get(key)
-        if got is None:
-            shared[key] = got = [_actuator_findings(act, analysis, settings), None]
-            found += got[0]
-        elif got[0]:
-            if got[1] is None:
-                got[1] = _fields(got[0])
-            found += _for_actuator(got[1], act.name)
+        if key in shared:
+            found += _for_actuator(shared[key], act.name)
+        else:
+            made = _actuator_findings(act, analysis, settings)
+            shared[key] = _fields(made)
+            found += made
     return sort_findings(found)
 
 
