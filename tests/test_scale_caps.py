@@ -107,3 +107,33 @@ def test_report_tables_show_identical_actuators_once_and_at_most_the_column_cap(
     assert f"<th>A{REPORT_MAX_COLUMNS - 1}</th>" in html and f"<th>A{REPORT_MAX_COLUMNS}</th>" not in html
     assert f"the first {REPORT_MAX_COLUMNS} of 150 shown (report.json has every one)" in html
     assert '"name": "A149"' in report_json(data)
+
+
+def test_label_placer_index_counts_what_a_full_scan_counts():
+    """The placer's obstacle index (cells over the frame) answers every query as a scan of every obstacle
+    does: random boxes, polylines (long and short, some wider than the index's cells) and placed labels."""
+    import numpy as np
+
+    from embroact.export.pictures.labels import Box, Placer, _segments_hit
+
+    rng = np.random.default_rng(7)
+    placer = Placer(Box(0.0, 0.0, 400.0, 300.0), margin=0.5)
+    boxes, polylines = [], []
+    for _ in range(60):
+        x, y = rng.uniform(-20, 420), rng.uniform(-20, 320)
+        b = Box(x, y, x + rng.uniform(0, 30), y + rng.uniform(0, 10))
+        placer.block_box(b)
+        boxes.append(b.grown(0.5))
+    for k in range(40):
+        pts = np.cumsum(rng.normal(0.0, 40.0 if k % 4 == 0 else 3.0, (int(rng.integers(1, 60)), 2)), axis=0) + 150
+        placer.block_polyline(pts)
+        polylines.append(np.vstack([pts, pts]) if len(pts) == 1 else pts)
+    for k in range(80):
+        placer.place(f"L{k}", tuple(rng.uniform(0, 400, 2)), 6.0, gap=1.0)
+    segs = np.vstack([np.hstack([p[:-1], p[1:]]) for p in polylines])
+    for _ in range(300):
+        x, y = rng.uniform(-30, 430), rng.uniform(-30, 330)
+        q = Box(x, y, x + rng.uniform(0, 60), y + rng.uniform(0, 20))
+        scan = sum(q.overlaps(b) for b in boxes) + 10_000 * sum(q.overlaps(lab.box.grown(0.5)) for lab in placer.labels)
+        scan += _segments_hit(segs, q.grown(0.5)) + (0 if placer.frame.contains(q) else 100_000_000)
+        assert placer.collisions(q) == scan

@@ -24,6 +24,7 @@ False
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,6 +41,9 @@ _DIRECTIONS = ((1, 0), (0, -1), (0, 1), (-1, 0), (1, -1), (1, 1), (-1, -1), (-1,
 _RINGS = (1.0, 2.0, 4.0, 7.0, 11.0, 16.0)
 # A collision with another label or a step outside the frame costs more than any number of marks crossed.
 _LABEL_WEIGHT, _FRAME_WEIGHT = 10_000, 100_000_000
+# The obstacle index: the frame's longer side in this many cells; an obstacle spanning more cells than
+# _WIDE_CELLS is checked by every query instead; a polyline is indexed in runs of _RUN segments.
+_GRID_CELLS, _WIDE_CELLS, _RUN = 64, 64, 16
 
 
 @dataclass(frozen=True, slots=True)
@@ -224,6 +228,54 @@ def _segments_hit(segs: np.ndarray, box: Box) -> int:
     return int(np.count_nonzero(ok & (lo <= hi)))
 
 
+class _Grid:
+    """Obstacles bucketed by the square cells their bounding boxes touch, so a query reads only its neighbours.
+
+    Cells are closed on both sides (a box ending on a cell edge is in both cells), so every obstacle whose
+    bounding box touches a query box (edges included) is returned: a query's answer is a superset of the
+    obstacles that can overlap it, and the callers' counts are those of a full scan.
+    """
+
+    def __init__(self, frame: Box) -> None:
+        self._cell = max(frame.x1 - frame.x0, frame.y1 - frame.y0) / _GRID_CELLS or 1.0
+        self._buckets: dict[tuple[int, int], list[int]] = {}
+        self._wide: list[int] = []
+        self.items: list = []
+
+    def _span(self, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int, int, int] | None:
+        """The cell range of a bounding box, or None when it is too wide (or not finite) to bucket."""
+        if not all(map(math.isfinite, (x0, y0, x1, y1))):
+            return None
+        c = self._cell
+        i0, j0, i1, j1 = math.floor(x0 / c), math.floor(y0 / c), math.floor(x1 / c), math.floor(y1 / c)
+        return None if (i1 - i0 + 1) * (j1 - j0 + 1) > _WIDE_CELLS else (i0, j0, i1, j1)
+
+    def add(self, bbox: tuple[float, float, float, float], item) -> None:
+        """Keep ``item`` under its bounding box (x0, y0, x1, y1)."""
+        k = len(self.items)
+        self.items.append(item)
+        span = self._span(*bbox)
+        if span is None:
+            self._wide.append(k)
+            return
+        i0, j0, i1, j1 = span
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                self._buckets.setdefault((i, j), []).append(k)
+
+    def near(self, box: Box) -> list:
+        """Every item whose bounding box may touch ``box`` (each once)."""
+        span = self._span(box.x0, box.y0, box.x1, box.y1)
+        if span is None:
+            return self.items
+        i0, j0, i1, j1 = span
+        found = set(self._wide)
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                found.update(self._buckets.get((i, j), ()))
+        return [self.items[k] for k in sorted(found)]
+
+
 class Placer:
     """Places labels one after another inside ``frame``, each clear of what came before.
 
@@ -246,9 +298,23 @@ class Placer:
     def __init__(self, frame: Box, *, margin: float = 0.0) -> None:
         self.frame = frame
         self.margin = margin
-        self._boxes: list[Box] = []
-        self._segments: list[np.ndarray] = []
+        self._boxes = _Grid(frame)
+        self._label_boxes = _Grid(frame)
+        self._segments = _Grid(frame)
         self.labels: list[Label] = []
+
+    def _keep_box(self, grid: _Grid, box: Box) -> None:
+        grid.add((box.x0, box.y0, box.x1, box.y1), box)
+
+    def _keep_segments(self, segs: np.ndarray) -> None:
+        """Index ``segs`` (n x 4) in runs of consecutive segments, each under its bounding box."""
+        xs, ys = segs[:, 0::2], segs[:, 1::2]
+        starts = np.arange(0, len(segs), _RUN)
+        lo_x, hi_x = np.minimum.reduceat(xs.min(axis=1), starts), np.maximum.reduceat(xs.max(axis=1), starts)
+        lo_y, hi_y = np.minimum.reduceat(ys.min(axis=1), starts), np.maximum.reduceat(ys.max(axis=1), starts)
+        for k, start in enumerate(starts.tolist()):
+            self._segments.add((float(lo_x[k]), float(lo_y[k]), float(hi_x[k]), float(hi_y[k])),
+                               segs[start:start + _RUN])
 
     def block_box(self, box: Box) -> None:
         """Keep labels off ``box`` (a mark, a legend, a title).
@@ -265,7 +331,7 @@ class Placer:
         >>> placer.collisions(Box(45, 22, 47, 24))
         1
         """
-        self._boxes.append(box.grown(self.margin))
+        self._keep_box(self._boxes, box.grown(self.margin))
 
     def block_polyline(self, points) -> None:
         """Keep labels off the polyline through ``points`` (n x 2, the picture's units).
@@ -286,7 +352,7 @@ class Placer:
         if len(pts) == 1:
             pts = np.vstack([pts, pts])
         if len(pts) >= 2:
-            self._segments.append(np.hstack([pts[:-1], pts[1:]]))
+            self._keep_segments(np.hstack([pts[:-1], pts[1:]]))
 
     def block_segments(self, segments) -> None:
         """Keep labels off the segments (n x 4: x0, y0, x1, y1).
@@ -305,7 +371,7 @@ class Placer:
         """
         segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
         if len(segs):
-            self._segments.append(segs)
+            self._keep_segments(segs)
 
     def collisions(self, box: Box) -> int:
         """A cost of ``box``: obstacles it touches (boxes, segments), far more for a label or leaving the frame.
@@ -326,11 +392,17 @@ class Placer:
         >>> placer.collisions(Box(0, 0, 5, 5)), placer.collisions(Box(-5, 0, 1, 1)) > 1000
         (0, True)
         """
-        n = sum(box.overlaps(b) for b in self._boxes)
-        n += _LABEL_WEIGHT * sum(box.overlaps(lab.box.grown(self.margin)) for lab in self.labels)
+        n = sum(box.overlaps(b) for b in self._boxes.near(box))
+        n += _LABEL_WEIGHT * sum(box.overlaps(b) for b in self._label_boxes.near(box))
         grown = box.grown(self.margin)
-        n += sum(_segments_hit(s, grown) for s in self._segments)
+        runs = self._segments.near(grown)
+        n += _segments_hit(np.concatenate(runs), grown) if runs else 0
         return n + (0 if self.frame.contains(box) else _FRAME_WEIGHT)
+
+    def _keep_label(self, label: Label) -> Label:
+        self.labels.append(label)
+        self._keep_box(self._label_boxes, label.box.grown(self.margin))
+        return label
 
     def _candidates(self, text, anchor_xy, font_size, gap, directions, rings=_RINGS):
         ax, ay = anchor_xy
@@ -386,9 +458,7 @@ class Placer:
             for x, y, anchor in self._candidates(text, anchor_xy, font_size, gap, directions, rings=(1.0,)):
                 box = text_box(text, x, y, font_size, anchor)
                 if self.collisions(box) == 0:
-                    label = Label(text, x, y, anchor, box, 0)
-                    self.labels.append(label)
-                    return label
+                    return self._keep_label(Label(text, x, y, anchor, box, 0))
         return self.place(text, points[0], font_size, gap=gap)
 
     def place(self, text: str, anchor_xy, font_size: float, *, gap: float, directions=_DIRECTIONS) -> Label:
@@ -428,5 +498,4 @@ class Placer:
                 if n == 0:
                     break
         assert best is not None  # there is always a candidate
-        self.labels.append(best)
-        return best
+        return self._keep_label(best)
