@@ -211,23 +211,132 @@ def _contact_free_below(l0: float, w: float, m: float) -> float:
 
 def _coiled_states(th, a, top, r, l0, stub):
     """:func:`arc_contact` of one model's states (``l0`` and ``stub`` one value each; ``top = max(a)``), or None
-    where no state touches; the contact test runs only on the states :func:`_contact_free_below` cannot clear
-    (the straight state never touches: its stub points away along +x)."""
-    if np.size(stub) != 1:
+    where no state touches. The contact test runs only on the
+    states the bounds cannot decide: below :func:`_contact_free_below` (and, without a stub, the tighter end of
+    :func:`_contact_bounds`) they are apart, between :func:`_contact_bounds`' touching ends they touch (the
+    straight state never touches: its stub points away along +x)."""
+    if not (stub is None or isinstance(stub, float)) and np.size(stub) != 1:
         return arc_contact(th, r, l0, stub)
     m = math.nan if stub is None else stub if isinstance(stub, float) else np.asarray(stub).item()
-    l0 = l0 if isinstance(l0, float) else np.asarray(l0).item()
     free = max(_contact_free_below(l0, 2.0 * float(r.max()), m), _SMALLEST)
     if top < free:
         return None
     if m != m:
         return arc_contact(th, r, l0, m)
-    near = a >= free
-    if near.all():
-        return (a >= _FULL_TURN) | ~_apart(th, r, l0, m)
-    out = np.zeros(a.shape, dtype=bool)
-    out[near] = (a[near] >= _FULL_TURN) | ~_apart(th[near], r[near], l0, m)
+    rn = r[a >= free]
+    w_lo, w_hi = 2.0 * float(rn.min()), 2.0 * float(rn.max())
+    below, start, end = math.inf, -math.inf, math.inf
+    hi, lo = float(th.max()), float(th.min())
+    for negative in (n for n, on in ((False, hi >= free), (True, -lo >= free)) if on):  # the ways states bend
+        b, s, e = _contact_bounds(l0, w_lo, w_hi, m, negative, free)
+        below, start, end = min(below, b), max(start, s), min(end, e)
+    if not start <= end:  # no sure contact: every state from ``below`` to the full turn takes the test
+        start = end = _FULL_TURN
+    out = a >= start  # past a full turn too
+    test = (a >= below) & (a < start) if below < start else np.zeros(a.shape, dtype=bool)
+    if top > end:
+        test |= (a > end) & (a < _FULL_TURN)
+    at = np.flatnonzero(test)
+    if at.size <= _FLOAT_TESTS:
+        for k in at.tolist():
+            out.flat[k] = _arc_contact_float(th.item(k), r.item(k), l0, m)
+    else:
+        out[test] = ~_apart(th[test], r[test], l0, m)
     return out
+
+
+#: At most this many states of one model take the contact test on floats (:func:`_arc_contact_float`); more
+#: take it on arrays.
+_FLOAT_TESTS = 6
+_THREE_QUARTERS = 1.5 * math.pi
+
+
+def _contact_bounds(l0: float, w_lo: float, w_hi: float, m: float, negative: bool, free: float):
+    """(below, start, end) [rad] for one arc of length ``l0`` bending one way (``negative``), its band ``w = 2 r``
+    in ``[w_lo, w_hi]``, stub ``m`` (not NaN), ``free`` from :func:`_contact_free_below`: every bend ``a = |theta|``
+    in ``[free, below)`` is apart and every one in ``[start, end]`` touches (:func:`arc_contact`); the others
+    need the test (``start`` inf: no sure contact).
+
+    With ``q(a) = l0 (1 - cos a)/a`` (``|py|`` of the tip; ``q`` falls on ``[pi, 2 pi]``) and ``a`` in
+    ``[3 pi/2, 2 pi)``, where ``cos a >= 0``:
+
+    * apart (no stub, from ``free >= pi/2`` on): up to ``3 pi/2`` a positive bend's tip and tube-side corner
+      lie above the band (``q >= 2 l0/(3 pi)`` there, the corner higher), a negative bend's below it while
+      ``l0/a > w`` (the corner's ``y + w = -(1 - cos a)(l0/a - w)``, the tip lower); from ``3 pi/2`` on a
+      negative bend's corner lies below its tip, so both lie below the band while ``q > w``, and a positive
+      bend's tip and corner lie above it while ``q > w cos a`` (``w cos a - q`` rises);
+    * touching (any stub): a point of the stub's rectangle inside the band ``x < 0, -w < y < 0`` leaves no
+      separating axis: a negative bend's tip ``(l0 sin(a)/a, -q)`` once ``q < w``, a positive bend's
+      tube-side corner ``(sin(a) (l0/a + w), q - w cos a)`` once ``w cos a > q``; ``end`` is where it nears
+      the band's corner ``(0, 0)`` (``x`` rises to 0, ``q`` and ``q + w (1 - cos a)`` fall to it).
+
+    A wider band is a superset of the band and of the rectangle, so ``w_hi`` bounds the apart side and ``w_lo``
+    the touching one. Each inequality holds with a margin of ``1e-9`` of the lengths (over the round-off of
+    :func:`arc_contact`) and is monotone on the range, so checking it at the ends makes the claim rigorous;
+    Newton's steps only find the ends.
+    """
+    size = _BOUND_MARGIN * (l0 + m + w_hi)
+    if negative:
+        def edge(a, w):  # q(a) - w and its slope
+            c, s = math.cos(a), math.sin(a)
+            return l0 * (1.0 - c) / a - w, l0 * (a * s - 1.0 + c) / (a * a)
+
+        def apart(a):
+            return l0 * (1.0 - math.cos(a)) / a > w_hi + size
+
+        def touches(a):
+            q = l0 * (1.0 - math.cos(a)) / a
+            return size < q < w_lo - size and l0 * math.sin(a) / a < -size
+
+        guess = _FULL_TURN - math.sqrt(4.0 * math.pi * w_lo / l0)
+        close = 2.0 * math.sqrt(4.0 * math.pi * size / l0) + 4.0 * math.pi * size / l0
+    else:
+        def edge(a, w):  # w cos(a) - q(a) and its slope
+            c, s = math.cos(a), math.sin(a)
+            return w * c - l0 * (1.0 - c) / a, -w * s - l0 * (a * s - 1.0 + c) / (a * a)
+
+        def apart(a):
+            c = math.cos(a)
+            return w_hi * c - l0 * (1.0 - c) / a < -size
+
+        def touches(a):
+            c, s = math.cos(a), math.sin(a)
+            q = l0 * (1.0 - c) / a
+            return w_lo * c - q > size and s * (l0 / a + w_lo) < -size and q + w_lo * (1.0 - c) > size
+
+        rad = l0 / _FULL_TURN
+        guess = _FULL_TURN - math.acos(rad / (rad + w_lo))
+        close = 2.0 * math.sqrt(size / (0.5 * rad + 0.5 * w_lo)) + 2.0 * size / (rad + w_lo)
+    end = _FULL_TURN - close
+    edge_lo = start = _newton_edge(edge, w_lo, guess)
+    for step in (1e-7, 1e-5, 1e-3):  # the first point past the edge that checks
+        if touches(start):
+            break
+        start += step
+    if not (start < end and touches(start) and touches(end)):
+        start = math.inf
+    below = free
+    if m == 0.0 and free >= 0.5 * math.pi and (free >= _THREE_QUARTERS or (
+            l0 / _THREE_QUARTERS > w_hi + size if negative else 2.0 * l0 / (3.0 * math.pi) > size)):
+        a = (edge_lo if w_hi == w_lo else _newton_edge(edge, w_hi, edge_lo)) - 1e-7
+        if free < a and apart(a):
+            below = a
+    return below, start, end
+
+
+def _newton_edge(edge, w, a):
+    """Where ``edge(a, w)`` (value, slope) is 0 on ``[3 pi/2, 2 pi]``, by at most six Newton steps from ``a``, kept
+    in the range (the caller checks what it claims of the result)."""
+    a = min(max(a, _THREE_QUARTERS), _FULL_TURN)
+    for _ in range(6):
+        f, df = edge(a, w)
+        if df == 0.0:
+            break
+        step = f / df
+        a = min(max(a - step, _THREE_QUARTERS), _FULL_TURN)
+        if abs(step) < 1e-10:
+            break
+    return a
 
 
 def _apart(th, r, l0, m):
@@ -372,10 +481,11 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
         return _limited(st, _exceeded(th, l, r, l0, stub=stub_mm)).astype(np.int8)
     # one model's states: reductions first, then only the flags some state can raise (the same flags)
     a = np.abs(th)
-    width = 2.0 * r * a
+    half = r * a  # 2 r a > l0 exactly when r a > l0/2 (scaling by 2 is exact)
+    l0 = l0.item()
     top = float(a.max())
     coiled = _coiled_states(th, a, top, r, l0, stub_mm) if top > 0.5 * math.pi else None
-    kinked = width > l0 if width.max() > l0 else None
+    kinked = half > 0.5 * l0 if half.max() > 0.5 * l0 else None
     over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
     out = np.array(st, dtype=np.int8)  # a new array in every case
     if coiled is None and kinked is None and over is None:
@@ -383,8 +493,8 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     for flag, code in ((over, _LIMIT_CODES[2]), (kinked, _LIMIT_CODES[1]), (coiled, _LIMIT_CODES[0])):
         if flag is not None:
             out[flag] = code
-    kept = (st == _KEPT[0]) | (st == _KEPT[1])
-    if kept.any():
+    if int(st.max()) >= min(_KEPT):  # FAILED and OUT_OF_DOMAIN keep their status
+        kept = (st == _KEPT[0]) | (st == _KEPT[1])
         out[kept] = st[kept]
     return out
 

@@ -216,6 +216,65 @@ def test_contact_bound_clears_only_bends_short_of_contact():
             assert not arc_contact(grid, r, l0, m).any(), (l0, r, m, free)
 
 
+def test_contact_bounds_hold_on_both_sides_of_the_first_contact():
+    """The closed-form ends that spare a curve's states the contact test: every bend from the free bound up to
+    ``below`` is apart and every one in ``[start, end]`` touches, for any band between the narrowest and the
+    widest, with a stub and without; without a stub both ends lie within 0.01 deg of the 50-digit first
+    contact (l0 = 100 mm, r = 2.58 mm: 315.70 deg negative, 320.9 deg positive, cos t = R/(R + 2 r))."""
+    import random
+
+    from embroact.predict.validity import _contact_bounds, _contact_free_below, arc_contact
+
+    with mp.workdps(30):
+        neg = float(mp.findroot(lambda t: L0 * (1 - mp.cos(t)) - 2 * 2.58 * t, 5.5))
+        pos = float(mp.findroot(lambda t: mp.cos(t) - (L0 / t) / (L0 / t + 2 * 2.58), 5.6))
+    w = 2 * 2.58
+    for negative, first in ((True, neg), (False, pos)):
+        below, start, end = _contact_bounds(L0, w, w, 0.0, negative, _contact_free_below(L0, w, 0.0))
+        assert below < first < start and start - below < math.radians(0.01)
+        assert end < 2 * math.pi and 2 * math.pi - end < math.radians(0.02)
+    rng = random.Random(5)
+    for _ in range(200):
+        l0, r, m = rng.uniform(5.0, 400.0), rng.uniform(0.3, 9.0), rng.choice([0.0, rng.uniform(0.0, 60.0)])
+        w_lo, w_hi = 2 * r * rng.uniform(0.9, 1.0), 2 * r
+        free = _contact_free_below(l0, w_hi, m)
+        for negative in (True, False):
+            below, start, end = _contact_bounds(l0, w_lo, w_hi, m, negative, free)
+            sign = -1.0 if negative else 1.0
+            band = rng.uniform(w_lo, w_hi) / 2
+            if below > free:
+                grid = np.linspace(free, below, 401)[:-1]
+                assert not arc_contact(sign * grid, band, l0, m).any(), (l0, r, m, negative)
+            if start <= end:
+                grid = np.linspace(start, end, 401)
+                assert arc_contact(sign * grid, band, l0, m).all(), (l0, r, m, negative)
+
+
+def test_a_branchs_limits_equal_the_limits_of_every_state():
+    """apply_limits on states of one bending direction through the contact (the bounds' fast path, a few states
+    tested on floats or many on arrays) equals limit_flags state by state, also at the floats next to each
+    contact angle and just short of the full turn."""
+    import random
+
+    rng = random.Random(13)
+    for _ in range(300):
+        l0, r0, stub = rng.uniform(10.0, 300.0), rng.uniform(0.5, 8.0), rng.choice([0.0, 30.0, None])
+        neg = rng.random() < 0.5
+        sign = -1.0 if neg else 1.0
+        edge = math.radians(coil_angle_deg(l0, r0, negative=neg, stub_mm=0.0 if stub is None else stub))
+        th = sign * np.concatenate([np.linspace(0.0, 2 * math.pi, rng.choice([5, 60, 400])),
+                                    [edge, math.nextafter(edge, 0.0), math.nextafter(edge, 7.0),
+                                     math.nextafter(2 * math.pi, 0.0), 2 * math.pi - 1e-9, 2 * math.pi + 0.1]])
+        r = r0 * np.array([rng.choice([1.0, rng.uniform(0.97, 1.0)]) for _ in th])
+        length = l0 * (1.0 + 0.05 * np.abs(th))
+        st = np.full(th.size, int(Status.BENDING), dtype=np.int8)
+        got = apply_limits(st, th, length, r, l0, stub_mm=stub)
+        f = limit_flags(th, length, r, l0, stub_mm=math.nan if stub is None else stub)
+        want = np.where(f.coiled, Status.COILED, np.where(f.kinked, Status.KINKED,
+                                                           np.where(f.overstretched, Status.OVERSTRETCHED, st)))
+        assert got.tolist() == want.tolist(), (l0, r0, stub, neg)
+
+
 def test_one_models_limits_equal_the_limits_of_every_state():
     """apply_limits on one model's states (the bound, the contact test only where it cannot clear) gives the
     statuses limit_flags gives state by state, also at the floats next to each contact angle."""
