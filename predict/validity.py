@@ -160,8 +160,17 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
     (None: an arc inside a chain); one state on floats with ``xp=SCALAR``, where the bound
     :func:`_contact_free_below` spares the contact test of a state far from contact."""
     stub = math.nan if stub is None else stub
-    if xp is np:
-        return arc_contact(th, r, l0, stub)
+    if xp is np:  # the contact test on the states past a quarter turn only (as below, and one model's states)
+        near = a > 0.5 * math.pi
+        if near.all():
+            return arc_contact(th, r, l0, stub)
+        shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
+        out = np.zeros(shape, dtype=bool)
+        if near.any():
+            near = np.broadcast_to(near, shape)
+            out[near] = arc_contact(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)[near]
+                                      for v in (th, r, l0, stub)))
+        return out
     # only past a quarter turn can it reach back
     return a > 0.5 * math.pi and a >= _contact_free_below(l0, 2.0 * r, stub) and _arc_contact_float(th, r, l0, stub)
 
