@@ -93,7 +93,7 @@ from . import solvers
 from .inflation import KPA_PER_MPA
 from .floats import SCALAR
 from .kinds import MODEL_KINDS, model_kind
-from .lean import LeanTable, lean_table, solve_rows
+from .lean import RISE_M, LeanTable, lean_table, solve_rows, solve_to_fold
 from .onecurve import FLOAT_PATH_MAX, free_tube_radius, one_curve, one_curve_floats, trace_outcome, tube_radius_of
 from .status import Status, status_names
 from .tubelaws import check_tube_law, pressure_kpa, transition_pressure_kpa
@@ -417,7 +417,9 @@ def _rate_fn(geo: _m.Geometry, energy: str, deriv: str):
 def _slope_fn(geo, energy, deriv):
     """slope(theta, rows=None) = (E'' V' - E' V'') * direction, which has the sign of dP/dtheta
     along the branch: central differences of the smooth rates (E', V' have no pole at
-    lock-up; P has)."""
+    lock-up; P has); for the stable analytic rates exact to round-off (:func:`_stretch_slope_fn`)."""
+    if (energy, deriv) == _FAST[:2]:
+        return _stretch_slope_fn(geo)
     rate = _rate_fn(geo, energy, deriv)
     direction = np.sign(_m.lock_theta(geo))
     scale = geo.l0 / (2.0 * geo.r0)
@@ -427,6 +429,28 @@ def _slope_fn(geo, energy, deriv):
         d, s = (direction, scale) if rows is None else (direction[rows, 0], scale[rows, 0])
         dde, ddv = solvers.derivative(lambda t: np.stack(rate(t, rows)), theta, scale=s, method="central")
         return (dde * dv - de * ddv) * d
+
+    return slope
+
+
+def _stretch_slope_fn(geo):
+    """slope(theta, rows=None) of the stable analytic rates, as :func:`_slope_fn`, exact to round-off:
+    ``(F'' V' - F' V'') * direction`` in the stretch (:meth:`~embroact.predict.model.StretchRates.slope`),
+    which has the sign of dP/dtheta along the branch (theta rises with the stretch) and, like the rates, no
+    pole at lock-up. So a fold lies where P's slope is 0, not where the round-off of a difference quotient
+    puts it (up to 4e-10 of its angle away, depending on the grid that bracketed it)."""
+    rates = _m.StretchRates.of(geo)
+    direction = np.sign(_m.lock_theta(geo))
+    single = geo.l0.shape[0] == 1
+
+    def slope(theta, rows=None):
+        sub = rows is not None and not single
+        k, d = (_m.StretchRates.of(geo.take(rows)), direction[rows]) if sub else (rates, direction)
+        flat = theta.ndim == 1
+        th = theta if not flat else theta[None, :] if single else theta[:, None]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            s = k.slope(k.m_of(th)) * d
+        return s.ravel() if flat else s
 
     return slope
 
@@ -457,6 +481,37 @@ def _lean_rows(geo, t, full, kind, energy, deriv, rtol, later=None):
         keep = settled[rows]
         theta[rows], status[rows] = np.where(keep, theta[rows], th), np.where(keep, Status.BENDING, st)
     return theta, status
+
+
+def _fold_later(models, blocks, later, size, rtol):
+    """The entries the lean solve left in ``blocks`` (as :func:`_trace_later` takes them) on designs of
+    ``s0 = 0`` whose nodes end at ``RISE_M``, solved up to their fold or UNSTABLE at it
+    (:func:`~embroact.predict.lean.solve_to_fold`), ``size`` rows at a time; returns ``later`` without them
+    (what is left: the trace inverse's)."""
+    jobs = [(b, r, keep) for b, (rows, settled) in enumerate(later) for r, keep in zip(rows, settled)
+            if models[blocks[b][0] + r].beta0_deg == 0.0]
+    solved = {}
+    for k in range(0, len(jobs), size):
+        part = jobs[k:k + size]
+        geo = _geometry([models[blocks[b][0] + r] for b, r, _ in part])
+        full, _ = _branch_end(geo)
+        m_end = _m.StretchRates.of(geo).m_of(full)
+        t = np.array([np.where(keep, 0.0, blocks[b][3][r]) for b, r, keep in part])
+        th, done, unstable = solve_to_fold(geo, np.where(m_end > RISE_M, t, 0.0), m_end, rtol=rtol,
+                                           atol=rtol * THETA_FLOOR_RAD)
+        for j, (b, r, keep) in enumerate(part):
+            mine = done[j] | unstable[j]
+            if mine.any():
+                blocks[b][4][r] = np.where(mine, th[j], blocks[b][4][r])
+                blocks[b][5][r] = np.where(unstable[j], Status.UNSTABLE, np.where(done[j], Status.BENDING,
+                                                                                   blocks[b][5][r]))
+                solved[b, r] = keep | mine
+    out = []
+    for b, (rows, settled) in enumerate(later):
+        settled = np.array([solved.get((b, r), keep) for r, keep in zip(rows, settled)]).reshape(settled.shape)
+        left = ~settled.all(axis=1)
+        out.append((rows[left], settled[left]))
+    return out
 
 
 def _trace_later(models, blocks, later, size, rtol):
@@ -712,6 +767,8 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
             left.append(mine)
         later = [(np.concatenate([r for r, _ in mine]), np.concatenate([s for _, s in mine]))
                  if mine else (np.empty(0, dtype=np.intp), np.empty((0, p.size), dtype=bool)) for mine in left]
+        if any(rows.size for rows, _ in later):
+            later = _fold_later(models, blocks, later, size, rtol)
         if any(rows.size for rows, _ in later):
             _trace_later(models, blocks, later, size, rtol)
         arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in

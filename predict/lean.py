@@ -60,10 +60,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import model as _m
+from . import solvers
 from .floats import SCALAR
 
-__all__ = ["LeanTable", "lean_table", "solve_lean", "solve_lean_scalar", "solve_rows", "LEVELS", "LEVEL_POINTS", "STENCIL",
-           "RISE_M"]
+__all__ = ["LeanTable", "lean_table", "solve_lean", "solve_lean_scalar", "solve_rows", "solve_to_fold", "LEVELS",
+           "LEVEL_POINTS", "STENCIL", "RISE_M", "FOLD_BEFORE_M", "FOLD_NODES"]
 
 #: Halvings of the served span below the full one (the finest level spans 1/1024 of it).
 LEVELS = 10
@@ -74,6 +75,10 @@ STENCIL = (-1.5, -0.5, 0.5, 1.5)
 _SPACING = 1.0 / 64.0
 #: The nodes reach at most the stretch m = this (a zigzag's P rises up to m = 0.828 at least).
 RISE_M = 0.8
+#: A design of s0 = 0 folds before this stretch (at m 0.828-0.954: :func:`solve_to_fold`).
+FOLD_BEFORE_M = 0.96
+#: Nodes of the rise from RISE_M up to such a design's fold (:func:`solve_to_fold`).
+FOLD_NODES = 17
 
 _HALF = (LEVEL_POINTS - 1) // 2
 #: The nodes as fractions of the span, rising: the finest level, then the upper half of each coarser one.
@@ -87,6 +92,7 @@ _KW = _SPACING * np.append(np.diff(_FRACTIONS), _FRACTIONS[-1] - _FRACTIONS[-2])
 _KW_LIST = _KW.tolist()
 _LAST = _FRACTIONS.size - 1
 _Z = np.array(STENCIL)[:, None]
+_FOLD_FRACTIONS = np.linspace(0.0, 1.0, FOLD_NODES)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -473,3 +479,95 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
         theta = rates.theta(ms, np)
     ignored = t <= 0.0
     return np.where(ignored, 0.0, theta), (settled & served) | ignored
+
+
+def solve_to_fold(geo: _m.Geometry, t, m_end, *, rtol: float, atol: float):
+    """The targets of designs with ``s0 = 0`` above their nodes (``m = RISE_M``), up to the fold of P (what
+    ``sweep`` runs before the trace inverse): ``(theta [rad], settled, unstable)``, (n, k).
+
+    Such a design's P depends on ``m`` and ``c/r0^2`` alone and first folds at ``m`` 0.828-0.954
+    (:data:`RISE_M`), so the fold is the root of the slope (:meth:`~embroact.predict.model.StretchRates.slope`,
+    exact to round-off) in ``[RISE_M, min(FOLD_BEFORE_M, m_end)]``, by Illinois regula falsi to round-off;
+    the rise up to it has :data:`FOLD_NODES` nodes, evenly spaced (each interval about 1/100 of the
+    stretches it serves), where a target is bracketed and polished as on the nodes below (:func:`solve_rows`),
+    from the secant in ``w = sqrt(P(fold) - P)`` (m is smooth in w through the fold, not in P). A target at or above P at the fold is *unstable*: theta is the fold's. Which
+    targets are solved depends on their own value only: targets below the nodes' first pressure (the last of
+    :func:`solve_rows`' nodes), those not settled and the designs without a sign change of the slope there
+    (a branch that ends first) are neither settled nor unstable: the caller's trace inverse solves them.
+
+    Parameters
+    ----------
+    geo : Geometry
+        The designs, ``(n, 1)`` columns, ``s0 = 0``.
+    t : numpy.ndarray (n, k)
+        Targets P - P0 [MPa]; those <= 0 are ignored.
+    m_end : numpy.ndarray (n, 1)
+        The stretch at each branch's end.
+    rtol, atol : float
+        The tolerance of theta [rad].
+
+    Returns
+    -------
+    theta : numpy.ndarray (n, k)
+        Bend angle [rad] where settled or unstable (0 elsewhere).
+    settled, unstable : numpy.ndarray of bool (n, k)
+
+    Examples
+    --------
+    >>> from embroact.predict.model import Geometry, StretchRates
+    >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+    >>> rates = StretchRates.of(geo)
+    >>> p = rates.scale * rates(np.array([[0.81, 0.84]]))[0]  # P - P0 at m 0.81 and 0.84 (the fold: 0.8506)
+    >>> theta, settled, unstable = solve_to_fold(geo, np.append(p, 1.0)[None, :], np.array([[2.0]]),
+    ...                                          rtol=1e-10, atol=1e-22)
+    >>> bool(np.all(np.abs(rates.m_of(theta[:, :2]) / [0.81, 0.84] - 1.0) < 1e-12)), settled.tolist(), unstable.tolist()
+    (True, [[True, True, False]], [[False, False, True]])
+    """
+    n = t.shape[0]
+    theta = np.zeros(t.shape)
+    settled, unstable = np.zeros(t.shape, dtype=bool), np.zeros(t.shape, dtype=bool)
+    rates = _m.StretchRates.of(geo)
+    lo, hi = np.full((n, 1), RISE_M), np.minimum(m_end, FOLD_BEFORE_M)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        s_lo, s_hi = rates.slope(lo)[:, 0], rates.slope(hi)[:, 0]
+        rows = np.flatnonzero((s_lo > 0.0) & (s_hi < 0.0))
+        if rows.size == 0:
+            return theta, settled, unstable
+        geo = geo.take(rows)
+        rates, t, scale = _m.StretchRates.of(geo), t[rows], rates.scale[rows]
+
+        def slope(x, k):
+            return _m.StretchRates.of(geo.take(k)).slope(x[:, None])[:, 0]
+
+        fold = solvers.illinois(slope, lo[rows, 0], hi[rows, 0], s_lo[rows], s_hi[rows], rtol=solvers.FOLD_RTOL,
+                                atol=0.0)[:, None]
+        m = RISE_M + (fold - RISE_M) * _FOLD_FRACTIONS
+        f, v = rates(m)
+        p = f / v
+        tt = t / scale
+        top = (tt >= p[:, :1]) & (t > 0.0)  # above the nodes below: this table's
+        over = top & (tt >= p[:, -1:])
+        rises = np.all(p[:, 1:] > p[:, :-1], axis=1)[:, None]
+        r_e, c_e = np.nonzero(top & ~over & rises)
+        te = tt[r_e, c_e][:, None]  # the entries as (entries, 1) columns, as their designs' rates are
+        i = np.minimum(np.sum(p[r_e] <= te, axis=1) - 1, FOLD_NODES - 2)
+        # the start: the secant in w = sqrt(P(fold) - P), in which m runs straight through the fold
+        w = np.sqrt(p[:, -1:] - p)
+        (ma, wa), (mb, wb) = ([a[r_e, j][:, None] for a in (m, w)] for j in (i, i + 1))
+        x0 = ma + (mb - ma) * ((wa - np.sqrt(p[r_e, -1:] - te)) / (wa - wb))
+        d = np.minimum(_SPACING * (mb - ma), _SPACING * np.abs(x0))
+        ke = _m.StretchRates.of(geo.take(r_e))
+        r = []
+        for z in STENCIL:
+            fs, vs = ke(x0 + d * z)
+            r.append(fs - te * vs)
+        ms, ok = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / ke.theta_per_m)
+        out = np.zeros(t.shape)
+        out[r_e, c_e] = ke.theta(ms)[:, 0]
+        done = np.zeros(t.shape, dtype=bool)
+        done[r_e, c_e] = ok[:, 0]
+        fold_theta = rates.theta(fold)
+        over &= rises
+    theta[rows] = np.where(over, fold_theta, np.where(done, out, 0.0))
+    settled[rows], unstable[rows] = done, over
+    return theta, settled, unstable

@@ -720,6 +720,10 @@ def rate_fast(theta, geo: Geometry):
 
 
 # -- the stretch m: P without the constraint's theta-derivatives ---------------------------------
+#: Complex step of the stretch in :meth:`StretchRates.slope` (any tiny value: no cancellation).
+_STRETCH_STEP = 1e-30
+
+
 @dataclass(frozen=True, slots=True)
 class StretchRates:
     """dF/dm and dV/dm in the stretch ``m = (l - l0)/(2 l0) = A - 1``, scaled so that ``P - P0 = scale F'/V'``.
@@ -818,6 +822,29 @@ class StretchRates:
         f = (1.0 - (self.lam_k * u) * ia - (cos2 * self.inv_c0sq - 3.0) * ia2
              + 0.5 * ia2 * (m * (2.0 + m) - 0.5 * big_n + w) + self.c0sq * k * (d_tau + ks * k * tau))
         return f, 1.0 - self.s0sq * u * (2.0 + 3.0 * u)
+
+    def slope(self, m):
+        """``F'' V' - F' V''`` at stretches ``m`` (arrays; F'' and V'' by a complex step, exact to round-off): the
+        sign of dP/dm, zero at a fold of P, with no pole at lock-up (P has one).
+
+        Parameters
+        ----------
+        m : numpy.ndarray
+            Stretch ``(l - l0)/(2 l0)``, broadcast against the designs.
+
+        Returns
+        -------
+        numpy.ndarray
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.0, l0_mm=100.0, r0_mm=2.5, c_mm2=1.25, g_mpa=1.0, p0_mpa=0.1)
+        >>> k = StretchRates.of(geo)
+        >>> (k.slope(np.array([[0.5, 0.95]])) > 0.0).tolist()  # a zigzag's P rises, then folds near m = 0.9
+        [[True, False]]
+        """
+        f, v = self(m + 1j * _STRETCH_STEP)
+        return (f.imag * v.real - f.real * v.imag) * (1.0 / _STRETCH_STEP)
 
     def theta(self, m, xp=np):
         """The bend angle [rad] at stretches ``m``.

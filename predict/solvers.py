@@ -78,6 +78,9 @@ CUBIC_NEWTON_STEPS = 2
 NEWTON_STEPS = 6
 #: A branch is tabulated again up to its highest target when that lies within the first 1/ZOOM.
 ZOOM = 4
+#: Relative tolerance of a located fold at most (the root of the slope: Illinois converges superlinearly, so a
+#: few more steps put it at round-off, where the answers past it are, whatever grid bracketed it).
+FOLD_RTOL = 16 * EPS
 
 
 def derivative(f, x, *, scale, method: str):
@@ -347,13 +350,15 @@ def _tabulate(rate, theta_end, grid_points, pole_at_end):
 
 
 def _fold(rate, slope, grid, first_fall, folded, rtol, atol):
-    """(rows located, fold angle, P - P0 there): the root of the slope around each row's last rising point."""
+    """(rows located, fold angle, P - P0 there): the root of the slope around each row's last rising point
+    (to :data:`FOLD_RTOL` at least)."""
     lo = grid[folded, np.maximum(first_fall[folded] - 1, 0)]
     hi = grid[folded, first_fall[folded] + 1]
     s_lo, s_hi = slope(lo, folded), slope(hi, folded)
     ok = np.sign(s_lo) != np.sign(s_hi)
     sel = folded[ok]
-    t_fold = illinois(lambda x, k: slope(x, sel[k]), lo[ok], hi[ok], s_lo[ok], s_hi[ok], rtol=rtol, atol=atol)
+    t_fold = illinois(lambda x, k: slope(x, sel[k]), lo[ok], hi[ok], s_lo[ok], s_hi[ok], rtol=min(rtol, FOLD_RTOL),
+                      atol=atol)
     e, v = rate(t_fold, sel)
     return sel, t_fold, e / v
 

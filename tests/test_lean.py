@@ -144,6 +144,31 @@ def test_lean_curve_agrees_with_the_trace_inverse_of_sweep(m, p):
     assert np.all(np.abs(c.theta_deg - s.theta_deg[0]) <= (2e-10 + floor) * np.abs(s.theta_deg[0]) + 1e-12)
 
 
+@pytest.mark.parametrize("m", [design("zigzag", 7.0, g=2.7, p0=85.0), design("zigzag", 5.0, g=12.0, p0=0.0, l0=10.0)])
+def test_sweep_solves_a_zigzag_above_its_nodes_up_to_the_fold(m):
+    """Past the nodes' end (m = RISE_M) a sweep solves a zigzag's targets on its rise to the fold
+    (lean.solve_to_fold), and higher ones are UNSTABLE at the fold: angles from the 50-digit reference's P, and
+    the fold where the reference's P peaks (the old central-difference slope put it up to 4e-10 of its angle
+    off)."""
+    ref = ref_of(m)
+    br = C._branch(m, C.DEFAULT_TOLERANCES.model_rtol)
+    fold_deg, _ = lockup(m)
+    start = math.degrees(br.lean.rates.theta(RISE_M))
+    theta = np.radians(start + (fold_deg - start) * np.array([0.05, 0.3, 0.6, 0.8]))
+    p = np.array([float(ref.pressure(mp.mpf(float(t))) * 1000) for t in theta])
+    fold = mp.radians(mp.mpf(fold_deg))
+    p_fold = ref.pressure(fold)
+    p = np.append(p, [float(p_fold * 1000) * 1.001, 1e5])
+    s, c = sweep([m, m], p, limits=False), curve(m, p, limits=False)
+    assert s.status[1].tolist() == c.status.tolist() == [Status.BENDING] * 4 + [Status.UNSTABLE] * 2
+    np.testing.assert_allclose(np.radians(s.theta_deg[1, :4]), theta, rtol=1e-10)  # observed 5e-14
+    np.testing.assert_allclose(s.theta_deg[1], c.theta_deg, rtol=2e-10)  # curve's trace inverse: 2e-11
+    assert s.theta_deg[1, 4] == s.theta_deg[1, 5] == pytest.approx(fold_deg, rel=1e-14)
+    d = fold * mp.mpf("1e-7")  # P(fold +- d) = P(fold) - a d^2 +- P' d: P' d is < 1e-3 of a d^2
+    lo, hi = ref.pressure(fold - d), ref.pressure(fold + d)
+    assert lo < p_fold and hi < p_fold and abs(hi - lo) < 1e-3 * (p_fold - (lo + hi) / 2)
+
+
 def test_nodes_cover_each_scale_and_stop_short_of_the_zigzags_fold():
     m = design("zigzag", 7.0, g=2.7, p0=85.0)
     br = C._branch(m, 1e-10)
