@@ -459,26 +459,30 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
         p[:, -1] = np.where(np.ravel(pole_at_end & ~capped), np.inf, p[:, -1])
         rises = np.all(p[:, 1:] > p[:, :-1], axis=1)
         p = np.where(rises[:, None], p, _FRACTIONS)  # keys that rise whatever the row's P does
-        rows = np.arange(n)[:, None]
-        tt = t / rates.scale
-        keys = (rows + np.where(p < np.inf, p / (1.0 + p), 1.0)).ravel()  # P = inf at a pole: the row's end
-        flat = np.searchsorted(keys, (rows + tt / (1.0 + tt)).ravel(), side="right").reshape(t.shape) - 1
-        i = flat - rows * (_LAST + 1)
-        served = (i >= 0) & (i < _LAST) & rises[:, None] & (tt > floor / rates.scale)
-        at = rows * (_LAST + 1) + np.clip(i, 0, _LAST - 1)
+        # the targets > 0 only, as (entries, 1) columns with their designs' rates
+        row, col = np.nonzero(t > 0.0)
+        at_row = row[:, None]
+        tt = (t[row, col] / rates.scale[row, 0])[:, None]
+        keys = (np.arange(n)[:, None] + np.where(p < np.inf, p / (1.0 + p), 1.0)).ravel()  # P = inf at a pole
+        i = np.searchsorted(keys, at_row + tt / (1.0 + tt), side="right") - 1 - at_row * (_LAST + 1)
+        served = (i >= 0) & (i < _LAST) & rises[at_row] & (tt > floor[at_row, 0] / rates.scale[at_row, 0])
+        at = at_row * (_LAST + 1) + np.clip(i, 0, _LAST - 1)
         ma, mb = m.ravel()[at], m.ravel()[at + 1]
         fa, fb, va, vb = f.ravel()[at], f.ravel()[at + 1], v.ravel()[at], v.ravel()[at + 1]
         x0 = _start(ma, mb, fa, va, fb, vb, tt, False)
-        kh = np.abs(span) * _KW[np.clip(i, 0, _LAST - 1)]
+        kh = np.abs(span[at_row, 0]) * _KW[np.clip(i, 0, _LAST - 1)]
         d = np.minimum(kh, _SPACING * np.abs(x0))
+        mine = _m.StretchRates.of(geo.take(row))
         r = []
         for z in STENCIL:  # one point at a time: each array of the rates then stays in cache
-            fs, vs = rates(x0 + d * z, np)
+            fs, vs = mine(x0 + d * z, np)
             r.append(fs - tt * vs)
-        ms, settled = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / rates.theta_per_m)
-        theta = rates.theta(ms, np)
-    ignored = t <= 0.0
-    return np.where(ignored, 0.0, theta), (settled & served) | ignored
+        ms, settled = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / mine.theta_per_m)
+        theta = np.zeros(t.shape)
+        theta[row, col] = mine.theta(ms, np)[:, 0]
+    ok = np.ones(t.shape, dtype=bool)  # targets <= 0: ignored
+    ok[row, col] = (settled & served)[:, 0]
+    return theta, ok
 
 
 def solve_to_fold(geo: _m.Geometry, t, m_end, *, rtol: float, atol: float):
