@@ -325,13 +325,18 @@ def _stability(cfg: Config) -> dict:
     return {"summary": summary, "grid": grid}
 
 
-def _stitches(cfg: Config) -> dict:
-    return {
+def _stitches(cfg: Config, res: dict) -> None:
+    _log("stitches, files, command line:")
+    res["stitches"] = {
         "needle_rate": [stitch_bench.needle_rate(pt, cfg.long_path_mm) for pt in _PATTERNS],
         "cli": stitch_bench.cli_timings(cfg.cli_runs),
         "help_heavy_imports": stitch_bench.help_imports(),
         "long_design": stitch_bench.ten_metre(cfg.long_path_mm, cfg.long_path_runs),
     }
+    for r in res["stitches"]["needle_rate"]:
+        _log(f"  {r['pattern']}: {r['needle_points']} needle points on {r['length_mm']:g} mm in "
+             f"{r['time_s'] * 1e3:.1f} ms = {r['points_per_s']:.3g} points/s")
+    _log(f"  help over argparse {res['stitches']['cli']['help_over_argparse']:.3g}")
 
 
 def targets(res: dict) -> dict:
@@ -615,12 +620,7 @@ def run(cfg: Config, out_dir: Path) -> dict:
          f"designs: {b['speedup_auto']:.3g}x), angle err {b['angle_err_max_deg']:.2e} deg")
     _log("stability maps:")
     res["stability"] = _stability(cfg)
-    _log("stitches, files, command line:")
-    res["stitches"] = _stitches(cfg)
     run_sections(cfg, res, SECTIONS)
-    for r in res["stitches"]["needle_rate"]:
-        _log(f"  {r['pattern']}: {r['needle_points']} needle points on {r['length_mm']:g} mm in "
-             f"{r['time_s'] * 1e3:.1f} ms = {r['points_per_s']:.3g} points/s")
     res["targets"] = targets(res)
     res["elapsed_s"] = time.perf_counter() - t_start
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -678,7 +678,7 @@ def _inverse(cfg: Config, res: dict) -> None:
 
 
 #: The sections :func:`run_sections` can run again into an existing results.json (``run.py --only``).
-SECTIONS = {"curve": _curve, "rules": _rules, "scale": _scale, "inverse": _inverse}
+SECTIONS = {"stitches": _stitches, "curve": _curve, "rules": _rules, "scale": _scale, "inverse": _inverse}
 
 
 def run_sections(cfg: Config, res: dict, names) -> dict:
@@ -688,7 +688,7 @@ def run_sections(cfg: Config, res: dict, names) -> dict:
     Examples
     --------
     >>> sorted(SECTIONS)
-    ['curve', 'inverse', 'rules', 'scale']
+    ['curve', 'inverse', 'rules', 'scale', 'stitches']
     """
     for name in names:
         SECTIONS[name](cfg, res)

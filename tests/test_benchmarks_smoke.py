@@ -195,3 +195,15 @@ def test_readme_speed_and_stability_text_is_the_committed_results(readme):
 
 def test_a_coiled_cell_is_answered_not_failed():
     assert int(stability.Status.COILED) in stability.ANSWERED and int(stability.Status.FAILED) not in stability.ANSWERED
+
+
+def test_the_stitches_section_runs_again_alone(quick, tmp_path):
+    """``run.py --only stitches`` measures the command-line timings again into an existing results.json and
+    keeps what the other sections measured."""
+    out, res = quick
+    (tmp_path / "results.json").write_text((out / "results.json").read_text())
+    assert bench_run.main(["--quick", "--only", "stitches", "--out", str(tmp_path)]) == 0
+    again = json.loads((tmp_path / "results.json").read_text())
+    assert again["methods"] == res["methods"] and "load_average_stitches" in again["machine"]
+    assert set(again["stitches"]) == set(res["stitches"])
+    assert again["targets"]["help_over_argparse"]["value"] == again["stitches"]["cli"]["help_over_argparse"]
