@@ -54,7 +54,8 @@ def _arc():
 def test_glb_layout_accessors_and_materials():
     tri = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
     faces = np.array([[0, 1, 2], [0, 3, 1]])
-    data = glb_bytes([GlbMesh("a", tri, faces, (10, 20, 30, 255)), GlbMesh("b", tri + 2.0, faces, (10, 20, 30, 255))])
+    data = glb_bytes([GlbMesh("a", tri, faces, (10, 20, 30, 255)), GlbMesh("b", tri * 2.0 + 2.0, faces,
+                                                                            (10, 20, 30, 255))])
     doc, blob = _chunks(data)
     assert doc["asset"]["version"] == "2.0" and [n["name"] for n in doc["nodes"]] == ["a", "b"]
     assert len(doc["materials"]) == 1 and doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] == [
@@ -64,13 +65,37 @@ def test_glb_layout_accessors_and_materials():
     pos = doc["accessors"][prims[1]["attributes"]["POSITION"]]
     view = doc["bufferViews"][pos["bufferView"]]
     xyz = np.frombuffer(blob, dtype="<f4", count=pos["count"] * 3, offset=view["byteOffset"]).reshape(-1, 3)
-    assert xyz.tolist() == (tri + 2.0).tolist() and pos["min"] == [2.0] * 3 and pos["max"] == [3.0] * 3
+    assert xyz.tolist() == (tri * 2.0 + 2.0).tolist() and pos["min"] == [2.0] * 3 and pos["max"] == [4.0] * 3
     idx = doc["accessors"][prims[0]["indices"]]
     view = doc["bufferViews"][idx["bufferView"]]
     assert np.frombuffer(blob, dtype="<u4", count=idx["count"], offset=view["byteOffset"]).tolist() == [0, 1, 2, 0,
                                                                                                           3, 1]
     assert glb_bytes([GlbMesh("a", tri, faces, (10, 20, 30, 255))]) == glb_bytes([GlbMesh("a", tri, faces,
                                                                                          (10, 20, 30, 255))])
+
+
+def test_a_moved_copy_of_a_body_is_a_node_naming_its_mesh():
+    """A body that is an earlier one of the same part moved (identical actuators side by side) is stored once: its
+    node names the earlier mesh with the displacement as its translation; trimesh (an independent reader) places it where it
+    was, and 200 copies cost a node each, not a mesh."""
+    tri = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    faces = np.array([[0, 1, 2], [0, 3, 1]])
+    shifts = [np.array([0.1 * k, -0.3 * k, 0.05 * k]) for k in range(200)]
+    copies = [GlbMesh(f"c{k}.tube", tri + d, faces, (10, 20, 30, 255)) for k, d in enumerate(shifts)]
+    other = GlbMesh("scaled.tube", tri * 1.5, faces, (10, 20, 30, 255))
+    rail = GlbMesh("c0.rail", tri + 1.0, faces, (10, 20, 30, 255))  # another part moved: its own mesh
+    data = glb_bytes(copies + [other, rail])
+    doc, _ = _chunks(data)
+    assert len(doc["meshes"]) == 3 and [n["name"] for n in doc["nodes"]] == [f"c{k}.tube" for k in range(200)] + [
+        "scaled.tube", "c0.rail"]
+    assert [n["mesh"] for n in doc["nodes"]] == [0] * 200 + [1, 2]
+    assert np.allclose(doc["nodes"][7]["translation"], shifts[7], atol=1e-12)
+    scene = trimesh.load(trimesh.util.wrap_as_stream(data), file_type="glb", process=False)
+    for k in (0, 7, 199):
+        transform, geometry = scene.graph[f"c{k}.tube"]
+        placed = trimesh.transformations.transform_points(scene.geometry[geometry].vertices, transform)
+        assert np.abs(placed - (tri + shifts[k])).max() < 1e-6
+    assert len(data) < len(glb_bytes(copies[:1] + [other, rail])) + 200 * 120
 
 
 def test_point_triangle_distance_matches_trimesh_closest_point():

@@ -3,7 +3,12 @@
 A GLB file is a 12-byte header, a JSON chunk (the scene: one node and one mesh per
 body, a material per colour, accessors into the buffer) and a BIN chunk (per body
 its ``uint32`` triangle indices and ``float32`` positions), each chunk padded to 4
-bytes (glTF 2.0 specification, section 4.4 "GLB file format"). Positions are
+bytes (glTF 2.0 specification, section 4.4 "GLB file format"). A body that is an earlier
+one of the same part moved (the same name after its last ``.``, ``tube`` in ``A7.tube``; the same
+triangles and colour; every vertex displaced by one vector to within :data:`INSTANCE_TOLERANCE`
+file units: identical actuators side by side) is not stored again:
+its node names the earlier body's mesh with that displacement as its ``translation``, so the
+file grows by a node, not a mesh, per identical actuator. Positions are
 written as given (the caller converts to metres, Y up), with unit vertex normals
 (:func:`vertex_normals`: the area-weighted mean of the normals of the triangles
 around each vertex), so viewers shade a tube round rather than faceted. The same
@@ -35,7 +40,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GlbMesh", "glb_bytes", "vertex_normals"]
+__all__ = ["GlbMesh", "glb_bytes", "vertex_normals", "INSTANCE_TOLERANCE"]
+
+#: Largest difference [file units; 1e-9 m = 1 nm in a build's metres] between a body's vertices and an earlier
+#: body's moved by one vector for the file to draw it as that body moved (well below float32's resolution there).
+INSTANCE_TOLERANCE = 1e-9
 
 _MAGIC, _VERSION = b"glTF", 2
 _JSON, _BIN = b"JSON", b"BIN\x00"
@@ -111,6 +120,21 @@ def vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return out
 
 
+def _shape_key(verts: np.ndarray) -> bytes:
+    """The vertices relative to the first, on a grid of :data:`INSTANCE_TOLERANCE` (moved copies share it)."""
+    rel = (verts - verts[:1]) / INSTANCE_TOLERANCE
+    return np.round(rel).astype(np.int64).tobytes() if np.all(np.abs(rel) < 2.0**62) else verts.tobytes()
+
+
+def _moved_copy(earlier: list[tuple[int, np.ndarray]], verts: np.ndarray) -> tuple[int, list[float]] | None:
+    """(mesh, translation) of the first earlier body ``verts`` is a moved copy of, else None."""
+    for mesh, ref in earlier:
+        shift = verts[0] - ref[0] if len(verts) else np.zeros(3)  # (no vertex: no triangle, any shift)
+        if np.all(np.isfinite(shift)) and np.abs(verts - shift - ref).max(initial=0.0) <= INSTANCE_TOLERANCE:
+            return mesh, [float(x) for x in shift]
+    return None
+
+
 def _pad(data: bytes, fill: bytes) -> bytes:
     return data + fill * (-len(data) % 4)
 
@@ -149,9 +173,20 @@ def glb_bytes(meshes) -> bytes:
         blob.extend(_pad(data, b"\x00"))
         return len(views) - 1
 
+    nodes: list[dict] = []
+    stored: dict[tuple, list[tuple[int, np.ndarray]]] = {}  # (part, faces, colour, shape) -> [(mesh, vertices)]
     for m in meshes:
         idx = np.ascontiguousarray(m.faces, dtype="<u4").reshape(-1).tobytes()
-        pos = np.ascontiguousarray(m.vertices, dtype="<f4").reshape(-1, 3)
+        colour = tuple(int(c) for c in m.colour)
+        verts = np.asarray(m.vertices, dtype=np.float64).reshape(-1, 3)
+        earlier = stored.setdefault((m.name.rsplit(".", 1)[-1], idx, colour, _shape_key(verts)), [])
+        moved = _moved_copy(earlier, verts)
+        if moved is not None:
+            nodes.append({"name": m.name, "mesh": moved[0], "translation": moved[1]})
+            continue
+        earlier.append((len(gltf_meshes), verts))
+        nodes.append({"name": m.name, "mesh": len(gltf_meshes)})
+        pos = np.ascontiguousarray(verts, dtype="<f4").reshape(-1, 3)
         if idx not in shared:
             shared[idx] = len(accessors)
             accessors.append({"bufferView": view(idx, _ELEMENT_ARRAY_BUFFER), "componentType": _UINT32,
@@ -162,7 +197,6 @@ def glb_bytes(meshes) -> bytes:
         normals = np.ascontiguousarray(vertex_normals(m.vertices, m.faces), dtype="<f4")
         accessors.append({"bufferView": view(normals.tobytes(), _ARRAY_BUFFER), "componentType": _FLOAT,
                           "count": int(len(normals)), "type": "VEC3"})
-        colour = tuple(int(c) for c in m.colour)
         if colour not in colours:
             colours[colour] = len(materials)
             materials.append({"pbrMetallicRoughness": {"baseColorFactor": [c / 255.0 for c in colour],
@@ -172,8 +206,7 @@ def glb_bytes(meshes) -> bytes:
             {"attributes": {"POSITION": len(accessors) - 2, "NORMAL": len(accessors) - 1}, "indices": shared[idx],
              "material": colours[colour], "mode": _TRIANGLES}]})
     doc = {"asset": {"version": "2.0", "generator": "embroact"}, "scene": 0,
-           "scenes": [{"nodes": list(range(len(meshes)))}],
-           "nodes": [{"name": m.name, "mesh": k} for k, m in enumerate(meshes)],
+           "scenes": [{"nodes": list(range(len(nodes)))}], "nodes": nodes,
            "meshes": gltf_meshes, "materials": materials, "accessors": accessors, "bufferViews": views,
            "buffers": [{"byteLength": len(blob)}]}
     text = _pad(json.dumps(doc, separators=(",", ":")).encode("utf-8"), b" ")

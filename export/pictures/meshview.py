@@ -13,7 +13,9 @@ actuators) is meshed coarser until it fits. Where the bodies' least triangles ar
 more than the pixels show (a thousand small actuators), the triangles' corners are moved to
 the centres of ``PICTURE_CELL_PX`` screen cells: those left with fewer than three distinct
 corners, and those under a later one on the same three cells, are not drawn, so the picture
-holds no more polygons than its pixels resolve. Past ``PICTURE_MAX_NAMES`` shapes they are
+holds no more polygons than its pixels resolve; and past ``PICTURE_MAX_POLYGONS`` polygons (a tall picture
+of many actuators) the cells are widened until it holds at most that many, so the picture's size is bounded
+by what it shows, not by the number of actuators. Past ``PICTURE_MAX_NAMES`` shapes they are
 not named (the names would cover each other); the key says how many there are.
 
 The camera turns the plan frame by ``azimuth_deg`` about +z, then tilts it by
@@ -59,6 +61,8 @@ PICTURE_MAX_NAMES = 100
 #: Width of the screen cells [px] the picture's triangle corners are moved to the centres of (what its pixels
 #: resolve: triangles left with fewer than three distinct cells are not drawn).
 PICTURE_CELL_PX = 1.0
+#: Most polygons the picture draws (about 1.3 MB of SVG): past it the screen cells are widened.
+PICTURE_MAX_POLYGONS = 16_000
 #: Coarsest picture mesh [mm] (the mesh's own upper limit).
 _MAX_TOLERANCE_MM = 10.0
 
@@ -259,13 +263,35 @@ def mesh_svg(shape, *, azimuth_deg: float = 60.0, elevation_deg: float = 20.0, w
         placer.block_box(text_box(line, _MARGIN_PX, 20 + 15 * k, font_px))
     _draw_names(dwg, placer, [s.name for s in shapes], px, who)
     _draw_key(dwg, shapes, height - _MARGIN_PX, width)
-    shown, snapped = _pixel_polygons(px[order])
+    shown, snapped = _budget_polygons(px[order])
     return _with_polygons(dwg.tostring(), g.tostring(), snapped.reshape(-1, 6).tolist(), rgb[order][shown].tolist())
 
 
-def _pixel_polygons(px: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _budget_polygons(px: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_pixel_polygons` on ``PICTURE_CELL_PX`` cells, widened (each time by the root of the excess, the
+    polygons a picture of a given area holds going as 1 / cell area) until at most ``PICTURE_MAX_POLYGONS`` are
+    left.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> px = rng.uniform(0.0, 400.0, (3000, 1, 2)) + rng.uniform(0.0, 4.0, (3000, 3, 2))
+    >>> len(_budget_polygons(px)[0]) == len(_pixel_polygons(px)[0])  # within the budget: unchanged
+    True
+    """
+    cell = PICTURE_CELL_PX
+    shown, snapped = _pixel_polygons(px, cell)
+    for _ in range(8):
+        if len(shown) <= PICTURE_MAX_POLYGONS:
+            break
+        cell *= 1.05 * math.sqrt(len(shown) / PICTURE_MAX_POLYGONS)
+        shown, snapped = _pixel_polygons(px, cell)
+    return shown, snapped
+
+
+def _pixel_polygons(px: np.ndarray, cell_px: float = PICTURE_CELL_PX) -> tuple[np.ndarray, np.ndarray]:
     """The triangles (in drawing order, (n, 3, 2) [px]) a picture shows at its pixel size: corners moved to the
-    centres of cells ``PICTURE_CELL_PX`` wide (vertex clustering on the screen), those left with fewer than three
+    centres of cells ``cell_px`` wide (vertex clustering on the screen), those left with fewer than three
     distinct corners dropped, and of triangles on the same three cells only the last drawn (it covers the others).
     Returns the indices kept (ascending) and their corners.
 
@@ -277,7 +303,7 @@ def _pixel_polygons(px: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     >>> kept.tolist(), corners[0].tolist()
     ([2], [[0.5, 0.5], [9.5, 0.5], [0.5, 9.5]])
     """
-    cell = np.floor(px / PICTURE_CELL_PX).astype(np.int64)
+    cell = np.floor(px / cell_px).astype(np.int64)
     key = (cell[:, :, 0] - cell[:, :, 0].min()) * (int(cell[:, :, 1].max() - cell[:, :, 1].min()) + 1) \
         + (cell[:, :, 1] - cell[:, :, 1].min()) if len(px) else np.zeros((0, 3), dtype=np.int64)
     distinct = (key[:, 0] != key[:, 1]) & (key[:, 1] != key[:, 2]) & (key[:, 0] != key[:, 2])
@@ -286,7 +312,7 @@ def _pixel_polygons(px: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     kept = np.zeros(len(px), dtype=bool)
     kept[len(px) - 1 - last] = True
     kept = np.flatnonzero(kept & distinct)
-    return kept, (cell[kept] + 0.5) * PICTURE_CELL_PX
+    return kept, (cell[kept] + 0.5) * cell_px
 
 
 _KEY_TEXT = (("fabric", "fabric"), ("tube", "tube (thread side)"), ("rail", "rails (leg ends)"))
