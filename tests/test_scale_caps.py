@@ -137,3 +137,79 @@ def test_label_placer_index_counts_what_a_full_scan_counts():
         scan = sum(q.overlaps(b) for b in boxes) + 10_000 * sum(q.overlaps(lab.box.grown(0.5)) for lab in placer.labels)
         scan += _segments_hit(segs, q.grown(0.5)) + (0 if placer.frame.contains(q) else 100_000_000)
         assert placer.collisions(q) == scan
+
+
+def test_report_findings_past_the_cap_are_one_row_per_kind_errors_first():
+    """150 alike warnings and one error: two rows, the error first, the warning counted (150) with the first five
+    actuators named; report.json keeps all 151. At the cap, every finding has its own row."""
+    from embroact.export.report.report import REPORT_MAX_FINDINGS, report_data, report_html, report_json
+
+    warn = [{"code": "EA403", "severity": "warning", "message": "bend beyond limit", "actuator": f"A{k}",
+             "fix": "shorten"} for k in range(150)]
+    err = [{"code": "EA101", "severity": "error", "message": "needle in the tube", "actuator": "B", "fix": "widen"}]
+    data = report_data(title="t", actuators=[], findings=warn + err)
+    html = report_html(data)
+    section = html.split('<section id="findings">', 1)[1]
+    rows = section.split("<tr")[2:]
+    assert len(rows) == 2 and "EA101" in rows[0] and "EA403" in rows[1]
+    assert '<td class="num">150</td><td>A0, A1, A2, A3, A4 and 145 more</td>' in rows[1]
+    assert "151 findings in 2 kinds" in section and report_json(data).count('"code"') == 151
+    few = report_html(report_data(title="t", actuators=[], findings=warn[:REPORT_MAX_FINDINGS]))
+    assert few.split('<section id="findings">', 1)[1].count("<tr") == REPORT_MAX_FINDINGS + 1
+
+
+def test_a_figure_past_the_report_budget_is_linked_to_its_file(monkeypatch):
+    """A figure larger than REPORT_FIGURE_MAX_BYTES is named by its file (a link, the report stays small); one
+    without a file, or within the budget, is inline."""
+    from embroact.export.report import report as report_module
+    from embroact.export.report.report import report_data, report_html
+
+    big = "<svg>" + "<g/>" * 1000 + "</svg>"
+    monkeypatch.setattr(report_module, "REPORT_FIGURE_MAX_BYTES", 1000)
+    data = report_data(title="t", actuators=[])
+    linked = report_html(data, figures={"stitches": big, "bend": "<svg></svg>"}, figure_files={
+        "stitches": "preview.svg", "bend": "bend.svg"})
+    assert '<a href="preview.svg">preview.svg</a>' in linked and big not in linked and "<svg></svg>" in linked
+    assert big in report_html(data, figures={"stitches": big})
+
+
+def test_the_3d_picture_holds_at_most_its_polygon_budget(monkeypatch):
+    """Past PICTURE_MAX_POLYGONS the screen cells widen until the picture holds at most that many polygons;
+    within it the picture is unchanged."""
+    import xml.etree.ElementTree as ET
+
+    from embroact.export.pictures import meshview
+    from embroact.export.pictures.mesh import PlanarPath, actuator_mesh
+    from embroact.patterns.centerline import Centerline
+
+    shapes = [actuator_mesh(PlanarPath.from_centerline(Centerline([[0.0, 30.0 * k], [20.0, 30.0 * k]])), 60.0,
+                            width_mm=5.0, r0_mm=2.0, measure=False, name=f"A{k}") for k in range(6)]
+
+    def polygons(svg):
+        return sum(1 for e in ET.fromstring(svg).iter(f"{_SVG}polygon"))
+
+    free = polygons(meshview.mesh_svg(shapes))
+    monkeypatch.setattr(meshview, "PICTURE_MAX_POLYGONS", free // 4)
+    capped = polygons(meshview.mesh_svg(shapes))
+    assert 0 < capped <= free // 4 < free
+    monkeypatch.setattr(meshview, "PICTURE_MAX_POLYGONS", free)
+    assert polygons(meshview.mesh_svg(shapes)) == free
+
+
+def test_the_stitch_preview_text_lists_alike_actuators_once():
+    """Past PREVIEW_MAX_LINES segment lines, actuators sewn alike share one line (and the picture's height
+    stops growing with their number); within it, every actuator has its own line."""
+    from embroact.export.pictures.stitches import PREVIEW_MAX_LINES, plan_svg
+    from embroact.patterns.design import build_plan, design_from_dict
+
+    def texts(n):
+        d = design_from_dict({"machine": {"hoop_width_mm": 400, "hoop_height_mm": 400}, "actuator": [
+            {"name": f"A{k}", "pattern": "zigzag", "width_mm": 5, "interval_mm": 1, "length_mm": 10,
+             "origin_mm": [-150.0 + 40.0 * (k % 8), -150.0 + 20.0 * (k // 8)]} for k in range(n)]})
+        root = ET.fromstring(plan_svg(build_plan(d)))
+        g = next(g for g in root.iter(f"{_SVG}g") if g.get("id") == "params")
+        return [t.text for t in g.iter(f"{_SVG}text")]
+
+    few, many = texts(PREVIEW_MAX_LINES), texts(PREVIEW_MAX_LINES + 5)
+    assert [t.split()[0] for t in few[1:]] == [f"A{k}" for k in range(PREVIEW_MAX_LINES)]
+    assert len(many) == 2 and many[1].startswith(f"A0 (and {PREVIEW_MAX_LINES + 4} alike) zigzag: w 5.00 mm")

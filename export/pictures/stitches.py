@@ -99,14 +99,41 @@ def _param_lines(plan: StitchPlan) -> list[str]:
     n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
     lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
              f"{n_trim} trim{'s' * (n_trim != 1)}"]
+    parts = []
     for a in plan.actuators:  # one line per segment of the chain
         for name, pattern, r in [(a.segments.part_name(a.name, k), s.pattern, s.realised)
                                  for k, s in enumerate(a.segments)]:
             angle = f", alpha0 {r.angle_deg:.2f} deg" if pattern_kind(pattern).has_angle else ""
-            lines.append(
-                f"{name} {pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
-                f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"
-            )
+            parts.append((name, f"{pattern}: w {r.width_mm:.2f} mm, s {r.interval_mm:.3f} mm{angle}, "
+                                f"l0 {r.length_mm:.1f} mm, passes {r.passes}; tube r {a.tube.outer_radius_mm:g} mm"))
+    return lines + _summarised_lines(parts)
+
+
+#: Segment lines the preview's text holds at most: past it, segments with the same parameters share a line
+#: ("A0 (and 999 alike) zigzag: ..."), and past that the first ones are listed with a count of the rest.
+PREVIEW_MAX_LINES = 20
+
+
+def _summarised_lines(parts: list[tuple[str, str]]) -> list[str]:
+    """``name text`` per (name, text), or past :data:`PREVIEW_MAX_LINES` one line per distinct text.
+
+    Examples
+    --------
+    >>> _summarised_lines([("A1", "zigzag"), ("A2", "cross")])
+    ['A1 zigzag', 'A2 cross']
+    >>> _summarised_lines([(f"A{k}", "zigzag" if k % 3 else "cross") for k in range(30)])
+    ['A0 (and 9 alike) cross', 'A1 (and 19 alike) zigzag']
+    """
+    if len(parts) <= PREVIEW_MAX_LINES:
+        return [f"{name} {text}" for name, text in parts]
+    groups: dict[str, list[str]] = {}
+    for name, text in parts:
+        groups.setdefault(text, []).append(name)
+    lines = [f"{names[0]} (and {len(names) - 1} alike) {text}" if len(names) > 1 else f"{names[0]} {text}"
+             for text, names in groups.items()]
+    if len(lines) > PREVIEW_MAX_LINES:
+        rest = sum(len(names) for names in list(groups.values())[PREVIEW_MAX_LINES:])
+        lines = lines[:PREVIEW_MAX_LINES] + [f"... and {rest} more segments (worksheet.txt lists every one)"]
     return lines
 
 
@@ -190,7 +217,42 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     y_text = -fab_lo[1] + pad + 2.0
     _draw_scale_and_text(dwg, layer, texts, fab_lo[0], y_text, fab_hi[0] - fab_lo[0])
     _draw_legend(dwg, layer["legend"], entries, fab_lo[0], y_text + 1.0 + (len(texts) + 1) * _TEXT_ROW_MM, width - 2 * pad)
+    for g in layer.values():
+        _hoist_style(g)
     return dwg.tostring()
+
+
+#: Inherited presentation attributes a layer of many elements carries once for them all (see _hoist_style).
+_INHERITED = ("fill", "fill-opacity", "stroke", "stroke-width", "stroke-dasharray", "stroke-linecap")
+#: Children a layer needs before their shared style moves to it (a few marks keep theirs, as drawn).
+_HOIST_MIN = 20
+
+
+def _hoist_style(group) -> None:
+    """Move each inherited attribute every child of ``group`` sets to the same value onto ``group`` (where it has
+    at least ``_HOIST_MIN`` children): the drawing is the same (SVG inherits these), the file holds it once.
+
+    Examples
+    --------
+    >>> from .svgdoc import Drawing
+    >>> dwg = Drawing(size=("10mm", "10mm"))
+    >>> g = dwg.g()
+    >>> for k in range(_HOIST_MIN):
+    ...     _ = g.add(dwg.circle((k, 0), 1, fill="red", stroke="blue" if k else "black"))
+    >>> _hoist_style(g)
+    >>> g.get("fill"), g[0].get("fill"), g[0].get("stroke"), g.get("stroke")
+    ('red', None, 'black', None)
+    """
+    children = list(group)
+    if len(children) < _HOIST_MIN:
+        return
+    for name in _INHERITED:
+        value = children[0].get(name)
+        if value is None or group.get(name) is not None or any(c.get(name) != value for c in children):
+            continue
+        group.set(name, value)
+        for c in children:
+            del c.attrib[name]
 
 
 def _pts_list(xy) -> list[tuple[str, str]]:
@@ -198,8 +260,20 @@ def _pts_list(xy) -> list[tuple[str, str]]:
 
 
 def _segments_d(xy, starts) -> str:
-    """Path data of the segments from each record in ``starts`` to the next one."""
-    return " ".join(f"M {_pts(xy[i])} L {_pts(xy[i + 1])}" for i in starts)
+    """Path data of the segments from each record in ``starts`` (ascending) to the next one; a segment starting
+    where the one before ends continues its line (``M a L b c``: an implied line-to per further point).
+
+    Examples
+    --------
+    >>> _segments_d(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [5.0, 5.0], [6.0, 5.0]]), [0, 1, 3])
+    'M 0,0 L 1,0 1,-1 M 5,-5 L 6,-5'
+    """
+    out: list[str] = []
+    last = None
+    for i in (int(k) for k in starts):
+        out.append(f" {_pts(xy[i + 1])}" if i - 1 == last else f"{' ' if out else ''}M {_pts(xy[i])} L {_pts(xy[i + 1])}")
+        last = i
+    return "".join(out)
 
 
 def _pause_lines(machine) -> list[str]:
@@ -261,9 +335,10 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
         d = lead + _segments_d(xy, np.array(moves, dtype=np.int64) - 1)
         layer["travel"].add(dwg.path(d=d, fill="none", stroke=TRAVEL_COLOUR, stroke_width="0.15",
                                      stroke_dasharray="0.8,0.5"))
-    if show_points:
+    if show_points:  # the dots' fill set once, on their layer
+        layer["needle-points"].set("fill", "#111111")
         for x, y in xy[stitch]:
-            layer["needle-points"].add(dwg.circle((_f(x), _f(-y)), _f(pr), fill="#111111"))
+            layer["needle-points"].add(dwg.circle((_f(x), _f(-y)), _f(pr)))
     s = 0.5
     for i in np.flatnonzero(stitch & (plan.roles == Role.TIE_IN)):
         x, y = xy[i]

@@ -1,6 +1,7 @@
 """One report per build: ``report.json`` (machine-readable) and a self-contained ``report.html``.
 
-The HTML file needs nothing but itself: the pictures are inline SVG, the style is an
+The HTML file needs nothing but itself: the pictures are inline SVG (a picture larger than
+:data:`REPORT_FIGURE_MAX_BYTES`, a thousand actuators' stitches, is named by its file beside the report instead), the style is an
 inline ``<style>``, there is no script, and a Content-Security-Policy forbids any
 external load.  Both files are built from the same plain dict (:func:`report_data`),
 so they always agree.  Same input, same bytes: no time stamps, keys in a fixed order.
@@ -328,9 +329,40 @@ def _model_table(actuators: Sequence[Mapping]) -> str:
     return _noted(note) + f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 
+#: Findings the report's table lists one by one at most; past it, one row per kind of finding (severity, code,
+#: message and fix alike) with its count and the actuators it names, errors first (report.json lists every one).
+REPORT_MAX_FINDINGS = 100
+#: Largest figure [bytes] the report holds inline; a larger one is named by its file beside the report.
+REPORT_FIGURE_MAX_BYTES = 1_500_000
+_SEVERITY_ORDER = {"error": 0, "warning": 1, "info": 2}
+
+
+def _findings_summary(findings: Sequence[Mapping]) -> str:
+    """One row per kind of finding (severity, code, message, fix), errors first: how many, and where (the first
+    five actuators named and how many more)."""
+    groups: dict[tuple, list[Mapping]] = {}
+    for f in findings:
+        groups.setdefault(tuple(str(f.get(k) or "") for k in ("severity", "code", "message", "fix")), []).append(f)
+    order = sorted(groups, key=lambda k: (_SEVERITY_ORDER.get(k[0], 3), k[1]))
+    head = "".join(f"<th>{h}</th>" for h in ("severity", "code", "message", "count", "where", "fix"))
+    rows = []
+    for key in order:
+        fs = groups[key]
+        names = list(dict.fromkeys(str(f["actuator"]) for f in fs if f.get("actuator") is not None))
+        where = ", ".join(names[:5]) + (f" and {len(names) - 5} more" if len(names) > 5 else "")
+        sev, code, message, fix = key
+        rows.append(f'<tr class="{_e(sev)}"><td>{_e(sev)}</td><td>{_e(code)}</td><td>{_e(message)}</td>'
+                    f'{_cell(sum(f.get("count") or 1 for f in fs))}<td>{_e(where)}</td><td>{_e(fix)}</td></tr>')
+    note = (f"{len(findings)} findings in {len(groups)} kinds (alike severity, code, message and fix), errors first; "
+            "report.json lists every one")
+    return _noted(note) + f"<table><tr>{head}</tr>{''.join(rows)}</table>"
+
+
 def _findings_table(findings: Sequence[Mapping]) -> str:
     if not findings:
         return '<p class="ok">No design-rule findings.</p>'
+    if len(findings) > REPORT_MAX_FINDINGS:
+        return _findings_summary(findings)
     head = "".join(f"<th>{h}</th>" for h in ("severity", "code", "message", "where", "fix"))
     rows = []
     for f in findings:
@@ -357,8 +389,11 @@ def _worksheet_html(ws: Mapping | None) -> str:
     table = "".join(f"<tr><th>{_e(_label(k))}</th>{_cell(v)}</tr>" for k, v in ws.items() if k not in _WORKSHEET_APART)
     out = [f"<table>{table}</table>"]
     if ws.get("stops"):
-        out.append("<h3>Stop sequence</h3><ul class=\"stops\">" + "".join(f"<li>{_e(s)}</li>" for s in ws["stops"])
-                   + "</ul>")
+        stops = list(ws["stops"])
+        more = (f'<p class="note">the first {REPORT_MAX_COLUMNS} of {len(stops)} stops shown (worksheet.txt lists '
+                "every one)</p>" if len(stops) > REPORT_MAX_COLUMNS else "")
+        out.append("<h3>Stop sequence</h3><ul class=\"stops\">"
+                   + "".join(f"<li>{_e(s)}</li>" for s in stops[:REPORT_MAX_COLUMNS]) + "</ul>" + more)
     acts, note = _summarised(ws.get("actuators") or [])
     if acts:
         keys = [k for k in dict.fromkeys(k for a in acts for k in a) if k != "name"]
@@ -419,7 +454,18 @@ def _inline_svg(svg: str) -> str:
     return svg[start:] if start >= 0 else svg
 
 
-def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> str:
+def _figure(svg: str, file: str | None) -> str:
+    """The figure inline, or past :data:`REPORT_FIGURE_MAX_BYTES` (when it has a file) a link to its file."""
+    size = len(svg.encode("utf-8"))
+    if file is None or size <= REPORT_FIGURE_MAX_BYTES:
+        return f"<figure>{_inline_svg(svg)}</figure>"
+    return (f'<p class="note">This picture is {size / 1e6:.1f} MB, more than a page holds inline '
+            f'(at most {REPORT_FIGURE_MAX_BYTES / 1e6:.1f} MB): open <a href="{_e(file)}">{_e(file)}</a>, written '
+            "beside this report.</p>")
+
+
+def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None,
+                figure_files: Mapping[str, str] | None = None) -> str:
     """The self-contained ``report.html`` text.
 
     Parameters
@@ -428,6 +474,9 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
         From :func:`report_data`.
     figures : mapping, optional
         SVG texts keyed by the names in :data:`FIGURES`; missing ones are left out.
+    figure_files : mapping, optional
+        The file each figure is written to beside the report (keyed as ``figures``): a figure larger than
+        :data:`REPORT_FIGURE_MAX_BYTES` is linked there instead of inlined. Without one, every figure is inline.
 
     Returns
     -------
@@ -468,7 +517,8 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None) -> s
     ]
     for key, heading in FIGURES.items():
         if key in figures:
-            parts.append(f'<section id="{key}"><h2>{heading}</h2><figure>{_inline_svg(figures[key])}</figure>')
+            parts.append(f'<section id="{key}"><h2>{heading}</h2>'
+                         + _figure(figures[key], (figure_files or {}).get(key)))
             if key == "bend":
                 parts.append(_curve_table(acts))
             if key == "shape3d":

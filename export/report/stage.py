@@ -132,7 +132,8 @@ def render_previews(
     measured : mapping, optional
         Actuator name -> (pressure_kpa, theta_deg) arrays of measured points to overlay.
     stitch_svg : str, optional
-        Stitch preview SVG; default ``plan_svg(analysis.plan)``.
+        Stitch preview SVG, the build's ``preview.svg`` (the report links that file when the picture is too large
+        to inline); default ``plan_svg(analysis.plan)``.
     side_states : int
         Number of pressures drawn in the side view, in [1, 12].
     shape_pressure_kpa : float, optional
@@ -180,17 +181,22 @@ def render_previews(
                      "max_deviation_mm": max(s.max_deviation_mm for s in shapes)}
         mesh_info["segment_theta_deg"] = {  # each segment's bend in the 3D shape
             a.name: list(shape_state(c, shape_pressure_kpa)[2]) for a, c in zip(analysis.actuators, curves)}
+    # the files written beside report.html (a figure too large to inline is linked there): these previews, and
+    # the stitch preview when it is the build's preview.svg
+    figure_files = {k: OUTPUT_NAMES[k] for k in ("bend", "side", "shape3d")}
     if stitch_svg is None:
         from ..pictures.stitches import plan_svg
 
         stitch_svg = plan_svg(plan)
+    else:
+        figure_files["stitches"] = "preview.svg"
     figures["stitches"] = stitch_svg
     entries = [{**actuator_entry(a, c, b), "side_view": _side_states(a, c, s)}
                for a, c, s, b in zip(analysis.actuators, curves, panels, bands)]
     ws = worksheet.as_dict() if hasattr(worksheet, "as_dict") else worksheet
     data = report_data(title=plan.name, actuators=entries, findings=findings, worksheet=ws, mesh=mesh_info)
     files[OUTPUT_NAMES["json"]] = report_json(data)
-    files[OUTPUT_NAMES["html"]] = report_html(data, figures=figures)
+    files[OUTPUT_NAMES["html"]] = report_html(data, figures=figures, figure_files=figure_files)
     return Previews(files, mesh_info)
 
 
