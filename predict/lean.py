@@ -93,6 +93,7 @@ _KW_LIST = _KW.tolist()
 _LAST = _FRACTIONS.size - 1
 _Z = np.array(STENCIL)[:, None]
 _FOLD_FRACTIONS = np.linspace(0.0, 1.0, FOLD_NODES)
+_A_ROWS = [0, 1, 2, 4]  # m, F', V' and the stencil spacing at an interval's lower node
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -166,8 +167,36 @@ class LeanTable:
                 nodes[3, -1] = np.inf
             np.multiply(_KW, abs(self.span), out=nodes[4])
             p = nodes[3]
-            self.lazy["arrays"] = nodes, bool(np.all(p[1:] > p[:-1]))
+            self.lazy["arrays"] = nodes, bool((p[1:] > p[:-1]).all())
         return self.lazy["arrays"]
+
+    def intervals(self):
+        """Per bracket, what the array solve gathers, made once: column ``k`` (1 to the last node) holds the
+        interval from node ``k - 1`` to node ``k``.
+
+        Returns
+        -------
+        numpy.ndarray (7, n)
+            m, F', V' and the stencil spacing at node ``k - 1``, then m, F', V' at node ``k`` (column 0: a copy
+            of column 1).
+
+        Examples
+        --------
+        >>> from embroact.predict.model import Geometry, lock_theta
+        >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+        >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
+        >>> iv, nodes = tab.intervals(), tab.arrays()[0]
+        >>> iv.shape, bool(iv[0, 5] == nodes[0, 4]), bool(iv[4, 5] == nodes[0, 5])
+        ((7, 385), True, True)
+        """
+        if "intervals" not in self.lazy:
+            nodes = self.arrays()[0]
+            iv = np.empty((7, nodes.shape[1]))
+            iv[:4, 1:] = nodes[_A_ROWS, :-1]
+            iv[4:, 1:] = nodes[:3, 1:]
+            iv[:, 0] = iv[:, 1]
+            self.lazy["intervals"] = iv
+        return self.lazy["intervals"]
 
     @property
     def top(self) -> float:
@@ -255,20 +284,22 @@ def _polish(x0, d, r0, r1, r2, r3, rtol, atol):
     """(m, settled) from the residuals ``r0..r3`` at ``x0 + d * STENCIL`` (step 3 of the module docstring),
     settled within ``rtol |m| + atol``."""
     f0, f1 = r1 - r0, r2 - r1
-    k2 = 0.5 * (f1 - f0)
-    k3 = ((r3 - r2 - f1) - (f1 - f0)) / 6.0
+    df = f1 - f0
+    k2 = 0.5 * df
+    k3 = ((r3 - r2 - f1) - df) / 6.0
     y = 1.0 + r1 / (r1 - r2)  # y = z + 1.5 in [0, 3]: the secant of the two middle points
     # one Newton step on the cubic p(y) = r0 + y (f0 + (y - 1)(k2 + (y - 2) k3)) through them
+    y1 = y - 1.0
     q = k2 + (y - 2.0) * k3
-    s = f0 + (y - 1.0) * q
-    slope = s + y * (q + (y - 1.0) * k3)
-    y = y - (r0 + y * s) / slope
-    m = x0 + d * (y - 1.5)
+    s = f0 + y1 * q
+    slope = s + y * (q + y1 * k3)
+    z = (y - (r0 + y * s) / slope) - 1.5
+    m = x0 + d * z
     # the cubic's error: its next difference (at most its third times the spacing ratio) times
     # |y (y - 1)(y - 2)(y - 3)| <= 1 on [0, 3], over the slope; the root then lies in the bracket
     # within the tolerance (its residuals change sign there)
     left = abs(k3 / slope) * (d * _SPACING)
-    return m, (abs(y - 1.5) <= 1.5) & (left <= rtol * abs(m) + atol)  # NaN: False
+    return m, (abs(z) <= 1.5) & (left <= rtol * abs(m) + atol)  # NaN: False
 
 
 def solve_lean(tab: LeanTable, t):
@@ -301,9 +332,8 @@ def solve_lean(tab: LeanTable, t):
     """
     nodes, rises = tab.arrays()
     t = t / tab.rates.scale
-    i = np.searchsorted(nodes[3], t, side="right") - 1  # >= 0: t > 0 = p[0]
-    served = i < _LAST
-    (ma, fa, va, _, kh), (mb, fb, vb, _, _) = nodes[:, np.minimum(i, _LAST - 1)], nodes[:, np.minimum(i + 1, _LAST)]
+    k = np.searchsorted(nodes[3, :_LAST], t, side="right")  # >= 1: t > 0 = p[0]; the bracket [k - 1, k]
+    ma, fa, va, kh, mb, fb, vb = tab.intervals().take(k, axis=1)
     zigzag = tab.rates.zigzag
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
@@ -313,8 +343,8 @@ def solve_lean(tab: LeanTable, t):
         m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
     if not rises:
         settled[:] = False
-    elif not (float(t.min()) > tab.floor and int(i.max()) < _LAST):  # i before it was clipped
-        settled &= served & (t > tab.floor)
+    elif not (float(t.min()) > tab.floor and float(t.max()) < float(nodes[3, _LAST])):
+        settled &= (t < nodes[3, _LAST]) & (t > tab.floor)  # at or above the last node: not served
     return m, settled
 
 
