@@ -617,6 +617,7 @@ class _BranchArrays:
 #: inverse needed (~3 KB each).
 BRANCH_CACHE = 64
 _FAST = ("stable", "analytic", "trace")  # what "auto" resolves to at the default rtol
+_FAST_NAME = "-".join(_FAST)
 _LOCKED, _OUT_OF_DOMAIN = int(Status.LOCKED), int(Status.OUT_OF_DOMAIN)
 
 
@@ -847,10 +848,11 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     if cols is None:
         return None
     status = np.array(cols[2], dtype=np.int8)
-    rows = np.array(cols[:2] + cols[3:], dtype=np.float64)  # one array for the float columns (read-only rows)
+    rows = np.array(cols[0] + cols[1] + cols[3] + cols[4] + cols[5] + cols[6])  # the float columns: one array
     status.setflags(write=False)
     rows.setflags(write=False)
-    return Curve(rows[0], rows[1], status, *rows[2:], method="-".join(_FAST), calibration=model.calibration)
+    p, theta, length, radius, beta, inner = rows.reshape(6, len(values))  # read-only rows
+    return Curve(p, theta, status, length, radius, beta, inner, method=_FAST_NAME, calibration=model.calibration)
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:

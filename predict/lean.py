@@ -355,7 +355,7 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     the node above it; a bisection when a probe did not halve the bracket. None if ``t`` is at or above P at
     the last node."""
     lo, hi = 0, _LAST
-    p_lo, p_hi = 0.0, tab.node(hi)[3]
+    p_lo, p_hi = 0.0, math.inf if tab.pole else tab.node(hi)[3]  # a lock-up's P is inf: no evaluation
     if not t < p_hi:
         return None
     f_lo, f_hi, third = 0.0, 1.0, None

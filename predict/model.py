@@ -183,8 +183,8 @@ class Geometry:
         True
         """
         b = float(beta0_rad)
-        return cls._derived(float(l0_mm), float(r0_mm), float(np.sin(b)), float(np.cos(b)), float(c_mm2),
-                            float(g_mpa), float(p0_mpa))
+        s0, c0 = (float(np.sin(b)), float(np.cos(b))) if b != 0.0 else (0.0, 1.0)  # numpy's sin, cos: 0, 1 at 0
+        return cls._derived(float(l0_mm), float(r0_mm), s0, c0, float(c_mm2), float(g_mpa), float(p0_mpa))
 
     @classmethod
     def _derived(cls, l0, r0, s0, c0, c, g, p0) -> "Geometry":
@@ -754,6 +754,8 @@ class StretchRates:
         ``G sigma/2`` [MPa].
     geo : Geometry
         The design(s).
+    zigzag : bool
+        One zigzag design on floats (s0 = 0): :meth:`__call__` and :meth:`state` take its shorter formulas.
 
     Examples
     --------
@@ -775,6 +777,7 @@ class StretchRates:
     theta_per_m: Any
     scale: Any
     geo: Geometry
+    zigzag: bool = False  # rates of several designs (arrays) take the general formulas, which hold for s0 = 0 too
 
     @classmethod
     def of(cls, g: Geometry) -> "StretchRates":
@@ -796,7 +799,8 @@ class StretchRates:
         40.0
         """
         sigma = g.c * g.c0sq / (g.r0 * g.r0)
-        return cls(g.s0sq, g.c0sq, sigma, 4.0 * g.s0sq / g.c0sq, 1.0 / g.c0sq, g.l0 / g.r_c0, 0.5 * g.g * sigma, g)
+        return cls(g.s0sq, g.c0sq, sigma, 4.0 * g.s0sq / g.c0sq, 1.0 / g.c0sq, g.l0 / g.r_c0, 0.5 * g.g * sigma, g,
+                   isinstance(g.s0sq, float) and g.s0sq == 0.0)
 
     def __call__(self, m, xp=np):
         """(F', V') at stretches ``m`` (arrays, or one float with ``xp=SCALAR``); V' is 1.0 for a zigzag (class
@@ -901,12 +905,6 @@ class StretchRates:
         r = g.r_c0 * cosb
         beta = xp.arcsin(xp.minimum(xp.maximum(u * g.s0, -1.0), 1.0)) * _DEG_PER_RAD
         return self.theta_per_m * m / cosb, g.l0 * u, r, beta, r * r - g.c * 2.0 / (1.0 + u)
-
-    @property
-    def zigzag(self) -> bool:
-        """One zigzag design (Python floats, s0 = 0): its shorter formulas; rates of several designs (arrays)
-        take the general ones, which hold for s0 = 0 too."""
-        return isinstance(self.s0sq, float) and self.s0sq == 0.0
 
     def m_of(self, theta):
         """The stretch at bend angles [rad]: one float, or arrays of the designs (from :func:`pantograph`: no
