@@ -238,25 +238,26 @@ def one_curve(br, p, *, limits: bool = True):
     t = p - g.p0
     bend = t > 0.0
     every = bool(bend.all())
-    status = np.full(p.size, _INFLATION if lean is None or not every else _BENDING, dtype=np.int8)
     groups = []
     if lean is None:  # no branch: the straight state, with the end's status for the bending targets
+        status = np.full(p.size, _INFLATION, dtype=np.int8)
         theta = np.zeros(p.size)
         l, r, beta, d2 = state(theta, g)
         status[bend] = br.end_kind
     else:
-        at = np.arange(p.size) if every else np.flatnonzero(bend)
+        status = bend.astype(np.int8)  # BENDING (1) where it bends, INFLATION (0) below P0
+        tb = t if every else t[bend]
         m = np.zeros(p.size)
-        if at.size:
-            tb = t if every else t[at]
+        if tb.size:
             mb, settled = solve_lean(lean, tb)
             if not settled.all():
+                at = np.arange(p.size) if every else np.flatnonzero(bend)
                 groups = [(at[k], zoom) for k, zoom in _trace_groups(br, tb, settled)]
                 mb[~settled] = 0.0
             if every:
                 m = mb
             else:
-                m[at], status[at] = mb, _BENDING
+                m[bend] = mb
         theta, l, r, beta, d2 = lean.rates.state(m)
     for rest, zoom in groups:
         a = br.arrays()
@@ -267,8 +268,9 @@ def one_curve(br, p, *, limits: bool = True):
         l[rest], r[rest], beta[rest], d2[rest] = state(theta[rest], g)
     if not every:
         infl = ~bend
-        r[infl] = br.laws()(p[infl])
-        d2[infl] = r[infl] * r[infl] - g.c
+        free = br.laws()(p[infl])
+        r[infl] = free
+        d2[infl] = free * free - g.c
     if limits:
         status = apply_limits(status, theta, l, r, g.l0, stub_mm=br.model.stub_mm)
     return p * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, np.sqrt(np.maximum(d2, 0.0))
