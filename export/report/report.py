@@ -58,6 +58,15 @@ ul.stops{font-size:13px}
 
 def _clean(value):
     """JSON-safe copy: numpy scalars/arrays to Python, non-finite floats to None, tuples to lists."""
+    kind = type(value)  # the plain types first, by exact type (a numpy float or an enum is a subclass: below)
+    if kind is float:
+        return value if math.isfinite(value) else None
+    if value is None or kind is str or kind is int or kind is bool:
+        return value
+    if kind is dict:
+        return {str(k): _clean(v) for k, v in value.items()}
+    if kind is list:
+        return [_clean(v) for v in value]
     if isinstance(value, Mapping):
         return {str(k): _clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
