@@ -286,6 +286,26 @@ class BentShape:
         """Total length [mm]."""
         return float(self.lengths_mm.sum())
 
+    def moved(self, dx_mm: float, dy_mm: float) -> "BentShape":
+        """The same shape with its clamp moved by (``dx_mm``, ``dy_mm``) in the plan.
+
+        Parameters
+        ----------
+        dx_mm, dy_mm : float
+            The displacement [mm].
+
+        Returns
+        -------
+        BentShape
+
+        Examples
+        --------
+        >>> BentShape.chain([100.0], [90.0]).moved(10.0, -5.0).frames([100.0])[0].round(3).tolist()
+        [[73.662, -5.0, -63.662]]
+        """
+        return type(self)(self.lengths_mm, self.kappa_b_per_mm, self.kappa_p_per_mm, self._s0,
+                          frozen_array(self._x0 + np.array([float(dx_mm), float(dy_mm), 0.0])), self._r0)
+
     def __repr__(self) -> str:
         n = len(self.lengths_mm)
         curved = bool(np.any(self.kappa_p_per_mm != 0.0))

@@ -1,5 +1,7 @@
 """Outputs bounded whatever the number of actuators: the side view, the summary line."""
 import re
+
+import numpy as np
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -213,3 +215,29 @@ def test_the_stitch_preview_text_lists_alike_actuators_once():
     few, many = texts(PREVIEW_MAX_LINES), texts(PREVIEW_MAX_LINES + 5)
     assert [t.split()[0] for t in few[1:]] == [f"A{k}" for k in range(PREVIEW_MAX_LINES)]
     assert len(many) == 2 and many[1].startswith(f"A0 (and {PREVIEW_MAX_LINES + 4} alike) zigzag: w 5.00 mm")
+
+
+def test_identical_actuators_are_meshed_once_and_moved():
+    """MovedMeshes makes one mesh for paths that differ only in their start; the moved copies hold what meshing
+    each path directly gives (same triangles, vertices to 1e-9 mm, same deviation), and a different bend is its
+    own mesh."""
+    from dataclasses import replace
+
+    from embroact.export.pictures.mesh import MovedMeshes, PlanarPath, actuator_mesh
+    from embroact.patterns.centerline import Centerline
+
+    path = PlanarPath.from_centerline(Centerline([[0.0, 0.0], [30.0, 10.0], [60.0, 0.0]]))
+    starts = [(0.0, 0.0), (100.0, 0.0), (-40.0, 250.0)]
+    meshes = MovedMeshes()
+    made = [meshes.mesh(replace(path, start_mm=s), 70.0, width_mm=5.0, r0_mm=2.0, name=f"A{k}")
+            for k, s in enumerate(starts)]
+    other = meshes.mesh(path, 71.0, width_mm=5.0, r0_mm=2.0, name="B")
+    assert meshes.made == 2 and other.theta_deg == 71.0
+    for k, (m, s) in enumerate(zip(made, starts)):
+        direct = actuator_mesh(replace(path, start_mm=s), 70.0, width_mm=5.0, r0_mm=2.0, name=f"A{k}")
+        assert m.name == direct.name and m.bent.path.start_mm == direct.bent.path.start_mm
+        for a, b in zip(m.bodies, direct.bodies):
+            assert np.array_equal(a.faces, b.faces) and np.abs(a.vertices - b.vertices).max() < 1e-9
+        assert abs(m.max_deviation_mm - direct.max_deviation_mm) < 1e-12
+        got, want = m.bent.frames([0.0, 35.0, 60.0]), direct.bent.frames([0.0, 35.0, 60.0])
+        assert np.abs(got[0] - want[0]).max() < 1e-9 and np.abs(got[1] - want[1]).max() < 1e-12

@@ -54,7 +54,7 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -76,6 +76,8 @@ __all__ = [
     "ShapeMesh",
     "actuator_mesh",
     "shapes_of",
+    "MovedMeshes",
+    "remeshed_all",
     "mesh_bytes",
     "write_mesh",
 ]
@@ -307,6 +309,27 @@ class BentPath:
         """
         return self.shape.frames(s_mm)
 
+    def moved(self, dx_mm: float, dy_mm: float) -> "BentPath":
+        """The same bent path with its start moved by (``dx_mm``, ``dy_mm``) in the plan.
+
+        Parameters
+        ----------
+        dx_mm, dy_mm : float
+            The displacement [mm].
+
+        Returns
+        -------
+        BentPath
+
+        Examples
+        --------
+        >>> BentPath.from_theta(PlanarPath.straight(100.0), 90.0).moved(0.0, 2.0).frames([0.0])[0].tolist()
+        [[0.0, 2.0, 0.0]]
+        """
+        x, y = self.path.start_mm
+        return BentPath(replace(self.path, start_mm=(x + float(dx_mm), y + float(dy_mm))),
+                        self.shape.moved(dx_mm, dy_mm), self.segment_lengths_mm, self.segment_theta_deg)
+
     def points(self, s_mm, offsets_uv_mm) -> np.ndarray:
         """World points (n, m, 3) of profile offsets (m, 2) = (u along N, v along B) at ``s_mm``.
 
@@ -440,11 +463,38 @@ class ShapeMesh:
         >>> coarse.tolerance_mm, coarse.triangle_count < m.triangle_count
         (0.5, True)
         """
+        return actuator_mesh(self.bent.path, self.theta_deg, **self._remesh_options(tolerance_mm, measure))
+
+    def _remesh_options(self, tolerance_mm: float, measure: bool = False) -> dict:
         w, r0, strip = self.section_mm
-        return actuator_mesh(self.bent.path, self.theta_deg, width_mm=w, r0_mm=r0, strip_width_mm=strip,
-                             tolerance_mm=tolerance_mm, name=self.name, measure=measure, coarsen=True,
-                             segment_lengths_mm=self.bent.segment_lengths_mm,
-                             segment_theta_deg=self.bent.segment_theta_deg)
+        return {"width_mm": w, "r0_mm": r0, "strip_width_mm": strip, "tolerance_mm": tolerance_mm, "name": self.name,
+                "measure": measure, "coarsen": True, "segment_lengths_mm": self.bent.segment_lengths_mm,
+                "segment_theta_deg": self.bent.segment_theta_deg}
+
+    def moved(self, dx_mm: float, dy_mm: float, name: str) -> "ShapeMesh":
+        """The same shape moved by (``dx_mm``, ``dy_mm``) in the plan, called ``name`` (an identical actuator's).
+
+        Parameters
+        ----------
+        dx_mm, dy_mm : float
+            The displacement [mm].
+        name : str
+            The moved shape's name.
+
+        Returns
+        -------
+        ShapeMesh
+
+        Examples
+        --------
+        >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+        >>> b = m.moved(0.0, 25.0, "A2")
+        >>> b.name, b.triangle_count == m.triangle_count, (b.bodies[1].vertices - m.bodies[1].vertices).max(axis=0).tolist()
+        ('A2', True, [0.0, 25.0, 0.0])
+        """
+        d = np.array([float(dx_mm), float(dy_mm), 0.0])
+        return replace(self, name=name, bent=self.bent.moved(dx_mm, dy_mm),
+                       bodies=tuple(replace(b, vertices=frozen_array(b.vertices + d)) for b in self.bodies))
 
     @property
     def triangle_count(self) -> int:
@@ -716,6 +766,88 @@ def actuator_mesh(
             dev = max(dev, _deviation(bent, prof, s, body))
         bodies.append(body)
     return ShapeMesh(name, tuple(bodies), bent, float(theta_deg), tol, dev if measure else None, (w, r0, strip))
+
+
+class MovedMeshes:
+    """:func:`actuator_mesh`, made once for paths that differ only in their start (identical actuators side by
+    side): a later call's mesh is the first one's moved (:meth:`ShapeMesh.moved`).
+
+    Examples
+    --------
+    >>> meshes = MovedMeshes()
+    >>> a = meshes.mesh(PlanarPath.straight(50.0), 40.0, width_mm=7.0, r0_mm=2.58, name="A1", measure=False)
+    >>> b = meshes.mesh(replace(PlanarPath.straight(50.0), start_mm=(0.0, 30.0)), 40.0, width_mm=7.0, r0_mm=2.58,
+    ...                 name="A2", measure=False)
+    >>> b.name, meshes.made, float(b.bodies[0].vertices[:, 1].min() - a.bodies[0].vertices[:, 1].min())
+    ('A2', 1, 30.0)
+    """
+
+    def __init__(self) -> None:
+        self._first: dict[tuple, tuple[tuple[float, float], ShapeMesh]] = {}
+
+    @property
+    def made(self) -> int:
+        """How many meshes were made (not moved)."""
+        return len(self._first)
+
+    def mesh(self, path: PlanarPath, theta_deg: float, *, name: str = "actuator", **options) -> ShapeMesh:
+        """:func:`actuator_mesh` of these arguments (an earlier one's mesh moved when only the start differs).
+
+        Parameters
+        ----------
+        path : PlanarPath
+            The path.
+        theta_deg : float
+            The bend [deg].
+        name : str
+            The shape's name.
+        **options
+            Further keywords of :func:`actuator_mesh`.
+
+        Returns
+        -------
+        ShapeMesh
+
+        Examples
+        --------
+        >>> MovedMeshes().mesh(PlanarPath.straight(50.0), 40.0, width_mm=7.0, r0_mm=2.58, name="A1").name
+        'A1'
+        """
+        key = (float(path.heading_deg), path.lengths_mm.tobytes(), path.kappa_per_mm.tobytes(), float(theta_deg),
+               tuple((k, tuple(np.asarray(v, dtype=np.float64).reshape(-1).tolist()) if isinstance(
+                   v, (tuple, list, np.ndarray)) else v) for k, v in sorted(options.items())))
+        first = self._first.get(key)
+        if first is None:
+            made = actuator_mesh(path, theta_deg, name=name, **options)
+            self._first[key] = (path.start_mm, made)
+            return made
+        (x0, y0), made = first
+        return made.moved(path.start_mm[0] - x0, path.start_mm[1] - y0, name)
+
+
+def remeshed_all(shapes, tolerance_mm: float) -> tuple[ShapeMesh, ...]:
+    """Every shape meshed again at ``tolerance_mm`` (:meth:`ShapeMesh.remeshed`), each distinct one once
+    (:class:`MovedMeshes`).
+
+    Parameters
+    ----------
+    shapes : sequence of ShapeMesh
+        The shapes.
+    tolerance_mm : float
+        The chordal tolerance [mm].
+
+    Returns
+    -------
+    tuple of ShapeMesh
+
+    Examples
+    --------
+    >>> m = actuator_mesh(PlanarPath.straight(100.0), 90.0, width_mm=7.0, r0_mm=2.58, measure=False, name="A1")
+    >>> [s.name for s in remeshed_all([m, m.moved(0.0, 20.0, "A2")], 0.5)]
+    ['A1', 'A2']
+    """
+    meshes = MovedMeshes()
+    return tuple(meshes.mesh(s.bent.path, s.theta_deg, **s._remesh_options(tolerance_mm)) for s in shapes)
 
 
 def shapes_of(shapes) -> tuple[ShapeMesh, ...]:

@@ -150,16 +150,19 @@ def picture_tolerance_mm(shapes, rot: np.ndarray, width_px: float) -> float:
 
 
 def _picture_shapes(shapes, tol: float):
-    """The shapes meshed at ``tol`` or coarser, within ``PICTURE_MAX_TRIANGLES`` (when the
+    """The shapes meshed at ``tol`` or coarser (identical ones once, :func:`~.mesh.remeshed_all`), within ``PICTURE_MAX_TRIANGLES`` (when the
     mesh's own limit allows): the triangle count goes as 1/tol (rings along the path and
     segments round the tube each as 1/sqrt(tol)), so each retry scales tol by the excess."""
-    out = tuple(s if s.tolerance_mm >= tol else s.remeshed(tol) for s in shapes)
+    from .mesh import remeshed_all
+
+    finer = iter(remeshed_all([s for s in shapes if s.tolerance_mm < tol], tol))
+    out = tuple(s if s.tolerance_mm >= tol else next(finer) for s in shapes)
     n = sum(s.triangle_count for s in out)
     for _ in range(4):
         if n <= PICTURE_MAX_TRIANGLES or tol >= _MAX_TOLERANCE_MM:
             break
         tol = min(_MAX_TOLERANCE_MM, tol * 1.1 * n / PICTURE_MAX_TRIANGLES)
-        coarser = tuple(s.remeshed(tol) for s in shapes)
+        coarser = remeshed_all(shapes, tol)
         n, before = sum(s.triangle_count for s in coarser), n
         out = coarser
         if n > 0.9 * before:  # at the bodies' least triangles (many small shapes): coarser cannot help

@@ -769,18 +769,18 @@ def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, toleran
     >>> [s.name for s in shapes], pressures
     (['A1'], {'A1': 300.0})
     """
-    from .mesh import DEFAULT_CHORD_TOLERANCE_MM
+    from .mesh import DEFAULT_CHORD_TOLERANCE_MM, MovedMeshes
 
     tol = DEFAULT_CHORD_TOLERANCE_MM if tolerance_mm is None else tolerance_mm
-    shapes, pressures = [], {}
+    shapes, pressures, meshes = [], {}, MovedMeshes()  # identical actuators side by side meshed once
     for a, c in zip(analysis.actuators, curves):
         p, theta, parts = shape_state(c, pressure_kpa)
-        shapes.append(actuator_shape(a, theta, parts, tolerance_mm=tol, coarsen=tolerance_mm is None))
+        shapes.append(actuator_shape(a, theta, parts, tolerance_mm=tol, coarsen=tolerance_mm is None, meshes=meshes))
         pressures[a.name] = p
     return shapes, pressures
 
 
-def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **options):
+def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], *, meshes=None, **options):
     """The 3D shape of one analysed actuator: each segment's legs bent by its own bend, the lead-in, the
     transitions and the tail unbent (:meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`, for a
     chain of one as for five), on its path and with the sleeve a view draws it with (:func:`sleeve_mm`).
@@ -793,6 +793,9 @@ def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **
         Its whole strip's bend [deg].
     segment_theta_deg : sequence of float
         Each segment's bend [deg] (adding up to ``theta_deg``).
+    meshes : MovedMeshes, optional
+        Where the mesh is made (:class:`~embroact.export.pictures.mesh.MovedMeshes`: an identical actuator's
+        moved); default a fresh one.
     **options
         Further keywords of :func:`~embroact.export.pictures.mesh.actuator_mesh` (``tolerance_mm``, ``measure``...).
 
@@ -809,12 +812,12 @@ def actuator_shape(act, theta_deg: float, segment_theta_deg: Sequence[float], **
     >>> shape.name, shape.theta_deg
     ('A1', 90.0)
     """
-    from .mesh import PlanarPath, actuator_mesh
+    from .mesh import MovedMeshes, PlanarPath
 
     width, r0 = sleeve_mm(act)
-    return actuator_mesh(PlanarPath.from_centerline(act.plan.centerline), theta_deg, width_mm=width, r0_mm=r0,
-                         name=act.name, segment_lengths_mm=piece_lengths_mm(act),
-                         segment_theta_deg=piece_theta_deg(act, segment_theta_deg), **options)
+    return (meshes or MovedMeshes()).mesh(
+        PlanarPath.from_centerline(act.plan.centerline), theta_deg, width_mm=width, r0_mm=r0, name=act.name,
+        segment_lengths_mm=piece_lengths_mm(act), segment_theta_deg=piece_theta_deg(act, segment_theta_deg), **options)
 
 
 def shape3d_title(pressures: Mapping[str, float]) -> str:
