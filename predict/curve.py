@@ -361,7 +361,8 @@ def _geometry(models) -> _m.Geometry:
 
 
 def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
-    a = np.atleast_1d(np.asarray(values, dtype=np.float64))
+    a = np.asarray(values, dtype=np.float64)
+    a = a if a.ndim == 1 else np.atleast_1d(a)
     if a.ndim > 1:
         raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
     lo, hi = (float(a.min()), float(a.max())) if a.size else (0.0, 0.0)  # NaN: both NaN

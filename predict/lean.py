@@ -93,7 +93,6 @@ _KW_LIST = _KW.tolist()
 _LAST = _FRACTIONS.size - 1
 _Z = np.array(STENCIL)[:, None]
 _FOLD_FRACTIONS = np.linspace(0.0, 1.0, FOLD_NODES)
-_A_ROWS = [0, 1, 2, 4]  # m, F', V' and the stencil spacing at an interval's lower node
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -169,34 +168,6 @@ class LeanTable:
             p = nodes[3]
             self.lazy["arrays"] = nodes, bool((p[1:] > p[:-1]).all())
         return self.lazy["arrays"]
-
-    def intervals(self):
-        """Per bracket, what the array solve gathers, made once: column ``k`` (1 to the last node) holds the
-        interval from node ``k - 1`` to node ``k``.
-
-        Returns
-        -------
-        numpy.ndarray (7, n)
-            m, F', V' and the stencil spacing at node ``k - 1``, then m, F', V' at node ``k`` (column 0: a copy
-            of column 1).
-
-        Examples
-        --------
-        >>> from embroact.predict.model import Geometry, lock_theta
-        >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
-        >>> tab = lean_table(geo, theta_end=float(lock_theta(geo)[0, 0]), pole_at_end=True, rtol=1e-10, atol=1e-22)
-        >>> iv, nodes = tab.intervals(), tab.arrays()[0]
-        >>> iv.shape, bool(iv[0, 5] == nodes[0, 4]), bool(iv[4, 5] == nodes[0, 5])
-        ((7, 385), True, True)
-        """
-        if "intervals" not in self.lazy:
-            nodes = self.arrays()[0]
-            iv = np.empty((7, nodes.shape[1]))
-            iv[:4, 1:] = nodes[_A_ROWS, :-1]
-            iv[4:, 1:] = nodes[:3, 1:]
-            iv[:, 0] = iv[:, 1]
-            self.lazy["intervals"] = iv
-        return self.lazy["intervals"]
 
     @property
     def top(self) -> float:
@@ -332,8 +303,8 @@ def solve_lean(tab: LeanTable, t):
     """
     nodes, rises = tab.arrays()
     t = t / tab.rates.scale
-    k = np.searchsorted(nodes[3, :_LAST], t, side="right")  # >= 1: t > 0 = p[0]; the bracket [k - 1, k]
-    ma, fa, va, kh, mb, fb, vb = tab.intervals().take(k, axis=1)
+    lo = np.searchsorted(nodes[3, 1:_LAST], t, side="right")  # t > 0 = p[0]: the bracket [lo, lo + 1]
+    (ma, fa, va, _, kh), (mb, fb, vb, _, _) = nodes.take(lo, axis=1), nodes[:, 1:].take(lo, axis=1)
     zigzag = tab.rates.zigzag
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)

@@ -183,7 +183,7 @@ class Geometry:
         True
         """
         b = float(beta0_rad)
-        s0, c0 = (float(np.sin(b)), float(np.cos(b))) if b != 0.0 else (0.0, 1.0)  # numpy's sin, cos: 0, 1 at 0
+        s0, c0 = (float(np.sin(b)), float(np.cos(b))) if b != 0.0 else (b, 1.0)  # sin(+-0) = +-0, cos(+-0) = 1
         return cls._derived(float(l0_mm), float(r0_mm), s0, c0, float(c_mm2), float(g_mpa), float(p0_mpa))
 
     @classmethod
