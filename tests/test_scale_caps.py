@@ -241,3 +241,22 @@ def test_identical_actuators_are_meshed_once_and_moved():
         assert abs(m.max_deviation_mm - direct.max_deviation_mm) < 1e-12
         got, want = m.bent.frames([0.0, 35.0, 60.0]), direct.bent.frames([0.0, 35.0, 60.0])
         assert np.abs(got[0] - want[0]).max() < 1e-9 and np.abs(got[1] - want[1]).max() < 1e-12
+
+
+def test_derived_geometry_past_the_cap_is_ranges_then_columns_findings_first():
+    """Past REPORT_MAX_COLUMNS actuators the derived geometry opens with each quantity's count, least and
+    greatest value and number of distinct values (by hand: r0 2.0 x 120, 2.5 x 30), and the collapsed columns
+    put the actuators with findings first."""
+    from embroact.export.report.report import REPORT_MAX_COLUMNS, report_data, report_html
+
+    acts = [{"name": f"A{k}", "derived": {"r0_mm": 2.0 if k < 120 else 2.5, "has_sleeve": True}} for k in range(150)]
+    finding = {"code": "EA101", "severity": "error", "message": "m", "actuator": "A130", "fix": "f"}
+    html = report_html(report_data(title="t", actuators=acts, findings=[finding]))
+    derived = html.split('<section id="derived">', 1)[1].split("</section>", 1)[0]
+    ranges, columns = derived.split("<details>", 1)
+    assert ('<tr><th>r0 [mm]</th><td class="num">150</td><td class="num">2</td><td class="num">2.5</td>'
+            '<td class="num">2</td></tr>') in ranges and "has sleeve" not in ranges
+    heads = [h.split("</th>")[0] for h in columns.split("<th>")[2:4]]
+    assert heads == ["A120 and 29 identical", "A0 and 119 identical"] and "those with findings first" in columns
+    small = report_html(report_data(title="t", actuators=acts[:REPORT_MAX_COLUMNS], findings=[finding]))
+    assert "<details><summary>Per actuator" not in small

@@ -256,25 +256,48 @@ def _parts(actuators: Sequence[Mapping]) -> list[Mapping]:
 REPORT_MAX_COLUMNS = 100
 
 
-def _summarised(entries: Sequence[Mapping]) -> tuple[list[Mapping], str]:
+def _unnamed(value, name):
+    """``value`` without its ``name`` entries that repeat ``name`` (at any depth: a part's derived geometry names
+    its actuator), so that two actuators alike but for their names compare equal.
+
+    Examples
+    --------
+    >>> _unnamed({"name": "A1", "derived": {"name": "A1", "r0_mm": 2.0}, "other": {"name": "B"}}, "A1")
+    {'derived': {'r0_mm': 2.0}, 'other': {'name': 'B'}}
+    """
+    if isinstance(value, Mapping):
+        return {k: _unnamed(v, name) for k, v in value.items() if not (k == "name" and v == name)}
+    if isinstance(value, list):
+        return [_unnamed(v, name) for v in value]
+    return value
+
+
+def _summarised(entries: Sequence[Mapping], first=frozenset()) -> tuple[list[Mapping], str]:
     """``entries`` as a table shows them (at most :data:`REPORT_MAX_COLUMNS`) and the note saying what was
-    merged or left out ("" when all are shown as they are).
+    merged or left out ("" when all are shown as they are). Past the cap, the columns holding an entry named in
+    ``first`` (the actuators with findings) come first.
 
     Examples
     --------
     >>> few, note = _summarised([{"name": f"A{k}", "x": 1} for k in range(150)])
     >>> [e["name"] for e in few], note
     (['A0 and 149 identical'], '150 columns, identical ones shown once')
+    >>> few, note = _summarised([{"name": f"A{k}", "x": k % 2} for k in range(150)], first={"A7"})
+    >>> [e["name"] for e in few], note
+    (['A1 and 74 identical', 'A0 and 74 identical'], '150 columns, identical ones shown once, those with findings first')
     """
     if len(entries) <= REPORT_MAX_COLUMNS:
         return list(entries), ""
     groups: dict[str, list[Mapping]] = {}
     for e in entries:
-        key = json.dumps({k: v for k, v in e.items() if k != "name"}, sort_keys=True, default=str)
+        key = json.dumps(_unnamed(e, e.get("name")), sort_keys=True, default=str)
         groups.setdefault(key, []).append(e)
+    flagged = [any(str(e.get("name")) in first for e in g) for g in groups.values()]
+    ordered = [g for f, g in zip(flagged, groups.values()) if f] + [g for f, g in zip(flagged, groups.values()) if not f]
     shown = [{**g[0], "name": f"{g[0].get('name')} and {len(g) - 1} identical"} if len(g) > 1 else g[0]
-             for g in groups.values()]
-    note = f"{len(entries)} columns, identical ones shown once"
+             for g in ordered]
+    note = f"{len(entries)} columns, identical ones shown once" + (", those with findings first" if any(flagged)
+                                                                   and not all(flagged) else "")
     if len(shown) > REPORT_MAX_COLUMNS:
         note += f"; the first {REPORT_MAX_COLUMNS} of {len(shown)} shown (report.json has every one)"
         shown = shown[:REPORT_MAX_COLUMNS]
@@ -285,8 +308,23 @@ def _noted(note: str) -> str:
     return f'<p class="note">{_e(note)}</p>' if note else ""
 
 
-def _derived_table(actuators: Sequence[Mapping]) -> str:
-    parts, note = _summarised(_parts(actuators))
+def _ranges_table(parts: Sequence[Mapping]) -> str:
+    """Per numeric derived quantity over every part: how many have it, its least and greatest value and how many
+    distinct values it takes (the summary above a table of more than :data:`REPORT_MAX_COLUMNS` columns)."""
+    values: dict[str, list[float]] = {}
+    for p in parts:
+        for k, v in (p.get("derived") or {}).items():
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                values.setdefault(k, []).append(v)
+    rows = "".join(f"<tr><th>{_e(_label(k))}</th>{_cell(len(v))}{_cell(min(v))}{_cell(max(v))}{_cell(len(set(v)))}"
+                   "</tr>" for k, v in values.items())
+    head = "".join(f"<th>{h}</th>" for h in ("quantity", "count", "least", "greatest", "distinct values"))
+    return f'<table class="ranges"><tr>{head}</tr>{rows}</table>' if rows else ""
+
+
+def _derived_table(actuators: Sequence[Mapping], with_findings=frozenset()) -> str:
+    all_parts = _parts(actuators)
+    parts, note = _summarised(all_parts, with_findings)
     rows: list[str] = []
     for a in parts:
         for k in a.get("derived") or {}:
@@ -299,7 +337,12 @@ def _derived_table(actuators: Sequence[Mapping]) -> str:
         f"<tr><th>{_e(_label(k))}</th>{''.join(_cell((a.get('derived') or {}).get(k)) for a in parts)}</tr>"
         for k in rows
     )
-    return _noted(note) + f"<table><tr><th>quantity</th>{head}</tr>{body}</table>" + _segments_table(actuators)
+    table = f"<table><tr><th>quantity</th>{head}</tr>{body}</table>"
+    if len(all_parts) > REPORT_MAX_COLUMNS:  # a summary of the ranges, the columns collapsed under it
+        table = (_ranges_table(all_parts) + f"<details><summary>Per actuator ({len(parts)} column{'s' * (len(parts) != 1)})</summary>"
+                 f"{_noted(note)}{table}</details>")
+        note = ""
+    return _noted(note) + table + _segments_table(actuators)
 
 
 def _segments_table(actuators: Sequence[Mapping]) -> str:
@@ -316,7 +359,10 @@ def _segments_table(actuators: Sequence[Mapping]) -> str:
         return ""
     head = "".join(f"<th>{h}</th>" for h in ("segment", "pattern", "path from [mm]", "path to [mm]", "legs from [mm]",
                                                "legs to [mm]", "transition [mm]", "thread run [mm]"))
-    return f"<h3>Segments along the path</h3><table><tr>{head}</tr>{''.join(rows)}</table>"
+    table = f"<table><tr>{head}</tr>{''.join(rows)}</table>"
+    if len(rows) > REPORT_MAX_COLUMNS:
+        table = f"<details><summary>{len(rows)} segments</summary>{table}</details>"
+    return f"<h3>Segments along the path</h3>{table}"
 
 
 def _model_table(actuators: Sequence[Mapping]) -> str:
@@ -535,7 +581,9 @@ def report_html(data: Mapping, *, figures: Mapping[str, str] | None = None,
             parts.append("</section>")
     parts += [
         '<section id="model"><h2>Model</h2>', _model_table(acts), "</section>",
-        '<section id="derived"><h2>Derived geometry</h2>', _derived_table(acts), "</section>",
+        '<section id="derived"><h2>Derived geometry</h2>',
+        _derived_table(acts, frozenset(str(f["actuator"]) for f in findings if f.get("actuator") is not None)),
+        "</section>",
         '<section id="worksheet"><h2>Worksheet</h2>', _worksheet_html(data.get("worksheet")), "</section>",
         '<section id="findings"><h2>Design-rule findings</h2>', _findings_table(findings), "</section>",
         "</body></html>",
