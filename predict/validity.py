@@ -172,7 +172,8 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
                                       for v in (th, r, l0, stub)))
         return out
     # only past a quarter turn can it reach back
-    return a > 0.5 * math.pi and a >= _contact_free_below(l0, 2.0 * r, stub) and _arc_contact_float(th, r, l0, stub)
+    return a > 0.5 * math.pi and (a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub)
+                                                     and _arc_contact_float(th, r, l0, stub)))
 
 
 #: Margin of :func:`_contact_free_below`'s reach, relative to the lengths involved (the round-off of
