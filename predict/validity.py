@@ -233,8 +233,9 @@ def _coiled_states(th, a, top, r, l0, stub):
         return None
     if m != m:
         return arc_contact(th, r, l0, m)
-    rn = r[a >= free]
-    w_lo, w_hi = 2.0 * float(rn.min()), 2.0 * float(rn.max())
+    near = np.flatnonzero(a >= free)  # the states the free bound cannot clear, as floats
+    a_near, r_near = a.reshape(-1)[near].tolist(), r.reshape(-1)[near].tolist()
+    w_lo, w_hi = 2.0 * min(r_near), 2.0 * max(r_near)
     below, start, end = math.inf, -math.inf, math.inf
     hi, lo = float(th.max()), float(th.min())
     for negative in (n for n, on in ((False, hi >= free), (True, -lo >= free)) if on):  # the ways states bend
@@ -243,14 +244,13 @@ def _coiled_states(th, a, top, r, l0, stub):
     if not start <= end:  # no sure contact: every state from ``below`` to the full turn takes the test
         start = end = _FULL_TURN
     out = a >= start  # past a full turn too
-    test = (a >= below) & (a < start) if below < start else np.zeros(a.shape, dtype=bool)
-    if top > end:
-        test |= (a > end) & (a < _FULL_TURN)
-    at = np.flatnonzero(test)
-    if at.size <= _FLOAT_TESTS:
-        for k in at.tolist():
+    at = [k for k, x in zip(near.tolist(), a_near) if below <= x < start or end < x < _FULL_TURN]
+    if len(at) <= _FLOAT_TESTS:
+        for k in at:
             out.flat[k] = _arc_contact_float(th.item(k), r.item(k), l0, m)
     else:
+        test = np.zeros(a.shape, dtype=bool)
+        test.flat[at] = True
         out[test] = ~_apart(th[test], r[test], l0, m)
     return out
 
