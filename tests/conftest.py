@@ -5,6 +5,11 @@ the suite is reproducible and finishes in bounded time. ``dev`` and ``thorough``
 run many more random examples; pick one with the environment variable
 ``EMBROACT_HYPOTHESIS_PROFILE`` (e.g. ``EMBROACT_HYPOTHESIS_PROFILE=thorough pytest``).
 Deadlines are off in every profile: run times on a loaded 2-core machine vary.
+
+The README's test command runs the modules in parallel (pytest-xdist, ``-n auto --dist loadfile
+--no-loadscope-reorder``: each module whole in one worker, so its module fixtures are built once);
+modules holding a long run (``@pytest.mark.slow``) are collected first, so no worker starts one
+while the other has nothing left.
 """
 import os
 
@@ -18,6 +23,12 @@ settings.register_profile("ci", max_examples=CI_EXAMPLES, derandomize=True, prin
 settings.register_profile("dev", max_examples=10 * CI_EXAMPLES, **_COMMON)
 settings.register_profile("thorough", max_examples=100 * CI_EXAMPLES, **_COMMON)
 settings.load_profile(os.environ.get("EMBROACT_HYPOTHESIS_PROFILE", "ci"))
+
+
+def pytest_collection_modifyitems(items):
+    """Modules with a test marked slow first, each module's tests in their order (a stable sort)."""
+    slow = {item.path for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: item.path not in slow)
 
 if os.environ.get("EMBROACT_TEST_KINDS") == "1":  # the whole suite with a third pattern kind registered
     import kind_parallel

@@ -25,6 +25,7 @@ import resource
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -64,7 +65,14 @@ def _hidden(d: Path) -> list[str]:
     (["--worksheet", "--preview", "{d}/a.worksheet.txt"], "a.worksheet.txt", "a.worksheet.txt"),
     (["--preview", "{d}/link.dst"], "a.dst", "link.dst"),
 ], ids=["same", "dot", "dotdot", "worksheet", "symlink"])
-def test_two_outputs_naming_one_file_are_refused(tmp_path, extra, first, second):
+def test_two_outputs_naming_one_file_are_refused(extra, first, second):
+    """The message quotes both paths whole: a short folder, so no path is cut (pytest's own tmp_path
+    grows with the xdist worker's name and the test's)."""
+    with tempfile.TemporaryDirectory(prefix="two-") as d:
+        _two_outputs_refused(Path(d), extra, first, second)
+
+
+def _two_outputs_refused(tmp_path, extra, first, second):
     (tmp_path / "sub").mkdir()
     (tmp_path / "link.dst").symlink_to(tmp_path / "a.dst")
     code, _, err = _run(ZZ + ["-o", f"{tmp_path}/a.dst"] + [a.replace("{d}", str(tmp_path)) for a in extra])

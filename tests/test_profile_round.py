@@ -55,6 +55,13 @@ def coupon(tmp_path_factory):
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def _sewn(design_path):
+    """Each actuator's derived values in a coupon's design file, by name (the files of a coupon never change,
+    so the 100 rounds of the band test analyse them once)."""
+    return {a.name: a.derived for a in analyse(load_design(design_path)).actuators}
+
+
 def _simulate(coupon, seed, spoil=None):
     with open(coupon / "measurements.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
@@ -62,8 +69,7 @@ def _simulate(coupon, seed, spoil=None):
     for r in rows:
         key = (r["design"], r["actuator"])
         if key not in derived:
-            acts = {a.name: a for a in analyse(load_design(coupon / r["design"])).actuators}
-            derived[key] = acts[r["actuator"]].derived
+            derived[key] = _sewn(coupon / r["design"])[r["actuator"]]
     rng = np.random.default_rng(seed)
     truth = {}
     for key, d in derived.items():

@@ -3,7 +3,8 @@
 The source folders (api/, patterns/, predict/, export/) become one ``embroact`` package only when
 installed; the test lays them out that way with symlinks in a temporary folder and runs
 ``mypy -p embroact`` there with the project's configuration ([tool.mypy] in pyproject.toml).
-About 11-20 s from a cold cache.
+About 11-20 s from a cold cache. The user-script test reads the package through the same tree and
+cache, so after the package check it analyses only its script (run alone, it starts cold).
 """
 import os
 import subprocess
@@ -28,11 +29,18 @@ def _package_tree(tmp: Path) -> Path:
     return pkg
 
 
-def test_mypy_reports_no_errors_on_the_package(tmp_path):
-    _package_tree(tmp_path)
+@pytest.fixture(scope="module")
+def tree(tmp_path_factory):
+    """The installed layout in a temporary folder, with one mypy cache (``cache/``) for the module's runs."""
+    tmp = tmp_path_factory.mktemp("typing")
+    _package_tree(tmp)
+    return tmp
+
+
+def test_mypy_reports_no_errors_on_the_package(tree):
     out = subprocess.run([sys.executable, "-m", "mypy", "-p", "embroact", "--config-file", str(ROOT / "pyproject.toml"),
-                          "--cache-dir", str(tmp_path / "cache"), "--no-error-summary"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+                          "--cache-dir", str(tree / "cache"), "--no-error-summary"],
+                         cwd=tree, capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
     assert [line for line in out.stdout.splitlines() if ": error:" in line] == []
 
@@ -48,13 +56,12 @@ count: str = plan.stitch_count  # a deliberate error: an int is no str
 '''
 
 
-def test_mypy_sees_real_types_through_import_embroact(tmp_path):
+def test_mypy_sees_real_types_through_import_embroact(tree):
     """A user's script: mypy knows ``embroact.default_design()`` is a Design and reports a wrong type."""
-    _package_tree(tmp_path)
-    (tmp_path / "user.py").write_text(USER_SCRIPT, encoding="utf-8")
+    (tree / "user.py").write_text(USER_SCRIPT, encoding="utf-8")
     out = subprocess.run([sys.executable, "-m", "mypy", "user.py", "--config-file", str(ROOT / "pyproject.toml"),
-                          "--cache-dir", str(tmp_path / "cache"), "--no-error-summary"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+                          "--cache-dir", str(tree / "cache"), "--no-error-summary"],
+                         cwd=tree, capture_output=True, text=True, timeout=300)
     lines = out.stdout.splitlines()
     assert 'user.py:5: note: Revealed type is "embroact.patterns.design.Design"' in lines, out.stdout
     assert 'user.py:6: note: Revealed type is "embroact.predict.analysis.ActuatorAnalysis"' in lines, out.stdout
