@@ -12,6 +12,7 @@ modules holding a long run (``@pytest.mark.slow``) are collected first, so no wo
 while the other has nothing left.
 """
 import os
+import signal
 
 from hypothesis import HealthCheck, settings
 
@@ -23,12 +24,16 @@ settings.register_profile("ci", max_examples=CI_EXAMPLES, derandomize=True, prin
 settings.register_profile("dev", max_examples=10 * CI_EXAMPLES, **_COMMON)
 settings.register_profile("thorough", max_examples=100 * CI_EXAMPLES, **_COMMON)
 settings.load_profile(os.environ.get("EMBROACT_HYPOTHESIS_PROFILE", "ci"))
+# The tests that stop a command with Ctrl-C send SIGINT to a child process, which inherits an ignored SIGINT
+# (a shell's background job ignores it): Python's own handler here, so every child starts with the default.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def pytest_collection_modifyitems(items):
     """Modules with a test marked slow first, each module's tests in their order (a stable sort)."""
     slow = {item.path for item in items if item.get_closest_marker("slow")}
     items.sort(key=lambda item: item.path not in slow)
+
 
 if os.environ.get("EMBROACT_TEST_KINDS") == "1":  # the whole suite with a third pattern kind registered
     import kind_parallel

@@ -240,19 +240,19 @@ def _hoist_style(group) -> None:
     >>> for k in range(_HOIST_MIN):
     ...     _ = g.add(dwg.circle((k, 0), 1, fill="red", stroke="blue" if k else "black"))
     >>> _hoist_style(g)
-    >>> g.get("fill"), g[0].get("fill"), g[0].get("stroke"), g.get("stroke")
+    >>> g.attribs.get("fill"), g.elements[0].attribs.get("fill"), g.elements[0].attribs.get("stroke"), g.attribs.get("stroke")
     ('red', None, 'black', None)
     """
-    children = list(group)
+    children = group.elements  # svgdoc's and svgwrite's names (tests/test_svgdoc.py draws with both)
     if len(children) < _HOIST_MIN:
         return
     for name in _INHERITED:
-        value = children[0].get(name)
-        if value is None or group.get(name) is not None or any(c.get(name) != value for c in children):
+        value = children[0].attribs.get(name)
+        if value is None or name in group.attribs or any(c.attribs.get(name) != value for c in children):
             continue
-        group.set(name, value)
+        group.update({name: value})
         for c in children:
-            del c.attrib[name]
+            del c.attribs[name]
 
 
 def _pts_list(xy) -> list[tuple[str, str]]:
@@ -336,7 +336,7 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
         layer["travel"].add(dwg.path(d=d, fill="none", stroke=TRAVEL_COLOUR, stroke_width="0.15",
                                      stroke_dasharray="0.8,0.5"))
     if show_points:  # the dots' fill set once, on their layer
-        layer["needle-points"].set("fill", "#111111")
+        layer["needle-points"].update({"fill": "#111111"})
         for x, y in xy[stitch]:
             layer["needle-points"].add(dwg.circle((_f(x), _f(-y)), _f(pr)))
     s = 0.5

@@ -130,6 +130,51 @@ class Element(ET.Element):
         self.append(element)
         return element
 
+    @property
+    def attribs(self) -> dict:
+        """The element's attributes (svgwrite's name for them): the live dict, so setting a key sets it.
+
+        Examples
+        --------
+        >>> c = Drawing(size=("10mm", "10mm")).circle((0, 0), 1)
+        >>> c.attribs["fill"] = "red"
+        >>> c.tostring()
+        '<circle cx="0" cy="0" r="1" fill="red" />'
+        """
+        return self.attrib
+
+    def update(self, attribs: dict) -> None:
+        """Set attributes (svgwrite's ``update``), written in name order as every element's are.
+
+        Parameters
+        ----------
+        attribs : dict
+            Names (``_`` for ``-``) and values.
+
+        Examples
+        --------
+        >>> g = Drawing(size=("10mm", "10mm")).g(id="legs")
+        >>> g.update({"fill": "none"})
+        >>> g.tostring()
+        '<g fill="none" id="legs" />'
+        """
+        merged = {**self.attrib, **_attributes(attribs)}
+        self.attrib.clear()
+        self.attrib.update(sorted(merged.items()))
+
+    @property
+    def elements(self) -> list:
+        """The children, in order (svgwrite's name for them).
+
+        Examples
+        --------
+        >>> dwg = Drawing(size=("10mm", "10mm"))
+        >>> g = dwg.g()
+        >>> g.add(dwg.circle((0, 0), 1)) is g.elements[0]
+        True
+        """
+        return list(self)
+
     def set_desc(self, title: str) -> None:
         """Insert a ``<title>`` (a tooltip in browsers) as the first child.
 
