@@ -845,11 +845,11 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     check_range("rtol", rtol, low=0.0, high=1.0)
     if _resolve(method, rtol) != _FAST:
         return None
-    cols = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
-    if cols is None:
+    got = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
+    if got is None:
         return None
-    status = np.array(cols[2], dtype=np.int8)
-    rows = np.array(cols[0] + cols[1] + cols[3] + cols[4] + cols[5] + cols[6])  # the float columns: one array
+    status = np.array(got[1], dtype=np.int8)
+    rows = np.array(got[0])  # the float columns: one array
     status.setflags(write=False)
     rows.setflags(write=False)
     p, theta, length, radius, beta, inner = rows.reshape(6, len(values))  # read-only rows

@@ -277,8 +277,8 @@ def one_curve(br, p, *, limits: bool = True):
 
 
 def one_curve_floats(br, p, *, limits: bool = True):
-    """As :func:`one_curve` for pressures ``p`` [MPa] given as a list of floats: lists of floats
-    (status as ints), or None when a pressure is not a bending point the lean solve settles.
+    """As :func:`one_curve` for pressures ``p`` [MPa] given as a list of floats: its float columns in one flat
+    list and the statuses as ints, or None when a pressure is not a bending point the lean solve settles.
 
     Parameters
     ----------
@@ -291,8 +291,9 @@ def one_curve_floats(br, p, *, limits: bool = True):
 
     Returns
     -------
-    list of list or None
-        The columns of :func:`one_curve`.
+    (list of float, list of int) or None
+        The float columns of :func:`one_curve` (P [kPa], theta [deg], l, r, beta, d) one after another, ``len(p)``
+        values each, and the status of each pressure.
 
     Examples
     --------
@@ -300,21 +301,23 @@ def one_curve_floats(br, p, *, limits: bool = True):
     >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0, outer_radius_mm=1.5,
     ...                   inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=2.7, p0_kpa=85)
     >>> br = _branch(m, 1e-10)  # the branch curve(m, ...) keeps
-    >>> one_curve_floats(br, [0.2])[1] == one_curve(br, np.array([0.2]))[1].tolist()
-    True
+    >>> floats, status = one_curve_floats(br, [0.2])
+    >>> floats[1] == float(one_curve(br, np.array([0.2]))[1][0]), status
+    (True, [1])
     >>> one_curve_floats(br, [0.05]) is None  # below P0: not a bending point
     True
     """
     lean, g = br.lean, br.scalar
     if lean is None:
         return None
-    rows = []
-    for pk in p:
+    n = len(p)
+    floats, codes = [0.0] * (6 * n), []
+    for k, pk in enumerate(p):
         t = pk - g.p0
         m = solve_lean_scalar(lean, t) if t > 0.0 else None
         if m is None:
             return None
         theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
-        status = apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm) if limits else _BENDING
-        rows.append((pk * KPA_PER_MPA, theta * _DEG_PER_RAD, status, l, r, beta, math.sqrt(max(d2, 0.0))))
-    return [list(col) for col in zip(*rows)]
+        codes.append(apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm) if limits else _BENDING)
+        floats[k::n] = pk * KPA_PER_MPA, theta * _DEG_PER_RAD, l, r, beta, math.sqrt(max(d2, 0.0))
+    return floats, codes
