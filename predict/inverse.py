@@ -859,9 +859,10 @@ def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
     return math.degrees(math.atan(math.tan(a) + DEFAULT_TOLERANCES.machine_grid_mm / width_mm) - a)
 
 
-def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float, **kw) -> tuple[Sensitivity, ...]:
-    """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again: one grid
-    unit of width (the path moves to keep both rails on the grid, :func:`grid_origin_mm`)."""
+def _sensitivity(params, theta_deg: float, analysed) -> tuple[Sensitivity, ...]:
+    """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again
+    (``analysed(params)``, :func:`_analysed` at the candidate's length and pressure): one grid unit of width (the
+    path moves to keep both rails on the grid, :func:`grid_origin_mm`)."""
     steps = [("width_mm", DEFAULT_TOLERANCES.machine_grid_mm)]
     if pattern_kind(params.pattern).has_angle:
         steps.append(("angle_deg", angle_grid_step_deg(params.width_mm, params.angle_deg)))
@@ -871,7 +872,7 @@ def _sensitivity(params, theta_deg: float, length_mm: float, pressure_kpa: float
         for sign in (-1.0, 1.0):
             moved = dataclasses.replace(params, **{key: round(getattr(params, key) + sign * step, 10)})
             try:
-                _, _, theta, _ = _analysed(moved, length_mm, pressure_kpa, **kw)
+                _, _, theta, _ = analysed(moved)
             except EmbroactError:
                 theta = None
             change.append(math.nan if theta is None else theta - theta_deg)
@@ -933,10 +934,13 @@ def exact_pressure_kpa(model, target_deg: float) -> float | None:
 
 def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: float, target_deg: float, *,
                tube: Tube, settings: ModelSettings, sets, name: str, operation: OperationSettings,
-               polish: bool, place: _Place = ((0.0, 0.0), 0.0), interval_mm: float | None = None) -> BendCandidate | None:
+               polish: bool, place: _Place = ((0.0, 0.0), 0.0), interval_mm: float | None = None,
+               memo: dict) -> BendCandidate | None:
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
     needle points are on the machine grid); None if it is not in a valid state or fails the rules.
-    ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_lengths`)."""
+    ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_lengths`).
+    ``memo`` holds the analyses of one search by (params, length): a candidate's grid neighbours, analysed for its
+    sensitivity, are often candidates too (the other arguments are the search's own)."""
     from .rules import check_design
 
     def params_at(v):
@@ -944,19 +948,25 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
         return q if interval_mm is None else dataclasses.replace(q, interval_mm=interval_mm)
 
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation, place=place)
-    d, a, theta, status = _analysed(params_at(x), length_mm, pressure_kpa, **kw)
+
+    def analysed(q):
+        if (q, length_mm) not in memo:
+            memo[q, length_mm] = _analysed(q, length_mm, pressure_kpa, **kw)
+        return memo[q, length_mm]
+
+    d, a, theta, status = analysed(params_at(x))
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
         x0, t0 = x, theta
         x1 = min(max(x + 1e-4 * (space.high - space.low), space.low), space.high)
         for _ in range(8):
             if abs(t0 - target_deg) <= _BEND_TOL_DEG:
                 break
-            _, _, t1, _ = _analysed(params_at(x1), length_mm, pressure_kpa, **kw)
+            _, _, t1, _ = analysed(params_at(x1))
             if t1 is None or t1 == t0:
                 break
             x0, x1, t0 = x1, min(max(x1 - (t1 - target_deg) * (x1 - x0) / (t1 - t0), space.low), space.high), t1
         x = round(x0, 6)
-        d, a, theta, status = _analysed(params_at(x), length_mm, pressure_kpa, **kw)
+        d, a, theta, status = analysed(params_at(x))
     if theta is None or status not in _VALID:
         return None
     findings = check_design(a)
@@ -974,7 +984,7 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     band = a.bands([pressure_kpa])[0]
     params = params_at(x)
     return BendCandidate(space.pattern, params, d, theta, model.p0_kpa, model.g_mpa, limit, margin, edge,
-                         _sensitivity(params, theta, length_mm, pressure_kpa, **kw), binding,
+                         _sensitivity(params, theta, analysed), binding,
                          tuple(sorted({f.code for f in findings})),
                          None if band is None else float(band.theta_sd_deg[0]),
                          sum(f.severity.name == "WARNING" for f in findings), exact_pressure_kpa(model, target_deg),
@@ -1223,7 +1233,7 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
                                       low_inclusive=True)
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name,
                               operation=operating_limits(operation, p, target),
-                              place=((float(origin_mm[0]), float(origin_mm[1])), float(rotation_deg)))
+                              place=((float(origin_mm[0]), float(origin_mm[1])), float(rotation_deg)), memo={})
     cands: list[BendCandidate] = []
     reasons, ranges = [], []
     step = DEFAULT_TOLERANCES.machine_grid_mm  # one grid unit of width: the path moves (grid_origin_mm)
