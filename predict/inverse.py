@@ -939,8 +939,8 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     """Generate and analyse the design at x (a continuous parameter polished on the analysed design, whose
     needle points are on the machine grid); None if it is not in a valid state or fails the rules.
     ``interval_mm`` replaces the space's interval (a length fitted to whole intervals, :func:`_fitted_lengths`).
-    ``memo`` holds the analyses of one search by (params, length): a candidate's grid neighbours, analysed for its
-    sensitivity, are often candidates too (the other arguments are the search's own)."""
+    ``memo`` holds the analyses of one search by (params, length, pressure): a candidate's grid neighbours, analysed
+    for its sensitivity, are often candidates too (the other arguments are the search's own)."""
     from .rules import check_design
 
     def params_at(v):
@@ -950,9 +950,10 @@ def _candidate(space: DesignSpace, x: float, length_mm: float, pressure_kpa: flo
     kw: dict[str, Any] = dict(tube=tube, settings=settings, sets=sets, name=name, operation=operation, place=place)
 
     def analysed(q):
-        if (q, length_mm) not in memo:
-            memo[q, length_mm] = _analysed(q, length_mm, pressure_kpa, **kw)
-        return memo[q, length_mm]
+        key = q, length_mm, pressure_kpa
+        if key not in memo:
+            memo[key] = _analysed(q, length_mm, pressure_kpa, **kw)
+        return memo[key]
 
     d, a, theta, status = analysed(params_at(x))
     if polish and theta is not None:  # secant steps on the analysed design (it is what `predict` prints)
