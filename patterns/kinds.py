@@ -33,6 +33,7 @@ from dataclasses import dataclass, fields
 from typing import Callable
 
 from .base.errors import ParameterError
+from .kindnames import BUILTIN_KINDS
 from .params import ADJUST_METHODS, CrossParams, PatternParams, ZigzagParams
 
 __all__ = ["Interval", "KindFields", "KindOf", "PatternKind", "PatternKinds", "PATTERN_KINDS", "pattern_kind",
@@ -449,8 +450,8 @@ def _cross_design(x: float, width_mm: float, interval_mm: float) -> CrossParams:
     return CrossParams(width_mm, reach / n, float(x))
 
 
-register(PatternKind("zigzag", ZigzagParams, f"{__package__}.zigzag", "width_mm", description="one zigzag actuator",
+register(PatternKind("zigzag", ZigzagParams, f"{__package__}.zigzag", "width_mm", description=BUILTIN_KINDS["zigzag"],
                      design_params=_zigzag_design))
 register(PatternKind("cross", CrossParams, f"{__package__}.cross", "angle_deg", ("adjust",), (ADJUST_METHODS,),
                      Interval.PARALLEL_LEGS, 1.4,
-                     description="one cross-pattern actuator", design_params=_cross_design))
+                     description=BUILTIN_KINDS["cross"], design_params=_cross_design))

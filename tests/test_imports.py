@@ -44,3 +44,35 @@ def test_generator_names_stay_functions_after_their_modules_load():
             "from embroact.patterns import zigzag, cross, measure\n"
             "assert all(inspect.isfunction(f) for f in (zigzag, cross, measure, p.zigzag, p.cross, p.measure))")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_help_leaves_the_kind_registry_unloaded():
+    # the registry imports the parameter classes, and with them dataclasses and typing (the larger part of
+    # `embroact --help` over a bare `import argparse`); --help lists the kinds from patterns.kindnames
+    assert _loaded_after("pass", ("dataclasses", "embroact.patterns.kinds")) == []
+    code = ("import contextlib, io\nfrom embroact.export.cli.main import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n    code = main(['--help'])\nassert code == 0, code")
+    assert _loaded_after(code, ("dataclasses", "embroact.patterns.kinds")) == []
+
+
+def test_commands_without_the_registry_are_those_it_registers():
+    code = ("import json\nfrom embroact.export.cli.main import commands\nbefore = commands()\n"
+            "import embroact.patterns.kinds as kinds\n"
+            "print(json.dumps([before, commands(), [k.name for k in kinds.PATTERN_KINDS]]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    before, after, registered = json.loads(out.stdout.strip().splitlines()[-1])
+    assert before == after
+    assert list(before)[:len(registered)] == registered == ["zigzag", "cross"]
+
+
+def test_a_kind_registered_later_is_a_command():
+    from embroact.export.cli.main import commands
+    from embroact.patterns.kinds import PATTERN_KINDS, PatternKind, register
+    from embroact.patterns.params import ZigzagParams
+
+    register(PatternKind("plugin_kind", ZigzagParams, "embroact.patterns.zigzag", "width_mm", description="a test"))
+    try:
+        assert commands()["plugin_kind"] == ("cmd_generate", "generate a test and write its machine file")
+    finally:
+        PATTERN_KINDS.remove("plugin_kind")
+    assert "plugin_kind" not in commands()

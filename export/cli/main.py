@@ -70,10 +70,10 @@ def commands() -> dict[str, tuple[str, str]]:
     >>> list(commands())[:2], commands()["cross"][1]
     (['zigzag', 'cross'], 'generate one cross-pattern actuator and write its machine file')
     """
-    from ...patterns.kinds import PATTERN_KINDS
+    from ...patterns.kindnames import kind_descriptions  # not the registry: --help needs no parameter classes
 
-    quick = {k.name: ("cmd_generate", f"generate {k.description or f'one {k.name} actuator'} and write its "
-                                      "machine file") for k in PATTERN_KINDS}
+    quick = {name: ("cmd_generate", f"generate {text or f'one {name} actuator'} and write its machine file")
+             for name, text in kind_descriptions().items()}
     return {**quick, **COMMANDS}
 
 
