@@ -328,11 +328,11 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
             layer["legs"].add(dwg.path(d=d, fill="none", stroke=_ramp(b / max(_RAMP_BINS - 1, 1)),
                                        stroke_width=_f(lw), stroke_linecap="round"))
     # travel: from the previous record to every JUMP/STOP that moves
-    moves = [i for i in range(1, len(cmds)) if cmds[i] in (Command.JUMP, Command.STOP) and np.any(xy[i] != xy[i - 1])]
+    moves = 1 + np.flatnonzero(np.isin(cmds[1:], (Command.JUMP, Command.STOP)) & np.any(xy[1:] != xy[:-1], axis=1))
     origin = np.asarray(getattr(machine, "origin_mm", (0.0, 0.0)), dtype=np.float64)
     lead = f"M {_pts(origin)} L {_pts(xy[0])} " if len(xy) and np.any(np.abs(xy[0] - origin) > 0.05) else ""
-    if moves or lead:  # the frame's move from the machine's start point (the origin) to the first record too
-        d = lead + _segments_d(xy, np.array(moves, dtype=np.int64) - 1)
+    if len(moves) or lead:  # the frame's move from the machine's start point (the origin) to the first record too
+        d = lead + _segments_d(xy, moves - 1)
         layer["travel"].add(dwg.path(d=d, fill="none", stroke=TRAVEL_COLOUR, stroke_width="0.15",
                                      stroke_dasharray="0.8,0.5"))
     if show_points:  # the dots' fill set once, on their layer
