@@ -1,6 +1,8 @@
 """``embroact zigzag`` / ``embroact cross`` through ``main([...])``."""
 import json
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -186,3 +188,16 @@ def test_warnings_are_one_line_and_json_has_the_model(tmp_path, capsys):
     doc = json.loads(captured.out)
     assert (doc["model"]["g_mpa"], doc["model"]["p0_kpa"]) == (2.7, 85.0)
     assert doc["model"]["p0_source"] == "calibration paper-2025 (zigzag, width_mm=7)"
+
+
+def test_only_the_program_freezes_the_collector_before_its_exit(tmp_path):
+    # run as the program (argv None) main ends with gc.freeze() (a quick exit); a call from Python does not
+    code = ("import gc, sys\nfrom embroact.export.cli.main import main\n"
+            f"args = {ZZ!r}\n"
+            f"assert main(args + ['-o', {str(tmp_path / 'a.dst')!r}]) == 0 and gc.get_freeze_count() == 0\n"
+            f"sys.argv = ['embroact', *args, '-o', {str(tmp_path / 'b.dst')!r}]\n"
+            "assert main() == 0 and gc.get_freeze_count() > 0\n"
+            "print('ok')")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.split()[-1:] == ["ok"], out.stderr
+    assert (tmp_path / "a.dst").read_bytes() == (tmp_path / "b.dst").read_bytes()

@@ -28,6 +28,7 @@ embroact: error: width_mm must be in (0, 200), got -1
 from __future__ import annotations
 
 import argparse
+import gc
 import importlib
 import io
 import os
@@ -258,7 +259,10 @@ def main(argv: list[str] | None = None) -> int:
     result is checked for finiteness where it leaves the model, and a non-finite one
     becomes a status or a one-line error, so the warning tells a user nothing; ``--debug``
     shows them); stdout escapes control characters (a file name holding ESC sequences) and
-    what it cannot encode instead of failing.
+    what it cannot encode instead of failing. Run as the program, it ends by moving every object
+    to the garbage collector's permanent generation (``gc.freeze``), so that the interpreter's
+    exit skips the cycle search over the loaded modules (atexit handlers and the streams' flush
+    still run; the process's memory is returned whole).
 
     Parameters
     ----------
@@ -312,6 +316,8 @@ def main(argv: list[str] | None = None) -> int:
         sys.stdout = real_stdout
     if program and code in (EXIT_INTERRUPTED, EXIT_TERMINATED):
         _exit_now(code)  # freeing a large computation's memory at shutdown can take longer than the signal may
+    if program:  # the process ends next: the interpreter's last collections need not search what is loaded
+        gc.freeze()  # for cycles (20 ms of `embroact build`'s exit; the memory goes back with the process)
     return code
 
 
