@@ -682,7 +682,7 @@ def _deviation(bent: BentPath, prof: _Profile, s: np.ndarray, body: Body) -> flo
     c, d = b + m, a + m
     best = np.full(len(pts), np.inf)
     for tri in ((a, b, c), (a, c, d)):
-        tris = np.stack([v[tri[0]], v[tri[1]], v[tri[2]]], axis=1)
+        tris = v[np.stack(tri, axis=1)]
         best = np.minimum(best, point_triangle_distance(tris, pts))
     return float(best.max())
 

@@ -244,7 +244,7 @@ def _panel_bounds(panel: SidePanel, states) -> tuple[float, float, float, float]
 
 def _pts(xz: np.ndarray, dx: float, dy: float) -> list[tuple[float, float]]:
     """Model (x, z) [mm] to SVG user units (mm, y down), shifted, rounded to 1 um."""
-    return [(round(float(x) + dx, 3), round(dy - float(z), 3)) for x, z in xz]
+    return [(round(x + dx, 3), round(dy - z, 3)) for x, z in xz.tolist()]  # floats: rows of an array are slow
 
 
 def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, left: float, legend_y: float,
