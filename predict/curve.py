@@ -761,22 +761,49 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
         if not squeeze:
             arrays = tuple(a[None, :] for a in arrays)
     else:
-        size = max(1, min(SWEEP_BLOCK, SWEEP_BLOCK_POINTS // max(p.size, 1)))
-        blocks, left = [], []  # per block, the rows the lean solve leaves: traced together
-        for k in range(0, len(models), size):
-            mine: list = []
-            blocks.append(_block_theta(models[k:k + size], k, p, energy, deriv, inverse, rtol, mine))
-            left.append(mine)
-        later = [(np.concatenate([r for r, _ in mine]), np.concatenate([s for _, s in mine]))
-                 if mine else (np.empty(0, dtype=np.intp), np.empty((0, p.size), dtype=bool)) for mine in left]
-        if any(rows.size for rows, _ in later):
-            later = _fold_later(models, blocks, later, size, rtol)
-        if any(rows.size for rows, _ in later):
-            _trace_later(models, blocks, later, size, rtol)
-        arrays = tuple(parts[0][0] if squeeze else np.concatenate(parts) for parts in
-                       zip(*(_block_states(models[b[0]:b[0] + size], b, limits) for b in blocks)))
+        arrays = _blocks(models, p, energy, deriv, inverse, rtol, limits)
+        if squeeze:
+            arrays = tuple(a[0] for a in arrays)
     return Curve(*(_frozen(a) for a in arrays), method=f"{energy}-{deriv}-{inverse}",
                  calibration=_calibrations(models))
+
+
+def _blocks(models, p, energy, deriv, inverse, rtol, limits):
+    """The arrays (P, theta, status, l, r, beta, d) of ``sweep``, (models, pressures) each: the models solved
+    ``SWEEP_BLOCK`` (or fewer, by ``SWEEP_BLOCK_POINTS``) at a time, zigzag designs first
+    (:func:`_by_pattern`), the rows the lean solve leaves in every block traced together."""
+    order = _by_pattern(models)
+    models = [models[k] for k in order]
+    size = max(1, min(SWEEP_BLOCK, SWEEP_BLOCK_POINTS // max(p.size, 1)))
+    blocks, left = [], []  # per block, the rows the lean solve leaves: traced together
+    for k in range(0, len(models), size):
+        mine: list = []
+        blocks.append(_block_theta(models[k:k + size], k, p, energy, deriv, inverse, rtol, mine))
+        left.append(mine)
+    later = [(np.concatenate([r for r, _ in mine]), np.concatenate([s for _, s in mine]))
+             if mine else (np.empty(0, dtype=np.intp), np.empty((0, p.size), dtype=bool)) for mine in left]
+    if any(rows.size for rows, _ in later):
+        later = _fold_later(models, blocks, later, size, rtol)
+    if any(rows.size for rows, _ in later):
+        _trace_later(models, blocks, later, size, rtol)
+    parts = [_block_states(models[b[0]:b[0] + size], b, limits) for b in blocks]
+    return tuple(_in_order(order, size, [part[j] for part in parts]) for j in range(len(parts[0])))
+
+
+def _by_pattern(models) -> np.ndarray:
+    """Indices of ``models``: the zigzag designs (beta0 = 0) first, then the others, each in their order, so a
+    block of either holds one pattern and takes its shorter closed forms (:class:`~embroact.predict.model.
+    StretchRates` and :func:`~embroact.predict.model.constraint` on zigzag rows only)."""
+    zigzag = np.array([mo.beta0_deg == 0.0 for mo in models])
+    return np.concatenate([np.flatnonzero(zigzag), np.flatnonzero(~zigzag)])
+
+
+def _in_order(order, size, parts):
+    """One array of the blocks' ``parts`` (the rows of models ``order[k:k + size]`` each) in the models' order."""
+    out = np.empty((order.size,) + parts[0].shape[1:], dtype=parts[0].dtype)
+    for k, part in zip(range(0, order.size, size), parts):
+        out[order[k:k + size]] = part
+    return out
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:

@@ -755,7 +755,8 @@ class StretchRates:
     geo : Geometry
         The design(s).
     zigzag : bool
-        One zigzag design on floats (s0 = 0): :meth:`__call__` and :meth:`state` take its shorter formulas.
+        Zigzag designs only (s0 = 0: one on floats, or every row of arrays): :meth:`__call__` and :meth:`state`
+        take their shorter formulas (the general ones hold for s0 = 0 too, so rows of both patterns take those).
 
     Examples
     --------
@@ -777,7 +778,7 @@ class StretchRates:
     theta_per_m: Any
     scale: Any
     geo: Geometry
-    zigzag: bool = False  # rates of several designs (arrays) take the general formulas, which hold for s0 = 0 too
+    zigzag: bool = False
 
     @classmethod
     def of(cls, g: Geometry) -> "StretchRates":
@@ -799,8 +800,9 @@ class StretchRates:
         40.0
         """
         sigma = g.c * g.c0sq / (g.r0 * g.r0)
+        zigzag = g.s0sq == 0.0 if isinstance(g.s0sq, float) else not g.s0sq.any()
         return cls(g.s0sq, g.c0sq, sigma, 4.0 * g.s0sq / g.c0sq, 1.0 / g.c0sq, g.l0 / g.r_c0, 0.5 * g.g * sigma, g,
-                   isinstance(g.s0sq, float) and g.s0sq == 0.0)
+                   zigzag)
 
     def __call__(self, m, xp=np):
         """(F', V') at stretches ``m`` (arrays, or one float with ``xp=SCALAR``); V' is 1.0 for a zigzag (class
