@@ -489,30 +489,35 @@ def _fold_later(models, blocks, later, size, rtol):
     ``s0 = 0`` whose nodes end at ``RISE_M``, solved up to their fold or UNSTABLE at it
     (:func:`~embroact.predict.lean.solve_to_fold`), ``size`` rows at a time; returns ``later`` without them
     (what is left: the trace inverse's)."""
-    jobs = [(b, r, keep) for b, (rows, settled) in enumerate(later) for r, keep in zip(rows, settled)
-            if models[blocks[b][0] + r].beta0_deg == 0.0]
-    solved = {}
-    for k in range(0, len(jobs), size):
-        part = jobs[k:k + size]
-        geo = _geometry([models[blocks[b][0] + r] for b, r, _ in part])
-        full, _ = _branch_end(geo)
-        m_end = _m.StretchRates.of(geo).m_of(full)
-        t = np.array([np.where(keep, 0.0, blocks[b][3][r]) for b, r, keep in part])
-        th, done, unstable = solve_to_fold(geo, np.where(m_end > RISE_M, t, 0.0), m_end, rtol=rtol,
-                                           atol=rtol * THETA_FLOOR_RAD)
-        for j, (b, r, keep) in enumerate(part):
-            mine = done[j] | unstable[j]
-            if mine.any():
-                blocks[b][4][r] = np.where(mine, th[j], blocks[b][4][r])
-                blocks[b][5][r] = np.where(unstable[j], Status.UNSTABLE, np.where(done[j], Status.BENDING,
-                                                                                   blocks[b][5][r]))
-                solved[b, r] = keep | mine
-    out = []
-    for b, (rows, settled) in enumerate(later):
-        settled = np.array([solved.get((b, r), keep) for r, keep in zip(rows, settled)]).reshape(settled.shape)
-        left = ~settled.all(axis=1)
-        out.append((rows[left], settled[left]))
+    picks = [np.array([models[blocks[b][0] + r].beta0_deg == 0.0 for r in rows], dtype=bool)
+             for b, (rows, _) in enumerate(later)]
+    jobs = [(b, rows[pick], settled[pick]) for b, ((rows, settled), pick) in enumerate(zip(later, picks))]
+    ours = [models[blocks[b][0] + r] for b, rows, _ in jobs for r in rows]
+    if not ours:
+        return later
+    t = np.concatenate([np.where(keep, 0.0, blocks[b][3][rows]) for b, rows, keep in jobs])
+    th, done, unstable = (np.concatenate(parts) for parts in zip(
+        *(_to_fold(ours[k:k + size], t[k:k + size], rtol) for k in range(0, len(ours), size))))
+    out, k = [], 0
+    for (b, rows, keep), (all_rows, settled), pick in zip(jobs, later, picks):
+        mine, now = slice(k, k + rows.size), settled.copy()
+        k += rows.size
+        theta, status = blocks[b][4], blocks[b][5]
+        theta[rows] = np.where(done[mine] | unstable[mine], th[mine], theta[rows])
+        status[rows] = np.where(unstable[mine], Status.UNSTABLE, np.where(done[mine], Status.BENDING, status[rows]))
+        now[pick] = keep | done[mine] | unstable[mine]
+        left = ~now.all(axis=1)
+        out.append((all_rows[left], now[left]))
     return out
+
+
+def _to_fold(models, t, rtol):
+    """:func:`~embroact.predict.lean.solve_to_fold` of designs of ``s0 = 0`` at targets ``t`` (n, k), those of a
+    branch that ends short of ``RISE_M`` ignored."""
+    geo = _geometry(models)
+    full, _ = _branch_end(geo)
+    m_end = _m.StretchRates.of(geo).m_of(full)
+    return solve_to_fold(geo, np.where(m_end > RISE_M, t, 0.0), m_end, rtol=rtol, atol=rtol * THETA_FLOOR_RAD)
 
 
 def _trace_later(models, blocks, later, size, rtol):
