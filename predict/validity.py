@@ -162,14 +162,12 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
     stub = math.nan if stub is None else stub
     if xp is np:  # the contact test on the states past a quarter turn only (as below, and one model's states)
         near = a > 0.5 * math.pi
-        if near.all():
-            return arc_contact(th, r, l0, stub)
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
         out = np.zeros(shape, dtype=bool)
         if near.any():
             near = np.broadcast_to(near, shape)
-            out[near] = arc_contact(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)[near]
-                                      for v in (th, r, l0, stub)))
+            out[near] = _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)[near]
+                                              for v in (th, r, l0, stub)))
         return out
     # only past a quarter turn can it reach back
     return a > 0.5 * math.pi and (a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub)
@@ -202,10 +200,9 @@ def _contact_free_below(l0: float, w: float, m: float) -> float:
     """
     if m != m:
         return _FULL_TURN  # an arc inside a chain: only its own full turn
-    size = _BOUND_MARGIN * (l0 + m + w)
-    reach = m + 2.0 * w + size
+    size, reach = _reach(l0, w, m)
     if math.pi * reach < l0:
-        return _FULL_TURN - 2.0 * math.asin(math.sqrt(math.pi * reach / l0))
+        return _short_reach_bound(l0, reach, math.asin, math.sqrt)
     k = m + w + size
     if not k < l0:  # also NaN
         return 0.0
@@ -217,6 +214,32 @@ def _contact_free_below(l0: float, w: float, m: float) -> float:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if l0 * (1.0 - math.cos(mid)) / mid > reach else (lo, mid)
     return lo
+
+
+def _reach(l0, w, m):
+    """(margin, reach) of :func:`_contact_free_below`: its round-off margin and ``m + 2 w`` with it."""
+    size = _BOUND_MARGIN * (l0 + m + w)
+    return size, m + 2.0 * w + size
+
+
+def _short_reach_bound(l0, reach, asin=np.arcsin, sqrt=np.sqrt):
+    """:func:`_contact_free_below` where ``pi reach < l0``: ``2 pi - 2 asin(sqrt(pi reach/l0))`` (on floats with
+    ``math``'s functions)."""
+    return _FULL_TURN - 2.0 * asin(sqrt(math.pi * reach / l0))
+
+
+def _contact_past_bound(th, r, l0, m):
+    """:func:`arc_contact` of states past a quarter turn (1-D arrays, ``m`` NaN inside a chain), the test run on
+    the states at or past :func:`_contact_free_below` only, where its bound is closed form (``pi reach <
+    l0``; a NaN stub: the full turn), else on all of them: every state short of it is apart."""
+    _, reach = _reach(l0, 2.0 * r, m)
+    short = math.pi * reach < l0  # NaN: False
+    free = np.where(np.isnan(m), _FULL_TURN, 0.0)
+    free[short] = _short_reach_bound(l0[short], reach[short])
+    test = np.abs(th) >= free
+    out = np.zeros(th.shape, dtype=bool)
+    out[test] = arc_contact(th[test], r[test], l0[test], m[test])
+    return out
 
 
 def _coiled_states(th, a, top, r, l0, stub):

@@ -297,3 +297,31 @@ def test_one_models_limits_equal_the_limits_of_every_state():
         want = np.where(f.coiled, Status.COILED, np.where(f.kinked, Status.KINKED,
                                                            np.where(f.overstretched, Status.OVERSTRETCHED, st)))
         assert got.tolist() == want.tolist(), (l0, r0, stub)
+
+
+def test_rows_of_designs_are_coiled_where_the_contact_test_says():
+    """limit_flags on rows of designs (arrays broadcast as sweep passes them: the contact test only at or past the
+    free bound) flags coiled exactly where arc_contact flags each state alone past a quarter turn (where the
+    arrays' test starts), with a stub, without and inside a chain, also at the floats next to each contact angle,
+    and for short arcs where the bound has no closed form."""
+    import random
+
+    from embroact.predict.validity import arc_contact
+
+    rng = random.Random(17)
+    rows = [(rng.uniform(5.0, 300.0), rng.uniform(0.5, 8.0), rng.choice([0.0, 30.0, math.nan])) for _ in range(120)]
+    l0, r0, stub = (np.array([[row[k]] for row in rows]) for k in range(3))
+    th = np.empty((len(rows), 64))
+    for k, (length, radius, m) in enumerate(rows):
+        neg = rng.random() < 0.5
+        edge = math.radians(coil_angle_deg(length, radius, negative=neg, stub_mm=0.0 if m != m else m))
+        th[k] = (-1.0 if neg else 1.0) * np.concatenate([np.linspace(0.0, 2 * math.pi + 0.1, 58), [
+            edge, math.nextafter(edge, 0.0), math.nextafter(edge, 7.0), math.nextafter(2 * math.pi, 0.0),
+            2 * math.pi, rng.uniform(0.0, 7.0)]])
+    r = r0 * np.array([[rng.uniform(0.95, 1.0) for _ in range(th.shape[1])] for _ in rows])
+    f = limit_flags(th, l0 * (1.0 + 0.01 * np.abs(th)), r, l0, stub_mm=stub)
+    alone = np.array([[bool(arc_contact(th[k, j], r[k, j], l0[k, 0], stub[k, 0])) for j in range(th.shape[1])]
+                      for k in range(len(rows))])
+    past = np.abs(th) > 0.5 * math.pi
+    assert alone[past].any() and not alone[past].all()
+    assert f.coiled[past].tolist() == alone[past].tolist()
