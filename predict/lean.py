@@ -460,18 +460,20 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
         p[:, -1] = np.where(np.ravel(pole_at_end & ~capped), np.inf, p[:, -1])
         rises = np.all(p[:, 1:] > p[:, :-1], axis=1)
         p = np.where(rises[:, None], p, _FRACTIONS)  # keys that rise whatever the row's P does
-        # the targets > 0 only, as (entries, 1) columns with their designs' rates
-        row, col = np.nonzero(t > 0.0)
+        # the targets > 0 only (flat indices), as (entries, 1) columns with their designs' rates
+        flat = np.flatnonzero(t > 0.0)
+        row = flat // t.shape[1]
         at_row = row[:, None]
-        tt = (t[row, col] / rates.scale[row, 0])[:, None]
+        tt = (t.take(flat) / rates.scale.take(row))[:, None]
         keys = (np.arange(n)[:, None] + np.where(p < np.inf, p / (1.0 + p), 1.0)).ravel()  # P = inf at a pole
         i = np.searchsorted(keys, at_row + tt / (1.0 + tt), side="right") - 1 - at_row * (_LAST + 1)
-        served = (i >= 0) & (i < _LAST) & rises[at_row] & (tt > floor[at_row, 0] / rates.scale[at_row, 0])
-        at = at_row * (_LAST + 1) + np.clip(i, 0, _LAST - 1)
-        ma, mb = m.ravel()[at], m.ravel()[at + 1]
-        fa, fb, va, vb = f.ravel()[at], f.ravel()[at + 1], v.ravel()[at], v.ravel()[at + 1]
+        served = (i >= 0) & (i < _LAST) & rises[at_row] & (tt > (floor.take(row) / rates.scale.take(row))[:, None])
+        node = np.clip(i, 0, _LAST - 1)
+        at = at_row * (_LAST + 1) + node
+        ma, mb = m.take(at), m.take(at + 1)
+        fa, fb, va, vb = f.take(at), f.take(at + 1), v.take(at), v.take(at + 1)
         x0 = _start(ma, mb, fa, va, fb, vb, tt, False)
-        kh = np.abs(span[at_row, 0]) * _KW[np.clip(i, 0, _LAST - 1)]
+        kh = np.abs(span.take(at_row)) * _KW.take(node)
         d = np.minimum(kh, _SPACING * np.abs(x0))
         mine = _m.StretchRates.of(geo.take(row))
         r = []
@@ -480,9 +482,9 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
             r.append(fs - tt * vs)
         ms, settled = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / mine.theta_per_m)
         theta = np.zeros(t.shape)
-        theta[row, col] = mine.theta(ms, np)[:, 0]
+        theta.flat[flat] = mine.theta(ms, np)
     ok = np.ones(t.shape, dtype=bool)  # targets <= 0: ignored
-    ok[row, col] = (settled & served)[:, 0]
+    ok.flat[flat] = settled & served
     return theta, ok
 
 

@@ -211,7 +211,9 @@ class Geometry:
         >>> geo.take([1]).s0.shape, geo.take(np.array([True, False])).s0.tolist()
         ((1, 1), [[0.0]])
         """
-        return Geometry(*(getattr(self, k)[rows] for k in self.__slots__))
+        at = np.asarray(rows)
+        at = np.flatnonzero(at) if at.dtype == bool else at
+        return Geometry(*(getattr(self, k).take(at, axis=0) for k in self.__slots__))
 
     def scalar(self) -> "Geometry":
         """The (first) design with Python floats for fields: broadcasts against 1-D theta, and with
