@@ -482,9 +482,9 @@ def solve_rows(geo: _m.Geometry, t, theta_end, pole_at_end, *, rtol: float, atol
             r.append(fs - tt * vs)
         ms, settled = _polish(x0, d, r[0], r[1], r[2], r[3], float(rtol), atol / mine.theta_per_m)
         theta = np.zeros(t.shape)
-        theta.flat[flat] = mine.theta(ms, np)
+        theta.reshape(-1)[flat] = mine.theta(ms, np)[:, 0]  # a view of the new array (.flat's writes are slower)
     ok = np.ones(t.shape, dtype=bool)  # targets <= 0: ignored
-    ok.flat[flat] = settled & served
+    ok.reshape(-1)[flat] = (settled & served)[:, 0]
     return theta, ok
 
 

@@ -161,13 +161,12 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
     :func:`_contact_free_below` spares the contact test of a state far from contact."""
     stub = math.nan if stub is None else stub
     if xp is np:  # the contact test on the states past a quarter turn only (as below, and one model's states)
-        near = a > 0.5 * math.pi
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
+        near = np.flatnonzero(np.broadcast_to(a > 0.5 * math.pi, shape))  # flat indices: faster than a 2-D mask
         out = np.zeros(shape, dtype=bool)
-        if near.any():
-            near = np.broadcast_to(near, shape)
-            out[near] = _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)[near]
-                                              for v in (th, r, l0, stub)))
+        if near.size:
+            out.reshape(-1)[near] = _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)
+                                                          .take(near) for v in (th, r, l0, stub)))
         return out
     # only past a quarter turn can it reach back
     return a > 0.5 * math.pi and (a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub)
@@ -233,12 +232,12 @@ def _contact_past_bound(th, r, l0, m):
     the states at or past :func:`_contact_free_below` only, where its bound is closed form (``pi reach <
     l0``; a NaN stub: the full turn), else on all of them: every state short of it is apart."""
     _, reach = _reach(l0, 2.0 * r, m)
-    short = math.pi * reach < l0  # NaN: False
+    short = np.flatnonzero(math.pi * reach < l0)  # NaN: False
     free = np.where(np.isnan(m), _FULL_TURN, 0.0)
-    free[short] = _short_reach_bound(l0[short], reach[short])
-    test = np.abs(th) >= free
+    free[short] = _short_reach_bound(l0.take(short), reach.take(short))
+    test = np.flatnonzero(np.abs(th) >= free)
     out = np.zeros(th.shape, dtype=bool)
-    out[test] = arc_contact(th[test], r[test], l0[test], m[test])
+    out[test] = arc_contact(*(v.take(test) for v in (th, r, l0, m)))
     return out
 
 
