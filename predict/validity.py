@@ -229,14 +229,16 @@ def _short_reach_bound(l0, reach, asin=np.arcsin, sqrt=np.sqrt):
 
 def _contact_past_bound(th, r, l0, m):
     """:func:`arc_contact` of states past a quarter turn (1-D arrays, ``m`` NaN inside a chain), the test run on
-    the states at or past :func:`_contact_free_below` only, where its bound is closed form (``pi reach <
-    l0``; a NaN stub: the full turn), else on all of them: every state short of it is apart."""
+    the states short of a full turn (which touch) and at or past :func:`_contact_free_below` only, where its
+    bound is closed form (``pi reach < l0``; a NaN stub: the full turn), else on all of them: every state short
+    of it is apart."""
     _, reach = _reach(l0, 2.0 * r, m)
     short = np.flatnonzero(math.pi * reach < l0)  # NaN: False
     free = np.where(np.isnan(m), _FULL_TURN, 0.0)
     free[short] = _short_reach_bound(l0.take(short), reach.take(short))
-    test = np.flatnonzero(np.abs(th) >= free)
-    out = np.zeros(th.shape, dtype=bool)
+    a = np.abs(th)
+    out = a >= _FULL_TURN
+    test = np.flatnonzero((a >= free) & ~out)
     out[test] = arc_contact(*(v.take(test) for v in (th, r, l0, m)))
     return out
 
