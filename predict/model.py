@@ -417,15 +417,18 @@ def _invariants(l, r, geo: Geometry):
 
 
 def _stable_t(a, b, c, xp=np):
+    """(T, sqrt(a), sqrt(b), sqrt(a) + sqrt(b)) of the rationalised ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) +
+    sqrt(b)))``."""
     sa, sb = xp.sqrt(a), xp.sqrt(b)
-    return 2.0 * c / (sa * sb * (sa + sb)), sa, sb
+    total = sa + sb
+    return 2.0 * c / (sa * sb * total), sa, sb, total
 
 
 def _stable_t_partials(a, b, c, xp=np):
-    """(T, dT/da, dT/db) of the rationalised ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) + sqrt(b)))``."""
-    T, sa, sb = _stable_t(a, b, c, xp)
-    hs = 0.5 / (sa + sb)
-    return T, -T * (0.5 / a + hs / sa), -T * (0.5 / b + hs / sb)
+    """(T, dT/da, dT/db) of :func:`_stable_t`'s T."""
+    T, sa, sb, total = _stable_t(a, b, c, xp)
+    hs, minus_t = 0.5 / total, -T
+    return T, minus_t * (0.5 / a + hs / sa), minus_t * (0.5 / b + hs / sb)
 
 
 def _energy_closed(l, r, geo: Geometry, form: str):
