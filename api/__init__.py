@@ -37,10 +37,6 @@ True
 """
 import lazy_loader
 
-# The public names and the modules they live in: __init__.pyi, which type checkers read too.
-__getattr__lazy, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)
-__all__ = [*__all__, "__version__"]
-
 # Rich display in Jupyter: which export function draws each value class (imported when first shown).
 from .patterns.base.display import register as _register  # noqa: E402  (light: no numpy)
 
@@ -56,10 +52,30 @@ for _cls, _mime, _target in (
 del _cls, _mime, _target, _register
 
 
+_stub: tuple | None = None
+
+
+def _attached() -> tuple:
+    """lazy_loader's ``(__getattr__, __dir__, __all__)`` for the public names and the modules they live in:
+    __init__.pyi (which type checkers read too), parsed when a name is first asked for (parsing takes
+    ``ast``: 3 ms of ``embroact --help``, which asks for none)."""
+    global _stub
+    if _stub is None:
+        _stub = lazy_loader.attach_stub(__name__, __file__)
+    return _stub
+
+
 def __getattr__(name: str):
     if name == "__version__":
         from importlib.metadata import version
 
         globals()["__version__"] = v = version(__name__)
         return v
-    return __getattr__lazy(name)
+    if name == "__all__":
+        globals()["__all__"] = names = [*_attached()[2], "__version__"]
+        return names
+    return _attached()[0](name)
+
+
+def __dir__() -> list[str]:
+    return _attached()[1]()

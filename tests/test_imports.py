@@ -52,7 +52,15 @@ def test_help_leaves_the_kind_registry_unloaded():
     assert _loaded_after("pass", ("dataclasses", "embroact.patterns.kinds")) == []
     code = ("import contextlib, io\nfrom embroact.export.cli.main import main\n"
             "with contextlib.redirect_stdout(io.StringIO()):\n    code = main(['--help'])\nassert code == 0, code")
-    assert _loaded_after(code, ("dataclasses", "embroact.patterns.kinds")) == []
+    assert _loaded_after(code, ("ast", "dataclasses", "embroact.patterns.kinds")) == []
+
+
+def test_the_package_reads_its_stub_when_a_name_is_asked_for():
+    # __init__.pyi is parsed with ast (3 ms of --help) at the first public name, not at `import embroact`
+    assert _loaded_after("pass", ("ast",)) == []
+    assert _loaded_after("import embroact", ("ast",)) == []
+    code = "import embroact\nassert 'analyse' in embroact.__all__ and '__version__' in embroact.__all__"
+    assert _loaded_after(code, ("ast",)) == ["ast"]
 
 
 def test_commands_without_the_registry_are_those_it_registers():
