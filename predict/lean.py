@@ -196,10 +196,14 @@ class LeanTable:
         """
         got = self.nodes.get(j)
         if got is None:
-            m = self.span * _FRACTION_LIST[j]
-            f, v = self.rates(m, SCALAR)
-            p = 0.0 if j == 0 else (np.inf if j == _LAST and self.pole else f / v)
-            got = self.nodes[j] = (m, f, v, p)
+            made = self.lazy.get("arrays")
+            if made is not None:  # the same bits
+                got = tuple(made[0][:4, j].tolist())
+            else:
+                m = self.span * _FRACTION_LIST[j]
+                f, v = self.rates(m, SCALAR)
+                got = (m, f, v, 0.0 if j == 0 else (np.inf if j == _LAST and self.pole else f / v))
+            self.nodes[j] = got
         return got
 
 
@@ -321,42 +325,70 @@ def solve_lean(tab: LeanTable, t):
 
 def _bracket(tab: LeanTable, t: float) -> int | None:
     """The node ``lo`` with ``P_lo <= t < P_(lo+1)`` (what ``searchsorted`` finds among all nodes: P rises over
-    them), evaluating few: each probe is the node below the root that the inverse quadratic through the
-    bracket's ends and the previous probe predicts (a straight line from the straight state at first), then
-    the node above it; a bisection when a probe did not halve the bracket. None if ``t`` is at or above P at
-    the last node."""
-    lo, hi = 0, _LAST
-    p_lo, p_hi = 0.0, math.inf if tab.pole else tab.node(hi)[3]  # a lock-up's P is inf: no evaluation
-    if not t < p_hi:
+    them), or None if ``t`` is at or above P at the last node.
+
+    Once the node arrays are made (:meth:`LeanTable.arrays`), a binary search of their pressures. Before, it
+    evaluates few nodes: it follows the residual ``R = F' - t V'`` signed as ``P - t`` (no pole at a lock-up,
+    where P has one) in the span's fraction ``x``. The first probe is the node nearest the root of the quadratic
+    with R's value and slope at the straight state (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0
+    there) and its value at the last node; each further probe is the node nearest the root of the quadratic
+    through the bracket's ends and the end the last probe replaced, and a bisection when four probes did not
+    halve the bracket. About four evaluations a target, the last node's among them.
+    """
+    got = tab.lazy.get("arrays")
+    if got is not None:
+        keys = tab.lazy.get("keys")
+        if keys is None:
+            keys = tab.lazy["keys"] = got[0][3, 1:_LAST].tolist()
+        return bisect_right(keys, t) if t < got[0][3, _LAST] else None
+    _, f, v, p = tab.node(_LAST)
+    if not t < p:
         return None
-    f_lo, f_hi, third = 0.0, 1.0, None
-    halved = True
-    while hi - lo > 1:
-        width, guess = hi - lo, halved and p_hi < math.inf
-        if guess:
-            x = f_lo + (f_hi - f_lo) * (t - p_lo) / (p_hi - p_lo)
-            if third is not None:
-                p_c, f_c = third
-                q = (f_lo * (t - p_hi) * (t - p_c) / ((p_lo - p_hi) * (p_lo - p_c))
-                     + f_hi * (t - p_lo) * (t - p_c) / ((p_hi - p_lo) * (p_hi - p_c))
-                     + f_c * (t - p_lo) * (t - p_hi) / ((p_c - p_lo) * (p_c - p_hi)))
-                x = q if f_lo < q < f_hi else x
-            j = min(max(bisect_right(_FRACTION_LIST, x) - 1, lo + 1), hi - 1)
+    rates = tab.rates
+    v0 = 1.0 - 5.0 * rates.s0sq  # V' at the straight state
+    sign = 1.0 if v0 > 0.0 else -1.0
+    lo, hi, r_lo, r_hi = 0, _LAST, -t * abs(v0), sign * (f - t * v)
+    slope = sign * (rates.rise + 16.0 * t * rates.s0sq) * tab.span  # dR/dx at x = 0 (V'' = -16 s0^2 there)
+    x = _quadratic_root(r_hi - r_lo - slope, slope, r_lo, 0.0, 1.0)
+    x = r_lo / (r_lo - r_hi) if x is None else x
+    widths = [2 * _LAST] * 4
+    while True:
+        j = bisect_right(_FRACTION_LIST, x, lo, hi) - 1  # the nodes j, j + 1 around x: the one nearer, inside
+        j = j + 1 if j + 1 < hi and (j == lo or _FRACTION_LIST[j + 1] - x < x - _FRACTION_LIST[j]) else j
+        widths.append(hi - lo)
+        _, f, v, p = tab.node(j)
+        if p <= t:
+            third, lo, r_lo = (lo, r_lo), j, sign * (f - t * v)
         else:
-            j = (lo + hi) // 2
-        for k in (j, j + 1) if guess else (j,):  # the node above the guess: the bracket, when the guess was good
-            if not lo < k < hi:
-                break
-            p = tab.node(k)[3]
-            if p <= t:
-                third = (p_lo, f_lo) if lo else third
-                lo, p_lo, f_lo = k, p, _FRACTION_LIST[k]
-            else:
-                third = (p_hi, f_hi) if p_hi < math.inf else third
-                hi, p_hi, f_hi = k, p, _FRACTION_LIST[k]
-                break
-        halved = 2 * (hi - lo) <= width
-    return lo
+            third, hi, r_hi = (hi, r_hi), j, sign * (f - t * v)
+        if hi - lo == 1:
+            return lo
+        x_lo, x_hi = _FRACTION_LIST[lo], _FRACTION_LIST[hi]
+        if hi - lo > widths[-4] // 2 or not r_lo < r_hi:  # no progress, or R's round-off: bisect
+            x = _FRACTION_LIST[(lo + hi) // 2]
+            continue
+        x = _quadratic_through(x_lo, r_lo, x_hi, r_hi, _FRACTION_LIST[third[0]], third[1])
+        x = x_lo + (x_hi - x_lo) * (r_lo / (r_lo - r_hi)) if x is None else x
+
+
+def _quadratic_through(x0: float, y0: float, x1: float, y1: float, x2: float, y2: float) -> float | None:
+    """The root in ``(x0, x1)`` of the quadratic through three points (distinct ``x``), or None."""
+    d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
+    a = (d12 - d01) / (x2 - x0)
+    b = d01 - a * (x0 + x1)
+    return _quadratic_root(a, b, y0 - x0 * (a * x0 + b), x0, x1)
+
+
+def _quadratic_root(a: float, b: float, c: float, lo: float, hi: float) -> float | None:
+    """A root in ``(lo, hi)`` of ``a x^2 + b x + c`` (the cancellation-free pair of formulas), or None."""
+    disc = b * b - 4.0 * a * c
+    if not disc >= 0.0:  # also NaN
+        return None
+    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
+    for root in (q / a if a != 0.0 else math.nan, c / q if q != 0.0 else math.nan):
+        if lo < root < hi:
+            return root
+    return None
 
 
 def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:

@@ -189,8 +189,8 @@ class Geometry:
     @classmethod
     def _derived(cls, l0, r0, s0, c0, c, g, p0) -> "Geometry":
         """The geometry with its derived constants (the same operations on arrays and on floats)."""
-        return cls(l0=l0, r0=r0, s0=s0, c0=c0, c=c, g=g, p0=p0, gamma=2.0 * r0 / (l0 * c0), r_c0=r0 / c0,
-                   r_slope=r0 * s0 / (l0 * c0), e_scale=np.pi * g * l0 / 2.0, s0sq=s0 * s0, c0sq=c0 * c0)
+        return cls(l0, r0, s0, c0, c, g, p0, 2.0 * r0 / (l0 * c0), r0 / c0, r0 * s0 / (l0 * c0), np.pi * g * l0 / 2.0,
+                   s0 * s0, c0 * c0)  # gamma, r_c0, r_slope, e_scale, s0sq, c0sq (positional: a first curve's cost)
 
     def take(self, rows) -> "Geometry":
         """The designs at ``rows`` (index array or boolean mask).
@@ -833,6 +833,23 @@ class StretchRates:
         f = (1.0 - (self.lam_k * u) * ia - (cos2 * self.inv_c0sq - 3.0) * ia2
              + 0.5 * ia2 * (m * (2.0 + m) - 0.5 * big_n + w) + self.c0sq * k * (d_tau + ks * k * tau))
         return f, 1.0 - self.s0sq * u * (2.0 + 3.0 * u)
+
+    @property
+    def rise(self):
+        """dF'/dm at the straight state (where F' is 0): ``2 (6 - 20 s0^2 + 30 s0^4 - sigma c0^2)/c0^4``, the
+        closed form's Taylor coefficient (``12 - 2 sigma`` for a zigzag); there ``dP/dm = scale rise/V'``,
+        ``V' = 1 - 5 s0^2``.
+
+        Examples
+        --------
+        >>> geo = Geometry.from_values(beta0_rad=0.6, l0_mm=100.0, r0_mm=2.6, c_mm2=1.25, g_mpa=1.3, p0_mpa=0.17)
+        >>> k = StretchRates.of(geo.scalar())
+        >>> h = 1e-6
+        >>> bool(abs((k(h, SCALAR)[0] - k(-h, SCALAR)[0]) / (2.0 * h) / k.rise - 1.0) < 1e-8)
+        True
+        """
+        s = self.s0sq
+        return 2.0 * (6.0 - 20.0 * s + 30.0 * s * s - self.sigma * self.c0sq) / (self.c0sq * self.c0sq)
 
     def slope(self, m):
         """``F'' V' - F' V''`` at stretches ``m`` (arrays; F'' and V'' by a complex step, exact to round-off): the

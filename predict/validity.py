@@ -467,13 +467,13 @@ _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
 _LIMIT_CODES = tuple(int(s) for s in (Status.COILED, Status.KINKED, Status.OVERSTRETCHED))
 
 
-def _limited(st, flags, xp=np):
-    """Status with the first limit of ``flags`` (coiled, kinked, overstretched) a state exceeds."""
+def _limited(st, flags):
+    """Status with the first limit of ``flags`` (coiled, kinked, overstretched) a state exceeds (arrays)."""
     coiled, kinked, over = flags
-    out = xp.where(over, _LIMIT_CODES[2], st)
-    out = xp.where(kinked, _LIMIT_CODES[1], out)
-    out = xp.where(coiled, _LIMIT_CODES[0], out)
-    return xp.where((st == _KEPT[0]) | (st == _KEPT[1]), st, out)
+    out = np.where(over, _LIMIT_CODES[2], st)
+    out = np.where(kinked, _LIMIT_CODES[1], out)
+    out = np.where(coiled, _LIMIT_CODES[0], out)
+    return np.where((st == _KEPT[0]) | (st == _KEPT[1]), st, out)
 
 
 def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=0.0):
@@ -507,8 +507,11 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     >>> apply_limits(int(Status.BENDING), math.radians(400.0), 118.0, 2.58, 100.0, SCALAR) == Status.COILED
     True
     """
-    if xp is not np:
-        return _limited(status, _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp, stub_mm), xp)
+    if xp is not np:  # one state: the first limit it exceeds
+        if status in _KEPT:
+            return status
+        coiled, kinked, over = _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp, stub_mm)
+        return _LIMIT_CODES[0] if coiled else _LIMIT_CODES[1] if kinked else _LIMIT_CODES[2] if over else status
     st = np.asarray(status, dtype=np.int8)
     th, l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm))
     if not (th.size and l0.size == 1 and th.shape == l.shape == r.shape):
