@@ -157,20 +157,15 @@ def _exceeded(th, l, r, l0, xp=np, stub=0.0):
 
 def _coiled(th, a, r, l0, xp=np, stub=0.0):
     """The coiled flags at states of bend ``th`` (``a = |th|``): :func:`arc_contact` with the stub
-    (None: an arc inside a chain); one state on floats with ``xp=SCALAR``, where the bound
-    :func:`_contact_free_below` spares the contact test of a state far from contact."""
+    (None: an arc inside a chain); one state on floats with ``xp=SCALAR``. The bound
+    :func:`_contact_free_below` spares the contact test of a state far from contact, and it alone decides
+    which states take it: a short arc with a long stub touches well before a quarter turn."""
     stub = math.nan if stub is None else stub
-    if xp is np:  # the contact test on the states past a quarter turn only (as below, and one model's states)
+    if xp is np:
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
-        near = np.flatnonzero(np.broadcast_to(a > 0.5 * math.pi, shape))  # flat indices: faster than a 2-D mask
-        out = np.zeros(shape, dtype=bool)
-        if near.size:
-            out.reshape(-1)[near] = _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)
-                                                          .take(near) for v in (th, r, l0, stub)))
-        return out
-    # only past a quarter turn can it reach back
-    return a > 0.5 * math.pi and (a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub)
-                                                     and _arc_contact_float(th, r, l0, stub)))
+        return _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape).reshape(-1)
+                                     for v in (th, r, l0, stub))).reshape(shape)
+    return a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub) and _arc_contact_float(th, r, l0, stub))
 
 
 #: Margin of :func:`_contact_free_below`'s reach, relative to the lengths involved (the round-off of
@@ -228,7 +223,7 @@ def _short_reach_bound(l0, reach, asin=np.arcsin, sqrt=np.sqrt):
 
 
 def _contact_past_bound(th, r, l0, m):
-    """:func:`arc_contact` of states past a quarter turn (1-D arrays, ``m`` NaN inside a chain), the test run on
+    """:func:`arc_contact` of states (1-D arrays, ``m`` NaN inside a chain), the test run on
     the states short of a full turn (which touch) and at or past :func:`_contact_free_below` only, where its
     bound is closed form (``pi reach < l0``; a NaN stub: the full turn), else on all of them: every state short
     of it is apart."""
@@ -521,7 +516,7 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     half = r * a  # 2 r a > l0 exactly when r a > l0/2 (scaling by 2 is exact)
     l0 = l0.item()
     top = float(a.max())
-    coiled = _coiled_states(th, a, top, r, l0, stub_mm) if top > 0.5 * math.pi else None
+    coiled = _coiled_states(th, a, top, r, l0, stub_mm)
     kinked = half > 0.5 * l0 if half.max() > 0.5 * l0 else None
     over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
     out = np.array(st, dtype=np.int8)  # a new array in every case
@@ -539,7 +534,7 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
 def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool, stub_mm: float = 0.0) -> float:
     """|theta| [deg] at which one uniform arc, clamped at its start, first touches (:func:`arc_contact`).
 
-    Found by bisection between a quarter turn (no contact) and a full turn (contact), for a
+    Found by bisection between the straight state (no contact) and a full turn (contact), for a
     constant tube radius. Without a stub a negative bend's tip lands on the supply tube where
     ``l0 (1 - cos theta) = 2 r |theta|`` and a positive bend's tube-side corner of the tip
     enters it where ``cos theta = R / (R + 2 r)``, ``R = l0 / theta``; a stub reaches sooner.
@@ -569,7 +564,7 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool, stub_mm: f
     r = check_range("radius_mm", radius_mm, low=0.0)
     m = check_range("stub_mm", stub_mm, low=0.0, low_inclusive=True, high=1e4)
     sign = -1.0 if negative else 1.0
-    lo, hi = 0.5 * math.pi, _FULL_TURN
+    lo, hi = 0.0, _FULL_TURN
     for _ in range(LIMIT_BISECTIONS):
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):

@@ -301,8 +301,7 @@ def test_one_models_limits_equal_the_limits_of_every_state():
 
 def test_rows_of_designs_are_coiled_where_the_contact_test_says():
     """limit_flags on rows of designs (arrays broadcast as sweep passes them: the contact test only at or past the
-    free bound) flags coiled exactly where arc_contact flags each state alone past a quarter turn (where the
-    arrays' test starts), with a stub, without and inside a chain, also at the floats next to each contact angle,
+    free bound) flags coiled exactly where arc_contact flags each state alone, at every angle, with a stub, without and inside a chain, also at the floats next to each contact angle,
     and for short arcs where the bound has no closed form."""
     import random
 
@@ -322,6 +321,28 @@ def test_rows_of_designs_are_coiled_where_the_contact_test_says():
     f = limit_flags(th, l0 * (1.0 + 0.01 * np.abs(th)), r, l0, stub_mm=stub)
     alone = np.array([[bool(arc_contact(th[k, j], r[k, j], l0[k, 0], stub[k, 0])) for j in range(th.shape[1])]
                       for k in range(len(rows))])
-    past = np.abs(th) > 0.5 * math.pi
-    assert alone[past].any() and not alone[past].all()
-    assert f.coiled[past].tolist() == alone[past].tolist()
+    assert alone.any() and not alone.all()
+    assert f.coiled.tolist() == alone.tolist()
+
+
+def test_a_short_arc_with_a_long_stub_is_coiled_before_a_quarter_turn_on_every_path():
+    """l0 10.7 mm, r 6.1 mm, a 30 mm stub, bending negative (towards the tube): the stub's rectangle meets the fixed
+    band from about -51 deg, short of a quarter turn, where the kink limit (2 r theta > l0 from 50.3 deg) also holds; COILED takes precedence. The
+    contact test alone, rows of designs (limit_flags), one model's states (apply_limits on arrays) and one state
+    on floats give the same status at every angle, and coil_angle_deg finds that first contact."""
+    from embroact.predict.floats import SCALAR
+    from embroact.predict.validity import arc_contact
+
+    l0, r, stub = 10.7, 6.1, 30.0
+    th = -np.radians(np.linspace(1.0, 89.0, 89))
+    touch = arc_contact(th, r, l0, stub)
+    assert touch.any() and not touch.all()
+    first = -float(np.degrees(th[touch][0]))
+    assert 45.0 < first < 60.0
+    assert abs(coil_angle_deg(l0, r, negative=True, stub_mm=stub) - first) <= 1.0
+    length = l0 + 2.0 * r * th  # a zigzag's thread side (shorter)
+    rows = limit_flags(th[None, :], length[None, :], r, l0, stub_mm=stub).coiled[0]
+    states = apply_limits(np.ones(th.size, dtype=np.int8), th, length, np.full(th.size, r), l0, stub_mm=stub)
+    floats = [apply_limits(1, float(a), float(b), r, l0, SCALAR, stub) for a, b in zip(th, length)]
+    assert rows.tolist() == touch.tolist()
+    assert (states == Status.COILED).tolist() == touch.tolist() == [c == Status.COILED for c in floats]
