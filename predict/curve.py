@@ -87,6 +87,7 @@ import numpy as np
 from ..patterns.base.arrays import frozen_array
 from ..patterns.base.display import repr_svg
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
+from ..patterns.base.records import quick_init
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from . import model as _m
 from . import solvers
@@ -257,6 +258,7 @@ class ActuatorModel:
                    calibration=calibration)
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class Curve:
     """A predicted curve: read-only float64 arrays of one shape (1-D; 2-D rows per design from ``sweep``).
@@ -558,6 +560,7 @@ def _root(geo, t, full, kind, energy, deriv, rtol):
     return th, np.where(beyond, kind, np.where(unstable, Status.UNSTABLE, Status.BENDING))
 
 
+@quick_init
 @dataclass(frozen=True, slots=True, eq=False)
 class _Branch:
     """What one model's ``auto`` curves share, computed once per (model, rtol) and cached: the geometry

@@ -59,6 +59,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.base.records import quick_init
 from . import model as _m
 from . import solvers
 from .floats import SCALAR
@@ -95,6 +96,7 @@ _Z = np.array(STENCIL)[:, None]
 _FOLD_FRACTIONS = np.linspace(0.0, 1.0, FOLD_NODES)
 
 
+@quick_init
 @dataclass(frozen=True, slots=True, eq=False)
 class LeanTable:
     """One branch's served span and what has been evaluated on it (made by :func:`lean_table`).

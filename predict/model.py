@@ -56,6 +56,7 @@ from typing import Any
 import numpy as np
 
 from ..patterns.base.errors import ParameterError
+from ..patterns.base.records import quick_init
 from . import solvers
 from .floats import SCALAR
 
@@ -87,6 +88,7 @@ REFERENCE_NODES = (12, 64)
 _DEG_PER_RAD = 180.0 / np.pi  # numpy's degrees() multiplies by this same double
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class Geometry:
     """Model constants of one or more designs, as ``(n, 1)`` float64 arrays (mm, MPa, rad).
@@ -729,6 +731,7 @@ def rate_fast(theta, geo: Geometry):
 _STRETCH_STEP = 1e-30
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class StretchRates:
     """dF/dm and dV/dm in the stretch ``m = (l - l0)/(2 l0) = A - 1``, scaled so that ``P - P0 = scale F'/V'``.
