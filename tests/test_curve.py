@@ -292,3 +292,21 @@ def test_never_nan(m, pressures, angles):
     if bent.any():  # every answered angle holds its pressure
         back = pressure_at(m, c.theta_deg[bent])
         np.testing.assert_allclose(back.pressure_kpa, c.pressure_kpa[bent], rtol=1e-9, atol=1e-9)
+
+
+def test_the_float_paths_method_check_is_what_auto_resolves_to():
+    """The float path serves "auto" from the fast method's accuracy up (ACCURACY's first entry, so "auto"
+    resolves to it there) and the fast method by name; curve() gives the same bits either way."""
+    assert next(iter(C.ACCURACY)) == C._FAST[:2]
+    for rtol in (C._FAST_RTOL, 1e-10, 1e-3, 0.5):
+        assert C._resolve("auto", rtol) == C._FAST
+    m = ActuatorModel("cross", length_mm=100, r0_mm=2.6, beta0_deg=20.0, outer_radius_mm=1.5, inner_radius_mm=1.0,
+                      g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170)
+    one = curve(m, [230.0], rtol=1e-9)
+    named = curve(m, [230.0], method=C._FAST_NAME, rtol=1e-9)
+    arrays = curve(m, np.array([0.0, 230.0, 240.0]), rtol=1e-9)
+    assert one.theta_deg[0] == named.theta_deg[0] == arrays.theta_deg[1]
+    with pytest.raises(ParameterError, match="rtol"):
+        curve(m, [230.0], rtol=1.5)
+    with pytest.raises(ParameterError, match="rtol"):
+        curve(m, [230.0], rtol=1e-13)
