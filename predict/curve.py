@@ -84,7 +84,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..patterns.base.arrays import frozen_array
+from ..patterns.base.arrays import array_max, array_min, frozen_array
 from ..patterns.base.display import repr_svg
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
 from ..patterns.base.records import quick_init
@@ -367,7 +367,7 @@ def _values(name: str, values, *, low=-np.inf, high=np.inf) -> np.ndarray:
     a = a if a.ndim == 1 else np.atleast_1d(a)
     if a.ndim > 1:
         raise ParameterError(f"{name} must be a number or a 1-D sequence, got shape {a.shape}")
-    lo, hi = (float(a.min()), float(a.max())) if a.size else (0.0, 0.0)  # NaN: both NaN
+    lo, hi = (float(array_min(a)), float(array_max(a))) if a.size else (0.0, 0.0)  # NaN: both NaN
     if not (low <= lo and hi <= high and math.isfinite(lo) and math.isfinite(hi)):
         bad = ~np.isfinite(a) | (a < low) | (a > high)  # NaN fails both comparisons above
         raise ParameterError(f"{name} must be finite numbers in [{low:g}, {high:g}], got {float(a[bad][0]):g}")

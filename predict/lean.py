@@ -59,6 +59,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.base.arrays import array_max, array_min
 from ..patterns.base.records import quick_init
 from . import model as _m
 from . import solvers
@@ -168,7 +169,7 @@ class LeanTable:
                 nodes[3, -1] = np.inf
             np.multiply(_KW, abs(self.span), out=nodes[4])
             p = nodes[3]
-            self.lazy["arrays"] = nodes, bool((p[1:] > p[:-1]).all())
+            self.lazy["arrays"] = nodes, bool(np.logical_and.reduce(p[1:] > p[:-1]))
         return self.lazy["arrays"]
 
     @property
@@ -309,7 +310,7 @@ def solve_lean(tab: LeanTable, t):
     """
     nodes, rises = tab.arrays()
     t = t / tab.rates.scale
-    lo = np.searchsorted(nodes[3, 1:_LAST], t, side="right")  # t > 0 = p[0]: the bracket [lo, lo + 1]
+    lo = nodes[3, 1:_LAST].searchsorted(t, side="right")  # t > 0 = p[0]: the bracket [lo, lo + 1]
     (ma, fa, va, _, kh), (mb, fb, vb, _, _) = nodes.take(lo, axis=1), nodes[:, 1:].take(lo, axis=1)
     zigzag = tab.rates.zigzag
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -320,7 +321,7 @@ def solve_lean(tab: LeanTable, t):
         m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
     if not rises:
         settled[:] = False
-    elif not (float(t.min()) > tab.floor and float(t.max()) < float(nodes[3, _LAST])):
+    elif not (float(array_min(t, axis=None)) > tab.floor and float(array_max(t, axis=None)) < float(nodes[3, _LAST])):
         settled &= (t < nodes[3, _LAST]) & (t > tab.floor)  # at or above the last node: not served
     return m, settled
 

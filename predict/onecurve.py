@@ -237,7 +237,7 @@ def one_curve(br, p, *, limits: bool = True):
     g, lean = br.scalar, br.lean
     t = p - g.p0
     bend = t > 0.0
-    every = bool(bend.all())
+    every = bool(np.logical_and.reduce(bend))
     groups = []
     if lean is None:  # no branch: the straight state, with the end's status for the bending targets
         status = np.full(p.size, _INFLATION, dtype=np.int8)
@@ -250,7 +250,7 @@ def one_curve(br, p, *, limits: bool = True):
         m = np.zeros(p.size)
         if tb.size:
             mb, settled = solve_lean(lean, tb)
-            if not settled.all():
+            if not np.logical_and.reduce(settled):
                 at = np.arange(p.size) if every else np.flatnonzero(bend)
                 groups = [(at[k], zoom) for k, zoom in _trace_groups(br, tb, settled)]
                 mb[~settled] = 0.0

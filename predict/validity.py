@@ -53,6 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..patterns.base.arrays import array_max, array_min
 from ..patterns.base.errors import ParameterError, check_range
 from .floats import SCALAR
 from .status import VALIDITY_LIMITS, Status, is_model_state
@@ -247,7 +248,7 @@ def _coiled_states(th, a, top, r, l0, stub):
     if not (stub is None or isinstance(stub, float)) and np.size(stub) != 1:
         return arc_contact(th, r, l0, stub)
     m = math.nan if stub is None else stub if isinstance(stub, float) else np.asarray(stub).item()
-    free = max(_contact_free_below(l0, 2.0 * float(r.max()), m), _SMALLEST)
+    free = max(_contact_free_below(l0, 2.0 * float(array_max(r, axis=None)), m), _SMALLEST)
     if top < free:
         return None
     if m != m:
@@ -256,7 +257,7 @@ def _coiled_states(th, a, top, r, l0, stub):
     a_near, r_near = a.reshape(-1)[near].tolist(), r.reshape(-1)[near].tolist()
     w_lo, w_hi = 2.0 * min(r_near), 2.0 * max(r_near)
     below, start, end = math.inf, -math.inf, math.inf
-    hi, lo = float(th.max()), float(th.min())
+    hi, lo = float(array_max(th, axis=None)), float(array_min(th, axis=None))
     for negative in (n for n, on in ((False, hi >= free), (True, -lo >= free)) if on):  # the ways states bend
         b, s, e = _contact_bounds(l0, w_lo, w_hi, m, negative, free)
         below, start, end = min(below, b), max(start, s), min(end, e)
@@ -515,17 +516,17 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     a = np.abs(th)
     half = r * a  # 2 r a > l0 exactly when r a > l0/2 (scaling by 2 is exact)
     l0 = l0.item()
-    top = float(a.max())
+    top = float(array_max(a, axis=None))
     coiled = _coiled_states(th, a, top, r, l0, stub_mm)
-    kinked = half > 0.5 * l0 if half.max() > 0.5 * l0 else None
-    over = l >= STRETCH_LIMIT * l0 if l.max() >= STRETCH_LIMIT * l0 else None
+    kinked = half > 0.5 * l0 if array_max(half, axis=None) > 0.5 * l0 else None
+    over = l >= STRETCH_LIMIT * l0 if array_max(l, axis=None) >= STRETCH_LIMIT * l0 else None
     out = np.array(st, dtype=np.int8)  # a new array in every case
     if coiled is None and kinked is None and over is None:
         return out
     for flag, code in ((over, _LIMIT_CODES[2]), (kinked, _LIMIT_CODES[1]), (coiled, _LIMIT_CODES[0])):
         if flag is not None:
             out[flag] = code
-    if int(st.max()) >= min(_KEPT):  # FAILED and OUT_OF_DOMAIN keep their status
+    if int(array_max(st, axis=None)) >= min(_KEPT):  # FAILED and OUT_OF_DOMAIN keep their status
         kept = (st == _KEPT[0]) | (st == _KEPT[1])
         out[kept] = st[kept]
     return out
