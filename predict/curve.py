@@ -868,28 +868,35 @@ def curve(model: ActuatorModel, pressures_kpa, *, method: str = "auto",
 def _float_path(model, pressures_kpa, method, rtol, limits):
     """The curve of a handful of bending pressures on Python floats (:func:`~embroact.predict.onecurve.
     one_curve_floats`), or None for the array path (which also reports bad input)."""
-    if isinstance(pressures_kpa, (float, int)):
-        values = [pressures_kpa]
-    elif isinstance(pressures_kpa, (list, tuple)) and len(pressures_kpa) <= FLOAT_PATH_MAX:
-        values = pressures_kpa
-    elif isinstance(pressures_kpa, np.ndarray) and pressures_kpa.ndim == 1 and pressures_kpa.size <= FLOAT_PATH_MAX:
-        values = pressures_kpa.tolist()
-    else:
-        return None
-    if not values or not all(isinstance(v, (float, int)) and not isinstance(v, bool) and 0.0 <= v < math.inf
-                             for v in values):
-        return None
     if not (type(rtol) is float and _FAST_RTOL <= rtol < 1.0 and (method == "auto" or method == _FAST_NAME)):
         return None  # another method, or an rtol the array path checks
+    if isinstance(pressures_kpa, np.ndarray):  # of numbers: its values are Python numbers
+        if not (pressures_kpa.ndim == 1 and 0 < pressures_kpa.size <= FLOAT_PATH_MAX
+                and pressures_kpa.dtype.kind in "fiu"):
+            return None
+        values = pressures_kpa.tolist()
+    else:
+        values = ([pressures_kpa] if isinstance(pressures_kpa, (float, int)) else pressures_kpa
+                  if isinstance(pressures_kpa, (list, tuple)) and len(pressures_kpa) <= FLOAT_PATH_MAX else None)
+        if not values or not all(isinstance(v, (float, int)) and not isinstance(v, bool) for v in values):
+            return None
+    if not all(0.0 <= v < math.inf for v in values):
+        return None
     got = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
     if got is None:
         return None
-    status = np.array(got[1], dtype=np.int8)
-    rows = np.array(got[0])  # the float columns: one array
-    status.setflags(write=False)
+    rows = np.array(got[0])  # the float columns: one array, whose rows are read-only views
     rows.setflags(write=False)
-    p, theta, length, radius, beta, inner = rows.reshape(6, len(values))  # read-only rows
-    return Curve(p, theta, status, length, radius, beta, inner, method=_FAST_NAME, calibration=model.calibration)
+    rows = rows.reshape(6, len(values))  # indexed, not unpacked: an iterator over rows costs more
+    return Curve(rows[0], rows[1], _status_array(tuple(got[1])), rows[2], rows[3], rows[4], rows[5],
+                 method=_FAST_NAME, calibration=model.calibration)
+
+
+@lru_cache(maxsize=256)
+def _status_array(codes: tuple) -> np.ndarray:
+    """The read-only int8 array of a float path's statuses (one per tuple: curves may share it, as none can
+    change it)."""
+    return frozen_array(codes, dtype=np.int8)
 
 
 def pressure_at(model: ActuatorModel, theta_deg, *, method: str = "auto", limits: bool = True) -> Curve:

@@ -118,7 +118,8 @@ class LeanTable:
     nodes : dict
         Node index -> (m, F', V', P - P0 over the scale) evaluated on floats so far (:func:`solve_lean_scalar`).
     lazy : dict
-        The arrays of every node, made on first use (:meth:`arrays`).
+        The arrays of every node, made on first use (:meth:`arrays`), and their pressures as floats (the float
+        path's binary search).
 
     Examples
     --------
@@ -338,12 +339,11 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     through the bracket's ends and the end the last probe replaced, and a bisection when four probes did not
     halve the bracket. About four evaluations a target, the last node's among them.
     """
-    got = tab.lazy.get("arrays")
-    if got is not None:
-        keys = tab.lazy.get("keys")
-        if keys is None:
-            keys = tab.lazy["keys"] = got[0][3, 1:_LAST].tolist()
-        return bisect_right(keys, t) if t < got[0][3, _LAST] else None
+    keys = tab.lazy.get("keys")
+    if keys is None and "arrays" in tab.lazy:
+        keys = tab.lazy["keys"] = tab.lazy["arrays"][0][3, 1:].tolist()  # the last: the top
+    if keys is not None:
+        return bisect_right(keys, t, 0, _LAST - 1) if t < keys[-1] else None
     _, f, v, p = tab.node(_LAST)
     if not t < p:
         return None
@@ -433,7 +433,10 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
     try:
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
         d = SCALAR.minimum(_KW_LIST[lo] * abs(tab.span), _SPACING * abs(x0))
-        r = [(f - t if zigzag else f - t * v) for f, v in (tab.rates(x0 + d * z, SCALAR) for z in STENCIL)]
+        rates, r = tab.rates, []
+        for z in STENCIL:
+            f, v = rates(x0 + d * z, SCALAR)
+            r.append(f - t if zigzag else f - t * v)
         m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
     except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic or a stencil out of the domain
         return None
