@@ -24,9 +24,10 @@ round-off floor); so is every target at or above the last node's pressure.
 Which nodes a target uses depends on the model and the target only, so an answer is the
 same whatever else the call or earlier calls asked. Many pressures evaluate every node at
 once on numpy arrays (:func:`solve_lean`, one closed-form evaluation over the nodes, one over
-the stencils); a handful evaluate only the nodes their binary search visits, on Python floats
-(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`): the same operations in the
-same order, so both give the same bits, and neither builds a table first.
+the stencils); a handful evaluate only the few nodes their search visits, on Python floats
+(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`; :func:`_bracket`: two nodes for a
+zigzag, about four otherwise): the same operations in the same order, so both give the same bits, and
+neither builds a table of the design first.
 
 The served span: the branch up to its lock-up (where P has a pole) or up to the stretch
 ``m = RISE_M``, whichever comes first; beyond it P may fold. A zigzag's P depends on ``m`` and
@@ -56,6 +57,7 @@ from __future__ import annotations
 import math
 from bisect import bisect_right
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -332,11 +334,13 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     them), or None if ``t`` is at or above P at the last node.
 
     Once the node arrays are made (:meth:`LeanTable.arrays`), a binary search of their pressures. Before, it
-    evaluates few nodes: it follows the residual ``R = F' - t V'`` signed as ``P - t`` (no pole at a lock-up,
-    where P has one) in the span's fraction ``x``. The first probe is the node nearest the root of the quadratic
-    with R's value and slope at the straight state (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0
-    there) and its value at the last node; each further probe is the node nearest the root of the quadratic
-    through the bracket's ends and the end the last probe replaced, and a bisection when four probes did not
+    evaluates few nodes. A zigzag on the span :data:`RISE_M` first checks the two nodes :func:`_zigzag_guess`
+    names (nearly always the bracket). Otherwise the search follows the residual ``R = F' - t V'`` signed as
+    ``P - t`` (no pole at a lock-up, where P has one) in the span's fraction ``x``. The first probe is the node
+    nearest the root of the quadratic with R's value and slope at the straight state
+    (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its value at the last node; each
+    further probe is the node nearest the root of the quadratic through the bracket's ends and the end the last
+    probe replaced, and a bisection when four probes did not
     halve the bracket. About four evaluations a target, the last node's among them.
     """
     keys = tab.lazy.get("keys")
@@ -344,6 +348,9 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
         keys = tab.lazy["keys"] = tab.lazy["arrays"][0][3, 1:].tolist()  # the last: the top
     if keys is not None:
         return bisect_right(keys, t, 0, _LAST - 1) if t < keys[-1] else None
+    lo = _zigzag_guess(tab, t)
+    if lo is not None and tab.node(lo)[3] <= t < tab.node(lo + 1)[3]:
+        return lo
     _, f, v, p = tab.node(_LAST)
     if not t < p:
         return None
@@ -372,6 +379,39 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
             continue
         x = _quadratic_through(x_lo, r_lo, x_hi, r_hi, _FRACTION_LIST[third[0]], third[1])
         x = x_lo + (x_hi - x_lo) * (r_lo / (r_lo - r_hi)) if x is None else x
+
+
+#: The zigzag table's grid of ``sigma = c/r0^2`` (:func:`_zigzag_nodes`): ``0, 1/64, ..., 63/64``.
+ZIGZAG_SIGMAS = 64
+
+
+@lru_cache(maxsize=1)
+def _zigzag_nodes() -> list:
+    """P - P0 over the scale (F') at every node of a zigzag whose span is :data:`RISE_M`, one list per ``sigma`` of
+    the grid (:data:`ZIGZAG_SIGMAS`): such a zigzag's nodes lie at the same stretches, and its P depends on
+    ``sigma`` alone (made once, on first use: about a millisecond)."""
+    sigma = np.arange(ZIGZAG_SIGMAS) / ZIGZAG_SIGMAS
+    rates = _m.StretchRates.of(_m.Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=sigma, g_mpa=1.0,
+                                                       p0_mpa=0.0))
+    return rates(RISE_M * _FRACTIONS, np)[0].tolist()
+
+
+def _zigzag_guess(tab: LeanTable, t: float) -> int | None:
+    """The bracket of target ``t`` (over the scale) a zigzag on the span :data:`RISE_M` most likely has: its nodes'
+    pressures interpolated linearly between the two ``sigma`` of :func:`_zigzag_nodes` around its own; None for
+    other designs (the caller checks the guess on the design's own nodes)."""
+    rates = tab.rates
+    k = rates.sigma * ZIGZAG_SIGMAS
+    if not (rates.zigzag and tab.span == RISE_M and 0.0 <= k < ZIGZAG_SIGMAS - 1):
+        return None
+    i = int(k)
+    w, below, above = k - i, *_zigzag_nodes()[i:i + 2]
+    lo, hi = sorted((bisect_right(below, t, 1, _LAST), bisect_right(above, t, 1, _LAST)))
+    # the last node in [lo - 1, hi - 1] whose interpolated pressure is at or below t
+    j = hi - 1
+    while j >= lo and below[j] + w * (above[j] - below[j]) > t:
+        j -= 1
+    return min(max(j, 0), _LAST - 1)
 
 
 def _quadratic_through(x0: float, y0: float, x1: float, y1: float, x2: float, y2: float) -> float | None:

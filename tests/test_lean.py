@@ -289,3 +289,46 @@ def test_a_cross_of_a_small_thread_angle_folds_as_a_zigzag_and_the_float_path_le
     many = C._solve([m], [2.0 * p_fold] * 20, "auto", C.DEFAULT_TOLERANCES.model_rtol, squeeze=True, limits=False)
     assert one.status[0] == many.status[0] == Status.UNSTABLE
     assert one.theta_deg[0] == pytest.approx(theta_fold, rel=1e-9)
+
+
+@pytest.mark.parametrize("pattern, angles", [("zigzag", [0.0]), ("cross", [5.0, 20.0, 45.0, 75.0])])
+def test_the_float_paths_bracket_is_the_search_of_every_node_in_few_evaluations(pattern, angles):
+    """The float path's bracket of a target (evaluating few nodes: a zigzag's first guess from its table over
+    sigma = c/r0^2, checked on two of its own nodes; quadratic guesses otherwise) is the node searchsorted finds
+    among all of them, over widths whose sigma falls on, between and next to the table's grid, and targets from
+    round-off size to the last node; a zigzag evaluates two nodes, others at most a dozen (of 385)."""
+    from embroact.predict import lean as L
+
+    counts = []
+    for w in (4.0, 5.5, 7.0, 9.0, 12.0):
+        for angle in angles:
+            br = C._branch(design(pattern, w, angle), 1e-10)
+            tab = br.lean
+            nodes, _ = tab.arrays()
+            top = float(nodes[3, -1]) if math.isfinite(nodes[3, -1]) else 50.0 * float(nodes[3, -2])
+            for t in [1e-12, 1e-6] + list(np.linspace(0.0005, 0.9995, 41) ** 2 * top):
+                want = int(np.searchsorted(nodes[3, 1:L._LAST], t, side="right"))
+                probe = L.LeanTable(tab.rates, tab.span, tab.pole, tab.rtol, tab.atol, tab.floor, {}, {})
+                got = L._bracket(probe, t)
+                assert got == (want if want < L._LAST else None)
+                assert L._bracket(tab, t) == got  # by the nodes' arrays
+                counts.append(len(probe.nodes))
+    if pattern == "zigzag":
+        assert set(counts) == {2}
+    assert max(counts) <= 12 and np.mean(counts) < 5.0
+
+
+def test_the_zigzag_table_is_the_closed_form_at_its_grid():
+    """Each row of the zigzag table is P - P0 over the scale of the closed form (StretchRates) at the nodes of a
+    zigzag of that sigma, evaluated on floats one node at a time."""
+    from embroact.predict import lean as L
+    from embroact.predict.floats import SCALAR
+    from embroact.predict.model import StretchRates
+
+    rows = L._zigzag_nodes()
+    assert len(rows) == L.ZIGZAG_SIGMAS and {len(r) for r in rows} == {L._LAST + 1}
+    for i in (0, 17, L.ZIGZAG_SIGMAS - 1):
+        rates = StretchRates.of(Geometry.of_floats(beta0_rad=0.0, l0_mm=50.0, r0_mm=2.0,
+                                                   c_mm2=4.0 * i / L.ZIGZAG_SIGMAS, g_mpa=1.0, p0_mpa=0.0))
+        for j in (1, 100, 300, L._LAST):
+            assert rows[i][j] == pytest.approx(rates(L.RISE_M * L._FRACTION_LIST[j], SCALAR)[0], rel=1e-13)
