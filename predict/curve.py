@@ -79,7 +79,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from functools import lru_cache
 
 import numpy as np
@@ -189,6 +189,8 @@ class ActuatorModel:
     tube_law: str = "paper"
     calibration: str = "given"
     stub_mm: float | None = 0.0
+    #: The hash of the fields, computed once (every curve looks its model's branch up by it).
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name in ("beta0_deg", "p0_kpa", "inner_radius_mm"):  # those that may be 0: -0.0 is 0.0, one cache entry
@@ -216,6 +218,17 @@ class ActuatorModel:
         if self.tube_law == "thick-wall" and self.inner_radius_mm == 0:
             raise ParameterError("inner_radius_mm must be > 0 with tube_law 'thick-wall' (a solid rod does not "
                                  "inflate), got 0")
+        object.__setattr__(self, "_hash", hash(self._values()))
+
+    def _values(self) -> tuple:
+        return tuple(getattr(self, f.name) for f in fields(self) if f.init)
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    def __reduce__(self):
+        """Pickled as its fields, so the hash is the unpickling process's own (strings hash per process)."""
+        return type(self), self._values()
 
     @classmethod
     def from_derived(cls, derived, *, g_mpa, p0_kpa=None, calibration="given", tube_law="paper"):

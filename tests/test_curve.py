@@ -1,6 +1,7 @@
 """Public API of the model: values, statuses of every region, sweeps, validation, never NaN."""
 import json
 import math
+import os
 import subprocess
 import sys
 
@@ -310,3 +311,29 @@ def test_the_float_paths_method_check_is_what_auto_resolves_to():
         curve(m, [230.0], rtol=1.5)
     with pytest.raises(ParameterError, match="rtol"):
         curve(m, [230.0], rtol=1e-13)
+
+
+def test_a_models_kept_hash_is_its_fields_hash_and_pickles_as_its_fields(tmp_path):
+    """The model's hash, computed once, is the hash of its fields (equal models, also 100 and 100.0 or -0.0 and
+    0.0, hash alike); unpickled in a process that hashes strings differently, it hashes as that process's own."""
+    import dataclasses
+    import pickle
+
+    m = ActuatorModel("cross", length_mm=100, r0_mm=2.6, beta0_deg=20.0, outer_radius_mm=1.5, inner_radius_mm=1.0,
+                      g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170)
+    same = dataclasses.replace(m, length_mm=100.0, p0_kpa=170.0)
+    assert same == m and hash(same) == hash(m) and {m: 1}[same] == 1
+    assert hash(dataclasses.replace(m, calibration="fit")) != hash(m)
+    zero = dataclasses.replace(m, pattern="zigzag", beta0_deg=-0.0)
+    assert hash(zero) == hash(dataclasses.replace(m, pattern="zigzag", beta0_deg=0.0))
+    path = tmp_path / "m.pickle"
+    path.write_bytes(pickle.dumps(m))
+    code = ("import pickle, sys; from embroact.predict.curve import ActuatorModel; "
+            f"m = pickle.loads(open({str(path)!r}, 'rb').read()); "
+            "f = ActuatorModel('cross', length_mm=100, r0_mm=2.6, beta0_deg=20.0, outer_radius_mm=1.5, "
+            "inner_radius_mm=1.0, g_e_mpa=0.13, g_mpa=1.3, p0_kpa=170); "
+            "sys.exit(0 if m == f and hash(m) == hash(f) and {f: 1}[m] == 1 else 1)")
+    for seed in ("1", "2"):
+        run = subprocess.run([sys.executable, "-c", code], env={**os.environ, "PYTHONHASHSEED": seed},
+                             capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
