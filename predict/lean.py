@@ -381,31 +381,30 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
         x = x_lo + (x_hi - x_lo) * (r_lo / (r_lo - r_hi)) if x is None else x
 
 
-#: The zigzag table's grid of ``sigma = c/r0^2`` (:func:`_zigzag_nodes`): ``0, 1/64, ..., 63/64``.
+#: The zigzag table's rows of ``sigma = c/r0^2`` (:func:`_zigzag_nodes`): ``0, 1/64, ..., 63/64``.
 ZIGZAG_SIGMAS = 64
 
 
-@lru_cache(maxsize=1)
-def _zigzag_nodes() -> list:
-    """P - P0 over the scale (F') at every node of a zigzag whose span is :data:`RISE_M`, one list per ``sigma`` of
-    the grid (:data:`ZIGZAG_SIGMAS`): such a zigzag's nodes lie at the same stretches, and its P depends on
-    ``sigma`` alone (made once, on first use: about a millisecond)."""
-    sigma = np.arange(ZIGZAG_SIGMAS) / ZIGZAG_SIGMAS
-    rates = _m.StretchRates.of(_m.Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=sigma, g_mpa=1.0,
-                                                       p0_mpa=0.0))
-    return rates(RISE_M * _FRACTIONS, np)[0].tolist()
+@lru_cache(maxsize=ZIGZAG_SIGMAS)
+def _zigzag_nodes(i: int) -> list:
+    """P - P0 over the scale (F') at every node of a zigzag whose span is :data:`RISE_M` and whose ``sigma`` is
+    ``i / ZIGZAG_SIGMAS``: such a zigzag's nodes lie at the same stretches, and its P depends on ``sigma`` alone
+    (each row made once, on first use: a tenth of a millisecond)."""
+    rates = _m.StretchRates.of(_m.Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=i / ZIGZAG_SIGMAS,
+                                                       g_mpa=1.0, p0_mpa=0.0))
+    return rates(RISE_M * _FRACTIONS, np)[0][0].tolist()
 
 
 def _zigzag_guess(tab: LeanTable, t: float) -> int | None:
     """The bracket of target ``t`` (over the scale) a zigzag on the span :data:`RISE_M` most likely has: its nodes'
-    pressures interpolated linearly between the two ``sigma`` of :func:`_zigzag_nodes` around its own; None for
+    pressures interpolated linearly between the two rows of :func:`_zigzag_nodes` around its ``sigma``; None for
     other designs (the caller checks the guess on the design's own nodes)."""
     rates = tab.rates
     k = rates.sigma * ZIGZAG_SIGMAS
     if not (rates.zigzag and tab.span == RISE_M and 0.0 <= k < ZIGZAG_SIGMAS - 1):
         return None
     i = int(k)
-    w, below, above = k - i, *_zigzag_nodes()[i:i + 2]
+    w, below, above = k - i, _zigzag_nodes(i), _zigzag_nodes(i + 1)
     lo, hi = sorted((bisect_right(below, t, 1, _LAST), bisect_right(above, t, 1, _LAST)))
     # the last node in [lo - 1, hi - 1] whose interpolated pressure is at or below t
     j = hi - 1

@@ -325,10 +325,10 @@ def test_the_zigzag_table_is_the_closed_form_at_its_grid():
     from embroact.predict.floats import SCALAR
     from embroact.predict.model import StretchRates
 
-    rows = L._zigzag_nodes()
-    assert len(rows) == L.ZIGZAG_SIGMAS and {len(r) for r in rows} == {L._LAST + 1}
     for i in (0, 17, L.ZIGZAG_SIGMAS - 1):
+        row = L._zigzag_nodes(i)
+        assert len(row) == L._LAST + 1
         rates = StretchRates.of(Geometry.of_floats(beta0_rad=0.0, l0_mm=50.0, r0_mm=2.0,
                                                    c_mm2=4.0 * i / L.ZIGZAG_SIGMAS, g_mpa=1.0, p0_mpa=0.0))
         for j in (1, 100, 300, L._LAST):
-            assert rows[i][j] == pytest.approx(rates(L.RISE_M * L._FRACTION_LIST[j], SCALAR)[0], rel=1e-13)
+            assert row[j] == pytest.approx(rates(L.RISE_M * L._FRACTION_LIST[j], SCALAR)[0], rel=1e-13)
