@@ -580,8 +580,8 @@ class _Branch:
     as floats, the branch end and its status, tolerances, the lean table (:mod:`embroact.predict.lean`;
     None without a branch; its node arrays are made on first use), and, made on first use only (a first curve whose pressures the lean
     solve settles needs none of them), the arrays the trace inverse and the tube law take
-    (:meth:`arrays`) and the trace inverse's memo (its tabulation, fold and zooms)
-    (:mod:`embroact.predict.onecurve`)."""
+    (:meth:`arrays`), the trace inverse's memo (its tabulation, fold and zooms) and the float path's contact
+    bound (:mod:`embroact.predict.onecurve`)."""
 
     model: ActuatorModel
     scalar: _m.Geometry

@@ -63,6 +63,7 @@ __all__ = [
     "LimitFlags",
     "limit_flags",
     "apply_limits",
+    "contact_free_below_rad",
     "coil_angle_deg",
     "arc_contact",
     "valid_mask",
@@ -150,13 +151,14 @@ def limit_flags(theta_rad, length_mm, radius_mm, l0_mm, stub_mm=0.0) -> LimitFla
     return LimitFlags(*(f if f.shape == shape else np.broadcast_to(f, shape).copy() for f in flags))
 
 
-def _exceeded(th, l, r, l0, xp=np, stub=0.0):
-    """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR``."""
+def _exceeded(th, l, r, l0, xp=np, stub=0.0, free=0.0):
+    """(coiled, kinked, overstretched) at states: arrays, or floats with ``xp=SCALAR`` (``free``: as
+    :func:`apply_limits` takes it)."""
     a = abs(th)
-    return _coiled(th, a, r, l0, xp, stub), 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
+    return _coiled(th, a, r, l0, xp, stub, free), 2.0 * r * a > l0, l >= STRETCH_LIMIT * l0
 
 
-def _coiled(th, a, r, l0, xp=np, stub=0.0):
+def _coiled(th, a, r, l0, xp=np, stub=0.0, free=0.0):
     """The coiled flags at states of bend ``th`` (``a = |th|``): :func:`arc_contact` with the stub
     (None: an arc inside a chain); one state on floats with ``xp=SCALAR``. The bound
     :func:`_contact_free_below` spares the contact test of a state far from contact, and it alone decides
@@ -166,7 +168,8 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0):
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
         return _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape).reshape(-1)
                                      for v in (th, r, l0, stub))).reshape(shape)
-    return a >= _FULL_TURN or (a >= _contact_free_below(l0, 2.0 * r, stub) and _arc_contact_float(th, r, l0, stub))
+    return a >= _FULL_TURN or (a >= free and a >= _contact_free_below(l0, 2.0 * r, stub)
+                               and _arc_contact_float(th, r, l0, stub))
 
 
 #: Margin of :func:`_contact_free_below`'s reach, relative to the lengths involved (the round-off of
@@ -175,6 +178,30 @@ _BOUND_MARGIN = 1e-9
 _SMALLEST = math.ulp(0.0)
 #: Bisection steps of :func:`_contact_free_below` (to 1/4096 of the range: the bound need not be tight).
 _BOUND_BISECTIONS = 12
+
+
+def contact_free_below_rad(l0_mm: float, radius_mm: float, stub_mm: float | None) -> float:
+    """|theta| [rad] below which one arc of length ``l0_mm``, its tube's radius at most ``radius_mm``, with the stub
+    ``stub_mm`` (None: inside a chain) cannot touch (:func:`_contact_free_below`; a bound, not the contact angle).
+
+    Parameters
+    ----------
+    l0_mm, radius_mm : float
+        Arc length and the largest tube radius [mm].
+    stub_mm : float or None
+        Sealed tube beyond the tip [mm]; None for an arc inside a chain.
+
+    Returns
+    -------
+    float
+        [rad], 0 when the bound says nothing.
+
+    Examples
+    --------
+    >>> round(math.degrees(contact_free_below_rad(100.0, 2.58, 0.0)), 1)  # the contact itself: 315.7 deg
+    290.6
+    """
+    return _contact_free_below(l0_mm, 2.0 * radius_mm, math.nan if stub_mm is None else stub_mm)
 
 
 def _contact_free_below(l0: float, w: float, m: float) -> float:
@@ -472,7 +499,7 @@ def _limited(st, flags):
     return np.where((st == _KEPT[0]) | (st == _KEPT[1]), st, out)
 
 
-def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=0.0):
+def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=0.0, free_rad=0.0):
     """Status codes with the validity limits applied (precedence: :mod:`embroact.predict.status`).
 
     FAILED and OUT_OF_DOMAIN points keep their status (their theta is a fill value);
@@ -491,6 +518,10 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
         Sealed tube beyond the tip [mm] of a whole strip (:attr:`ActuatorModel.stub_mm
         <embroact.predict.curve.ActuatorModel>`; 0: clamped at its start, no stub; None or
         NaN: an arc inside a chain, its own full turn only).
+    free_rad : float, optional
+        With ``xp=SCALAR``: a bend [rad] below which the caller knows the state cannot touch (one model's
+        :func:`contact_free_below_rad` at its largest radius, kept for its curves), which spares the state's own
+        bound; 0 by default.
 
     Returns
     -------
@@ -506,7 +537,7 @@ def apply_limits(status, theta_rad, length_mm, radius_mm, l0_mm, xp=np, stub_mm=
     if xp is not np:  # one state: the first limit it exceeds
         if status in _KEPT:
             return status
-        coiled, kinked, over = _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp, stub_mm)
+        coiled, kinked, over = _exceeded(theta_rad, length_mm, radius_mm, l0_mm, xp, stub_mm, free_rad)
         return _LIMIT_CODES[0] if coiled else _LIMIT_CODES[1] if kinked else _LIMIT_CODES[2] if over else status
     st = np.asarray(status, dtype=np.int8)
     th, l, r, l0 = (np.asarray(v, dtype=np.float64) for v in (theta_rad, length_mm, radius_mm, l0_mm))

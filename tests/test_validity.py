@@ -346,3 +346,22 @@ def test_a_short_arc_with_a_long_stub_is_coiled_before_a_quarter_turn_on_every_p
     floats = [apply_limits(1, float(a), float(b), r, l0, SCALAR, stub) for a, b in zip(th, length)]
     assert rows.tolist() == touch.tolist()
     assert (states == Status.COILED).tolist() == touch.tolist() == [c == Status.COILED for c in floats]
+
+
+def test_a_models_contact_bound_spares_the_test_and_changes_no_status():
+    """One state on floats with the model's bound (contact_free_below_rad at its largest radius) gets the status it
+    gets without it, over bends up to past a full turn, radii up to that largest, with and without a stub and
+    inside a chain; the bound lies below the contact angle coil_angle_deg finds."""
+    from embroact.predict.floats import SCALAR
+    from embroact.predict.validity import contact_free_below_rad
+
+    for l0, r_max, stub in ((100.0, 2.58, 0.0), (100.0, 2.58, 30.0), (40.0, 3.0, None), (10.7, 6.1, 30.0)):
+        free = contact_free_below_rad(l0, r_max, stub)
+        if stub is not None:
+            for negative in (True, False):
+                assert math.degrees(free) <= coil_angle_deg(l0, r_max, negative=negative, stub_mm=stub) + 1e-9
+        for deg in np.linspace(-370.0, 370.0, 371):
+            for r in (0.5 * r_max, r_max):
+                th, length = math.radians(deg), l0 * (1.0 + 0.001 * abs(deg))
+                plain = apply_limits(int(Status.BENDING), th, length, r, l0, SCALAR, stub)
+                assert apply_limits(int(Status.BENDING), th, length, r, l0, SCALAR, stub, free) == plain, (l0, deg)
