@@ -418,17 +418,12 @@ def _invariants(l, r, geo: Geometry):
     return A, B, r / geo.r0
 
 
-def _stable_t(a, b, c, xp=np):
-    """(T, sqrt(a), sqrt(b), sqrt(a) + sqrt(b)) of the rationalised ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) +
-    sqrt(b)))``."""
+def _stable_t_partials(a, b, c, xp=np):
+    """(T, dT/da, dT/db) of the rationalised ``T = 2 c / (sqrt(a) sqrt(b) (sqrt(a) + sqrt(b)))`` (no cancellation
+    near ``a = b``, where the printed difference of inverse square roots loses its digits)."""
     sa, sb = xp.sqrt(a), xp.sqrt(b)
     total = sa + sb
-    return 2.0 * c / (sa * sb * total), sa, sb, total
-
-
-def _stable_t_partials(a, b, c, xp=np):
-    """(T, dT/da, dT/db) of :func:`_stable_t`'s T."""
-    T, sa, sb, total = _stable_t(a, b, c, xp)
+    T = 2.0 * c / (sa * sb * total)
     hs, minus_t = 0.5 / total, -T
     return T, minus_t * (0.5 / a + hs / sa), minus_t * (0.5 / b + hs / sb)
 
@@ -438,7 +433,7 @@ def _energy_closed(l, r, geo: Geometry, form: str):
     if form == "stable":
         q = geo.c / A
         f2 = B * B / 4.0 * q * (2.0 * r * r - q)
-        T = _stable_t(l / geo.l0, l / geo.l0 + B * B * q, geo.c)[0]
+        T = _stable_t_partials(l / geo.l0, l / geo.l0 + B * B * q, geo.c)[0]
     else:  # printed
         d2 = inner_radius_sq(l, r, geo)
         q = r * r - d2
