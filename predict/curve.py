@@ -893,8 +893,9 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
                   if isinstance(pressures_kpa, (list, tuple)) and len(pressures_kpa) <= FLOAT_PATH_MAX else None)
         if not values or not all(isinstance(v, (float, int)) and not isinstance(v, bool) for v in values):
             return None
-    if not all(0.0 <= v < math.inf for v in values):
-        return None
+    for v in values:
+        if not 0.0 <= v < math.inf:  # also NaN
+            return None
     got = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
     if got is None:
         return None
