@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import ClassVar, Protocol
 
 from .base.errors import ParameterError, check_range
+from .base.records import quick_init
 from .base.tolerances import DEFAULT_TOLERANCES
 
 __all__ = ["Tube", "StitchOptions", "ZigzagParams", "CrossParams", "PatternParams", "ADJUST_METHODS", "FABRIC_THICKNESS_MM", "whole_intervals"]
@@ -133,6 +134,7 @@ class StitchOptions:
             raise ParameterError(f"tie_count must be an integer in [2, 10], got {self.tie_count!r}")
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class ZigzagParams:
     """Zigzag pattern: legs cross the tube alternately from rail to rail.
@@ -167,6 +169,7 @@ FABRIC_THICKNESS_MM = 0.5
 ADJUST_METHODS = ("auto", "interval", "angle")
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class CrossParams:
     """Cross pattern: two families of legs at +-alpha0 from the perpendicular.
