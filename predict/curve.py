@@ -499,13 +499,12 @@ def _lean_rows(geo, t, full, kind, energy, deriv, rtol, later=None):
     return theta, status
 
 
-def _fold_later(models, blocks, later, size, rtol):
+def _fold_later(models, zigzag, blocks, later, size, rtol):
     """The entries the lean solve left in ``blocks`` (as :func:`_trace_later` takes them) on designs of
-    ``s0 = 0`` whose nodes end at ``RISE_M``, solved up to their fold or UNSTABLE at it
+    ``s0 = 0`` (``zigzag``, per model) whose nodes end at ``RISE_M``, solved up to their fold or UNSTABLE at it
     (:func:`~embroact.predict.lean.solve_to_fold`), ``size`` rows at a time; returns ``later`` without them
     (what is left: the trace inverse's)."""
-    picks = [np.array([models[blocks[b][0] + r].beta0_deg == 0.0 for r in rows], dtype=bool)
-             for b, (rows, _) in enumerate(later)]
+    picks = [zigzag[blocks[b][0] + rows] for b, (rows, _) in enumerate(later)]
     jobs = [(b, rows[pick], settled[pick]) for b, ((rows, settled), pick) in enumerate(zip(later, picks))]
     ours = [models[blocks[b][0] + r] for b, rows, _ in jobs for r in rows]
     if not ours:
@@ -793,10 +792,13 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
 
 def _blocks(models, p, energy, deriv, inverse, rtol, limits):
     """The arrays (P, theta, status, l, r, beta, d) of ``sweep``, (models, pressures) each: the models solved
-    ``SWEEP_BLOCK`` (or fewer, by ``SWEEP_BLOCK_POINTS``) at a time, zigzag designs first
-    (:func:`_by_pattern`), the rows the lean solve leaves in every block traced together."""
-    order = _by_pattern(models)
-    models = [models[k] for k in order]
+    ``SWEEP_BLOCK`` (or fewer, by ``SWEEP_BLOCK_POINTS``) at a time, zigzag designs first (a block then holds one
+    pattern and takes its shorter closed forms: :class:`~embroact.predict.model.StretchRates` and
+    :func:`~embroact.predict.model.constraint` on zigzag rows only), the rows the lean solve leaves in every
+    block traced together."""
+    zigzag = np.array([mo.beta0_deg == 0.0 for mo in models], dtype=bool)  # s0 = 0
+    order = np.concatenate([np.flatnonzero(zigzag), np.flatnonzero(~zigzag)])
+    models, zigzag = [models[k] for k in order], zigzag[order]
     size = max(1, min(SWEEP_BLOCK, SWEEP_BLOCK_POINTS // max(p.size, 1)))
     blocks, left = [], []  # per block, the rows the lean solve leaves: traced together
     for k in range(0, len(models), size):
@@ -806,19 +808,11 @@ def _blocks(models, p, energy, deriv, inverse, rtol, limits):
     later = [(np.concatenate([r for r, _ in mine]), np.concatenate([s for _, s in mine]))
              if mine else (np.empty(0, dtype=np.intp), np.empty((0, p.size), dtype=bool)) for mine in left]
     if any(rows.size for rows, _ in later):
-        later = _fold_later(models, blocks, later, size, rtol)
+        later = _fold_later(models, zigzag, blocks, later, size, rtol)
     if any(rows.size for rows, _ in later):
         _trace_later(models, blocks, later, size, rtol)
     parts = [_block_states(models[b[0]:b[0] + size], b, limits) for b in blocks]
     return tuple(_in_order(order, size, [part[j] for part in parts]) for j in range(len(parts[0])))
-
-
-def _by_pattern(models) -> np.ndarray:
-    """Indices of ``models``: the zigzag designs (beta0 = 0) first, then the others, each in their order, so a
-    block of either holds one pattern and takes its shorter closed forms (:class:`~embroact.predict.model.
-    StretchRates` and :func:`~embroact.predict.model.constraint` on zigzag rows only)."""
-    zigzag = np.array([mo.beta0_deg == 0.0 for mo in models])
-    return np.concatenate([np.flatnonzero(zigzag), np.flatnonzero(~zigzag)])
 
 
 def _in_order(order, size, parts):

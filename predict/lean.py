@@ -340,8 +340,8 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     nearest the root of the quadratic with R's value and slope at the straight state
     (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its value at the last node; each
     further probe is the node nearest the root of the quadratic through the bracket's ends and the end the last
-    probe replaced, and a bisection when four probes did not
-    halve the bracket. About four evaluations a target, the last node's among them.
+    probe replaced, and a bisection when four probes did not halve the bracket. About four evaluations a target,
+    the last node's among them.
     """
     keys = tab.lazy.get("keys")
     if keys is None and "arrays" in tab.lazy:
