@@ -389,7 +389,7 @@ ZIGZAG_SIGMAS = 64
 def _zigzag_nodes(i: int) -> list:
     """P - P0 over the scale (F') at every node of a zigzag whose span is :data:`RISE_M` and whose ``sigma`` is
     ``i / ZIGZAG_SIGMAS``: such a zigzag's nodes lie at the same stretches, and its P depends on ``sigma`` alone
-    (each row made once, on first use: a tenth of a millisecond)."""
+    (each row made once, on first use)."""
     rates = _m.StretchRates.of(_m.Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=i / ZIGZAG_SIGMAS,
                                                        g_mpa=1.0, p0_mpa=0.0))
     return rates(RISE_M * _FRACTIONS, np)[0][0].tolist()

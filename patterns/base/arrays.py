@@ -17,9 +17,8 @@ import numpy as np
 
 __all__ = ["frozen_array", "median", "array_max", "array_min"]
 
-#: ``a.max()`` and ``a.min()`` as the ufuncs' own reductions, without ndarray's Python-level wrapper (a microsecond
-#: less a call, which a first curve makes a dozen times); ``axis=None`` reduces an array of any shape to one value,
-#: NaN if any is.
+#: ``a.max()`` and ``a.min()`` as the ufuncs' own reductions, without ndarray's Python-level wrapper (a first curve
+#: makes a dozen); ``axis=None`` reduces an array of any shape to one value, NaN if any is.
 array_max, array_min = np.maximum.reduce, np.minimum.reduce
 
 

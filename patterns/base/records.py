@@ -1,10 +1,10 @@
 """A quicker ``__init__`` for the frozen dataclasses a first curve builds.
 
-A frozen dataclass writes each field through ``object.__setattr__``, looked up by name per field: building the
-geometry, the rates, the lean table, the branch and the curve of a first one-pressure curve costs several
-microseconds that way, a tenth of the call. :func:`quick_init` gives such a class (frozen, with slots) an
-``__init__`` with the same signature, defaults and ``__post_init__`` call that sets each slot through its
-descriptor instead: about half the time, and the instances stay frozen.
+A frozen dataclass writes each field through ``object.__setattr__``, looked up by name per field, and a first
+one-pressure curve builds five such values (the geometry, the rates, the lean table, the branch and the curve).
+:func:`quick_init` gives such a class (frozen, with slots) an ``__init__`` with the same signature, defaults and
+``__post_init__`` call that sets each slot through its descriptor instead, which is quicker; the instances stay
+frozen.
 
 Examples
 --------
