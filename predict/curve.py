@@ -896,8 +896,8 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     rows = np.array(got[0])  # the float columns: one array, whose rows are read-only views
     rows.setflags(write=False)
     rows = rows.reshape(6, len(values))  # indexed, not unpacked: an iterator over rows costs more
-    return Curve(rows[0], rows[1], _status_array(tuple(got[1])), rows[2], rows[3], rows[4], rows[5],
-                 method=_FAST_NAME, calibration=model.calibration)
+    return Curve(rows[0], rows[1], _status_array(tuple(got[1])), rows[2], rows[3], rows[4], rows[5], _FAST_NAME,
+                 model.calibration)  # by position: a first curve's cost
 
 
 @lru_cache(maxsize=256)

@@ -96,6 +96,7 @@ _KW = _SPACING * np.append(np.diff(_FRACTIONS), _FRACTIONS[-1] - _FRACTIONS[-2])
 _KW_LIST = _KW.tolist()
 _LAST = _FRACTIONS.size - 1
 _Z = np.array(STENCIL)[:, None]
+_Z0, _Z1, _Z2, _Z3 = STENCIL
 _FOLD_FRACTIONS = np.linspace(0.0, 1.0, FOLD_NODES)
 
 
@@ -334,8 +335,7 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     them), or None if ``t`` is at or above P at the last node.
 
     Once the node arrays are made (:meth:`LeanTable.arrays`), a binary search of their pressures. Before, it
-    evaluates few nodes. A zigzag on the span :data:`RISE_M` first checks the two nodes :func:`_zigzag_guess`
-    names (nearly always the bracket). Otherwise the search follows the residual ``R = F' - t V'`` signed as
+    evaluates few nodes: first the two :func:`_guess` names (nearly always the bracket). Otherwise the search follows the residual ``R = F' - t V'`` signed as
     ``P - t`` (no pole at a lock-up, where P has one) in the span's fraction ``x``. The first probe is the node
     nearest the root of the quadratic with R's value and slope at the straight state
     (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its value at the last node; each
@@ -348,7 +348,7 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
         keys = tab.lazy["keys"] = tab.lazy["arrays"][0][3, 1:].tolist()  # the last: the top
     if keys is not None:
         return bisect_right(keys, t, 0, _LAST - 1) if t < keys[-1] else None
-    lo = _zigzag_guess(tab, t)
+    lo = _guess(tab, t)
     if lo is not None and tab.node(lo)[3] <= t < tab.node(lo + 1)[3]:
         return lo
     _, f, v, p = tab.node(_LAST)
@@ -381,36 +381,78 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
         x = x_lo + (x_hi - x_lo) * (r_lo / (r_lo - r_hi)) if x is None else x
 
 
-#: The zigzag table's rows of ``sigma = c/r0^2`` (:func:`_zigzag_nodes`): ``0, 1/64, ..., 63/64``.
-ZIGZAG_SIGMAS = 64
+#: The guess table's grid (:func:`_guess_nodes`): ``s0 = sin(beta0)`` at ``0, 1/64, ..., 63/64`` and
+#: ``sigma = c cos^2(beta0)/r0^2`` at ``1/64, ..., 63/64``.
+GUESS_GRID = 64
+#: Rows of the guess table kept (each made on first use, 12 KB), and cells of four rows: a zigzag reads two
+#: rows, another design four.
+GUESS_ROWS = 512
+#: A zigzag row's branch end [rad] (its lock-up is at infinity; any angle past the span RISE_M will do).
+_FAR_RAD = 1e3
 
 
-@lru_cache(maxsize=ZIGZAG_SIGMAS)
-def _zigzag_nodes(i: int) -> list:
-    """P - P0 over the scale (F') at every node of a zigzag whose span is :data:`RISE_M` and whose ``sigma`` is
-    ``i / ZIGZAG_SIGMAS``: such a zigzag's nodes lie at the same stretches, and its P depends on ``sigma`` alone
-    (each row made once, on first use)."""
-    rates = _m.StretchRates.of(_m.Geometry.from_values(beta0_rad=0.0, l0_mm=1.0, r0_mm=1.0, c_mm2=i / ZIGZAG_SIGMAS,
-                                                       g_mpa=1.0, p0_mpa=0.0))
-    return rates(RISE_M * _FRACTIONS, np)[0][0].tolist()
+@lru_cache(maxsize=GUESS_ROWS)
+def _guess_nodes(i: int, k: int):
+    """P - P0 over the scale (``F'/V'``) at every node of the design of ``s0 = i / GUESS_GRID`` and
+    ``sigma = k / GUESS_GRID`` on the span :func:`lean_table` gives it (up to its lock-up or :data:`RISE_M`),
+    or None where it has no branch (``sigma >= cos^2(beta0)``: the wall does not fit).
 
-
-def _zigzag_guess(tab: LeanTable, t: float) -> int | None:
-    """The bracket of target ``t`` (over the scale) a zigzag on the span :data:`RISE_M` most likely has: its nodes'
-    pressures interpolated linearly between the two rows of :func:`_zigzag_nodes` around its ``sigma``; None for
-    other designs (the caller checks the guess on the design's own nodes)."""
-    rates = tab.rates
-    k = rates.sigma * ZIGZAG_SIGMAS
-    if not (rates.zigzag and tab.span == RISE_M and 0.0 <= k < ZIGZAG_SIGMAS - 1):
+    Such a design's rates depend on ``s0`` and ``sigma`` alone, and so does its span in ``m`` (the lock-up's
+    stretch): its nodes' pressures over the scale are the same for every length, radius and modulus.
+    """
+    s0 = i / GUESS_GRID
+    c_mm2 = k / GUESS_GRID / (1.0 - s0 * s0)  # with r0 = 1 mm
+    if not c_mm2 < 1.0:
         return None
-    i = int(k)
-    w, below, above = k - i, _zigzag_nodes(i), _zigzag_nodes(i + 1)
-    lo, hi = sorted((bisect_right(below, t, 1, _LAST), bisect_right(above, t, 1, _LAST)))
-    # the last node in [lo - 1, hi - 1] whose interpolated pressure is at or below t
-    j = hi - 1
-    while j >= lo and below[j] + w * (above[j] - below[j]) > t:
+    geo = _m.Geometry.of_floats(beta0_rad=math.asin(s0), l0_mm=1.0, r0_mm=1.0, c_mm2=c_mm2, g_mpa=1.0, p0_mpa=0.0)
+    lock = _m.lock_theta(geo, SCALAR)
+    tab = lean_table(geo, theta_end=min(lock, _FAR_RAD), pole_at_end=lock < _FAR_RAD, rtol=0.0, atol=0.0)
+    return tab.arrays()[0][3].tolist()
+
+
+@lru_cache(maxsize=GUESS_ROWS)
+def _guess_cell(i: int, k: int, across: bool):
+    """The rows of :func:`_guess_nodes` at the corners of the grid's cell ``[i, i + 1] x [k, k + 1]`` (those of
+    ``i`` twice unless ``across``), or None if one has no row."""
+    a, b = _guess_nodes(i, k), _guess_nodes(i, k + 1)
+    c, d = (_guess_nodes(i + 1, k), _guess_nodes(i + 1, k + 1)) if across else (a, b)
+    return None if a is None or b is None or c is None or d is None else (a, b, c, d)
+
+
+def _guess(tab: LeanTable, t: float) -> int | None:
+    """The bracket of target ``t`` (over the scale) the design most likely has: its nodes' pressures interpolated
+    between the rows of :func:`_guess_nodes` around its ``s0`` and ``sigma`` (linearly in ``sigma`` for a zigzag
+    on the span :data:`RISE_M`, bilinearly otherwise); None outside the grid (the caller checks the guess on the
+    design's own nodes: a design whose span its rows do not share, one capped by the tracing cap, is only
+    guessed wrong)."""
+    rates = tab.rates
+    x = rates.sigma * GUESS_GRID
+    if not 1.0 <= x < GUESS_GRID - 1:  # sigma = 0: no scale to divide by (no wall)
+        return None
+    k = int(x)
+    wk = x - k
+    if rates.zigzag:
+        if tab.span != RISE_M:
+            return None
+        i, wi = 0, 0.0
+    else:
+        y = math.sqrt(rates.s0sq) * GUESS_GRID
+        if not y < GUESS_GRID - 1:
+            return None
+        i = int(y)
+        wi = y - i
+    cell = _guess_cell(i, k, wi != 0.0)
+    if cell is None:
+        return None
+    a, b, c, d = cell
+    wa, wb, wc, wd = (1.0 - wi) * (1.0 - wk), (1.0 - wi) * wk, wi * (1.0 - wk), wi * wk
+    # from the bracket in the first row, to the last node whose interpolated pressure is at or below t
+    j = bisect_right(a, t, 1, _LAST) - 1
+    while j > 0 and a[j] * wa + b[j] * wb + c[j] * wc + d[j] * wd > t:
         j -= 1
-    return min(max(j, 0), _LAST - 1)
+    while j < _LAST - 1 and not a[j + 1] * wa + b[j + 1] * wb + c[j + 1] * wc + d[j + 1] * wd > t:
+        j += 1
+    return j
 
 
 def _quadratic_through(x0: float, y0: float, x1: float, y1: float, x2: float, y2: float) -> float | None:
@@ -472,11 +514,13 @@ def solve_lean_scalar(tab: LeanTable, t: float) -> float | None:
     try:
         x0 = _start(ma, mb, fa, va, fb, vb, t, zigzag)
         d = SCALAR.minimum(_KW_LIST[lo] * abs(tab.span), _SPACING * abs(x0))
-        rates, r = tab.rates, []
-        for z in STENCIL:
-            f, v = rates(x0 + d * z, SCALAR)
-            r.append(f - t if zigzag else f - t * v)
-        m, settled = _polish(x0, d, r[0], r[1], r[2], r[3], tab.rtol, tab.atol)
+        rates = tab.rates  # the four stencil points one by one (no list: a first curve's cost)
+        (f0, v0), (f1, v1), (f2, v2), (f3, v3) = (rates(x0 + d * _Z0, SCALAR), rates(x0 + d * _Z1, SCALAR),
+                                                  rates(x0 + d * _Z2, SCALAR), rates(x0 + d * _Z3, SCALAR))
+        if zigzag:
+            m, settled = _polish(x0, d, f0 - t, f1 - t, f2 - t, f3 - t, tab.rtol, tab.atol)
+        else:
+            m, settled = _polish(x0, d, f0 - t * v0, f1 - t * v1, f2 - t * v2, f3 - t * v3, tab.rtol, tab.atol)
     except (ZeroDivisionError, ValueError, OverflowError):  # a flat cubic or a stencil out of the domain
         return None
     return m if settled and t > tab.floor else None

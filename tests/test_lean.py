@@ -293,10 +293,11 @@ def test_a_cross_of_a_small_thread_angle_folds_as_a_zigzag_and_the_float_path_le
 
 @pytest.mark.parametrize("pattern, angles", [("zigzag", [0.0]), ("cross", [5.0, 20.0, 45.0, 75.0])])
 def test_the_float_paths_bracket_is_the_search_of_every_node_in_few_evaluations(pattern, angles):
-    """The float path's bracket of a target (evaluating few nodes: a zigzag's first guess from its table over
-    sigma = c/r0^2, checked on two of its own nodes; quadratic guesses otherwise) is the node searchsorted finds
-    among all of them, over widths whose sigma falls on, between and next to the table's grid, and targets from
-    round-off size to the last node; a zigzag evaluates two nodes, others at most a dozen (of 385)."""
+    """The float path's bracket of a target (evaluating few nodes: a first guess from the table over s0 and
+    sigma = c cos^2(beta0)/r0^2, checked on two of its own nodes; quadratic guesses where it misses) is the node
+    searchsorted finds among all of them, over widths whose sigma falls on, between and next to the table's grid,
+    and targets from round-off size to the last node; a zigzag evaluates two nodes, others fewer than three on
+    average and at most a dozen (of 385)."""
     from embroact.predict import lean as L
 
     counts = []
@@ -315,20 +316,31 @@ def test_the_float_paths_bracket_is_the_search_of_every_node_in_few_evaluations(
                 counts.append(len(probe.nodes))
     if pattern == "zigzag":
         assert set(counts) == {2}
-    assert max(counts) <= 12 and np.mean(counts) < 5.0
+    assert max(counts) <= 12 and np.mean(counts) < 3.0
 
 
-def test_the_zigzag_table_is_the_closed_form_at_its_grid():
-    """Each row of the zigzag table is P - P0 over the scale of the closed form (StretchRates) at the nodes of a
-    zigzag of that sigma, evaluated on floats one node at a time."""
+def test_the_guess_table_is_the_closed_form_at_its_grid_for_any_length_and_radius():
+    """Each row of the guess table is P - P0 over the scale of the closed form (StretchRates) at the nodes of a
+    design of that s0 and sigma, whatever its length and radius: on the span up to its lock-up (a cross design)
+    or RISE_M (a zigzag; a cross whose lock-up lies beyond), evaluated on floats one node at a time; no row
+    where the wall does not fit the sleeve."""
     from embroact.predict import lean as L
     from embroact.predict.floats import SCALAR
-    from embroact.predict.model import StretchRates
+    from embroact.predict.model import StretchRates, lock_theta
 
-    for i in (0, 17, L.ZIGZAG_SIGMAS - 1):
-        row = L._zigzag_nodes(i)
+    for i, k, l0, r0 in ((0, 1, 50.0, 2.0), (0, 17, 120.0, 3.1), (0, L.GUESS_GRID - 1, 80.0, 2.5),
+                         (3, 20, 60.0, 2.2), (24, 9, 200.0, 4.0), (40, 30, 90.0, 2.6), (60, 2, 100.0, 3.0)):
+        row = L._guess_nodes(i, k)
         assert len(row) == L._LAST + 1
-        rates = StretchRates.of(Geometry.of_floats(beta0_rad=0.0, l0_mm=50.0, r0_mm=2.0,
-                                                   c_mm2=4.0 * i / L.ZIGZAG_SIGMAS, g_mpa=1.0, p0_mpa=0.0))
-        for j in (1, 100, 300, L._LAST):
-            assert row[j] == pytest.approx(rates(L.RISE_M * L._FRACTION_LIST[j], SCALAR)[0], rel=1e-13)
+        s0 = i / L.GUESS_GRID
+        geo = Geometry.of_floats(beta0_rad=math.asin(s0), l0_mm=l0, r0_mm=r0,
+                                 c_mm2=k / L.GUESS_GRID * r0 * r0 / (1.0 - s0 * s0), g_mpa=2.0, p0_mpa=0.1)
+        rates = StretchRates.of(geo)
+        span = rates.m_of(float(lock_theta(geo, SCALAR))) if i else math.inf
+        pole = abs(span) <= L.RISE_M
+        span = span if pole else math.copysign(L.RISE_M, span)
+        for j in (1, 100, 300, L._LAST - 1) + (() if pole else (L._LAST,)):
+            f, v = rates(span * L._FRACTION_LIST[j], SCALAR)
+            assert row[j] == pytest.approx(f / v, rel=1e-9)
+        assert row[L._LAST] == math.inf if pole else math.isfinite(row[L._LAST])
+    assert L._guess_nodes(62, 10) is None  # s0 = 0.97: sigma 10/64 > cos^2(beta0) = 0.06
