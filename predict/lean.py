@@ -407,7 +407,7 @@ def _guess_nodes(i: int, k: int):
     geo = _m.Geometry.of_floats(beta0_rad=math.asin(s0), l0_mm=1.0, r0_mm=1.0, c_mm2=c_mm2, g_mpa=1.0, p0_mpa=0.0)
     lock = _m.lock_theta(geo, SCALAR)
     tab = lean_table(geo, theta_end=min(lock, _FAR_RAD), pole_at_end=lock < _FAR_RAD, rtol=0.0, atol=0.0)
-    return tab.arrays()[0][3].tolist()
+    return None if tab is None else tab.arrays()[0][3].tolist()
 
 
 @lru_cache(maxsize=GUESS_ROWS)
