@@ -25,8 +25,8 @@ Which nodes a target uses depends on the model and the target only, so an answer
 same whatever else the call or earlier calls asked. Many pressures evaluate every node at
 once on numpy arrays (:func:`solve_lean`, one closed-form evaluation over the nodes, one over
 the stencils); a handful evaluate only the few nodes their search visits, on Python floats
-(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`; :func:`_bracket`: two nodes for a
-zigzag, about four otherwise): the same operations in the same order, so both give the same bits, and
+(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`; :func:`_bracket`: the two around its
+guess from a table shared by all designs, nearly always): the same operations in the same order, so both give the same bits, and
 neither builds a table of the design first.
 
 The served span: the branch up to its lock-up (where P has a pole) or up to the stretch
@@ -335,13 +335,14 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     them), or None if ``t`` is at or above P at the last node.
 
     Once the node arrays are made (:meth:`LeanTable.arrays`), a binary search of their pressures. Before, it
-    evaluates few nodes: first the two :func:`_guess` names (nearly always the bracket). Otherwise the search follows the residual ``R = F' - t V'`` signed as
-    ``P - t`` (no pole at a lock-up, where P has one) in the span's fraction ``x``. The first probe is the node
+    evaluates few nodes: first the two :func:`_guess` names (nearly always the bracket). Otherwise the search
+    follows the residual ``R = F' - t V'`` signed as ``P - t`` (no pole at a lock-up, where P has one) in the
+    span's fraction ``x``. The first probe is the node
     nearest the root of the quadratic with R's value and slope at the straight state
     (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its value at the last node; each
     further probe is the node nearest the root of the quadratic through the bracket's ends and the end the last
-    probe replaced, and a bisection when four probes did not halve the bracket. About four evaluations a target,
-    the last node's among them.
+    probe replaced, and a bisection when four probes did not halve the bracket: about four evaluations a target,
+    the last node's among them, where the guess missed.
     """
     keys = tab.lazy.get("keys")
     if keys is None and "arrays" in tab.lazy:
