@@ -493,13 +493,18 @@ class DesignAnalysis:
         One per actuator, in sewing order.
     calibration_sets : tuple of CalibrationSet
         The sets read from files that its settings name.
+    same_model_as : tuple of int
+        Per actuator, the index of the first actuator whose model is the same in every respect but the name
+        and the place (:func:`_alike`: each segment's model or model error and sleeve, the bent line, the
+        tube's stub, the calibration setting): its own index for the first of its kind. Identical actuators
+        share their curves and their model rules' work (:func:`~embroact.predict.rules.check_model`).
 
     Examples
     --------
     >>> from embroact.patterns.design import default_design
     >>> a = analyse(default_design())
-    >>> a.curves() is a.curves(), len(a.pressures_kpa)
-    (True, 31)
+    >>> a.curves() is a.curves(), len(a.pressures_kpa), a.same_model_as
+    (True, 31, (0,))
     """
 
     design: Design
@@ -507,6 +512,12 @@ class DesignAnalysis:
     actuators: tuple[ActuatorAnalysis, ...]
     calibration_sets: tuple[CalibrationSet, ...] = ()
     _curves: dict = field(default_factory=dict, compare=False, repr=False)
+    same_model_as: tuple[int, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        first: dict = {}
+        object.__setattr__(self, "same_model_as",
+                           tuple(first.setdefault(_alike(a), i) for i, a in enumerate(self.actuators)))
 
     def actuator(self, name: str) -> ActuatorAnalysis:
         """The actuator called ``name``.
@@ -579,15 +590,18 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = (p, method)
         if key not in self._curves:
-            strips: dict = {}  # identical actuators (the same segment curves, bent pieces and stub) share one strip
-            out = []
-            for a, pieces in zip(self.actuators, self.segment_curves(p, method=method)):
-                same = (tuple(map(id, pieces)), a.bend_pieces(), a.plan.tube.end_margin_mm)
-                if same not in strips:
-                    strips[same] = a.strip(pieces)
-                out.append(strips[same])
-            self._curves[key] = tuple(out)
+            pieces = self.segment_curves(p, method=method)
+            self._curves[key] = self._per_kind(lambda i, a: a.strip(pieces[i]))
         return self._curves[key]
+
+    def _per_kind(self, make) -> tuple:
+        """``make(index, actuator)`` for the first actuator of each kind (:attr:`same_model_as`), in sewing order,
+        and per actuator its kind's result (identical actuators share one object)."""
+        made: dict = {}
+        for i, (a, first) in enumerate(zip(self.actuators, self.same_model_as)):
+            if first == i:
+                made[i] = make(i, a)
+        return tuple(made[first] for first in self.same_model_as)
 
     def segment_curves(self, pressures_kpa: Sequence[float] | None = None, *, method: str = "auto") -> tuple:
         """Per actuator, one predicted curve per segment (a single-pattern actuator: its one curve), memoised.
@@ -622,8 +636,8 @@ class DesignAnalysis:
         p = self._grid(pressures_kpa)
         key = ("segments", p, method)
         if key not in self._curves:
-            self._curves[key] = tuple(tuple(self._model_curve(s.model, p, method) for s in a.segments)
-                                      for a in self.actuators)
+            self._curves[key] = self._per_kind(
+                lambda i, a: tuple(self._model_curve(s.model, p, method) for s in a.segments))
         return self._curves[key]
 
     def model_curve(self, model, pressures_kpa: Sequence[float], *, method: str = "auto"):
@@ -908,6 +922,14 @@ def with_model_overrides(design: Design, *, actuators: Iterable[str] | None = No
     return dataclasses.replace(design, actuators=specs)
 
 
+def _alike(act: ActuatorAnalysis) -> tuple:
+    """What the model rules and the whole strip's curve read of an actuator but its name and its place
+    (:attr:`DesignAnalysis.same_model_as`): the calibration setting, the bent line, the tube's stub, and per
+    segment its model choice, model error and whether it has a sleeve."""
+    return (act.spec.model.calibration, act.bend_pieces(), act.plan.tube.end_margin_mm,
+            tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
+
+
 def _model_of(derived: DerivedGeometry, settings: ModelSettings, sets,
               stub_mm: float | None) -> tuple[ModelChoice | None, str]:
     if not derived.has_sleeve:
@@ -947,7 +969,10 @@ def segment_plans(act: ActuatorPlan) -> tuple[ActuatorPlan, ...]:
                               seg.adjustments, act.options) for k, seg in enumerate(act.segments))
 
 
-def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) -> ActuatorAnalysis:
+def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets, models: dict) -> ActuatorAnalysis:
+    """Actuator ``index`` of ``plan``; ``models`` maps what a segment's model is made of (its geometry but the
+    name, which the model does not read, the settings and the stub) to the model made of it, shared by identical
+    segments and filled here."""
     act = plan.actuators[index]
     segs = []
     # a chain of one is the whole strip's model, with the tube's sealed stub; a longer chain's links check their
@@ -955,7 +980,10 @@ def _analyse_actuator(spec: ActuatorSpec, plan: StitchPlan, index: int, sets) ->
     stub = act.segments.one_or_all(act.tube.end_margin_mm, None)
     for k, (seg, part) in enumerate(zip(act.segments, segment_plans(act))):
         derived = derive(part)
-        choice, error = _model_of(derived, spec.model, sets, stub)
+        made_of = (dataclasses.replace(derived, name=""), spec.model, stub)
+        if made_of not in models:
+            models[made_of] = _model_of(derived, spec.model, sets, stub)
+        choice, error = models[made_of]
         segs.append(SegmentAnalysis(seg, derived, choice, f"{act.segments.label(k)}{error}" if error else ""))
     return ActuatorAnalysis(spec, act, Chain(segs))
 
@@ -990,5 +1018,6 @@ def analyse(design: Design, *, calibration_sets: Iterable[CalibrationSet] | Mapp
     sets = given + tuple(s for s in design.calibration_sets if s not in given)  # the files the design names
     plan = build_plan(design) if plan is None else plan
     index = {a.name: i for i, a in enumerate(plan.actuators)}
-    acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets) for spec in design.actuators)
+    models: dict = {}  # identical segments share one model choice
+    acts = tuple(_analyse_actuator(spec, plan, index[spec.name], sets, models) for spec in design.actuators)
     return DesignAnalysis(design, plan, acts, sets)
