@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import chain, groupby
 
 import numpy as np
 
@@ -37,7 +38,7 @@ from ..patterns.base.errors import ModelDomainError, check_range
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.base.findings import RULES, Finding, Inputs, Rule, Severity
 from ..patterns.design import OperationSettings
-from ..patterns.rules import RuleSettings, sort_findings
+from ..patterns.rules import RuleSettings, finding_order, sort_findings
 from .sleeve_rules import DESIGN_RULES, check_without_model
 from .status import VALIDITY_LIMITS, Status, is_model_state
 
@@ -236,24 +237,29 @@ def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where
         f"working pressure {settings.max_pressure_kpa:g} kPa", **where)]
 
 
-def _for_actuator(fields, name: str) -> list[Finding]:
-    """The findings of one actuator for another, ``name``: ``fields`` per finding its (slot, value) pairs but the
-    actuator's (:func:`_fields`). Copies of the slots: the values were checked when the findings were made, and
-    ``dataclasses.replace`` would introspect them again for each of 1000."""
-    new, put = object.__new__, object.__setattr__
+#: Per slot of a Finding, its setter (the slot's descriptor: a frozen dataclass refuses setattr).
+_SET = {field: getattr(Finding, field).__set__ for field in Finding.__slots__}
+
+
+def _slots(finding: Finding) -> list:
+    """The finding's (slot setter, value) pairs but the actuator's, read once for all its copies (:func:`_copies`)."""
+    return [(_SET[field], getattr(finding, field)) for field in Finding.__slots__ if field != "actuator"]
+
+
+def _copies(findings, names) -> list[Finding]:
+    """For each of ``names`` in turn, the findings of ``findings`` (each :func:`_slots`) for that actuator. Slots
+    copied: the values were checked when the findings were made, and ``dataclasses.replace`` would introspect
+    them again for each of 1000."""
+    new, actuator = object.__new__, _SET["actuator"]
     out = []
-    for pairs in fields:
-        copy = new(Finding)
-        for field, value in pairs:
-            put(copy, field, value)
-        put(copy, "actuator", name)
-        out.append(copy)
+    for name in names:
+        for pairs in findings:
+            copy = new(Finding)
+            for put, value in pairs:
+                put(copy, value)
+            actuator(copy, name)
+            out.append(copy)
     return out
-
-
-def _fields(findings) -> list:
-    """Per finding, its (slot, value) pairs but the actuator's, read once for all the copies (:func:`_for_actuator`)."""
-    return [[(field, getattr(f, field)) for field in Finding.__slots__ if field != "actuator"] for f in findings]
 
 
 def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Finding, ...]:
@@ -272,7 +278,13 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     Returns
     -------
     tuple of Finding
-        Worst first.
+        Worst first (:func:`~embroact.patterns.rules.sort_findings`' order).
+
+    Notes
+    -----
+    Identical actuators (:attr:`~embroact.predict.analysis.DesignAnalysis.same_model_as`) are checked once,
+    with their first; each gets its copy of those findings, named for it, where sorting every actuator's
+    findings would put it.
 
     Examples
     --------
@@ -282,18 +294,21 @@ def check_model(analysis, settings: ModelRuleSettings | None = None) -> tuple[Fi
     ['EA403', 'EA406']
     """
     settings = settings or ModelRuleSettings.for_operation(analysis.design.operation)
-    found: list[Finding] = []
-    shared: dict = {}  # identical actuators (same models, calibration, bent line): their findings are made once
-    for act in analysis.actuators:  # a segment without a sleeve is skipped by _actuator_findings (EA201 reports it)
-        key = (act.spec.model.calibration, act.bend_pieces(),
-               tuple((s.choice, s.model_error, s.derived.has_sleeve) for s in act.segments))
-        if key in shared:
-            found += _for_actuator(shared[key], act.name)
-        else:
-            made = _actuator_findings(act, analysis, settings)
-            shared[key] = _fields(made)
-            found += made
-    return sort_findings(found)
+    acts, same = analysis.actuators, analysis.same_model_as
+    kinds: dict[int, list[int]] = {}  # the first actuator of each kind -> the kind's actuators, in sewing order
+    for i, first in enumerate(same):
+        kinds.setdefault(first, []).append(i)
+    rows: dict = {}  # sort key -> first actuator of a kind -> the kind's findings of that key (slots), as made
+    for first in kinds:  # a segment without a sleeve is skipped by _actuator_findings (EA201 reports it)
+        for f in _actuator_findings(acts[first], analysis, settings):
+            rows.setdefault(finding_order(f), {}).setdefault(first, []).append(_slots(f))
+    names = [a.name for a in acts]
+    found: list[Finding] = []  # sort_findings' order: by key, then as made, actuator by actuator
+    for key in sorted(rows):
+        row = rows[key]
+        for first, run in groupby(sorted(chain.from_iterable(kinds[k] for k in row)), key=same.__getitem__):
+            found += _copies(row[first], [names[i] for i in run])
+    return tuple(found)
 
 
 #: The rules that read the target machine format: checked again for each further format of a design.

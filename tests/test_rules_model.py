@@ -175,3 +175,41 @@ def test_identical_actuators_get_the_findings_each_would_get_alone():
         assert alone and [(f.code, f.message) for f in together if f.actuator == spec.name] == [
             (f.code, f.message) for f in alone]
         assert all(f.actuator == spec.name for f in alone)
+
+
+def test_actuators_of_a_kind_get_exactly_the_findings_each_gets_alone_in_the_design_order():
+    """The model rules checked once per kind of identical actuators (DesignAnalysis.same_model_as): each actuator
+    gets the very findings (code, severity, message, place, fix) it gets in a design of its own, and the design's
+    findings are those of its actuators checked alone, in sewing order, sorted worst first, then by code and
+    message, ties kept in that order. Kinds interleaved: plain and segmented zigzags, two segmented ones of
+    identical segments, and a cross and a segment without a model (a calibration set of zigzag points only)."""
+    from embroact.patterns.design import design_from_dict
+    from embroact.predict.calibration import CalibrationPoint, CalibrationSet
+
+    lab = (CalibrationSet("zigzag-only", (CalibrationPoint("zigzag", 7.0, 2.7, 85.0),)),)
+
+    def zigzag(w, length=40):
+        return {"pattern": "zigzag", "width_mm": w, "interval_mm": 1, "length_mm": length}
+
+    kinds = [zigzag(7), zigzag(5, 20), {"segment": [zigzag(7), zigzag(9)]}, {"segment": [zigzag(7), zigzag(7)]},
+             {"model": {"calibration": "zigzag-only"}, "pattern": "cross", "width_mm": 7, "interval_mm": 1.4,
+              "angle_deg": 45, "length_mm": 60},
+             {"model": {"calibration": "zigzag-only"}, "segment": [zigzag(7), {
+                 "pattern": "cross", "width_mm": 7, "interval_mm": 1.4, "angle_deg": 45, "length_mm": 60}]}]
+    order = [0, 1, 0, 2, 3, 0, 4, 2, 5, 1, 3, 4, 0, 5, 2]
+    acts = [{"name": f"A{i}", "origin_mm": [(i % 4) * 200.0, (i // 4) * 30.0], **kinds[k]} for i, k in enumerate(order)]
+
+    def design(actuators):
+        return design_from_dict({"name": "kinds", "machine": {"hoop_width_mm": 2000, "hoop_height_mm": 2000},
+                                 "operation": {"max_pressure_kpa": 500, "max_bend_deg": 90}, "actuator": actuators})
+
+    analysis = analyse(design(acts), calibration_sets=lab)
+    alike = [i for i, k in enumerate(order) if k < 5]  # the last kind's cross legs differ in the last bits by place
+    assert [analysis.same_model_as[i] for i in alike] == [order.index(order[i]) for i in alike]
+    together = check_model(analysis)
+    alone = [f for a in acts for f in check_model(analyse(design([a]), calibration_sets=lab))]
+    rank = ("error", "warning", "info")
+    expected = sorted(alone, key=lambda f: (rank.index(f.severity.value), f.code, f.message))
+    assert together == tuple(expected)
+    assert {f.code for f in together} >= {"EA403", "EA405", "EA406"}
+    assert {f.actuator for f in together} == {a["name"] for a in acts}

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 from ..plan import StitchPlan
 from ..spatial import needle_density
-from .engine import Subject, run_rules, sort_findings
+from .engine import Subject, finding_order, run_rules, sort_findings
 from .layout import FILE_REACH_MM, Layout, TubeLayout, layout_from_plan, layout_from_records
 from .machine import MACHINE_RULES
 from .needles import NEEDLE_RULES
@@ -50,6 +50,7 @@ __all__ = [
     "check_geometry",
     "needle_density",
     "sort_findings",
+    "finding_order",
 ]
 
 GEOMETRY_RULES = tuple(sorted(NEEDLE_RULES + PATTERN_RULES + TUBE_RULES + MACHINE_RULES, key=lambda r: r.code))

@@ -39,7 +39,7 @@ from ..spatial import Crossings, TubeIndex, needle_density
 from .layout import Layout
 from .settings import RuleSettings
 
-__all__ = ["Subject", "Hits", "run_rules", "sort_findings"]
+__all__ = ["Subject", "Hits", "run_rules", "sort_findings", "finding_order"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -381,12 +381,28 @@ def sort_findings(findings) -> tuple[Finding, ...]:
     >>> [f.code for f in sort_findings(fs)]
     ['EA101', 'EA105']
     """
-    return tuple(
-        sorted(
-            findings,
-            key=lambda f: (f.severity.rank, f.code, -1 if f.stitch_index is None else f.stitch_index, f.message),
-        )
-    )
+    return tuple(sorted(findings, key=finding_order))
+
+
+def finding_order(finding: Finding) -> tuple:
+    """The sort key of :func:`sort_findings`: severity (worst first), code, stitch index (none first), message.
+
+    Parameters
+    ----------
+    finding : Finding
+
+    Returns
+    -------
+    tuple
+
+    Examples
+    --------
+    >>> import embroact.patterns.rules  # declares the rules
+    >>> finding_order(RULES.finding("EA105", "w", stitch_index=2))
+    (1, 'EA105', 2, 'w')
+    """
+    return (finding.severity.rank, finding.code, -1 if finding.stitch_index is None else finding.stitch_index,
+            finding.message)
 
 
 def applies(rule: Rule, subject: Subject) -> bool:
