@@ -29,6 +29,8 @@ __all__ = ["EndKind", "BranchEnd", "branch_end", "FirstLimit", "first_limit"]
 
 #: Grid points along a branch for the first limit.
 _LIMIT_GRID = 257
+#: Halvings of the first limit's bisection evaluated in one call (:func:`_bisect_limit`).
+_LIMIT_LEVELS = 6
 
 
 class EndKind(enum.Enum):
@@ -176,14 +178,52 @@ def first_limit(model) -> FirstLimit | None:
     hit = np.flatnonzero(np.isin(st, [int(s) for s in VALIDITY_LIMITS]))
     if hit.size == 0:
         return None
-    lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
-    for _ in range(LIMIT_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        if Status(int(_curve.pressure_at(model, [mid]).status[0])) in VALIDITY_LIMITS:
-            hi = mid
-        else:
-            lo = mid
+    hi = _bisect_limit(model, float(grid[hit[0] - 1]), float(grid[hit[0]]))
     c = _curve.pressure_at(model, [hi])
     return FirstLimit(Status(int(c.status[0])), float(c.theta_deg[0]), float(c.pressure_kpa[0]))
+
+
+def _bisect_limit(model, lo: float, hi: float) -> float:
+    """The bisection of ``[lo, hi]`` (``lo`` within the validity limits, ``hi`` beyond one) to the last angle
+    beyond: at most :data:`LIMIT_BISECTIONS` halvings, stopped when the midpoint is an end.
+
+    Its midpoints are taken :data:`_LIMIT_LEVELS` halvings at a time: every midpoint those halvings may visit
+    (a tree of ``2 ** _LIMIT_LEVELS - 1``, each computed as one halving computes it) is evaluated in one
+    :func:`~embroact.predict.curve.pressure_at` call, whose fixed cost dominates, and the halvings then follow
+    their path through it: the same midpoints and statuses as one call per halving.
+
+    Examples
+    --------
+    >>> from embroact.predict.curve import ActuatorModel, pressure_at
+    >>> m = ActuatorModel("zigzag", length_mm=100, r0_mm=2.5814206750769157, beta0_deg=0,
+    ...                   outer_radius_mm=1.5, inner_radius_mm=1.0, g_e_mpa=2.7, g_mpa=2.7, p0_kpa=85)
+    >>> a = _bisect_limit(m, 300.0, 330.0)
+    >>> [Status(int(s)).name for s in pressure_at(m, [np.nextafter(a, 0.0), a]).status]
+    ['BENDING', 'COILED']
+    """
+    limits = [int(s) for s in VALIDITY_LIMITS]
+    left = LIMIT_BISECTIONS
+    while left > 0:
+        steps = min(_LIMIT_LEVELS, left)
+        mids: dict[tuple[float, float], float] = {}
+        level = [(lo, hi)]
+        for _ in range(steps):
+            below = []
+            for a, b in level:
+                mid = mids[a, b] = 0.5 * (a + b)
+                if mid not in (a, b):
+                    below += [(a, mid), (mid, b)]
+            level = below
+        points = [m for (a, b), m in mids.items() if m not in (a, b)]
+        beyond = dict(zip(points, np.isin(_curve.pressure_at(model, points).status, limits).tolist())) \
+            if points else {}
+        left -= steps
+        for _ in range(steps):
+            mid = mids[lo, hi]
+            if mid in (lo, hi):
+                return hi
+            if beyond[mid]:
+                hi = mid
+            else:
+                lo = mid
+    return hi

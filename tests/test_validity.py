@@ -159,6 +159,31 @@ def test_first_limit_of_a_negative_cross_bend_is_the_tube_contact():
         assert f.status is Status.KINKED and 2 * r * abs(th) == pytest.approx(m.length_mm, rel=1e-9)
 
 
+@pytest.mark.parametrize("model", [zigzag(), zigzag(w=5.2, g=4.0, p0=120.0, l0=37.0), cross(60.0, 2.9, 200.0),
+                                   cross(20.0, 4.1, 160.0), cross(52.0, 1.5, 90.0)])
+def test_first_limit_bisects_as_one_halving_per_call(model):
+    """The batched bisection (several halvings' midpoints per pressure_at call) ends at the angle the plain
+    bisection, one pressure_at call per halving, ends at: the same float, status and pressure."""
+    from embroact.predict.status import VALIDITY_LIMITS
+    from embroact.predict.validity import LIMIT_BISECTIONS
+
+    grid = np.linspace(0.0, branch_end(model).theta_deg, 257)
+    hit = np.flatnonzero(np.isin(pressure_at(model, grid).status, [int(s) for s in VALIDITY_LIMITS]))
+    if hit.size == 0:
+        assert first_limit(model) is None
+        return
+    lo, hi = float(grid[hit[0] - 1]), float(grid[hit[0]])
+    for _ in range(LIMIT_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        lo, hi = (lo, mid) if Status(int(pressure_at(model, [mid]).status[0])) in VALIDITY_LIMITS else (mid, hi)
+    c = pressure_at(model, [hi])
+    f = first_limit(model)
+    assert (f.status, f.theta_deg, f.pressure_kpa) == (Status(int(c.status[0])), float(c.theta_deg[0]),
+                                                       float(c.pressure_kpa[0]))
+
+
 def test_cross_45_locks_before_its_coil_contact():
     m = cross(45.0, 1.3, 170.0)
     assert first_limit(m) is None
