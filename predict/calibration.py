@@ -65,6 +65,7 @@ Examples
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from bisect import bisect_right
 from dataclasses import dataclass, field
@@ -76,7 +77,7 @@ from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
 from ..patterns.kinds import PATTERN_KINDS, pattern_kind
 from .markers import MarkerLayout
-from .pchip import pchip
+from .pchip import pchip, pchip_slopes
 
 if TYPE_CHECKING:  # pragma: no cover
     from .curve import ActuatorModel
@@ -747,18 +748,47 @@ def _same_coordinate(x: float, value: float) -> bool:
     return abs(x - value) <= DEFAULT_TOLERANCES.length_mm * max(1.0, abs(value))
 
 
-def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[list, list[str]]:
+def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[_Table, list[str]]:
+    """The merged points of ``cset`` a design of ``pattern`` at ``width`` interpolates between (:func:`_table`),
+    with the notes on how they fit it."""
     pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")]
     if not pts:
         raise ModelDomainError(
             f"calibration set {cset.name!r} has no {pattern} points for the {branch} branch"
         )
     notes: list[str] = []
+    nearest = None
     if pattern_kind(pattern).calibration_axis != "width_mm":  # points along another axis share one width
         nearest = min(pts, key=lambda p: abs(p.width_mm - width)).width_mm
-        pts = [p for p in pts if p.width_mm == nearest]
         if abs(nearest - width) > DEFAULT_TOLERANCES.spacing_rel * width:
             notes.append(f"width_mm {width:g} differs from the calibrated {pattern} width {nearest:g}")
+    return _table(cset, pattern, branch, nearest), notes
+
+
+@dataclass(frozen=True, slots=True)
+class _Table:
+    """The points a lookup interpolates between: one (coordinate, points) pair per calibrated coordinate, and
+    per coordinate the points' mean G, P0 and G_e (``ge`` None unless every point has one) with the
+    interpolant's slopes through them (:func:`~embroact.predict.pchip.pchip_slopes`; None for one point)."""
+
+    merged: tuple[tuple[float, tuple[CalibrationPoint, ...]], ...]
+    xs: tuple[float, ...]
+    g: tuple[float, ...]
+    p0: tuple[float, ...]
+    ge: tuple[float, ...] | None
+    slopes: tuple[tuple[float, ...] | None, ...]
+
+
+#: Tables kept (:func:`_table`): one per set, pattern, branch and width a process looks up.
+_TABLES = 64
+
+
+@functools.lru_cache(maxsize=_TABLES)
+def _table(cset: CalibrationSet, pattern: str, branch: str, width: float | None) -> _Table:
+    """The merged points of ``cset`` of ``pattern`` and ``branch`` (those of width ``width``; None: every width,
+    the kind's calibration axis is the width): kept, as an inverse search looks up hundreds of designs in one."""
+    pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")
+           and (width is None or p.width_mm == width)]
     # one point per coordinate: an exact branch match wins over "both"; equals are averaged
     by_coord: dict[float, list[CalibrationPoint]] = {}
     for p in pts:
@@ -766,9 +796,15 @@ def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -
     merged = []
     for x in sorted(by_coord):
         group = by_coord[x]
-        exact = [p for p in group if p.branch == branch]
-        merged.append((x, exact or group))
-    return merged, notes
+        exact = tuple(p for p in group if p.branch == branch)
+        merged.append((x, exact or tuple(group)))
+    xs = tuple(x for x, _ in merged)
+    g = tuple(_mean([p.g_mpa for p in group]) for _, group in merged)
+    p0 = tuple(_mean([p.p0_kpa for p in group]) for _, group in merged)
+    ge_all = [[p.g_e_mpa for p in group] for _, group in merged]
+    ge = tuple(_mean(group) for group in ge_all) if all(v is not None for group in ge_all for v in group) else None
+    slopes = tuple(None if len(xs) == 1 or ys is None else tuple(pchip_slopes(xs, ys)) for ys in (g, p0, ge))
+    return _Table(tuple(merged), xs, g, p0, ge, slopes)
 
 
 _PAIR = ("g_mpa", "p0_kpa")
@@ -813,9 +849,9 @@ def _mean(values: list[float]) -> float:
     return math.fsum(values) / len(values)
 
 
-def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str, interpolation: str = "pchip") -> float:
-    """Monotone piecewise-cubic y(x) (:func:`~embroact.predict.pchip.pchip`), or piecewise linear; outside the
-    range clamp or extend the end segment's secant."""
+def _interpolate(xs, ys, x: float, extrapolation: str, interpolation: str = "pchip", slopes=None) -> float:
+    """Monotone piecewise-cubic y(x) (:func:`~embroact.predict.pchip.pchip`, with its ``slopes`` when known), or
+    piecewise linear; outside the range clamp or extend the end segment's secant."""
     if len(xs) == 1:
         return ys[0]
     if x <= xs[0]:
@@ -825,7 +861,7 @@ def _interpolate(xs: list[float], ys: list[float], x: float, extrapolation: str,
     if interpolation == "linear":
         k = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
         return ys[k] + (ys[k + 1] - ys[k]) * (x - xs[k]) / (xs[k + 1] - xs[k])
-    return pchip(xs, ys, x)
+    return pchip(xs, ys, x, slopes=slopes)
 
 
 def lookup(
@@ -896,13 +932,9 @@ def lookup(
     else:
         value = w
     cset = get_set(name, sets)
-    merged, notes = _candidates(cset, pattern, branch, w)
-    xs = [x for x, _ in merged]
-    g = [_mean([p.g_mpa for p in group]) for _, group in merged]
-    p0 = [_mean([p.p0_kpa for p in group]) for _, group in merged]
-    ge_all = [[p.g_e_mpa for p in group] for _, group in merged]
-    has_ge = all(v is not None for group in ge_all for v in group)
-    ge = [_mean(group) for group in ge_all] if has_ge else None
+    table, notes = _candidates(cset, pattern, branch, w)
+    merged, xs, g, p0, ge = table.merged, table.xs, table.g, table.p0, table.ge
+    slopes_g, slopes_p0, slopes_ge = table.slopes
 
     hit = [i for i, x in enumerate(xs) if _same_coordinate(x, value)]
     extrapolated = not hit and (value < xs[0] or value > xs[-1])
@@ -914,10 +946,11 @@ def lookup(
         if len(group) == 1:
             fitted, cov = group[0].fitted, group[0].covariance
     else:
-        g_v = _interpolate(xs, g, value, extrapolation, interpolation)
-        p0_v = _interpolate(xs, p0, value, extrapolation, interpolation)
-        ge_v = _interpolate(xs, ge, value, extrapolation, interpolation) if ge else None
-        fitted, cov = _propagated(merged, lambda ys: _interpolate(xs, ys, value, extrapolation, interpolation), g, p0)
+        g_v = _interpolate(xs, g, value, extrapolation, interpolation, slopes_g)
+        p0_v = _interpolate(xs, p0, value, extrapolation, interpolation, slopes_p0)
+        ge_v = _interpolate(xs, ge, value, extrapolation, interpolation, slopes_ge) if ge else None
+        fitted, cov = _propagated(merged, lambda ys: _interpolate(xs, ys, value, extrapolation, interpolation),
+                                  list(g), list(p0))
     label = f"calibration {name!r} extrapolated linearly to {pattern} {axis}={value:g}"
     if not 0.0 < g_v <= _G_MAX_MPA or not 0.0 <= p0_v <= _P_MAX_KPA or (ge_v is not None and ge_v <= 0.0):
         raise ModelDomainError(

@@ -79,7 +79,7 @@ def pchip_slopes(xs: Sequence[float], ys: Sequence[float]) -> list[float]:
     return m
 
 
-def pchip(xs: Sequence[float], ys: Sequence[float], x: float) -> float:
+def pchip(xs: Sequence[float], ys: Sequence[float], x: float, *, slopes: Sequence[float] | None = None) -> float:
     """The interpolant through ``(xs, ys)`` at ``x`` (``xs[0] <= x <= xs[-1]``; ends extend as cubics).
 
     Parameters
@@ -90,6 +90,9 @@ def pchip(xs: Sequence[float], ys: Sequence[float], x: float) -> float:
         Values at ``xs``.
     x : float
         Where to evaluate.
+    slopes : sequence of float or None, optional
+        :func:`pchip_slopes` of ``(xs, ys)``, when the caller keeps them (many values through the same
+        points); None: computed here.
 
     Returns
     -------
@@ -100,10 +103,12 @@ def pchip(xs: Sequence[float], ys: Sequence[float], x: float) -> float:
     --------
     >>> pchip([0.0, 1.0, 2.0], [0.0, 1.0, 0.0], 0.5), pchip([0.0, 1.0, 2.0], [0.0, 1.0, 4.0], 1.0)
     (0.75, 1.0)
+    >>> pchip([0.0, 1.0, 2.0], [0.0, 1.0, 0.0], 0.5, slopes=pchip_slopes([0.0, 1.0, 2.0], [0.0, 1.0, 0.0]))
+    0.75
     """
     if len(xs) == 1:
         return float(ys[0])
-    m = pchip_slopes(xs, ys)
+    m = pchip_slopes(xs, ys) if slopes is None else slopes
     k = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
     h = xs[k + 1] - xs[k]
     t = (x - xs[k]) / h

@@ -183,6 +183,19 @@ def test_exact_branch_wins_over_both():
     assert lookup("zigzag", width_mm=7.0, name="dup", sets=[s], branch="unloading").g_mpa == 9.0
 
 
+def test_sets_of_one_name_keep_their_own_points():
+    """The interpolation tables a process keeps are per set, not per name: a second set called "lab" with other
+    points (a calibration file edited and read again) interpolates its own (hand values: the straight line
+    through two points at the midpoint)."""
+    def lab(g_high):
+        return CalibrationSet("lab", (CalibrationPoint("zigzag", 5.0, 1.0, 50.0),
+                                      CalibrationPoint("zigzag", 9.0, g_high, 150.0)))
+
+    assert lookup("zigzag", width_mm=7.0, name="lab", sets=[lab(3.0)]).g_mpa == pytest.approx(2.0, rel=1e-15)
+    assert lookup("zigzag", width_mm=7.0, name="lab", sets=[lab(5.0)]).g_mpa == pytest.approx(3.0, rel=1e-15)
+    assert lookup("zigzag", width_mm=6.0, name="lab", sets=[lab(3.0)]).g_mpa == pytest.approx(1.5, rel=1e-15)
+
+
 def test_conflicting_duplicates_are_refused_not_averaged():
     """G 2.70 and 9.0 for one design and branch would have become 5.85: the set names both points."""
     pts = (CalibrationPoint("zigzag", 5.0, 1.0, 50.0), CalibrationPoint("zigzag", 7.0, 2.7, 85.0),
