@@ -192,10 +192,11 @@ def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np
     d = np.asarray(direction, dtype=np.float64)[:, None]
     room = np.where(d > 0.0, cl.length_mm - s, s)
     u = np.minimum(room, _TIE_SEARCH_SPAN * tie_mm) * np.linspace(0.0, 1.0, _TIE_SEARCH_SAMPLES)
-    start = cl.offset_point_at(s, off)
+    x0, y0 = cl.offset_xy_at(s, off)
 
     def chord(step):
-        return np.hypot(*np.moveaxis(cl.offset_point_at(s + d * step, off) - start, -1, 0))
+        x, y = cl.offset_xy_at(s + d * step, off)
+        return np.hypot(x - x0, y - y0)
 
     c = chord(u)
     reach = c >= tie_mm
@@ -210,7 +211,7 @@ def tie_step_mm(cl: Centerline, s_mm, offset_mm, direction, tie_mm: float) -> np
     short_path = ~reach.any(axis=1)
     no_room = short_path & (c.max(axis=1) <= DEFAULT_TOLERANCES.length_mm)
     if np.any(no_room):
-        x, y = start[int(np.argmax(no_room)), 0]
+        x, y = x0[int(np.argmax(no_room)), 0], y0[int(np.argmax(no_room)), 0]
         raise PatternError(f"the rail at ({x:.2f}, {y:.2f}) mm has no room for a lock stitch (tie_stitch_mm="
                            f"{tie_mm:g}): the path is too short or bends at radius width_mm/2; use a longer or "
                            f"gentler path")

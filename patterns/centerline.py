@@ -298,8 +298,34 @@ class Centerline:
         >>> Centerline.straight(10.0).offset_point_at(4.0, -3.5).tolist()
         [4.0, -3.5]
         """
-        off = np.asarray(offset_mm, dtype=np.float64)[..., None]
-        return self.point_at(s_mm) + off * self.normal_at(s_mm)
+        return np.stack(self.offset_xy_at(s_mm, offset_mm), axis=-1)
+
+    def offset_xy_at(self, s_mm, offset_mm) -> tuple[np.ndarray, np.ndarray]:
+        """The x and the y of :meth:`offset_point_at`, each of the shape of ``s_mm`` and ``offset_mm`` together
+        [mm]: the arc length clipped once and nothing stacked (a search along a rail takes many such steps).
+
+        Parameters
+        ----------
+        s_mm : float or array-like
+            Arc length from the start [mm].
+        offset_mm : float or array-like
+            Distance along the left normal [mm] (negative: to the right).
+
+        Returns
+        -------
+        x, y : ndarray
+
+        Examples
+        --------
+        >>> x, y = Centerline.straight(10.0, rotation_deg=90.0).offset_xy_at([4.0, 12.0], 1.5)
+        >>> x.round(9).tolist(), y.round(9).tolist()
+        ([-1.5, -1.5], [4.0, 10.0])
+        """
+        s = self._clamped(s_mm)
+        th = np.interp(s, self._s, self._theta)
+        off = np.asarray(offset_mm, dtype=np.float64)
+        return (np.interp(s, self._s, self.points_mm[:, 0]) + off * -np.sin(th),
+                np.interp(s, self._s, self.points_mm[:, 1]) + off * np.cos(th))
 
     def curvature_at(self, s_mm) -> np.ndarray:
         """Signed curvature [1/mm] (> 0 turning left) of the smooth-tangent model.

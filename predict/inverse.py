@@ -85,6 +85,8 @@ __all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "d
 
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
+#: Models a search keeps (:class:`_Model`).
+_MODELS_KEPT = 4096
 #: A candidate's bend must match the target within this after polishing [deg].
 _BEND_TOL_DEG = 1e-3
 #: States in which a segment's prediction is valid.
@@ -424,8 +426,12 @@ class _Model:
         # stub_mm: a one-actuator design's models are whole strips (the tube's end margin); a segment's are arcs
         self.p, self.tube, self.settings, self.sets = float(pressure_kpa), tube, settings, tuple(sets)
         self.stub_mm = stub_mm
+        # a search's bisections and golden sections come back to values they evaluated (one in eight in a
+        # target-bend search): the models of the latest parameters kept
+        self.model = functools.lru_cache(maxsize=_MODELS_KEPT)(self._model)
 
-    def model(self, params, l0_mm: float):
+    def _model(self, params, l0_mm: float):
+        """The model of a design of ``params`` and length ``l0_mm`` (:attr:`model` keeps the latest)."""
         from .calibration import model_for
         from .derived import derive_from_values
 
