@@ -84,3 +84,22 @@ def test_a_kind_registered_later_is_a_command():
     finally:
         PATTERN_KINDS.remove("plugin_kind")
     assert "plugin_kind" not in commands()
+
+
+def test_a_target_bend_with_a_set_name_loads_no_file_reader(tmp_path):
+    # --calibration paper-2025 names a set, no file: the calibration-file reader (and csv with it) and the
+    # drawing reader stay unloaded; a calibration file loads its reader
+    design = ["design", "--bend-deg", "-40", "--at-kpa", "250", "--pattern", "cross", "-o", str(tmp_path / "d.toml")]
+    readers = ("csv", "embroact.export.files.calibfile", "embroact.export.files.svgfile")
+
+    def loaded(argv):
+        code = ("import contextlib, io\nfrom embroact.export.cli.main import main\n"
+                f"with contextlib.redirect_stdout(io.StringIO()):\n    code = main({argv!r})\nassert code == 0, code")
+        return _loaded_after(code, readers)
+
+    assert loaded(design) == []
+    from embroact.export.files.calibfile import write_calibration
+    from embroact.predict.calibration import PAPER_2025
+
+    write_calibration(tmp_path / "lab.toml", PAPER_2025)
+    assert loaded(design + ["--calibration", str(tmp_path / "lab.toml")]) == ["csv", "embroact.export.files.calibfile"]

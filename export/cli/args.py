@@ -203,7 +203,6 @@ def input_files(args) -> list[tuple[str, str]]:
     [('data file', 'd.csv'), ('path drawing', 'a.svg')]
     """
     from ...patterns.design import names_calibration_file
-    from ..files.svgfile import is_svg_ref, split_ref
 
     out = []
     for dest, what in _INPUT_FLAGS:
@@ -212,9 +211,13 @@ def input_files(args) -> list[tuple[str, str]]:
             continue
         if dest == "calibration" and not names_calibration_file(value):
             continue  # a set name
-        if dest == "path" and not is_svg_ref(value):
-            continue  # path data
-        out.append((what, split_ref(value)[0] if dest in ("path", "target_shape") else value))
+        if dest in ("path", "target_shape"):  # these may name a drawing (only they need its reader)
+            from ..files.svgfile import is_svg_ref, split_ref
+
+            if dest == "path" and not is_svg_ref(value):
+                continue  # path data
+            value = split_ref(value)[0]
+        out.append((what, value))
     return out
 
 

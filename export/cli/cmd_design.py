@@ -45,7 +45,6 @@ target 88 deg at 150 kPa, l0 100 mm: met: zigzag bends 87.96 deg at 150 kPa with
 """
 from __future__ import annotations
 
-import json
 import os
 import sys
 from pathlib import Path
@@ -188,11 +187,14 @@ def read_target_shape(ref: str):
 
 
 def _settings(args):
-    from ...patterns.design import ModelSettings
-    from ..files.calibfile import calibration_reference
+    from ...patterns.design import ModelSettings, names_calibration_file
     from .target import note_demo_calibration
 
-    name, sets = calibration_reference(args.calibration, Path.cwd())
+    name, sets = args.calibration, ()
+    if names_calibration_file(args.calibration):  # a set's name needs no file reader
+        from ..files.calibfile import calibration_reference
+
+        name, sets = calibration_reference(args.calibration, Path.cwd())
     note_demo_calibration({name})
     return ModelSettings(calibration=name, p0_source=args.p0_source, tube_law=args.tube_law), sets
 
@@ -336,6 +338,8 @@ def run(args) -> int:
         write_files_atomic(files)
     result["design_file"] = str(out) if write else None
     if args.json:
+        import json
+
         json.dump(result, sys.stdout, indent=2, sort_keys=True, allow_nan=False)
         sys.stdout.write("\n")
     else:
