@@ -479,12 +479,24 @@ class Centerline:
         kappa = self.segment_curvature()
         for _ in range(_PROJECT_STEPS):
             i = np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(kappa) - 1)
-            r = p - self.point_at(s)
-            f = np.einsum("ij,ij->i", r, self.tangent_at(s))
-            df = -1.0 + kappa[i] * np.einsum("ij,ij->i", r, self.normal_at(s))
+            point, tangent, normal = self._frame_at(s)
+            r = p - point
+            f = np.einsum("ij,ij->i", r, tangent)
+            df = -1.0 + kappa[i] * np.einsum("ij,ij->i", r, normal)
             s = np.clip(s - f / np.where(np.abs(df) > 0.5, df, -1.0), 0.0, self.length_mm)
-        off = np.einsum("ij,ij->i", p - self.point_at(s), self.normal_at(s))
+        point, _, normal = self._frame_at(s)
+        off = np.einsum("ij,ij->i", p - point, normal)
         return s, off
+
+    def _frame_at(self, s_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(:meth:`point_at`, :meth:`tangent_at`, :meth:`normal_at`) at ``s_mm``, the arc length clipped and the
+        tangent angle looked up once for the three."""
+        s = self._clamped(s_mm)
+        th = np.interp(s, self._s, self._theta)
+        c, sn = np.cos(th), np.sin(th)
+        point = np.stack([np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1])],
+                         axis=-1)
+        return point, np.stack([c, sn], axis=-1), np.stack([-sn, c], axis=-1)
 
     def segment_index(self) -> SegmentIndex:
         """The path's :class:`~embroact.patterns.spatial.SegmentIndex` (nearest segments, points within a
