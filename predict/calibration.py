@@ -73,6 +73,7 @@ from typing import TYPE_CHECKING, Iterable, Mapping
 
 from ..patterns.base.choices import check_choice
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
+from ..patterns.base.records import quick_init
 from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.design import ModelSettings, P0Source, TubeLaw
 from ..patterns.kinds import PATTERN_KINDS, pattern_kind
@@ -505,6 +506,7 @@ class CalibrationSet:
         return out
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class Calibration:
     """Parameters a calibration set gives for one design, and how they were obtained.
@@ -1016,6 +1018,7 @@ def lookup_design(derived, *, name: str = "paper-2025", sets: Iterable[Calibrati
     return cal if _same_coordinate(cal.value, requested) else dataclasses.replace(cal, requested_value=requested)
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class ModelChoice:
     """The model of one actuator (or segment) and where each of its numbers came from.
@@ -1148,7 +1151,6 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     ('given', 'geometry (tube law paper at r0 = 2.581 mm)')
     """
     from .curve import ActuatorModel
-    from .tubelaws import transition_pressure_kpa
 
     settings = ModelSettings() if settings is None else settings
     law = check_choice("tube_law", settings.tube_law, TubeLaw).value
@@ -1158,7 +1160,7 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         cal = lookup_design(derived, name=settings.calibration, sets=as_calibration_sets(sets), branch=branch,
                             extrapolation=extrapolation)
     tube = derived.tube
-    tube_p0 = float(transition_pressure_kpa(derived.r0_mm, tube, law))
+    tube_p0 = _tube_law_p0_kpa(derived.r0_mm, tube, law)
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
     elif p0_from_set and cal is not None:
@@ -1186,6 +1188,15 @@ def model_for(derived, settings: ModelSettings | None = None, *,
                           inner_radius_mm=tube.inner_radius_mm, g_e_mpa=tube.g_e_mpa, g_mpa=g, p0_kpa=p0,
                           tube_law=law, calibration=label, stub_mm=stub_mm)
     return ModelChoice(model, cal, g_src, p0_src, tube_p0, notes)
+
+
+@functools.lru_cache(maxsize=256)
+def _tube_law_p0_kpa(r0_mm: float, tube, law: str) -> float:
+    """The tube law's P0 at ``r0_mm`` (:func:`~embroact.predict.tubelaws.transition_pressure_kpa`) [kPa]: kept, as
+    a search over a cross pattern's angle makes hundreds of models of one sleeve radius."""
+    from .tubelaws import transition_pressure_kpa
+
+    return float(transition_pressure_kpa(r0_mm, tube, law))
 
 
 def as_calibration_sets(sets) -> tuple[CalibrationSet, ...]:

@@ -221,7 +221,7 @@ class ActuatorModel:
         object.__setattr__(self, "_hash", hash(self._values()))
 
     def _values(self) -> tuple:
-        return tuple(getattr(self, f.name) for f in fields(self) if f.init)
+        return tuple(getattr(self, name) for name in _MODEL_FIELDS)
 
     def __hash__(self) -> int:
         return self._hash
@@ -270,6 +270,9 @@ class ActuatorModel:
                    g_e_mpa=t.g_e_mpa, g_mpa=g_mpa, p0_kpa=p0_kpa, tube_law=tube_law,
                    calibration=calibration)
 
+
+#: The fields of an :class:`ActuatorModel` its hash and pickle hold (those of ``__init__``), in order.
+_MODEL_FIELDS = tuple(f.name for f in fields(ActuatorModel) if f.init)
 
 @quick_init
 @dataclass(frozen=True, slots=True)

@@ -21,9 +21,11 @@ Examples
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 from ..patterns.base.errors import check_range
+from ..patterns.base.records import quick_init
 from ..patterns.kinds import pattern_kind
 from ..patterns.params import Tube
 from ..patterns.plan import ActuatorPlan
@@ -33,6 +35,7 @@ from .sleeve import gamma, min_sleeve_width_mm, neutral_angle_deg, sleeve_radius
 __all__ = ["DerivedGeometry", "derive", "derive_from_values", "geometry_dict", "GEOMETRY_KEYS"]
 
 
+@quick_init
 @dataclass(frozen=True, slots=True)
 class DerivedGeometry:
     """Realised pattern parameters and the sleeve they make (docs/model.md sections 2-3).
@@ -187,7 +190,7 @@ def derive_from_values(
     l0 = check_range("length_mm", length_mm, low=0.0)
     a = check_range("angle_deg", angle_deg, low=0.0, high=90.0) if pattern_kind(pattern).has_angle else float(angle_deg)
     beta0 = kind.beta0_deg(w, a, tube.outer_radius_mm)
-    r0 = float(sleeve_radius_mm(w, tube.outer_radius_mm))
+    r0, neutral = _sleeve_of_width(w, float(tube.outer_radius_mm))
     req = requested if requested is not None else (w, s, a)
     return DerivedGeometry(
         name=name,
@@ -202,9 +205,16 @@ def derive_from_values(
         r0_mm=r0,
         beta0_deg=beta0,
         gamma=float(gamma(r0, beta0, l0)),
-        neutral_angle_deg=float(neutral_angle_deg(w, tube.outer_radius_mm)),
+        neutral_angle_deg=neutral,
         tube=tube,
     )
+
+
+@functools.lru_cache(maxsize=256)
+def _sleeve_of_width(width_mm: float, outer_radius_mm: float) -> tuple[float, float]:
+    """(sleeve radius r0 [mm], neutral angle [deg]) of a width on a tube: kept, as a search over a cross pattern's
+    angle derives hundreds of designs of one width."""
+    return float(sleeve_radius_mm(width_mm, outer_radius_mm)), float(neutral_angle_deg(width_mm, outer_radius_mm))
 
 
 def derive(actuator: ActuatorPlan) -> DerivedGeometry:
