@@ -822,9 +822,15 @@ def _one_actuator(params, length_mm: float, tube: Tube, settings: ModelSettings,
     """The written design: one straight actuator of ``length_mm`` from ``place``, moved across its path by
     :func:`grid_origin_mm` (so both rails of its width lie on the machine grid)."""
     origin, rotation = place
-    path = Centerline.straight(length_mm, origin_mm=grid_origin_mm(params.width_mm, origin, rotation),
-                               rotation_deg=rotation)
+    path = _straight(length_mm, grid_origin_mm(params.width_mm, origin, rotation), rotation)
     return Design(name, tube, MachineSettings(), operation, (ActuatorSpec(name, params, path, model=settings),))
+
+
+@functools.lru_cache(maxsize=64)
+def _straight(length_mm: float, origin_mm: tuple[float, float], rotation_deg: float) -> Centerline:
+    """The straight path of :func:`_one_actuator`: one object per length and place, so the designs of one search
+    that lie there share it and the segment index it makes on first use (:meth:`Centerline.segment_index`)."""
+    return Centerline.straight(length_mm, origin_mm=origin_mm, rotation_deg=rotation_deg)
 
 
 def _analysed(params, length_mm: float, pressure_kpa: float, *, tube: Tube, settings: ModelSettings, sets,
