@@ -75,7 +75,6 @@ from ..patterns.kinds import PATTERN_KINDS, Interval, param_values, pattern_kind
 from ..patterns.params import PatternParams, Tube, whole_intervals
 from ..patterns.segments import SegmentSpec, chain_of_one
 from .kinds import model_kind
-from .shape import planar_chain_mm
 from .status import Status
 
 __all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
@@ -1425,6 +1424,8 @@ def fit_curvature(target_xy_mm, segments: int) -> tuple[np.ndarray, np.ndarray, 
         share = np.concatenate([v[: n - 1], [1.0]])
         return _MIN_SEGMENT_MM + free * share / share.sum(), v[n - 1:]
 
+    from .shape import planar_chain_mm  # here: a target bend needs no fabric line
+
     def residual(v):
         lengths, k = unpack(v)
         return (planar_chain_mm(lengths, np.degrees(k * lengths), sj) - xy).ravel()
@@ -1622,6 +1623,8 @@ def _choose(model: _Model, spaces: dict, length_mm: float, theta_deg: float):
 
 def _nominal_xy(model: _Model, spaces, x, lengths, sj, legs) -> tuple[np.ndarray, np.ndarray]:
     """Predicted line at arc lengths ``sj`` with the segments' parameters ``x`` and leg extents ``legs``."""
+    from .shape import planar_chain_mm
+
     params = [sp.params(v) for sp, v in zip(spaces, x)]
     theta, status = model.theta(params, [l0 for _, l0 in legs])
     pieces, bends = [], []
