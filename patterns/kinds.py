@@ -27,6 +27,7 @@ pattern must be one of 'zigzag', 'cross'..., got 'satin'
 from __future__ import annotations
 
 import enum
+import functools
 import importlib
 import math
 from dataclasses import dataclass, fields
@@ -68,6 +69,13 @@ class Interval(enum.Enum):
 
 def _no_minimum(params: object) -> float:
     return 0.0
+
+
+@functools.lru_cache(maxsize=None)
+def _field_names(cls: type) -> tuple[str, ...]:
+    """The field names of the dataclass ``cls``, in declaration order: kept per class (asked for every design a
+    search derives, through :attr:`PatternKind.has_angle`)."""
+    return tuple(f.name for f in fields(cls))
 
 
 @dataclass(frozen=True, slots=True)
@@ -155,7 +163,7 @@ class PatternKind:
     @property
     def param_keys(self) -> tuple[str, ...]:
         """The parameter names, in declaration order (``width_mm``, ``interval_mm``, ...)."""
-        return tuple(f.name for f in fields(self.params))
+        return _field_names(self.params)
 
     def values(self, params: object) -> dict[str, float]:
         """``params`` (this kind's parameters) as ``{key: value}`` in declaration order.

@@ -69,7 +69,8 @@ import functools
 import math
 from bisect import bisect_right
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Mapping
+from collections.abc import Iterable, Mapping
+from typing import TYPE_CHECKING
 
 from ..patterns.base.choices import check_choice
 from ..patterns.base.errors import ModelDomainError, ParameterError, check_range
@@ -750,28 +751,18 @@ def _same_coordinate(x: float, value: float) -> bool:
     return abs(x - value) <= DEFAULT_TOLERANCES.length_mm * max(1.0, abs(value))
 
 
-def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> tuple[_Table, list[str]]:
+def _candidates(cset: CalibrationSet, pattern: str, branch: str, width: float) -> _Table:
     """The merged points of ``cset`` a design of ``pattern`` at ``width`` interpolates between (:func:`_table`),
     with the notes on how they fit it."""
-    pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")]
-    if not pts:
-        raise ModelDomainError(
-            f"calibration set {cset.name!r} has no {pattern} points for the {branch} branch"
-        )
-    notes: list[str] = []
-    nearest = None
-    if pattern_kind(pattern).calibration_axis != "width_mm":  # points along another axis share one width
-        nearest = min(pts, key=lambda p: abs(p.width_mm - width)).width_mm
-        if abs(nearest - width) > DEFAULT_TOLERANCES.spacing_rel * width:
-            notes.append(f"width_mm {width:g} differs from the calibrated {pattern} width {nearest:g}")
-    return _table(cset, pattern, branch, nearest), notes
+    return _table(cset, pattern, branch, None if pattern_kind(pattern).calibration_axis == "width_mm" else width)
 
 
 @dataclass(frozen=True, slots=True)
 class _Table:
     """The points a lookup interpolates between: one (coordinate, points) pair per calibrated coordinate, and
     per coordinate the points' mean G, P0 and G_e (``ge`` None unless every point has one) with the
-    interpolant's slopes through them (:func:`~embroact.predict.pchip.pchip_slopes`; None for one point)."""
+    interpolant's slopes through them (:func:`~embroact.predict.pchip.pchip_slopes`; None for one point); the
+    notes on how they fit the design."""
 
     merged: tuple[tuple[float, tuple[CalibrationPoint, ...]], ...]
     xs: tuple[float, ...]
@@ -779,6 +770,7 @@ class _Table:
     p0: tuple[float, ...]
     ge: tuple[float, ...] | None
     slopes: tuple[tuple[float, ...] | None, ...]
+    notes: tuple[str, ...]
 
 
 #: Tables kept (:func:`_table`): one per set, pattern, branch and width a process looks up.
@@ -787,10 +779,20 @@ _TABLES = 64
 
 @functools.lru_cache(maxsize=_TABLES)
 def _table(cset: CalibrationSet, pattern: str, branch: str, width: float | None) -> _Table:
-    """The merged points of ``cset`` of ``pattern`` and ``branch`` (those of width ``width``; None: every width,
-    the kind's calibration axis is the width): kept, as an inverse search looks up hundreds of designs in one."""
-    pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")
-           and (width is None or p.width_mm == width)]
+    """The merged points of ``cset`` of ``pattern`` and ``branch`` a design of width ``width`` interpolates
+    between (None: the kind's calibration axis is the width, every point counts): kept, as an inverse search
+    looks up hundreds of designs in one."""
+    pts = [p for p in cset.points if p.pattern == pattern and p.branch in (branch, "both")]
+    if not pts:
+        raise ModelDomainError(
+            f"calibration set {cset.name!r} has no {pattern} points for the {branch} branch"
+        )
+    notes: tuple[str, ...] = ()
+    if width is not None:  # points along another axis share one width
+        nearest = min(pts, key=lambda p: abs(p.width_mm - width)).width_mm
+        pts = [p for p in pts if p.width_mm == nearest]
+        if abs(nearest - width) > DEFAULT_TOLERANCES.spacing_rel * width:
+            notes = (f"width_mm {width:g} differs from the calibrated {pattern} width {nearest:g}",)
     # one point per coordinate: an exact branch match wins over "both"; equals are averaged
     by_coord: dict[float, list[CalibrationPoint]] = {}
     for p in pts:
@@ -806,7 +808,7 @@ def _table(cset: CalibrationSet, pattern: str, branch: str, width: float | None)
     ge_all = [[p.g_e_mpa for p in group] for _, group in merged]
     ge = tuple(_mean(group) for group in ge_all) if all(v is not None for group in ge_all for v in group) else None
     slopes = tuple(None if len(xs) == 1 or ys is None else tuple(pchip_slopes(xs, ys)) for ys in (g, p0, ge))
-    return _Table(tuple(merged), xs, g, p0, ge, slopes)
+    return _Table(tuple(merged), xs, g, p0, ge, slopes, notes)
 
 
 _PAIR = ("g_mpa", "p0_kpa")
@@ -934,8 +936,8 @@ def lookup(
     else:
         value = w
     cset = get_set(name, sets)
-    table, notes = _candidates(cset, pattern, branch, w)
-    merged, xs, g, p0, ge = table.merged, table.xs, table.g, table.p0, table.ge
+    table = _candidates(cset, pattern, branch, w)
+    merged, xs, g, p0, ge, notes = table.merged, table.xs, table.g, table.p0, table.ge, table.notes
     slopes_g, slopes_p0, slopes_ge = table.slopes
 
     hit = [i for i, x in enumerate(xs) if _same_coordinate(x, value)]
@@ -1156,15 +1158,17 @@ def model_for(derived, settings: ModelSettings | None = None, *,
     law = check_choice("tube_law", settings.tube_law, TubeLaw).value
     p0_from_set = settings.p0_kpa is None and settings.p0_source is P0Source.CALIBRATION
     cal = None
+    csets = as_calibration_sets(sets)
     if settings.g_mpa is None or p0_from_set:
-        cal = lookup_design(derived, name=settings.calibration, sets=as_calibration_sets(sets), branch=branch,
+        cal = lookup_design(derived, name=settings.calibration, sets=csets, branch=branch,
                             extrapolation=extrapolation)
+    from_set = "" if cal is None else f"calibration {cal.label}"
     tube = derived.tube
     tube_p0 = _tube_law_p0_kpa(derived.r0_mm, tube, law)
     if settings.p0_kpa is not None:
         p0, p0_src = float(settings.p0_kpa), "given"
     elif p0_from_set and cal is not None:
-        p0, p0_src = cal.p0_kpa, f"calibration {cal.label}"
+        p0, p0_src = cal.p0_kpa, from_set
     else:
         p0 = tube_p0
         p0_src = f"geometry (tube law {law} at r0 = {derived.r0_mm:.4g} mm)"
@@ -1172,10 +1176,10 @@ def model_for(derived, settings: ModelSettings | None = None, *,
         g, g_src = float(settings.g_mpa), "given"
     else:
         assert cal is not None  # looked up above whenever G is not given
-        g, g_src = cal.g_mpa, f"calibration {cal.label}"
+        g, g_src = cal.g_mpa, from_set
     notes: tuple[str, ...] = ()
     if cal is not None:
-        cset = get_set(settings.calibration, as_calibration_sets(sets))
+        cset = get_set(settings.calibration, csets)
         if cset.tube is None:
             notes = (f"calibration {cset.name!r} records no tube: its G may not carry over to this tube",)
         else:
