@@ -805,8 +805,8 @@ def _table(cset: CalibrationSet, pattern: str, branch: str, width: float | None)
     xs = tuple(x for x, _ in merged)
     g = tuple(_mean([p.g_mpa for p in group]) for _, group in merged)
     p0 = tuple(_mean([p.p0_kpa for p in group]) for _, group in merged)
-    ge_all = [[p.g_e_mpa for p in group] for _, group in merged]
-    ge = tuple(_mean(group) for group in ge_all) if all(v is not None for group in ge_all for v in group) else None
+    has_ge = all(p.g_e_mpa is not None for _, group in merged for p in group)
+    ge = tuple(_mean([p.g_e_mpa for p in group if p.g_e_mpa is not None]) for _, group in merged) if has_ge else None
     slopes = tuple(None if len(xs) == 1 or ys is None else tuple(pchip_slopes(xs, ys)) for ys in (g, p0, ge))
     return _Table(tuple(merged), xs, g, p0, ge, slopes, notes)
 
@@ -942,7 +942,8 @@ def lookup(
 
     hit = [i for i, x in enumerate(xs) if _same_coordinate(x, value)]
     extrapolated = not hit and (value < xs[0] or value > xs[-1])
-    fitted, cov = (), ()
+    fitted: tuple[str, ...] = ()
+    cov: tuple[tuple[float, ...], ...] = ()
     if hit:
         i = hit[0]
         g_v, p0_v, ge_v = g[i], p0[i], (ge[i] if ge else None)

@@ -62,7 +62,7 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Any, Iterable
+from typing import Any, Callable, Iterable
 
 import numpy as np
 
@@ -427,7 +427,7 @@ class _Model:
         self.stub_mm = stub_mm
         # a search's bisections and golden sections come back to values they evaluated (one in eight in a
         # target-bend search): the models of the latest parameters kept
-        self.model = functools.lru_cache(maxsize=_MODELS_KEPT)(self._model)
+        self.model: Callable[[Any, float], Any] = functools.lru_cache(maxsize=_MODELS_KEPT)(self._model)
 
     def _model(self, params, l0_mm: float):
         """The model of a design of ``params`` and length ``l0_mm`` (:attr:`model` keeps the latest)."""
