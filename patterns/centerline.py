@@ -483,7 +483,10 @@ class Centerline:
             r = p - point
             f = np.einsum("ij,ij->i", r, tangent)
             df = -1.0 + kappa[i] * np.einsum("ij,ij->i", r, normal)
-            s = np.clip(s - f / np.where(np.abs(df) > 0.5, df, -1.0), 0.0, self.length_mm)
+            moved = np.clip(s - f / np.where(np.abs(df) > 0.5, df, -1.0), 0.0, self.length_mm)
+            if np.array_equal(moved, s):  # a fixed point (a straight path's is the first): no step moves it again
+                break
+            s = moved
         point, _, normal = self._frame_at(s)
         off = np.einsum("ij,ij->i", p - point, normal)
         return s, off
