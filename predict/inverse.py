@@ -873,15 +873,21 @@ def angle_grid_step_deg(width_mm: float, angle_deg: float) -> float:
 def _sensitivity(params, theta_deg: float, analysed) -> tuple[Sensitivity, ...]:
     """One machine-grid step of the width (and the angle of a cross pattern), both ways, analysed again
     (``analysed(params)``, :func:`_analysed` at the candidate's length and pressure): one grid unit of width (the
-    path moves to keep both rails on the grid, :func:`grid_origin_mm`)."""
+    path moves to keep both rails on the grid, :func:`grid_origin_mm`); an angle as the kind's design space moves
+    it (:attr:`~embroact.patterns.kinds.PatternKind.design_params`: the interval follows, so that the pattern still
+    closes; the generator would otherwise close it by turning the angle back)."""
+    kind = pattern_kind(params.pattern)
     steps = [("width_mm", DEFAULT_TOLERANCES.machine_grid_mm)]
-    if pattern_kind(params.pattern).has_angle:
+    if kind.has_angle:
         steps.append(("angle_deg", angle_grid_step_deg(params.width_mm, params.angle_deg)))
     out = []
     for key, step in steps:
         change = []
         for sign in (-1.0, 1.0):
-            moved = dataclasses.replace(params, **{key: round(getattr(params, key) + sign * step, 10)})
+            value = round(getattr(params, key) + sign * step, 10)
+            moved = (kind.design_params(value, params.width_mm, params.interval_mm)
+                     if key == kind.calibration_axis and kind.design_params is not None
+                     else dataclasses.replace(params, **{key: value}))
             try:
                 _, _, theta, _ = analysed(moved)
             except EmbroactError:

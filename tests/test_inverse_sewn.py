@@ -3,6 +3,7 @@ needle points an independent DST decoder reads from the written file; verdicts a
 of the calibrated range; the sensitivity is what `predict` gives one grid step off."""
 import dataclasses
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -167,7 +168,9 @@ def _rails_on_grid_path(spec, width_mm):
 
 def test_sensitivity_is_predict_one_grid_step_off(tmp_path, capsys):
     """The printed change for +-1 grid step agrees in sign and within 10 % with predict on the stepped file
-    (a zigzag width steps by one 0.1 mm unit, its straight path placed so both rails lie on the grid)."""
+    (a zigzag width steps by one 0.1 mm unit, its straight path placed so both rails lie on the grid; a cross
+    angle turns by one step with the interval closing the same number of passes, so that the file sews the turned
+    legs: the generator would turn a lone angle back to close the pattern, and the step would change nothing)."""
     from embroact.export.files.designfile import dumps_design
 
     for bend, pressure, pattern in [(120.0, 200.0, "zigzag"), (130.0, 150.0, "zigzag"), (-40.0, 250.0, "cross")]:
@@ -178,7 +181,12 @@ def test_sensitivity_is_predict_one_grid_step_off(tmp_path, capsys):
         for s in r.best.sensitivity:
             for sign, want in ((-1, s.minus_deg), (1, s.plus_deg)):
                 value = round(getattr(spec.params, s.parameter) + sign * s.step, 10)
-                moved = dataclasses.replace(spec, params=dataclasses.replace(spec.params, **{s.parameter: value}))
+                params = dataclasses.replace(spec.params, **{s.parameter: value})
+                if s.parameter == "angle_deg":
+                    w, a = spec.params.width_mm, math.radians(spec.params.angle_deg)
+                    passes = round(2.0 * w * math.tan(a) / spec.params.interval_mm)
+                    params = dataclasses.replace(params, interval_mm=2.0 * w * math.tan(math.radians(value)) / passes)
+                moved = dataclasses.replace(spec, params=params)
                 if s.parameter == "width_mm":
                     moved = dataclasses.replace(moved, centerline=_rails_on_grid_path(spec, value))
                 out = tmp_path / "moved.toml"
@@ -188,8 +196,11 @@ def test_sensitivity_is_predict_one_grid_step_off(tmp_path, capsys):
                 act = json.loads(capsys.readouterr().out)["actuators"][0]
                 if s.parameter == "width_mm":  # the stepped width is the one sewn
                     assert act["derived"]["width_mm"] == pytest.approx(value, abs=1e-9)
+                else:  # the legs turn by about the step (the sewn angle is measured on the 0.1 mm grid)
+                    assert act["derived"]["angle_deg"] - r.best.params.angle_deg == pytest.approx(sign * s.step,
+                                                                                                rel=0.5)
                 got = act["theta_deg"][0] - r.best.theta_deg
-                assert np.sign(got) == np.sign(want) and got == pytest.approx(want, rel=0.1)
+                assert abs(want) > 0.05 and np.sign(got) == np.sign(want) and got == pytest.approx(want, rel=0.1)
 
 
 def test_unreachable_targets_exit_5_for_every_pattern_and_write_only_when_asked(tmp_path, capsys):
