@@ -385,9 +385,12 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
 #: The guess table's grid (:func:`_guess_nodes`): ``s0 = sin(beta0)`` at ``0, 1/64, ..., 63/64`` and
 #: ``sigma = c cos^2(beta0)/r0^2`` at ``1/64, ..., 63/64``.
 GUESS_GRID = 64
-#: Rows of the guess table kept (each made on first use, 12 KB), and cells of four rows: a zigzag reads two
-#: rows, another design four.
+#: Rows of the guess table kept (each made on first use, 12 KB): a zigzag reads two, another design four.
 GUESS_ROWS = 512
+#: Cells of four rows kept (:func:`_guess_cell`; all dropped when full): at most four times as many rows held.
+GUESS_CELLS = 256
+_CELLS: dict = {}
+_NO_CELL = object()
 #: A zigzag row's branch end [rad] (its lock-up is at infinity; any angle past the span RISE_M will do).
 _FAR_RAD = 1e3
 
@@ -411,13 +414,16 @@ def _guess_nodes(i: int, k: int):
     return None if tab is None else tab.arrays()[0][3].tolist()
 
 
-@lru_cache(maxsize=GUESS_ROWS)
 def _guess_cell(i: int, k: int, across: bool):
     """The rows of :func:`_guess_nodes` at the corners of the grid's cell ``[i, i + 1] x [k, k + 1]`` (those of
-    ``i`` twice unless ``across``), or None if one has no row."""
+    ``i`` twice unless ``across``), or None if one has no row; kept in :data:`_CELLS`."""
     a, b = _guess_nodes(i, k), _guess_nodes(i, k + 1)
     c, d = (_guess_nodes(i + 1, k), _guess_nodes(i + 1, k + 1)) if across else (a, b)
-    return None if a is None or b is None or c is None or d is None else (a, b, c, d)
+    cell = None if a is None or b is None or c is None or d is None else (a, b, c, d)
+    if len(_CELLS) >= GUESS_CELLS:
+        _CELLS.clear()
+    _CELLS[(i * GUESS_GRID + k) * 2 + across] = cell
+    return cell
 
 
 def _guess(tab: LeanTable, t: float) -> int | None:
@@ -442,7 +448,10 @@ def _guess(tab: LeanTable, t: float) -> int | None:
             return None
         i = int(y)
         wi = y - i
-    cell = _guess_cell(i, k, wi != 0.0)
+    across = wi != 0.0
+    cell = _CELLS.get((i * GUESS_GRID + k) * 2 + across, _NO_CELL)  # a dict read: the cheapest cache to ask
+    if cell is _NO_CELL:
+        cell = _guess_cell(i, k, across)
     if cell is None:
         return None
     a, b, c, d = cell
