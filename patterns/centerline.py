@@ -306,10 +306,8 @@ class Centerline:
 
         Parameters
         ----------
-        s_mm : float or array-like
-            Arc length from the start [mm].
-        offset_mm : float or array-like
-            Distance along the left normal [mm] (negative: to the right).
+        s_mm, offset_mm : float or array-like
+            As for :meth:`offset_point_at`.
 
         Returns
         -------
