@@ -64,6 +64,7 @@ __all__ = [
     "limit_flags",
     "apply_limits",
     "contact_free_below_rad",
+    "contact_range_rad",
     "coil_angle_deg",
     "arc_contact",
     "valid_mask",
@@ -202,6 +203,43 @@ def contact_free_below_rad(l0_mm: float, radius_mm: float, stub_mm: float | None
     290.6
     """
     return _contact_free_below(l0_mm, 2.0 * radius_mm, math.nan if stub_mm is None else stub_mm)
+
+
+def contact_range_rad(l0_mm: float, radius_lo_mm: float, radius_hi_mm: float, stub_mm: float | None,
+                      negative: bool) -> tuple[float, float, float]:
+    """``(below, start, end)`` [rad] of one arc of length ``l0_mm`` bending one way (``negative``), its tube's radius
+    anywhere in ``[radius_lo_mm, radius_hi_mm]``, with the stub ``stub_mm`` (None: inside a chain): every state of
+    ``|theta|`` below ``below`` is apart and every one in ``[start, end]`` touches (:func:`arc_contact`); the
+    others need the test. :func:`contact_free_below_rad` at the largest radius and :func:`_contact_bounds` over
+    the range (a bound, as the array path's states take it; ``start`` inf: no sure contact).
+
+    Parameters
+    ----------
+    l0_mm : float
+        Arc length [mm].
+    radius_lo_mm, radius_hi_mm : float
+        The smallest and the largest tube radius of the states [mm].
+    stub_mm : float or None
+        Sealed tube beyond the tip [mm]; None for an arc inside a chain (only its own full turn).
+    negative : bool
+        The arc bends toward negative angles.
+
+    Returns
+    -------
+    below, start, end : float
+        [rad].
+
+    Examples
+    --------
+    >>> [round(math.degrees(v), 2) for v in contact_range_rad(100.0, 2.58, 2.58, 0.0, False)]  # touches at 320.88
+    [320.88, 320.88, 359.99]
+    """
+    m = math.nan if stub_mm is None else float(stub_mm)
+    free = max(_contact_free_below(l0_mm, 2.0 * radius_hi_mm, m), _SMALLEST)
+    if m != m:
+        return free, math.inf, math.inf
+    below, start, end = _contact_bounds(l0_mm, 2.0 * radius_lo_mm, 2.0 * radius_hi_mm, m, negative, free)
+    return (below, start, end) if start <= end else (below, math.inf, math.inf)
 
 
 def _contact_free_below(l0: float, w: float, m: float) -> float:

@@ -7,6 +7,7 @@ call nor on what was cached before.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import mpmath as mp
@@ -344,3 +345,35 @@ def test_the_guess_table_is_the_closed_form_at_its_grid_for_any_length_and_radiu
             assert row[j] == pytest.approx(f / v, rel=1e-9)
         assert row[L._LAST] == math.inf if pole else math.isfinite(row[L._LAST])
     assert L._guess_nodes(62, 10) is None  # s0 = 0.97: sigma 10/64 > cos^2(beta0) = 0.06
+
+
+@pytest.mark.parametrize("m", [design("zigzag", 7.0, g=2.7, p0=85.0), design("zigzag", 5.0, g=1.4, p0=50.0, l0=40.0),
+                               design("cross", 7.0, 15.0, g=2.9, p0=150.0), design("cross", 7.0, 60.0, g=2.9, p0=200.0),
+                               dataclasses.replace(design("zigzag", 9.0, g=2.0, p0=60.0), stub_mm=30.0),
+                               dataclasses.replace(design("cross", 6.0, 20.0, g=1.3, p0=120.0), stub_mm=8.0)])
+def test_the_float_paths_contact_range_gives_the_contact_tests_statuses(m):
+    """One pressure at a time through the contact and past it (the float path makes its contact range at the
+    second state that may touch, then decides states by it): the statuses of the array path over all of them, and
+    COILED exactly where the closed-form contact test (arc_contact on the curve's own states) or a full turn says
+    the strip touches."""
+    from embroact.predict.validity import arc_contact
+
+    theta_end, _ = lockup(m)
+    top = float(curve(m, [1e5], limits=False).pressure_kpa[0])
+    ref = C._solve([m], np.linspace(m.p0_kpa, 4.0 * m.p0_kpa + 400.0, 400)[1:], "auto",
+                   C.DEFAULT_TOLERANCES.model_rtol, squeeze=True, limits=False)
+    near = ref.pressure_kpa[np.abs(ref.theta_deg) >= 240.0]
+    assert near.size > 20, (top, theta_end)  # the sweep reaches the contact
+    C._cached_branch.cache_clear()
+    ones = [curve(m, [float(p)]) for p in near]
+    served = [c for c in ones if c.method == C._FAST_NAME]
+    assert len(served) > 20
+    many = arrays_only(m, near)
+    for k, c in enumerate(ones):
+        assert c.status.tobytes() == many.status[k:k + 1].tobytes()
+    for c in served:
+        th = math.radians(float(c.theta_deg[0]))
+        touches = bool(arc_contact(th, float(c.radius_mm[0]), m.length_mm, m.stub_mm)[()])
+        assert (int(c.status[0]) == Status.COILED) == touches or int(c.status[0]) in (Status.KINKED,
+                                                                                     Status.OVERSTRETCHED)
+    assert len(C._branch(m, C.DEFAULT_TOLERANCES.model_rtol).lazy["contact"]) == 5  # the range was made
