@@ -321,32 +321,32 @@ def one_curve_floats(br, p, *, limits: bool = True):
         if m is None:
             return None
         theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
-        codes.append(_status_float(br, theta, l, r, free) if limits else _BENDING)
+        codes.append(_BENDING if not limits else _status_float(br, theta, l, r, free) if abs(theta) >= free
+                     else apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free))
         floats[k::n] = pk * KPA_PER_MPA, theta * _DEG_PER_RAD, l, r, beta, math.sqrt(max(d2, 0.0))
     return floats, codes
 
 
 def _status_float(br, theta: float, l: float, r: float, free: float) -> int:
-    """The status of one bending state of the lean span on floats: :func:`~embroact.predict.validity.apply_limits`,
-    or COILED where the branch's contact range says it touches.
+    """The status of one bending state of the lean span on floats at or past ``free``:
+    :func:`~embroact.predict.validity.apply_limits`, or COILED where the branch's contact range says it touches.
 
     The contact range (:func:`~embroact.predict.validity.contact_range_rad` over the radii of the lean span, whose
     states the float path answers) is made when a second state reaches ``free`` (the first takes the contact test
     alone, a first curve's cost); it decides the states of those radii that lie below its apart end or within its
     touching ends, as the test would, and leaves the others to the test."""
     g = br.scalar
-    if abs(theta) >= free:
-        sure = br.lazy.get("contact")
-        if sure is None:
-            br.lazy["contact"] = ()  # the first state here: the test alone
-        elif not sure:
-            r0, r_end = g.r0, br.lean.rates.state(br.lean.span, SCALAR)[2]
-            sure = br.lazy["contact"] = (min(r0, r_end), max(r0, r_end),
-                                         *contact_range_rad(g.l0, min(r0, r_end), max(r0, r_end), br.model.stub_mm,
-                                                            br.lean.span < 0.0))
-        if sure and sure[0] <= r <= sure[1]:
-            below, start, end = sure[2:]
-            if start <= abs(theta) <= end:
-                return _COILED
-            free = max(free, below)
+    sure = br.lazy.get("contact")
+    if sure is None:
+        br.lazy["contact"] = ()  # the first state here: the test alone
+    elif not sure:
+        r0, r_end = g.r0, br.lean.rates.state(br.lean.span, SCALAR)[2]
+        sure = br.lazy["contact"] = (min(r0, r_end), max(r0, r_end),
+                                     *contact_range_rad(g.l0, min(r0, r_end), max(r0, r_end), br.model.stub_mm,
+                                                        br.lean.span < 0.0))
+    if sure and sure[0] <= r <= sure[1]:
+        below, start, end = sure[2:]
+        if start <= abs(theta) <= end:
+            return _COILED
+        free = max(free, below)
     return apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free)
