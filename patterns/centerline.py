@@ -219,6 +219,12 @@ class Centerline:
     def _angle_at(self, s_mm):
         return np.interp(self._clamped(s_mm), self._s, self._theta)
 
+    def _xy_angle_at(self, s_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The x and y of :meth:`point_at` and the tangent angle at ``s_mm``, the arc length clipped once."""
+        s = self._clamped(s_mm)
+        return (np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1]),
+                np.interp(s, self._s, self._theta))
+
     def point_at(self, s_mm) -> np.ndarray:
         """Point(s) at arc length ``s_mm`` (clipped to [0, length]) [mm], shape (..., 2).
 
@@ -319,11 +325,9 @@ class Centerline:
         >>> x.round(9).tolist(), y.round(9).tolist()
         ([-1.5, -1.5], [4.0, 10.0])
         """
-        s = self._clamped(s_mm)
-        th = np.interp(s, self._s, self._theta)
+        x, y, th = self._xy_angle_at(s_mm)
         off = np.asarray(offset_mm, dtype=np.float64)
-        return (np.interp(s, self._s, self.points_mm[:, 0]) + off * -np.sin(th),
-                np.interp(s, self._s, self.points_mm[:, 1]) + off * np.cos(th))
+        return x + off * -np.sin(th), y + off * np.cos(th)
 
     def curvature_at(self, s_mm) -> np.ndarray:
         """Signed curvature [1/mm] (> 0 turning left) of the smooth-tangent model.
@@ -492,12 +496,9 @@ class Centerline:
     def _frame_at(self, s_mm) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(:meth:`point_at`, :meth:`tangent_at`, :meth:`normal_at`) at ``s_mm``, the arc length clipped and the
         tangent angle looked up once for the three."""
-        s = self._clamped(s_mm)
-        th = np.interp(s, self._s, self._theta)
+        x, y, th = self._xy_angle_at(s_mm)
         c, sn = np.cos(th), np.sin(th)
-        point = np.stack([np.interp(s, self._s, self.points_mm[:, 0]), np.interp(s, self._s, self.points_mm[:, 1])],
-                         axis=-1)
-        return point, np.stack([c, sn], axis=-1), np.stack([-sn, c], axis=-1)
+        return np.stack([x, y], axis=-1), np.stack([c, sn], axis=-1), np.stack([-sn, c], axis=-1)
 
     def segment_index(self) -> SegmentIndex:
         """The path's :class:`~embroact.patterns.spatial.SegmentIndex` (nearest segments, points within a
