@@ -25,9 +25,9 @@ Which nodes a target uses depends on the model and the target only, so an answer
 same whatever else the call or earlier calls asked. Many pressures evaluate every node at
 once on numpy arrays (:func:`solve_lean`, one closed-form evaluation over the nodes, one over
 the stencils); a handful evaluate only the few nodes their search visits, on Python floats
-(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`; :func:`_bracket`: the two around its
-guess from a table shared by all designs, nearly always): the same operations in the same order, so both give the same bits, and
-neither builds a table of the design first.
+(:func:`solve_lean_scalar`, :data:`embroact.predict.floats.SCALAR`; :func:`_bracket`: nearly always the
+two around its guess from a table shared by all designs): the same operations in the same order, so both
+give the same bits, and neither builds a table of the design first.
 
 The served span: the branch up to its lock-up (where P has a pole) or up to the stretch
 ``m = RISE_M``, whichever comes first; beyond it P may fold. A zigzag's P depends on ``m`` and
@@ -337,10 +337,9 @@ def _bracket(tab: LeanTable, t: float) -> int | None:
     Once the node arrays are made (:meth:`LeanTable.arrays`), a binary search of their pressures. Before, it
     evaluates few nodes: first the two :func:`_guess` names (nearly always the bracket). Otherwise the search
     follows the residual ``R = F' - t V'`` signed as ``P - t`` (no pole at a lock-up, where P has one) in the
-    span's fraction ``x``. The first probe is the node
-    nearest the root of the quadratic with R's value and slope at the straight state
-    (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its value at the last node; each
-    further probe is the node nearest the root of the quadratic through the bracket's ends and the end the last
+    span's fraction ``x``. The first probe is the node nearest the root of the quadratic with R's value and
+    slope at the straight state (:attr:`~embroact.predict.model.StretchRates.rise`; F' is 0 there) and its
+    value at the last node; each further probe is the node nearest the root of the quadratic through the bracket's ends and the end the last
     probe replaced, and a bisection when four probes did not halve the bracket: about four evaluations a target,
     the last node's among them, where the guess missed.
     """
@@ -414,15 +413,15 @@ def _guess_nodes(i: int, k: int):
     return None if tab is None else tab.arrays()[0][3].tolist()
 
 
-def _guess_cell(i: int, k: int, across: bool):
+def _guess_cell(key: int, i: int, k: int, across: bool):
     """The rows of :func:`_guess_nodes` at the corners of the grid's cell ``[i, i + 1] x [k, k + 1]`` (those of
-    ``i`` twice unless ``across``), or None if one has no row; kept in :data:`_CELLS`."""
+    ``i`` twice unless ``across``), or None if one has no row; kept in :data:`_CELLS` under ``key``."""
     a, b = _guess_nodes(i, k), _guess_nodes(i, k + 1)
     c, d = (_guess_nodes(i + 1, k), _guess_nodes(i + 1, k + 1)) if across else (a, b)
     cell = None if a is None or b is None or c is None or d is None else (a, b, c, d)
     if len(_CELLS) >= GUESS_CELLS:
         _CELLS.clear()
-    _CELLS[(i * GUESS_GRID + k) * 2 + across] = cell
+    _CELLS[key] = cell
     return cell
 
 
@@ -449,9 +448,10 @@ def _guess(tab: LeanTable, t: float) -> int | None:
         i = int(y)
         wi = y - i
     across = wi != 0.0
-    cell = _CELLS.get((i * GUESS_GRID + k) * 2 + across, _NO_CELL)  # a dict read: the cheapest cache to ask
+    key = (i * GUESS_GRID + k) * 2 + across
+    cell = _CELLS.get(key, _NO_CELL)  # a dict read: the cheapest cache to ask
     if cell is _NO_CELL:
-        cell = _guess_cell(i, k, across)
+        cell = _guess_cell(key, i, k, across)
     if cell is None:
         return None
     a, b, c, d = cell
