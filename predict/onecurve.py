@@ -321,8 +321,12 @@ def one_curve_floats(br, p, *, limits: bool = True):
         if m is None:
             return None
         theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
-        codes.append(_BENDING if not limits else _status_float(br, theta, l, r, free) if abs(theta) >= free
-                     else apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free))
+        if not limits:
+            codes.append(_BENDING)
+        elif abs(theta) < free:
+            codes.append(apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free))
+        else:
+            codes.append(_status_float(br, theta, l, r, free))
         floats[k::n] = pk * KPA_PER_MPA, theta * _DEG_PER_RAD, l, r, beta, math.sqrt(max(d2, 0.0))
     return floats, codes
 
@@ -333,20 +337,16 @@ def _status_float(br, theta: float, l: float, r: float, free: float) -> int:
 
     The contact range (:func:`~embroact.predict.validity.contact_range_rad` over the radii of the lean span, whose
     states the float path answers) is made when a second state reaches ``free`` (the first takes the contact test
-    alone, a first curve's cost); it decides the states of those radii that lie below its apart end or within its
-    touching ends, as the test would, and leaves the others to the test."""
-    g = br.scalar
-    sure = br.lazy.get("contact")
-    if sure is None:
-        br.lazy["contact"] = ()  # the first state here: the test alone
-    elif not sure:
-        r0, r_end = g.r0, br.lean.rates.state(br.lean.span, SCALAR)[2]
-        sure = br.lazy["contact"] = (min(r0, r_end), max(r0, r_end),
-                                     *contact_range_rad(g.l0, min(r0, r_end), max(r0, r_end), br.model.stub_mm,
-                                                        br.lean.span < 0.0))
-    if sure and sure[0] <= r <= sure[1]:
-        below, start, end = sure[2:]
-        if start <= abs(theta) <= end:
-            return _COILED
-        free = max(free, below)
-    return apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free)
+    alone, a first curve's cost); where it decides a state, the test is spared."""
+    contact = br.lazy.get("contact")
+    if contact is None:
+        br.lazy["contact"] = False  # the first state here: the test alone
+    elif contact is False:
+        g, lean = br.scalar, br.lean
+        r_lo, r_hi = sorted((g.r0, lean.rates.state(lean.span, SCALAR)[2]))
+        contact = br.lazy["contact"] = contact_range_rad(g.l0, r_lo, r_hi, br.model.stub_mm, lean.span < 0.0)
+    touches = contact.touches(theta, r) if contact else None
+    if touches:
+        return _COILED
+    return apply_limits(_BENDING, theta, l, r, br.scalar.l0, SCALAR, br.model.stub_mm, free if touches is None
+                        else math.inf)  # apart: no contact to test

@@ -65,6 +65,7 @@ __all__ = [
     "apply_limits",
     "contact_free_below_rad",
     "contact_range_rad",
+    "ContactRange",
     "coil_angle_deg",
     "arc_contact",
     "valid_mask",
@@ -205,13 +206,64 @@ def contact_free_below_rad(l0_mm: float, radius_mm: float, stub_mm: float | None
     return _contact_free_below(l0_mm, 2.0 * radius_mm, math.nan if stub_mm is None else stub_mm)
 
 
+@dataclass(frozen=True, slots=True)
+class ContactRange:
+    """What the contact bounds decide of one arc's states whose tube radius lies in a range
+    (:func:`contact_range_rad`).
+
+    Attributes
+    ----------
+    radius_lo_mm, radius_hi_mm : float
+        The range of tube radii [mm].
+    below_rad : float
+        States of a smaller ``|theta|`` are apart [rad].
+    start_rad, end_rad : float
+        States of ``|theta|`` between them touch [rad] (``start_rad`` inf: no sure contact).
+
+    Examples
+    --------
+    >>> c = contact_range_rad(100.0, 2.58, 2.58, 0.0, False)
+    >>> [c.touches(math.radians(a), 2.58) for a in (300.0, 330.0, 359.999)], c.touches(5.8, 2.6)
+    ([False, True, None], None)
+    """
+
+    radius_lo_mm: float
+    radius_hi_mm: float
+    below_rad: float
+    start_rad: float
+    end_rad: float
+
+    def touches(self, theta_rad: float, radius_mm: float) -> bool | None:
+        """Whether the state of bend ``theta_rad`` and radius ``radius_mm`` touches (:func:`arc_contact`), where the
+        bounds decide it; None where the test must (a radius outside the range, a bend between the ends).
+
+        Parameters
+        ----------
+        theta_rad, radius_mm : float
+            The state [rad, mm].
+
+        Returns
+        -------
+        bool or None
+
+        Examples
+        --------
+        >>> c = ContactRange(2.0, 2.5, 5.0, 5.5, 6.0)
+        >>> c.touches(-5.7, 2.2), c.touches(4.0, 2.2), c.touches(5.2, 2.2)
+        (True, False, None)
+        """
+        if not self.radius_lo_mm <= radius_mm <= self.radius_hi_mm:
+            return None
+        a = abs(theta_rad)
+        return False if a < self.below_rad else True if self.start_rad <= a <= self.end_rad else None
+
+
 def contact_range_rad(l0_mm: float, radius_lo_mm: float, radius_hi_mm: float, stub_mm: float | None,
-                      negative: bool) -> tuple[float, float, float]:
-    """``(below, start, end)`` [rad] of one arc of length ``l0_mm`` bending one way (``negative``), its tube's radius
-    anywhere in ``[radius_lo_mm, radius_hi_mm]``, with the stub ``stub_mm`` (None: inside a chain): every state of
-    ``|theta|`` below ``below`` is apart and every one in ``[start, end]`` touches (:func:`arc_contact`); the
-    others need the test. :func:`contact_free_below_rad` at the largest radius and :func:`_contact_bounds` over
-    the range (a bound, as the array path's states take it; ``start`` inf: no sure contact).
+                      negative: bool) -> ContactRange:
+    """The :class:`ContactRange` of one arc of length ``l0_mm`` bending one way (``negative``), its tube's radius
+    anywhere in ``[radius_lo_mm, radius_hi_mm]``, with the stub ``stub_mm`` (None: inside a chain):
+    :func:`contact_free_below_rad` at the largest radius and :func:`_contact_bounds` over the range (bounds, as the
+    array path's states take them).
 
     Parameters
     ----------
@@ -226,20 +278,19 @@ def contact_range_rad(l0_mm: float, radius_lo_mm: float, radius_hi_mm: float, st
 
     Returns
     -------
-    below, start, end : float
-        [rad].
+    ContactRange
 
     Examples
     --------
-    >>> [round(math.degrees(v), 2) for v in contact_range_rad(100.0, 2.58, 2.58, 0.0, False)]  # touches at 320.88
+    >>> c = contact_range_rad(100.0, 2.58, 2.58, 0.0, False)  # touches at 320.88 deg
+    >>> [round(math.degrees(v), 2) for v in (c.below_rad, c.start_rad, c.end_rad)]
     [320.88, 320.88, 359.99]
     """
     m = math.nan if stub_mm is None else float(stub_mm)
     free = max(_contact_free_below(l0_mm, 2.0 * radius_hi_mm, m), _SMALLEST)
-    if m != m:
-        return free, math.inf, math.inf
-    below, start, end = _contact_bounds(l0_mm, 2.0 * radius_lo_mm, 2.0 * radius_hi_mm, m, negative, free)
-    return (below, start, end) if start <= end else (below, math.inf, math.inf)
+    below, start, end = (free, math.inf, math.inf) if m != m else _contact_bounds(
+        l0_mm, 2.0 * radius_lo_mm, 2.0 * radius_hi_mm, m, negative, free)
+    return ContactRange(radius_lo_mm, radius_hi_mm, below, *((start, end) if start <= end else (math.inf, math.inf)))
 
 
 def _contact_free_below(l0: float, w: float, m: float) -> float:

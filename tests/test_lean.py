@@ -356,7 +356,7 @@ def test_the_float_paths_contact_range_gives_the_contact_tests_statuses(m):
     second state that may touch, then decides states by it): the statuses of the array path over all of them, and
     COILED exactly where the closed-form contact test (arc_contact on the curve's own states) or a full turn says
     the strip touches."""
-    from embroact.predict.validity import arc_contact
+    from embroact.predict.validity import ContactRange, arc_contact
 
     theta_end, _ = lockup(m)
     top = float(curve(m, [1e5], limits=False).pressure_kpa[0])
@@ -376,4 +376,4 @@ def test_the_float_paths_contact_range_gives_the_contact_tests_statuses(m):
         touches = bool(arc_contact(th, float(c.radius_mm[0]), m.length_mm, m.stub_mm)[()])
         assert (int(c.status[0]) == Status.COILED) == touches or int(c.status[0]) in (Status.KINKED,
                                                                                      Status.OVERSTRETCHED)
-    assert len(C._branch(m, C.DEFAULT_TOLERANCES.model_rtol).lazy["contact"]) == 5  # the range was made
+    assert isinstance(C._branch(m, C.DEFAULT_TOLERANCES.model_rtol).lazy["contact"], ContactRange)  # made
