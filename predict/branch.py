@@ -215,8 +215,9 @@ def _bisect_limit(model, lo: float, hi: float) -> float:
                     below += [(a, mid), (mid, b)]
             level = below
         points = [m for (a, b), m in mids.items() if m not in (a, b)]
-        beyond = dict(zip(points, np.isin(_curve.pressure_at(model, points).status, limits).tolist())) \
-            if points else {}
+        beyond = {}
+        if points:
+            beyond = dict(zip(points, np.isin(_curve.pressure_at(model, points).status, limits).tolist()))
         left -= steps
         for _ in range(steps):
             mid = mids[lo, hi]

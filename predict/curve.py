@@ -274,6 +274,7 @@ class ActuatorModel:
 #: The fields of an :class:`ActuatorModel` its hash and pickle hold (those of ``__init__``), in order.
 _MODEL_FIELDS = tuple(f.name for f in fields(ActuatorModel) if f.init)
 
+
 @quick_init
 @dataclass(frozen=True, slots=True)
 class Curve:
