@@ -648,9 +648,28 @@ _FAST_RTOL = ACCURACY[_FAST[:2]]
 _LOCKED, _OUT_OF_DOMAIN = int(Status.LOCKED), int(Status.OUT_OF_DOMAIN)
 
 
-def _branch(model: ActuatorModel, rtol: float) -> _Branch:
-    """The cached branch of ``model`` (keyed also by the module settings it depends on)."""
-    return _cached_branch(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
+#: Hashes of the models a curve has asked for (:func:`_branch`, ``keep=False``), at most ``ASKED_MAX`` (then
+#: forgotten at once): a model's branch is kept from its second curve on.
+ASKED_MAX = 4096
+_ASKED: set = set()
+
+
+def _branch(model: ActuatorModel, rtol: float, *, keep: bool = True) -> _Branch:
+    """The branch of ``model`` (keyed also by the module settings it depends on): the cached one, except on the first
+    ``keep=False`` ask of a model none has kept, which gets one made for the call alone.
+
+    A model asked once (a first curve, inverse design's candidates) then costs no cache entry and evicts none:
+    inserting a branch and freeing the one it evicts, made long before, cost a first one-pressure curve as much as
+    making it. A second ask keeps it (the same values: the branch is made the same way).
+    """
+    h = model._hash
+    if keep or h in _ASKED:
+        _ASKED.add(h)
+        return _cached_branch(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
+    if len(_ASKED) >= ASKED_MAX:
+        _ASKED.clear()
+    _ASKED.add(h)
+    return _cached_branch.__wrapped__(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
 
 
 @lru_cache(maxsize=BRANCH_CACHE)
@@ -783,7 +802,7 @@ def _solve(models, pressures_kpa, method, rtol, *, squeeze, limits=True):
     energy, deriv, inverse = _resolve(method, rtol)
     p = _values("pressure_kpa", pressures_kpa, low=0.0) / KPA_PER_MPA
     if len(models) == 1 and (energy, deriv, inverse) == _FAST:  # one model: its cached branch, the lean solve
-        arrays = one_curve(_branch(models[0], rtol), p, limits=limits)
+        arrays = one_curve(_branch(models[0], rtol, keep=False), p, limits=limits)
         if not squeeze:
             arrays = tuple(a[None, :] for a in arrays)
     else:
@@ -894,7 +913,7 @@ def _float_path(model, pressures_kpa, method, rtol, limits):
     for v in values:
         if not 0.0 <= v < math.inf:  # also NaN
             return None
-    got = one_curve_floats(_branch(model, rtol), [v / KPA_PER_MPA for v in values], limits=limits)
+    got = one_curve_floats(_branch(model, rtol, keep=False), [v / KPA_PER_MPA for v in values], limits=limits)
     if got is None:
         return None
     rows = np.array(got[0])  # the float columns: one array, whose rows are read-only views

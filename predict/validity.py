@@ -170,7 +170,7 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0, free=0.0):
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
         return _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape).reshape(-1)
                                      for v in (th, r, l0, stub))).reshape(shape)
-    return a >= _FULL_TURN or (a >= free and a >= _contact_free_below(l0, 2.0 * r, stub)
+    return a >= _FULL_TURN or (a >= (free if free > 0.0 else _contact_free_below(l0, 2.0 * r, stub))
                                and _arc_contact_float(th, r, l0, stub))
 
 
@@ -489,9 +489,11 @@ def _apart(th, r, l0, m):
     """Whether the stub's rectangle and the fixed band are apart at states ``th`` (arrays broadcast, ``m`` not
     NaN): :func:`arc_contact`'s separation test, on the rectangle's corners and the four edge normals."""
     half = 0.5 * th
-    chord = l0 * np.sinc(half / math.pi)
-    px, py = chord * np.cos(half), chord * np.sin(half)  # the tip (fabric side)
-    tx, ty = np.cos(th), np.sin(th)  # tangent there; the tube side is (ty, -tx)
+    sin_h, cos_h = np.sin(half), np.cos(half)
+    zero = half == 0.0
+    chord = l0 * np.where(zero, 1.0, sin_h / np.where(zero, 1.0, half))  # l0 sin(half)/half: the chord
+    px, py = chord * cos_h, chord * sin_h  # the tip (fabric side)
+    tx, ty = cos_h * cos_h - sin_h * sin_h, 2.0 * (sin_h * cos_h)  # tangent there; the tube side is (ty, -tx)
     nx, ny = ty, -tx
     w = 2.0 * r
     wx, wy = w * nx, w * ny
@@ -514,14 +516,14 @@ def _apart(th, r, l0, m):
 
 def _arc_contact_float(th: float, r: float, l0: float, m: float) -> bool:
     """:func:`arc_contact` of one state on Python floats: its operations in its order (numpy's sin and cos on
-    floats, its sinc written out), so the same answer without a numpy array per operation."""
+    floats), so the same answer without a numpy array per operation."""
     inside = m != m
     m = 0.0 if inside else m
     half = 0.5 * th
-    y = math.pi * (half / math.pi) if half != 0.0 else math.pi * 1.0e-20  # numpy's sinc(half / pi)
-    chord = l0 * (SCALAR.sin(y) / y)
-    px, py = chord * SCALAR.cos(half), chord * SCALAR.sin(half)
-    tx, ty = SCALAR.cos(th), SCALAR.sin(th)
+    sin_h, cos_h = SCALAR.sin(half), SCALAR.cos(half)
+    chord = l0 * (sin_h / half if half != 0.0 else 1.0)
+    px, py = chord * cos_h, chord * sin_h
+    tx, ty = cos_h * cos_h - sin_h * sin_h, 2.0 * (sin_h * cos_h)
     nx, ny = ty, -tx
     w = 2.0 * r
     cx = (px, px + w * nx, px + m * tx, px + m * tx + w * nx)

@@ -377,3 +377,24 @@ def test_the_float_paths_contact_range_gives_the_contact_tests_statuses(m):
         assert (int(c.status[0]) == Status.COILED) == touches or int(c.status[0]) in (Status.KINKED,
                                                                                      Status.OVERSTRETCHED)
     assert isinstance(C._branch(m, C.DEFAULT_TOLERANCES.model_rtol).lazy["contact"], ContactRange)  # made
+
+
+def test_a_models_branch_is_kept_from_its_second_curve_on(monkeypatch):
+    """A model's first curve keeps no branch (a model asked once evicts none), its second keeps one, and the three
+    curves give the same bits, for one pressure (the float path) and for many (the arrays); the models asked are
+    forgotten at ASKED_MAX (then a model's second curve makes its branch once more, kept from its third)."""
+    C._cached_branch.cache_clear()
+    for k, p in enumerate(([230.0], np.linspace(0.0, 400.0, 50).tolist())):
+        m = dataclasses.replace(design("cross", 7.0, 15.0, g=2.9, p0=150.0), calibration=f"asked once {k}")
+        first, held = curve(m, p), C._cached_branch.cache_info().currsize
+        assert held == k  # the first curve kept nothing
+        second = curve(m, p)
+        assert C._cached_branch.cache_info().currsize == held + 1
+        third = curve(m, p)
+        assert C._cached_branch.cache_info().currsize == held + 1 and C._cached_branch.cache_info().hits >= 1
+        for name in FIELDS:
+            assert getattr(first, name).tobytes() == getattr(second, name).tobytes() == getattr(third, name).tobytes()
+    monkeypatch.setattr(C, "ASKED_MAX", 3)
+    for k in range(5):
+        curve(dataclasses.replace(RISING_CROSS, calibration=f"forgotten {k}"), [230.0])
+        assert len(C._ASKED) <= 3
