@@ -662,14 +662,13 @@ def _branch(model: ActuatorModel, rtol: float, *, keep: bool = True) -> _Branch:
     inserting a branch and freeing the one it evicts, made long before, cost a first one-pressure curve as much as
     making it. A second ask keeps it (the same values: the branch is made the same way).
     """
-    h = model._hash
-    if keep or h in _ASKED:
-        _ASKED.add(h)
-        return _cached_branch(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
-    if len(_ASKED) >= ASKED_MAX:
-        _ASKED.clear()
-    _ASKED.add(h)
-    return _cached_branch.__wrapped__(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
+    if model._hash not in _ASKED:
+        if len(_ASKED) >= ASKED_MAX:
+            _ASKED.clear()
+        _ASKED.add(model._hash)
+        if not keep:
+            return _cached_branch.__wrapped__(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
+    return _cached_branch(model, rtol, MAX_BEND_DEG, TRACE_POINTS)
 
 
 @lru_cache(maxsize=BRANCH_CACHE)
