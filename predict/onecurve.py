@@ -35,7 +35,7 @@ from .lean import solve_lean, solve_lean_scalar
 from .solvers import trace_inverse
 from .status import Status
 from .tubelaws import radius_mm
-from .validity import apply_limits, contact_free_below_rad, contact_range_rad
+from .validity import FULL_TURN_RAD, apply_limits, contact_free_below_rad, contact_range_rad
 
 __all__ = ["state", "free_tube_radius", "tube_radius_of", "trace_outcome", "one_curve", "one_curve_floats",
            "FLOAT_PATH_MAX"]
@@ -312,9 +312,6 @@ def one_curve_floats(br, p, *, limits: bool = True):
         return None
     n = len(p)
     floats, codes = [0.0] * (6 * n), []
-    free = br.lazy.get("free") if limits else 0.0
-    if free is None:  # no state of the branch touches below it (its radius is at most r0/cos(beta0))
-        free = br.lazy["free"] = contact_free_below_rad(g.l0, g.r_c0, br.model.stub_mm)
     for k, pk in enumerate(p):
         t = pk - g.p0
         m = solve_lean_scalar(lean, t) if t > 0.0 else None
@@ -323,10 +320,14 @@ def one_curve_floats(br, p, *, limits: bool = True):
         theta, l, r, beta, d2 = lean.rates.state(m, SCALAR)
         if not limits:
             codes.append(_BENDING)
-        elif abs(theta) < free:
-            codes.append(apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free))
+        elif abs(theta) >= FULL_TURN_RAD:  # coiled, the first limit: no bound or test to ask
+            codes.append(_COILED)
         else:
-            codes.append(_status_float(br, theta, l, r, free))
+            free = br.lazy.get("free")
+            if free is None:  # no state of the branch touches below it (its radius is at most r0/cos(beta0))
+                free = br.lazy["free"] = contact_free_below_rad(g.l0, g.r_c0, br.model.stub_mm)
+            codes.append(apply_limits(_BENDING, theta, l, r, g.l0, SCALAR, br.model.stub_mm, free) if abs(theta) < free
+                         else _status_float(br, theta, l, r, free))
         floats[k::n] = pk * KPA_PER_MPA, theta * _DEG_PER_RAD, l, r, beta, math.sqrt(max(d2, 0.0))
     return floats, codes
 

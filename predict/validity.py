@@ -60,6 +60,7 @@ from .status import VALIDITY_LIMITS, Status, is_model_state
 
 __all__ = [
     "STRETCH_LIMIT",
+    "FULL_TURN_RAD",
     "LimitFlags",
     "limit_flags",
     "apply_limits",
@@ -78,7 +79,8 @@ __all__ = [
 
 #: Largest thread-side stretch l/l0 reported as a state of a real sleeve (docs/model.md section 12).
 STRETCH_LIMIT = 2.0
-_FULL_TURN = 2.0 * math.pi
+#: A bend [rad] at or past which a strip is coiled whatever else it exceeds (it has turned onto itself).
+FULL_TURN_RAD = 2.0 * math.pi
 #: Bisection steps locating a limit angle (to ~1e-15 of the turn; branch.first_limit uses the same).
 LIMIT_BISECTIONS = 60
 
@@ -170,7 +172,7 @@ def _coiled(th, a, r, l0, xp=np, stub=0.0, free=0.0):
         shape = np.broadcast_shapes(np.shape(th), np.shape(r), np.shape(l0), np.shape(stub))
         return _contact_past_bound(*(np.broadcast_to(np.asarray(v, dtype=np.float64), shape).reshape(-1)
                                      for v in (th, r, l0, stub))).reshape(shape)
-    return a >= _FULL_TURN or (a >= (free if free > 0.0 else _contact_free_below(l0, 2.0 * r, stub))
+    return a >= FULL_TURN_RAD or (a >= (free if free > 0.0 else _contact_free_below(l0, 2.0 * r, stub))
                                and _arc_contact_float(th, r, l0, stub))
 
 
@@ -310,7 +312,7 @@ def _contact_free_below(l0: float, w: float, m: float) -> float:
     bisection of ``q`` finds it from below.
     """
     if m != m:
-        return _FULL_TURN  # an arc inside a chain: only its own full turn
+        return FULL_TURN_RAD  # an arc inside a chain: only its own full turn
     size, reach = _reach(l0, w, m)
     if math.pi * reach < l0:
         return _short_reach_bound(l0, reach, math.asin, math.sqrt)
@@ -318,7 +320,7 @@ def _contact_free_below(l0: float, w: float, m: float) -> float:
     if not k < l0:  # also NaN
         return 0.0
     a1 = max(math.pi * (1.0 - k / l0), 0.5 * math.pi if k < 2.0 * l0 / math.pi else 0.0)
-    lo, hi = a1, _FULL_TURN
+    lo, hi = a1, FULL_TURN_RAD
     if not (lo >= 0.5 * math.pi and l0 * (1.0 - math.cos(lo)) / lo > reach):
         return lo
     for _ in range(_BOUND_BISECTIONS):
@@ -336,7 +338,7 @@ def _reach(l0, w, m):
 def _short_reach_bound(l0, reach, asin=np.arcsin, sqrt=np.sqrt):
     """:func:`_contact_free_below` where ``pi reach < l0``: ``2 pi - 2 asin(sqrt(pi reach/l0))`` (on floats with
     ``math``'s functions)."""
-    return _FULL_TURN - 2.0 * asin(sqrt(math.pi * reach / l0))
+    return FULL_TURN_RAD - 2.0 * asin(sqrt(math.pi * reach / l0))
 
 
 def _contact_past_bound(th, r, l0, m):
@@ -346,10 +348,10 @@ def _contact_past_bound(th, r, l0, m):
     of it is apart."""
     _, reach = _reach(l0, 2.0 * r, m)
     short = np.flatnonzero(math.pi * reach < l0)  # NaN: False
-    free = np.where(np.isnan(m), _FULL_TURN, 0.0)
+    free = np.where(np.isnan(m), FULL_TURN_RAD, 0.0)
     free[short] = _short_reach_bound(l0.take(short), reach.take(short))
     a = np.abs(th)
-    out = a >= _FULL_TURN
+    out = a >= FULL_TURN_RAD
     test = np.flatnonzero((a >= free) & ~out)
     out[test] = arc_contact(*(v.take(test) for v in (th, r, l0, m)))
     return out
@@ -378,9 +380,9 @@ def _coiled_states(th, a, top, r, l0, stub):
         b, s, e = _contact_bounds(l0, w_lo, w_hi, m, negative, free)
         below, start, end = min(below, b), max(start, s), min(end, e)
     if not start <= end:  # no sure contact: every state from ``below`` to the full turn takes the test
-        start = end = _FULL_TURN
+        start = end = FULL_TURN_RAD
     out = a >= start  # past a full turn too
-    at = [k for k, x in zip(near.tolist(), a_near) if below <= x < start or end < x < _FULL_TURN]
+    at = [k for k, x in zip(near.tolist(), a_near) if below <= x < start or end < x < FULL_TURN_RAD]
     if len(at) <= _FLOAT_TESTS:
         for k in at:
             out.flat[k] = _arc_contact_float(th.item(k), r.item(k), l0, m)
@@ -434,7 +436,7 @@ def _contact_bounds(l0: float, w_lo: float, w_hi: float, m: float, negative: boo
             q = l0 * (1.0 - math.cos(a)) / a
             return size < q < w_lo - size and l0 * math.sin(a) / a < -size
 
-        guess = _FULL_TURN - math.sqrt(4.0 * math.pi * w_lo / l0)
+        guess = FULL_TURN_RAD - math.sqrt(4.0 * math.pi * w_lo / l0)
         close = 2.0 * math.sqrt(4.0 * math.pi * size / l0) + 4.0 * math.pi * size / l0
     else:
         def edge(a, w):  # w cos(a) - q(a) and its slope
@@ -450,10 +452,10 @@ def _contact_bounds(l0: float, w_lo: float, w_hi: float, m: float, negative: boo
             q = l0 * (1.0 - c) / a
             return w_lo * c - q > size and s * (l0 / a + w_lo) < -size and q + w_lo * (1.0 - c) > size
 
-        rad = l0 / _FULL_TURN
-        guess = _FULL_TURN - math.acos(rad / (rad + w_lo))
+        rad = l0 / FULL_TURN_RAD
+        guess = FULL_TURN_RAD - math.acos(rad / (rad + w_lo))
         close = 2.0 * math.sqrt(size / (0.5 * rad + 0.5 * w_lo)) + 2.0 * size / (rad + w_lo)
-    end = _FULL_TURN - close
+    end = FULL_TURN_RAD - close
     edge_lo = start = _newton_edge(edge, w_lo, guess)
     for step in (1e-7, 1e-5, 1e-3):  # the first point past the edge that checks
         if touches(start):
@@ -473,13 +475,13 @@ def _contact_bounds(l0: float, w_lo: float, w_hi: float, m: float, negative: boo
 def _newton_edge(edge, w, a):
     """Where ``edge(a, w)`` (value, slope) is 0 on ``[3 pi/2, 2 pi]``, by at most six Newton steps from ``a``, kept
     in the range (the caller checks what it claims of the result)."""
-    a = min(max(a, _THREE_QUARTERS), _FULL_TURN)
+    a = min(max(a, _THREE_QUARTERS), FULL_TURN_RAD)
     for _ in range(6):
         f, df = edge(a, w)
         if df == 0.0:
             break
         step = f / df
-        a = min(max(a - step, _THREE_QUARTERS), _FULL_TURN)
+        a = min(max(a - step, _THREE_QUARTERS), FULL_TURN_RAD)
         if abs(step) < 1e-10:
             break
     return a
@@ -534,7 +536,7 @@ def _arc_contact_float(th: float, r: float, l0: float, m: float) -> bool:
         b_lo = -math.inf if ux > 0.0 else min(b0, b1)
         b_hi = math.inf if ux < 0.0 else max(b0, b1)
         apart = apart or low > b_hi or low + span < b_lo
-    return abs(th) >= _FULL_TURN or (not apart and not inside)
+    return abs(th) >= FULL_TURN_RAD or (not apart and not inside)
 
 
 def arc_contact(theta_rad, radius_mm, l0_mm, stub_mm=0.0) -> np.ndarray:
@@ -574,7 +576,7 @@ def arc_contact(theta_rad, radius_mm, l0_mm, stub_mm=0.0) -> np.ndarray:
     th, r, l0, m = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (theta_rad, radius_mm, l0_mm,
                                                                                     stub_mm)))
     inside = np.isnan(m)
-    return (np.abs(th) >= _FULL_TURN) | (~_apart(th, r, l0, np.where(inside, 0.0, m)) & ~inside)
+    return (np.abs(th) >= FULL_TURN_RAD) | (~_apart(th, r, l0, np.where(inside, 0.0, m)) & ~inside)
 
 
 _KEPT = (int(Status.FAILED), int(Status.OUT_OF_DOMAIN))
@@ -687,7 +689,7 @@ def coil_angle_deg(l0_mm: float, radius_mm: float, *, negative: bool, stub_mm: f
     r = check_range("radius_mm", radius_mm, low=0.0)
     m = check_range("stub_mm", stub_mm, low=0.0, low_inclusive=True, high=1e4)
     sign = -1.0 if negative else 1.0
-    lo, hi = 0.0, _FULL_TURN
+    lo, hi = 0.0, FULL_TURN_RAD
     for _ in range(LIMIT_BISECTIONS):
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
