@@ -321,6 +321,37 @@ def test_the_time_limit_ends_any_command_with_one_line(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["arcs.toml", "noisy.csv"]
 
 
+@pytest.mark.parametrize("main_ends", ["within its grace", "past its grace", "never"])
+def test_a_signals_line_is_written_once_whichever_thread_ends_the_command(monkeypatch, capfd, main_ends):
+    """The main thread and the watchdog thread both reach the line a signal ends a command with when the main thread
+    ends just past GRACE_S (CI once read ``embroact: terminated`` twice): whichever writes it first, the other writes
+    none; a watchdog that finds the line written gives the main thread GRACE_S more to end."""
+    import threading
+
+    from embroact.export.cli import signals
+
+    exits = []
+    monkeypatch.setattr(signals.os, "_exit", exits.append)
+    read_fd, write_fd = os.pipe()
+    done, said = threading.Event(), threading.Lock()
+    monkeypatch.setattr(signals, "_LAST_LINE", said)  # as watchdog() makes them for its block
+    guard = threading.Thread(target=signals._guard, args=(read_fd, done, 0.0, said))
+    guard.start()
+    os.write(write_fd, bytes([int(signal.SIGTERM)]))
+    if main_ends != "never":  # the main thread's handler writes the line, then the block ends
+        signals.last_line("embroact: terminated")
+        time.sleep(0.0 if main_ends == "within its grace" else 1.5 * signals.GRACE_S)
+        done.set()
+    guard.join(4 * signals.GRACE_S)
+    signals.last_line("embroact: terminated")  # a main thread that ends after the watchdog wrote: nothing more
+    os.close(write_fd)  # the guard's read returns b"": it ends
+    guard.join(5.0)
+    os.close(read_fd)
+    assert not guard.is_alive()
+    assert capfd.readouterr().err == "embroact: terminated\n"
+    assert exits == ([143] if main_ends == "never" else [])
+
+
 def test_the_time_limit_flag_is_checked():
     from embroact.export.cli import main as cli_main
     from embroact.export.cli import signals

@@ -301,7 +301,7 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     args.command = top.command
     debug = top.debug or args.debug
-    from .signals import Terminated, watchdog  # here, not at the top: `embroact --help` needs neither it nor threads
+    from .signals import Terminated, last_line, watchdog  # here: `embroact --help` needs neither it nor threads
 
     real_stdout = sys.stdout
     if real_stdout is not None:  # None when started with stdout closed (>&-)
@@ -311,7 +311,7 @@ def main(argv: list[str] | None = None) -> int:
             code = _run(module, args, debug)
     except KeyboardInterrupt as exc:  # a signal as the block was left (Terminated is a KeyboardInterrupt)
         code = EXIT_TERMINATED if isinstance(exc, Terminated) else EXIT_INTERRUPTED
-        print(f"embroact: {'terminated' if code == EXIT_TERMINATED else 'interrupted'}", file=sys.stderr)
+        last_line(f"embroact: {'terminated' if code == EXIT_TERMINATED else 'interrupted'}")
     finally:
         sys.stdout = real_stdout
     if program and code in (EXIT_INTERRUPTED, EXIT_TERMINATED):
@@ -335,9 +335,10 @@ def _exit_now(code: int) -> None:
 def _run(module, args, debug: bool) -> int:
     """``module.run(args)`` with every failure turned into its exit code and one stderr line."""
     from ...patterns.base.errors import EmbroactError, ExportError, SolverError
-    from .signals import Terminated, TimeLimitError, interrupted_by
+    from .signals import Terminated, TimeLimitError, interrupted_by, last_line
 
     err: EmbroactError | str
+    timed_out = False
     try:
         with warnings.catch_warnings():
             if not debug:
@@ -358,8 +359,8 @@ def _run(module, args, debug: bool) -> int:
         code, err = EXIT_OUTPUT, exc
     except SolverError as exc:
         code, err = EXIT_SOLVER, exc
-    except TimeLimitError as exc:  # no Exception: raised wherever the command was
-        code, err = EXIT_SOLVER, str(exc)
+    except TimeLimitError as exc:  # no Exception: raised wherever the command was (the watchdog may end it too)
+        code, err, timed_out = EXIT_SOLVER, str(exc), True
     except EmbroactError as exc:
         code, err = EXIT_INPUT, exc
     except OSError as exc:
@@ -371,21 +372,25 @@ def _run(module, args, debug: bool) -> int:
         if signum is not None:  # a library made the signal's exception its own (an import it interrupted)
             import signal
 
-            print(f"embroact: {'terminated' if signum == signal.SIGTERM else 'interrupted'}", file=sys.stderr)
+            last_line(f"embroact: {'terminated' if signum == signal.SIGTERM else 'interrupted'}")
             return EXIT_TERMINATED if signum == signal.SIGTERM else EXIT_INTERRUPTED
         if "bad_alloc" not in str(exc):
             raise
         code, err = EXIT_INPUT, _OUT_OF_MEMORY
     except Terminated:
-        print("embroact: terminated", file=sys.stderr)
+        last_line("embroact: terminated")
         return EXIT_TERMINATED
     except KeyboardInterrupt:
-        print("embroact: interrupted", file=sys.stderr)
+        last_line("embroact: interrupted")
         return EXIT_INTERRUPTED
     if debug:
         raise err if isinstance(err, BaseException) else RuntimeError(err)
-    print(f"embroact: error: {_error_line(str(err))}", file=sys.stderr)
+    (last_line if timed_out else _stderr_line)(f"embroact: error: {_error_line(str(err))}")
     return code
+
+
+def _stderr_line(line: str) -> None:
+    print(line, file=sys.stderr)
 
 
 def _error_line(text: str) -> str:

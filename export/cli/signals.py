@@ -9,7 +9,9 @@ release the GIL while they work, so it runs) gives the main thread :data:`GRACE_
 the usual way (the handler raises, staged files are removed, the exit code is returned); if
 it has not, the thread removes the staged files itself
 (:func:`embroact.export.files.atomic.abandon_staged`, which waits for a rename in progress)
-and ends the process with the same message and exit code.
+and ends the process with the same message and exit code. The message is written once
+(:func:`last_line`): a main thread that writes it just past the grace gets as long again to
+end by itself.
 
 The time limit (``embroact --time-limit-s S COMMAND``, default :data:`DEFAULT_TIME_LIMIT_S`)
 is a SIGALRM handled the same way: the command ends with ``embroact: error: the command took
@@ -39,7 +41,7 @@ from typing import Iterator
 from .args import DEFAULT_TIME_LIMIT_S
 
 __all__ = ["watchdog", "serving", "TimeLimitError", "Terminated", "GRACE_S", "DEFAULT_TIME_LIMIT_S",
-           "time_limit_message", "interrupted_by"]
+           "time_limit_message", "interrupted_by", "last_line"]
 
 #: How long the main thread has to end by itself after a signal before the watchdog ends the process [s].
 GRACE_S = 0.25
@@ -110,6 +112,35 @@ def interrupted_by() -> signal.Signals | None:
     return _RECEIVED[0] if _RECEIVED else None
 
 
+#: Taken by whichever of the main thread and the watchdog thread writes the line a signal or the time limit ends
+#: the running :func:`watchdog` block with (a main thread that ends just past :data:`GRACE_S` and the watchdog
+#: both reached theirs: ``embroact: terminated`` twice); a new one for each block.
+_LAST_LINE = threading.Lock()
+
+
+def last_line(line: str) -> None:
+    """Write ``line`` to stderr as the command's last, unless it has been written: the line a signal or the time limit
+    ends a command with, written once whether the main thread or the watchdog thread ends it.
+
+    Parameters
+    ----------
+    line : str
+        The line, without its newline.
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> err = io.StringIO()
+    >>> with watchdog(time_limit_s=0), contextlib.redirect_stderr(err):
+    ...     last_line("embroact: terminated")
+    ...     last_line("embroact: interrupted")
+    >>> err.getvalue().splitlines()
+    ['embroact: terminated']
+    """
+    if _LAST_LINE.acquire(blocking=False):
+        print(line, file=sys.stderr)
+
+
 def _on_sigterm(signum, frame):
     _RECEIVED.append(signal.SIGTERM)
     raise Terminated()
@@ -152,8 +183,9 @@ def serving() -> Iterator[None]:
         _SERVING.clear()
 
 
-def _guard(read_fd: int, done: threading.Event, time_limit_s: float) -> None:
-    """The watchdog thread: wait for a signal byte; give the main thread GRACE_S; then end the process."""
+def _guard(read_fd: int, done: threading.Event, time_limit_s: float, said: threading.Lock) -> None:
+    """The watchdog thread: wait for a signal byte; give the main thread GRACE_S; then end the process (with the
+    block's last line unless the main thread has written it: it then gets GRACE_S more to end by itself)."""
     from ..files.atomic import abandon_staged
 
     wanted = {int(signal.SIGINT), int(signal.SIGTERM), int(signal.SIGALRM)}
@@ -170,14 +202,18 @@ def _guard(read_fd: int, done: threading.Event, time_limit_s: float) -> None:
         if done.wait(GRACE_S):
             return  # the main thread handled it
         signum = signal.Signals(hits[0])
-        abandon_staged()
         if signum == signal.SIGALRM:
             code, line = _EXIT_TIME_LIMIT, f"embroact: error: {time_limit_message(time_limit_s)}"
         else:
             code, word = _EXIT[signum]
             line = f"embroact: {word}"
-        with contextlib.suppress(OSError):
-            os.write(2, (line + "\n").encode())
+        wrote = said.acquire(blocking=False)
+        if not wrote and done.wait(GRACE_S):
+            return  # the main thread wrote the line and ended by itself
+        abandon_staged()
+        if wrote:
+            with contextlib.suppress(OSError):
+                os.write(2, (line + "\n").encode())
         os._exit(code)
 
 
@@ -210,9 +246,11 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    global _LAST_LINE
     read_fd, write_fd = os.pipe()
     os.set_blocking(write_fd, False)
-    done = threading.Event()
+    done, said = threading.Event(), threading.Lock()
+    _LAST_LINE = said
 
     def on_alarm(signum, frame):
         raise TimeLimitError(time_limit_message(time_limit_s))
@@ -223,7 +261,7 @@ def watchdog(*, time_limit_s: float = DEFAULT_TIME_LIMIT_S) -> Iterator[None]:
         old_fd = None
     thread = None
     if old_fd is not None:
-        thread = threading.Thread(target=_guard, args=(read_fd, done, time_limit_s), name="embroact-watchdog",
+        thread = threading.Thread(target=_guard, args=(read_fd, done, time_limit_s, said), name="embroact-watchdog",
                                   daemon=True)
         stack = threading.stack_size(_STACK_BYTES)  # it reads a pipe: no 8 MB stack under a memory ceiling
         try:
