@@ -330,8 +330,11 @@ def test_a_signals_line_is_written_once_whichever_thread_ends_the_command(monkey
 
     from embroact.export.cli import signals
 
-    exits = []
+    from embroact.export.files import atomic
+
+    exits, abandoned = [], []
     monkeypatch.setattr(signals.os, "_exit", exits.append)
+    monkeypatch.setattr(atomic, "abandon_staged", lambda: abandoned.append(1))  # the real one keeps the commit lock
     read_fd, write_fd = os.pipe()
     done, said = threading.Event(), threading.Lock()
     monkeypatch.setattr(signals, "_LAST_LINE", said)  # as watchdog() makes them for its block
@@ -349,7 +352,7 @@ def test_a_signals_line_is_written_once_whichever_thread_ends_the_command(monkey
     os.close(read_fd)
     assert not guard.is_alive()
     assert capfd.readouterr().err == "embroact: terminated\n"
-    assert exits == ([143] if main_ends == "never" else [])
+    assert exits == ([143] if main_ends == "never" else []) and len(abandoned) == len(exits)
 
 
 def test_the_time_limit_flag_is_checked():
