@@ -251,3 +251,21 @@ def test_model_page_paper_set_numbers():
     need = [(290.0 - m.p0_kpa) * m.g_mpa / (float(pressure_at(m, [t]).pressure_kpa[0]) - m.p0_kpa) for t in (155, 310)]
     assert [round(g, 2) for g in need] == [3.10, 1.85]
     assert "`G` = 3.10 MPa if it were a whole-strip angle" in text and "or 1.85 MPa if it were the" in text
+
+
+def test_the_readme_worked_example_runs_as_written(tmp_path, monkeypatch, capsys):
+    """The worked example's single-actuator commands, as the README prints them, exit 0, and the check of the file
+    the first one writes finds nothing (it once checked the file against the tube without the origin: 7 errors)."""
+    import shlex
+
+    from embroact.export.cli.main import main
+
+    block = _text(ROOT / "README.md").split("## Worked example", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+    lines = [ln for ln in block.splitlines() if ln.startswith("embroact ")]
+    runs = [ln for ln in lines if ln.split()[1] in ("cross", "predict", "check")]
+    assert [ln.split()[1] for ln in runs] == ["cross", "predict", "check"]
+    monkeypatch.chdir(tmp_path)
+    for ln in runs:
+        capsys.readouterr()
+        assert main(shlex.split(ln)[1:]) == 0, ln
+    assert capsys.readouterr().out.strip() == "cross.dst: embroidery file, format dst, 1 tube(s): no findings"
