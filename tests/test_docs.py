@@ -262,7 +262,7 @@ def test_the_readme_worked_example_runs_as_written(tmp_path, monkeypatch, capsys
 
     block = _text(ROOT / "README.md").split("## Worked example", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
     lines = [ln for ln in block.splitlines() if ln.startswith("embroact ")]
-    runs = [ln for ln in lines if ln.split()[1] in ("cross", "predict", "check")]
+    runs = lines[:3]  # the ones on the example's own file (the later ones build, fit and predict from fits)
     assert [ln.split()[1] for ln in runs] == ["cross", "predict", "check"]
     monkeypatch.chdir(tmp_path)
     for ln in runs:
