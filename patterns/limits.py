@@ -47,6 +47,8 @@ __all__ = [
     "record_moves_units",
     "records_needed",
     "framed_first",
+    "rail_offset_mm",
+    "grid_origin_mm",
 ]
 
 UNITS_PER_MM = round(1.0 / DEFAULT_TOLERANCES.machine_grid_mm)
@@ -269,3 +271,73 @@ def framed_first(commands) -> np.ndarray:
     if len(other) and cmds[other[0]] == Command.STITCH:
         out[other[0]] = True
     return out
+
+
+def rail_offset_mm(width_mm: float) -> float:
+    """The sideways shift of a straight path along a grid line that puts both rails (+-w/2) of a width on the
+    machine grid: 0 for a width of an even number of grid units, half a unit for an odd one.
+
+    A 6.1 mm zigzag on the path y = 0 would round its rails at +-3.05 mm to +-3.1 (a 6.2 mm zigzag is
+    sewn); on the path y = 0.05 mm they lie at 3.1 and -3.0 mm, exactly 6.1 mm apart. The tube lies on
+    the path, so it stays centred between the rails.
+
+    Parameters
+    ----------
+    width_mm : float
+        The zigzag's width [mm], on the machine grid.
+
+    Returns
+    -------
+    float
+        The shift [mm].
+
+    Examples
+    --------
+    >>> rail_offset_mm(6.1), rail_offset_mm(6.2), rail_offset_mm(7.0)
+    (0.05, 0.0, 0.0)
+    """
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+    return 0.5 * grid if round(width_mm / grid) % 2 else 0.0
+
+
+def grid_origin_mm(width_mm: float, origin_mm=(0.0, 0.0), rotation_deg: float = 0.0) -> tuple[float, float]:
+    """Where a straight actuator starts so that both rails of ``width_mm`` lie on the machine grid.
+
+    A path along a grid axis (``rotation_deg`` a multiple of 90) starts on the nearest grid point along
+    itself (so its legs round as on a path from the origin) and is moved across itself to the grid
+    line at or below its start, then by :func:`rail_offset_mm` (so moving it back and forth between
+    an odd and an even width does not creep); a path at another angle (its needle points round one
+    by one) keeps its start.
+
+    Parameters
+    ----------
+    width_mm : float
+        The width [mm], on the machine grid.
+    origin_mm : (float, float)
+        The path's start [mm].
+    rotation_deg : float
+        The path's direction [deg, counter-clockwise from +x].
+
+    Returns
+    -------
+    tuple of float
+        The start [mm].
+
+    Examples
+    --------
+    >>> grid_origin_mm(6.1), grid_origin_mm(6.2, (0.0, 0.05)), grid_origin_mm(6.1, (10.0, 20.03), 90.0)
+    ((0.0, 0.05), (0.0, 0.0), (10.05, 20.0))
+    """
+    quarter = rotation_deg / 90.0
+    x, y = (float(v) for v in origin_mm)
+    if abs(quarter - round(quarter)) > 1e-9:
+        return x, y
+    grid = DEFAULT_TOLERANCES.machine_grid_mm
+
+    def across(c: float) -> float:
+        return round(math.floor(c / grid + 1e-6) * grid + rail_offset_mm(width_mm), 10)
+
+    def along(c: float) -> float:
+        return round(round(c / grid) * grid, 10)
+
+    return (along(x), across(y)) if round(quarter) % 2 == 0 else (across(x), along(y))

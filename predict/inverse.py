@@ -72,6 +72,7 @@ from ..patterns.base.tolerances import DEFAULT_TOLERANCES
 from ..patterns.centerline import Centerline
 from ..patterns.design import ActuatorSpec, Design, MachineSettings, ModelSettings, OperationSettings
 from ..patterns.kinds import PATTERN_KINDS, Interval, param_values, pattern_kind
+from ..patterns.limits import grid_origin_mm, rail_offset_mm
 from ..patterns.params import PatternParams, Tube, whole_intervals
 from ..patterns.segments import SegmentSpec, chain_of_one
 from .kinds import model_kind
@@ -80,7 +81,7 @@ from .status import Status
 __all__ = ["MAX_TARGET_PRESSURE_KPA", "check_target_pressure", "DesignSpace", "design_space",
            "Sensitivity", "BendCandidate", "BendResult", "design_bend", "exact_pressure_kpa", "angle_grid_step_deg",
            "ShapeSegment", "ShapeResult", "design_shape", "fit_curvature", "curvature_range", "shape_unreachable",
-           "DEFAULT_TIME_LIMIT_S", "operating_limits", "rail_offset_mm", "grid_origin_mm"]
+           "DEFAULT_TIME_LIMIT_S", "operating_limits"]
 
 #: Points of the parameter table per pattern.
 _TABLE_POINTS = 121
@@ -740,76 +741,6 @@ def operating_limits(limits: OperationSettings, pressure_kpa: float, bend_deg: f
     top_bend = limits.max_bend_deg if bend_deg is None else min(720.0, max(limits.max_bend_deg, abs(bend_deg)))
     return dataclasses.replace(limits, max_pressure_kpa=max(limits.max_pressure_kpa, pressure_kpa),
                                max_bend_deg=top_bend, target_pressure_kpa=pressure_kpa, target_bend_deg=bend_deg)
-
-
-def rail_offset_mm(width_mm: float) -> float:
-    """The sideways shift of a straight path along a grid line that puts both rails (+-w/2) of a width on the
-    machine grid: 0 for a width of an even number of grid units, half a unit for an odd one.
-
-    A 6.1 mm zigzag on the path y = 0 would round its rails at +-3.05 mm to +-3.1 (a 6.2 mm zigzag is
-    sewn); on the path y = 0.05 mm they lie at 3.1 and -3.0 mm, exactly 6.1 mm apart. The tube lies on
-    the path, so it stays centred between the rails.
-
-    Parameters
-    ----------
-    width_mm : float
-        The zigzag's width [mm], on the machine grid.
-
-    Returns
-    -------
-    float
-        The shift [mm].
-
-    Examples
-    --------
-    >>> rail_offset_mm(6.1), rail_offset_mm(6.2), rail_offset_mm(7.0)
-    (0.05, 0.0, 0.0)
-    """
-    grid = DEFAULT_TOLERANCES.machine_grid_mm
-    return 0.5 * grid if round(width_mm / grid) % 2 else 0.0
-
-
-def grid_origin_mm(width_mm: float, origin_mm=(0.0, 0.0), rotation_deg: float = 0.0) -> tuple[float, float]:
-    """Where a straight actuator starts so that both rails of ``width_mm`` lie on the machine grid.
-
-    A path along a grid axis (``rotation_deg`` a multiple of 90) starts on the nearest grid point along
-    itself (so its legs round as on a path from the origin) and is moved across itself to the grid
-    line at or below its start, then by :func:`rail_offset_mm` (so moving it back and forth between
-    an odd and an even width does not creep); a path at another angle (its needle points round one
-    by one) keeps its start.
-
-    Parameters
-    ----------
-    width_mm : float
-        The width [mm], on the machine grid.
-    origin_mm : (float, float)
-        The path's start [mm].
-    rotation_deg : float
-        The path's direction [deg, counter-clockwise from +x].
-
-    Returns
-    -------
-    tuple of float
-        The start [mm].
-
-    Examples
-    --------
-    >>> grid_origin_mm(6.1), grid_origin_mm(6.2, (0.0, 0.05)), grid_origin_mm(6.1, (10.0, 20.03), 90.0)
-    ((0.0, 0.05), (0.0, 0.0), (10.05, 20.0))
-    """
-    quarter = rotation_deg / 90.0
-    x, y = (float(v) for v in origin_mm)
-    if abs(quarter - round(quarter)) > 1e-9:
-        return x, y
-    grid = DEFAULT_TOLERANCES.machine_grid_mm
-
-    def across(c: float) -> float:
-        return round(math.floor(c / grid + 1e-6) * grid + rail_offset_mm(width_mm), 10)
-
-    def along(c: float) -> float:
-        return round(round(c / grid) * grid, 10)
-
-    return (along(x), across(y)) if round(quarter) % 2 == 0 else (across(x), along(y))
 
 
 #: Where the one straight actuator of a target-bend search lies: its start [mm] and direction [deg].

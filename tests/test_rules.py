@@ -198,6 +198,30 @@ def test_ea205_spacing_off_request():
     assert not run(1.46) and not run(1.41)  # 0.06 mm, 0.01 mm
 
 
+def test_ea207_width_off_request():
+    def run(width):
+        return _hits(check_geometry(_actuator_plan(ZigzagParams(6.1, 1.0), Realised(width, 1.0, 0.0, 20.0))), "EA207")
+
+    # allowed: half the 0.1 mm machine grid
+    assert len(run(6.0)) == 1 and len(run(6.2)) == 1
+    assert not run(6.1) and not run(6.14) and not run(6.06)
+
+
+@pytest.mark.parametrize("width", [3.7, 6.1, 6.4, 7.0, 8.3])
+def test_the_quick_command_sews_the_width_asked_on_the_grid(tmp_path, width):
+    """``embroact zigzag --width-mm W`` lays its straight path so that both rails lie on the machine grid: the
+    decoded file's rails (pystitch) are W apart for an odd number of grid units too (3.7 mm was sewn 3.6, a width
+    the input check refuses)."""
+    import pystitch
+
+    from embroact.export.cli.main import main
+
+    out = tmp_path / "z.dst"
+    assert main(["zigzag", "--width-mm", str(width), "--length-mm", "40", "-o", str(out), "--json"]) == 0
+    ys = sorted({y for x, y, c in pystitch.read(str(out)).stitches if c == pystitch.STITCH})
+    assert (ys[-1] - ys[0]) == round(width * 10), ys  # file units of 0.1 mm
+
+
 def test_ea206_near_neutral_angle():
     # neutral: tan(alpha0) = sqrt((2 r_f)^2 + (w/2)^2) / w = sqrt(9 + 12.25) / 7 -> 33.37 deg
     neutral = math.degrees(math.atan(math.sqrt(9.0 + 12.25) / 7.0))

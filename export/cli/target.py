@@ -302,7 +302,11 @@ def _quick_design(args, pattern: str):
 
         path = svg_centerline(args.path) if is_svg_ref(args.path) else Centerline.from_svg_path(args.path)
     else:
-        path = Centerline.straight(check_range("length_mm", args.length_mm, low=0.0, high=1e5))
+        from ...patterns.limits import grid_origin_mm
+
+        # moved half a grid unit across for a width of an odd number of units: both rails on the grid
+        path = Centerline.straight(check_range("length_mm", args.length_mm, low=0.0, high=1e5),
+                                   origin_mm=grid_origin_mm(params.width_mm))
     extra = {k: getattr(args, k) for k in kind.options if getattr(args, k, None) is not None}
     spec = ActuatorSpec(getattr(args, "name", None) or "A1", params, path, **extra)
     return Design("quick", tube_from_args(args), MachineSettings(), OperationSettings(), (spec,))

@@ -383,7 +383,7 @@ class Studio:
 
         A straight actuator is searched where it lies, over the same sewable designs as ``embroact design``:
         widths in steps of one grid unit, each moved across its path by at most half a unit so that both
-        rails lie on the machine grid (:func:`~embroact.predict.inverse.grid_origin_mm`). The answer is kept
+        rails lie on the machine grid (:func:`~embroact.patterns.limits.grid_origin_mm`). The answer is kept
         as a proposal when it is met: :meth:`apply_proposal` puts its pattern and that start in the design.
 
         Parameters
@@ -496,7 +496,8 @@ class Studio:
         >>> out.cleanup()
         """
         from ...patterns.centerline import Centerline
-        from ...predict.inverse import design_shape, grid_origin_mm
+        from ...patterns.limits import grid_origin_mm
+        from ...predict.inverse import design_shape
 
         if not isinstance(path_d, str) or not path_d.strip():
             raise ParameterError(f"path_d must be SVG path data in mm (e.g. 'M 0 0 A 60 60 0 0 0 60 -60'), "

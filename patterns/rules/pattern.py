@@ -1,7 +1,7 @@
-"""Rules on the stitch pattern as generated (EA203-EA205).
+"""Rules on the stitch pattern as generated (EA203-EA205, EA207).
 
-EA203 reads where the legs cross the tube (designs and files); EA204 and EA205
-compare the realised pattern with the request, which only a design has. The
+EA203 reads where the legs cross the tube (designs and files); EA204, EA205 and
+EA207 compare the realised pattern with the request, which only a design has. The
 sleeve rules of the same group (EA201, EA202, EA206) are physics and live in
 :mod:`embroact.predict.sleeve_rules`.
 
@@ -9,7 +9,7 @@ Examples
 --------
 >>> from embroact.patterns.rules.pattern import PATTERN_RULES
 >>> [(r.code, r.inputs_label) for r in PATTERN_RULES]
-[('EA203', 'designs, files'), ('EA204', 'designs'), ('EA205', 'designs')]
+[('EA203', 'designs, files'), ('EA204', 'designs'), ('EA205', 'designs'), ('EA207', 'designs')]
 """
 from __future__ import annotations
 
@@ -132,5 +132,22 @@ def interval_off(s: Subject) -> list[Finding]:
     return s.pattern_findings("EA205", message)
 
 
-PATTERN_RULES = (interval, angle_off, interval_off)
+@RULES.rule("EA207", Severity.WARNING, "width off request",
+            "The realised width (its rails' needle points on the machine grid) differs from the requested one by "
+            "more than half a grid unit: the rails rounded to the grid away from each other or towards each other "
+            "(a straight path along a grid line keeps both rails on it; a curved or slanted one may not).",
+            "Lay the path along a grid line, or ask for the width that is sewn (its sleeve and model follow it).",
+            Inputs.DESIGNS)
+def width_off(s: Subject) -> list[Finding]:
+    half = s.settings.tolerances.machine_grid_mm / 2.0
+
+    def message(act, req, real):
+        if abs(real.width_mm - req.width_mm) > half + 1e-9:
+            return (f"width {real.width_mm:.2f} mm realised, {req.width_mm:g} mm requested (tolerance half the "
+                    f"{2.0 * half:g} mm machine grid)")
+        return None
+    return s.pattern_findings("EA207", message)
+
+
+PATTERN_RULES = (interval, angle_off, interval_off, width_off)
 """The EA2xx rules of patterns, in code order."""
