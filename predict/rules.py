@@ -201,9 +201,10 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
 
     where = dict(actuator=act.name)
     calibration = act.spec.model.calibration
-    out, total = [], 0.0
+    out = []
     p_max = settings.max_pressure_kpa
     pressures = pressure_grid_kpa(p_max)
+    total, described = np.zeros(len(pressures)), np.ones(len(pressures), dtype=bool)
     for k, seg in enumerate(act.segments):
         if not seg.derived.has_sleeve:
             continue  # EA201 reports it
@@ -211,12 +212,26 @@ def _actuator_findings(act, analysis, settings: ModelRuleSettings) -> list[Findi
         c = analysis.model_curve(seg.model, pressures, method=settings.method) if bends else None
         out += _model_findings(seg.choice, seg.model_error, c, calibration, settings, where=where,
                                prefix=act.segments.label(k))
-        total += float(c.theta_deg[-1]) if c is not None else 0.0
-    if abs(total) > settings.max_bend_deg:
-        what = act.segments.one_or_all("bend", lambda: f"total bend of the {len(act.segments)} segments")
-        out.append(RULES.finding(
-            "EA403", f"{what} {total:.1f} deg at {p_max:g} kPa, limit {settings.max_bend_deg:g} deg", **where))
+        if c is not None:
+            total += c.theta_deg
+            described &= is_model_state(c.status)
+    if abs(total[-1]) > settings.max_bend_deg:
+        out.append(RULES.finding("EA403", _bend_limit_message(act, pressures, total, described, settings), **where))
     return out + _strip_findings(act, analysis, pressures, settings, where)
+
+
+def _bend_limit_message(act, pressures, total, described, settings: ModelRuleSettings) -> str:
+    """EA403's text: the bend at the working pressure where the model describes it, and the pressure of the grid from
+    which the bend is past the limit (a bend past a validity limit is the formula's, not the strip's: not quoted)."""
+    what = act.segments.one_or_all("bend", lambda: f"total bend of the {len(act.segments)} segments")
+    limit, p_max = settings.max_bend_deg, settings.max_pressure_kpa
+    first = int(np.argmax(np.abs(total) > limit))
+    past = f"past the {limit:g} deg limit from {pressures[first]:g} kPa on"
+    if described[-1]:
+        return f"{what} {total[-1]:.1f} deg at {p_max:g} kPa, {past}"
+    return (f"{what} {past} ({total[first]:.1f} deg there); at {p_max:g} kPa the model describes no state of the "
+            f"strip (EA405)" if described[first] else
+            f"{what} {past}, where the model describes no state of the strip (EA405)")
 
 
 def _strip_findings(act, analysis, pressures, settings: ModelRuleSettings, where: dict) -> list[Finding]:

@@ -42,7 +42,8 @@ def _pyembroidery_points_mm(data: bytes, origin_mm) -> np.ndarray:
 
 
 def _quick(params) -> Design:
-    """What the quick commands make of ``params``: one 100 mm actuator on a straight path along +x."""
+    """One 100 mm actuator on a straight path along +x from the origin (the quick commands move it half a grid unit
+    across for an odd width)."""
     return Design("quick", Tube(), MachineSettings(), OperationSettings(),
                   (ActuatorSpec("A1", params, Centerline.straight(100.0)),))
 
@@ -63,9 +64,20 @@ def _decoded_derived(design: Design):
 
 
 def test_quick_prediction_is_the_decoded_files(capsys):
-    """predict zigzag --width-mm 6.1 = the bend predicted from the decoded DST's needle points, to 1e-9 deg; the
-    rails the file holds are 6.0 mm apart, so G and P0 are the calibration's at 6.0 mm, and JSON says both."""
-    got = _json(capsys, ["predict", "zigzag", "--width-mm", "6.1", "--pressure-kpa", "100,150,200", "--json"])
+    """predict on a design file asking 6.1 mm on the path y = 0 = the bend predicted from the decoded DST's needle
+    points, to 1e-9 deg; the rails the file holds are 6.0 mm apart (+-3.05 rounds to +-3.0 on the 0.1 mm grid), so G
+    and P0 are the calibration's at 6.0 mm, and JSON says both. The quick command lays its path half a grid unit
+    across and sews 6.1 (tests/test_rules.py)."""
+    import tempfile
+    from pathlib import Path
+
+    from embroact.export.files.tomltext import dumps
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "w61.toml"
+        path.write_text(dumps({"name": "quick", "actuator": [{"name": "A1", "pattern": "zigzag", "width_mm": 6.1,
+                                                             "interval_mm": 1.0, "length_mm": 100.0}]}))
+        got = _json(capsys, ["predict", str(path), "--pressure-kpa", "100,150,200", "--json"])
     a = got["actuators"][0]
     d, xy = _decoded_derived(_quick(ZigzagParams(6.1, 1.0)))
     assert xy[:, 1].max() - xy[:, 1].min() == pytest.approx(6.0, abs=1e-12)  # the rails the file holds

@@ -167,6 +167,12 @@ def test_paper_w5_zigzag_reports_its_coiled_and_over_stretched_states(capsys):
     rows = capsys.readouterr().out.splitlines()[2:]
     assert rows[3].split()[2] == "COILED" and rows[3].endswith("COILED+KINKED+OVERSTRETCHED")
     assert rows[0].split()[2] == "BENDING" and len(rows[0].split()) == 7
+    # the table prints no state the model does not describe (2032 deg was printed as a bend): '-' and the status
+    for row, status in zip(rows[:5], d["status"]):
+        cells = row.split()
+        assert (cells[1] == "-") == (status == "COILED") and cells[2] == status, row
+        assert status == "BENDING" or cells[3:7] == ["-"] * 4, row
+    assert "-: past a validity limit the model describes no state" in rows[5]
 
 
 SEGMENTED = """name = "seg"

@@ -213,3 +213,23 @@ def test_actuators_of_a_kind_get_exactly_the_findings_each_gets_alone_in_the_des
     assert together == tuple(expected)
     assert {f.code for f in together} >= {"EA403", "EA405", "EA406"}
     assert {f.actuator for f in together} == {a["name"] for a in acts}
+
+
+def test_the_bend_limit_quotes_no_bend_past_validity():
+    """EA403 on a strip coiled before the working pressure (the narrow zigzag of examples/three_actuators.toml):
+    it said 'bend 1625.9 deg at 250 kPa', the formula 4.5 turns past the contact; now the pressure from which the
+    bend is past the limit, the bend there (a valid state, below a full turn) and that 250 kPa has no state."""
+    import re
+    from pathlib import Path
+
+    from embroact.export.files.designfile import load_design
+    from embroact.predict.analysis import analyse
+    from embroact.predict.rules import check_design
+
+    design = load_design(Path(__file__).resolve().parents[1] / "examples" / "three_actuators.toml")
+    found = [f for f in check_design(analyse(design, calibration_sets=design.calibration_sets)) if f.code == "EA403"]
+    assert found
+    for f in found:
+        bends = [float(v) for v in re.findall(r"(-?[\d.]+) deg", f.message)]
+        assert all(abs(b) < 360.0 for b in bends), f.message
+    assert any("at 250 kPa the model describes no state" in f.message for f in found), [f.message for f in found]

@@ -163,7 +163,7 @@ def test_bad_request_bodies_are_one_line_errors(client):
 
 
 # ------------------------------------------------------------------ agreement with the CLI
-def test_an_edit_shows_what_analyse_and_embroact_predict_give(client, capsys):
+def test_an_edit_shows_what_analyse_and_embroact_predict_give(client, capsys, tmp_path):
     v = edit(client, {"actuator[0].width_mm": "8.5"}, 180).json()
     a = analyse(design_from_dict(paper_dict(width_mm=8.5)))
     expected = float(a.curves([180.0])[0].theta_deg[0])
@@ -171,7 +171,11 @@ def test_an_edit_shows_what_analyse_and_embroact_predict_give(client, capsys):
     assert act["theta_deg"] == pytest.approx(expected, rel=1e-12)
     assert act["derived"]["width_mm"] == pytest.approx(8.4)  # rails at +-4.25 mm sewn at +-4.2 (0.1 mm grid, half to even)
     assert act["model"]["p0_kpa"] == pytest.approx(a.actuators[0].model.p0_kpa)
-    assert main(["predict", "zigzag", "--width-mm", "8.5", "--pressure-kpa", "180", "--json"]) == 0
+    from embroact.export.files.tomltext import dumps
+
+    design_file = tmp_path / "edited.toml"  # the edited design, as the studio saves it (the path where it was)
+    design_file.write_text(dumps(paper_dict(width_mm=8.5)))
+    assert main(["predict", str(design_file), "--pressure-kpa", "180", "--json"]) == 0
     (cli,) = json.loads(capsys.readouterr().out)["actuators"]
     assert cli["pressure_kpa"] == [180.0]
     assert cli["theta_deg"][0] == pytest.approx(act["theta_deg"], rel=1e-12)

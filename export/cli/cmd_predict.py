@@ -147,6 +147,7 @@ _COLUMNS = ("pressure_kpa", "theta_deg", "status", "length_mm", "radius_mm", "be
 
 def _piece_table(title, derived, choice, c, band, reading=None) -> str:
     from ...patterns.kinds import pattern_kind
+    from ...predict.status import is_model_state
 
     model = choice.model
     angle = (f" alpha0={derived.angle_deg:.4g} deg beta0={derived.beta0_deg:.4g} deg"
@@ -163,21 +164,38 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
                                 if s > 0.0))
     d = c.as_dict()
     rows += _reading_head(reading)
-    column = [f"{v:10.3f} " for v in reading[1]] if reading is not None else [""] * len(d["theta_deg"])
+    column = _reading_column(reading, c)
     rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "")
                 + " status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
-    for (p, t, s, l, r, b, di), rd, lim in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits([(model, c)], c)):
-        rows.append(f"{p:10.3f}  {t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}  {'+'.join(lim)}".rstrip())
+    described = is_model_state(c.status).tolist()
+    for (p, t, s, l, r, b, di), rd, lim, ok in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits([(model, c)], c),
+                                                  described):
+        state = (f"{t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}" if ok else
+                 f"{'-':>10s} {rd}  {s:<13s}{'-':>8s}  {'-':>6s}  {'-':<8s}  {'-':>6s}")
+        rows.append(f"{p:10.3f}  {state}  {'+'.join(lim)}".rstrip())
     return "\n".join(rows)
+
+
+def _reading_column(reading, c) -> list[str]:
+    """The reading_deg cells of a table (none without a reading; '-' where the model describes no state)."""
+    from ...predict.status import is_model_state
+
+    if reading is None:
+        return [""] * c.theta_deg.size
+    return [f"{v:10.3f} " if ok else f"{'-':>10s} " for v, ok in zip(reading[1], is_model_state(c.status).tolist())]
 
 
 def _table(act, c, band, segment_curves, reading=None) -> str:
     """The actuator's text table: a chain of one as one table, a longer chain one per segment and the whole strip;
     a line saying what COILED means when the whole strip reads it."""
-    from ...predict.status import Status
+    from ...predict.status import Status, is_model_state
 
     table = act.segments.one_or_all(lambda: _piece_table(act.name, act.derived, act.choice, c, band, reading),
                                     lambda: _strip_table(act, c, segment_curves, reading))
+    if is_model_state(c.status).all():
+        return table
+    table += ("\n-: past a validity limit the model describes no state (the formula's values, which mean nothing "
+              "there, are in --json)")
     if not (c.status == Status.COILED).any():
         return table
     return (table + f"\nCOILED: the strip, with the {act.plan.tube.end_margin_mm:g} mm sealed tube beyond its tip, "
@@ -185,6 +203,8 @@ def _table(act, c, band, segment_curves, reading=None) -> str:
 
 
 def _strip_table(act, c, segment_curves, reading) -> str:
+    from ...predict.status import is_model_state
+
     parts = [_piece_table(act.segments.part_name(act.name, k), s.derived, s.choice, sc, None)
              for k, (s, sc) in enumerate(zip(act.segments, segment_curves))]
     total = c.as_dict()  # the whole strip (embroact.predict.analysis.whole_strip)
@@ -192,9 +212,10 @@ def _strip_table(act, c, segment_curves, reading) -> str:
             + ("; the reading is the marker sum on their chain of arcs)" if reading is not None else ")")]
     rows += _reading_head(reading)
     rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "") + " status")
-    column = [f"{v:10.3f} " for v in reading[1]] if reading is not None else [""] * len(total["theta_deg"])
-    rows += [f"{p:10.3f}  {t:10.3f} {rd}  {s}"
-             for p, t, rd, s in zip(total["pressure_kpa"], total["theta_deg"], column, total["status"])]
+    column = _reading_column(reading, c)
+    rows += [f"{p:10.3f}  {t:10.3f} {rd}  {s}" if ok else f"{p:10.3f}  {'-':>10s} {rd}  {s}"
+             for p, t, rd, s, ok in zip(total["pressure_kpa"], total["theta_deg"], column, total["status"],
+                                        is_model_state(c.status).tolist())]
     return "\n\n".join(parts + ["\n".join(rows)])
 
 
