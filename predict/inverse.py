@@ -845,7 +845,14 @@ def _limits(model, p: float) -> tuple[str, float]:
     if not finite:
         return (found[0][1] if found else "none"), math.inf
     p_lim, text = min(finite)
+    if p_lim > _LIMIT_HORIZON * p:  # a limit at 80 MPa is no limit of a sewn actuator: the tube bursts long before
+        return f"none up to {_LIMIT_HORIZON * p:.0f} kPa ({_LIMIT_HORIZON:g} x the target pressure)", math.inf
     return text, p_lim - p
+
+
+#: Past this many times the target pressure a design's first limit is reported as none (the state the formula gives
+#: there, tens of MPa, says nothing of a sewn actuator).
+_LIMIT_HORIZON = 10.0
 
 
 def exact_pressure_kpa(model, target_deg: float) -> float | None:

@@ -86,3 +86,18 @@ def test_target_shape_from_an_svg_path(tmp_path, capsys):
                          str(tmp_path / "s.toml")])
     assert res["reached"] and res["rmse_mm"] < 0.5
     assert [s["pattern"] for s in res["segments"]] == ["zigzag", "cross"]
+
+
+def test_a_limit_far_past_the_target_is_reported_as_none(tmp_path, capsys):
+    """cross -40 deg at 250 kPa: its first limit lay at 82 MPa ('COILED at 82253.5 kPa'), a state of no sewn actuator;
+    past ten times the target pressure the limit line says none up to there."""
+    import re
+
+    from embroact.export.cli.main import main
+
+    assert main(["design", "--bend-deg", "-40", "--at-kpa", "250", "--pattern", "cross",
+                 "-o", str(tmp_path / "c.toml")]) == 0
+    limits = [ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("limit:")]
+    assert limits and limits[0].strip() == "limit: none up to 2500 kPa (10 x the target pressure)", limits
+    for ln in limits:
+        assert all(float(v) <= 2500.0 for v in re.findall(r"([\d.]+) kPa", ln)), ln

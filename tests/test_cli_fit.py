@@ -287,3 +287,11 @@ def test_fit_file_round_trips_through_predict_and_a_design(capsys, tmp_path):
     assert main(["predict", str(elsewhere / "saved.toml"), "--pressure-kpa", grid, "--json"]) == 0
     (act,) = json.loads(capsys.readouterr().out)["actuators"]
     assert max(abs(a - b) for a, b in zip(act["theta_deg"], truth)) < 1e-6
+
+
+def test_fit_prints_no_demonstration_note(capsys):
+    """A fit estimates G and P0 from the measurements and takes no calibration's: the note that the paper's
+    demonstration set is in use (every command that predicts with it prints one) is not printed."""
+    csv = Path(__file__).resolve().parents[1] / "examples" / "data" / "zigzag_w7_loop.csv"
+    assert main(["fit", str(csv), "--pattern", "zigzag", "--width-mm", "7"]) == 0
+    assert "paper-2025" not in capsys.readouterr().err

@@ -275,7 +275,8 @@ def test_predict_text_says_what_a_coiled_strip_means(tmp_path, capsys):
     save_design(_segmented(ZIGZAG_5, CROSS_45, max_kpa=200.0), path)
     assert main(["predict", str(path), "--pressure-kpa", "170,180"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[-3].split()[-1] == "BENDING" and lines[-2].split()[-1] == "COILED"
+    assert lines[-4].split()[-1] == "BENDING" and lines[-3].split()[-2:] == ["-", "COILED"]  # no state: no bend
+    assert lines[-2].startswith("-: past a validity limit the model describes no state")
     assert lines[-1].startswith("COILED: the strip, with the 30 mm sealed tube beyond its tip, touches itself")
 
 

@@ -31,7 +31,7 @@ import sys
 from ...patterns.kinds import PATTERN_KINDS
 from .args import materials_of, plus_minus
 from .markerargs import add_layout_arguments, layout_from_args
-from .target import TUBE_LAWS, add_quick_arguments
+from .target import TUBE_LAWS, add_quick_arguments, reset_notes
 
 __all__ = ["add_arguments", "run"]
 
@@ -293,6 +293,7 @@ def run(args) -> int:
                               calibration="" if old is None else old.name)
     layout = None if choice is None else choice.layout
     act = _actuator(args)
+    reset_notes()  # the fit takes the measured geometry only, no calibration's G or P0: no demonstration note
     derived = act.segments.single(f"actuator {act.name!r} has {len(act.segments)} segments: "
                                   "a fit is of one pattern (fit each segment's coupon alone)").derived
     pressure, angle, labels, note = _data(args, derived, choice)
