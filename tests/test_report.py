@@ -65,7 +65,7 @@ def test_html_escapes_text_and_loads_nothing():
     assert not {"script", "link", "iframe", "object", "embed", "img"} & set(scan.tags)
     assert scan.refs == []
     assert "Content-Security-Policy" in html and "default-src 'none'" in html
-    assert 'class="warning"' in html and "A1, stitch 7, at (1.00, -3.50) mm" in html
+    assert 'class="warning"' in html and "A1, stitch 7 at (1.00, -3.50) mm" in html  # as embroact check prints it
 
 
 def test_unknown_figure_rejected():

@@ -26,6 +26,7 @@ import math
 from typing import Mapping, Sequence
 
 from .. import __version__
+from ...patterns.base.findings import finding_place
 from ...patterns.chain import Chain
 
 __all__ = ["FIGURES", "report_data", "report_json", "report_html", "finding_dict"]
@@ -106,6 +107,7 @@ def finding_dict(finding) -> dict:
         d = {k: getattr(finding, k, None) for k in _FINDING_KEYS}
     for k in _FINDING_KEYS:
         d.setdefault(k, None)
+    d["place"] = finding_place(d)
     return _clean(d)
 
 
@@ -421,14 +423,9 @@ def _findings_table(findings: Sequence[Mapping]) -> str:
     head = "".join(f"<th>{h}</th>" for h in ("severity", "code", "message", "where", "fix"))
     rows = []
     for f in findings:
-        where = [str(f["actuator"])] if f.get("actuator") is not None else []
-        if f.get("stitch_index") is not None:
-            where.append(f"stitch {f['stitch_index']}")
-        if f.get("xy_mm") is not None:
-            where.append("at ({:.2f}, {:.2f}) mm".format(*f["xy_mm"]))
         sev = str(f.get("severity") or "")
         rows.append(f'<tr class="{_e(sev)}"><td>{_e(sev)}</td><td>{_e(f.get("code"))}</td><td>{_e(f.get("message"))}'
-                    f'</td><td>{_e(", ".join(where))}</td><td>{_e(f.get("fix"))}</td></tr>')
+                    f'</td><td>{_e(finding_place(f))}</td><td>{_e(f.get("fix"))}</td></tr>')
     return f"<table><tr>{head}</tr>{''.join(rows)}</table>"
 
 

@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...patterns.base.errors import check_range
+from ...patterns.base.findings import finding_line, finding_place
 from ...patterns.chain import Chain
 from ...patterns.params import FABRIC_THICKNESS_MM
 from ...patterns.plan import ActuatorPlan, Command, Role, StitchPlan
@@ -358,8 +359,13 @@ class Worksheet:
                 lambda: _derived_lines(a.derived) + _model_lines(a.model) + [f"  adjustment: {s}" for s in a.adjustments],
                 lambda: [line for k, seg in enumerate(a.segments) for line in _segment_lines(k, seg)])
         lines += ["", "DESIGN-RULE FINDINGS"]
-        lines += [f"  {f.get('severity', '')} {f.get('code', '')}: {f.get('message', '')}" for f in self.findings] or ["  none"]
+        lines += [f"  {finding_line(f)}" for f in self.findings] or ["  none"]
         return "\n".join(lines) + "\n"
+
+
+def _with_place(finding: dict) -> dict:
+    """``finding`` (``Finding.as_dict()``) with ``"place"``: where it is, as ``embroact check`` prints it."""
+    return {**finding, "place": finding_place(finding)}
 
 
 def operating_point(operation) -> dict | None:
@@ -713,7 +719,7 @@ def worksheet(
         speed_spm=spm,
         sewing_time_s=sewing,
         handling_time_s=len(ids) * LAY_TUBE_S,
-        findings=tuple(f.as_dict() if hasattr(f, "as_dict") else dict(f) for f in findings),
+        findings=tuple(_with_place(f.as_dict() if hasattr(f, "as_dict") else dict(f)) for f in findings),
         color_change_count=n_cc,
         machine_format=None if machine is None else machine.format,
         setup=machine_setup(machine, placement=bool(_placed(plan))) + (_start_line(plan, machine),),

@@ -51,6 +51,8 @@ __all__ = [
     "RULES",
     "rules_table_markdown",
     "count_by_severity",
+    "finding_place",
+    "finding_line",
 ]
 
 
@@ -219,20 +221,7 @@ class Finding:
         >>> Finding("EA999", Severity.INFO, "m", stitch_index=9, needle_point=4, at_needle=False).place()
         'record 9, after needle point 4'
         """
-        parts = []
-        if self.actuator is not None:
-            parts.append(self.actuator)
-        n, r = self.needle_point, self.stitch_index
-        if r is not None and n is None:
-            parts.append(f"stitch {r}")
-        elif r is not None and n is not None:
-            parts.append(f"needle point {n} (record {r})" if self.at_needle else
-                         f"record {r}, before the first needle point" if n < 0 else
-                         f"record {r}, after needle point {n}")
-        where = ", ".join(parts)
-        if self.xy_mm is not None:
-            where += f"{' ' if where else ''}at ({self.xy_mm[0]:.2f}, {self.xy_mm[1]:.2f}) mm"
-        return where or "design"
+        return finding_place(self)
 
     def as_dict(self) -> dict:
         """Plain dict for JSON (``xy_mm`` as a list or None).
@@ -461,6 +450,78 @@ rules, this layer's) first; the sleeve and model rules are declared by the
 ``embroact.predict`` modules that check them, imported wherever their findings are made.
 """
 
+
+
+def _field(finding, name: str, default=None):
+    """``finding.name`` of a :class:`Finding`, ``finding[name]`` of its ``as_dict()`` (``default`` if absent)."""
+    if isinstance(finding, Finding):
+        return getattr(finding, name)
+    value = finding.get(name, default)
+    return default if value is None and default is not None else value
+
+
+def finding_place(finding) -> str:
+    """Where ``finding`` is, as ``embroact check`` prints it: ``"A1, stitch 57 at (12.30, 4.50) mm"``.
+
+    Parameters
+    ----------
+    finding : Finding or mapping
+        A finding or its :meth:`Finding.as_dict` (the worksheet's and the report's entries).
+
+    Returns
+    -------
+    str
+        Actuator, record (or needle point) and coordinates, as far as known; ``"design"`` if none is.
+
+    Examples
+    --------
+    >>> finding_place({"code": "EA101", "actuator": "A1", "stitch_index": 12, "xy_mm": [3.0, -1.25]})
+    'A1, stitch 12 at (3.00, -1.25) mm'
+    >>> finding_place({"code": "EA501", "stitch_index": 9, "needle_point": 4, "at_needle": True})
+    'needle point 4 (record 9)'
+    >>> finding_place({"code": "EA406"})
+    'design'
+    """
+    parts = []
+    actuator = _field(finding, "actuator")
+    if actuator is not None:
+        parts.append(str(actuator))
+    n, r = _field(finding, "needle_point"), _field(finding, "stitch_index")
+    if r is not None and n is None:
+        parts.append(f"stitch {r}")
+    elif r is not None and n is not None:
+        parts.append(f"needle point {n} (record {r})" if _field(finding, "at_needle", True) else
+                     f"record {r}, before the first needle point" if n < 0 else
+                     f"record {r}, after needle point {n}")
+    where = ", ".join(parts)
+    xy = _field(finding, "xy_mm")
+    if xy is not None:
+        where += f"{' ' if where else ''}at ({float(xy[0]):.2f}, {float(xy[1]):.2f}) mm"
+    return where or "design"
+
+
+def finding_line(finding) -> str:
+    """One line for ``finding``: severity, code, message and its place (:func:`finding_place`) in brackets.
+
+    Parameters
+    ----------
+    finding : Finding or mapping
+        A finding or its :meth:`Finding.as_dict`.
+
+    Returns
+    -------
+    str
+        ``"error EA101: needle in the tube [A1, stitch 12 at (3.00, -1.25) mm]"``.
+
+    Examples
+    --------
+    >>> finding_line(Finding("EA101", Severity.ERROR, "needle in the tube", actuator="A1", stitch_index=12,
+    ...                      xy_mm=(3.0, -1.25)))
+    'error EA101: needle in the tube [A1, stitch 12 at (3.00, -1.25) mm]'
+    """
+    severity = _field(finding, "severity", "")
+    severity = getattr(severity, "value", severity)
+    return f"{severity} {_field(finding, 'code', '')}: {_field(finding, 'message', '')} [{finding_place(finding)}]"
 
 
 def rules_table_markdown(rules=RULES) -> str:
