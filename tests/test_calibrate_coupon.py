@@ -6,9 +6,13 @@ import io
 import json
 import math
 import os
+import re
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
+from svg_text_boxes import text_boxes
+
 from embroact.export.cli.main import main
 from embroact.export.files.designfile import load_design
 from embroact.export.machine.formats import FORMATS
@@ -60,7 +64,7 @@ def test_coupon_spans_the_design_space():
 
 def test_coupon_builds_and_checks_clean(coupon_dir):
     names = sorted(os.listdir(coupon_dir))
-    assert names == ["board.svg", "coupon-hoop1.toml", "coupon-hoop2.toml", "coupon.json", "fins.svg", "hoop1",
+    assert names == ["board.svg", "coupon-hoop1.toml", "coupon-hoop2.toml", "coupon.json", "fins-1.svg", "fins-2.svg", "hoop1",
                      "hoop2", "measurements.csv"]
     for h in (1, 2):
         files = sorted(os.listdir(coupon_dir / f"hoop{h}"))
@@ -107,10 +111,120 @@ def test_measurement_sheet_rows(coupon_dir):
 
 
 def test_marker_sheets(coupon_dir):
-    fins = (coupon_dir / "fins.svg").read_text()
-    assert fins.count('class="marker"') == 11 * 11 and 'id="scale-bar"' in fins
+    fins = [(coupon_dir / f"fins-{k}.svg").read_text() for k in (1, 2)]
+    assert sum(f.count('class="marker"') for f in fins) == 11 * 11 and all('id="scale-bar"' in f for f in fins)
+    assert sorted({int(i) for f in fins for i in re.findall(r'id="marker-(\d+)"', f)}) == list(range(8, 8 + 121))
     board = (coupon_dir / "board.svg").read_text()
     assert board.count('class="marker"') == 8 and 'id="scale-bar"' in board
+
+
+#: Paper (width, height) [mm] and the border printers may leave blank on every side (most: 4-6.35 mm).
+PAPERS_MM = {"A4": (210.0, 297.0), "Letter": (215.9, 279.4)}
+PRINTER_MARGIN_MM = 6.35
+
+
+def _mm(value: str) -> float:
+    assert value.endswith("mm"), value
+    return float(value[:-2])
+
+
+def _ink_boxes(svg: str):
+    """Boxes (x0, y0, x1, y1) of the text lines (tests/svg_text_boxes.py) and of every rect and line, untransformed
+    (the marker sheets draw in page coordinates)."""
+    boxes = [(b.x0, b.y0, b.x1, b.y1, b.text) for b in text_boxes(svg)[0]]
+    for el in ET.fromstring(svg).iter():
+        tag = el.tag.rsplit("}", 1)[-1]
+        if tag == "rect":
+            x, y = float(el.get("x", 0)), float(el.get("y", 0))
+            boxes.append((x, y, x + float(el.get("width")), y + float(el.get("height")), "rect"))
+        elif tag == "line":
+            xs, ys = (float(el.get("x1")), float(el.get("x2"))), (float(el.get("y1")), float(el.get("y2")))
+            boxes.append((min(xs), min(ys), max(xs), max(ys), "line"))
+    return boxes
+
+
+_NS = "{http://www.w3.org/2000/svg}"
+
+
+def _template_sheets(coupon_dir):
+    """(name, paper, svg) of each page of the hoops' tiled templates."""
+    for path in sorted(coupon_dir.glob("hoop*/template-*.html")):
+        paper = "A4" if path.name.endswith("a4.html") else "Letter"
+        for k, svg in enumerate(re.findall(r"<svg\b.*?</svg>", path.read_text(), flags=re.S)):
+            yield f"{path.parent.name}/{path.name} sheet {k + 1}", paper, svg
+
+
+def _fits(name, w, h, papers):
+    for pw, ph in papers:
+        assert (w <= pw + 1e-9 and h <= ph + 1e-9) or (h <= pw + 1e-9 and w <= ph + 1e-9), (name, w, h, pw, ph)
+
+
+def _inside_printable(name, boxes, w, h):
+    """Nothing where a printer may not print: the page's outer PRINTER_MARGIN_MM (the page at the paper's corner)."""
+    lo, hi_x, hi_y = PRINTER_MARGIN_MM, w - PRINTER_MARGIN_MM, h - PRINTER_MARGIN_MM
+    for x0, y0, x1, y1, what in boxes:
+        assert lo <= x0 and x1 <= hi_x and lo <= y0 and y1 <= hi_y, (name, what, (x0, y0, x1, y1), (w, h))
+
+
+def _size(svg: str):
+    root = ET.fromstring(svg)
+    w, h = _mm(root.get("width")), _mm(root.get("height"))
+    assert tuple(float(v) for v in root.get("viewBox").split()) == (0.0, 0.0, w, h)
+    return w, h
+
+
+def test_marker_sheets_fit_a4_and_letter(coupon_dir):
+    """At 100 % on A4 and on Letter: each marker sheet no larger than the paper, every text line (its estimated
+    extent), rect and line inside the part of the page printers print."""
+    names = sorted(p.name for p in coupon_dir.glob("*.svg"))
+    assert names == ["board.svg", "fins-1.svg", "fins-2.svg"]
+    for name in names:
+        svg = (coupon_dir / name).read_text()
+        w, h = _size(svg)
+        _fits(name, w, h, PAPERS_MM.values())
+        _inside_printable(name, _ink_boxes(svg), w, h)
+
+
+def test_template_sheets_fit_their_paper_and_show_every_label_whole(coupon_dir):
+    """The hoops' tiled templates: each page its paper's size, the page's own text inside the printable part, and
+    every label of the template whole (inside the tile) on at least one page."""
+    whole, labels = {}, set()
+    for name, paper, svg in _template_sheets(coupon_dir):
+        w, h = _size(svg)
+        _fits(name, w, h, [PAPERS_MM[paper]])
+        root = ET.fromstring(svg)
+        tile = next(g for g in root.iter(f"{_NS}g") if g.get("class") == "tile")
+        clip = next(root.iter(f"{_NS}clipPath")).find(f"{_NS}rect")
+        cx0, cy0 = float(clip.get("x")), float(clip.get("y"))
+        cx1, cy1 = cx0 + float(clip.get("width")), cy0 + float(clip.get("height"))
+        in_tile = {id(t) for t in tile.iter(f"{_NS}text")}
+        elements = [t for t in root.iter(f"{_NS}text") if (t.text or "").strip()]
+        boxes = text_boxes(svg)[0]
+        assert len(boxes) == len(elements)
+        own = [(b.x0, b.y0, b.x1, b.y1, b.text) for b, t in zip(boxes, elements) if id(t) not in in_tile]
+        assert own, name  # the footer
+        _inside_printable(name, own, w, h)
+        for b, t in zip(boxes, elements):
+            if id(t) in in_tile:
+                key = (name.split(" sheet")[0], t.text, t.get("x"), t.get("y"))
+                labels.add(key)
+                if cx0 <= b.x0 and b.x1 <= cx1 and cy0 <= b.y0 and b.y1 <= cy1:
+                    whole[key] = name
+    assert labels and labels <= set(whole), sorted(labels - set(whole))[:5]
+
+
+def test_sheet_text_wraps_and_sheets_paginate():
+    """The most actuators a coupon holds (22): three sheets, every text line inside the 10 mm margins."""
+    from embroact.export.photo.sheet import fins_svgs
+
+    coupon = plan_coupon(("zigzag", "cross"), width_count=10, angle_count=12)
+    sheets = fins_svgs(coupon)
+    assert len(coupon.actuators) == 22 and len(sheets) == 3
+    for svg in sheets:
+        boxes, (cx0, cy0, cx1, cy1) = text_boxes(svg)
+        assert (cx1, cy1) == (210.0, 279.4)
+        assert all(10.0 - 1e-6 <= b.x0 and b.x1 <= cx1 - 10.0 and 10.0 - 1e-6 <= b.y0 and b.y1 <= cy1 - 10.0
+                   for b in boxes)
 
 
 def test_aruco_table_is_opencvs():

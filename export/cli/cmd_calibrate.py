@@ -4,8 +4,8 @@ Writes into DIR (nothing when a value is refused; docs/calibration.md defends th
 
 * ``coupon-hoopK.toml`` per hoop, and ``hoopK/`` with what ``embroact build`` writes for
   it (machine files, worksheet, stitch preview, 1:1 template);
-* ``fins.svg`` (the marker fins of every actuator) and ``board.svg`` (the reference board),
-  to print at 100 %;
+* ``fins-1.svg``, ``fins-2.svg``, ... (the marker fins of every actuator, as many sheets as they
+  need) and ``board.svg`` (the reference board), to print at 100 % on A4 or Letter;
 * ``measurements.csv``: the measurement sheet, one row per actuator and pressure step,
   loading then unloading, for ``embroact measure --sheet`` and ``embroact fit --sheet``;
 * ``coupon.json``: the actuators, their marker blocks and the marker layout.
@@ -19,7 +19,7 @@ Examples
 coupon: 2 actuators on 1 hoop(s) (zigzag w 5-9 mm): ...
 0
 >>> sorted(os.listdir(out))
-['board.svg', 'coupon-hoop1.toml', 'coupon.json', 'fins.svg', 'hoop1', 'measurements.csv']
+['board.svg', 'coupon-hoop1.toml', 'coupon.json', 'fins-1.svg', 'hoop1', 'measurements.csv']
 """
 from __future__ import annotations
 
@@ -163,7 +163,7 @@ def run(args) -> int:
     from ...predict.rules import check_design
     from ..files.atomic import check_writable_dir, write_files_atomic
     from ..files.couponfile import layout_as_dict, sheet_rows, sheet_text
-    from ..photo.sheet import board_svg, fins_svg
+    from ..photo.sheet import board_svg, fins_svgs
     from ..report.build import build, parse_formats
     from .args import tube_from_args
     from .target import gate
@@ -197,7 +197,8 @@ def run(args) -> int:
         for act in coupon.on_hoop(h):
             rows.append({"design": f"coupon-hoop{h + 1}.toml", "actuator": act.label, "pattern": act.pattern,
                          "coordinate": act.coordinate, "block": act.block, "fin_side": act.fin_side.value})
-    files["fins.svg"] = fins_svg(coupon).encode("utf-8")
+    fins = fins_svgs(coupon)
+    files.update({f"fins-{k + 1}.svg": svg.encode("utf-8") for k, svg in enumerate(fins)})
     files["board.svg"] = board_svg(coupon.layout.board).encode("utf-8")
     files["measurements.csv"] = sheet_text(sheet_rows(rows, pressures)).encode("utf-8")
     doc = {"layout": layout_as_dict(coupon.layout), "pressures_kpa": pressures,
@@ -231,6 +232,7 @@ def run(args) -> int:
         for note in notes:
             print(f"note: {note}")
         print(f"measurement sheet: {len(pressures)} pressure steps up to {pressures[-1]:g} kPa and back, per actuator")
-        print("next: sew each hoop (hoopK/), glue the fins (fins.svg), photograph each pressure step with the board "
+        print("next: sew each hoop (hoopK/), glue the fins "
+              f"({', '.join(f'fins-{k + 1}.svg' for k in range(len(fins)))}), photograph each pressure step with the board "
               "(board.svg), then embroact measure PHOTOS --sheet measurements.csv and embroact fit --sheet")
     return 0

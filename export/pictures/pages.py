@@ -35,10 +35,13 @@ from dataclasses import dataclass
 
 from ...patterns.base.errors import ParameterError
 
-__all__ = ["PAPERS", "MARGIN_MM", "OVERLAP_MM", "CHECK_SQUARE_MM", "Sheet", "tile_template", "template_pages_html"]
+__all__ = ["PAPERS", "SHEET_MM", "MARGIN_MM", "OVERLAP_MM", "CHECK_SQUARE_MM", "Sheet", "tile_template", "template_pages_html"]
 
 #: Paper name -> (width, height) in portrait [mm].
 PAPERS = {"a4": ("A4", 210.0, 297.0), "letter": ("Letter", 215.9, 279.4)}
+#: A sheet that fits every paper of :data:`PAPERS` (the narrowest width, the shortest height) [mm]: what one
+#: printed page made for any of them (the coupon's marker sheets) is drawn on, portrait.
+SHEET_MM = (min(w for _, w, _ in PAPERS.values()), min(h for _, _, h in PAPERS.values()))
 #: Clear border on every side of a sheet [mm]: wider than most printers' unprintable margin (4-6.35 mm).
 MARGIN_MM = 10.0
 #: Most sheets a template is tiled on (100 A4 sheets hold about 2.5 x 1.8 m); a larger one gets a page saying so.
