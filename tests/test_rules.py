@@ -63,7 +63,8 @@ def test_finding_value_and_dict():
     assert f.stitch_index == 5 and type(f.stitch_index) is int
     assert f.as_dict() == {"code": "EA103", "severity": "error", "title": "stitch over machine maximum",
                            "message": "stitch 13 mm", "actuator": "A1", "stitch_index": 5,
-                           "xy_mm": [1.5, -2.0], "fix": RULES["EA103"].fix, "count": 1}
+                           "xy_mm": [1.5, -2.0], "fix": RULES["EA103"].fix, "count": 1,
+                           "place": "A1, stitch 5 at (1.50, -2.00) mm"}
     assert "A1, stitch 5 at (1.50, -2.00) mm" == f.place()
     assert count_by_severity([f, f]) == {"error": 2, "warning": 0, "info": 0}
     # the closing finding of a capped rule stands for the ones it does not list

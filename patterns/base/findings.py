@@ -229,8 +229,9 @@ class Finding:
         Returns
         -------
         dict
-            Code, severity, title, message, actuator, stitch_index, xy_mm, fix and count, and
-            ``needle_point``/``at_needle`` for findings on embroidery files.
+            Code, severity, title, message, actuator, stitch_index, xy_mm, fix, count and place
+            (:meth:`place`, as ``embroact check`` prints it), and ``needle_point``/``at_needle`` for
+            findings on embroidery files.
 
         Examples
         --------
@@ -248,6 +249,7 @@ class Finding:
             "xy_mm": None if self.xy_mm is None else [self.xy_mm[0], self.xy_mm[1]],
             "fix": self.fix,
             "count": self.count,
+            "place": self.place(),
             **({} if self.needle_point is None else {"needle_point": self.needle_point, "at_needle": self.at_needle}),
         }
 
