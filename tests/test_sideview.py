@@ -89,3 +89,40 @@ def test_deterministic_and_validated():
         SidePanel("x", length_mm=10.0, r0_mm=2.0, pressure_kpa=[0, 1], theta_deg=[0])
     with pytest.raises(ParameterError, match="at least one"):
         side_view_svg([])
+
+
+def _text_boxes(svg: str):
+    """(text, box, class) of every text in a side view, boxes estimated as the placer estimates them."""
+    import xml.etree.ElementTree as ET
+
+    from embroact.export.pictures.labels import text_box
+
+    ns = "{http://www.w3.org/2000/svg}"
+    root = ET.fromstring(svg)
+    for t in root.iter(f"{ns}text"):
+        if t.text:
+            yield t.text, text_box(t.text, float(t.get("x")), float(t.get("y")), float(t.get("font-size")),
+                                   t.get("text-anchor", "start")), t.get("class")
+
+
+@pytest.mark.parametrize("theta", [[0.0, 0.0, 0.0, -10.4, -23.2], [0.0, 0.0, 0.0, -68.0, -126.0]])
+def test_a_strip_bending_right_keeps_its_labels_off_the_clamp_and_the_edge(theta):
+    # the coupon's first hoop-2 panels: states 1-3 unbent end at one tip ("1,2,3"), 4-5 bend to the right
+    import xml.etree.ElementTree as ET
+
+    from embroact.export.pictures.labels import Box
+
+    panel = SidePanel("09 cross", 100.0, 2.58, [0.0, 70.0, 150.0, 220.0, 300.0], theta)
+    svg = side_view_svg([panel])
+    root = ET.fromstring(svg)
+    ns = "{http://www.w3.org/2000/svg}"
+    width, height = (float(v) for v in root.get("viewBox").split()[2:])
+    rect = next(r for r in root.iter(f"{ns}rect") if r.get("class") == "clamp")
+    x, y, w, h = (float(rect.get(k)) for k in ("x", "y", "width", "height"))
+    clamp = Box(x, y, x + w, y + h)
+    boxes = list(_text_boxes(svg))
+    fabric = next(b for t, b, _ in boxes if t == "fabric")
+    assert not fabric.overlaps(clamp) and fabric.x1 <= clamp.x0
+    assert {t for t, _, c in boxes if c == "tip"} >= {"1,2,3"}
+    for t, b, _ in boxes:
+        assert 1.0 <= b.x0 and b.x1 <= width - 1.0 and 0.0 <= b.y0 and b.y1 <= height, t

@@ -38,6 +38,8 @@ __all__ = [
     "side_pressures",
     "shape_theta_deg",
     "shape_state",
+    "described_kpa",
+    "not_drawn_note",
     "piece_lengths_mm",
     "piece_theta_deg",
     "sleeve_mm",
@@ -145,6 +147,70 @@ def shape_theta_deg(curve, pressure_kpa: float | None) -> tuple[float, float]:
     return p, theta
 
 
+def _drawable(curve) -> np.ndarray:
+    """True where a curve's sample may be drawn as the actuator's shape: a finite angle the model describes."""
+    return np.isfinite(np.asarray(curve.theta_deg, dtype=np.float64)) & _valid(curve)
+
+
+def described_kpa(curve) -> tuple[float, float] | None:
+    """The range of pressures [kPa] a shape may be drawn at: from the lowest to the highest sampled
+    pressure whose state the model describes (:func:`shape_state` draws only in it; the studio too).
+
+    Parameters
+    ----------
+    curve : Curve or StripCurve
+        A predicted curve.
+
+    Returns
+    -------
+    tuple of float or None
+        (lowest, highest) [kPa]; None when the model describes none of its states.
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import design_from_dict
+    >>> from embroact.predict.analysis import analyse
+    >>> narrow = analyse(design_from_dict({"operation": {"max_pressure_kpa": 250.0}, "actuator": [
+    ...     {"name": "N", "pattern": "zigzag", "width_mm": 5, "interval_mm": 1, "length_mm": 80}]}))
+    >>> described_kpa(narrow.curves()[0])   # it coils past 150 kPa
+    (0.0, 150.0)
+    """
+    p = np.asarray(curve.pressure_kpa, dtype=np.float64)[_drawable(curve)]
+    return (float(p.min()), float(p.max())) if len(p) else None
+
+
+def not_drawn_note(pressures_kpa: Sequence[float], statuses: Sequence[str],
+                   described: tuple[float, float] | None) -> str:
+    """The one line a view writes where it does not draw an actuator's states: at which pressures, why, and
+    the range the model describes (:func:`described_kpa`).
+
+    Parameters
+    ----------
+    pressures_kpa : sequence of float
+        The pressures not drawn [kPa], at least one.
+    statuses : sequence of str
+        Their states' status names (each named once, in order).
+    described : tuple of float or None
+        :func:`described_kpa` of the actuator's curve.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> not_drawn_note([167.0], ["COILED"], (0.0, 150.0))
+    'not drawn at 167 kPa: COILED; the model describes 0-150 kPa'
+    >>> not_drawn_note([160.0, 250.0], ["COILED", "COILED"], None)
+    'not drawn at 160-250 kPa: COILED; the model describes none of its states'
+    """
+    lo, hi = min(pressures_kpa), max(pressures_kpa)
+    at = f"{lo:g} kPa" if lo == hi else f"{lo:g}-{hi:g} kPa"
+    why = "/".join(dict.fromkeys(statuses)) or "no state"
+    rng = f"{described[0]:g}-{described[1]:g} kPa" if described else "none of its states"
+    return f"not drawn at {at}: {why}; the model describes {rng}"
+
+
 def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[float, ...]]:
     """As :func:`shape_theta_deg`, with each segment's bend there (``curve.segments``: a segmented
     actuator's whole strip, :class:`~embroact.predict.analysis.StripCurve`, holds one curve per
@@ -181,18 +247,18 @@ def shape_state(curve, pressure_kpa: float | None) -> tuple[float, float, tuple[
     """
     p = np.asarray(curve.pressure_kpa, dtype=np.float64)
     t = np.asarray(curve.theta_deg, dtype=np.float64)
-    ok = np.isfinite(t) & _valid(curve)
-    if not ok.any():
+    ok = _drawable(curve)
+    described = described_kpa(curve)
+    if described is None:
         raise ParameterError("the curve has no state the model describes to draw a shape from")
     order = np.argsort(p[ok], kind="stable")
     p, t = p[ok][order], t[ok][order]
     parts = [np.asarray(c.theta_deg, dtype=np.float64)[ok][order] for c in curve.segments]
     if pressure_kpa is None:
         return float(p[-1]), float(t[-1]), tuple(float(v[-1]) for v in parts)
-    if not p[0] <= pressure_kpa <= p[-1]:
-        raise ParameterError(f"shape_pressure_kpa must be in [{p[0]:g}, {p[-1]:g}] (the predicted range the model "
-                             "describes), "
-                             f"got {pressure_kpa:g}")
+    if not described[0] <= pressure_kpa <= described[1]:
+        raise ParameterError(f"shape_pressure_kpa must be in [{described[0]:g}, {described[1]:g}] (the predicted "
+                             f"range the model describes), got {pressure_kpa:g}")
     at = float(pressure_kpa)
     return at, float(np.interp(at, p, t)), tuple(float(np.interp(at, p, v)) for v in parts)
 
@@ -691,17 +757,46 @@ def side_panels(analysis, curves, *, count: int = DEFAULT_SIDE_STATES) -> list[S
     >>> analysis = analyse(default_design())
     >>> curves = analysis.curves()
     >>> panel, = side_panels(analysis, curves, count=3)
-    >>> panel.label, panel.pressure_kpa, [round(t, 2) for t in panel.theta_deg]
-    ('A1', (0.0, 150.0, 300.0), [0.0, 53.71, 234.19])
+    >>> panel.label, panel.pressure_kpa, [round(t, 2) for t in panel.theta_deg], panel.note
+    ('A1', (0.0, 150.0, 300.0), [0.0, 53.71, 234.19], '')
+
+    An actuator whose states at the pressures asked are past a validity limit gets an empty panel
+    and a note saying why (:func:`not_drawn_note`):
+
+    >>> from embroact.patterns.design import design_from_dict
+    >>> narrow = analyse(design_from_dict({"operation": {"max_pressure_kpa": 250.0}, "actuator": [
+    ...     {"name": "N", "pattern": "zigzag", "width_mm": 5, "interval_mm": 1, "length_mm": 80}]}))
+    >>> panel, = side_panels(narrow, narrow.curves([167.0]))
+    >>> panel.pressure_kpa, panel.note
+    ((), 'not drawn at 167 kPa: COILED; the model describes 0-150 kPa')
     """
     panels = []
-    for a, c in zip(analysis.actuators, curves):
-        picks = side_pressures(c.pressure_kpa, np.where(_valid(c), c.theta_deg, np.nan), count=count)
-        panels.append(side_panel(a, [shape_state(c, p) for p in picks]))
+    for a, c, whole in zip(analysis.actuators, curves, _default_curves(analysis, curves)):
+        ok = _drawable(c)
+        picks = side_pressures(c.pressure_kpa, np.where(ok, c.theta_deg, np.nan), count=count)
+        panels.append(side_panel(a, [shape_state(c, p) for p in picks], note=_left_out(c, ok, whole)))
     return panels
 
 
-def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]]) -> SidePanel:
+def _left_out(curve, ok: np.ndarray, whole) -> str:
+    """The note of a curve's samples not drawn (``~ok``): why, and where the model holds (``whole``'s range when
+    the curve has no drawable sample); "" when every sample is drawn."""
+    if ok.all():
+        return ""
+    from ...predict.status import status_names
+
+    names = status_names(np.asarray(curve.status)[~ok]) if getattr(curve, "status", None) is not None else []
+    return not_drawn_note(np.asarray(curve.pressure_kpa, dtype=np.float64)[~ok].tolist(), names,
+                          described_kpa(curve if ok.any() else whole))
+
+
+def _default_curves(analysis, curves) -> tuple:
+    """The analysis's curves over its own pressures where one of ``curves`` has no drawable state (the range
+    its note gives, as ``embroact preview mesh`` and the studio judge a pressure), else ``curves``."""
+    return analysis.curves() if any(not _drawable(c).any() for c in curves) else tuple(curves)
+
+
+def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]], *, note: str = "") -> SidePanel:
     """The side-view panel of one analysed actuator in ``states``, for a chain of one segment as for five.
 
     The fabric line is the chain of :meth:`~embroact.predict.analysis.ActuatorAnalysis.bend_pieces`:
@@ -716,6 +811,8 @@ def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]]) -> S
     states : sequence of (float, float, sequence of float)
         Per state drawn its pressure [kPa], the whole strip's bend [deg] and each segment's bend [deg],
         as :func:`shape_state` gives them.
+    note : str, optional
+        The panel's one-line note (:func:`not_drawn_note`: the states it leaves out and why).
 
     Returns
     -------
@@ -736,7 +833,7 @@ def side_panel(act, states: Sequence[tuple[float, float, Sequence[float]]]) -> S
                      length_mm=sum(lengths), r0_mm=sleeve_mm(act)[1], pressure_kpa=tuple(p for p, _, _ in states),
                      theta_deg=tuple(t for _, t, _ in states), segment_lengths_mm=lengths,
                      segment_theta_deg=tuple(piece_theta_deg(act, parts) for _, _, parts in states),
-                     marks_mm=segment_boundaries_mm(act))
+                     marks_mm=segment_boundaries_mm(act), note=note)
 
 
 def shape_meshes(analysis, curves, *, pressure_kpa: float | None = None, tolerance_mm: float | None = None):

@@ -67,6 +67,9 @@ _PANEL_FONT_MM = 4.5
 _LEGEND_FONT_MM = 3.6
 _TIP_FONT_MM = 3.5
 _SIDE_FONT_MM = 3.0
+_SIDE_GAP_MM = 0.8  # between the clamp and a face name
+_NOTE_FONT_MM = 3.2
+_FRAME_INSET_MM = 1.5  # labels keep this far from the picture's edges
 _SAME_TIP_MM = 1.5  # tips closer than this get one label ("1,2")
 
 
@@ -96,6 +99,9 @@ class SidePanel:
     marks_mm : array-like, optional
         Arc lengths along the fabric line [mm] marked (open circles on the tube) in every
         state, e.g. where one segment of a segmented actuator gives way to the next.
+    note : str, optional
+        One line written under the legend (``class="not-drawn"``), e.g. the states left out and why
+        (:func:`~embroact.export.pictures.previews.not_drawn_note`); "" (default): none.
 
     Examples
     --------
@@ -112,6 +118,7 @@ class SidePanel:
     segment_lengths_mm: tuple[float, ...] = ()
     segment_theta_deg: tuple[tuple[float, ...], ...] = ()
     marks_mm: tuple[float, ...] = ()
+    note: str = ""
 
     def __post_init__(self) -> None:
         check_range("length_mm", self.length_mm, low=0.0)
@@ -234,8 +241,15 @@ def _state_lines(panel: SidePanel) -> list[tuple[float, float, BentShape, dict[f
     return [(p, t, shape, {o: shape_line_mm(shape, o) for o in offsets}) for p, t, shape in _states(panel)]
 
 
+def _side_names(panel: SidePanel) -> tuple[tuple[str, float, int], ...]:
+    """The face names at the clamp: (text, x of the clamp's edge it sits beside [mm], direction)."""
+    return (("fabric", -3.0, -1), ("tube", 2.0 * panel.r0_mm + 3.0, 1))
+
+
 def _panel_bounds(panel: SidePanel, states) -> tuple[float, float, float, float]:
-    pts = [np.array([[-3.0, 4.0], [2.0 * panel.r0_mm + 3.0, 0.0]])]
+    """The panel's extent (x0, z0, x1, z1) [mm]: the clamp with room for its face names beside it, and every state."""
+    room = [x + d * (_SIDE_GAP_MM + text_box(text, 0.0, 0.0, _SIDE_FONT_MM).x1) for text, x, d in _side_names(panel)]
+    pts = [np.array([[room[0], 4.0], [room[1], 0.0]])]
     pts += [_band(lines, -FABRIC_THICKNESS_MM, 2.0 * panel.r0_mm) for *_, lines in states]
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
@@ -283,6 +297,11 @@ def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, lef
         legend = f"{k + 1}: {p:g} kPa, {t:.1f} deg" if math.isfinite(p) else f"{k + 1}: {t:.1f} deg"
         sg.add(dwg.text(legend, insert=(left + 5.5, y + 0.6), font_size=_LEGEND_FONT_MM))
         placer.block_box(text_box(legend, left + 5.5, y + 0.6, _LEGEND_FONT_MM).union(Box(left, y - 3.0, left, y)))
+    if panel.note:
+        y = legend_y + len(states) * _LEGEND_ROW_MM
+        g.add(dwg.text(panel.note, insert=(left, y + 0.6), font_size=_NOTE_FONT_MM, fill="#a33",
+                       **{"class": "not-drawn"}))
+        placer.block_box(text_box(panel.note, left, y + 0.6, _NOTE_FONT_MM))
     clamp = (dx - 3.0, dy - 4.0, 2.0 * r0 + 6.0, 4.0)
     g.add(dwg.rect(clamp[:2], clamp[2:], fill="#444", **{"class": "clamp"}))
     placer.block_box(Box(clamp[0], clamp[1], clamp[0] + clamp[2], clamp[1] + clamp[3]))
@@ -291,8 +310,8 @@ def _draw_panel(dwg, parent, panel: SidePanel, states, dx: float, dy: float, lef
 
 def _draw_sides(dwg, parent, panel: SidePanel, dx: float, dy: float, placer: Placer) -> None:
     """Name the two faces at the clamp: the fabric to its left (-x), the tube on the thread side to its right."""
-    for text, x, direction in (("fabric", dx - 3.0, (-1, 0)), ("tube", dx + 2.0 * panel.r0_mm + 3.0, (1, 0))):
-        lab = placer.place(text, (x, dy - 2.0), _SIDE_FONT_MM, gap=0.8, directions=(direction, (direction[0], -1)))
+    for text, x, d in _side_names(panel):
+        lab = placer.place(text, (dx + x, dy - 2.0), _SIDE_FONT_MM, gap=_SIDE_GAP_MM, directions=((d, 0), (d, -1)))
         parent.add(dwg.text(text, insert=(round(lab.x, 3), round(lab.y, 3)), font_size=_SIDE_FONT_MM,
                             text_anchor=lab.anchor, fill="#555", **{"class": "side-name"}))
 
@@ -360,11 +379,11 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     top = max(b[3] for b in bounds) + 24.0
     bottom = min(b[1] for b in bounds)
     legend_y = top - bottom + 6.0
-    rows = max(len(s) for s in states)
+    rows = max(len(s) + bool(p.note) for p, s in zip(panels, states))
     x, lefts = _MARGIN_MM, []
-    for b in bounds:
+    for p, b in zip(panels, bounds):
         lefts.append(x)
-        x += max(b[2] - b[0], _LEGEND_WIDTH_MM) + _PANEL_GAP_MM
+        x += max(b[2] - b[0], _LEGEND_WIDTH_MM, text_box(p.note, 0.0, 0.0, _NOTE_FONT_MM).x1) + _PANEL_GAP_MM
     width = max(x - _PANEL_GAP_MM + _MARGIN_MM + 20.0, text_box(title, 0.0, 0.0, 5.0).x1 + 2 * _MARGIN_MM)
     height = legend_y + rows * _LEGEND_ROW_MM + _MARGIN_MM
     dwg = Drawing(size=(f"{width * PX_PER_MM:.0f}", f"{height * PX_PER_MM:.0f}"),
@@ -372,7 +391,7 @@ def side_view_svg(panels: Sequence[SidePanel], *, title: str = "Bent shape (side
     dwg.add(dwg.rect((0, 0), (round(width, 3), round(height, 3)), fill="#fff"))
     root = dwg.g(style=_FONT)
     dwg.add(root)
-    placer = Placer(Box(0.0, 0.0, width, height), margin=0.3)
+    placer = Placer(Box(0.0, 0.0, width, height).grown(-_FRAME_INSET_MM), margin=0.3)
     root.add(dwg.text(title, insert=(_MARGIN_MM, 7.0), font_size=5, font_weight="bold"))
     placer.block_box(text_box(title, _MARGIN_MM, 7.0, 5.0))
     bar_x, bar_y = width - _MARGIN_MM - 10.0, height - _MARGIN_MM

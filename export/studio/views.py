@@ -86,7 +86,10 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
     Returns
     -------
     list of dict
-        ``name``, ``theta_deg``, ``status``, ``segment_theta_deg`` and ``model_error`` per actuator.
+        ``name``, ``theta_deg``, ``status``, ``segment_theta_deg`` and ``model_error`` per actuator;
+        ``drawn`` (whether the views draw this state as a shape: one the model describes, in
+        ``described_kpa``, the range ``embroact preview mesh`` takes a shape pressure in), and
+        ``note``, the line the views write where it is not drawn (None where it is).
 
     Examples
     --------
@@ -100,14 +103,37 @@ def bend_at(analysis, pressure_kpa: float) -> list[dict]:
     """
     from ...predict.status import Status
 
+    p = float(pressure_kpa)
     try:
-        whole = analysis.curves((float(pressure_kpa),))
+        whole, described = analysis.curves((p,)), analysis.curves()
     except EmbroactError as exc:
         return [{"name": a.name, "theta_deg": None, "status": None, "segment_theta_deg": [],
-                 "model_error": a.model_error or str(exc)} for a in analysis.actuators]
+                 "model_error": a.model_error or str(exc), "drawn": False, "described_kpa": None,
+                 "note": None} for a in analysis.actuators]
     return [{"name": a.name, "theta_deg": float(c.theta_deg[0]), "status": Status(int(c.status[0])).name,
              "segment_theta_deg": [float(sc.theta_deg[0]) for sc in c.segments],
-             "model_error": None} for a, c in zip(analysis.actuators, whole)]
+             "model_error": None, **_drawn(c, d, p)} for a, c, d in zip(analysis.actuators, whole, described)]
+
+
+def _drawn(at, curve, pressure_kpa: float) -> dict:
+    """Whether the state ``at`` (a curve at ``pressure_kpa`` alone) is drawn as a shape: a state the model
+    describes, in the range ``embroact preview mesh`` draws in (:func:`~embroact.export.pictures.previews.described_kpa`
+    of ``curve``, the actuator's curve over the analysis's pressures); else the note the views write."""
+    from ...predict.status import is_model_state, status_names
+    from ..pictures.previews import described_kpa, not_drawn_note
+
+    rng = described_kpa(curve)
+    state = bool(np.isfinite(at.theta_deg[0]) and is_model_state(at.status)[0])
+    if state and rng is not None and rng[0] <= pressure_kpa <= rng[1]:
+        return {"drawn": True, "described_kpa": list(rng), "note": None}
+    if state:  # in a gap of the sampled range: the nearest sample left out says why
+        out = ~is_model_state(curve.status)
+        p = np.asarray(curve.pressure_kpa, dtype=np.float64)
+        names = status_names(np.asarray(curve.status)[out][np.argsort(np.abs(p[out] - pressure_kpa))[:1]])
+    else:
+        names = status_names(at.status)
+    return {"drawn": False, "described_kpa": None if rng is None else list(rng),
+            "note": not_drawn_note([pressure_kpa], names, rng)}
 
 
 def stitches_svg(plan, findings) -> str:
@@ -189,7 +215,8 @@ def chart_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     try:
         curves = analysis.curves()
         series, svg = pv.bend_series(analysis, pv.chart_curves(analysis, curves)), pv.bend_chart(analysis, curves)
-        thetas = [t for a, b in zip(analysis.actuators, bends)  # the series drawn: whole strip, then listed segments
+        thetas = [t if b["drawn"] else None  # the series drawn: whole strip, then listed segments
+                  for a, b in zip(analysis.actuators, bends)
                   for t in [b["theta_deg"], *a.segments.one_or_all((), b["segment_theta_deg"])]]
     except EmbroactError as exc:
         return message_svg(f"no bend chart: {exc}")
@@ -243,7 +270,8 @@ def side_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
     for a, b in zip(analysis.actuators, bends):
         unbent = (0.0, 0.0, (0.0,) * len(b["segment_theta_deg"]))
         at = (pressure_kpa, b["theta_deg"], b["segment_theta_deg"])
-        panels.append(pv.side_panel(a, [unbent, at] if pressure_kpa > 0 else [unbent]))
+        panels.append(pv.side_panel(a, [unbent, at] if pressure_kpa > 0 and b["drawn"] else [unbent],
+                                    note=b["note"] or ""))
     return side_view_svg(panels, title=f"Side view at {pressure_kpa:g} kPa")
 
 
@@ -278,10 +306,14 @@ def shape3d_svg(analysis, bends: list[dict], pressure_kpa: float) -> str:
 
     if any(b["theta_deg"] is None or not np.isfinite(b["theta_deg"]) for b in bends):
         return message_svg("no 3D view: the model gives no finite bend here")
+    notes = "; ".join(f"{b['name']} {b['note']}" for b in bends if not b["drawn"])
+    drawn = [(a, b) for a, b in zip(analysis.actuators, bends) if b["drawn"]]
+    if not drawn:
+        return message_svg(f"no 3D view at {pressure_kpa:g} kPa: {notes}")
     shapes = [actuator_shape(a, b["theta_deg"], b["segment_theta_deg"], tolerance_mm=SHAPE3D_TOLERANCE_MM, measure=False)
-              for a, b in zip(analysis.actuators, bends)]
-    return mesh_svg(shapes, width_px=SHAPE3D_WIDTH_PX,
-                    title=shape3d_title({a.name: pressure_kpa for a in analysis.actuators}))
+              for a, b in drawn]
+    title = shape3d_title({a.name: pressure_kpa for a, _ in drawn})
+    return mesh_svg(shapes, width_px=SHAPE3D_WIDTH_PX, title=f"{title}; {notes}" if notes else title)
 
 
 def worksheet_figures(ws) -> dict:

@@ -163,7 +163,7 @@ function showNumbers(v) {
       : `${a.name} (${a.pattern})`;
     const rows = [
       [`bend at ${fmt(v.pressure_kpa, 0)} kPa [deg]`, fmt(a.theta_deg, 2), `angle-${i}`],
-      ["state", a.status || a.model_error || "n/a", `status-${i}`],
+      ["state", a.note || a.status || a.model_error || "n/a", `status-${i}`],  // the note names the status
     ];
     if (!segs.length) rows.push(...geometryRows(a.derived, a.model, i));
     box.append(h, table(rows));
