@@ -78,12 +78,10 @@ def _summary(path: str, res, act) -> str:
 
     r = act.derived
     angle = f", alpha0 {r.angle_deg:.4g} deg" if pattern_kind(r.pattern).has_angle else ""
-    stops = f"{res.stops} stop" + ("s" if res.stops != 1 else "")
-    trims = f"{res.trims} trim" + ("s" if res.trims != 1 else "")
     split = f", {res.split_legs} long legs split" if res.split_legs else ""
     model = (f"G {act.model.g_mpa:.4g} MPa, P0 {act.model.p0_kpa:.4g} kPa ({act.choice.p0_source})"
              if act.choice is not None else f"no model ({act.model_error})")
-    return (f"wrote {path} ({res.format}): {res.stitches} stitches, {stops}, {trims}{split}; "
+    return (f"wrote {path} ({res.format}): {res.counts_text()}{split}; "
             f"w {r.width_mm:.4g} mm, s {r.interval_mm:.4g} mm{angle}, l0 {r.length_mm:.4g} mm; "
             f"r0 {r.r0_mm:.4g} mm; {model}")
 

@@ -182,7 +182,9 @@ def _machine_file_stitches(args, out: Path) -> tuple[str, dict]:
     """``preview stitches FILE.dst``: the file's records to scale (no design: no tubes, no model)."""
     from ...patterns.base.errors import ParameterError
     from ..files.atomic import write_text_atomic
+    from ...patterns.base.validate import MACHINE_FILE_BYTES, read_input
     from ..machine.filecheck import read_records, records_plan
+    from ..machine.formats import read_result
     from ..pictures.stitches import plan_svg
 
     if args.kind != "stitches":
@@ -193,10 +195,13 @@ def _machine_file_stitches(args, out: Path) -> tuple[str, dict]:
     flags = model_flags_given(args)
     if flags:
         raise ParameterError(f"{flags[0]} applies to design files; an embroidery file is previewed without a model")
-    plan = records_plan(read_records(args.design))
-    write_text_atomic(out, plan_svg(plan))
-    return (f"stitches of {Path(args.design).name}, {plan.stitch_count} stitches",
-            {"stitch_count": plan.stitch_count, "input": args.design})
+    records = read_records(args.design)
+    plan = records_plan(records)
+    machine = read_result(read_input(args.design, MACHINE_FILE_BYTES, "embroidery file"), records.suffix, args.design)
+    write_text_atomic(out, plan_svg(plan, machine=machine))
+    return (f"stitches of {Path(args.design).name}, {machine.counts_text()}",
+            {"stitch_count": machine.stitches, "stop_count": machine.stops, "trim_count": machine.trims,
+             "input": args.design})
 
 
 def _render(args, out: Path, analysis) -> tuple[str, dict]:

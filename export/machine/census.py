@@ -35,13 +35,17 @@ pauses_mm
     Where the machine waits for the operator, in order: each run of stop records
     (stop-code formats) or each colour change (colour formats; VP3: the new block's start,
     where its first stitch is), in the file frame (mm, y up, origin at the file's start point).
+pause_stops
+    Stop records at each pause (2: a double stop, ``cord_stop = "double"``; 0: a colour change).
+trims_mm
+    Where each trim cuts the thread, in order, in the same frame.
 
 Examples
 --------
 >>> body = bytes([0x01, 0x00, 0x03, 0x00, 0x00, 0xC3, 0x00, 0x00, 0xC3, 0x02, 0x00, 0x03, 0x00, 0x00, 0xF3])
 >>> c = census(bytes(512) + body, "dst")
->>> c.stitches, c.stops, c.pauses_mm, c.needle_points_mm.tolist()
-(2, 2, ((0.1, 0.0),), [[0.1, 0.0], [0.0, 0.0]])
+>>> c.stitches, c.stops, c.pauses_mm, c.pause_stops, c.needle_points_mm.tolist()
+(2, 2, ((0.1, 0.0),), (2,), [[0.1, 0.0], [0.0, 0.0]])
 """
 from __future__ import annotations
 
@@ -87,6 +91,10 @@ class Census:
         Where the machine waits for the operator, in order [mm], file frame.
     thread_names : tuple of str
         Thread names the file carries (empty for formats without names).
+    pause_stops : tuple of int
+        Stop records at each pause (2: a double stop; 0: a colour change).
+    trims_mm : tuple of (float, float)
+        Where each trim cuts [mm], file frame.
 
     Examples
     --------
@@ -109,6 +117,8 @@ class Census:
     needle_points_mm: np.ndarray
     pauses_mm: tuple[tuple[float, float], ...]
     thread_names: tuple[str, ...]
+    pause_stops: tuple[int, ...] = ()
+    trims_mm: tuple[tuple[float, float], ...] = ()
 
 
 def _point(x: int, y: int) -> tuple[float, float]:
@@ -117,14 +127,14 @@ def _point(x: int, y: int) -> tuple[float, float]:
 
 def _dst(data: bytes) -> Census:
     x = y = 0
-    pts, pauses = [], []
-    stitches = jumps = trims = stops = 0
+    pts, pauses, pause_stops, cuts = [], [], [], []
+    stitches = jumps = stops = 0
     run: list[tuple[int, int]] = []  # the jump run being read
 
     def close_run() -> None:
-        nonlocal jumps, trims
+        nonlocal jumps
         if len(run) >= 3 and sum(d[0] for d in run[:3]) == 0 and sum(d[1] for d in run[:3]) == 0:
-            trims += 1
+            cuts.append(_point(x - sum(d[0] for d in run), y - sum(d[1] for d in run)))  # where the run began
             jumps += len(run) - 3
         else:
             jumps += len(run)
@@ -145,9 +155,12 @@ def _dst(data: bytes) -> Census:
             stops += 1
             if previous != "stop":
                 pauses.append(_point(x, y))
+                pause_stops.append(0)
+            pause_stops[-1] += 1
         previous = kind
     close_run()
-    return Census("dst", stitches, jumps, trims, stops, 0, _array(pts), tuple(pauses), ())
+    return Census("dst", stitches, jumps, len(cuts), stops, 0, _array(pts), tuple(pauses), (), tuple(pause_stops),
+                  tuple(cuts))
 
 
 def _array(pts) -> np.ndarray:
@@ -219,8 +232,8 @@ def census(data: bytes, fmt: str) -> Census:
     if fmt == "dst":
         return _dst(data)
     pe, pattern = _read(data, fmt)
-    pts, pauses = [], []
-    stitches = jumps = trims = stops = colors = 0
+    pts, pauses, pause_stops, cuts = [], [], [], []
+    stitches = jumps = stops = colors = 0
     previous = None
     records = pattern.stitches
     for n, (x, y, c) in enumerate(records):
@@ -235,15 +248,19 @@ def census(data: bytes, fmt: str) -> Census:
                 jumps += 1  # else the trim-flagged jump's own move, or a colour block's start
         elif cmd == pe.TRIM:
             if previous != pe.TRIM:
-                trims += 1
+                cuts.append(here)
         elif cmd == pe.STOP or (cmd == pe.COLOR_CHANGE and fmt in STOP_CODE_FORMATS):
             stops += 1
             if previous not in (pe.STOP, pe.COLOR_CHANGE):
                 pauses.append(here)
+                pause_stops.append(0)
+            pause_stops[-1] += 1
         elif cmd in (pe.COLOR_CHANGE, pe.NEEDLE_SET):
             colors += 1
             if fmt in COLOR_FORMATS:
                 pauses.append(_block_start(records, n, pe) if fmt in BLOCK_START_FORMATS else here)
+                pause_stops.append(0)
         previous = cmd
     names = tuple(t.description or "" for t in pattern.threadlist) if fmt in NAMED_FORMATS else ()
-    return Census(fmt, stitches, jumps, trims, stops, colors, _array(pts), tuple(pauses), names)
+    return Census(fmt, stitches, jumps, len(cuts), stops, colors, _array(pts), tuple(pauses), names,
+                  tuple(pause_stops), tuple(cuts))

@@ -64,7 +64,7 @@ from ...patterns.params import Tube
 from .vp3note import read_origin_mm
 from ...patterns.plan import Command, Role, StitchPlan
 from ...patterns.rules import RuleSettings, TubeLayout, layout_from_records
-from .census import RAW_READ, raw_reader
+from .census import COLOR_FORMATS, RAW_READ, raw_reader
 from .dst import END_BYTE, HEADER_SIZE
 from ..files.tomltext import load_toml
 
@@ -326,7 +326,10 @@ def records_plan(records: FileRecords) -> StitchPlan:
     """
     roles = np.array([_FILE_ROLES.get(Command(int(c)), Role.CONTROL) for c in records.commands], dtype=np.int8)
     xy = records.xy_mm * np.array([1.0, -1.0]) + 0.0
-    tube = np.maximum(np.cumsum(records.commands == Command.STOP) - 1, 0)  # stop k lays tube k + 1
+    stop = records.commands == Command.STOP
+    pause = stop & ~np.concatenate([[False], stop[:-1]])  # a run of stops (a double stop) is one pause
+    # pause k lays tube k + 1 (a colour format's first tube is laid before start: its colour changes lay the next)
+    tube = np.maximum(np.cumsum(pause) - (records.suffix not in COLOR_FORMATS), 0)
     return StitchPlan(xy, records.commands, roles, tube, (), Path(records.path).stem)
 
 

@@ -66,7 +66,7 @@ from .census import NAMED_FORMATS, census
 from .encode import PLACEMENT_LABEL, MachinePattern, to_pattern
 from .vp3note import add_origin_note
 
-__all__ = ["FIXED_DATE", "MachineFormat", "WriteResult", "FORMATS", "machine_format", "encode", "write"]
+__all__ = ["FIXED_DATE", "MachineFormat", "WriteResult", "FORMATS", "machine_format", "encode", "write", "read_result"]
 
 FIXED_DATE = "20000101000000"
 """Date stamped into formats that carry one (JEF), so output is reproducible."""
@@ -326,6 +326,10 @@ class WriteResult:
         Plan position of the file's origin [mm] ((0, 0) but for VP3).
     notes : tuple of str
         What this format cannot carry.
+    pause_stops : tuple of int
+        Stop records at each pause (2: a double stop; 0: a colour change).
+    trims_mm : tuple of (float, float)
+        Where each trim cuts, plan frame [mm, y up].
 
     Examples
     --------
@@ -349,6 +353,8 @@ class WriteResult:
     thread_names: tuple[str, ...] = ()
     origin_mm: tuple[float, float] = (0.0, 0.0)
     notes: tuple[str, ...] = ()
+    pause_stops: tuple[int, ...] = ()
+    trims_mm: tuple[tuple[float, float], ...] = ()
 
     @property
     def pauses(self) -> int:
@@ -375,6 +381,21 @@ class WriteResult:
             return (True,) * self.pauses
         return tuple(not name.endswith(PLACEMENT_LABEL) for name in names[1:])
 
+    def counts_text(self) -> str:
+        """The file's counts as every command prints them (``106 stitches, 1 stop, 1 trim``).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> WriteResult(None, "dst", 0, 106, 0, 1, 2, 0, 0).counts_text()
+        '106 stitches, 2 stops, 1 trim'
+        """
+        return (f"{self.stitches} stitches, {self.stops} stop{'s' * (self.stops != 1)}, "
+                f"{self.trims} trim{'s' * (self.trims != 1)}")
+
     def as_dict(self) -> dict:
         """Plain dict for JSON output (lists for tuples).
 
@@ -392,7 +413,7 @@ class WriteResult:
         out = {}
         for k in self.__slots__:
             v = getattr(self, k)
-            out[k] = [list(p) for p in v] if k == "pauses_mm" else list(v) if isinstance(v, tuple) else v
+            out[k] = [list(p) for p in v] if k in ("pauses_mm", "trims_mm") else list(v) if isinstance(v, tuple) else v
         return out
 
 
@@ -448,12 +469,55 @@ def encode(plan: StitchPlan, fmt: str | MachineFormat = "dst", *, split_long: bo
     data = buf.getvalue()
     if f.postprocess is not None:
         data = f.postprocess(data, mp)
-    c = census(data, f.name)
-    ox, oy = mp.origin_mm
-    pauses = tuple((round(x + ox, 1) + 0.0, round(y + oy, 1) + 0.0) for x, y in c.pauses_mm)
-    return data, WriteResult(None, f.name, len(data), c.stitches, c.jumps, c.trims, c.stops, c.color_changes,
-                             mp.split_legs, _cord_stop_written(f, cord_stop), pauses, c.thread_names,
-                             mp.origin_mm, _notes(f, mp))
+    return data, _result(census(data, f.name), len(data), mp.split_legs, _cord_stop_written(f, cord_stop),
+                         mp.origin_mm, _notes(f, mp))
+
+
+def _result(c, size_bytes: int, split_legs: int, cord_stop: str | None, origin_mm, notes) -> WriteResult:
+    """A :class:`WriteResult` of census ``c``, its positions moved from the file frame to the plan frame."""
+    ox, oy = origin_mm
+
+    def plan_frame(points):
+        return tuple((round(x + ox, 1) + 0.0, round(y + oy, 1) + 0.0) for x, y in points)
+
+    return WriteResult(None, c.format, size_bytes, c.stitches, c.jumps, c.trims, c.stops, c.color_changes, split_legs,
+                       cord_stop, plan_frame(c.pauses_mm), c.thread_names, tuple(origin_mm), notes, c.pause_stops,
+                       plan_frame(c.trims_mm))
+
+
+def read_result(data: bytes, fmt: str, path: str | None = None) -> WriteResult:
+    """What a machine file's bytes hold, as :func:`encode` reports it for a file it writes.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's bytes.
+    fmt : str
+        Its format's suffix.
+    path : str, optional
+        The file, for the result's ``path``.
+
+    Returns
+    -------
+    WriteResult
+        Counted by :func:`embroact.export.machine.census.census`; positions in the frame
+        :func:`embroact.export.machine.filecheck.records_plan` draws the file in (a VP3 file
+        embroact wrote: the design's).
+
+    Examples
+    --------
+    >>> from embroact.patterns.design import build_plan, default_design
+    >>> data, res = encode(build_plan(default_design()), "jef")
+    >>> read_result(data, "jef").counts_text(), res.counts_text()
+    ('106 stitches, 0 stops, 1 trim', '106 stitches, 0 stops, 1 trim')
+    """
+    from .vp3note import read_origin_mm
+
+    c = census(data, fmt)
+    origin = (read_origin_mm(data) if fmt == "vp3" else None) or (0.0, 0.0)
+    stop_records = set(c.pause_stops) if fmt in ("dst", "exp") else set()
+    cord_stop = None if not stop_records else CordStop.DOUBLE.value if stop_records == {2} else CordStop.SEQUENCE.value
+    return replace(_result(c, len(data), 0, cord_stop, origin, ()), path=path)
 
 
 def write(

@@ -95,10 +95,16 @@ def _ring_path(rings: list[np.ndarray]) -> str:
     return " ".join(f"M {_pts(r)} Z" for r in rings)
 
 
-def _param_lines(plan: StitchPlan) -> list[str]:
-    n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
-    lines = [f"{plan.name}: {plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
-             f"{n_trim} trim{'s' * (n_trim != 1)}"]
+def _param_lines(plan: StitchPlan, machine=None) -> list[str]:
+    """The counts (a machine file's, as its writer reports them, when given; else the plan's) and the
+    parameters of every segment."""
+    if machine is not None:
+        counts = machine.counts_text()
+    else:
+        n_stop, n_trim = plan.count(Command.STOP), plan.count(Command.TRIM)
+        counts = (f"{plan.stitch_count} stitches, {n_stop} stop{'s' * (n_stop != 1)}, "
+                  f"{n_trim} trim{'s' * (n_trim != 1)}")
+    lines = [f"{plan.name}: {counts}"]
     parts = []
     for a in plan.actuators:  # one line per segment of the chain
         for name, pattern, r in [(a.segments.part_name(a.name, k), s.pattern, s.realised)
@@ -146,9 +152,11 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     plan : StitchPlan
         The records to draw.
     machine : WriteResult, optional
-        A machine file written from ``plan``: the stop marks are where that file makes the
-        machine wait (a colour format's colour changes, tubes laid before start named), and
-        the travel starts at its origin.  Default: the plan's STOP records.
+        A machine file written from ``plan`` (or read, :func:`embroact.export.machine.formats.read_result`):
+        the counts are that file's, the stop marks are where it makes the machine wait (a colour
+        format's colour changes, tubes laid before start named; a double stop one mark), the trim
+        marks where it cuts, and the travel starts at its origin.  Default: the plan's STOP and
+        TRIM records.
     margin_mm : float
         Fabric margin around the design [mm], in [0, 100].
     point_radius_mm, leg_width_mm : float
@@ -184,11 +192,12 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
     lo, hi = (np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)) if boxes else (
         np.zeros(2), np.zeros(2))
     fab_lo, fab_hi = lo - margin, hi + margin
-    texts = _param_lines(plan) + _pause_lines(machine)
+    texts = _param_lines(plan, machine) + _pause_lines(machine)
     pad = 3.0
     text_w = max(len(t) for t in texts) * _CHAR_EM * _FONT_MM
     width = max(fab_hi[0] - fab_lo[0], text_w) + 2 * pad
-    entries = _legend_entries(plan)
+    stop_marks, trim_points = _stop_marks(plan, machine), _trim_points(plan, machine)
+    entries = _legend_entries(plan, bool(stop_marks), bool(len(trim_points)))
     legend_rows = _legend_rows(entries, max(fab_hi[0] - fab_lo[0], text_w))
     text_h = _TEXT_ROW_MM * (len(texts) + 2) + 4.0 + len(legend_rows) * _LEGEND_ROW_MM
     height = (fab_hi[1] - fab_lo[1]) + 2 * pad + text_h
@@ -214,6 +223,7 @@ def plan_svg(plan: StitchPlan, *, margin_mm: float = 5.0, point_radius_mm: float
                                             stroke_width="0.1", stroke_dasharray="0.4,0.4"))
     placer = Placer(Box(fab_lo[0], -fab_hi[1], fab_hi[0], -fab_lo[1]), margin=0.2)
     _draw_records(dwg, layer, plan, pr, lw, show_points, machine, placer)
+    _draw_marks(dwg, layer, placer, stop_marks, trim_points)
     y_text = -fab_lo[1] + pad + 2.0
     _draw_scale_and_text(dwg, layer, texts, fab_lo[0], y_text, fab_hi[0] - fab_lo[0])
     _draw_legend(dwg, layer["legend"], entries, fab_lo[0], y_text + 1.0 + (len(texts) + 1) * _TEXT_ROW_MM, width - 2 * pad)
@@ -283,6 +293,13 @@ def _pause_lines(machine) -> list[str]:
     return [f"stops: where the {machine.format.upper()} file makes the machine wait ({kind})"]
 
 
+def _trim_points(plan: StitchPlan, machine) -> np.ndarray:
+    """Where each trim cuts (plan frame, mm): the machine file's trims, or the plan's TRIM records."""
+    if machine is None:
+        return plan.xy_mm[plan.commands == Command.TRIM]
+    return np.array(machine.trims_mm, dtype=np.float64).reshape(-1, 2)
+
+
 def _stop_marks(plan: StitchPlan, machine) -> list[tuple[np.ndarray, str]]:
     """(where, label) of every stop mark: the plan's STOP records, or the machine file's pauses."""
     names = {k: a.name for k, a in enumerate(plan.actuators)}
@@ -294,19 +311,24 @@ def _stop_marks(plan: StitchPlan, machine) -> list[tuple[np.ndarray, str]]:
     tube = machine.tube_pauses()
     before = len(ids) - sum(tube)
     word = "PAUSE" if machine.format in COLOR_FORMATS else "STOP"
-    first_stop = {int(plan.actuator[i]): plan.xy_mm[i] for i in stops[::-1]}
-    marks = [(first_stop.get(k, plan.xy_mm[0]), f"before start: lay tube {names.get(k, f'A{k + 1}')}")
+    first = {int(plan.actuator[i]): plan.xy_mm[i]  # a tube's first stop, else its first stitch (a file's)
+             for i in np.flatnonzero(plan.commands == Command.STITCH)[::-1]}
+    first.update({int(plan.actuator[i]): plan.xy_mm[i] for i in stops[::-1]})
+    marks = [(first.get(k, plan.xy_mm[0]), f"before start: lay tube {names.get(k, f'A{k + 1}')}")
              for k in ids[:before]]
     later = iter(ids[before:])
-    for n, (p, is_tube) in enumerate(zip(machine.pauses_mm, tube), start=1):
+    records = tuple(machine.pause_stops) + (1,) * (len(machine.pauses_mm) - len(machine.pause_stops))
+    for n, (p, is_tube, k_stops) in enumerate(zip(machine.pauses_mm, tube, records), start=1):
         what = f"lay tube {names.get(k, f'A{k + 1}')}" if is_tube and (k := next(later, None)) is not None \
             else "press start"
-        marks.append((np.asarray(p, dtype=np.float64), f"{word} {n}: {what}"))
+        double = f" ({k_stops} stop records: one double stop)" if k_stops > 1 else ""
+        marks.append((np.asarray(p, dtype=np.float64), f"{word} {n}: {what}{double}"))
     return marks
 
 
 def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_points: bool, machine,
                   placer: Placer) -> None:
+    """Placement lines, legs, travel, needle points and ties; the legs' segments blocked for the labels."""
     cmds, xy = plan.commands, plan.xy_mm
     stitch = cmds == Command.STITCH
     # legs: consecutive STITCH records, binned by sewing order into one path per colour; the stitches of a
@@ -348,26 +370,23 @@ def _draw_records(dwg, layer, plan: StitchPlan, pr: float, lw: float, show_point
         x, y = xy[i]
         layer["ties"].add(dwg.rect((_f(x - s / 2), _f(-y - s / 2)), (_f(s), _f(s)), fill="none", stroke=TIE_OFF_COLOUR,
                                    stroke_width="0.12", **{"class": "tie-off"}))
-    _draw_marks(dwg, layer, plan, placer, legs, _stop_marks(plan, machine))
-
-
-def _draw_marks(dwg, layer, plan: StitchPlan, placer: Placer, legs: np.ndarray, stop_marks) -> None:
-    """Stop circles and trim crosses, each labelled clear of the stitches, the marks and the other labels."""
-    cmds, xy = plan.commands, plan.xy_mm
     pts = np.column_stack([xy[:, 0], -xy[:, 1]])
     placer.block_segments(np.hstack([pts[legs], pts[legs + 1]]))
+
+
+def _draw_marks(dwg, layer, placer: Placer, stop_marks, trim_points: np.ndarray) -> None:
+    """Stop circles and trim crosses, each labelled clear of the stitches, the marks and the other labels."""
     stops = [(float(p[0]), -float(p[1]), label) for p, label in stop_marks]
-    trims = np.flatnonzero(cmds == Command.TRIM)
+    trims = np.column_stack([trim_points[:, 0], -trim_points[:, 1]]) if len(trim_points) else np.zeros((0, 2))
     for x, y, _ in stops:
         placer.block_box(Box(x - 1.2, y - 1.2, x + 1.2, y + 1.2))
-    for i in trims:
-        placer.block_box(Box(pts[i, 0] - 0.8, pts[i, 1] - 0.8, pts[i, 0] + 0.8, pts[i, 1] + 0.8))
+    for x, y in trims:
+        placer.block_box(Box(x - 0.8, y - 0.8, x + 0.8, y + 0.8))
     for x, y, label in stops:
         g = layer["stops"].add(dwg.g(**{"class": "before-start" if label.startswith("before") else "stop"}))
         g.add(dwg.circle((_f(x), _f(y)), "1.2", fill="none", stroke=STOP_COLOUR, stroke_width="0.25"))
         _label(dwg, g, placer, label, (x, y), 1.6, STOP_COLOUR)
-    for n, i in enumerate(trims, start=1):
-        x, y = pts[i]
+    for n, (x, y) in enumerate(trims, start=1):
         g = layer["trims"].add(dwg.g(**{"class": "trim"}))
         g.add(dwg.path(d=_cross_d(x, y, 0.8), stroke=TRIM_COLOUR, stroke_width="0.25", fill="none"))
         _label(dwg, g, placer, f"TRIM {n}", (x, y), 1.2, TRIM_COLOUR)
@@ -394,8 +413,8 @@ def _draw_scale_and_text(dwg, layer, texts: list[str], x0: float, y0: float, ava
                                      style=_FONT))
 
 
-def _legend_entries(plan: StitchPlan) -> list[str]:
-    """The legend's entries: every kind of mark this preview draws."""
+def _legend_entries(plan: StitchPlan, stops: bool, trims: bool) -> list[str]:
+    """The legend's entries: every kind of mark this preview draws (``stops``, ``trims``: any stop, trim mark)."""
     cmds, roles = plan.commands, plan.roles
     stitch = cmds == Command.STITCH
     out = ["ramp", "corridor", "tube", "rails"]
@@ -403,8 +422,8 @@ def _legend_entries(plan: StitchPlan) -> list[str]:
         out.append("placement")
     out += [name for name, present in (
         ("tie-in", (stitch & (roles == Role.TIE_IN)).any()), ("tie-off", (stitch & (roles == Role.TIE_OFF)).any()),
-        ("travel", bool(np.isin(cmds, (Command.JUMP, Command.STOP)).any())), ("stop", (cmds == Command.STOP).any()),
-        ("trim", (cmds == Command.TRIM).any())) if present]
+        ("travel", bool(np.isin(cmds, (Command.JUMP, Command.STOP)).any())), ("stop", stops),
+        ("trim", trims)) if present]
     return out
 
 
