@@ -438,6 +438,11 @@ class Design:
         (:func:`embroact.export.files.designfile.load_design` reads them, relative to the
         design file); :func:`embroact.predict.analysis.analyse` searches them. Not part of the
         design's value (equality, the design file).
+    source_files : tuple of (str, str)
+        (what, path) of every file the design file names and its loader read: each SVG
+        drawing an actuator's ``path`` names and each calibration file
+        (:func:`~embroact.export.files.designfile.load_design`); what no output of a run may
+        replace. Not part of the design's value either.
 
     Examples
     --------
@@ -456,6 +461,7 @@ class Design:
     operation: OperationSettings
     actuators: tuple[ActuatorSpec, ...]
     calibration_sets: tuple = field(default=(), compare=False, repr=False)
+    source_files: tuple = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         check_name("name", self.name)

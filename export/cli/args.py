@@ -181,16 +181,20 @@ _INPUT_FLAGS = (("design", "design file"), ("data", "data file"), ("target_shape
                 ("calibration", "calibration file"), ("path", "path drawing"), ("tube", "tube file"))
 
 
-def input_files(args) -> list[tuple[str, str]]:
+def input_files(args, design=None) -> list[tuple[str, str]]:
     """(what, file) of every input file the parsed ``args`` name: what no output may replace.
 
     A value counts when it names a file (``--calibration lab.toml``, not a set name;
-    ``--path drawing.svg#t1`` without the ``#t1``, not path data).
+    ``--path drawing.svg#t1`` without the ``#t1``, not path data); with ``design``, the
+    files it was read from follow (:attr:`~embroact.patterns.design.Design.source_files`:
+    its drawings and calibration files).
 
     Parameters
     ----------
     args : argparse.Namespace
         Parsed options.
+    design : Design, optional
+        The design the run loaded.
 
     Returns
     -------
@@ -218,7 +222,7 @@ def input_files(args) -> list[tuple[str, str]]:
                 continue  # path data
             value = split_ref(value)[0]
         out.append((what, value))
-    return out
+    return out + list(getattr(design, "source_files", ()))
 
 
 def materials_of(items):

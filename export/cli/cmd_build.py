@@ -114,7 +114,7 @@ def run(args) -> int:
     0
     """
     from ...patterns.base.validate import check_output_name
-    from .args import check_shape_flags
+    from .args import check_shape_flags, input_files
     from ..files.atomic import check_writable_dir
     from ..report.build import DesignRuleError, build, parse_formats
     from ...patterns.base.findings import summary_line
@@ -139,7 +139,8 @@ def run(args) -> int:
         analysis = analyse_target(target)
         res = build(target.design, args.out, formats=formats, force=args.force, split_long=args.split_long,
                     cord_stop=args.cord_stop,
-                    speed_spm=args.speed_spm, analysis=analysis, stages=_stages(args))
+                    speed_spm=args.speed_spm, analysis=analysis, stages=_stages(args),
+                    inputs=input_files(args, target.design), out_flag="--out")
     except DesignRuleError as exc:
         if args.json:
             print(json.dumps({"written": False, "summary": summary_line(exc.findings),

@@ -106,7 +106,8 @@ def add_arguments(parser, name: str) -> None:
     out = parser.add_argument_group("output")
     out.add_argument("-o", "--output", required=True, metavar="DESIGN.toml", help="design file to write")
     out.add_argument("--svg", metavar="FILE.svg", help="target shape: predicted shape over the target "
-                                                       "(default <DESIGN stem>-shape.svg)")
+                                                       "(default <DESIGN stem>-shape.svg; refused with --bend-deg, "
+                                                       "which writes the design file alone)")
     out.add_argument("--json", action="store_true", help="machine-readable result on stdout")
     out.add_argument("--write-nearest", action="store_true",
                      help="when no sewable design meets the target, write the nearest one anyway (exit code 5 "
@@ -278,6 +279,27 @@ def _shape(args, tube, settings, sets, operation) -> tuple[dict, Design, list[st
     return r.as_dict(), r.design, lines, design_shape_svg(r), r.reached
 
 
+def _check_svg_used(args) -> None:
+    """Refuse ``--svg`` with a bend target: only a target shape has an overlay to write.
+
+    Examples
+    --------
+    >>> import argparse
+    >>> _check_svg_used(argparse.Namespace(bend_deg=None, svg="o.svg"))
+    >>> try:
+    ...     _check_svg_used(argparse.Namespace(bend_deg=90.0, svg="o.svg"))
+    ... except ValueError as exc:
+    ...     print(str(exc).split(";")[0])
+    --svg 'o.svg': only a --target-shape target writes an overlay
+    """
+    if args.bend_deg is not None and args.svg is not None:
+        from ...patterns.base.errors import ParameterError
+        from ...patterns.base.validate import shown
+
+        raise ParameterError(f"--svg {shown(args.svg)}: only a --target-shape target writes an overlay; "
+                             "--bend-deg writes the design file alone (drop --svg)")
+
+
 def run(args) -> int:
     """Search, print, write the design (and the overlay SVG for a shape).
 
@@ -318,6 +340,7 @@ def run(args) -> int:
 
         check_range("--length-tolerance-mm", args.length_tolerance_mm, low=0.0, high=args.length_mm,
                     low_inclusive=True)
+    _check_svg_used(args)
     outputs = [("--output", args.output)]
     if args.bend_deg is None:  # the overlay's default name derives from a checked --output
         out = check_command_files(outputs, input_files(args))[0]

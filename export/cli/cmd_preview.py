@@ -163,7 +163,9 @@ def run(args) -> int:
     if _is_machine_file(args.design):
         text, info = _machine_file_stitches(args, out)
     else:
-        text, info = _render(args, out, analyse_target(load_target(args, design_path=args.design)))
+        target = load_target(args, design_path=args.design)
+        check_command_files([("--output", args.output)], input_files(args, target.design))  # its drawings, calibrations
+        text, info = _render(args, out, analyse_target(target))
     if args.json:
         print(json.dumps({"file": str(out), "kind": args.kind, **info}, indent=2, sort_keys=True))
     else:

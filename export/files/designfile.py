@@ -37,20 +37,30 @@ from .tomltext import dumps, loads_toml
 __all__ = ["load_design", "loads_design", "dumps_design", "save_design"]
 
 
+def _svg_drawings(data) -> dict[str, int]:
+    """Every SVG file the actuators' ``path`` values name -> the first actuator drawn in it."""
+    from .svgfile import is_svg_ref, split_ref
+
+    acts = data.get("actuator") if isinstance(data, dict) else None
+    drawings: dict[str, int] = {}
+    for i, a in enumerate(acts if isinstance(acts, list) else ()):
+        if isinstance(a, dict) and is_svg_ref(a.get("path")):
+            drawings.setdefault(split_ref(a["path"])[0], i)
+    return drawings
+
+
 def _svg_paths(data, base_dir) -> object:
     """``data`` with every actuator ``path = "FILE.svg#name"`` replaced by its points (plan frame),
     and, without ``[machine] origin``, the origin a drawing marks (:func:`~.svgfile.svg_origin_mm`)."""
     from ...patterns.svgpath import to_plan
-    from .svgfile import is_svg_ref, read_svg_path, split_ref, svg_origin_mm
+    from .svgfile import is_svg_ref, read_svg_path, svg_origin_mm
 
-    acts = data.get("actuator") if isinstance(data, dict) else None
-    if not isinstance(acts, list) or not any(isinstance(a, dict) and is_svg_ref(a.get("path")) for a in acts):
+    drawings = _svg_drawings(data)  # file -> the first actuator drawn in it
+    if not drawings:
         return data
     out = []
-    drawings: dict[str, int] = {}  # file -> the first actuator drawn in it
-    for i, a in enumerate(acts):
+    for i, a in enumerate(data["actuator"]):
         if isinstance(a, dict) and is_svg_ref(a.get("path")):
-            drawings.setdefault(split_ref(a["path"])[0], i)
             try:
                 a = {**a, "path": to_plan(read_svg_path(a["path"], base_dir=base_dir).points_mm).tolist()}
             except PathError as exc:
@@ -94,7 +104,8 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
     Design
         The validated design; SVG file paths are read into point lists (plan frame), and
         calibration files into :attr:`Design.calibration_sets` (each actuator's setting then
-        names its file's absolute path), exactly as the command line reads them.
+        names its file's absolute path), exactly as the command line reads them; the files
+        read are its :attr:`Design.source_files`.
 
     Examples
     --------
@@ -107,7 +118,22 @@ def loads_design(text: str, *, source: str = "<string>", base_dir: str | os.Path
         design = design_from_dict(_svg_paths(data, base_dir))
     except DesignFileError as exc:
         raise DesignFileError(f"{source}: {exc}") from None
-    return _with_calibration_files(design, Path(base_dir) if base_dir is not None else Path.cwd())
+    folder = Path(base_dir) if base_dir is not None else Path.cwd()
+    design = _with_calibration_files(design, folder)
+    return _with_source_files(design, data, source, folder)
+
+
+def _with_source_files(design: Design, data: dict, source: str, base_dir: Path) -> Design:
+    """``design`` with :attr:`Design.source_files`: the drawings and calibration files ``data`` names, by key."""
+    import dataclasses
+
+    files = [(f"drawing of {source} actuator[{i}].path", os.fspath(base_dir / file))
+             for file, i in _svg_drawings(data).items()]
+    for i, a in enumerate(data.get("actuator", ())):  # validated: a list of tables
+        named = a.get("model", {}).get("calibration")
+        if isinstance(named, str) and names_calibration_file(named):
+            files.append((f"calibration file of {source} actuator[{i}].model.calibration", os.fspath(base_dir / named)))
+    return dataclasses.replace(design, source_files=tuple(files)) if files else design
 
 
 def _with_calibration_files(design: Design, base_dir: Path) -> Design:

@@ -56,7 +56,7 @@ from typing import Callable, Mapping, Sequence
 
 from ...patterns.base.errors import ParameterError, PatternError
 from ...patterns.plan import StitchPlan
-from ..files.atomic import check_writable_dir, write_files_atomic
+from ..files.atomic import check_command_files, check_writable_dir, write_files_atomic
 from ..machine.formats import FORMATS, WriteResult, encode
 from .worksheet import DEFAULT_SPEED_SPM, Worksheet, worksheet
 
@@ -335,6 +335,8 @@ def build_plan_outputs(
     speed_spm: float = DEFAULT_SPEED_SPM,
     stages: Sequence[Stage] = (),
     cord_stop: str | None = None,
+    inputs: Sequence[tuple[str, str | os.PathLike]] = (),
+    out_flag: str = "out_dir",
 ) -> BuildResult:
     """Build the outputs of an existing plan and its findings (see the module docstring).
 
@@ -363,6 +365,12 @@ def build_plan_outputs(
         Further outputs, ``stage(BuildContext) -> {name: contents}``.
     cord_stop : str or None, optional
         How DST/EXP write a cord-in stop.
+    inputs : sequence of (what, path), optional
+        The files the run read (the design file, its drawings and calibration files): an
+        output that would replace one is refused once every output is named, before any is
+        written (:func:`~embroact.export.files.atomic.check_command_files`).
+    out_flag : str, optional
+        The name of ``out_dir`` in that error (``"--out"`` on the command line).
 
     Returns
     -------
@@ -372,6 +380,8 @@ def build_plan_outputs(
     ------
     DesignRuleError
         The findings hold errors and ``force`` is false.
+    ParameterError
+        An output names one of ``inputs`` (nothing written).
 
     Examples
     --------
@@ -415,6 +425,7 @@ def build_plan_outputs(
         ctx = BuildContext(design, plan, analysis, findings, ws, d, dict(outputs))
         for name, content in stage(ctx).items():
             outputs[name] = content.encode("utf-8") if isinstance(content, str) else bytes(content)
+    check_command_files([(out_flag, d / name) for name in outputs], inputs)
     files = write_outputs(d, outputs)
     return BuildResult(str(d), files, tuple(machine), ws, findings, plan, analysis)
 
@@ -432,6 +443,8 @@ def build(
     check: Callable | None = None,
     stages: Sequence[Stage] | None = None,
     cord_stop: str | None = None,
+    inputs: Sequence[tuple[str, str | os.PathLike]] = (),
+    out_flag: str = "out_dir",
 ) -> BuildResult:
     """Build ``design`` into ``out_dir``: ``<name>.<fmt>`` per format, worksheet, preview, stage outputs.
 
@@ -463,6 +476,9 @@ def build(
         worksheet and stitch preview only.
     cord_stop : str, optional
         ``"sequence"`` or ``"double"``; default the design's ``machine.cord_stop``.
+    inputs, out_flag : optional
+        The files the run read, none of which an output may replace, and the name of
+        ``out_dir`` in that error (:func:`build_plan_outputs`).
 
     Returns
     -------
@@ -475,6 +491,8 @@ def build(
         ``check`` found errors and ``force`` is false (nothing written).
     ExportError
         ``out_dir`` missing or not writable.
+    ParameterError
+        An output names one of ``inputs`` (nothing written).
 
     Examples
     --------
@@ -505,4 +523,4 @@ def build(
         findings = tuple(check(analysis))
     return build_plan_outputs(analysis.plan, out_dir, design=design, analysis=analysis, findings=findings,
                               formats=formats, force=force, split_long=split_long, speed_spm=speed_spm, stages=stages,
-                              cord_stop=cord_stop)
+                              cord_stop=cord_stop, inputs=inputs, out_flag=out_flag)
