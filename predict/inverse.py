@@ -1072,15 +1072,19 @@ def _lowest_p0_kpa(space: DesignSpace, length_mm: float, model: _Model) -> float
     return float(min(model.model(space.params(v), length_mm).p0_kpa for v in xs))
 
 
-def _rank(c: BendCandidate, target_deg: float, p: float, length_mm: float):
-    """Clean candidates first, then the asked length, then the narrower 1-sigma band of the bend (a candidate
-    without one after those with one), then the closer bend, then the wider margin to limit and range end.
+def _rank(c: BendCandidate, target_deg: float, p: float, length_mm: float, tol: float):
+    """Candidates that meet the target (within ``tol``) first, the others by how far they miss it; then clean ones,
+    then the asked length, then the narrower 1-sigma band of the bend (a candidate without one after those with
+    one), then the closer bend, then the wider margin to limit and range end.
 
-    The band comes after the length: the same design bends, and is uncertain, in proportion to its length,
-    so across lengths it would only prefer the shorter one."""
+    The band comes after the length: the same design bends, and is uncertain, in proportion to its length, so
+    across lengths it would only prefer the shorter one. A candidate that misses ranks by its miss first: a clean
+    cross that does not bend at this pressure (84 deg off) ranked above a zigzag 5 deg off."""
+    miss = round(abs(c.theta_deg - target_deg), 6)
+    off = miss if miss > tol else 0.0
     band = math.inf if c.theta_sd_deg is None else round(c.theta_sd_deg, 6)
-    return (c.warning_count > 0, round(abs(c.length_mm - length_mm), 6), band,
-            round(abs(c.theta_deg - target_deg), 6), -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
+    return (off, c.warning_count > 0, round(abs(c.length_mm - length_mm), 6), band, miss,
+            -min(c.margin_kpa / p, 10.0) - c.range_margin, c.pattern)
 
 
 def _fitted_lengths(c: BendCandidate, length_mm: float, tolerance_mm: float, target_deg: float, interval_mm: float,
@@ -1232,14 +1236,14 @@ def design_bend(bend_deg: float, pressure_kpa: float, *, pattern: str = "any", l
         raise ParameterError(f"bend_deg {target:g} at pressure_kpa {p:g}: no valid sewable design in any pattern; "
                              + "; ".join(reasons or ["every design fails the design rules or leaves the valid states"]))
     met = sorted((c for c in cands if in_range and abs(c.theta_deg - target) <= tol),
-                 key=lambda c: _rank(c, target, p, length))
+                 key=lambda c: _rank(c, target, p, length, tol))
 
     def sized(c):  # the statement's length note: a length other than the one asked for
         return "" if c.length_mm == length else f" with a length of {c.length_mm:g} mm (asked {length:g})"
 
     if met:
         best = met[0]
-        others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p, length)) if c is not best]
+        others = [c for c in sorted(cands, key=lambda c: _rank(c, target, p, length, tol)) if c is not best]
         note = f" ({best.warning_count} rule warning(s): no clean design meets it)" if best.warning_count else ""
         band = "" if best.theta_sd_deg is None else f" (+- {best.theta_sd_deg:.2f} deg, 1 sigma of the calibration)"
         return BendResult(target, p, length, best, tuple(others[:2]), True,

@@ -175,3 +175,14 @@ def test_a_zigzag_chain_takes_odd_widths_on_a_path_half_a_grid_unit_across():
     rails = [sorted({round(float(y), 6) for x, y in xy_sewn if lo < x - plan.actuators[0].centerline.points_mm[0][0] < hi})
              for lo, hi in ((5.0, 45.0), (55.0, 95.0))]
     assert [round(r_[-1] - r_[0], 6) for r_ in rails] == [6.1, 7.3]
+
+
+def test_runners_up_that_miss_rank_by_their_miss():
+    """84.5 deg at 150 kPa over both patterns: the runners-up that miss the target come in order of the miss (a clean
+    cross that bends 0 deg at 150 kPa, 84.5 deg off, ranked above a zigzag 5 deg off)."""
+    from embroact.predict.inverse import design_bend
+
+    r = design_bend(84.5, 150.0)
+    assert r.reached and abs(r.best.theta_deg - 84.5) <= r.tolerance_deg
+    misses = [abs(c.theta_deg - 84.5) for c in r.runners_up if abs(c.theta_deg - 84.5) > r.tolerance_deg]
+    assert misses == sorted(misses) and misses and misses[0] < 10.0, [(c.pattern, c.theta_deg) for c in r.runners_up]

@@ -83,9 +83,17 @@ def tube_from_args(args):
     >>> tube_from_args(argparse.Namespace(outer_radius_mm=2.0)).outer_radius_mm
     2.0
     """
+    from ...patterns.base.errors import ParameterError
     from ...patterns.params import Tube
 
-    return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
+    try:
+        return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
+    except ParameterError as exc:  # Tube names its fields: the user gave (or left at its default) a flag
+        text = str(exc)
+        for flag, field, _, default in TUBE_FLAGS:
+            given = getattr(args, field, None) is not None and getattr(args, field) != default
+            text = text.replace(field, flag if given else f"{flag} (default {default:g})")
+        raise ParameterError(text) from None
 
 
 def parse_pressures(text: str, flag: str = "--pressure-kpa"):
