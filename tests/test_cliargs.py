@@ -38,10 +38,11 @@ def test_parse_pressures_by_hand(text, expected):
 
 
 def test_a_tube_error_names_the_flags_and_the_default_left(capsys):
-    """--tube-radius-mm 1.0 with the inner radius left at its default 1.0: the error names --tube-inner-radius-mm and
-    its default (it said 'inner_radius_mm must be in [0, outer_radius_mm=1)', a field the user never typed)."""
+    """--tube-radius-mm 1.0 with the inner radius left at its default 1.0: the error says the inner radius it names is
+    --tube-inner-radius-mm's default (it said only 'inner_radius_mm must be in [0, outer_radius_mm=1)', a value the
+    user never typed)."""
     from embroact.export.cli.main import main
 
     assert main(["zigzag", "--width-mm", "7", "--tube-radius-mm", "1.0", "-o", "never.dst"]) == 2
-    assert capsys.readouterr().err == ("embroact: error: --tube-inner-radius-mm (default 1) must be in "
-                                       "[0, --tube-radius-mm=1), got 1\n")
+    assert capsys.readouterr().err == ("embroact: error: inner_radius_mm must be in [0, outer_radius_mm=1), got 1 "
+                                       "(--tube-inner-radius-mm 1: its default)\n")

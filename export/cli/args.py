@@ -88,12 +88,11 @@ def tube_from_args(args):
 
     try:
         return Tube(**{field: getattr(args, field) for _, field, _, _ in TUBE_FLAGS if hasattr(args, field)})
-    except ParameterError as exc:  # Tube names its fields: the user gave (or left at its default) a flag
+    except ParameterError as exc:  # the field the error names may be one the user never set: say so
         text = str(exc)
-        for flag, field, _, default in TUBE_FLAGS:
-            given = getattr(args, field, None) is not None and getattr(args, field) != default
-            text = text.replace(field, flag if given else f"{flag} (default {default:g})")
-        raise ParameterError(text) from None
+        left = [f"{flag} {default:g}" for flag, field, _, default in TUBE_FLAGS
+                if text.startswith(field) and getattr(args, field, default) == default]
+        raise ParameterError(text + (f" ({left[0]}: its default)" if left else "")) from None
 
 
 def parse_pressures(text: str, flag: str = "--pressure-kpa"):
