@@ -164,10 +164,10 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
                                 if s > 0.0))
     d = c.as_dict()
     rows += _reading_head(reading)
-    column = _reading_column(reading, c)
+    described = is_model_state(c.status).tolist()
+    column = _reading_column(reading, described)
     rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "")
                 + " status       l_mm     r_mm    beta_deg  d_mm    beyond validity")
-    described = is_model_state(c.status).tolist()
     for (p, t, s, l, r, b, di), rd, lim, ok in zip(zip(*(d[k] for k in _COLUMNS)), column, _limits([(model, c)], c),
                                                   described):
         state = (f"{t:10.3f} {rd}  {s:<13s}{l:8.3f}  {r:6.4f}  {b:<8.3f}  {di:6.4f}" if ok else
@@ -176,13 +176,11 @@ def _piece_table(title, derived, choice, c, band, reading=None) -> str:
     return "\n".join(rows)
 
 
-def _reading_column(reading, c) -> list[str]:
+def _reading_column(reading, described: list[bool]) -> list[str]:
     """The reading_deg cells of a table (none without a reading; '-' where the model describes no state)."""
-    from ...predict.status import is_model_state
-
     if reading is None:
-        return [""] * c.theta_deg.size
-    return [f"{v:10.3f} " if ok else f"{'-':>10s} " for v, ok in zip(reading[1], is_model_state(c.status).tolist())]
+        return [""] * len(described)
+    return [f"{v:10.3f} " if ok else f"{'-':>10s} " for v, ok in zip(reading[1], described)]
 
 
 def _table(act, c, band, segment_curves, reading=None) -> str:
@@ -212,10 +210,10 @@ def _strip_table(act, c, segment_curves, reading) -> str:
             + ("; the reading is the marker sum on their chain of arcs)" if reading is not None else ")")]
     rows += _reading_head(reading)
     rows.append("pressure_kpa  theta_deg " + ("reading_deg " if reading is not None else "") + " status")
-    column = _reading_column(reading, c)
+    described = is_model_state(c.status).tolist()
     rows += [f"{p:10.3f}  {t:10.3f} {rd}  {s}" if ok else f"{p:10.3f}  {'-':>10s} {rd}  {s}"
-             for p, t, rd, s, ok in zip(total["pressure_kpa"], total["theta_deg"], column, total["status"],
-                                        is_model_state(c.status).tolist())]
+             for p, t, rd, s, ok in zip(total["pressure_kpa"], total["theta_deg"], _reading_column(reading, described),
+                                        total["status"], described)]
     return "\n\n".join(parts + ["\n".join(rows)])
 
 
